@@ -1,0 +1,129 @@
+/* brdfit models [--json]: every model with its parameters, options and sizes. */
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/model.h"
+#include "commands.h"
+
+static const char *scale_name(bf_scale s)
+{
+    return s == BF_SCALE_LOG ? "log" : s == BF_SCALE_LOG1P ? "log1p" : "linear";
+}
+
+static cJSON *param_json(const bf_param_info *p)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", p->name);
+    cJSON_AddStringToObject(o, "kind", p->colour ? "colour" : "scalar");
+    cJSON_AddNumberToObject(o, "lower", p->lo);
+    cJSON_AddNumberToObject(o, "upper", p->hi);
+    cJSON_AddBoolToObject(o, "lower_open", p->lo_open);
+    cJSON_AddBoolToObject(o, "upper_open", p->hi_open);
+    cJSON_AddNumberToObject(o, "default", p->def);
+    cJSON_AddStringToObject(o, "scale", scale_name(p->scale));
+    return o;
+}
+
+/* The parameter names of `family:option=value`. */
+static cJSON *variant_params(const char *family, const char *option, const char *value)
+{
+    char spec[160];
+    snprintf(spec, sizeof spec, "%s:%s=%s", family, option, value);
+    bf_model *m = bf_model_create(spec, 1, NULL);
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; m && i < bf_model_nparams(m); i++)
+        cJSON_AddItemToArray(a, cJSON_CreateString(bf_model_param(m, i)->name));
+    bf_model_free(m);
+    return a;
+}
+
+static cJSON *family_json(const bf_family_info *fi)
+{
+    bf_model *m1 = bf_model_create(fi->name, 1, NULL), *m3 = bf_model_create(fi->name, 3, NULL);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", fi->name);
+    cJSON_AddStringToObject(o, "summary", fi->summary);
+    cJSON_AddStringToObject(o, "reference", fi->reference);
+    cJSON_AddBoolToObject(o, "anisotropic", fi->anisotropic);
+    cJSON_AddBoolToObject(o, "lobes", fi->lobes);
+    cJSON_AddBoolToObject(o, "reciprocal", bf_model_reciprocal(m1));
+    cJSON_AddBoolToObject(o, "energy_conserving", bf_model_energy_conserving(m1));
+    cJSON *params = cJSON_AddArrayToObject(o, "params");
+    for (int i = 0; i < bf_model_nparams(m1); i++)
+        cJSON_AddItemToArray(params, param_json(bf_model_param(m1, i)));
+    cJSON *opts = cJSON_AddArrayToObject(o, "options");
+    for (int k = 0; fi->options && fi->options[k].name; k++) {
+        cJSON *opt = cJSON_CreateObject();
+        cJSON_AddStringToObject(opt, "name", fi->options[k].name);
+        cJSON_AddStringToObject(opt, "default", fi->options[k].values[0]);
+        cJSON *vals = cJSON_AddArrayToObject(opt, "values");
+        for (int v = 0; fi->options[k].values[v]; v++) {
+            cJSON *val = cJSON_CreateObject();
+            cJSON_AddStringToObject(val, "value", fi->options[k].values[v]);
+            cJSON_AddItemToObject(val, "params",
+                                  variant_params(fi->name, fi->options[k].name, fi->options[k].values[v]));
+            cJSON_AddItemToArray(vals, val);
+        }
+        cJSON_AddItemToArray(opts, opt);
+    }
+    cJSON *nfree = cJSON_AddObjectToObject(o, "free_params");
+    cJSON_AddNumberToObject(nfree, "1", bf_model_nfree(m1));
+    cJSON_AddNumberToObject(nfree, "3", bf_model_nfree(m3));
+    bf_model_free(m1);
+    bf_model_free(m3);
+    return o;
+}
+
+static void print_text(const bf_family_info *fi)
+{
+    bf_model *m1 = bf_model_create(fi->name, 1, NULL), *m3 = bf_model_create(fi->name, 3, NULL);
+    printf("%s  (%s; %s)\n", fi->name, fi->summary, fi->reference);
+    printf("  %s, %s, %s%s; free parameters: %d for 1 channel, %d for 3\n",
+           fi->anisotropic ? "anisotropic" : "isotropic",
+           bf_model_reciprocal(m1) ? "reciprocal" : "not reciprocal",
+           bf_model_energy_conserving(m1) ? "energy conserving" : "not energy conserving",
+           fi->lobes ? ", lobes=K" : "", bf_model_nfree(m1), bf_model_nfree(m3));
+    for (int i = 0; i < bf_model_nparams(m1); i++) {
+        const bf_param_info *p = bf_model_param(m1, i);
+        printf("  %-16s %-6s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",
+               p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']', p->def,
+               p->scale == BF_SCALE_LINEAR ? "" : p->scale == BF_SCALE_LOG ? " (log scale)" : " (log1p scale)");
+    }
+    for (int k = 0; fi->options && fi->options[k].name; k++) {
+        printf("  option %s=", fi->options[k].name);
+        for (int v = 0; fi->options[k].values[v]; v++)
+            printf("%s%s", v ? "|" : "", fi->options[k].values[v]);
+        printf(" (default %s)\n", fi->options[k].values[0]);
+    }
+    bf_model_free(m1);
+    bf_model_free(m3);
+}
+
+int cmd_models(int argc, char **argv)
+{
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--json") == 0) {
+            json = 1;
+        } else {
+            fprintf(stderr, "brdfit models: unknown argument '%s' (usage: brdfit models [--json])\n", argv[i]);
+            return 2;
+        }
+    }
+    if (!json) {
+        for (int f = 0; f < bf_family_count(); f++)
+            print_text(bf_family_get(f));
+        return 0;
+    }
+    cJSON *root = cJSON_CreateObject();
+    cJSON *arr = cJSON_AddArrayToObject(root, "models");
+    for (int f = 0; f < bf_family_count(); f++)
+        cJSON_AddItemToArray(arr, family_json(bf_family_get(f)));
+    char *s = cJSON_Print(root);
+    puts(s);
+    free(s);
+    cJSON_Delete(root);
+    return 0;
+}

@@ -1,0 +1,8 @@
+/* Subcommands of the brdfit command. Each returns the process exit status. */
+#ifndef BRDFIT_COMMANDS_H
+#define BRDFIT_COMMANDS_H
+
+int cmd_models(int argc, char **argv);
+int cmd_eval(int argc, char **argv);
+
+#endif

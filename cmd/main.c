@@ -1,0 +1,38 @@
+/* brdfit: fit parametric BRDF models to measured reflectance. Dispatches subcommands. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+static const struct {
+    const char *name;
+    int (*run)(int, char **);
+    const char *usage;
+} commands[] = {
+    {"models", cmd_models, "models [--json]                  list models, parameters, bounds, options"},
+    {"eval", cmd_eval, "eval --params P.json --dirs D.csv [-o OUT.csv]   evaluate a model"},
+};
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: brdfit COMMAND [options]\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(out, "  brdfit %s\n", commands[i].usage);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "brdfit: unknown command '%s' (try brdfit --help)\n", argv[1]);
+    return 2;
+}

@@ -1,0 +1,86 @@
+/* Parametric BRDF models: configured from a spec string ("walter:fresnel=dielectric",
+ * "microfacet:D=ggx,G=smith_ggx,F=schlick,lobes=2") and a channel count, each exposes
+ * its parameter table and evaluates values and analytic gradients over many samples. */
+#ifndef BRDFIT_MODEL_H
+#define BRDFIT_MODEL_H
+
+#include <stddef.h>
+#include "brdfit/error.h"
+#include "brdfit/geometry.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define BF_MAX_LOBES 8
+
+/* How an optimizer should see a parameter: exponents span decades, so they are
+ * best searched in log space (log1p where the lower bound is 0). */
+typedef enum bf_scale { BF_SCALE_LINEAR = 0, BF_SCALE_LOG, BF_SCALE_LOG1P } bf_scale;
+
+typedef struct bf_param_info {
+    const char *name;   /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
+    int colour;         /* 1: one value per channel; 0: one scalar */
+    double lo, hi;      /* bounds */
+    int lo_open, hi_open; /* 1 where the bound itself is excluded, e.g. brady a in (0, 3] */
+    double def;         /* default value */
+    bf_scale scale;
+    int lobe;           /* 0 for parameters outside the lobes, k >= 1 for lobe k */
+} bf_param_info;
+
+typedef struct bf_option_info {
+    const char *name;          /* "fresnel" */
+    const char *const *values; /* NULL-terminated; values[0] is the default */
+} bf_option_info;
+
+/* What `brdfit models` shows about a family, independent of its configuration. */
+typedef struct bf_family_info {
+    const char *name;
+    const char *summary;
+    const char *reference;
+    const bf_option_info *options; /* terminated by an entry with name NULL */
+    int lobes;                     /* accepts lobes=K */
+    int anisotropic;
+} bf_family_info;
+
+int bf_family_count(void);
+const bf_family_info *bf_family_get(int i);
+
+typedef struct bf_model bf_model;
+
+/* channels >= 1. Returns NULL and fills err on unknown model, option or value. */
+bf_model *bf_model_create(const char *spec, int channels, bf_error *err);
+void bf_model_free(bf_model *m);
+
+const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
+const char *bf_model_spec(const bf_model *m);    /* canonical spec with every option */
+const char *bf_model_option(const bf_model *m, const char *key); /* NULL if none */
+int bf_model_channels(const bf_model *m);
+int bf_model_lobes(const bf_model *m);
+int bf_model_reciprocal(const bf_model *m);
+int bf_model_energy_conserving(const bf_model *m);
+
+/* Named parameters (a colour parameter is one entry) and their place in the vector. */
+int bf_model_nparams(const bf_model *m);
+const bf_param_info *bf_model_param(const bf_model *m, int i);
+int bf_model_param_offset(const bf_model *m, int i);
+int bf_model_find_param(const bf_model *m, const char *name); /* -1 if absent */
+
+/* Length P of the parameter vector: colour_count * C + scalar_count. */
+int bf_model_nfree(const bf_model *m);
+void bf_model_defaults(const bf_model *m, double *x);
+/* BF_ERR_RANGE naming the parameter when a value is NaN, Inf or out of bounds. */
+int bf_model_check(const bf_model *m, const double *x, bf_error *err);
+
+/* values[i*C + c] for every sample i and channel c. grad (NULL: none) is the row-major
+ * Jacobian: grad[(i*C + c)*P + k] = d values[i*C + c] / d x[k]. Thread-safe. */
+void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
+                   double *values, double *grad);
+/* The same for samples [i0, i1) only; outputs are indexed as for the whole set. */
+void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
+                         size_t i0, size_t i1, double *values, double *grad);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

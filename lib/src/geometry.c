@@ -1,0 +1,107 @@
+#include "brdfit/geometry.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { NFIELDS = 11 };
+
+static bf_geometry *alloc_geometry(size_t n, bf_error *err)
+{
+    bf_geometry *g = calloc(1, sizeof *g);
+    /* One block for all fields; +1 so n = 0 still gets a valid pointer. */
+    double *block = g ? malloc((NFIELDS * n + 1) * sizeof *block) : NULL;
+    if (!g || !block) {
+        free(g);
+        free(block);
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", n);
+        return NULL;
+    }
+    double **fields[NFIELDS] = {&g->lx, &g->ly, &g->lz, &g->vx, &g->vy, &g->vz,
+                                &g->hx, &g->hy, &g->hz, &g->vh, &g->sin2h};
+    for (int f = 0; f < NFIELDS; f++)
+        *fields[f] = block + (size_t)f * n;
+    g->n = n;
+    return g;
+}
+
+/* Fills H, V.H and sin^2(theta_h) for sample i from L and V already stored. */
+static void half_vector(bf_geometry *g, size_t i)
+{
+    double x = g->lx[i] + g->vx[i], y = g->ly[i] + g->vy[i], z = g->lz[i] + g->vz[i];
+    double len = sqrt(x * x + y * y + z * z);
+    if (len > 0.0) {
+        x /= len;
+        y /= len;
+        z /= len;
+    } else { /* L = -V: only possible on the horizon, where every model returns 0 */
+        x = y = 0.0;
+        z = 1.0;
+    }
+    g->hx[i] = x;
+    g->hy[i] = y;
+    g->hz[i] = z;
+    g->vh[i] = g->vx[i] * x + g->vy[i] * y + g->vz[i] * z;
+    g->sin2h[i] = x * x + y * y;
+}
+
+static double horizon_cos(double t)
+{
+    double c = cos(t);
+    return fabs(c) < 1e-15 ? 0.0 : c;
+}
+
+bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
+                                     const double *theta_o, const double *phi_o,
+                                     bf_error *err)
+{
+    bf_geometry *g = alloc_geometry(n, err);
+    if (!g)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        double si = sin(theta_i[i]), so = sin(theta_o[i]);
+        g->lx[i] = si * cos(phi_i[i]);
+        g->ly[i] = si * sin(phi_i[i]);
+        g->lz[i] = horizon_cos(theta_i[i]);
+        g->vx[i] = so * cos(phi_o[i]);
+        g->vy[i] = so * sin(phi_o[i]);
+        g->vz[i] = horizon_cos(theta_o[i]);
+        half_vector(g, i);
+    }
+    return g;
+}
+
+bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V,
+                                      bf_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        double ll = L[3 * i] * L[3 * i] + L[3 * i + 1] * L[3 * i + 1] + L[3 * i + 2] * L[3 * i + 2];
+        double vv = V[3 * i] * V[3 * i] + V[3 * i + 1] * V[3 * i + 1] + V[3 * i + 2] * V[3 * i + 2];
+        if (!(ll > 0.0) || !(vv > 0.0) || !isfinite(ll) || !isfinite(vv)) {
+            bf_fail(err, BF_ERR_RANGE, "sample %zu: direction is zero, NaN or Inf", i);
+            return NULL;
+        }
+    }
+    bf_geometry *g = alloc_geometry(n, err);
+    if (!g)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        double il = 1.0 / sqrt(L[3 * i] * L[3 * i] + L[3 * i + 1] * L[3 * i + 1] + L[3 * i + 2] * L[3 * i + 2]);
+        double iv = 1.0 / sqrt(V[3 * i] * V[3 * i] + V[3 * i + 1] * V[3 * i + 1] + V[3 * i + 2] * V[3 * i + 2]);
+        g->lx[i] = L[3 * i] * il;
+        g->ly[i] = L[3 * i + 1] * il;
+        g->lz[i] = L[3 * i + 2] * il;
+        g->vx[i] = V[3 * i] * iv;
+        g->vy[i] = V[3 * i + 1] * iv;
+        g->vz[i] = V[3 * i + 2] * iv;
+        half_vector(g, i);
+    }
+    return g;
+}
+
+void bf_geometry_free(bf_geometry *g)
+{
+    if (g) {
+        free(g->lx);
+        free(g);
+    }
+}

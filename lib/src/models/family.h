@@ -1,0 +1,73 @@
+/* Internal: what a model family implements, and the configured model it fills in.
+ * Each family lives in its own file and exports one `const bf_family`; registry.c is
+ * the only place that lists them all. */
+#ifndef BF_FAMILY_H
+#define BF_FAMILY_H
+
+#include "brdfit/model.h"
+
+#define BF_MAX_OPTIONS 4
+#define BF_MAX_PARAMS 64
+#define BF_NAME_LEN 32
+#define BF_BLOCK 128 /* samples per block in the lobe driver */
+
+typedef struct bf_family bf_family;
+
+struct bf_model {
+    const bf_family *family;
+    int channels;
+    int lobes;
+    int opt[BF_MAX_OPTIONS]; /* chosen value index for each of the family's options */
+    int reciprocal, energy_conserving;
+
+    int nparam;
+    bf_param_info param[BF_MAX_PARAMS];
+    char names[BF_MAX_PARAMS][BF_NAME_LEN];
+    int offset[BF_MAX_PARAMS];
+    int nfree;
+
+    /* Filled by bf_model_add_param for the lobe driver: entry of each lobe's colour
+     * weight (rho_s) and how many scalars follow it. */
+    int lobe_first[BF_MAX_LOBES + 1];
+    int lobe_nscalar[BF_MAX_LOBES + 1];
+
+    char spec[160];
+};
+
+/* Shape of lobe k over samples [i0, i0 + cnt): S[j] for j < cnt and, when dS is not
+ * NULL, dS[s * BF_BLOCK + j] = dS / d(scalar s of the lobe), scalars in table order.
+ * `s` holds the lobe's scalar values. Invalid samples (below the horizon) may be left
+ * with any finite or non-finite value: the driver overwrites them with 0. */
+typedef void (*bf_lobe_fn)(const bf_model *m, int lobe, const double *s,
+                           const bf_geometry *g, size_t i0, size_t cnt,
+                           double *S, double *dS);
+
+struct bf_family {
+    bf_family_info info;
+    /* Adds the parameters for m->lobes and m->opt (via bf_model_add_param) and sets
+     * reciprocal / energy_conserving. Returns BF_OK or an error. */
+    int (*configure)(bf_model *m, bf_error *err);
+    /* Evaluator over samples [i0, i1) (values and grad as bf_model_eval): either the
+     * family's own, or bf_eval_diffuse_lobes together with a `lobe` shape. */
+    void (*eval)(const bf_model *m, const double *x, const bf_geometry *g,
+                 size_t i0, size_t i1, double *values, double *grad);
+    bf_lobe_fn lobe; /* only for bf_eval_diffuse_lobes */
+};
+
+/* Appends a parameter; name gets "_k" appended for lobe k when m->lobes > 1. */
+int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi,
+                       double def, bf_scale scale, int lobe, bf_error *err);
+/* Same, with open bounds. */
+int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open,
+                            double hi, int hi_open, double def, bf_scale scale, int lobe,
+                            bf_error *err);
+
+/* The shared driver for families with a `lobe` function. Expects the table laid out as
+ * rho_d (colour), then for each lobe k: rho_s (colour) followed by its scalars. */
+void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
+                           size_t i0, size_t i1, double *values, double *grad);
+
+/* Option index helpers for configure functions. */
+int bf_model_opt(const bf_model *m, const char *key); /* chosen value index, -1 if no such option */
+
+#endif

@@ -1,0 +1,57 @@
+/* The shared evaluator for "rho_d/pi + sum_k rho_s_k * S_k" models: each family only
+ * computes its scalar lobe shapes S_k and their derivatives over a block of samples;
+ * this driver spreads them over the channels and writes the Jacobian rows. */
+#include "family.h"
+
+#include <math.h>
+#include <string.h>
+
+#define BF_MAX_LOBE_SCALARS 8
+
+void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
+                           size_t i0, size_t i1, double *values, double *grad)
+{
+    const int C = m->channels, P = m->nfree;
+    int K = 0; /* lobes actually configured (0 for a diffuse-only model) */
+    while (K < m->lobes && m->lobe_first[K + 1] != 0)
+        K++;
+    const double *rho_d = x + m->offset[0];
+    double S[BF_MAX_LOBES][BF_BLOCK];
+    double dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_BLOCK];
+
+    for (size_t b0 = i0; b0 < i1; b0 += BF_BLOCK) {
+        size_t cnt = i1 - b0 < BF_BLOCK ? i1 - b0 : BF_BLOCK;
+        for (int k = 1; k <= K; k++) {
+            int first = m->lobe_first[k];
+            const double *s = x + m->offset[first + 1];
+            m->family->lobe(m, k, s, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
+        }
+        for (size_t j = 0; j < cnt; j++) {
+            size_t i = b0 + j;
+            int valid = bf_geometry_valid(g, i);
+            for (int c = 0; c < C; c++) {
+                double f = 0.0;
+                double *row = grad ? grad + ((i * (size_t)C) + (size_t)c) * (size_t)P : NULL;
+                if (row)
+                    memset(row, 0, (size_t)P * sizeof *row);
+                if (valid) {
+                    f = rho_d[c] * (1.0 / M_PI);
+                    if (row)
+                        row[m->offset[0] + c] = 1.0 / M_PI;
+                    for (int k = 1; k <= K; k++) {
+                        int first = m->lobe_first[k];
+                        int o = m->offset[first];
+                        double w = x[o + c];
+                        f += w * S[k - 1][j];
+                        if (row) {
+                            row[o + c] = S[k - 1][j];
+                            for (int q = 0; q < m->lobe_nscalar[k]; q++)
+                                row[m->offset[first + 1 + q]] = w * dS[k - 1][q * BF_BLOCK + j];
+                        }
+                    }
+                }
+                values[i * (size_t)C + (size_t)c] = f;
+            }
+        }
+    }
+}

@@ -1,0 +1,27 @@
+/* The one place that lists every model family. */
+#include "registry.h"
+
+#include <string.h>
+
+extern const bf_family bf_family_lambert;
+
+static const bf_family *const families[] = {
+    &bf_family_lambert,
+};
+
+enum { NFAMILIES = sizeof families / sizeof families[0] };
+
+int bf_family_count(void) { return NFAMILIES; }
+
+const bf_family_info *bf_family_get(int i)
+{
+    return (i >= 0 && i < NFAMILIES) ? &families[i]->info : NULL;
+}
+
+const bf_family *bf_registry_find(const char *name, size_t len)
+{
+    for (int i = 0; i < NFAMILIES; i++)
+        if (strlen(families[i]->info.name) == len && strncmp(families[i]->info.name, name, len) == 0)
+            return families[i];
+    return NULL;
+}

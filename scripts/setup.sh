@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs everything brdfit needs to build and test, from Debian packages.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  build-essential cmake pkg-config \
+  libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
+  libcjson-dev libcmocka-dev >/dev/null
+# openimageio-tools: Debian's OpenImageIO CMake package refers to its binaries.

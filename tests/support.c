@@ -1,0 +1,194 @@
+#include "support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int family_selected(const char *name)
+{
+    const char *sel = getenv("BRDFIT_TEST_MODEL");
+    if (!sel || !*sel)
+        return 1;
+    size_t n = strlen(name);
+    for (const char *p = sel; *p;) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        if (len == n && strncmp(p, name, n) == 0)
+            return 1;
+        if (!comma)
+            break;
+        p = comma + 1;
+    }
+    return 0;
+}
+
+static void push(char ***specs, int *n, int *cap, const char *s)
+{
+    if (*n == *cap) {
+        *cap = *cap ? 2 * *cap : 64;
+        *specs = realloc(*specs, (size_t)*cap * sizeof **specs);
+    }
+    (*specs)[(*n)++] = strdup(s);
+}
+
+int ts_all_specs(char ***specs)
+{
+    int n = 0, cap = 0;
+    *specs = NULL;
+    for (int f = 0; f < bf_family_count(); f++) {
+        const bf_family_info *fi = bf_family_get(f);
+        if (!family_selected(fi->name))
+            continue;
+        int no = 0, nv[8], idx[8] = {0};
+        while (fi->options && fi->options[no].name) {
+            nv[no] = 0;
+            while (fi->options[no].values[nv[no]])
+                nv[no]++;
+            no++;
+        }
+        for (int lobes = 1; lobes <= (fi->lobes ? 2 : 1); lobes++) {
+            memset(idx, 0, sizeof idx);
+            for (;;) {
+                char buf[256];
+                int len = snprintf(buf, sizeof buf, "%s", fi->name);
+                for (int o = 0; o < no; o++)
+                    len += snprintf(buf + len, sizeof buf - (size_t)len, "%c%s=%s", o ? ',' : ':',
+                                    fi->options[o].name, fi->options[o].values[idx[o]]);
+                if (fi->lobes)
+                    snprintf(buf + len, sizeof buf - (size_t)len, "%clobes=%d", no ? ',' : ':', lobes);
+                push(specs, &n, &cap, buf);
+                int o = 0;
+                while (o < no && ++idx[o] == nv[o])
+                    idx[o++] = 0;
+                if (o == no)
+                    break;
+            }
+        }
+    }
+    return n;
+}
+
+void ts_free_specs(char **specs, int n)
+{
+    for (int i = 0; i < n; i++)
+        free(specs[i]);
+    free(specs);
+}
+
+double ts_uniform(ts_rng *r)
+{
+    r->s ^= r->s >> 12;
+    r->s ^= r->s << 25;
+    r->s ^= r->s >> 27;
+    return (double)((r->s * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+double ts_param_lo(const bf_param_info *p)
+{
+    return p->lo_open ? p->lo + 1e-9 * (p->hi - p->lo) : p->lo;
+}
+
+double ts_param_hi(const bf_param_info *p)
+{
+    return p->hi_open ? p->hi - 1e-9 * (p->hi - p->lo) : p->hi;
+}
+
+/* A value in [a, b] drawn in the parameter's natural scale. */
+static double draw(const bf_param_info *p, ts_rng *r, double a, double b)
+{
+    double u = ts_uniform(r);
+    if (p->scale == BF_SCALE_LOG && a > 0.0)
+        return a * pow(b / a, u);
+    if (p->scale == BF_SCALE_LOG1P)
+        return expm1(log1p(a) + u * (log1p(b) - log1p(a)));
+    return a + u * (b - a);
+}
+
+void ts_random_params(const bf_model *m, ts_rng *r, int how, double *x)
+{
+    int C = bf_model_channels(m);
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        int off = bf_model_param_offset(m, i), n = p->colour ? C : 1;
+        double lo = ts_param_lo(p), hi = ts_param_hi(p);
+        for (int c = 0; c < n; c++) {
+            double v;
+            if (how == TS_PARAMS_ANY) {
+                double u = ts_uniform(r);
+                v = u < 0.15 ? lo : u < 0.3 ? hi : draw(p, r, lo, hi);
+            } else {
+                double a = lo, b = hi;
+                /* Keep lobes wide enough to integrate on a grid. */
+                if (p->scale == BF_SCALE_LOG1P && b > 100.0)
+                    b = 100.0;
+                if (p->scale == BF_SCALE_LOG && a < 0.1 && b >= 0.3)
+                    a = 0.1;
+                v = draw(p, r, a, b);
+            }
+            x[off + c] = v;
+        }
+    }
+    if (how == TS_PARAMS_MODERATE) {
+        /* Colour parameters of one channel sum to at most 1 (rho_d + rho_s <= 1). */
+        for (int c = 0; c < C; c++) {
+            double sum = 0.0;
+            for (int i = 0; i < bf_model_nparams(m); i++)
+                if (bf_model_param(m, i)->colour)
+                    sum += x[bf_model_param_offset(m, i) + c];
+            if (sum > 1.0)
+                for (int i = 0; i < bf_model_nparams(m); i++)
+                    if (bf_model_param(m, i)->colour)
+                        x[bf_model_param_offset(m, i) + c] /= sum;
+        }
+    }
+}
+
+void ts_random_dirs(ts_rng *r, size_t n, double *ti, double *pi_, double *to, double *po)
+{
+    for (size_t k = 0; k < n; k++) {
+        ti[k] = acos(1.0 - ts_uniform(r)) * (89.5 / 90.0);
+        pi_[k] = 2.0 * M_PI * ts_uniform(r);
+        if (k % 3 == 0) { /* near the mirror direction */
+            to[k] = ti[k] + 0.05 * (ts_uniform(r) - 0.5);
+            to[k] = fabs(to[k]) > 89.5 * DEG ? 89.5 * DEG : fabs(to[k]);
+            po[k] = pi_[k] + M_PI + 0.05 * (ts_uniform(r) - 0.5);
+        } else {
+            to[k] = acos(1.0 - ts_uniform(r)) * (89.5 / 90.0);
+            po[k] = 2.0 * M_PI * ts_uniform(r);
+        }
+    }
+}
+
+double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g)
+{
+    double *v = malloc((g->n * (size_t)bf_model_channels(m) + 1) * sizeof *v);
+    bf_model_eval(m, x, g, v, NULL);
+    return v;
+}
+
+bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to,
+                             const double *po)
+{
+    double *a = malloc(4 * (n + 1) * sizeof *a);
+    for (size_t k = 0; k < n; k++) {
+        a[k] = ti[k] * DEG;
+        a[n + k] = pi_[k] * DEG;
+        a[2 * n + k] = to[k] * DEG;
+        a[3 * n + k] = po[k] * DEG;
+    }
+    bf_geometry *g = bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, NULL);
+    free(a);
+    return g;
+}
+
+double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
+                int c)
+{
+    bf_geometry *g = ts_geometry_deg(1, &ti, &pi_, &to, &po);
+    double *v = ts_eval(m, x, g);
+    double r = v[c];
+    free(v);
+    bf_geometry_free(g);
+    return r;
+}

@@ -1,0 +1,53 @@
+/* Test support shared by the model tests: every configuration of every registered
+ * family, reproducible random parameters and directions, finite differences. */
+#ifndef BF_TEST_SUPPORT_H
+#define BF_TEST_SUPPORT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "brdfit/geometry.h"
+#include "brdfit/model.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#define DEG (M_PI / 180.0)
+
+/* Every option combination of every family (lobes 1 and 2 where accepted), as spec
+ * strings. When the environment variable BRDFIT_TEST_MODEL is set (a comma-separated
+ * list of family names), only those families. Returns the count; free with
+ * ts_free_specs. */
+int ts_all_specs(char ***specs);
+void ts_free_specs(char **specs, int n);
+
+/* Deterministic generator (xorshift64*). */
+typedef struct ts_rng { uint64_t s; } ts_rng;
+double ts_uniform(ts_rng *r); /* [0, 1) */
+
+/* How a random parameter vector is drawn. */
+enum {
+    TS_PARAMS_ANY = 0,      /* anywhere in bounds, the bounds themselves often */
+    TS_PARAMS_MODERATE = 1, /* lobes wide enough for quadrature, colour sums <= 1 */
+};
+void ts_random_params(const bf_model *m, ts_rng *r, int how, double *x);
+/* Closest value to the bound that the bound's openness allows. */
+double ts_param_lo(const bf_param_info *p);
+double ts_param_hi(const bf_param_info *p);
+
+/* n random direction pairs above the horizon (theta up to 89.5 degrees), about a third
+ * of them near the mirror direction so sharp lobes are exercised. Radians. */
+void ts_random_dirs(ts_rng *r, size_t n, double *ti, double *pi_, double *to, double *po);
+
+/* Evaluates values only, over a geometry, into a malloc'd array (n*C). */
+double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g);
+
+/* Geometry from degrees. */
+bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to,
+                             const double *po);
+
+/* Single value of channel c at one direction pair in degrees. */
+double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
+                int c);
+
+#endif
