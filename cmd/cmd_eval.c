@@ -1,12 +1,135 @@
-/* brdfit eval --params P.json --dirs D.csv [-o OUT.csv] */
+/* brdfit eval --params P.json --dirs D.csv [-o OUT.csv]: a model's values at given
+ * direction pairs, one column per channel. */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
+#include "brdfit/io.h"
+#include "brdfit/model.h"
 #include "commands.h"
+
+static const char *const angle_cols[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: brdfit eval --params P.json --dirs D.csv [-o OUT.csv]\n"
+                 "  D.csv has columns theta_i,phi_i,theta_o,phi_o in degrees; the output repeats\n"
+                 "  them and adds one column per channel (value, or r,g,b, or c0..cN-1).\n");
+}
+
+static void channel_name(int C, int c, char *buf, size_t size)
+{
+    static const char *const rgb[3] = {"r", "g", "b"};
+    if (C == 1)
+        snprintf(buf, size, "value");
+    else if (C == 3)
+        snprintf(buf, size, "%s", rgb[c]);
+    else
+        snprintf(buf, size, "c%d", c);
+}
+
+static int write_table(FILE *fp, const bf_csv *t, const int *col, int C, const double *v)
+{
+    char buf[40];
+    fprintf(fp, "theta_i,phi_i,theta_o,phi_o");
+    for (int c = 0; c < C; c++) {
+        channel_name(C, c, buf, sizeof buf);
+        fprintf(fp, ",%s", buf);
+    }
+    fputc('\n', fp);
+    for (size_t r = 0; r < t->nrows; r++) {
+        for (int k = 0; k < 4; k++)
+            fprintf(fp, "%s%s", k ? "," : "", bf_format_double(t->data[r * t->ncols + (size_t)col[k]], buf, sizeof buf));
+        for (int c = 0; c < C; c++)
+            fprintf(fp, ",%s", bf_format_double(v[r * (size_t)C + (size_t)c], buf, sizeof buf));
+        fputc('\n', fp);
+    }
+    return ferror(fp) ? -1 : 0;
+}
 
 int cmd_eval(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "brdfit eval: not built yet\n");
-    return 2;
+    const char *params_path = NULL, *dirs_path = NULL, *out_path = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 0;
+        }
+        if (i + 1 >= argc || (strcmp(a, "--params") && strcmp(a, "--dirs") && strcmp(a, "-o"))) {
+            fprintf(stderr, "brdfit eval: unexpected argument '%s'\n", a);
+            usage(stderr);
+            return 2;
+        }
+        const char **dst = !strcmp(a, "--params") ? &params_path : !strcmp(a, "--dirs") ? &dirs_path : &out_path;
+        *dst = argv[++i];
+    }
+    if (!params_path || !dirs_path) {
+        fprintf(stderr, "brdfit eval: --params and --dirs are required\n");
+        usage(stderr);
+        return 2;
+    }
+
+    bf_error err;
+    bf_model *m = NULL;
+    double *x = NULL, *values = NULL, *ang = NULL;
+    bf_csv *t = NULL;
+    bf_geometry *g = NULL;
+    int status = 1;
+    if (bf_params_read(params_path, &m, &x, &err) != BF_OK || bf_csv_read(dirs_path, &t, &err) != BF_OK) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        goto done;
+    }
+    int col[4];
+    for (int k = 0; k < 4; k++)
+        if ((col[k] = bf_csv_column(t, angle_cols[k])) < 0) {
+            fprintf(stderr, "brdfit eval: %s: missing column %s (need theta_i,phi_i,theta_o,phi_o)\n",
+                    dirs_path, angle_cols[k]);
+            goto done;
+        }
+    if (t->nrows == 0) {
+        fprintf(stderr, "brdfit eval: %s: no direction rows\n", dirs_path);
+        goto done;
+    }
+    size_t n = t->nrows;
+    int C = bf_model_channels(m);
+    ang = malloc(4 * n * sizeof *ang);
+    values = malloc(n * (size_t)C * sizeof *values);
+    if (!ang || !values) {
+        fprintf(stderr, "brdfit eval: out of memory for %zu directions\n", n);
+        goto done;
+    }
+    for (size_t r = 0; r < n; r++)
+        for (int k = 0; k < 4; k++)
+            ang[(size_t)k * n + r] = t->data[r * t->ncols + (size_t)col[k]] * (M_PI / 180.0);
+    if (!(g = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &err))) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        goto done;
+    }
+    bf_model_eval(m, x, g, values, NULL);
+
+    bf_outfile out;
+    if (bf_outfile_open(&out, out_path, &err) != BF_OK) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        goto done;
+    }
+    if (write_table(out.fp, t, col, C, values) != 0) {
+        bf_outfile_abort(&out);
+        fprintf(stderr, "brdfit eval: %s: write error\n", out_path ? out_path : "standard output");
+        goto done;
+    }
+    if (bf_outfile_commit(&out, &err) != BF_OK) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        goto done;
+    }
+    status = 0;
+done:
+    bf_geometry_free(g);
+    bf_csv_free(t);
+    bf_model_free(m);
+    free(x);
+    free(ang);
+    free(values);
+    return status;
 }

@@ -8,5 +8,6 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
-  libcjson-dev libcmocka-dev >/dev/null
+  libcjson-dev libcmocka-dev jq >/dev/null
 # openimageio-tools: Debian's OpenImageIO CMake package refers to its binaries.
+# jq: the command-line tests check brdfit's JSON output with it.

@@ -120,7 +120,7 @@ void ts_random_params(const bf_model *m, ts_rng *r, int how, double *x)
             } else {
                 double a = lo, b = hi;
                 /* Keep lobes wide enough to integrate on a grid. */
-                if (p->scale == BF_SCALE_LOG1P && b > 100.0)
+                if (p->scale != BF_SCALE_LINEAR && b > 100.0) /* exponents */
                     b = 100.0;
                 if (p->scale == BF_SCALE_LOG && a < 0.1 && b >= 0.3)
                     a = 0.1;

@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include <cmocka.h>
@@ -16,7 +17,24 @@ static const double phis[] = {0.0, 45.0, 90.0, 180.0, 270.0};
 enum { NT = sizeof thetas / sizeof thetas[0], NP = sizeof phis / sizeof phis[0] };
 enum { NDIR = NT * NP * NT * NP };
 
-static bf_geometry *geom;
+static bf_geometry *geom, *near_horizon;
+
+/* Vectors at the smallest cosine the geometry keeps above the horizon (2e-15), paired
+ * every way: mirror (H = N), equal (NH tiny), crossed, against the normal. */
+static bf_geometry *near_horizon_geometry(void)
+{
+    const double e = 2e-15;
+    const double dirs[][3] = {{1, 0, e}, {-1, 0, e}, {0, 1, e}, {0.6, -0.8, e}, {0, 0, 1}, {1, 0, 1e-9}};
+    enum { ND = sizeof dirs / sizeof dirs[0] };
+    double L[ND * ND * 3], V[ND * ND * 3];
+    for (int a = 0; a < ND; a++)
+        for (int b = 0; b < ND; b++)
+            for (int k = 0; k < 3; k++) {
+                L[(a * ND + b) * 3 + k] = dirs[a][k];
+                V[(a * ND + b) * 3 + k] = dirs[b][k];
+            }
+    return bf_geometry_from_vectors(ND * ND, L, V, NULL);
+}
 
 static bf_geometry *extreme_geometry(void)
 {
@@ -34,12 +52,13 @@ static bf_geometry *extreme_geometry(void)
     return ts_geometry_deg(NDIR, ti, pi_, to, po);
 }
 
-static void check_point(const char *spec, const bf_model *m, const double *x, const char *what)
+static void check_geometry(const char *spec, const bf_model *m, const double *x, const char *what,
+                           const bf_geometry *geo)
 {
     const int C = bf_model_channels(m), P = bf_model_nfree(m);
-    size_t nv = (size_t)NDIR * (size_t)C;
+    size_t nv = geo->n * (size_t)C;
     double *v = malloc(nv * sizeof *v), *g = malloc(nv * (size_t)P * sizeof *g);
-    bf_model_eval(m, x, geom, v, g);
+    bf_model_eval(m, x, geo, v, g);
     for (size_t i = 0; i < nv; i++) {
         if (!isfinite(v[i]) || v[i] < 0.0)
             fail_msg("%s C=%d (%s): value %g at sample %zu", spec, C, what, v[i], i / (size_t)C);
@@ -50,6 +69,12 @@ static void check_point(const char *spec, const bf_model *m, const double *x, co
     }
     free(v);
     free(g);
+}
+
+static void check_point(const char *spec, const bf_model *m, const double *x, const char *what)
+{
+    check_geometry(spec, m, x, what, geom);
+    check_geometry(spec, m, x, what, near_horizon);
 }
 
 static void check(const char *spec, int C)
@@ -108,6 +133,11 @@ static void test_horizon_is_zero(void **state)
 int main(void)
 {
     geom = extreme_geometry();
+    near_horizon = near_horizon_geometry();
+    if (!(near_horizon->lz[0] > 0.0)) { /* must stay above the horizon to mean anything */
+        fprintf(stderr, "near-horizon geometry was snapped to the horizon\n");
+        return 1;
+    }
     char **specs;
     int n = ts_all_specs(&specs);
     struct CMUnitTest *tests = calloc((size_t)n + 1, sizeof *tests);
@@ -118,5 +148,6 @@ int main(void)
     free(tests);
     ts_free_specs(specs, n);
     bf_geometry_free(geom);
+    bf_geometry_free(near_horizon);
     return rc;
 }

@@ -44,11 +44,8 @@ static void half_vector(bf_geometry *g, size_t i)
     g->sin2h[i] = x * x + y * y;
 }
 
-static double horizon_cos(double t)
-{
-    double c = cos(t);
-    return fabs(c) < 1e-15 ? 0.0 : c;
-}
+/* A cosine within 1e-15 of zero is the horizon (see geometry.h). */
+static double horizon(double c) { return fabs(c) < 1e-15 ? 0.0 : c; }
 
 bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
                                      const double *theta_o, const double *phi_o,
@@ -61,10 +58,10 @@ bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const doub
         double si = sin(theta_i[i]), so = sin(theta_o[i]);
         g->lx[i] = si * cos(phi_i[i]);
         g->ly[i] = si * sin(phi_i[i]);
-        g->lz[i] = horizon_cos(theta_i[i]);
+        g->lz[i] = horizon(cos(theta_i[i]));
         g->vx[i] = so * cos(phi_o[i]);
         g->vy[i] = so * sin(phi_o[i]);
-        g->vz[i] = horizon_cos(theta_o[i]);
+        g->vz[i] = horizon(cos(theta_o[i]));
         half_vector(g, i);
     }
     return g;
@@ -89,10 +86,10 @@ bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V
         double iv = 1.0 / sqrt(V[3 * i] * V[3 * i] + V[3 * i + 1] * V[3 * i + 1] + V[3 * i + 2] * V[3 * i + 2]);
         g->lx[i] = L[3 * i] * il;
         g->ly[i] = L[3 * i + 1] * il;
-        g->lz[i] = L[3 * i + 2] * il;
+        g->lz[i] = horizon(L[3 * i + 2] * il);
         g->vx[i] = V[3 * i] * iv;
         g->vy[i] = V[3 * i + 1] * iv;
-        g->vz[i] = V[3 * i + 2] * iv;
+        g->vz[i] = horizon(V[3 * i + 2] * iv);
         half_vector(g, i);
     }
     return g;

@@ -29,7 +29,8 @@ bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const doub
                                      const double *theta_o, const double *phi_o,
                                      bf_error *err);
 
-/* L and V as n unit vectors each, xyz interleaved (3n doubles). They are normalised. */
+/* L and V as n vectors each, xyz interleaved (3n doubles). They are normalised, and a
+ * z within 1e-15 of zero is set to zero (on the horizon), as for angles. */
 bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V,
                                       bf_error *err);
 

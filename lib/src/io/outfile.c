@@ -1,0 +1,81 @@
+/* Output files that appear only when complete, and exact decimal formatting. */
+#include "brdfit/io.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
+{
+    memset(o, 0, sizeof *o);
+    if (!path || strcmp(path, "-") == 0) {
+        o->fp = stdout;
+        return BF_OK;
+    }
+    size_t n = strlen(path);
+    o->path = strdup(path);
+    o->tmp = malloc(n + 16);
+    if (!o->path || !o->tmp) {
+        free(o->path);
+        free(o->tmp);
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+    }
+    memcpy(o->tmp, path, n);
+    memcpy(o->tmp + n, ".tmp.XXXXXX", 12);
+    int fd = mkstemp(o->tmp);
+    if (fd < 0 || !(o->fp = fdopen(fd, "w"))) {
+        int e = errno;
+        if (fd >= 0) {
+            close(fd);
+            unlink(o->tmp);
+        }
+        free(o->path);
+        free(o->tmp);
+        o->path = o->tmp = NULL;
+        return bf_fail(err, BF_ERR_IO, "%s: cannot create: %s", path, strerror(e));
+    }
+    return BF_OK;
+}
+
+int bf_outfile_commit(bf_outfile *o, bf_error *err)
+{
+    int rc = BF_OK;
+    if (!o->tmp) {
+        if (fflush(o->fp) != 0)
+            rc = bf_fail(err, BF_ERR_IO, "standard output: write error: %s", strerror(errno));
+        return rc;
+    }
+    int bad = ferror(o->fp);
+    if (fclose(o->fp) != 0 || bad)
+        rc = bf_fail(err, BF_ERR_IO, "%s: write error: %s", o->path, strerror(errno));
+    else if (rename(o->tmp, o->path) != 0)
+        rc = bf_fail(err, BF_ERR_IO, "%s: cannot move into place: %s", o->path, strerror(errno));
+    if (rc != BF_OK)
+        unlink(o->tmp);
+    free(o->path);
+    free(o->tmp);
+    memset(o, 0, sizeof *o);
+    return rc;
+}
+
+void bf_outfile_abort(bf_outfile *o)
+{
+    if (o->tmp) {
+        fclose(o->fp);
+        unlink(o->tmp);
+    }
+    free(o->path);
+    free(o->tmp);
+    memset(o, 0, sizeof *o);
+}
+
+const char *bf_format_double(double v, char *buf, size_t size)
+{
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(buf, size, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    return buf;
+}

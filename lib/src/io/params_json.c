@@ -1,0 +1,233 @@
+/* Parameter files (JSON, via cJSON): model, options, channels and named values. */
+#include "brdfit/io.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char *slurp(const char *path, size_t *len, bf_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, fp);
+        if (n < cap - 1)
+            break;
+        char *nb = realloc(buf, cap *= 2);
+        if (!nb)
+            free(buf);
+        buf = nb;
+    }
+    int bad = ferror(fp);
+    fclose(fp);
+    if (!buf || bad) {
+        free(buf);
+        bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+static size_t line_at(const char *text, const char *pos)
+{
+    size_t line = 1;
+    for (const char *p = text; p < pos && *p; p++)
+        line += *p == '\n';
+    return line;
+}
+
+/* Line of the first occurrence of "key" in the text: good enough to point a user at
+ * the offending entry, since cJSON keeps no positions. */
+static size_t line_of_key(const char *text, const char *key)
+{
+    char pat[96];
+    snprintf(pat, sizeof pat, "\"%s\"", key);
+    const char *p = strstr(text, pat);
+    return p ? line_at(text, p) : 1;
+}
+
+/* Builds "model:k=v,..." from the model string and the options object. */
+static int build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options,
+                      char *spec, size_t size, bf_error *err)
+{
+    if (!cJSON_IsString(model) || !*model->valuestring)
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"model\" must be a non-empty string", path,
+                       model ? line_of_key(text, "model") : 1);
+    int n = snprintf(spec, size, "%s", model->valuestring);
+    if (!options)
+        return BF_OK;
+    if (!cJSON_IsObject(options))
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"options\" must be an object", path, line_of_key(text, "options"));
+    int first = strchr(spec, ':') == NULL;
+    const cJSON *o;
+    cJSON_ArrayForEach(o, options)
+    {
+        char val[64];
+        if (cJSON_IsString(o))
+            snprintf(val, sizeof val, "%s", o->valuestring);
+        else if (cJSON_IsNumber(o) && o->valuedouble == (int)o->valuedouble)
+            snprintf(val, sizeof val, "%d", (int)o->valuedouble);
+        else
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: option \"%s\" must be a string or an integer", path,
+                           line_of_key(text, o->string), o->string);
+        n += snprintf(spec + n, size - (size_t)n, "%c%s=%s", first ? ':' : ',', o->string, val);
+        first = 0;
+        if ((size_t)n >= size)
+            return bf_fail(err, BF_ERR_PARSE, "%s: model options too long", path);
+    }
+    return BF_OK;
+}
+
+/* Channel count: "channels" if given, else the length of the first colour array, else 1. */
+static int channel_count(const char *path, const char *text, const cJSON *root, const cJSON *params,
+                         int *C, bf_error *err)
+{
+    const cJSON *ch = cJSON_GetObjectItemCaseSensitive(root, "channels");
+    if (ch) {
+        if (!cJSON_IsNumber(ch) || ch->valuedouble != (int)ch->valuedouble || ch->valuedouble < 1)
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"channels\" must be a positive integer", path,
+                           line_of_key(text, "channels"));
+        *C = (int)ch->valuedouble;
+        return BF_OK;
+    }
+    *C = 1;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, params)
+    {
+        if (cJSON_IsArray(p)) {
+            *C = cJSON_GetArraySize(p);
+            break;
+        }
+    }
+    if (*C < 1)
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: empty array", path, line_of_key(text, p->string));
+    return BF_OK;
+}
+
+static int read_value(const char *path, const char *text, const cJSON *v, const char *name,
+                      double *out, bf_error *err)
+{
+    if (!cJSON_IsNumber(v))
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: parameter %s: expected a number", path,
+                       line_of_key(text, name), name);
+    if (!isfinite(v->valuedouble))
+        return bf_fail(err, BF_ERR_RANGE, "%s:%zu: parameter %s is not finite", path, line_of_key(text, name), name);
+    *out = v->valuedouble;
+    return BF_OK;
+}
+
+static int fill_params(const char *path, const char *text, const cJSON *params, const bf_model *m,
+                       double *x, bf_error *err)
+{
+    int C = bf_model_channels(m), rc;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, params)
+    {
+        if (bf_model_find_param(m, p->string) < 0)
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: model %s has no parameter \"%s\"", path,
+                           line_of_key(text, p->string), bf_model_spec(m), p->string);
+        for (const cJSON *q = params->child; q != p; q = q->next)
+            if (strcmp(q->string, p->string) == 0)
+                return bf_fail(err, BF_ERR_PARSE, "%s:%zu: parameter \"%s\" given twice", path,
+                               line_of_key(text, p->string), p->string);
+    }
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *pi = bf_model_param(m, i);
+        double *dst = x + bf_model_param_offset(m, i);
+        const cJSON *v = cJSON_GetObjectItemCaseSensitive(params, pi->name);
+        if (!v)
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: missing parameter \"%s\" of model %s", path,
+                           line_of_key(text, "params"), pi->name, bf_model_spec(m));
+        if (pi->colour && cJSON_IsArray(v)) {
+            if (cJSON_GetArraySize(v) != C)
+                return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s has %d values for %d channels",
+                               path, line_of_key(text, pi->name), pi->name, cJSON_GetArraySize(v), C);
+            int c = 0;
+            const cJSON *e;
+            cJSON_ArrayForEach(e, v)
+            {
+                if ((rc = read_value(path, text, e, pi->name, dst + c++, err)) != BF_OK)
+                    return rc;
+            }
+        } else if (pi->colour && C > 1) {
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s needs an array of %d values",
+                           path, line_of_key(text, pi->name), pi->name, C);
+        } else if ((rc = read_value(path, text, v, pi->name, dst, err)) != BF_OK) {
+            return rc;
+        }
+    }
+    bf_error e2;
+    if (bf_model_check(m, x, &e2) != BF_OK) {
+        /* Name the line of the offending parameter: its name leads the message. */
+        char name[64] = "";
+        sscanf(e2.msg, "parameter %63[^[ ]", name);
+        return bf_fail(err, e2.code, "%s:%zu: %s", path, line_of_key(text, name), e2.msg);
+    }
+    return BF_OK;
+}
+
+int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err)
+{
+    *model = NULL;
+    *x = NULL;
+    size_t len;
+    char *text = slurp(path, &len, err);
+    if (!text)
+        return err ? err->code : BF_ERR_IO;
+    int rc = BF_OK;
+    bf_model *m = NULL;
+    double *v = NULL;
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1) /* length counts the NUL */;
+    if (!root) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON", path, line_at(text, end ? end : text));
+        goto done;
+    }
+    if (!cJSON_IsObject(root)) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:1: expected a JSON object", path);
+        goto done;
+    }
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(root, "params");
+    if (!cJSON_IsObject(params)) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"params\" object missing", path,
+                     params ? line_of_key(text, "params") : 1);
+        goto done;
+    }
+    char spec[256];
+    int C = 1;
+    if ((rc = build_spec(path, text, cJSON_GetObjectItemCaseSensitive(root, "model"),
+                         cJSON_GetObjectItemCaseSensitive(root, "options"), spec, sizeof spec, err)) != BF_OK ||
+        (rc = channel_count(path, text, root, params, &C, err)) != BF_OK)
+        goto done;
+    bf_error e2;
+    if (!(m = bf_model_create(spec, C, &e2))) {
+        rc = bf_fail(err, e2.code, "%s:%zu: %s", path, line_of_key(text, "model"), e2.msg);
+        goto done;
+    }
+    if (!(v = malloc((size_t)bf_model_nfree(m) * sizeof *v + 1))) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+        goto done;
+    }
+    rc = fill_params(path, text, params, m, v, err);
+done:
+    cJSON_Delete(root);
+    free(text);
+    if (rc != BF_OK) {
+        bf_model_free(m);
+        free(v);
+        return rc;
+    }
+    *model = m;
+    *x = v;
+    return BF_OK;
+}
