@@ -1,9 +1,13 @@
 #include "support.h"
 
 #include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <cmocka.h>
 
 static int family_selected(const char *name)
 {
@@ -191,4 +195,20 @@ double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, doubl
     free(v);
     bf_geometry_free(g);
     return r;
+}
+
+bf_model *ts_model(const char *spec, int C)
+{
+    bf_error err;
+    bf_model *m = bf_model_create(spec, C, &err);
+    if (!m)
+        fail_msg("%s: %s", spec, err.msg);
+    return m;
+}
+
+void ts_assert_rel(double got, double want, double tol, const char *what)
+{
+    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
+        fail_msg("%s: got %.17g, want %.17g (rel. error %.3g)", what ? what : "value", got, want,
+                 fabs(got - want) / fabs(want));
 }

@@ -46,6 +46,13 @@ double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g);
 bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to,
                              const double *po);
 
+/* A model that must exist (fails the current cmocka test otherwise). */
+bf_model *ts_model(const char *spec, int C);
+
+/* Fails the current test unless |got - want| <= tol |want| (plus 1e-300); `what`
+ * (may be NULL) names the quantity in the message. */
+void ts_assert_rel(double got, double want, double tol, const char *what);
+
 /* Single value of channel c at one direction pair in degrees. */
 double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
                 int c);

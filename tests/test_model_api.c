@@ -10,15 +10,6 @@
 
 #include "support.h"
 
-static bf_model *make(const char *spec, int C)
-{
-    bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
-        fail_msg("%s: %s", spec, err.msg);
-    return m;
-}
-
 static void expect_error(const char *spec, int C, const char *fragment)
 {
     bf_error err = {0};
@@ -49,21 +40,21 @@ static void test_bad_specs(void **state)
 static void test_canonical_spec(void **state)
 {
     (void)state;
-    bf_model *m = make("walter", 3);
+    bf_model *m = ts_model("walter", 3);
     assert_string_equal(bf_model_spec(m), "walter:fresnel=schlick,lobes=1");
     assert_string_equal(bf_model_option(m, "fresnel"), "schlick");
     bf_model_free(m);
-    m = make("microfacet:F=dielectric,lobes=2,D=beckmann", 1);
+    m = ts_model("microfacet:F=dielectric,lobes=2,D=beckmann", 1);
     assert_string_equal(bf_model_option(m, "D"), "beckmann");
     assert_string_equal(bf_model_option(m, "F"), "dielectric");
     assert_string_equal(bf_model_option(m, "lobes"), "2");
     assert_int_equal(bf_model_lobes(m), 2);
     /* The canonical spec configures the same model. */
-    bf_model *m2 = make(bf_model_spec(m), 1);
+    bf_model *m2 = ts_model(bf_model_spec(m), 1);
     assert_string_equal(bf_model_spec(m2), bf_model_spec(m));
     bf_model_free(m2);
     bf_model_free(m);
-    m = make("lambert", 1);
+    m = ts_model("lambert", 1);
     assert_string_equal(bf_model_spec(m), "lambert");
     assert_null(bf_model_option(m, "lobes"));
     bf_model_free(m);
@@ -90,7 +81,7 @@ static void test_free_parameter_counts(void **state)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int counts[3] = {1, 3, 31};
         for (int k = 0; k < 3; k++) {
-            bf_model *m = make(cases[i].spec, counts[k]);
+            bf_model *m = ts_model(cases[i].spec, counts[k]);
             int expect = cases[i].colour * counts[k] + cases[i].scalar;
             if (bf_model_nfree(m) != expect)
                 fail_msg("%s C=%d: %d free parameters, expected %d", cases[i].spec, counts[k],
@@ -103,7 +94,7 @@ static void test_free_parameter_counts(void **state)
 static void test_param_table(void **state)
 {
     (void)state;
-    bf_model *m = make("walter:fresnel=dielectric", 3);
+    bf_model *m = ts_model("walter:fresnel=dielectric", 3);
     static const char *const names[] = {"rho_d", "rho_s", "alpha", "ior"};
     static const int offsets[] = {0, 3, 6, 7};
     assert_int_equal(bf_model_nparams(m), 4);
@@ -119,7 +110,7 @@ static void test_param_table(void **state)
     bf_model_free(m);
 
     /* Lobe parameters get a lobe suffix when there is more than one lobe. */
-    m = make("lafortune:lobes=2", 1);
+    m = ts_model("lafortune:lobes=2", 1);
     static const char *const lnames[] = {"rho_d", "rho_s_1", "cxy_1", "cz_1", "n_1",
                                          "rho_s_2", "cxy_2", "cz_2", "n_2"};
     assert_int_equal(bf_model_nparams(m), 9);
@@ -132,7 +123,7 @@ static void test_param_table(void **state)
 static void test_bounds_check(void **state)
 {
     (void)state;
-    bf_model *m = make("brady", 1);
+    bf_model *m = ts_model("brady", 1);
     double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
     bf_model_defaults(m, x);
     bf_error err;
@@ -149,7 +140,7 @@ static void test_bounds_check(void **state)
     free(x);
     bf_model_free(m);
 
-    m = make("lambert", 3);
+    m = ts_model("lambert", 3);
     double rho[3] = {0.1, 0.2, -0.1};
     assert_int_equal(bf_model_check(m, rho, &err), BF_ERR_RANGE);
     assert_non_null(strstr(err.msg, "rho_d[2] = -0.10000000000000001 is outside [0, 1]"));
@@ -164,7 +155,7 @@ static void test_defaults_in_bounds(void **state)
     int n = ts_all_specs(&specs);
     assert_true(n > 0);
     for (int i = 0; i < n; i++) {
-        bf_model *m = make(specs[i], 3);
+        bf_model *m = ts_model(specs[i], 3);
         double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
         bf_model_defaults(m, x);
         bf_error err;
@@ -195,7 +186,7 @@ static void test_registry_names(void **state)
 static void test_eval_range(void **state)
 {
     (void)state;
-    bf_model *m = make("walter", 3);
+    bf_model *m = ts_model("walter", 3);
     enum { N = 300 };
     double ti[N], pi_[N], to[N], po[N];
     ts_rng r = {42};

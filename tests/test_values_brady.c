@@ -12,13 +12,7 @@
 #include "support.h"
 
 #define REL 1e-12
-
-static void assert_close(double got, double want, double rel)
-{
-    if (!(fabs(got - want) <= rel * fabs(want) + 1e-300))
-        fail_msg("got %.17g, want %.17g (rel. error %.3g)", got, want,
-                 fabs(got - want) / fabs(want));
-}
+#define assert_close(got, want, rel) ts_assert_rel((got), (want), (rel), #got)
 
 static bf_model *make(int C)
 {

@@ -130,13 +130,6 @@ static double ref_disney(const double *base, int C, const dp *p, double ti, doub
            Gs * Fs * Ds + 0.25 * p->clearcoat * Gr * Fr * Dr;
 }
 
-static void assert_rel(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
-        fail_msg("%s: got %.17g, want %.17g (rel %.3g)", what, got, want,
-                 fabs(got - want) / fabs(want));
-}
-
 static const dp shader_defaults = {0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0};
 
 /* ---- Closed forms ------------------------------------------------------------- */
@@ -156,7 +149,7 @@ static void test_normal_incidence(void **state)
     dp p = shader_defaults;
     pack(m, base, &p, x);
     for (int c = 0; c < 3; c++)
-        assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), (0.5 + 0.16) / M_PI, 1e-14, "defaults");
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), (0.5 + 0.16) / M_PI, 1e-14, "defaults");
     /* The library's own defaults are the shader's with base_color .5. */
     double xd[13];
     bf_model_defaults(m, xd);
@@ -166,20 +159,20 @@ static void test_normal_incidence(void **state)
     /* Subsurface 1: ss = .625 replaces Fd = 1. */
     p.subsurface = 1.0;
     pack(m, base, &p, x);
-    assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 1), (0.625 * 0.5 + 0.16) / M_PI, 1e-14, "subsurface");
+    ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 1), (0.625 * 0.5 + 0.16) / M_PI, 1e-14, "subsurface");
     /* Half subsurface, roughness .8, specular 1: Ds = 1/(pi .8^4), Cspec0 = .08. */
     p.subsurface = 0.5;
     p.roughness = 0.8;
     p.specular = 1.0;
     pack(m, base, &p, x);
-    assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
+    ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
                0.8125 * 0.5 / M_PI + 0.25 * 0.08 / (M_PI * pow(0.8, 4)), 1e-14, "rough .8");
 
     /* Anisotropy leaves ax ay = r^4 unchanged, so at normal incidence nothing changes. */
     p = shader_defaults;
     p.anisotropic = 0.7;
     pack(m, base, &p, x);
-    assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 2), (0.5 + 0.16) / M_PI, 1e-14, "anisotropic");
+    ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 2), (0.5 + 0.16) / M_PI, 1e-14, "anisotropic");
 
     /* Metallic 1: only Gs Ds Cspec0 = .25 B / (pi r^4) with Cspec0 = B, per channel. */
     const double col[3] = {0.9, 0.4, 0.2};
@@ -188,7 +181,7 @@ static void test_normal_incidence(void **state)
     p.sheen = 1.0; /* killed by (1 - metallic), and FH = 0 anyway */
     pack(m, col, &p, x);
     for (int c = 0; c < 3; c++)
-        assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), 0.25 * col[c] * 16.0 / M_PI, 1e-14, "metallic");
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), 0.25 * col[c] * 16.0 / M_PI, 1e-14, "metallic");
 
     /* Clearcoat 1 with gloss 1 (a = .001) and gloss 0 (a = .1). */
     for (int gl = 0; gl < 2; gl++) {
@@ -198,7 +191,7 @@ static void test_normal_incidence(void **state)
         p.clearcoat_gloss = gl;
         pack(m, base, &p, x);
         double Dr = (a2 - 1.0) / (M_PI * log(a2) * a2);
-        assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
                    (0.5 + 0.16) / M_PI + 0.25 * 0.25 * 0.04 * Dr, 1e-13, "clearcoat");
     }
 
@@ -208,7 +201,7 @@ static void test_normal_incidence(void **state)
     pack(m, col, &p, x);
     double lum = 0.3 * 0.9 + 0.6 * 0.4 + 0.1 * 0.2;
     for (int c = 0; c < 3; c++)
-        assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c),
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c),
                    col[c] / M_PI + 0.25 * 0.04 * (col[c] / lum) * 16.0 / M_PI, 1e-14, "tint");
     bf_model_free(m);
 
@@ -222,9 +215,9 @@ static void test_normal_incidence(void **state)
     p.specular_tint = 1.0;
     p.sheen_tint = 1.0;
     pack(m, &b1, &p, x2);
-    assert_rel(ts_eval1(m, x1, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1");
-    assert_rel(ts_eval1(m, x2, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1 tinted");
-    assert_rel(ts_eval1(m, x2, 40, 10, 55, 100, 0), ts_eval1(m, x1, 40, 10, 55, 100, 0), 1e-14,
+    ts_assert_rel(ts_eval1(m, x1, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1");
+    ts_assert_rel(ts_eval1(m, x2, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1 tinted");
+    ts_assert_rel(ts_eval1(m, x2, 40, 10, 55, 100, 0), ts_eval1(m, x1, 40, 10, 55, 100, 0), 1e-14,
                "C=1 tint-free");
     bf_model_free(m);
 }
@@ -256,11 +249,11 @@ static void test_mirror(void **state)
     double a = 0.0505, a2 = a * a;
     double Gr1 = 1.0 / (c + sqrt(0.0625 + c * c - 0.0625 * c * c));
     double coat = 0.25 * 0.5 * Gr1 * Gr1 * (0.04 * (1.0 - F) + F) * (a2 - 1.0) / (M_PI * log(a2) * a2);
-    assert_rel(ts_eval1(m, x, th, 0, th, 180, 0), diffuse + sheen + spec + coat, 1e-12, "mirror X");
+    ts_assert_rel(ts_eval1(m, x, th, 0, th, 180, 0), diffuse + sheen + spec + coat, 1e-12, "mirror X");
     /* In the YZ plane the projected roughness is ay instead. */
     G1 = 1.0 / (c + sqrt(s2 * ay * ay + c * c));
     spec = G1 * G1 * (0.04 * (1.0 - F) + F) / (M_PI * ax * ay);
-    assert_rel(ts_eval1(m, x, th, 90, th, 270, 0), diffuse + sheen + spec + coat, 1e-12, "mirror Y");
+    ts_assert_rel(ts_eval1(m, x, th, 90, th, 270, 0), diffuse + sheen + spec + coat, 1e-12, "mirror Y");
     bf_model_free(m);
 }
 
@@ -275,7 +268,7 @@ static void test_roughness_floor(void **state)
     p.roughness = 0.0;
     pack(m, base, &p, x);
     for (int c = 0; c < 3; c++)
-        assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), base[c] / M_PI + 0.25 * 0.04 / (M_PI * 1e-6),
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), base[c] / M_PI + 0.25 * 0.04 / (M_PI * 1e-6),
                    1e-13, "floor");
     bf_model_free(m);
 }
@@ -310,7 +303,7 @@ static void test_against_shader(void **state)
             if (hypot(L[0] + V[0], L[1] + V[1]) < 1e-3)
                 continue;
             for (int c = 0; c < C; c++)
-                assert_rel(ts_eval1(m, x, ti, pi_, to, po, c),
+                ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c),
                            ref_disney(base, C, &p, ti, pi_, to, po, c), 1e-12, "shader");
             tested++;
         }
@@ -336,7 +329,7 @@ static void test_channel_coupling(void **state)
     double f1 = ts_eval1(m, x, 50, 0, 30, 120, 0);
     assert_true(f1 < f0); /* larger luminance, smaller tint of channel 0 */
     b[2] = 0.9;
-    assert_rel(f1, ref_disney(b, 3, &p, 50, 0, 30, 120, 0), 1e-12, "coupled");
+    ts_assert_rel(f1, ref_disney(b, 3, &p, 50, 0, 30, 120, 0), 1e-12, "coupled");
     p.specular_tint = 0.0;
     p.sheen_tint = 0.0;
     pack(m, b, &p, x);
@@ -350,7 +343,7 @@ static void test_channel_coupling(void **state)
     p.sheen_tint = 0.6;
     pack(m, black, &p, x);
     for (int c = 0; c < 3; c++)
-        assert_rel(ts_eval1(m, x, 50, 0, 30, 120, c), ref_disney(black, 3, &p, 50, 0, 30, 120, c),
+        ts_assert_rel(ts_eval1(m, x, 50, 0, 30, 120, c), ref_disney(black, 3, &p, 50, 0, 30, 120, c),
                    1e-12, "black");
     bf_model_free(m);
 }

@@ -12,28 +12,13 @@
 #include "support.h"
 
 #define REL 1e-12
-
-static void assert_close(double got, double want, double rel)
-{
-    if (!(fabs(got - want) <= rel * fabs(want) + 1e-300))
-        fail_msg("got %.17g, want %.17g (rel. error %.3g)", got, want,
-                 fabs(got - want) / fabs(want));
-}
-
-static bf_model *make(const char *spec, int C)
-{
-    bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
-        fail_msg("%s: %s", spec, err.msg);
-    return m;
-}
+#define assert_close(got, want, rel) ts_assert_rel((got), (want), (rel), #got)
 
 /* x for kurt with C = 1 and one lobe: rho_d, rho_s, m, f0, alpha. */
 static double kurt1(double rd, double rs, double mm, double f0, double alpha, double ti,
                     double pi_, double to, double po)
 {
-    bf_model *m = make("kurt", 1);
+    bf_model *m = ts_model("kurt", 1);
     double x[5] = {rd, rs, mm, f0, alpha};
     double v = ts_eval1(m, x, ti, pi_, to, po, 0);
     bf_model_free(m);
@@ -108,7 +93,7 @@ static double kurt_plain(int lobes, int C, const double *x, int c, double ti, do
 
 static void check_random(const char *spec, int lobes, int C)
 {
-    bf_model *m = make(spec, C);
+    bf_model *m = ts_model(spec, C);
     assert_int_equal(bf_model_nfree(m), C + lobes * (C + 3));
     ts_rng rng = {0x853C49E6748FEA9BULL + (uint64_t)(lobes * 7 + C)};
     double x[64];
@@ -160,7 +145,7 @@ static void test_random_two_lobes(void **state)
 static void test_table(void **state)
 {
     (void)state;
-    bf_model *m = make("kurt:lobes=2", 3);
+    bf_model *m = ts_model("kurt:lobes=2", 3);
     static const char *const names[] = {"rho_d", "rho_s_1", "m_1", "f0_1", "alpha_1",
                                         "rho_s_2", "m_2", "f0_2", "alpha_2"};
     assert_int_equal(bf_model_nparams(m), 9);
@@ -172,7 +157,7 @@ static void test_table(void **state)
     assert_false(bf_model_energy_conserving(m));
     assert_true(bf_model_reciprocal(m));
     bf_model_free(m);
-    m = make("kurt", 1);
+    m = ts_model("kurt", 1);
     assert_string_equal(bf_model_param(m, 1)->name, "rho_s");
     assert_string_equal(bf_model_spec(m), "kurt:lobes=1");
     bf_model_free(m);
@@ -182,7 +167,7 @@ static void test_table(void **state)
 static void test_grazing(void **state)
 {
     (void)state;
-    bf_model *m = make("kurt", 1);
+    bf_model *m = ts_model("kurt", 1);
     double x[5] = {0.5, 1.0, 1e-3, 1.0, 1.0};
     /* 2e-15: just above the 1e-15 the geometry takes as the horizon. */
     double L[6] = {1.0, 0.0, 2e-15, -1.0, 0.0, 2e-15};

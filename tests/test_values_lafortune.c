@@ -12,13 +12,6 @@
 
 #include "support.h"
 
-static void assert_rel(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
-        fail_msg("%s: got %.17g, want %.17g (rel err %.3g)", what, got, want,
-                 fabs(got - want) / fabs(want));
-}
-
 static void assert_close(double got, double want, double tol, const char *what)
 {
     if (!(fabs(got - want) <= tol * fabs(want) + 1e-15))
@@ -145,12 +138,12 @@ static void test_normalisation(void **state)
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
             double x[5] = {0.2, 0.7, -sc[a], sc[a], ns[b]};
-            assert_rel(ts_eval1(m, x, 50.0, 30.0, 50.0, 210.0, 0),
+            ts_assert_rel(ts_eval1(m, x, 50.0, 30.0, 50.0, 210.0, 0),
                        0.2 / M_PI + 0.7 * (ns[b] + 2.0) / (2.0 * M_PI), 1e-12,
                        "scaled Phong lobe at the mirror direction");
             if (ns[b] < 100.0) {
                 double y[5] = {0.2, 0.7, -1.0, 1.0, ns[b]};
-                assert_rel(ts_eval1(m, x, 20.0, 30.0, 45.0, 170.0, 0),
+                ts_assert_rel(ts_eval1(m, x, 20.0, 30.0, 45.0, 170.0, 0),
                            ts_eval1(m, y, 20.0, 30.0, 45.0, 170.0, 0), 1e-13,
                            "scale invariance");
             }
@@ -164,42 +157,42 @@ static void test_hand(void **state)
     bf_model *m = bf_model_create("lafortune", 1, NULL);
     /* Retro-reflection lobe cxy = cz = 1 at the retro direction: d = |L|^2 = 1. */
     double x[5] = {0.1, 0.6, 1.0, 1.0, 7.0};
-    assert_rel(ts_eval1(m, x, 70.0, 40.0, 70.0, 40.0, 0), 0.1 / M_PI + 0.6 * 9.0 / (2.0 * M_PI),
+    ts_assert_rel(ts_eval1(m, x, 70.0, 40.0, 70.0, 40.0, 0), 0.1 / M_PI + 0.6 * 9.0 / (2.0 * M_PI),
                1e-12, "retro lobe");
     /* Off-specular lobe cxy = 0.5, cz = 1, n = 2: L at (30, 0), V at (60, 180):
      * LxVx + LyVy = -sin30 sin60, LzVz = cos30 cos60, both sqrt(3)/4 in size:
      * d = sqrt(3)/4 (1 - 0.5) = sqrt(3)/8, cmax = 1: f = rho_d/pi + rho_s (4/(2 pi)) 3/64. */
     double y[5] = {0.1, 0.6, 0.5, 1.0, 2.0};
-    assert_rel(ts_eval1(m, y, 30.0, 0.0, 60.0, 180.0, 0),
+    ts_assert_rel(ts_eval1(m, y, 30.0, 0.0, 60.0, 180.0, 0),
                0.1 / M_PI + 0.6 * 2.0 / M_PI * 3.0 / 64.0, 1e-13, "off-specular lobe");
     /* cz = -1 (lobe below the horizon for the z part), cxy = -0.5 at the mirror pair:
      * d = 0.5 sin^2 - cos^2 < 0 for theta = 30: the lobe vanishes. */
     double z[5] = {0.1, 0.6, -0.5, -1.0, 2.0};
-    assert_rel(ts_eval1(m, z, 30.0, 0.0, 30.0, 180.0, 0), 0.1 / M_PI, 1e-15, "d < 0");
+    ts_assert_rel(ts_eval1(m, z, 30.0, 0.0, 30.0, 180.0, 0), 0.1 / M_PI, 1e-15, "d < 0");
     /* cxy = cz = 0: the lobe is 0 for n > 0 and 1/pi at n = 0; n = 0 gives 1/pi anywhere. */
     double w[5] = {0.1, 0.6, 0.0, 0.0, 2.0};
-    assert_rel(ts_eval1(m, w, 30.0, 0.0, 30.0, 180.0, 0), 0.1 / M_PI, 1e-15, "cmax = 0");
+    ts_assert_rel(ts_eval1(m, w, 30.0, 0.0, 30.0, 180.0, 0), 0.1 / M_PI, 1e-15, "cmax = 0");
     w[4] = 0.0;
-    assert_rel(ts_eval1(m, w, 30.0, 0.0, 30.0, 180.0, 0), 0.7 / M_PI, 1e-15, "cmax = 0, n = 0");
+    ts_assert_rel(ts_eval1(m, w, 30.0, 0.0, 30.0, 180.0, 0), 0.7 / M_PI, 1e-15, "cmax = 0, n = 0");
     z[4] = 0.0;
-    assert_rel(ts_eval1(m, z, 30.0, 0.0, 30.0, 180.0, 0), 0.7 / M_PI, 1e-15, "n = 0, d < 0");
+    ts_assert_rel(ts_eval1(m, z, 30.0, 0.0, 30.0, 180.0, 0), 0.7 / M_PI, 1e-15, "n = 0, d < 0");
     bf_model_free(m);
 
     m = bf_model_create("lafortune_aniso", 1, NULL);
     /* L at (45, 45), V at (45, 225): LxVx = LyVy = -1/4, LzVz = 1/2. cx = -1, cy = 0.5,
      * cz = 1, n = 3: d = 1/4 - 1/8 + 1/2 = 5/8, cmax = 1: f = rd/pi + rs (5/(2 pi)) (5/8)^3. */
     double a[6] = {0.1, 0.6, -1.0, 0.5, 1.0, 3.0};
-    assert_rel(ts_eval1(m, a, 45.0, 45.0, 45.0, 225.0, 0),
+    ts_assert_rel(ts_eval1(m, a, 45.0, 45.0, 45.0, 225.0, 0),
                0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0, 1e-13, "aniso hand");
     /* The same lobe scaled by 0.8 and normalised by max|c| = 0.8: unchanged. */
     double b[6] = {0.1, 0.6, -0.8, 0.4, 0.8, 3.0};
-    assert_rel(ts_eval1(m, b, 45.0, 45.0, 45.0, 225.0, 0),
+    ts_assert_rel(ts_eval1(m, b, 45.0, 45.0, 45.0, 225.0, 0),
                0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0, 1e-13,
                "aniso hand, scaled");
     /* cy largest: cx = 0.2, cy = -0.5, cz = 0.25: d = -0.05 + 0.125 + 0.125 = 0.2,
      * r = d / 0.5 = 0.4; n = 2: f = rd/pi + rs (4/(2 pi)) 0.16. */
     double c[6] = {0.1, 0.6, 0.2, -0.5, 0.25, 2.0};
-    assert_rel(ts_eval1(m, c, 45.0, 45.0, 45.0, 225.0, 0),
+    ts_assert_rel(ts_eval1(m, c, 45.0, 45.0, 45.0, 225.0, 0),
                0.1 / M_PI + 0.6 * 2.0 / M_PI * 0.16, 1e-13, "aniso, cy the largest");
     bf_model_free(m);
 }

@@ -23,15 +23,6 @@ static const char *const Gs[] = {"smith_ggx",      "implicit",      "cook_torran
 static const char *const Fs[] = {"schlick", "dielectric", "none"};
 enum { ND = 4, NG = 6, NF = 3 };
 
-static bf_model *create(const char *spec, int C)
-{
-    bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
-        fail_msg("%s: %s", spec, err.msg);
-    return m;
-}
-
 /* Sets parameter `name` (all channels of a colour parameter to v). */
 static void set(const bf_model *m, double *x, const char *name, double v)
 {
@@ -51,18 +42,11 @@ static void set_c(const bf_model *m, double *x, const char *name, int c, double 
     x[bf_model_param_offset(m, i) + c] = v;
 }
 
-static void assert_rel(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
-        fail_msg("%s: got %.17g, want %.17g (rel. error %.3g)", what, got, want,
-                 fabs(got - want) / fabs(want));
-}
-
 /* ---- Parameter tables ------------------------------------------------------------ */
 
 static void expect_names(const char *spec, const char *const *names, int n)
 {
-    bf_model *m = create(spec, 1);
+    bf_model *m = ts_model(spec, 1);
     if (bf_model_nparams(m) != n)
         fail_msg("%s: %d parameters, want %d", spec, bf_model_nparams(m), n);
     for (int i = 0; i < n; i++)
@@ -93,7 +77,7 @@ static void test_parameter_tables(void **state)
     expect_names("microfacet:D=gaussian,G=none,F=none", ga, 3);
 
     /* Defaults are D=ggx, G=smith_ggx, F=schlick, the canonical spec lists them all. */
-    bf_model *m = create("microfacet", 3);
+    bf_model *m = ts_model("microfacet", 3);
     assert_string_equal(bf_model_spec(m), "microfacet:D=ggx,G=smith_ggx,F=schlick,lobes=1");
     assert_int_equal(bf_model_nfree(m), 3 + 3 + 1 + 1);
     bf_model_free(m);
@@ -113,7 +97,7 @@ static void test_parameter_tables(void **state)
         {"walter_aniso", "f0", 0.0, 1.0, BF_SCALE_LINEAR},
     };
     for (size_t i = 0; i < sizeof b / sizeof b[0]; i++) {
-        m = create(b[i].spec, 1);
+        m = ts_model(b[i].spec, 1);
         const bf_param_info *p = bf_model_param(m, bf_model_find_param(m, b[i].name));
         assert_non_null(p);
         if (p->lo != b[i].lo || p->hi != b[i].hi || p->scale != b[i].scale || p->colour ||
@@ -142,7 +126,7 @@ static void test_cook_torrance_normal(void **state)
 {
     (void)state;
     const double ms[] = {1e-3, 0.05, 0.3, 1.0}, f0s[] = {0.0, 0.04, 0.7, 1.0};
-    bf_model *m = create("cook_torrance", 3);
+    bf_model *m = ts_model("cook_torrance", 3);
     double x[3 + 3 + 2];
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++) {
@@ -155,9 +139,9 @@ static void test_cook_torrance_normal(void **state)
             for (int c = 0; c < 3; c++) {
                 double want = (0.1 + 0.2 * c) / M_PI +
                               (0.9 - 0.3 * c) * f0s[b] / (4.0 * M_PI * ms[a] * ms[a]);
-                assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, c), want, 1e-14, "cook_torrance N");
+                ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, c), want, 1e-14, "cook_torrance N");
                 /* Any azimuth at theta = 0 is the same direction. */
-                assert_rel(ts_eval1(m, x, 0.0, 37.0, 0.0, 211.0, c), want, 1e-14,
+                ts_assert_rel(ts_eval1(m, x, 0.0, 37.0, 0.0, 211.0, c), want, 1e-14,
                            "cook_torrance N, phi");
             }
         }
@@ -168,8 +152,8 @@ static void test_walter_normal(void **state)
 {
     (void)state;
     const double as[] = {1e-4, 0.02, 0.25, 1.0}, f0s[] = {0.0, 0.04, 1.0};
-    bf_model *m = create("walter", 1);
-    bf_model *an = create("walter_aniso", 1);
+    bf_model *m = ts_model("walter", 1);
+    bf_model *an = ts_model("walter_aniso", 1);
     double x[4], y[5];
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 3; b++) {
@@ -178,7 +162,7 @@ static void test_walter_normal(void **state)
             set(m, x, "alpha", as[a]);
             set(m, x, "f0", f0s[b]);
             double want = 0.25 / M_PI + 0.75 * f0s[b] / (4.0 * M_PI * as[a] * as[a]);
-            assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "walter N");
+            ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "walter N");
             /* walter_aniso: D(N) = 1/(pi ax ay) */
             double ay = as[(a + 1) % 4];
             set(an, y, "rho_d", 0.25);
@@ -187,7 +171,7 @@ static void test_walter_normal(void **state)
             set(an, y, "alpha_y", ay);
             set(an, y, "f0", f0s[b]);
             want = 0.25 / M_PI + 0.75 * f0s[b] / (4.0 * M_PI * as[a] * ay);
-            assert_rel(ts_eval1(an, y, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "walter_aniso N");
+            ts_assert_rel(ts_eval1(an, y, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "walter_aniso N");
         }
     bf_model_free(m);
     bf_model_free(an);
@@ -199,7 +183,7 @@ static void test_dielectric_fresnel(void **state)
 {
     (void)state;
     /* ((n-1)/(n+1))^2 = 0.04 for n = 1.5 at normal incidence. */
-    assert_rel(bf_dielectric(1.0, 1.5, NULL), 0.04, 1e-15, "F(0 deg, 1.5)");
+    ts_assert_rel(bf_dielectric(1.0, 1.5, NULL), 0.04, 1e-15, "F(0 deg, 1.5)");
     /* The Cook-Torrance form is the unpolarised Fresnel reflectance: (rs^2 + rp^2)/2. */
     const double ns[] = {1.0001, 1.2, 1.5, 2.4, 3.0};
     for (int a = 0; a < 5; a++)
@@ -208,16 +192,16 @@ static void test_dielectric_fresnel(void **state)
             double ct = sqrt(1.0 - (1.0 - ci * ci) / (n * n));
             double rs = (ci - n * ct) / (ci + n * ct), rp = (n * ci - ct) / (n * ci + ct);
             double want = 0.5 * (rs * rs + rp * rp);
-            assert_rel(bf_dielectric(ci, n, NULL), want, 1e-11, "dielectric vs Fresnel equations");
+            ts_assert_rel(bf_dielectric(ci, n, NULL), want, 1e-11, "dielectric vs Fresnel equations");
         }
     /* Through the model at normal incidence: f = rho_s 0.04 / (4 pi m^2). */
-    bf_model *m = create("cook_torrance:fresnel=dielectric", 1);
+    bf_model *m = ts_model("cook_torrance:fresnel=dielectric", 1);
     double x[4];
     set(m, x, "rho_d", 0.0);
     set(m, x, "rho_s", 1.0);
     set(m, x, "m", 0.2);
     set(m, x, "ior", 1.5);
-    assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.04 / (4.0 * M_PI * 0.04), 1e-14,
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.04 / (4.0 * M_PI * 0.04), 1e-14,
                "cook_torrance dielectric N");
     /* ior = 1: no reflection at all. */
     set(m, x, "ior", 1.0);
@@ -323,7 +307,7 @@ static void test_microfacet_reference(void **state)
                     char spec[128];
                     snprintf(spec, sizeof spec, "microfacet:D=%s,G=%s,F=%s,lobes=%d", Ds[d], Gs[gk],
                              Fs[f], K);
-                    bf_model *m = create(spec, 2);
+                    bf_model *m = ts_model(spec, 2);
                     double x[2 + 2 * (2 + 2)];
                     double rho_s[2][2], rough[2], fp[2];
                     for (int t = 0; t < 40; t++) {
@@ -384,7 +368,7 @@ static void test_walter_aniso_reference(void **state)
 {
     (void)state;
     ts_rng rng = {0xA2150ULL};
-    bf_model *m = create("walter_aniso", 1);
+    bf_model *m = ts_model("walter_aniso", 1);
     double x[5];
     for (int t = 0; t < 400; t++) {
         double ax = 0.03 * pow(30.0, ts_uniform(&rng)), ay = 0.03 * pow(30.0, ts_uniform(&rng));
@@ -408,7 +392,7 @@ static void test_walter_aniso_reference(void **state)
         double av = sqrt(pow(cos(g.pv) * ax, 2) + pow(sin(g.pv) * ay, 2));
         double G = ref_G1(0, al, g.nl, g.sl) * ref_G1(0, av, g.nv, g.sv);
         double want = rd / M_PI + 0.8 * D * G * ref_F(0, f0, g.vh) / (4.0 * g.nl * g.nv);
-        assert_rel(ts_eval1(m, x, ti, pi_, to, po, 0), want, 1e-12, "walter_aniso reference");
+        ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, 0), want, 1e-12, "walter_aniso reference");
     }
     /* Anisotropy has the right orientation: with ax > ay the highlight is wider along X,
      * so tilting H towards X costs less than tilting it towards Y. */
@@ -427,7 +411,7 @@ static void test_walter_aniso_isotropic(void **state)
 {
     (void)state;
     ts_rng rng = {0x150ULL};
-    bf_model *w = create("walter", 2), *an = create("walter_aniso", 2);
+    bf_model *w = ts_model("walter", 2), *an = ts_model("walter_aniso", 2);
     double x[2 + 2 + 2], y[2 + 2 + 3];
     double ti[64], pi_[64], to[64], po[64];
     ts_random_dirs(&rng, 64, ti, pi_, to, po);
@@ -440,7 +424,7 @@ static void test_walter_aniso_isotropic(void **state)
         y[6] = x[5];
         double *a = ts_eval(w, x, g), *b = ts_eval(an, y, g);
         for (int i = 0; i < 128; i++)
-            assert_rel(b[i], a[i], 1e-12, "walter_aniso(ax = ay) vs walter");
+            ts_assert_rel(b[i], a[i], 1e-12, "walter_aniso(ax = ay) vs walter");
         free(a);
         free(b);
     }
@@ -455,7 +439,7 @@ static void compare_specs(const char *s1, const char *s2)
 {
     enum { N = 300 };
     for (int C = 1; C <= 3; C += 2) {
-        bf_model *a = create(s1, C), *b = create(s2, C);
+        bf_model *a = ts_model(s1, C), *b = ts_model(s2, C);
         int P = bf_model_nfree(a);
         assert_int_equal(P, bf_model_nfree(b));
         assert_int_equal(bf_model_nparams(a), bf_model_nparams(b));
@@ -479,9 +463,9 @@ static void compare_specs(const char *s1, const char *s2)
             bf_model_eval(a, x, g, va, ga);
             bf_model_eval(b, x, g, vb, gb);
             for (size_t i = 0; i < nv; i++) {
-                assert_rel(va[i], vb[i], 1e-14, s1);
+                ts_assert_rel(va[i], vb[i], 1e-14, s1);
                 for (int k = 0; k < P; k++)
-                    assert_rel(ga[i * (size_t)P + (size_t)k], gb[i * (size_t)P + (size_t)k], 1e-14, s1);
+                    ts_assert_rel(ga[i * (size_t)P + (size_t)k], gb[i * (size_t)P + (size_t)k], 1e-14, s1);
             }
         }
         free(x);
@@ -509,7 +493,7 @@ static void test_presets(void **state)
             compare_specs(p, q);
         }
     /* The default preset is Schlick. */
-    bf_model *m = create("cook_torrance", 1);
+    bf_model *m = ts_model("cook_torrance", 1);
     assert_string_equal(bf_model_option(m, "fresnel"), "schlick");
     bf_model_free(m);
 }
@@ -528,7 +512,7 @@ static void check_grazing(const char *spec)
     enum { N = sizeof Ls / sizeof Ls[0] };
     bf_geometry *g = bf_geometry_from_vectors(N, &Ls[0][0], &Vs[0][0], NULL);
     for (int C = 1; C <= 2; C++) {
-        bf_model *m = create(spec, C);
+        bf_model *m = ts_model(spec, C);
         int P = bf_model_nfree(m), np = bf_model_nparams(m);
         double *x = malloc((size_t)P * sizeof *x);
         double *v = malloc((size_t)N * C * sizeof *v), *gr = malloc((size_t)N * C * P * sizeof *gr);
@@ -608,7 +592,7 @@ static double spec_albedo(const char *spec, double rough, double w, double ti_de
         }
     }
     bf_geometry *g = bf_geometry_from_vectors(n, L, V, NULL);
-    bf_model *m = create(spec, 1);
+    bf_model *m = ts_model(spec, 1);
     double x[3] = {0.0, 1.0, rough};
     bf_model_eval(m, x, g, f, NULL);
     double s = 0.0;
@@ -639,14 +623,14 @@ static void test_energy_flags(void **state)
         for (int gk = 0; gk < NG; gk++)
             for (int f = 0; f < NF; f++) {
                 snprintf(spec, sizeof spec, "microfacet:D=%s,G=%s,F=%s", Ds[d], Gs[gk], Fs[f]);
-                bf_model *m = create(spec, 1);
+                bf_model *m = ts_model(spec, 1);
                 if (bf_model_energy_conserving(m) != ec[d][gk])
                     fail_msg("%s: energy_conserving = %d", spec, bf_model_energy_conserving(m));
                 bf_model_free(m);
             }
     const char *yes[] = {"cook_torrance", "walter", "walter_aniso"};
     for (int i = 0; i < 3; i++) {
-        bf_model *m = create(yes[i], 1);
+        bf_model *m = ts_model(yes[i], 1);
         assert_int_equal(bf_model_energy_conserving(m), 1);
         bf_model_free(m);
     }

@@ -14,27 +14,12 @@
 #include "support.h"
 
 #define REL 1e-12
-
-static void assert_close(double got, double want, double rel)
-{
-    if (!(fabs(got - want) <= rel * fabs(want) + 1e-300))
-        fail_msg("got %.17g, want %.17g (rel. error %.3g)", got, want,
-                 fabs(got - want) / fabs(want));
-}
-
-static bf_model *make(const char *spec, int C)
-{
-    bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
-        fail_msg("%s: %s", spec, err.msg);
-    return m;
-}
+#define assert_close(got, want, rel) ts_assert_rel((got), (want), (rel), #got)
 
 static double eval1(const char *spec, const double *x, double ti, double pi_, double to,
                     double po)
 {
-    bf_model *m = make(spec, 1);
+    bf_model *m = ts_model(spec, 1);
     assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
     double v = ts_eval1(m, x, ti, pi_, to, po, 0);
     bf_model_free(m);
@@ -170,7 +155,7 @@ static void check_random(int model, int kind, int C)
     static const char *const kinds[] = {"schlick", "dielectric", "none"};
     char spec[64];
     snprintf(spec, sizeof spec, "%s:fresnel=%s", model == NISHINO ? "nishino" : "abc", kinds[kind]);
-    bf_model *m = make(spec, C);
+    bf_model *m = ts_model(spec, C);
     int P = 2 * C + 2 + (kind != 2);
     assert_int_equal(bf_model_nfree(m), P);
     ts_rng rng = {0x94D049BB133111EBULL + (uint64_t)(model * 31 + kind * 7 + C)};
@@ -232,7 +217,7 @@ static void test_random_abc(void **state)
 
 static void check_names(const char *spec, const char *const *names, int n)
 {
-    bf_model *m = make(spec, 3);
+    bf_model *m = ts_model(spec, 3);
     assert_int_equal(bf_model_nparams(m), n);
     for (int i = 0; i < n; i++)
         assert_string_equal(bf_model_param(m, i)->name, names[i]);
@@ -255,7 +240,7 @@ static void test_tables(void **state)
     check_names("abc:fresnel=dielectric", ad, 5);
     check_names("abc:fresnel=none", as, 4);
 
-    bf_model *m = make("nishino:fresnel=dielectric", 1);
+    bf_model *m = ts_model("nishino:fresnel=dielectric", 1);
     assert_string_equal(bf_model_spec(m), "nishino:fresnel=dielectric");
     const bf_param_info *p = bf_model_param(m, 2);
     assert_true(p->lo == 1e-3 && p->hi == 1e3);
@@ -264,7 +249,7 @@ static void test_tables(void **state)
     p = bf_model_param(m, 4);
     assert_true(p->lo == 1.0 && p->hi == 3.0);
     bf_model_free(m);
-    m = make("abc", 1);
+    m = ts_model("abc", 1);
     assert_string_equal(bf_model_spec(m), "abc:fresnel=schlick");
     p = bf_model_param(m, 2);
     assert_true(p->lo == 0.0 && p->hi == 1e7);
@@ -280,7 +265,7 @@ static void test_tables(void **state)
 static void test_published_fit_in_bounds(void **state)
 {
     (void)state;
-    bf_model *m = make("abc:fresnel=dielectric", 1);
+    bf_model *m = ts_model("abc:fresnel=dielectric", 1);
     double x[5] = {0.022346, 37.932693, 10482.133789, 0.816737, 2.236525};
     assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
     /* At the peak for normal incidence: kd/pi + A F(1) / pi. */

@@ -10,13 +10,6 @@
 
 #include "support.h"
 
-static void assert_rel(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
-        fail_msg("%s: got %.17g, want %.17g (rel err %.3g)", what, got, want,
-                 fabs(got - want) / fabs(want));
-}
-
 /* MODELS.md literally, from the angles in degrees. */
 static double on_ref(double rd, double sigma, double ti, double pi_, double to, double po)
 {
@@ -54,8 +47,8 @@ static void test_lambert(void **state)
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
         for (int c = 0; c < 3; c++) {
             double v = ts_eval1(m, x, ti, pi_, to, po, c);
-            assert_rel(v, ts_eval1(l, x, ti, pi_, to, po, c), 1e-15, "sigma 0 vs lambert");
-            assert_rel(v, x[c] / M_PI, 1e-15, "sigma 0");
+            ts_assert_rel(v, ts_eval1(l, x, ti, pi_, to, po, c), 1e-15, "sigma 0 vs lambert");
+            ts_assert_rel(v, x[c] / M_PI, 1e-15, "sigma 0");
         }
     }
     bf_model_free(m);
@@ -73,14 +66,14 @@ static void test_hand(void **state)
     bf_model *m = bf_model_create("oren_nayar", 1, NULL);
     double x[2] = {0.8, 0.5};
     const double A = 1.0 - 0.25 / 1.16, B = 0.1125 / 0.34;
-    assert_rel(ts_eval1(m, x, 60.0, 0.0, 30.0, 0.0, 0), 0.8 / M_PI * (A + B / 2.0), 1e-14, "hand 1");
-    assert_rel(ts_eval1(m, x, 30.0, 0.0, 60.0, 0.0, 0), 0.8 / M_PI * (A + B / 2.0), 1e-14, "hand 1r");
-    assert_rel(ts_eval1(m, x, 30.0, 10.0, 60.0, 70.0, 0), 0.8 / M_PI * (A + B / 4.0), 1e-14, "hand 2");
-    assert_rel(ts_eval1(m, x, 40.0, 0.0, 50.0, 135.0, 0), 0.8 / M_PI * A, 1e-15, "hand 3");
-    assert_rel(ts_eval1(m, x, 0.0, 0.0, 70.0, 0.0, 0), 0.8 / M_PI * A, 1e-15, "hand 4");
-    assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.8 / M_PI * A, 1e-15, "hand 5");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 30.0, 0.0, 0), 0.8 / M_PI * (A + B / 2.0), 1e-14, "hand 1");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 0.0, 60.0, 0.0, 0), 0.8 / M_PI * (A + B / 2.0), 1e-14, "hand 1r");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 10.0, 60.0, 70.0, 0), 0.8 / M_PI * (A + B / 4.0), 1e-14, "hand 2");
+    ts_assert_rel(ts_eval1(m, x, 40.0, 0.0, 50.0, 135.0, 0), 0.8 / M_PI * A, 1e-15, "hand 3");
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 70.0, 0.0, 0), 0.8 / M_PI * A, 1e-15, "hand 4");
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.8 / M_PI * A, 1e-15, "hand 5");
     /* The digits: 0.8/pi (0.78448275862068966 + 0.16544117647058824) = 0.24189614372973056. */
-    assert_rel(ts_eval1(m, x, 60.0, 0.0, 30.0, 0.0, 0), 0.24189614372973056, 1e-14, "digits");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 30.0, 0.0, 0), 0.24189614372973056, 1e-14, "digits");
     bf_model_free(m);
 }
 
@@ -95,7 +88,7 @@ static void test_grazing(void **state)
     double s2 = x[1] * x[1];
     double A = 1.0 - s2 / (2.0 * (s2 + 0.33)), B = 0.45 * s2 / (s2 + 0.09);
     double want = (A + B * sin(t) * sin(t) / cos(t)) / M_PI;
-    assert_rel(ts_eval1(m, x, 89.999, 30.0, 89.999, 30.0, 0), want, 1e-10, "grazing");
+    ts_assert_rel(ts_eval1(m, x, 89.999, 30.0, 89.999, 30.0, 0), want, 1e-10, "grazing");
     assert_true(ts_eval1(m, x, 90.0, 30.0, 90.0, 30.0, 0) == 0.0);
     bf_model_free(m);
 }
@@ -113,7 +106,7 @@ static void test_random(void **state)
         double ti = 89.0 * ts_uniform(&r), pi_ = 360.0 * ts_uniform(&r);
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
         for (int c = 0; c < 3; c++)
-            assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), on_ref(x[c], x[3], ti, pi_, to, po),
+            ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), on_ref(x[c], x[3], ti, pi_, to, po),
                        1e-12, "oren_nayar random");
     }
     bf_model_free(m);

@@ -11,13 +11,6 @@
 
 #include "support.h"
 
-static void assert_rel(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-300))
-        fail_msg("%s: got %.17g, want %.17g (rel err %.3g)", what, got, want,
-                 fabs(got - want) / fabs(want));
-}
-
 /* MODELS.md, written out from the angles (degrees), nothing shared with the library. */
 static double ward_ref(double rd, double rs, double ax, double ay, double ti, double pi_,
                        double to, double po)
@@ -66,7 +59,7 @@ static void test_peak_normal(void **state)
     double x[8] = {0.1, 0.2, 0.3, 0.7, 0.5, 0.25, 0.05, 0.3};
     for (int c = 0; c < 3; c++) {
         double want = x[c] / M_PI + x[3 + c] / (4.0 * M_PI * 0.05 * 0.3);
-        assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, c), want, 1e-14, "ward peak");
+        ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, c), want, 1e-14, "ward peak");
     }
     bf_model_free(m);
 }
@@ -80,7 +73,7 @@ static void test_mirror(void **state)
     double th[] = {10.0, 45.0, 75.0, 89.0};
     for (int k = 0; k < 4; k++) {
         double want = 0.3 / M_PI + 0.6 / (4.0 * M_PI * 0.2 * 0.08 * cos(th[k] * DEG));
-        assert_rel(ts_eval1(m, x, th[k], 33.0, th[k], 213.0, 0), want, 1e-12, "ward mirror");
+        ts_assert_rel(ts_eval1(m, x, th[k], 33.0, th[k], 213.0, 0), want, 1e-12, "ward mirror");
     }
     bf_model_free(m);
 }
@@ -96,11 +89,11 @@ static void test_axis(void **state)
     double ti = 20.0, to = 26.0, th = (to - ti) / 2.0 * DEG;
     double t = tan(th) / 0.3;
     double want = exp(-t * t) / (4.0 * M_PI * 0.3 * 0.05 * sqrt(cos(ti * DEG) * cos(to * DEG)));
-    assert_rel(ts_eval1(m, x, ti, 180.0, to, 0.0, 0), want, 1e-12, "ward along X");
+    ts_assert_rel(ts_eval1(m, x, ti, 180.0, to, 0.0, 0), want, 1e-12, "ward along X");
     /* The same geometry turned by 90 degrees: now alpha_y = 0.05 shapes it. */
     t = tan(th) / 0.05;
     want = exp(-t * t) / (4.0 * M_PI * 0.3 * 0.05 * sqrt(cos(ti * DEG) * cos(to * DEG)));
-    assert_rel(ts_eval1(m, x, ti, 270.0, to, 90.0, 0), want, 1e-12, "ward along Y");
+    ts_assert_rel(ts_eval1(m, x, ti, 270.0, to, 90.0, 0), want, 1e-12, "ward along Y");
     bf_model_free(m);
 }
 
@@ -126,7 +119,7 @@ static void test_random(void **state)
         }
         for (int c = 0; c < 3; c++) {
             double want = ward_ref(x[c], x[3 + c], x[6], x[7], ti, pi_, to, po);
-            assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), want, 1e-12, "ward random");
+            ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), want, 1e-12, "ward random");
         }
         /* ward_iso = ward with alpha_x = alpha_y. */
         memcpy(xi, x, 6 * sizeof *x);
@@ -137,8 +130,8 @@ static void test_random(void **state)
         for (int c = 0; c < 3; c++) {
             double want = ward_ref(x[c], x[3 + c], x[6], x[6], ti, pi_, to, po);
             double iso = ts_eval1(mi, xi, ti, pi_, to, po, c);
-            assert_rel(iso, want, 1e-12, "ward_iso random");
-            assert_rel(iso, ts_eval1(m, xa, ti, pi_, to, po, c), 1e-13, "ward_iso vs ward");
+            ts_assert_rel(iso, want, 1e-12, "ward_iso random");
+            ts_assert_rel(iso, ts_eval1(m, xa, ti, pi_, to, po, c), 1e-13, "ward_iso vs ward");
         }
     }
     bf_model_free(m);
@@ -152,7 +145,7 @@ static void test_limits(void **state)
     bf_model *m = bf_model_create("ward_iso", 1, NULL);
     double x[3] = {0.4, 0.6, 1e-3};
     assert_true(ts_eval1(m, x, 95.0, 0.0, 30.0, 180.0, 0) == 0.0);
-    assert_rel(ts_eval1(m, x, 30.0, 0.0, 60.0, 90.0, 0), 0.4 / M_PI, 1e-15, "ward underflow");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 0.0, 60.0, 90.0, 0), 0.4 / M_PI, 1e-15, "ward underflow");
     bf_model_free(m);
 }
 

@@ -26,14 +26,7 @@ static int configure(bf_model *m, bf_error *err)
         (rc = bf_model_add_param(m, "b", 0, 0.0, 1e7, 100.0, BF_SCALE_LOG1P, 1, err)) ||
         (rc = bf_model_add_param(m, "c", 0, 0.0, 10.0, 1.0, BF_SCALE_LOG1P, 1, err)))
         return rc;
-    switch (bf_model_opt(m, "fresnel")) {
-    case BF_FRESNEL_SCHLICK:
-        return bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, 1, err);
-    case BF_FRESNEL_DIELECTRIC:
-        return bf_model_add_param(m, "ior", 0, 1.0, 3.0, 1.5, BF_SCALE_LINEAR, 1, err);
-    default:
-        return BF_OK;
-    }
+    return bf_model_add_fresnel_param(m, bf_model_opt(m, "fresnel"), 1, err);
 }
 
 /* Scalars in table order: b, c, then f0 or ior unless fresnel=none. */

@@ -62,6 +62,10 @@ int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo
                             double hi, int hi_open, double def, bf_scale scale, int lobe,
                             bf_error *err);
 
+/* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
+ * schlick, ior [1, 3] for dielectric, none for none. */
+int bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *err);
+
 /* The shared driver for families with a `lobe` function. Expects the table laid out as
  * rho_d (colour), then for each lobe k: rho_s (colour) followed by its scalars. */
 void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,

@@ -220,12 +220,8 @@ static int configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
             rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, r0, BF_SCALE_LOG, k, err);
             break;
         }
-        if (rc != BF_OK)
-            break;
-        if (c.f == BF_FRESNEL_SCHLICK)
-            rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, k, err);
-        else if (c.f == BF_FRESNEL_DIELECTRIC)
-            rc = bf_model_add_param(m, "ior", 0, 1.0, 3.0, 1.5, BF_SCALE_LINEAR, k, err);
+        if (rc == BF_OK)
+            rc = bf_model_add_fresnel_param(m, c.f, k, err);
     }
     return rc;
 }
