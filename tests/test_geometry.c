@@ -37,6 +37,20 @@ static void test_sin2h_near_peak(void **state)
     bf_geometry_free(g);
 }
 
+/* V.H at grazing mirror pairs (H = N, V.H = cos theta) keeps its relative precision
+ * although L and V nearly cancel in x and y. */
+static void test_vh_grazing_mirror(void **state)
+{
+    (void)state;
+    const double thetas[] = {89.9, 89.99, 89.999};
+    for (int k = 0; k < 3; k++) {
+        double t = thetas[k] * DEG, pi_ = 45 * DEG, po = 225 * DEG;
+        bf_geometry *g = bf_geometry_from_angles(1, &t, &pi_, &t, &po, NULL);
+        ts_assert_rel(g->vh[0], cos(t), 1e-12, "V.H at a grazing mirror pair");
+        bf_geometry_free(g);
+    }
+}
+
 static void test_horizon(void **state)
 {
     (void)state;
@@ -69,6 +83,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_half_vector),
         cmocka_unit_test(test_sin2h_near_peak),
+        cmocka_unit_test(test_vh_grazing_mirror),
         cmocka_unit_test(test_horizon),
         cmocka_unit_test(test_from_vectors),
     };

@@ -31,7 +31,7 @@ static double ndf(int kind, double t, double r, double *dD)
     case NDF_BECKMANN:
         return bf_d_beckmann(nh, s2, r, dD);
     case NDF_BLINN:
-        return bf_d_blinn(nh, r, dD);
+        return bf_d_blinn(nh, s2, r, dD);
     default:
         return bf_d_gaussian(nh, s2, r, dD);
     }

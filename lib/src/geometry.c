@@ -40,7 +40,10 @@ static void half_vector(bf_geometry *g, size_t i)
     g->hx[i] = x;
     g->hy[i] = y;
     g->hz[i] = z;
-    g->vh[i] = g->vx[i] * x + g->vy[i] * y + g->vz[i] * z;
+    /* V.H = |L + V| / 2 for unit L and V. The dot product V.normalize(L + V) loses
+     * digits when L is nearly -V in x, y (grazing mirror pairs: 1e-7 relative at 89.999
+     * degrees), where the leftovers of Lx + Vx meet |V| = 1. */
+    g->vh[i] = 0.5 * len;
     g->sin2h[i] = x * x + y * y;
 }
 

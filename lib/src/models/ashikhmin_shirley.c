@@ -40,10 +40,7 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
             continue;
         }
         double s2 = g->sin2h[i], hz = g->hz[i], vh = g->vh[i];
-        /* log(NH): from sin^2(theta_h) near the peak (log1p keeps its relative accuracy
-         * where NH rounds to 1), from NH itself towards the horizon (where 1 - sin2h
-         * would cancel). */
-        double lnh = s2 < 0.5 ? 0.5 * log1p(-s2) : log(hz);
+        double lnh = bf_log_nh(hz, s2);
         /* Weights of nu and nv in e: cos^2 and sin^2 of phi_h. At H = N (s2 = 0) NH^e = 1
          * for any e; lnh = 0 there, so any finite weights do, and the exponent's
          * derivatives vanish. */

@@ -67,7 +67,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         break;
     case D_BLINN:
         for (size_t j = 0; j < cnt; j++)
-            D[j] = bf_d_blinn(hz[j], r, &dD[j]);
+            D[j] = bf_d_blinn(hz[j], s2[j], r, &dD[j]);
         break;
     default: /* D_GAUSSIAN */
         for (size_t j = 0; j < cnt; j++)

@@ -42,9 +42,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         double nl = g->lz[i], nv = g->vz[i], nh = g->hz[i], vh = g->vh[i], s2 = g->sin2h[i];
         double dk = 0.0, dg = 0.0, df = 0.0, v = 0.0;
         if (nl > 0.0 && nv > 0.0 && vh > 0.0 && nh > 0.0) {
-            /* log NH: near the peak from sin^2 (log of a number near 1 loses digits),
-             * elsewhere directly (sin2h rounds to 1 where NH is tiny). */
-            double lnh = s2 < 0.5 ? 0.5 * log1p(-s2) : log(nh);
+            double lnh = bf_log_nh(nh, s2);
             double p = exp(gamma * lnh); /* NH^gamma, underflows to 0, never overflows */
             double e = exp(-kappa * p);
             double D = -expm1(-kappa * p);

@@ -66,8 +66,6 @@ static double blinn_norm(double n, double *dlog)
     return (n + 2.0) * (n + 4.0) / (8.0 * M_PI * den);
 }
 
-/* log NH as log1p(-sin^2)/2 near the peak (no cancellation); log(NH) elsewhere, which
- * also stays finite when sin2h rounds to 1 at grazing half vectors. */
 static void lobe_blinn(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
                        size_t i0, size_t cnt, double *S, double *dS)
 {
@@ -81,7 +79,7 @@ static void lobe_blinn(const bf_model *m, int lobe, const double *s, const bf_ge
         double nh = g->hz[i], s2 = g->sin2h[i];
         double v = 0.0, dn = 0.0;
         if (nh > 0.0) { /* always so on valid samples */
-            double lg = s2 < 0.5 ? 0.5 * log1p(-s2) : log(nh);
+            double lg = bf_log_nh(nh, s2);
             double t = n * lg;
             v = t > LOG_TINY ? norm * exp(t) : 0.0;
             dn = v * (dlog + lg);

@@ -10,6 +10,16 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* ---- Geometry helpers ---------------------------------------------------------- */
+
+/* log(N.H) to full relative precision: from sin^2(theta_h) near the peak, where NH
+ * rounds to 1 and an exponent of 1e6 would amplify that rounding; from NH itself towards
+ * the horizon, where 1 - sin2h would cancel. */
+static inline double bf_log_nh(double nh, double sin2h)
+{
+    return sin2h < 0.5 ? 0.5 * log1p(-sin2h) : log(nh);
+}
+
 /* ---- Fresnel ---------------------------------------------------------------- */
 
 enum { BF_FRESNEL_SCHLICK = 0, BF_FRESNEL_DIELECTRIC = 1, BF_FRESNEL_NONE = 2 };
@@ -32,9 +42,14 @@ static inline double bf_schlick(double u, double f0, double *dF)
  * *dF = dF/dior. */
 static inline double bf_dielectric(double c, double ior, double *dF)
 {
-    double g2 = ior * ior + c * c - 1.0;
+    /* g - c written as (ior^2 - 1)/(g + c): the literal difference loses everything to
+     * rounding when ior - 1 is comparable to c^2 (ior = 1 at grazing gave F ~ 1e-13
+     * instead of 0, which a sharp lobe then amplified). */
+    double e = (ior - 1.0) * (ior + 1.0);
+    double g2 = e + c * c;
     double g = sqrt(g2 > 0.0 ? g2 : 0.0);
-    double gpc = g + c, gmc = g - c;
+    double gpc = g + c;
+    double gmc = gpc > 0.0 ? e / gpc : 0.0;
     double A = gpc > 0.0 ? gmc / gpc : 0.0;
     double Bn = c * gpc - 1.0, Bd = c * gmc + 1.0;
     double B = Bn / Bd;
@@ -141,13 +156,14 @@ static inline double bf_d_ggx(double nh, double sin2h, double a, double *dD)
     return D;
 }
 
-/* Normalised Blinn D = (n+2)/(2 pi) NH^n. *dD = dD/dn. */
-static inline double bf_d_blinn(double nh, double n, double *dD)
+/* Normalised Blinn D = (n+2)/(2 pi) NH^n, with NH^n = exp(n log NH) (bf_log_nh). *dD = dD/dn. */
+static inline double bf_d_blinn(double nh, double sin2h, double n, double *dD)
 {
-    double p = pow(nh, n);
+    double lg = bf_log_nh(nh, sin2h);
+    double p = n > 0.0 ? exp(n * lg) : 1.0; /* pow(NH, 0) = 1 */
     double D = (n + 2.0) / (2.0 * M_PI) * p;
     if (dD)
-        *dD = p / (2.0 * M_PI) + D * log(nh);
+        *dD = p / (2.0 * M_PI) + D * lg;
     return D;
 }
 
