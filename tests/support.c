@@ -212,3 +212,33 @@ void ts_assert_rel(double got, double want, double tol, const char *what)
         fail_msg("%s: got %.17g, want %.17g (rel. error %.3g)", what ? what : "value", got, want,
                  fabs(got - want) / fabs(want));
 }
+
+void ts_assert_near(double got, double want, double rel, double abs, const char *what)
+{
+    if (!(fabs(got - want) <= rel * fabs(want) + abs))
+        fail_msg("%s: got %.17g, want %.17g", what ? what : "value", got, want);
+}
+
+void ts_random_pair_deg(ts_rng *r, int near_mirror, double *ti, double *pi_, double *to, double *po)
+{
+    *ti = 85.0 * ts_uniform(r);
+    *pi_ = 360.0 * ts_uniform(r);
+    if (near_mirror) {
+        *to = fabs(*ti + 10.0 * (ts_uniform(r) - 0.5));
+        *po = *pi_ + 180.0 + 10.0 * (ts_uniform(r) - 0.5);
+    } else {
+        *to = 85.0 * ts_uniform(r);
+        *po = 360.0 * ts_uniform(r);
+    }
+}
+
+void ts_dirs_deg(double ti, double pi_, double to, double po, double L[3], double V[3])
+{
+    double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
+    L[0] = sin(a) * cos(b);
+    L[1] = sin(a) * sin(b);
+    L[2] = cos(a);
+    V[0] = sin(c) * cos(d);
+    V[1] = sin(c) * sin(d);
+    V[2] = cos(c);
+}

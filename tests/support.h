@@ -39,6 +39,13 @@ double ts_param_hi(const bf_param_info *p);
  * of them near the mirror direction so sharp lobes are exercised. Radians. */
 void ts_random_dirs(ts_rng *r, size_t n, double *ti, double *pi_, double *to, double *po);
 
+/* One random pair in degrees for value tests: theta up to 85, and with near_mirror the
+ * outgoing direction within 5 degrees of the mirror of the incident one. */
+void ts_random_pair_deg(ts_rng *r, int near_mirror, double *ti, double *pi_, double *to, double *po);
+
+/* L and V as MODELS.md defines them, from angles in degrees. */
+void ts_dirs_deg(double ti, double pi_, double to, double po, double L[3], double V[3]);
+
 /* Evaluates values only, over a geometry, into a malloc'd array (n*C). */
 double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g);
 
@@ -52,6 +59,9 @@ bf_model *ts_model(const char *spec, int C);
 /* Fails the current test unless |got - want| <= tol |want| (plus 1e-300); `what`
  * (may be NULL) names the quantity in the message. */
 void ts_assert_rel(double got, double want, double tol, const char *what);
+
+/* Like ts_assert_rel with an absolute floor `abs`, for values that may be ~0. */
+void ts_assert_near(double got, double want, double rel, double abs, const char *what);
 
 /* Single value of channel c at one direction pair in degrees. */
 double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,

@@ -109,15 +109,8 @@ static void check_random(int C)
         x[2 * C + 2] = 0.2 + 2.0 * ts_uniform(&rng);
         assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
         for (int d = 0; d < 10; d++) {
-            double ti = 85.0 * ts_uniform(&rng), pi_ = 360.0 * ts_uniform(&rng);
-            double to, po;
-            if (d % 3 == 0) { /* near the mirror direction */
-                to = fabs(ti + 10.0 * (ts_uniform(&rng) - 0.5));
-                po = pi_ + 180.0 + 10.0 * (ts_uniform(&rng) - 0.5);
-            } else {
-                to = 85.0 * ts_uniform(&rng);
-                po = 360.0 * ts_uniform(&rng);
-            }
+            double ti, pi_, to, po;
+            ts_random_pair_deg(&rng, d % 3 == 0, &ti, &pi_, &to, &po);
             for (int c = 0; c < C; c++)
                 assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
                              brady_plain(C, x, c, ti, pi_, to, po), REL);

@@ -12,22 +12,8 @@
 
 #include "support.h"
 
-static void assert_close(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-15))
-        fail_msg("%s: got %.17g, want %.17g", what, got, want);
-}
-
-static void dirs(double ti, double pi_, double to, double po, double L[3], double V[3])
-{
-    double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
-    L[0] = sin(a) * cos(b);
-    L[1] = sin(a) * sin(b);
-    L[2] = cos(a);
-    V[0] = sin(c) * cos(d);
-    V[1] = sin(c) * sin(d);
-    V[2] = cos(c);
-}
+/* Relative tolerance plus a tiny absolute one, for values that may be ~0. */
+#define assert_close(got, want, tol, what) ts_assert_near((got), (want), (tol), 1e-15, (what))
 
 /* MODELS.md written out plainly: lobes K, per lobe (rho_s, cx, cy, cz, n). For the
  * isotropic model cx = cy = cxy. Only for n small enough that cmax^n stays normal. */
@@ -37,7 +23,7 @@ static double laf_ref(double rd, int K, const lobe_p *lp, double ti, double pi_,
                       double po)
 {
     double L[3], V[3];
-    dirs(ti, pi_, to, po, L, V);
+    ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     double f = rd / M_PI;

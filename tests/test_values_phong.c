@@ -13,23 +13,7 @@
 #include "support.h"
 
 /* Relative tolerance plus a tiny absolute one, for values that may be ~0. */
-static void assert_close(double got, double want, double tol, const char *what)
-{
-    if (!(fabs(got - want) <= tol * fabs(want) + 1e-15))
-        fail_msg("%s: got %.17g, want %.17g", what, got, want);
-}
-
-/* L and V from angles in degrees, as MODELS.md defines them. */
-static void dirs(double ti, double pi_, double to, double po, double L[3], double V[3])
-{
-    double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
-    L[0] = sin(a) * cos(b);
-    L[1] = sin(a) * sin(b);
-    L[2] = cos(a);
-    V[0] = sin(c) * cos(d);
-    V[1] = sin(c) * sin(d);
-    V[2] = cos(c);
-}
+#define assert_close(got, want, tol, what) ts_assert_near((got), (want), (tol), 1e-15, (what))
 
 /* ---- plain re-implementations (nothing shared with the library) ---------------- */
 
@@ -37,7 +21,7 @@ static double phong_ref(double rd, double rs, double n, double ti, double pi_, d
                         double po)
 {
     double L[3], V[3];
-    dirs(ti, pi_, to, po, L, V);
+    ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     /* R = 2 (N.L) N - L */
@@ -56,7 +40,7 @@ static double blinn_ref(double rd, double rs, double n, double ti, double pi_, d
                         double po)
 {
     double L[3], V[3];
-    dirs(ti, pi_, to, po, L, V);
+    ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     double nh = half_z(L, V);
@@ -68,7 +52,7 @@ static double gaussian_ref(double rd, double rs, double m, double ti, double pi_
                            double po)
 {
     double L[3], V[3];
-    dirs(ti, pi_, to, po, L, V);
+    ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     double th = acos(half_z(L, V));
@@ -79,7 +63,7 @@ static double hs_ref(double rd, double rs, double s, double phit, double ti, dou
                      double to, double po)
 {
     double L[3], V[3];
-    dirs(ti, pi_, to, po, L, V);
+    ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     double T[3] = {cos(phit), sin(phit), 0.0};
