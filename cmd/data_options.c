@@ -1,0 +1,135 @@
+/* Parsing of the shared data options, and reading + preprocessing in one call. */
+#include "data_options.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char data_options_usage[] =
+    "reading:\n"
+    "  --format csv|merl|cornell|alta   file format (default: by extension, then content)\n"
+    "  --angles TI,PI,TO,PO             CSV angle column names (default theta_i,phi_i,theta_o,phi_o)\n"
+    "  --radians                        CSV angles are in radians (default degrees)\n"
+    "  --values COL,...                 CSV value columns (default: all but angles and weight)\n"
+    "  --weight COL                     CSV weight column (default: 'weight' if present)\n"
+    "preprocessing:\n"
+    "  --channels NAME|INDEX,...        keep these channels, in this order\n"
+    "  --rgb | --luminance              spectral to three bands / to one channel\n"
+    "  --max-theta DEG                  drop samples with theta_i or theta_o above DEG\n"
+    "  --negative keep|drop|clamp       negative values (default keep: they are data)\n"
+    "  --subsample N [--seed K]         seeded stratified subsample to N samples\n";
+
+static int parse_number(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    *out = strtod(s, &end);
+    return *s && !*end && errno == 0;
+}
+
+int data_options_parse(data_options *o, int argc, char **argv, int *i, const char *cmd)
+{
+    const char *a = argv[*i];
+    static const char *const with_value[] = {"--format", "--angles", "--values", "--weight", "--channels",
+                                             "--max-theta", "--negative", "--subsample", "--seed"};
+    int needs = 0;
+    for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
+        needs |= strcmp(a, with_value[k]) == 0;
+    if (!strcmp(a, "--radians")) {
+        o->read.csv.radians = 1;
+        return 1;
+    }
+    if (!strcmp(a, "--rgb") || !strcmp(a, "--luminance")) {
+        *(a[2] == 'r' ? &o->prep.to_rgb : &o->prep.to_luminance) = 1;
+        if (o->prep.to_rgb && o->prep.to_luminance) {
+            fprintf(stderr, "%s: --rgb and --luminance exclude each other\n", cmd);
+            return -1;
+        }
+        return 1;
+    }
+    if (!needs)
+        return 0;
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+        return -1;
+    }
+    const char *v = argv[++*i];
+    double d;
+    if (!strcmp(a, "--format")) {
+        int f = bf_format_from_name(v);
+        if (f < 0) {
+            fprintf(stderr, "%s: unknown format '%s' (csv, merl, cornell, alta)\n", cmd, v);
+            return -1;
+        }
+        o->read.format = (bf_format)f;
+    } else if (!strcmp(a, "--angles")) {
+        snprintf(o->angles_buf, sizeof o->angles_buf, "%s", v);
+        char *p = o->angles_buf;
+        for (int k = 0; k < 4; k++) {
+            char *comma = strchr(p, ',');
+            if ((k < 3) != (comma != NULL) || p == comma || !*p) {
+                fprintf(stderr, "%s: --angles needs four comma-separated column names, got '%s'\n", cmd, v);
+                return -1;
+            }
+            o->read.csv.angle_cols[k] = p;
+            if (comma) {
+                *comma = '\0';
+                p = comma + 1;
+            }
+        }
+    } else if (!strcmp(a, "--values")) {
+        o->read.csv.channels = v;
+    } else if (!strcmp(a, "--weight")) {
+        o->read.csv.weight_col = v;
+    } else if (!strcmp(a, "--channels")) {
+        o->prep.channels = v;
+    } else if (!strcmp(a, "--max-theta")) {
+        if (!parse_number(v, &d) || !(d > 0.0 && d <= 90.0)) {
+            fprintf(stderr, "%s: --max-theta needs degrees in (0, 90], got '%s'\n", cmd, v);
+            return -1;
+        }
+        o->prep.max_theta = d;
+    } else if (!strcmp(a, "--negative")) {
+        if (!strcmp(v, "keep"))
+            o->prep.negative = BF_NEGATIVE_KEEP;
+        else if (!strcmp(v, "drop"))
+            o->prep.negative = BF_NEGATIVE_DROP;
+        else if (!strcmp(v, "clamp"))
+            o->prep.negative = BF_NEGATIVE_CLAMP;
+        else {
+            fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else { /* --subsample, --seed: non-negative integers */
+        char *end;
+        errno = 0;
+        unsigned long long n = strtoull(v, &end, 10);
+        if (!*v || *end || errno || *v == '-') {
+            fprintf(stderr, "%s: %s needs a non-negative integer, got '%s'\n", cmd, a, v);
+            return -1;
+        }
+        if (!strcmp(a, "--seed"))
+            o->prep.seed = (uint64_t)n;
+        else
+            o->prep.subsample = (size_t)n;
+    }
+    return 1;
+}
+
+bf_samples *data_options_load(const data_options *o, const char *path, bf_prep_report *report,
+                              const char *cmd)
+{
+    bf_error err;
+    bf_samples *s = NULL;
+    if (bf_samples_read(path, &o->read, &s, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return NULL;
+    }
+    if (bf_samples_prep(s, &o->prep, report, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
+        bf_samples_free(s);
+        return NULL;
+    }
+    return s;
+}

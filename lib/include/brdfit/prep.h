@@ -1,0 +1,65 @@
+/* What every data-reading command can do to a sample set before using it, and what
+ * `brdfit info` reports about one. */
+#ifndef BRDFIT_PREP_H
+#define BRDFIT_PREP_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "brdfit/error.h"
+#include "brdfit/samples.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum bf_negative { BF_NEGATIVE_KEEP = 0, BF_NEGATIVE_DROP, BF_NEGATIVE_CLAMP } bf_negative;
+
+/* Zeroed = change nothing but drop what cannot be used (below the horizon, NaN/Inf). */
+typedef struct bf_prep {
+    const char *channels;  /* keep these channels, in this order: comma-separated names or
+                              0-based indices; NULL keeps all */
+    int to_rgb;            /* spectral -> three bands (B, G, R by wavelength) */
+    int to_luminance;      /* -> one channel */
+    double max_theta;      /* degrees; > 0 drops samples with theta_i or theta_o above it */
+    bf_negative negative;  /* negative values are data by default (KEEP) */
+    size_t subsample;      /* > 0: seeded stratified subsample to this many samples */
+    uint64_t seed;
+} bf_prep;
+
+typedef struct bf_prep_report {
+    size_t read;            /* samples before */
+    size_t below_horizon;   /* theta_i or theta_o >= 90 degrees: dropped */
+    size_t nonfinite;       /* a NaN or Inf value: dropped */
+    size_t negative;        /* with a negative value: dropped, clamped or kept per option */
+    size_t above_max_theta; /* dropped by max_theta */
+    size_t subsampled_out;  /* dropped by subsampling */
+    size_t kept;            /* samples after */
+} bf_prep_report;
+
+/* Applies p to s in place: channel selection, then to_rgb / to_luminance, then the
+ * drops (horizon, non-finite, negative, max_theta), then subsampling. Changing channels
+ * drops the MERL origin. report may be NULL. Errors: unknown channel, to_rgb without
+ * spectral data, no sample left. */
+int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
+
+/* ---- What a data set holds (brdfit info) --------------------------------------- */
+typedef struct bf_range { double lo, hi; } bf_range;
+
+typedef struct bf_samples_info {
+    size_t n;
+    int channels;
+    bf_range theta_i, theta_o, theta_h, theta_d; /* degrees, over samples above the horizon */
+    size_t below_horizon, nonfinite, negative, zero;
+    bf_range *value;   /* per channel, over finite values (malloc'd, C entries) */
+    double *mean;      /* per channel mean of finite values (malloc'd) */
+    int weighted;
+} bf_samples_info;
+
+int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err);
+void bf_samples_info_free(bf_samples_info *info);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

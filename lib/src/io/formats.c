@@ -1,0 +1,41 @@
+/* Format names and file extensions, shared by the reader and writer dispatch. */
+#include "formats.h"
+
+#include <string.h>
+#include <strings.h>
+
+static const char *const format_names[] = {"auto", "csv", "merl", "cornell", "alta"};
+
+int bf_format_from_name(const char *name)
+{
+    for (int f = 0; f < (int)(sizeof format_names / sizeof format_names[0]); f++)
+        if (strcmp(name, format_names[f]) == 0)
+            return f;
+    return -1;
+}
+
+const char *bf_format_name(bf_format f)
+{
+    return (unsigned)f < sizeof format_names / sizeof format_names[0] ? format_names[f] : "unknown";
+}
+
+bf_format bf_format_by_extension(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    const char *ext = dot && (!slash || dot > slash) ? dot + 1 : "";
+    if (!strcasecmp(ext, "csv"))
+        return BF_FORMAT_CSV;
+    if (!strcasecmp(ext, "binary"))
+        return BF_FORMAT_MERL;
+    if (!strcasecmp(ext, "brdf"))
+        return BF_FORMAT_CORNELL;
+    if (!strcasecmp(ext, "alta"))
+        return BF_FORMAT_ALTA;
+    return BF_FORMAT_AUTO;
+}
+
+bf_format bf_format_for_writing(const char *path)
+{
+    bf_format f = bf_format_by_extension(path);
+    return f == BF_FORMAT_CSV || f == BF_FORMAT_MERL ? f : BF_FORMAT_AUTO;
+}

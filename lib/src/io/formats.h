@@ -1,0 +1,9 @@
+/* Internal: the format a path's extension names (any readable format). */
+#ifndef BF_IO_FORMATS_H
+#define BF_IO_FORMATS_H
+
+#include "brdfit/samples.h"
+
+bf_format bf_format_by_extension(const char *path);
+
+#endif

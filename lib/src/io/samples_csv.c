@@ -1,0 +1,158 @@
+/* Sample sets as CSV: angle columns (any names, degrees or radians), channel columns,
+ * an optional weight column. */
+#include "brdfit/io.h"
+#include "brdfit/samples.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const default_angles[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
+
+/* Column indices of the comma-separated names in list; returns the count or -1. */
+static int find_columns(const bf_csv *t, const char *path, const char *list, int *idx, int max,
+                        bf_error *err)
+{
+    int n = 0;
+    for (const char *p = list; *p;) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char name[128];
+        snprintf(name, sizeof name, "%.*s", (int)len, p);
+        int c = bf_csv_column(t, name);
+        if (c < 0) {
+            bf_fail(err, BF_ERR_PARSE, "%s: no column '%s' for a channel", path, name);
+            return -1;
+        }
+        if (n == max) {
+            bf_fail(err, BF_ERR_PARSE, "%s: too many channel columns", path);
+            return -1;
+        }
+        idx[n++] = c;
+        if (!comma)
+            break;
+        p = comma + 1;
+    }
+    return n;
+}
+
+int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err)
+{
+    static const bf_csv_map defaults = {{NULL, NULL, NULL, NULL}, 0, NULL, NULL};
+    if (!map)
+        map = &defaults;
+    *out = NULL;
+    bf_csv *t;
+    int rc = bf_csv_read(path, &t, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_samples *s = NULL;
+    int *chan = malloc((t->ncols + 1) * sizeof *chan);
+    int ang[4], wcol = -1, C = 0;
+    if (!chan) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+        goto done;
+    }
+    for (int k = 0; k < 4; k++) {
+        const char *name = map->angle_cols[k] ? map->angle_cols[k] : default_angles[k];
+        if ((ang[k] = bf_csv_column(t, name)) < 0) {
+            rc = bf_fail(err, BF_ERR_PARSE, "%s: missing angle column '%s' (columns are named with --angles)",
+                         path, name);
+            goto done;
+        }
+    }
+    if (map->weight_col) {
+        if ((wcol = bf_csv_column(t, map->weight_col)) < 0) {
+            rc = bf_fail(err, BF_ERR_PARSE, "%s: no weight column '%s'", path, map->weight_col);
+            goto done;
+        }
+    } else {
+        wcol = bf_csv_column(t, "weight");
+    }
+    if (map->channels) {
+        if ((C = find_columns(t, path, map->channels, chan, (int)t->ncols, err)) < 0) {
+            rc = err ? err->code : BF_ERR_PARSE;
+            goto done;
+        }
+    } else {
+        for (size_t c = 0; c < t->ncols; c++)
+            if ((int)c != ang[0] && (int)c != ang[1] && (int)c != ang[2] && (int)c != ang[3] && (int)c != wcol)
+                chan[C++] = (int)c;
+    }
+    if (C == 0) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s: no value columns besides the angles", path);
+        goto done;
+    }
+    if (!(s = bf_samples_new(t->nrows, C, err))) {
+        rc = err ? err->code : BF_ERR_NOMEM;
+        goto done;
+    }
+    for (int c = 0; c < C; c++)
+        if ((rc = bf_samples_set_channel_name(s, c, t->names[chan[c]], err)) != BF_OK)
+            goto done;
+    if (wcol >= 0 && (rc = bf_samples_add_weights(s, err)) != BF_OK)
+        goto done;
+    const double to_deg = map->radians ? 180.0 / M_PI : 1.0;
+    double *angle[4] = {s->theta_i, s->phi_i, s->theta_o, s->phi_o};
+    for (size_t r = 0; r < t->nrows; r++) {
+        const double *row = t->data + r * t->ncols;
+        for (int k = 0; k < 4; k++)
+            angle[k][r] = row[ang[k]] * to_deg;
+        /* theta beyond [0, 180] degrees names no direction this tool knows. */
+        for (int k = 0; k < 4; k += 2)
+            if (angle[k][r] < 0.0 || angle[k][r] > 180.0 + 1e-9) {
+                rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: %s = %g is outside [0, %s]", path, t->line[r],
+                             t->names[ang[k]], row[ang[k]], map->radians ? "pi" : "180");
+                goto done;
+            }
+        for (int c = 0; c < C; c++)
+            s->value[r * (size_t)C + (size_t)c] = row[chan[c]];
+        if (wcol >= 0) {
+            s->weight[r] = row[wcol];
+            if (row[wcol] < 0.0) {
+                rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: weight %g is negative", path, t->line[r], row[wcol]);
+                goto done;
+            }
+        }
+    }
+done:
+    free(chan);
+    bf_csv_free(t);
+    if (rc != BF_OK) {
+        bf_samples_free(s);
+        return rc;
+    }
+    *out = s;
+    return BF_OK;
+}
+
+int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
+{
+    bf_outfile o;
+    int rc = bf_outfile_open(&o, path, err);
+    if (rc != BF_OK)
+        return rc;
+    const size_t C = (size_t)s->channels;
+    char buf[40];
+    fputs("theta_i,phi_i,theta_o,phi_o", o.fp);
+    for (size_t c = 0; c < C; c++)
+        fprintf(o.fp, ",%s", s->channel_names[c]);
+    if (s->weight)
+        fputs(",weight", o.fp);
+    fputc('\n', o.fp);
+    const double *angle[4] = {s->theta_i, s->phi_i, s->theta_o, s->phi_o};
+    for (size_t i = 0; i < s->n; i++) {
+        for (int k = 0; k < 4; k++)
+            fprintf(o.fp, "%s%s", k ? "," : "", bf_format_double(angle[k][i], buf, sizeof buf));
+        for (size_t c = 0; c < C; c++)
+            fprintf(o.fp, ",%s", bf_format_double(s->value[i * C + c], buf, sizeof buf));
+        if (s->weight)
+            fprintf(o.fp, ",%s", bf_format_double(s->weight[i], buf, sizeof buf));
+        fputc('\n', o.fp);
+    }
+    if (ferror(o.fp)) {
+        bf_outfile_abort(&o);
+        return bf_fail(err, BF_ERR_IO, "%s: write error", path);
+    }
+    return bf_outfile_commit(&o, err);
+}

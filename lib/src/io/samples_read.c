@@ -1,0 +1,61 @@
+/* Which reader or writer a file gets: by the --format option, else by extension, else
+ * by content. */
+#include "formats.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Text formats by their first meaningful line: ALTA starts with '#' header keys
+ * (#DIM ...), Cornell with a lone wavelength count, CSV with a header row. */
+static bf_format by_content(const char *path, bf_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return BF_FORMAT_AUTO;
+    }
+    char line[512];
+    bf_format f = BF_FORMAT_CSV;
+    while (fgets(line, sizeof line, fp)) {
+        if (!strncmp(line, "#DIM", 4) || !strncmp(line, "#PARAM_IN", 9)) {
+            f = BF_FORMAT_ALTA;
+            break;
+        }
+        char *p = line;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (*p == '#' || *p == '\0')
+            continue;
+        char *end;
+        strtol(p, &end, 10);
+        while (isspace((unsigned char)*end))
+            end++;
+        if (end != p && *end == '\0') /* a lone integer: Cornell's wavelength count */
+            f = BF_FORMAT_CORNELL;
+        break;
+    }
+    fclose(fp);
+    return f;
+}
+
+int bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err)
+{
+    bf_format f = opt ? opt->format : BF_FORMAT_AUTO;
+    if (f == BF_FORMAT_AUTO)
+        f = bf_format_by_extension(path);
+    if (f == BF_FORMAT_AUTO && (f = by_content(path, err)) == BF_FORMAT_AUTO)
+        return err ? err->code : BF_ERR_IO;
+    switch (f) {
+    case BF_FORMAT_MERL:
+        return bf_samples_read_merl(path, out, err);
+    case BF_FORMAT_CORNELL:
+        return bf_samples_read_cornell(path, out, err);
+    case BF_FORMAT_ALTA:
+        return bf_samples_read_alta(path, out, err);
+    default:
+        return bf_samples_read_csv(path, opt ? &opt->csv : NULL, out, err);
+    }
+}
