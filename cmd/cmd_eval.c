@@ -58,16 +58,14 @@ int cmd_eval(int argc, char **argv)
             return 0;
         }
         if (i + 1 >= argc || (strcmp(a, "--params") && strcmp(a, "--dirs") && strcmp(a, "-o"))) {
-            fprintf(stderr, "brdfit eval: unexpected argument '%s'\n", a);
-            usage(stderr);
+            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", a);
             return 2;
         }
         const char **dst = !strcmp(a, "--params") ? &params_path : !strcmp(a, "--dirs") ? &dirs_path : &out_path;
         *dst = argv[++i];
     }
     if (!params_path || !dirs_path) {
-        fprintf(stderr, "brdfit eval: --params and --dirs are required\n");
-        usage(stderr);
+        fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
         return 2;
     }
 

@@ -11,6 +11,8 @@ static const struct {
 } commands[] = {
     {"models", cmd_models, "models [--json]                  list models, parameters, bounds, options"},
     {"eval", cmd_eval, "eval --params P.json --dirs D.csv [-o OUT.csv]   evaluate a model"},
+    {"info", cmd_info, "info DATA [data options] [--json]      what a data file holds"},
+    {"convert", cmd_convert, "convert IN OUT [data options] [--to csv|merl]   between formats"},
 };
 
 static void usage(FILE *out)

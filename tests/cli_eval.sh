@@ -106,7 +106,9 @@ if "$BRDFIT" eval --params "$P" --dirs "$D" -o "$tmp/no/such/dir/x.csv" 2>"$tmp/
 else
   grep -q 'no/such/dir/x.csv: cannot create' "$tmp/err" && ok || bad "unwritable output: $(cat "$tmp/err")"
 fi
-if "$BRDFIT" eval --params "$P" 2>/dev/null; then bad "missing --dirs accepted"; else ok; fi
+if "$BRDFIT" eval --params "$P" 2>"$tmp/err"; then bad "missing --dirs accepted"; else
+  [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q 'are required' "$tmp/err" && ok || bad "missing --dirs: $(cat "$tmp/err")"
+fi
 if "$BRDFIT" frobnicate 2>/dev/null; then bad "unknown command accepted"; else ok; fi
 
 echo "$pass passed, $fails failed"

@@ -38,7 +38,9 @@ typedef struct bf_prep_report {
 } bf_prep_report;
 
 /* Applies p to s in place: channel selection, then to_rgb / to_luminance, then the
- * drops (horizon, non-finite, negative, max_theta), then subsampling. Changing channels
+ * drops, then subsampling. A dropped sample is counted once, under the first of:
+ * non-finite, below the horizon, above max_theta, negative (so the negative count
+ * describes samples otherwise used). Changing channels
  * drops the MERL origin. report may be NULL. Errors: unknown channel, to_rgb without
  * spectral data, no sample left. */
 int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);

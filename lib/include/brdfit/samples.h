@@ -110,8 +110,8 @@ int bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_erro
  * phi_h = 0). */
 void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o,
                              double *phi_o);
-/* The cell whose centre these directions are (within 1e-9 rad in each of theta_h,
- * theta_d, phi_d), or -1. */
+/* The cell whose centre these directions are (within 1e-9 rad in theta_h and theta_d;
+ * phi_d within 1e-9 rad plus its own rounding, which grows as H nears N), or -1. */
 int32_t bf_merl_cell_of(double theta_i, double phi_i, double theta_o, double phi_o);
 
 #ifdef __cplusplus

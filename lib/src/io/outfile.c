@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
@@ -24,6 +25,11 @@ int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
     memcpy(o->tmp, path, n);
     memcpy(o->tmp + n, ".tmp.XXXXXX", 12);
     int fd = mkstemp(o->tmp);
+    /* mkstemp makes the file 0600; the output gets the mode a plain create would. */
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fd >= 0)
+        fchmod(fd, 0666 & ~mask);
     if (fd < 0 || !(o->fp = fdopen(fd, "w"))) {
         int e = errno;
         if (fd >= 0) {

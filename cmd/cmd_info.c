@@ -1,0 +1,187 @@
+/* brdfit info DATA [data options] [--json]: what a data file holds once read and
+ * preprocessed as a fit would see it: samples, channels, angle coverage, what the
+ * preprocessing dropped or clamped, and value ranges per channel. */
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/prep.h"
+#include "commands.h"
+#include "data_options.h"
+
+static const char cmd[] = "brdfit info";
+
+static const char *negative_action(bf_negative n)
+{
+    return n == BF_NEGATIVE_DROP ? "drop" : n == BF_NEGATIVE_CLAMP ? "clamp" : "keep";
+}
+
+static cJSON *range_json(bf_range r)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "min", r.lo); /* cJSON writes NaN (nothing covered) as null */
+    cJSON_AddNumberToObject(o, "max", r.hi);
+    return o;
+}
+
+static void print_json(const char *path, const bf_samples *s, const bf_prep *p, const bf_prep_report *r,
+                       const bf_samples_info *info)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "file", path);
+    cJSON_AddNumberToObject(root, "samples_read", (double)r->read);
+    cJSON_AddNumberToObject(root, "samples", (double)info->n);
+    cJSON *names = cJSON_AddArrayToObject(root, "channels");
+    for (int c = 0; c < s->channels; c++)
+        cJSON_AddItemToArray(names, cJSON_CreateString(s->channel_names[c]));
+    if (s->wavelength)
+        cJSON_AddItemToObject(root, "wavelengths", cJSON_CreateDoubleArray(s->wavelength, s->channels));
+    else
+        cJSON_AddNullToObject(root, "wavelengths");
+    cJSON_AddBoolToObject(root, "weighted", info->weighted);
+
+    cJSON *prep = cJSON_AddObjectToObject(root, "prep");
+    cJSON_AddNumberToObject(prep, "below_horizon", (double)r->below_horizon);
+    cJSON_AddNumberToObject(prep, "nonfinite", (double)r->nonfinite);
+    cJSON_AddNumberToObject(prep, "above_max_theta", (double)r->above_max_theta);
+    cJSON_AddNumberToObject(prep, "negative", (double)r->negative);
+    cJSON_AddStringToObject(prep, "negative_action", negative_action(p->negative));
+    cJSON_AddNumberToObject(prep, "subsampled_out", (double)r->subsampled_out);
+    cJSON_AddNumberToObject(prep, "kept", (double)r->kept);
+
+    cJSON *cov = cJSON_AddObjectToObject(root, "coverage_deg");
+    cJSON_AddItemToObject(cov, "theta_i", range_json(info->theta_i));
+    cJSON_AddItemToObject(cov, "theta_o", range_json(info->theta_o));
+    cJSON_AddItemToObject(cov, "theta_h", range_json(info->theta_h));
+    cJSON_AddItemToObject(cov, "theta_d", range_json(info->theta_d));
+
+    cJSON *counts = cJSON_AddObjectToObject(root, "counts");
+    cJSON_AddNumberToObject(counts, "below_horizon", (double)info->below_horizon);
+    cJSON_AddNumberToObject(counts, "nonfinite", (double)info->nonfinite);
+    cJSON_AddNumberToObject(counts, "negative", (double)info->negative);
+    cJSON_AddNumberToObject(counts, "zero", (double)info->zero);
+
+    cJSON *vals = cJSON_AddArrayToObject(root, "values");
+    for (int c = 0; c < s->channels; c++) {
+        cJSON *v = cJSON_CreateObject();
+        cJSON_AddStringToObject(v, "channel", s->channel_names[c]);
+        cJSON_AddNumberToObject(v, "min", info->value[c].lo);
+        cJSON_AddNumberToObject(v, "max", info->value[c].hi);
+        cJSON_AddNumberToObject(v, "mean", info->mean[c]);
+        cJSON_AddItemToArray(vals, v);
+    }
+    char *text = cJSON_Print(root);
+    puts(text);
+    free(text);
+    cJSON_Delete(root);
+}
+
+/* Channel names, shortened to the first three and the last when there are many. */
+static void print_channel_names(const bf_samples *s)
+{
+    const int C = s->channels;
+    for (int c = 0; c < C; c++) {
+        if (C > 8 && c == 3) {
+            printf(", ...");
+            c = C - 2;
+            continue;
+        }
+        printf("%s%s", c ? ", " : "", s->channel_names[c]);
+    }
+}
+
+static void print_text(const char *path, const bf_samples *s, const bf_prep *p, const bf_prep_report *r,
+                       const bf_samples_info *info)
+{
+    printf("%s: %zu samples read, %zu used\n", path, r->read, info->n);
+    printf("channels: %d (", s->channels);
+    print_channel_names(s);
+    printf(")");
+    if (s->wavelength) {
+        double lo = s->wavelength[0], hi = lo;
+        for (int c = 1; c < s->channels; c++) {
+            lo = s->wavelength[c] < lo ? s->wavelength[c] : lo;
+            hi = s->wavelength[c] > hi ? s->wavelength[c] : hi;
+        }
+        printf(", %g-%g nm", lo, hi);
+    }
+    printf("; %s\n", info->weighted ? "weighted per sample" : "unweighted");
+
+    static const char *const done[] = {"kept", "dropped", "clamped to 0"};
+    printf("preprocessing: dropped %zu below the horizon, %zu with NaN or Inf, %zu above max theta, %zu by "
+           "subsampling; %zu with negative values %s\n",
+           r->below_horizon, r->nonfinite, r->above_max_theta, r->subsampled_out, r->negative,
+           done[p->negative]);
+    if (p->subsample > 0 && r->subsampled_out == 0)
+        printf("subsample %zu: all %zu samples kept (no more available)\n", p->subsample, info->n);
+
+    printf("coverage (degrees, samples used):\n");
+    const struct { const char *name; bf_range r; } cov[] = {
+        {"theta_i", info->theta_i}, {"theta_o", info->theta_o},
+        {"theta_h", info->theta_h}, {"theta_d", info->theta_d}};
+    for (int k = 0; k < 4; k++)
+        printf("  %-8s %11.6g .. %.6g\n", cov[k].name, cov[k].r.lo, cov[k].r.hi);
+
+    printf("values (samples used): %zu with a zero, %zu with a negative value\n", info->zero, info->negative);
+    printf("  %-12s %13s %13s %13s\n", "channel", "min", "max", "mean");
+    for (int c = 0; c < s->channels; c++)
+        printf("  %-12s %13.6g %13.6g %13.6g\n", s->channel_names[c], info->value[c].lo, info->value[c].hi,
+               info->mean[c]);
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: brdfit info DATA [data options] [--json]\n%s", data_options_usage);
+}
+
+int cmd_info(int argc, char **argv)
+{
+    data_options o;
+    memset(&o, 0, sizeof o);
+    const char *path = NULL;
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        int used = data_options_parse(&o, argc, argv, &i, cmd);
+        if (used < 0)
+            return 2;
+        if (used)
+            continue;
+        if (!strcmp(argv[i], "--json")) {
+            json = 1;
+        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            usage(stdout);
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            fprintf(stderr, "%s: unknown option '%s' (try brdfit info --help)\n", cmd, argv[i]);
+            return 2;
+        } else if (path) {
+            fprintf(stderr, "%s: one data file at a time ('%s' and '%s')\n", cmd, path, argv[i]);
+            return 2;
+        } else {
+            path = argv[i];
+        }
+    }
+    if (!path) {
+        fprintf(stderr, "%s: no data file (usage: brdfit info DATA [data options] [--json])\n", cmd);
+        return 2;
+    }
+    bf_prep_report report;
+    bf_samples *s = data_options_load(&o, path, &report, cmd);
+    if (!s)
+        return 1;
+    bf_samples_info info;
+    bf_error err;
+    if (bf_samples_describe(s, &info, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
+        bf_samples_free(s);
+        return 1;
+    }
+    if (json)
+        print_json(path, s, &o.prep, &report, &info);
+    else
+        print_text(path, s, &o.prep, &report, &info);
+    bf_samples_info_free(&info);
+    bf_samples_free(s);
+    return 0;
+}

@@ -1,0 +1,100 @@
+/* What a sample set holds, for `brdfit info`: coverage in angles, invalid samples,
+ * value ranges.
+ *
+ * Angle ranges are over the samples above the horizon (as the geometry decides it);
+ * theta_h and theta_d come from the geometry, which stays cached on s for the fit.
+ * Counts are of samples (not values): below the horizon; with a NaN or Inf value; with
+ * a negative value; with a zero value (any channel). Value ranges and means are per
+ * channel over every finite value, above the horizon or not. A range or mean with
+ * nothing to cover is NaN. */
+#include "brdfit/prep.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static void widen(bf_range *r, double v)
+{
+    if (v < r->lo || isnan(r->lo))
+        r->lo = v;
+    if (v > r->hi || isnan(r->hi))
+        r->hi = v;
+}
+
+/* The angle between L and H from |L x H| and L.H: acos(L.H) would read 1e-6 degrees
+ * for L = V (a retro-reflection slice), where the answer is 0. */
+static double theta_d(const bf_geometry *g, size_t i)
+{
+    double cx = g->ly[i] * g->hz[i] - g->lz[i] * g->hy[i];
+    double cy = g->lz[i] * g->hx[i] - g->lx[i] * g->hz[i];
+    double cz = g->lx[i] * g->hy[i] - g->ly[i] * g->hx[i];
+    return atan2(sqrt(cx * cx + cy * cy + cz * cz), g->vh[i]);
+}
+
+int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
+{
+    const bf_range none = {NAN, NAN};
+    const size_t C = (size_t)s->channels;
+    *info = (bf_samples_info){0};
+    info->n = s->n;
+    info->channels = s->channels;
+    info->theta_i = info->theta_o = info->theta_h = info->theta_d = none;
+    info->weighted = s->weight != NULL;
+    info->value = malloc(C * sizeof *info->value);
+    info->mean = malloc(C * sizeof *info->mean);
+    size_t *nfinite = calloc(C, sizeof *nfinite);
+    /* Compensated (Neumaier) sums: a million similar values lose no digits. */
+    double *sum = calloc(2 * C, sizeof *sum), *comp = sum ? sum + C : NULL;
+    const bf_geometry *g = s->n ? bf_samples_geometry(s, err) : NULL;
+    if (!info->value || !info->mean || !nfinite || !sum || (s->n && !g)) {
+        free(nfinite);
+        free(sum);
+        bf_samples_info_free(info);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory describing %zu samples", s->n);
+    }
+    for (size_t c = 0; c < C; c++)
+        info->value[c] = none;
+    const double deg = 180.0 / M_PI;
+    for (size_t i = 0; i < s->n; i++) {
+        const double *v = s->value + i * C;
+        int nonfinite = 0, negative = 0, zero = 0;
+        for (size_t c = 0; c < C; c++) {
+            if (!isfinite(v[c])) {
+                nonfinite = 1;
+                continue;
+            }
+            negative |= v[c] < 0.0;
+            zero |= v[c] == 0.0;
+            widen(&info->value[c], v[c]);
+            nfinite[c]++;
+            double t = sum[c] + v[c];
+            comp[c] += fabs(sum[c]) >= fabs(v[c]) ? (sum[c] - t) + v[c] : (v[c] - t) + sum[c];
+            sum[c] = t;
+        }
+        info->nonfinite += nonfinite;
+        info->negative += negative;
+        info->zero += zero;
+        if (!bf_geometry_valid(g, i)) {
+            info->below_horizon++;
+            continue;
+        }
+        widen(&info->theta_i, s->theta_i[i]);
+        widen(&info->theta_o, s->theta_o[i]);
+        widen(&info->theta_h, atan2(sqrt(g->sin2h[i]), g->hz[i]) * deg);
+        widen(&info->theta_d, theta_d(g, i) * deg);
+    }
+    for (size_t c = 0; c < C; c++)
+        info->mean[c] = nfinite[c] ? (sum[c] + comp[c]) / (double)nfinite[c] : NAN;
+    free(nfinite);
+    free(sum);
+    return BF_OK;
+}
+
+void bf_samples_info_free(bf_samples_info *info)
+{
+    if (!info)
+        return;
+    free(info->value);
+    free(info->mean);
+    info->value = NULL;
+    info->mean = NULL;
+}
