@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include <cmocka.h>
+#include <dirent.h>
+#include <unistd.h>
 
 static int family_selected(const char *name)
 {
@@ -241,4 +243,69 @@ void ts_dirs_deg(double ti, double pi_, double to, double po, double L[3], doubl
     V[0] = sin(c) * cos(d);
     V[1] = sin(c) * sin(d);
     V[2] = cos(c);
+}
+
+static char tmpdir[64];
+
+static void remove_tmpdir(void)
+{
+    DIR *d = opendir(tmpdir);
+    if (!d)
+        return;
+    struct dirent *e;
+    char p[512];
+    while ((e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+            snprintf(p, sizeof p, "%s/%s", tmpdir, e->d_name);
+            unlink(p);
+        }
+    closedir(d);
+    rmdir(tmpdir);
+}
+
+const char *ts_tmpdir(void)
+{
+    if (!tmpdir[0]) {
+        snprintf(tmpdir, sizeof tmpdir, "/tmp/brdfit_test_XXXXXX");
+        if (!mkdtemp(tmpdir)) {
+            fprintf(stderr, "cannot make a temporary directory\n");
+            exit(1);
+        }
+        atexit(remove_tmpdir);
+    }
+    return tmpdir;
+}
+
+const char *ts_tmp_path(const char *name)
+{
+    static char buf[8][256];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", ts_tmpdir(), name);
+    return buf[k];
+}
+
+void ts_write_file(const char *path, const char *text, size_t len)
+{
+    FILE *fp = fopen(path, "wb");
+    assert_non_null(fp);
+    assert_int_equal(fwrite(text, 1, len, fp), len);
+    fclose(fp);
+}
+
+void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
+                          const char *fragment)
+{
+    const char *path = ts_tmp_path(name);
+    ts_write_file(path, text, len);
+    bf_samples *s = (bf_samples *)&s; /* must come back NULL */
+    bf_error err = {0};
+    int rc = reader(path, &s, &err);
+    if (rc == BF_OK)
+        fail_msg("%s accepted", name);
+    assert_null(s);
+    if (rc != code)
+        fail_msg("%s: code %d, want %d (%s)", name, rc, code, err.msg);
+    if (!strstr(err.msg, fragment) || !strstr(err.msg, path) || strchr(err.msg, '\n'))
+        fail_msg("%s: message '%s' lacks the path or '%s'", name, err.msg, fragment);
 }

@@ -8,6 +8,7 @@
 
 #include "brdfit/geometry.h"
 #include "brdfit/model.h"
+#include "brdfit/samples.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -62,6 +63,20 @@ void ts_assert_rel(double got, double want, double tol, const char *what);
 
 /* Like ts_assert_rel with an absolute floor `abs`, for values that may be ~0. */
 void ts_assert_near(double got, double want, double rel, double abs, const char *what);
+
+/* A per-process temporary directory, made on first use and removed at exit, and a
+ * path inside it (one of 8 rotating buffers). */
+const char *ts_tmpdir(void);
+const char *ts_tmp_path(const char *name);
+/* Writes len bytes of text to path (fails the test if it cannot). */
+void ts_write_file(const char *path, const char *text, size_t len);
+
+/* Writes text to ts_tmp_path(name), reads it with `reader`, and fails the test unless
+ * the read fails with `code`, leaves *out NULL, and gives a one-line message that
+ * names the file and contains `fragment`. */
+typedef int (*ts_reader)(const char *path, bf_samples **out, bf_error *err);
+void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
+                          const char *fragment);
 
 /* Single value of channel c at one direction pair in degrees. */
 double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,

@@ -14,31 +14,12 @@
 #include "brdfit/samples.h"
 #include "support.h"
 
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
-
-static void write_file(const char *path, const char *text, size_t len)
-{
-    FILE *fp = fopen(path, "wb");
-    assert_non_null(fp);
-    assert_int_equal(fwrite(text, 1, len, fp), len);
-    fclose(fp);
-}
-
 static bf_samples *read_text(const char *name, const char *text)
 {
-    write_file(tmp_path(name), text, strlen(text));
+    ts_write_file(ts_tmp_path(name), text, strlen(text));
     bf_samples *s = NULL;
     bf_error err = {0};
-    if (bf_samples_read_alta(tmp_path(name), &s, &err) != BF_OK)
+    if (bf_samples_read_alta(ts_tmp_path(name), &s, &err) != BF_OK)
         fail_msg("%s", err.msg);
     return s;
 }
@@ -426,17 +407,7 @@ static void test_header_leniency(void **state)
 
 static void expect_error_len(const char *name, const char *text, size_t len, int code, const char *fragment)
 {
-    write_file(tmp_path(name), text, len);
-    bf_samples *s = (bf_samples *)&s; /* must come back NULL */
-    bf_error err = {0};
-    int rc = bf_samples_read_alta(tmp_path(name), &s, &err);
-    if (rc == BF_OK)
-        fail_msg("%s accepted", name);
-    assert_null(s);
-    if (rc != code)
-        fail_msg("%s: code %d, want %d (%s)", name, rc, code, err.msg);
-    if (!strstr(err.msg, fragment) || !strstr(err.msg, tmp_path(name)) || strchr(err.msg, '\n'))
-        fail_msg("%s: message '%s' lacks the path or '%s'", name, err.msg, fragment);
+    ts_expect_read_error(bf_samples_read_alta, name, text, len, code, fragment);
 }
 
 static void expect_error(const char *name, const char *text, int code, const char *fragment)
@@ -498,16 +469,13 @@ static void test_bad_input(void **state)
     expect_error_len("nul.alta", nul, sizeof nul - 1, P, ":4: binary data");
     bf_samples *s = NULL;
     bf_error err = {0};
-    assert_int_equal(bf_samples_read_alta(tmp_path("missing.alta"), &s, &err), BF_ERR_IO);
+    assert_int_equal(bf_samples_read_alta(ts_tmp_path("missing.alta"), &s, &err), BF_ERR_IO);
     assert_null(s);
     assert_non_null(strstr(err.msg, "missing.alta: cannot open"));
 }
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/brdfit_alta_XXXXXX");
-    if (!mkdtemp(tmpdir))
-        return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pink_felt),
         cmocka_unit_test(test_rusin_convention),
@@ -521,10 +489,5 @@ int main(void)
         cmocka_unit_test(test_header_leniency),
         cmocka_unit_test(test_bad_input),
     };
-    int rc = cmocka_run_group_tests_name("alta", tests, NULL, NULL);
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    if (system(cmd) != 0)
-        rc = 1;
-    return rc;
+    return cmocka_run_group_tests_name("alta", tests, NULL, NULL);
 }

@@ -13,25 +13,6 @@
 #include "brdfit/samples.h"
 #include "support.h"
 
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
-
-static void write_file(const char *path, const char *text, size_t len)
-{
-    FILE *fp = fopen(path, "wb");
-    assert_non_null(fp);
-    assert_int_equal(fwrite(text, 1, len, fp), len);
-    fclose(fp);
-}
-
 static bf_samples *read_ok(const char *path)
 {
     bf_samples *s = NULL;
@@ -171,8 +152,8 @@ static void test_flat_stream(void **state)
     const char *text = "# two wavelengths\r\n2 # count\r\n412.5\t600\r\n"
                        "0.5 0 # a comment inside a record\r\n1.8\r\n3.141593 0.25 -0.001\r\n"
                        "1.570796 1 0 -2 1e-3 2E2\r\n";
-    write_file(tmp_path("stream.brdf"), text, strlen(text));
-    bf_samples *s = read_ok(tmp_path("stream.brdf"));
+    ts_write_file(ts_tmp_path("stream.brdf"), text, strlen(text));
+    bf_samples *s = read_ok(ts_tmp_path("stream.brdf"));
     assert_int_equal(s->n, 2);
     assert_int_equal(s->channels, 2);
     assert_string_equal(s->channel_names[0], "412.5");
@@ -200,8 +181,8 @@ static void test_dispatch(void **state)
     assert_int_equal(s->n, 20);
     bf_samples_free(s);
     const char *text = "# no extension\n1\n550\n0.1 0 0.2 3.14 0.5\n";
-    write_file(tmp_path("noext"), text, strlen(text));
-    assert_int_equal(bf_samples_read(tmp_path("noext"), NULL, &s, &err), BF_OK);
+    ts_write_file(ts_tmp_path("noext"), text, strlen(text));
+    assert_int_equal(bf_samples_read(ts_tmp_path("noext"), NULL, &s, &err), BF_OK);
     assert_int_equal(s->channels, 1);
     assert_string_equal(s->channel_names[0], "550");
     assert_true(s->value[0] == 0.5);
@@ -210,17 +191,7 @@ static void test_dispatch(void **state)
 
 static void expect_error_len(const char *name, const char *text, size_t len, int code, const char *fragment)
 {
-    write_file(tmp_path(name), text, len);
-    bf_samples *s = (bf_samples *)&s; /* must come back NULL */
-    bf_error err = {0};
-    int rc = bf_samples_read_cornell(tmp_path(name), &s, &err);
-    if (rc == BF_OK)
-        fail_msg("%s accepted", name);
-    assert_null(s);
-    if (rc != code)
-        fail_msg("%s: code %d, want %d (%s)", name, rc, code, err.msg);
-    if (!strstr(err.msg, fragment) || !strstr(err.msg, tmp_path(name)) || strchr(err.msg, '\n'))
-        fail_msg("%s: message '%s' lacks the path or '%s'", name, err.msg, fragment);
+    ts_expect_read_error(bf_samples_read_cornell, name, text, len, code, fragment);
 }
 
 static void expect_error(const char *name, const char *text, int code, const char *fragment)
@@ -270,16 +241,13 @@ static void test_bad_input(void **state)
 
     bf_samples *s = NULL;
     bf_error err = {0};
-    assert_int_equal(bf_samples_read_cornell(tmp_path("missing.brdf"), &s, &err), BF_ERR_IO);
+    assert_int_equal(bf_samples_read_cornell(ts_tmp_path("missing.brdf"), &s, &err), BF_ERR_IO);
     assert_null(s);
     assert_non_null(strstr(err.msg, "missing.brdf: cannot open"));
 }
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/brdfit_cornell_XXXXXX");
-    if (!mkdtemp(tmpdir))
-        return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_subset),
         cmocka_unit_test(test_full_shared_files),
@@ -287,10 +255,5 @@ int main(void)
         cmocka_unit_test(test_dispatch),
         cmocka_unit_test(test_bad_input),
     };
-    int rc = cmocka_run_group_tests_name("cornell", tests, NULL, NULL);
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    if (system(cmd) != 0)
-        rc = 1;
-    return rc;
+    return cmocka_run_group_tests_name("cornell", tests, NULL, NULL);
 }

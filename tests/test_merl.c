@@ -28,44 +28,9 @@ static const double scale[3] = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0};
 
 /* ---- Files -------------------------------------------------------------------------- */
 
-static char tmpdir[64];
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/bf_test_merl_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    DIR *d = opendir(tmpdir);
-    if (!d)
-        return -1;
-    struct dirent *e;
-    char p[512];
-    while ((e = readdir(d)))
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-            snprintf(p, sizeof p, "%s/%s", tmpdir, e->d_name);
-            unlink(p);
-        }
-    closedir(d);
-    return rmdir(tmpdir);
-}
-
-static const char *tmp_path(const char *name)
-{
-    static char buf[4][256];
-    static int next;
-    char *p = buf[next++ % 4];
-    snprintf(p, 256, "%s/%s", tmpdir, name);
-    return p;
-}
-
 static int dir_entries(void)
 {
-    DIR *d = opendir(tmpdir);
+    DIR *d = opendir(ts_tmpdir());
     int n = 0;
     struct dirent *e;
     while ((e = readdir(d)))
@@ -310,7 +275,7 @@ static void test_read_values(void **state)
         raw[p * NCELLS + negzero] = p == 1 ? -0.0 : 7.0;
     }
     nvalid += 3; /* all three are valid now (-0.0 is not negative) */
-    const char *path = tmp_path("read.binary");
+    const char *path = ts_tmp_path("read.binary");
     write_raw_file(path, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
@@ -355,7 +320,7 @@ static void test_round_trip_bytes(void **state)
     (void)state;
     size_t nvalid, n1, n2, n3;
     double *raw = random_table(7, &nvalid);
-    const char *in = tmp_path("in.binary"), *out = tmp_path("out.binary"), *out2 = tmp_path("out2.binary");
+    const char *in = ts_tmp_path("in.binary"), *out = ts_tmp_path("out.binary"), *out2 = ts_tmp_path("out2.binary");
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
@@ -379,7 +344,7 @@ static void test_keep_then_write(void **state)
     (void)state;
     size_t nvalid, size;
     double *raw = random_table(9, &nvalid);
-    const char *in = tmp_path("keep_in.binary"), *out = tmp_path("keep_out.binary");
+    const char *in = ts_tmp_path("keep_in.binary"), *out = ts_tmp_path("keep_out.binary");
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
@@ -411,7 +376,7 @@ static void test_changed_values(void **state)
     (void)state;
     size_t nvalid;
     double *raw = random_table(11, &nvalid);
-    const char *in = tmp_path("chg_in.binary"), *out = tmp_path("chg_out.binary");
+    const char *in = ts_tmp_path("chg_in.binary"), *out = ts_tmp_path("chg_out.binary");
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s, *t;
     bf_error err;
@@ -456,7 +421,7 @@ static void test_write_without_origin(void **state)
     s->theta_i[2] = s->theta_o[2], s->phi_i[2] = s->phi_o[2];
     s->theta_o[2] = t, s->phi_o[2] = p_;
     s->value[0] = 0.0;
-    const char *path = tmp_path("few.binary");
+    const char *path = ts_tmp_path("few.binary");
     assert_int_equal(bf_samples_write_merl(s, path, &err), BF_OK);
     size_t size;
     unsigned char *f = slurp(path, &size);
@@ -494,7 +459,7 @@ static void test_write_without_origin(void **state)
 static void expect_write_error(bf_samples *s, int code, const char *frag)
 {
     bf_error err;
-    const char *path = tmp_path("bad_out.binary");
+    const char *path = ts_tmp_path("bad_out.binary");
     int before = dir_entries();
     assert_int_equal(bf_samples_write_merl(s, path, &err), code);
     expect_msg(&err, path);
@@ -550,10 +515,10 @@ static void expect_read_error(const char *path, int code, const char *frag1, con
 static void test_read_errors(void **state)
 {
     (void)state;
-    expect_read_error(tmp_path("missing.binary"), BF_ERR_IO, "cannot open", NULL);
-    expect_read_error(tmpdir, BF_ERR_IO, "read error", NULL);
+    expect_read_error(ts_tmp_path("missing.binary"), BF_ERR_IO, "cannot open", NULL);
+    expect_read_error(ts_tmpdir(), BF_ERR_IO, "read error", NULL);
 
-    const char *p = tmp_path("bad.binary");
+    const char *p = ts_tmp_path("bad.binary");
     write_raw_file(p, good_dims, NULL, 0, 0);
     assert_int_equal(truncate(p, 0), 0);
     expect_read_error(p, BF_ERR_PARSE, "empty file", NULL);
@@ -604,5 +569,5 @@ int main(void)
         cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_read_errors),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, NULL, NULL);
 }

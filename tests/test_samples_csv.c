@@ -14,25 +14,6 @@
 #include "brdfit/samples.h"
 #include "support.h"
 
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *fp = fopen(path, "w");
-    assert_non_null(fp);
-    fputs(text, fp);
-    fclose(fp);
-}
-
 static char *read_file(const char *path)
 {
     FILE *fp = fopen(path, "rb");
@@ -51,10 +32,10 @@ static void test_round_trip_is_byte_exact(void **state)
                        "30,0,45,180,0.1,0.2,0.30000000000000004,1\n"
                        "89.999,-25.81760513,0,33.5,-0.001,1e-300,123456.789,0.5\n"
                        "0,0,90,0,0,0,0,2\n";
-    write_file(tmp_path("a.csv"), text);
+    ts_write_file(ts_tmp_path("a.csv"), text, strlen(text));
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read_csv(tmp_path("a.csv"), NULL, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_csv(ts_tmp_path("a.csv"), NULL, &s, &err), BF_OK);
     assert_int_equal(s->n, 3);
     assert_int_equal(s->channels, 3);
     assert_string_equal(s->channel_names[2], "b");
@@ -62,20 +43,21 @@ static void test_round_trip_is_byte_exact(void **state)
     assert_true(s->weight[1] == 0.5);
     assert_true(s->value[1 * 3 + 0] == -0.001); /* negative values are data */
     assert_true(s->phi_i[1] == -25.81760513);
-    assert_int_equal(bf_samples_write_csv(s, tmp_path("b.csv"), &err), BF_OK);
-    assert_string_equal(read_file(tmp_path("b.csv")), text);
+    assert_int_equal(bf_samples_write_csv(s, ts_tmp_path("b.csv"), &err), BF_OK);
+    assert_string_equal(read_file(ts_tmp_path("b.csv")), text);
     bf_samples_free(s);
 }
 
 static void test_mapping_and_radians(void **state)
 {
     (void)state;
-    write_file(tmp_path("m.csv"), "# a comment\nid,ti,pi,to,po,lum,w\n"
-                                  "7,0.5235987755982988,0,0.7853981633974483,3.141592653589793,0.25,3\n");
+    const char *text = "# a comment\nid,ti,pi,to,po,lum,w\n"
+                       "7,0.5235987755982988,0,0.7853981633974483,3.141592653589793,0.25,3\n";
+    ts_write_file(ts_tmp_path("m.csv"), text, strlen(text));
     bf_csv_map map = {{"ti", "pi", "to", "po"}, 1, "lum", "w"};
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read_csv(tmp_path("m.csv"), &map, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_csv(ts_tmp_path("m.csv"), &map, &s, &err), BF_OK);
     assert_int_equal(s->channels, 1);
     assert_string_equal(s->channel_names[0], "lum");
     ts_assert_rel(s->theta_i[0], 30.0, 1e-15, "theta_i from radians");
@@ -91,9 +73,10 @@ static void test_mapping_and_radians(void **state)
 static void test_default_channels(void **state)
 {
     (void)state;
-    write_file(tmp_path("d.csv"), "phi_o,x,theta_o,y,theta_i,phi_i\n1,2,3,4,5,6\n");
+    const char *text = "phi_o,x,theta_o,y,theta_i,phi_i\n1,2,3,4,5,6\n";
+    ts_write_file(ts_tmp_path("d.csv"), text, strlen(text));
     bf_samples *s;
-    assert_int_equal(bf_samples_read_csv(tmp_path("d.csv"), NULL, &s, NULL), BF_OK);
+    assert_int_equal(bf_samples_read_csv(ts_tmp_path("d.csv"), NULL, &s, NULL), BF_OK);
     assert_int_equal(s->channels, 2);
     assert_string_equal(s->channel_names[0], "x");
     assert_string_equal(s->channel_names[1], "y");
@@ -133,10 +116,10 @@ static void test_ptfe(void **state)
 
 static void expect_error(const char *name, const char *text, const bf_csv_map *map, const char *fragment)
 {
-    write_file(tmp_path(name), text);
+    ts_write_file(ts_tmp_path(name), text, strlen(text));
     bf_samples *s = NULL;
     bf_error err = {0};
-    if (bf_samples_read_csv(tmp_path(name), map, &s, &err) == BF_OK)
+    if (bf_samples_read_csv(ts_tmp_path(name), map, &s, &err) == BF_OK)
         fail_msg("%s accepted", name);
     assert_null(s);
     if (!strstr(err.msg, fragment) || !strstr(err.msg, name))
@@ -181,17 +164,14 @@ static void test_no_partial_output(void **state)
     bf_error err;
     assert_int_not_equal(bf_samples_write_csv(s, "/nonexistent-dir/x.csv", &err), BF_OK);
     assert_non_null(strstr(err.msg, "/nonexistent-dir/x.csv: cannot create"));
-    assert_int_not_equal(bf_samples_write(s, tmp_path("x.txt"), BF_FORMAT_AUTO, &err), BF_OK);
+    assert_int_not_equal(bf_samples_write(s, ts_tmp_path("x.txt"), BF_FORMAT_AUTO, &err), BF_OK);
     assert_non_null(strstr(err.msg, "cannot write"));
-    assert_int_equal(access(tmp_path("x.txt"), F_OK), -1);
+    assert_int_equal(access(ts_tmp_path("x.txt"), F_OK), -1);
     bf_samples_free(s);
 }
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/brdfit_csv_XXXXXX");
-    if (!mkdtemp(tmpdir))
-        return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip_is_byte_exact),
         cmocka_unit_test(test_mapping_and_radians),
@@ -200,10 +180,5 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_no_partial_output),
     };
-    int rc = cmocka_run_group_tests_name("samples_csv", tests, NULL, NULL);
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    if (system(cmd) != 0)
-        rc = 1;
-    return rc;
+    return cmocka_run_group_tests_name("samples_csv", tests, NULL, NULL);
 }
