@@ -167,7 +167,7 @@ int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
         t->line[t->nrows++] = lineno;
     }
     if (ferror(fp)) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: read error after line %zu", path, lineno);
+        rc = bf_fail(err, BF_ERR_IO, "%s: read error after line %zu: %s", path, lineno, strerror(errno));
         goto done;
     }
     if (!t->names)
