@@ -1,0 +1,58 @@
+/* Fitting a model to a sample set: data-driven start, seeded multistart, the chosen
+ * back end, metrics and standard errors; and the result file. */
+#ifndef BRDFIT_FIT_H
+#define BRDFIT_FIT_H
+
+#include <stdint.h>
+
+#include "brdfit/error.h"
+#include "brdfit/metrics.h"
+#include "brdfit/model.h"
+#include "brdfit/objective.h"
+#include "brdfit/samples.h"
+#include "brdfit/solve.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct bf_fit_options {
+    bf_objective_options objective;
+    bf_solver_options solver;
+    int starts;          /* >= 1: the data-driven start, then starts-1 seeded random ones */
+    uint64_t seed;       /* multistart (and the solver's stochastic methods) */
+    const double *start; /* NULL: data-driven; else a model vector to start from */
+} bf_fit_options;
+
+typedef struct bf_fit_result {
+    bf_model *model;        /* configured with the samples' channel count (owned) */
+    double *x;              /* best parameters, bf_model_nfree entries, always finite */
+    double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
+    unsigned char *fixed;   /* 1 where fixed */
+    bf_metrics metrics;
+    bf_solution solution;   /* of the best start */
+    int starts;             /* starts run */
+    double seconds;         /* whole fit: start, solves, metrics */
+    bf_residual residual;
+    int ok;                 /* 1: the best start's solution is usable */
+} bf_fit_result;
+
+/* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s. Returns BF_OK when a fit
+ * ran (check r->ok: a failed fit says so in r->solution.termination, and r->x is the
+ * start, never NaN); errors for bad specs, options or data. */
+int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
+void bf_fit_result_free(bf_fit_result *r);
+
+/* A data-driven start for any model: diffuse level from off-specular samples, lobe
+ * weight and width from the samples near the specular peak, every other parameter at
+ * its default, all inside the bounds. */
+int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err);
+
+/* The result JSON: a parameter file (model, options, channels, params) plus data,
+ * residual, metrics, optimizer summary, standard errors and timing; feeds brdfit eval. */
+int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,37 @@
+/* Fit error as users compare it. */
+#ifndef BRDFIT_METRICS_H
+#define BRDFIT_METRICS_H
+
+#include <stddef.h>
+
+#include "brdfit/error.h"
+#include "brdfit/model.h"
+#include "brdfit/samples.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Over every sample and channel (n values), f the model and m the measurement,
+ * c = cos theta_i:
+ *   rmse      sqrt(mean (f - m)^2)
+ *   rmse_cos  sqrt(mean ((f - m) c)^2)
+ *   rmse_log  sqrt(mean (ln(1 + f c) - ln(1 + m c))^2)
+ *   rmse_rel  sqrt(mean ((f - m) / |m|)^2) over values with m != 0
+ *   max_err   max |f - m|
+ *   aic = n ln(SSR/n) + 2k, bic = n ln(SSR/n) + k ln n, SSR = sum (f - m)^2, k free
+ *   parameters. Sample weights are not applied (metrics compare fits, whatever the
+ *   objective was). */
+typedef struct bf_metrics {
+    size_t n;
+    int k;
+    double rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, bic;
+} bf_metrics;
+
+int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, bf_metrics *out,
+                       bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

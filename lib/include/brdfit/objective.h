@@ -1,0 +1,92 @@
+/* The fitting objective: a model, a sample set and a residual form become a bf_problem
+ * over well-scaled internal parameters. Fixed parameters, bound overrides and the
+ * internal parametrisation (log space for roughness and exponents) live here, not in
+ * the models and not in the back ends. */
+#ifndef BRDFIT_OBJECTIVE_H
+#define BRDFIT_OBJECTIVE_H
+
+#include <stddef.h>
+
+#include "brdfit/error.h"
+#include "brdfit/model.h"
+#include "brdfit/samples.h"
+#include "brdfit/solve.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Residual forms, per sample and channel (c = cos theta_i = N.L, f the model, m the
+ * measurement, w the sample weight, times sqrt(w) when weights are used):
+ *   linear   f - m
+ *   cosine   (f - m) c
+ *   log      ln(1 + f c) - ln(1 + m c)
+ *   cbrt     cbrt(f c) - cbrt(m c)
+ *   relative (f - m) / (|m| + delta), delta a small floor (documented where defined) */
+typedef enum bf_residual {
+    BF_RESIDUAL_LINEAR = 0,
+    BF_RESIDUAL_COSINE,
+    BF_RESIDUAL_LOG,
+    BF_RESIDUAL_CBRT,
+    BF_RESIDUAL_RELATIVE,
+} bf_residual;
+
+int bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
+const char *bf_residual_name(bf_residual r);
+
+/* --fix NAME=VALUE and --bound NAME=LO:HI. NAME is a parameter name (every channel of a
+ * colour parameter) or NAME[c] (channel c only). */
+typedef struct bf_override {
+    char name[48];
+    int channel; /* -1: all channels */
+    int fix;     /* 1: fixed at value; 0: bounds lo..hi */
+    double value, lo, hi;
+} bf_override;
+
+int bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
+int bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
+
+typedef struct bf_objective_options {
+    bf_residual residual;
+    int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:
+                              from the cell's extent in theta_h, theta_d, phi_d); needs a
+                              MERL origin, else BF_ERR_ARG */
+    int use_weights;       /* multiply by the samples' own weights when they have some */
+    const bf_override *overrides;
+    int noverrides;
+} bf_objective_options;
+
+typedef struct bf_objective bf_objective;
+
+/* The model's channel count must equal the samples'. Validates overrides (unknown
+ * parameter, channel out of range, value or bounds outside the model's bounds, lo >= hi)
+ * with one-line errors. Computes the sample geometry if needed. */
+bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
+                               bf_error *err);
+void bf_objective_free(bf_objective *obj);
+
+/* The problem over the internal vector z (free parameters only, in their internal
+ * scale). nres = samples * channels. Valid as long as obj lives. */
+const bf_problem *bf_objective_problem(const bf_objective *obj);
+int bf_objective_nz(const bf_objective *obj);
+
+/* Model vector x (bf_model_nfree entries) <-> internal z. to_internal clamps x into the
+ * effective bounds first; to_model writes every entry of x, fixed ones included. */
+void bf_objective_to_internal(const bf_objective *obj, const double *x, double *z);
+void bf_objective_to_model(const bf_objective *obj, const double *z, double *x);
+
+/* Effective bounds in model space (after overrides; fixed: lo = hi = value), and which
+ * model-vector entries are fixed. */
+void bf_objective_bounds(const bf_objective *obj, double *lo, double *hi);
+int bf_objective_fixed(const bf_objective *obj, int k);
+
+/* Standard errors of the model parameters at x (model vector), from the Jacobian of
+ * the residuals with respect to the model parameters: s^2 (J^T J)^-1 with
+ * s^2 = sum r^2 / (n - k). 0 for fixed parameters; NaN where J^T J is singular there
+ * (a parameter the data do not determine). */
+int bf_objective_stderr(const bf_objective *obj, const double *x, double *se, bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,100 @@
+/* The optimizer layer: every back end sees only "n residuals, p parameters, bounds, a
+ * function that fills residuals and the Jacobian". No model or data types here. */
+#ifndef BRDFIT_SOLVE_H
+#define BRDFIT_SOLVE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "brdfit/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct bf_problem {
+    size_t nres; /* residuals */
+    int npar;    /* parameters */
+    const double *lo, *hi; /* npar bounds each (-INFINITY / INFINITY where unbounded) */
+    /* Residuals r0 .. r1-1 at x and, when jac is not NULL, their Jacobian rows:
+     * jac[(r - r0) * npar + k] = d res[r - r0] / d x[k]. Called concurrently for
+     * disjoint ranges (threads), so it must not write shared state. Returns 0, or
+     * non-zero to abort the solve. */
+    int (*eval)(void *ctx, const double *x, size_t r0, size_t r1, double *res, double *jac);
+    void *ctx;
+    /* Optional inequality constraint c(x) <= 0 with its gradient (grad may be NULL), used
+     * by the NLopt methods that accept constraints (LD_SLSQP, LD_MMA, GN_ISRES). */
+    double (*constraint)(void *ctx, const double *x, double *grad);
+} bf_problem;
+
+typedef enum bf_loss_kind {
+    BF_LOSS_NONE = 0, /* plain least squares */
+    BF_LOSS_HUBER,
+    BF_LOSS_CAUCHY,
+    BF_LOSS_SOFT_L1,
+    BF_LOSS_ARCTAN,
+} bf_loss_kind;
+
+/* A robust loss rho(s) of the squared residual s, with scale a (Ceres' definitions:
+ * huber: s <= a^2 ? s : 2 a sqrt(s) - a^2; cauchy: a^2 log(1 + s/a^2); soft_l1:
+ * 2 a^2 (sqrt(1 + s/a^2) - 1); arctan: a atan(s/a)). The cost is 1/2 sum rho(r_i^2). */
+typedef struct bf_loss {
+    bf_loss_kind kind;
+    double scale;
+} bf_loss;
+
+/* Parses "huber:0.1", "cauchy", "none" ... (scale 1 when omitted). */
+int bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
+/* rho(s) and rho'(s). */
+double bf_loss_eval(const bf_loss *l, double s, double *d1);
+
+typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
+
+typedef struct bf_solver_options {
+    bf_backend backend;
+    /* Ceres: "lm" (Levenberg-Marquardt, default) or "dogleg". NLopt: LD_LBFGS, LD_SLSQP,
+     * LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM, GN_ISRES,
+     * G_MLSL_LDS (default LD_LBFGS). NULL: the default. */
+    const char *algorithm;
+    const char *local_algorithm; /* NLopt G_MLSL_LDS: its local method (default LD_LBFGS) */
+    const char *linear_solver;   /* Ceres: dense_qr, dense_normal_cholesky (default), ... */
+    int max_iterations;          /* 0: default (Ceres 100 iterations; NLopt 2000 evaluations,
+                                    20000 for global methods) */
+    double function_tolerance;   /* 0: defaults (1e-10 relative change of cost) */
+    double gradient_tolerance;   /* 0: default (1e-12) */
+    double parameter_tolerance;  /* 0: default (1e-10 relative) */
+    double max_seconds;          /* 0: no limit */
+    bf_loss loss;
+    int threads;                 /* 0 or 1: one thread */
+    uint64_t seed;               /* stochastic NLopt methods */
+    const unsigned char *constant; /* NULL, or npar flags: hold these parameters at their start */
+    int use_constraint;          /* apply problem->constraint where the method supports it */
+} bf_solver_options;
+
+typedef struct bf_solution {
+    double initial_cost, final_cost; /* 1/2 sum rho(r^2) */
+    int iterations;                  /* back-end iterations (NLopt: evaluations) */
+    int evaluations;                 /* residual (and Jacobian) evaluations of the whole set */
+    double seconds;                  /* wall time */
+    char backend[16];                /* "ceres", "nlopt" */
+    char algorithm[48];              /* as run, e.g. "levenberg_marquardt", "LD_LBFGS" */
+    char termination[160];           /* why it stopped, one line */
+    int usable;                      /* 1: x is a finite solution (converged or hit a limit
+                                        with a finite cost); 0: the solve failed */
+} bf_solution;
+
+/* Minimises from x (in: start, clamped into the bounds; out: solution, always finite:
+ * the start if nothing better was found). Returns BF_OK when the back end ran, even if
+ * it stopped on a limit (see s->usable and s->termination); an error for bad options
+ * (unknown algorithm: the message lists the known ones) or a failed back end. Prints
+ * nothing. */
+int bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+
+/* The back ends bf_solve dispatches to. */
+int bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
