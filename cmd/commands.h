@@ -6,5 +6,6 @@ int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
 
 #endif

@@ -13,6 +13,7 @@ static const struct {
     {"eval", cmd_eval, "eval --params P.json --dirs D.csv [-o OUT.csv]   evaluate a model"},
     {"info", cmd_info, "info DATA [data options] [--json]      what a data file holds"},
     {"convert", cmd_convert, "convert IN OUT [data options] [--to csv|merl]   between formats"},
+    {"fit", cmd_fit, "fit DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]   fit models to data"},
 };
 
 static void usage(FILE *out)

@@ -32,6 +32,9 @@ typedef struct bf_fit_result {
     bf_metrics metrics;
     bf_solution solution;   /* of the best start */
     int starts;             /* starts run */
+    size_t samples;         /* samples fitted (metrics.n counts samples x channels) */
+    int threads;            /* the solver's thread count, as run */
+    uint64_t seed;          /* the multistart seed, as run */
     double seconds;         /* whole fit: start, solves, metrics */
     bf_residual residual;
     int ok;                 /* 1: the best start's solution is usable */
@@ -51,6 +54,9 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
 /* The result JSON: a parameter file (model, options, channels, params) plus data,
  * residual, metrics, optimizer summary, standard errors and timing; feeds brdfit eval. */
 int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err);
+/* Several fits of one data set as {"fits": [result, ...]} (not a parameter file). */
+int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
+                           bf_error *err);
 
 #ifdef __cplusplus
 }

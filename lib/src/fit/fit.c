@@ -1,0 +1,238 @@
+/* The fit driver: model, objective, data-driven start, seeded multistart over the
+ * chosen back end, then metrics and standard errors at the best solution.
+ *
+ * Multistart: start 0 is the data-driven start (or the caller's); starts 1 .. N-1 are
+ * drawn uniformly within the objective's bounds in its internal space (so uniformly in
+ * log for log-scale parameters), from splitmix64 (Steele, Lea & Flood 2014) seeded with
+ * the fit's seed, drawing the internal coordinates in order, start after start. Start k
+ * gives stochastic back-end methods the seed splitmix64(seed + k + 1)'s first output.
+ * Starts run one after another, each solve using the requested threads, so the result
+ * is a function of the seed and the thread count alone. The best usable final cost wins;
+ * ties go to the earlier start. */
+#include "brdfit/fit.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static uint64_t splitmix64(uint64_t *state)
+{
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static double uniform01(uint64_t *state) { return (double)(splitmix64(state) >> 11) * 0x1.0p-53; }
+
+/* One random start: uniform in [lo, hi] per internal coordinate; an unbounded side
+ * (not expected from the model tables, but allowed by bf_problem) spans 1 unit (or
+ * |z0|) beyond the start. */
+static void random_start(const bf_problem *p, const double *z0, uint64_t *state, double *z)
+{
+    for (int k = 0; k < p->npar; k++) {
+        double span = fabs(z0[k]) > 1.0 ? fabs(z0[k]) : 1.0;
+        double lo = isfinite(p->lo[k]) ? p->lo[k] : z0[k] - span;
+        double hi = isfinite(p->hi[k]) ? p->hi[k] : z0[k] + span;
+        z[k] = lo + uniform01(state) * (hi - lo);
+        if (z[k] > hi) /* rounding */
+            z[k] = hi;
+    }
+}
+
+/* The cost 1/2 sum r^2 at z when nothing is free to solve for (every parameter fixed). */
+static int plain_cost(const bf_problem *p, const double *z, double *cost, bf_error *err)
+{
+    enum { CHUNK = 4096 };
+    double *r = malloc(CHUNK * sizeof *r);
+    if (!r)
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    double c = 0.0;
+    for (size_t r0 = 0; r0 < p->nres; r0 += CHUNK) {
+        size_t r1 = r0 + CHUNK < p->nres ? r0 + CHUNK : p->nres;
+        if (p->eval(p->ctx, z, r0, r1, r, NULL) != 0) {
+            c = NAN;
+            break;
+        }
+        for (size_t i = 0; i < r1 - r0; i++)
+            c += 0.5 * r[i] * r[i];
+    }
+    free(r);
+    *cost = c;
+    return BF_OK;
+}
+
+static int fixed_only(const bf_problem *p, const double *z, bf_solution *sol, bf_error *err)
+{
+    memset(sol, 0, sizeof *sol);
+    double cost = NAN;
+    int rc = plain_cost(p, z, &cost, err);
+    if (rc != BF_OK)
+        return rc;
+    sol->initial_cost = sol->final_cost = cost;
+    sol->evaluations = 1;
+    snprintf(sol->backend, sizeof sol->backend, "none");
+    snprintf(sol->algorithm, sizeof sol->algorithm, "none");
+    sol->usable = isfinite(cost);
+    snprintf(sol->termination, sizeof sol->termination, "%s",
+             sol->usable ? "every parameter fixed: nothing to solve" : "every parameter fixed, and the cost is not finite");
+    return BF_OK;
+}
+
+static int alloc_result(bf_fit_result *r, int P, bf_error *err)
+{
+    r->x = calloc((size_t)P + 1, sizeof *r->x);
+    r->stderr_ = calloc((size_t)P + 1, sizeof *r->stderr_);
+    r->fixed = calloc((size_t)P + 1, 1);
+    if (!r->x || !r->stderr_ || !r->fixed)
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    return BF_OK;
+}
+
+int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
+{
+    double t0 = now_seconds();
+    memset(r, 0, sizeof *r);
+    if (!s || !o)
+        return bf_fail(err, BF_ERR_ARG, "fit: no samples or no options");
+    if (s->n == 0)
+        return bf_fail(err, BF_ERR_ARG, "fit: no samples");
+    r->model = bf_model_create(spec, s->channels, err);
+    if (!r->model)
+        return err ? err->code : BF_ERR_ARG;
+    const bf_model *m = r->model;
+    const int P = bf_model_nfree(m);
+    int rc = alloc_result(r, P, err);
+    if (rc != BF_OK) {
+        bf_fit_result_free(r);
+        return rc;
+    }
+    bf_objective *obj = bf_objective_new(m, s, &o->objective, err);
+    if (!obj) {
+        bf_fit_result_free(r);
+        return err ? err->code : BF_ERR_ARG;
+    }
+    const bf_problem *prob = bf_objective_problem(obj);
+    const int nz = bf_objective_nz(obj);
+    const int starts = o->starts > 1 ? o->starts : 1;
+    double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
+    double *z0 = malloc(((size_t)nz + 1) * sizeof *z0);
+    double *z = malloc(((size_t)nz + 1) * sizeof *z);
+    double *zbest = malloc(((size_t)nz + 1) * sizeof *zbest);
+    double *lo = malloc(((size_t)P + 1) * sizeof *lo), *hi = malloc(((size_t)P + 1) * sizeof *hi);
+    if (!x0 || !z0 || !z || !zbest || !lo || !hi) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+        goto done;
+    }
+
+    /* The start, clamped into the effective bounds and with fixed values applied. */
+    if (o->start)
+        memcpy(x0, o->start, (size_t)P * sizeof *x0);
+    else if ((rc = bf_fit_initial_guess(m, s, x0, err)) != BF_OK)
+        goto done;
+    for (int k = 0; k < P; k++) {
+        if (!isfinite(x0[k])) { /* a NaN start would clamp to a bound; say so instead */
+            rc = bf_fail(err, BF_ERR_RANGE, "fit: start value %d is not finite", k);
+            goto done;
+        }
+    }
+    /* Clamped in model space (fixed entries have lo = hi), so that a failed fit reports
+     * exactly this start rather than its round trip through the internal scale. */
+    bf_objective_bounds(obj, lo, hi);
+    for (int k = 0; k < P; k++)
+        x0[k] = x0[k] < lo[k] ? lo[k] : x0[k] > hi[k] ? hi[k] : x0[k];
+    bf_objective_to_internal(obj, x0, z0);
+
+    bf_solver_options so = o->solver;
+    int have_best = 0;
+    bf_solution sol, first;
+    memset(&first, 0, sizeof first);
+    uint64_t draw = o->seed;
+    for (int k = 0; k < starts; k++) {
+        if (k == 0)
+            memcpy(z, z0, (size_t)nz * sizeof *z);
+        else
+            random_start(prob, z0, &draw, z);
+        uint64_t sseed = o->seed + (uint64_t)k + 1;
+        so.seed = splitmix64(&sseed);
+        if (nz == 0)
+            rc = fixed_only(prob, z, &sol, err);
+        else
+            rc = bf_solve(prob, &so, z, &sol, err);
+        if (rc != BF_OK && k == 0)
+            goto done; /* bad options or a back end that cannot run at all */
+        r->starts = k + 1;
+        if (rc != BF_OK) { /* a random start the back end failed on: just not usable */
+            rc = BF_OK;
+            continue;
+        }
+        if (k == 0)
+            first = sol;
+        for (int j = 0; j < nz && sol.usable; j++)
+            sol.usable = isfinite(z[j]);
+        if (sol.usable && isfinite(sol.final_cost) && (!have_best || sol.final_cost < r->solution.final_cost)) {
+            r->solution = sol;
+            memcpy(zbest, z, (size_t)nz * sizeof *z);
+            have_best = 1;
+        }
+        if (nz == 0)
+            break; /* every start is the same point */
+    }
+    r->ok = have_best;
+    if (have_best) {
+        bf_objective_to_model(obj, zbest, r->x);
+    } else {
+        /* No usable start: report the start and why the first solve failed. */
+        r->solution = first;
+        r->solution.usable = 0;
+        if (!isfinite(first.final_cost) || !first.termination[0])
+            snprintf(r->solution.termination, sizeof r->solution.termination,
+                     "no start gave a finite cost (values too large for this residual?)%s%.80s",
+                     first.termination[0] ? "; back end: " : "", first.termination);
+        memcpy(r->x, x0, (size_t)P * sizeof *x0);
+    }
+    for (int k = 0; k < P; k++)
+        r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
+    if ((rc = bf_metrics_compute(m, r->x, s, nz, &r->metrics, err)) != BF_OK ||
+        (rc = bf_objective_stderr(obj, r->x, r->stderr_, err)) != BF_OK)
+        goto done;
+    r->samples = s->n;
+    r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
+    r->seed = o->seed;
+    r->residual = o->objective.residual;
+
+done:
+    free(x0);
+    free(z0);
+    free(z);
+    free(zbest);
+    free(lo);
+    free(hi);
+    bf_objective_free(obj);
+    if (rc != BF_OK) {
+        bf_fit_result_free(r);
+        return rc;
+    }
+    r->seconds = now_seconds() - t0;
+    return BF_OK;
+}
+
+void bf_fit_result_free(bf_fit_result *r)
+{
+    if (!r)
+        return;
+    bf_model_free(r->model);
+    free(r->x);
+    free(r->stderr_);
+    free(r->fixed);
+    memset(r, 0, sizeof *r);
+}

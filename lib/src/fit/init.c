@@ -1,0 +1,470 @@
+/* The data-driven start: generic over models, using only the parameter table (names,
+ * bounds, scale hints) and the samples; no per-model code. The rules:
+ *
+ *  1. Diffuse level. Over valid samples far from the specular direction (half-vector
+ *     angle theta_h > 25 degrees; every valid sample if none is), per channel, the
+ *     median of the lowest 30% of f pi (the 15th percentile): a Lambertian floor that
+ *     a specular lobe's tail or a few dark outliers barely move. It starts every
+ *     colour parameter outside the lobes (rho_d, Disney's base_color).
+ *  2. Peak. The excess e = mean over channels of f minus the diffuse level / pi is
+ *     averaged in log-spaced theta_h bins (1 mrad growing by 1.25x up to 60 degrees),
+ *     a bin with fewer than 16 samples merged with the next ones.
+ *     The peak is the largest bin mean below 25 degrees; a peak not above 5% of the
+ *     diffuse level (or none: pure Lambertian data, no near-specular samples, negative
+ *     data) means "no lobe seen": lobe weights start small (1% of the unit weight) and
+ *     widths at their defaults.
+ *  3. Width. h = the theta_h (radians) where the bin means first fall below half the
+ *     peak beyond it (log-interpolated), or 1 rad if they never do. Lobe k (lobes=K)
+ *     gets h 2^(k-1). h maps to each width parameter by what its name says:
+ *       alpha, alpha_x, alpha_y, m (log-scale roughness: GGX, Beckmann, Ward, Gaussian)
+ *                             1.4 h  (GGX halves at tan = 0.64 alpha, Beckmann at 0.83 m)
+ *       n, nu, nv, s, gamma   ln 2 / (1 - cos h)   (cos^n halves there)
+ *       b                     1 / (1 - cos h)      (ABC with c = 1 halves there)
+ *       beta                  sqrt(tan h / ln 2)   (Brady with a = 1 halves there)
+ *       roughness             sqrt(1.4 h)          (Disney: alpha = roughness^2)
+ *     A scan of h over factors 1/8 .. 32 (steps of sqrt 2, up to 1.4 rad) then keeps the one whose fit
+ *     in step 4 is best, which corrects a peak the samples missed or a lobe so broad
+ *     that it lifted the diffuse level of step 1.
+ *  4. Weights. With the diffuse colour at 0 and every lobe weight (rho_s, rho_s_k) at a
+ *     unit value (lobe k: 2^-(k-1)), the model's values f1 are the lobe shape; per
+ *     channel, y ~ d/pi + r f1 by least squares with d, r >= 0 gives the diffuse colour d
+ *     and the weights' scale r (lobes are linear in their weight). Over at most 8192
+ *     samples: half the nearest to the peak, half a stride over the others. A weight
+ *     fitted to 0 starts at 1e-3 instead, so its lobe's gradient is not zero.
+ *  5. Everything else (f0, kappa, anisotropy, shape exponents ...) at its default, and
+ *     every value clamped inside its bounds (open bounds: just inside). */
+#include "brdfit/fit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DIFFUSE_MIN_THETA_H (25.0 * M_PI / 180.0)
+#define NBINS 36
+#define BIN0 1e-3          /* upper edge of the first bin, radians */
+#define BIN_GROWTH 1.25
+#define QUANTILE_CAP 65536 /* samples per channel for the diffuse quantile */
+#define SHAPE_CAP 8192     /* samples for the weight and width fit */
+#define MIN_GROUP 16       /* samples per theta_h group for the peak and its width */
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+typedef enum width_kind { W_NONE = 0, W_ROUGH, W_EXPONENT, W_ABC_B, W_BETA, W_DISNEY } width_kind;
+
+/* The name without the lobe suffix "_k" (the registry appends it when lobes > 1). */
+static const char *base_name(const bf_param_info *p, char *base)
+{
+    snprintf(base, 64, "%s", p->name);
+    char *us = strrchr(base, '_');
+    if (us && us > base && us[1] >= '1' && us[1] <= '9' && !strchr(us + 1, '_') &&
+        strspn(us + 1, "0123456789") == strlen(us + 1) && p->lobe >= 1)
+        *us = '\0';
+    return base;
+}
+
+static width_kind width_of(const bf_param_info *p, char *base)
+{
+    base_name(p, base);
+    if (p->colour)
+        return W_NONE;
+    if ((!strcmp(base, "alpha") || !strcmp(base, "alpha_x") || !strcmp(base, "alpha_y") || !strcmp(base, "m")) &&
+        p->scale == BF_SCALE_LOG)
+        return W_ROUGH; /* kurt's linear-scale alpha is an exponent on NL NV, not a width */
+    if ((!strcmp(base, "n") || !strcmp(base, "nu") || !strcmp(base, "nv") || !strcmp(base, "s") ||
+         !strcmp(base, "gamma")) && p->scale != BF_SCALE_LINEAR)
+        return W_EXPONENT;
+    if (!strcmp(base, "b") && p->scale != BF_SCALE_LINEAR)
+        return W_ABC_B;
+    if (!strcmp(base, "beta"))
+        return W_BETA;
+    if (!strcmp(base, "roughness"))
+        return W_DISNEY;
+    return W_NONE;
+}
+
+static double clamp_param(const bf_param_info *p, double v)
+{
+    double span = p->hi - p->lo;
+    double lo = p->lo_open ? p->lo + 1e-9 * span : p->lo;
+    double hi = p->hi_open ? p->hi - 1e-9 * span : p->hi;
+    if (!(v >= lo)) /* NaN goes to the lower bound too */
+        v = lo;
+    if (v > hi)
+        v = hi;
+    return v;
+}
+
+static double width_value(width_kind w, double h)
+{
+    if (h > 1.4)
+        h = 1.4;
+    double omc = 1.0 - cos(h);
+    if (omc < 1e-300)
+        omc = 1e-300;
+    switch (w) {
+    case W_ROUGH: return 1.4 * h;
+    case W_EXPONENT: return log(2.0) / omc;
+    case W_ABC_B: return 1.0 / omc;
+    case W_BETA: return sqrt(tan(h) / log(2.0));
+    case W_DISNEY: return sqrt(1.4 * h);
+    default: return 0.0;
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int bin_of(double th)
+{
+    if (th < BIN0)
+        return 0;
+    int b = 1 + (int)floor(log(th / BIN0) / log(BIN_GROWTH));
+    return b < NBINS ? b : NBINS - 1;
+}
+
+/* Sets every lobe's width parameters from h (lobe k: h 2^(k-1)). */
+static void set_widths(const bf_model *m, double *x, double h)
+{
+    char base[64];
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        width_kind w = width_of(p, base);
+        if (w == W_NONE)
+            continue;
+        int k = p->lobe > 1 ? p->lobe : 1;
+        x[bf_model_param_offset(m, i)] = clamp_param(p, width_value(w, ldexp(h, k - 1)));
+    }
+}
+
+static int is_weight(const bf_param_info *p) { return p->colour && p->lobe >= 1; }
+
+/* Weighted SSR of y ~ d/pi + r f1 over n values with stride C, weights w (n). */
+static double ssr_of(const double *y, const double *f1, const double *w, size_t n, int C, double d, double r)
+{
+    double ssr = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double e = w[i] * (y[i * C] - d / M_PI - r * f1[i * C]);
+        ssr += e * e;
+    }
+    return ssr;
+}
+
+/* Least squares of y ~ d/pi + r f1 with d, r >= 0 (one channel, values at stride C). */
+static double fit_two(const double *y, const double *f1, const double *w, size_t n, int C, double *d, double *r)
+{
+    double s1 = 0.0, sf = 0.0, sff = 0.0, sy = 0.0, syf = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double ww = w[i] * w[i], f = f1[i * C], v = y[i * C];
+        s1 += ww, sf += ww * f, sff += ww * f * f, sy += ww * v, syf += ww * v * f;
+    }
+    const double u = 1.0 / M_PI;
+    double a11 = s1 * u * u, a12 = u * sf, a22 = sff, b1 = u * sy, b2 = syf;
+    double det = a11 * a22 - a12 * a12;
+    if (det > 1e-12 * a11 * a22) {
+        *d = (b1 * a22 - b2 * a12) / det;
+        *r = (a11 * b2 - a12 * b1) / det;
+        if (*d >= 0.0 && *r >= 0.0 && isfinite(*d) && isfinite(*r))
+            return ssr_of(y, f1, w, n, C, *d, *r);
+    }
+    /* On a boundary: the better of lobe only and diffuse only. */
+    double r1 = a22 > 0.0 && b2 > 0.0 ? b2 / a22 : 0.0, d2 = a11 > 0.0 && b1 > 0.0 ? b1 / a11 : 0.0;
+    double e1 = ssr_of(y, f1, w, n, C, 0.0, r1), e2 = ssr_of(y, f1, w, n, C, d2, 0.0);
+    if (isfinite(e1) && (e1 < e2 || !isfinite(e2))) {
+        *d = 0.0, *r = r1;
+        return e1;
+    }
+    *d = d2, *r = 0.0;
+    return e2;
+}
+
+/* Steps 3-4 at width h: the lobe shapes f1 with unit weights and no diffuse part, then
+ * per channel the least-squares diffuse level and weight scale. Writes widths, weights
+ * and diffuse colours into x and returns the residual sum of squares; *over is the
+ * largest fitted weight over its upper bound. xs: scratch of the model's length; f1:
+ * n*C values. */
+static double fit_at_width(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y,
+                           double *xs, double *f1, double *over)
+{
+    *over = 0.0;
+    const int P = bf_model_nfree(m), C = bf_model_channels(m), np = bf_model_nparams(m);
+    memcpy(xs, x, (size_t)P * sizeof *xs);
+    set_widths(m, xs, h);
+    for (int i = 0; i < np; i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        double *v = xs + bf_model_param_offset(m, i);
+        for (int c = 0; c < (p->colour ? C : 1); c++) {
+            if (is_weight(p))
+                v[c] = clamp_param(p, ldexp(1.0, 1 - p->lobe));
+            else if (p->colour && p->lobe == 0)
+                v[c] = clamp_param(p, 0.0);
+        }
+    }
+    bf_model_eval(m, xs, g, f1, NULL);
+    set_widths(m, x, h);
+    double ssr = 0.0;
+    for (int c = 0; c < C; c++) {
+        double d, r;
+        ssr += fit_two(y + c, f1 + c, g->lz, g->n, C, &d, &r);
+        for (int i = 0; i < np; i++) {
+            const bf_param_info *p = bf_model_param(m, i);
+            int o = bf_model_param_offset(m, i) + c;
+            if (is_weight(p)) {
+                x[o] = clamp_param(p, r > 0.0 ? r * xs[o] : 1e-3);
+                if (r * xs[o] / p->hi > *over)
+                    *over = r * xs[o] / p->hi;
+            }
+            else if (p->colour && p->lobe == 0)
+                x[o] = clamp_param(p, d);
+        }
+    }
+    return isfinite(ssr) ? ssr : HUGE_VAL;
+}
+
+/* Width scan: h times 2^(j/2), j = -6 .. 10 (up to 1.4 rad), the diffuse level and
+ * weights fitted at each (fit_at_width); x gets the best. Returns its SSR; *over as
+ * fit_at_width's there. xb, xs: scratch of the model's length. */
+static double scan_widths(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y,
+                          double *xs, double *xb, double *f1, double *over)
+{
+    const int P = bf_model_nfree(m);
+    double best = HUGE_VAL, best_h = h;
+    for (int j = -6; j <= 10; j++) {
+        double hj = h * pow(2.0, j / 2.0);
+        if (hj > 1.4)
+            break;
+        memcpy(xb, x, (size_t)P * sizeof *xb);
+        double ssr = fit_at_width(m, xb, hj, g, y, xs, f1, over);
+        if (ssr < best)
+            best = ssr, best_h = hj;
+    }
+    return fit_at_width(m, x, best_h, g, y, xs, f1, over);
+}
+
+int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
+{
+    const int C = bf_model_channels(m), P = bf_model_nfree(m), np = bf_model_nparams(m);
+    if (C != s->channels)
+        return bf_fail(err, BF_ERR_ARG, "model %s has %d channels, the samples %d", bf_model_spec(m), C,
+                       s->channels);
+    bf_model_defaults(m, x);
+    const bf_geometry *g = bf_samples_geometry(s, err);
+    if (!g)
+        return err ? err->code : BF_ERR_NOMEM;
+
+    int rc = BF_OK;
+    size_t n = s->n, nvalid = 0, nfar = 0;
+    double *th = malloc(n * sizeof *th + 1);
+    double *q = malloc((QUANTILE_CAP + 1) * sizeof *q);
+    double *diffuse = calloc((size_t)C, sizeof *diffuse);
+    double *xs = malloc((size_t)P * sizeof *xs + 1), *xb = malloc((size_t)P * sizeof *xb + 1);
+    double *xk = malloc((size_t)P * sizeof *xk + 1);
+    double *ev = NULL, *f1 = NULL;
+    bf_geometry *sg = NULL;
+    if (!th || !q || !diffuse || !xs || !xb || !xk) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
+        goto done;
+    }
+    for (size_t i = 0; i < n; i++) {
+        int ok = bf_geometry_valid(g, i);
+        for (int c = 0; c < C && ok; c++)
+            ok = isfinite(s->value[i * C + c]);
+        th[i] = ok ? atan2(sqrt(g->sin2h[i]), g->hz[i]) : -1.0;
+        nvalid += ok;
+        nfar += ok && th[i] > DIFFUSE_MIN_THETA_H;
+    }
+    if (nvalid == 0)
+        goto clamp; /* nothing to learn from: defaults */
+
+    /* 1. Diffuse level per channel, from a strided subset of at most QUANTILE_CAP. */
+    double far_min = nfar > 0 ? DIFFUSE_MIN_THETA_H : -0.5;
+    size_t pool = nfar > 0 ? nfar : nvalid, stride = (pool + QUANTILE_CAP - 1) / QUANTILE_CAP;
+    for (int c = 0; c < C; c++) {
+        size_t k = 0, seen = 0;
+        for (size_t i = 0; i < n && k < QUANTILE_CAP; i++)
+            if (th[i] > far_min && seen++ % stride == 0)
+                q[k++] = s->value[i * C + c] * M_PI;
+        qsort(q, k, sizeof *q, cmp_double);
+        diffuse[c] = q[(size_t)(0.15 * (double)(k - 1) + 0.5)];
+    }
+    for (int i = 0; i < np; i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        if (p->colour && p->lobe == 0)
+            for (int c = 0; c < C; c++)
+                x[bf_model_param_offset(m, i) + c] = diffuse[c];
+    }
+    int has_weight = 0, has_width = 0;
+    char base[64];
+    for (int i = 0; i < np; i++) {
+        has_weight |= is_weight(bf_model_param(m, i));
+        has_width |= width_of(bf_model_param(m, i), base) != W_NONE;
+    }
+    if (!has_weight && !has_width)
+        goto clamp;
+
+    /* 2. Peak of the excess over the diffuse level, in theta_h bins. */
+    double dmean = 0.0;
+    for (int c = 0; c < C; c++)
+        dmean += diffuse[c] / (M_PI * C);
+    double sum[NBINS] = {0};
+    size_t cnt[NBINS] = {0};
+    for (size_t i = 0; i < n; i++) {
+        if (th[i] < 0.0)
+            continue;
+        double v = 0.0;
+        for (int c = 0; c < C; c++)
+            v += s->value[i * C + c] / C;
+        int b = bin_of(th[i]);
+        sum[b] += v - dmean;
+        cnt[b]++;
+    }
+    /* Bins with few samples merge with the next ones (up to MIN_GROUP samples), so
+     * that one sample's geometry (Fresnel, shadowing at grazing) is not a peak. */
+    double gsum[NBINS], gt[NBINS];
+    size_t gcnt[NBINS];
+    int ng = 0, g0 = 0;
+    for (int b = 0; b < NBINS; b++) {
+        if (b == g0) {
+            gsum[ng] = 0.0;
+            gcnt[ng] = 0;
+        }
+        gsum[ng] += sum[b];
+        gcnt[ng] += cnt[b];
+        if (gcnt[ng] >= MIN_GROUP || (b == NBINS - 1 && gcnt[ng] > 0)) {
+            double lo_edge = g0 == 0 ? 0.5 * BIN0 : BIN0 * pow(BIN_GROWTH, g0 - 1);
+            gt[ng++] = sqrt(lo_edge * BIN0 * pow(BIN_GROWTH, b)); /* geometric centre */
+            g0 = b + 1;
+        }
+    }
+    int peak = -1;
+    double pk = 0.0;
+    for (int k = 0; k < ng && gt[k] < DIFFUSE_MIN_THETA_H; k++)
+        if (peak < 0 || gsum[k] / gcnt[k] > pk)
+            pk = gsum[k] / gcnt[k], peak = k;
+    double small = 0.05 * fabs(dmean);
+    if (peak < 0 || !(pk > small) || !(pk > 0.0)) {
+        /* No lobe seen: small weights, default widths. */
+        for (int i = 0; i < np; i++) {
+            const bf_param_info *p = bf_model_param(m, i);
+            if (is_weight(p))
+                for (int c = 0; c < C; c++)
+                    x[bf_model_param_offset(m, i) + c] = 0.01;
+        }
+        goto clamp;
+    }
+
+    /* 3. Half width beyond the peak. */
+    double h = 1.0, prev_t = gt[peak], prev_v = pk;
+    for (int k = peak + 1; k < ng; k++) {
+        double v = gsum[k] / gcnt[k], t = gt[k];
+        if (v < 0.5 * pk) {
+            double f = (prev_v - 0.5 * pk) / (prev_v - v); /* in (0, 1] */
+            h = exp(log(prev_t) + f * (log(t) - log(prev_t)));
+            break;
+        }
+        prev_t = t, prev_v = v;
+    }
+
+    /* 4. Shape samples: the bins nearest the peak direction, up to SHAPE_CAP / 2 (the
+     * last bin taken with a stride), and a strided subset of the others, up to
+     * SHAPE_CAP / 2, which pins the diffuse level. */
+    const size_t half = SHAPE_CAP / 2;
+    size_t take = 0, last_stride = 1;
+    int last = -1;
+    for (int b = 0; b < NBINS; b++) {
+        if (take + cnt[b] <= half) {
+            take += cnt[b], last = b;
+            continue;
+        }
+        size_t room = half - take;
+        last_stride = room ? (cnt[b] + room - 1) / room : cnt[b] + 1;
+        last = b;
+        break;
+    }
+    size_t rest = 0;
+    for (int b = last + 1; b < NBINS; b++)
+        rest += cnt[b];
+    size_t rest_stride = rest > half ? (rest + half - 1) / half : 1;
+    size_t ns = 0;
+    double *L = malloc(6 * (SHAPE_CAP + 2) * sizeof *L);
+    ev = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *ev);
+    f1 = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *f1);
+    if (!L || !ev || !f1) {
+        free(L);
+        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
+        goto done;
+    }
+    double *V = L + 3 * (SHAPE_CAP + 2);
+    size_t in_last = 0, in_rest = 0;
+    for (size_t i = 0; i < n && ns < SHAPE_CAP; i++) {
+        if (th[i] < 0.0)
+            continue;
+        int b = bin_of(th[i]);
+        if (b == last ? in_last++ % last_stride != 0 : b > last && in_rest++ % rest_stride != 0)
+            continue;
+        L[3 * ns] = g->lx[i], L[3 * ns + 1] = g->ly[i], L[3 * ns + 2] = g->lz[i];
+        V[3 * ns] = g->vx[i], V[3 * ns + 1] = g->vy[i], V[3 * ns + 2] = g->vz[i];
+        for (int c = 0; c < C; c++)
+            ev[ns * C + c] = s->value[i * C + c];
+        ns++;
+    }
+    sg = ns ? bf_geometry_from_vectors(ns, L, V, err) : NULL;
+    free(L);
+    if (!sg) {
+        rc = ns ? (err ? err->code : BF_ERR_NOMEM) : BF_OK;
+        goto clamp;
+    }
+    /* Width scan (see scan_widths). A lobe that needs a weight above its bound with f0
+     * at its default (a metal, or a highlight brighter than f0 = 0.04 allows) gets f0
+     * raised by that factor and another scan, kept while it fits better (4 at most). */
+    if (has_weight) {
+        double over, ssr0 = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+        int has_f0 = 0;
+        for (int i = 0; i < np; i++)
+            has_f0 |= !bf_model_param(m, i)->colour && !strcmp(base_name(bf_model_param(m, i), base), "f0");
+        for (int pass = 0; pass < 4 && over > 1.0 && has_f0; pass++) {
+            memcpy(xk, x, (size_t)P * sizeof *xk);
+            for (int i = 0; i < np; i++) {
+                const bf_param_info *p = bf_model_param(m, i);
+                if (!p->colour && !strcmp(base_name(p, base), "f0")) {
+                    double *v = x + bf_model_param_offset(m, i);
+                    *v = clamp_param(p, *v * over);
+                }
+            }
+            double ssr = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+            if (!(ssr < ssr0)) {
+                memcpy(x, xk, (size_t)P * sizeof *xk);
+                break;
+            }
+            ssr0 = ssr;
+        }
+    } else {
+        set_widths(m, x, h);
+    }
+
+clamp:
+    /* 5. Inside the bounds. */
+    for (int i = 0; i < np; i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        for (int c = 0; c < (p->colour ? C : 1); c++) {
+            double *v = x + bf_model_param_offset(m, i) + c;
+            *v = clamp_param(p, *v);
+        }
+    }
+done:
+    bf_geometry_free(sg);
+    free(th);
+    free(q);
+    free(diffuse);
+    free(xs);
+    free(xb);
+    free(xk);
+    free(ev);
+    free(f1);
+    return rc;
+}

@@ -1,0 +1,289 @@
+/* The objective: model + samples + residual form -> a bf_problem over the internal
+ * vector z (free entries only, in their internal scale; see parametrisation.c).
+ *
+ * Residual r = i*C + c (sample-major, as bf_model_eval lays out values), so the model's
+ * Jacobian rows map directly onto the problem's. For each residual:
+ *   res = sqrt(w_i) form(f, m, cos theta_i)                 (forms: objective_impl.h)
+ *   d res / d z_j = sqrt(w_i) form'(f) d f / d x_k  dx_k / dz_j,  k the entry of z_j
+ * with w_i the product of the sample's own weight (use_weights; negative weights count
+ * as 0) and its solid-angle weight (solid_angle). Samples below the horizon (cos theta_i
+ * <= 0 or cos theta_o <= 0) have residual 0 and a zero Jacobian row: the model is 0 there
+ * whatever was measured, and nres must stay n*C (preprocessing normally drops them).
+ *
+ * The relative form's floor is per channel: delta_c = 1e-3 mean |m| over that channel's
+ * samples above the horizon (1e-3 where they are all 0), so near-zero measurements do not
+ * blow the residual up while bright and dark channels are each judged relative to
+ * themselves. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "objective_impl.h"
+
+/* Model-gradient scratch per chunk of samples: about 128 KiB whatever C and P are. */
+#define CHUNK_DOUBLES 16384
+
+int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res,
+                  double *jac, int ncols, const int *cols, const double *colscale)
+{
+    const size_t C = (size_t)o->C, P = (size_t)o->P, nres = o->n * C;
+    if (r1 > nres)
+        r1 = nres;
+    if (r0 >= r1)
+        return 0;
+    size_t first = r0 / C, end = (r1 + C - 1) / C;
+    size_t chunk = CHUNK_DOUBLES / (C * (jac ? P + 1 : 1));
+    if (chunk < 1)
+        chunk = 1;
+    if (chunk > end - first)
+        chunk = end - first;
+    double *vals = malloc(chunk * C * sizeof *vals);
+    double *grad = jac ? malloc(chunk * C * P * sizeof *grad) : NULL;
+    if (!vals || (jac && !grad)) {
+        free(vals);
+        free(grad);
+        return -1;
+    }
+    const bf_geometry *g = o->geom;
+    const double *meas = o->samples->value;
+    for (size_t ib = first; ib < end; ib += chunk) {
+        size_t ie = ib + chunk < end ? ib + chunk : end;
+        /* The model indexes its outputs by absolute sample; shift the chunk buffers so
+         * that sample ib lands at their start (never dereferenced outside them). */
+        bf_model_eval_range(o->model, x, g, ib, ie, vals - ib * C, jac ? grad - ib * C * P : NULL);
+        for (size_t i = ib; i < ie; i++) {
+            size_t c0 = i == first ? r0 - i * C : 0;
+            size_t c1 = (i + 1) * C > r1 ? r1 - i * C : C;
+            int valid = bf_geometry_valid(g, i);
+            double w = o->sw ? o->sw[i] : 1.0, cs = g->lz[i];
+            for (size_t c = c0; c < c1; c++) {
+                size_t r = i * C + c, row = r - r0;
+                double *jr = jac ? jac + row * (size_t)ncols : NULL;
+                if (!valid) {
+                    res[row] = 0.0;
+                    if (jr)
+                        memset(jr, 0, (size_t)ncols * sizeof *jr);
+                    continue;
+                }
+                double d;
+                size_t li = (i - ib) * C + c;
+                res[row] = w * bf_obj_form(o->residual, vals[li], meas[r], cs, o->delta[c], &d);
+                if (jr) {
+                    const double *gr = grad + li * P, s = w * d;
+                    for (int j = 0; j < ncols; j++)
+                        jr[j] = s * gr[cols[j]] * colscale[j];
+                }
+            }
+        }
+    }
+    free(vals);
+    free(grad);
+    return 0;
+}
+
+/* The problem's eval: z -> x, the chain rule dx/dz as column scales. Per-call buffers
+ * only, so concurrent calls for disjoint ranges share nothing mutable. */
+static int problem_eval(void *ctx, const double *z, size_t r0, size_t r1, double *res, double *jac)
+{
+    const bf_objective *o = ctx;
+    double *x = malloc(((size_t)o->P + (size_t)o->nz + 1) * sizeof *x);
+    if (!x)
+        return -1;
+    double *colscale = x + o->P;
+    bf_objective_to_model(o, z, x);
+    for (int j = 0; j < o->nz; j++)
+        colscale[j] = bf_obj_dxdz(o->scale[o->kidx[j]], x[o->kidx[j]]);
+    int rc = bf_obj_eval_x(o, x, r0, r1, res, jac, o->nz, o->kidx, colscale);
+    free(x);
+    return rc;
+}
+
+/* Energy conservation as c(z) <= 0: c = max over channels of the sum of that channel's
+ * colour parameters (rho_d + every lobe's rho_s ...) minus 1, the albedo bound these
+ * weights express for normalised lobes. The gradient is the maximising channel's (a
+ * subgradient where channels tie), through the parametrisation; fixed entries count in
+ * the sum but have no gradient. */
+static double problem_constraint(void *ctx, const double *z, double *grad)
+{
+    const bf_objective *o = ctx;
+    double xs[64], *x = o->P <= 64 ? xs : malloc((size_t)o->P * sizeof *x);
+    if (!x)
+        return INFINITY;
+    bf_objective_to_model(o, z, x);
+    int best = 0;
+    double bsum = -INFINITY;
+    for (int c = 0; c < o->C; c++) {
+        double sum = 0.0;
+        for (int q = 0; q < o->ncolour; q++)
+            sum += x[o->colour_off[q] + c];
+        if (sum > bsum) {
+            bsum = sum;
+            best = c;
+        }
+    }
+    if (grad) {
+        for (int j = 0; j < o->nz; j++)
+            grad[j] = 0.0;
+        for (int q = 0; q < o->ncolour; q++) {
+            int k = o->colour_off[q] + best;
+            if (o->zpos[k] >= 0)
+                grad[o->zpos[k]] = bf_obj_dxdz(o->scale[k], x[k]);
+        }
+    }
+    if (x != xs)
+        free(x);
+    return bsum - 1.0;
+}
+
+void bf_objective_free(bf_objective *o)
+{
+    if (!o)
+        return;
+    free(o->lo);
+    free(o->hi);
+    free(o->fixed);
+    free(o->fixval);
+    free(o->scale);
+    free(o->zpos);
+    free(o->kidx);
+    free(o->zlo);
+    free(o->zhi);
+    free(o->sw);
+    free(o->delta);
+    free(o->colour_off);
+    free(o);
+}
+
+/* Combined per-sample weights (sample weights, solid angle), as square roots. */
+static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_error *err)
+{
+    bf_samples *s = o->samples;
+    int use_w = opt->use_weights && s->weight;
+    if (!use_w && !opt->solid_angle)
+        return BF_OK;
+    if (!(o->sw = malloc((o->n + 1) * sizeof *o->sw)))
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective's weights");
+    for (size_t i = 0; i < o->n; i++)
+        o->sw[i] = 1.0;
+    if (opt->solid_angle) {
+        int rc = bf_obj_solid_angle_weights(s, o->geom, o->sw, err);
+        if (rc)
+            return rc;
+    }
+    for (size_t i = 0; i < o->n; i++) {
+        double w = o->sw[i] * (use_w ? s->weight[i] : 1.0);
+        o->sw[i] = w > 0.0 && isfinite(w) ? sqrt(w) : 0.0;
+    }
+    return BF_OK;
+}
+
+static void setup_delta(bf_objective *o)
+{
+    const int C = o->C;
+    for (int c = 0; c < C; c++) {
+        double sum = 0.0;
+        for (size_t i = 0; i < o->n; i++)
+            if (bf_geometry_valid(o->geom, i))
+                sum += fabs(o->samples->value[i * (size_t)C + (size_t)c]);
+        double d = o->nvalid ? 1e-3 * sum / (double)o->nvalid : 0.0;
+        o->delta[c] = d > 0.0 && isfinite(d) ? d : 1e-3;
+    }
+}
+
+bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
+                               bf_error *err)
+{
+    static const bf_objective_options defaults = {0};
+    if (!opt)
+        opt = &defaults;
+    if (!m || !s) {
+        bf_fail(err, BF_ERR_ARG, "objective: no model or no samples");
+        return NULL;
+    }
+    if (bf_model_channels(m) != s->channels) {
+        bf_fail(err, BF_ERR_ARG, "model %s has %d channel%s but the samples have %d", bf_model_name(m),
+                bf_model_channels(m), bf_model_channels(m) == 1 ? "" : "s", s->channels);
+        return NULL;
+    }
+    if ((int)opt->residual < 0 || opt->residual > BF_RESIDUAL_RELATIVE) {
+        bf_fail(err, BF_ERR_ARG, "objective: unknown residual form %d", (int)opt->residual);
+        return NULL;
+    }
+    if (opt->noverrides > 0 && !opt->overrides) {
+        bf_fail(err, BF_ERR_ARG, "objective: %d overrides but no array", opt->noverrides);
+        return NULL;
+    }
+    const bf_geometry *g = bf_samples_geometry(s, err);
+    if (!g)
+        return NULL;
+    bf_objective *o = calloc(1, sizeof *o);
+    if (!o) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
+        return NULL;
+    }
+    o->model = m;
+    o->samples = s;
+    o->geom = g;
+    o->residual = opt->residual;
+    o->n = s->n;
+    o->C = s->channels;
+    o->P = bf_model_nfree(m);
+    size_t P1 = (size_t)o->P + 1, np = (size_t)bf_model_nparams(m) + 1;
+    o->lo = malloc(P1 * sizeof *o->lo);
+    o->hi = malloc(P1 * sizeof *o->hi);
+    o->fixed = calloc(P1, 1);
+    o->fixval = calloc(P1, sizeof *o->fixval);
+    o->scale = calloc(P1, sizeof *o->scale);
+    o->zpos = malloc(P1 * sizeof *o->zpos);
+    o->kidx = malloc(P1 * sizeof *o->kidx);
+    o->zlo = malloc(P1 * sizeof *o->zlo);
+    o->zhi = malloc(P1 * sizeof *o->zhi);
+    o->delta = malloc((size_t)o->C * sizeof *o->delta);
+    o->colour_off = malloc(np * sizeof *o->colour_off);
+    if (!o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx ||
+        !o->zlo || !o->zhi || !o->delta || !o->colour_off) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
+        goto fail;
+    }
+    if (bf_obj_apply_overrides(o, opt->overrides, opt->noverrides, err))
+        goto fail;
+    bf_obj_setup_scale(o);
+
+    for (size_t i = 0; i < o->n; i++)
+        o->nvalid += (size_t)bf_geometry_valid(g, i);
+    if (o->nvalid == 0) {
+        bf_fail(err, BF_ERR_ARG, "no samples above the horizon to fit (%zu samples)", o->n);
+        goto fail;
+    }
+    if (setup_weights(o, opt, err))
+        goto fail;
+    setup_delta(o);
+
+    for (int i = 0; i < bf_model_nparams(m); i++)
+        if (bf_model_param(m, i)->colour)
+            o->colour_off[o->ncolour++] = bf_model_param_offset(m, i);
+
+    o->problem.nres = o->n * (size_t)o->C;
+    o->problem.npar = o->nz;
+    o->problem.lo = o->zlo;
+    o->problem.hi = o->zhi;
+    o->problem.eval = problem_eval;
+    o->problem.ctx = o;
+    o->problem.constraint = o->ncolour > 0 ? problem_constraint : NULL;
+    return o;
+fail:
+    bf_objective_free(o);
+    return NULL;
+}
+
+const bf_problem *bf_objective_problem(const bf_objective *o) { return &o->problem; }
+int bf_objective_nz(const bf_objective *o) { return o->nz; }
+int bf_objective_fixed(const bf_objective *o, int k) { return k >= 0 && k < o->P && o->fixed[k]; }
+
+void bf_objective_bounds(const bf_objective *o, double *lo, double *hi)
+{
+    for (int k = 0; k < o->P; k++) {
+        lo[k] = o->fixed[k] ? o->fixval[k] : o->lo[k];
+        hi[k] = o->fixed[k] ? o->fixval[k] : o->hi[k];
+    }
+}

@@ -1,0 +1,134 @@
+/* Internal: the objective's state, shared by its files (objective.c: construction and
+ * evaluation; parametrisation.c: internal scale; overrides.c: --fix/--bound;
+ * solid_angle.c: MERL cell weights; objective_stderr.c: standard errors; residual.c:
+ * form names) and by metrics.c (the guarded logarithm). */
+#ifndef BF_OBJECTIVE_IMPL_H
+#define BF_OBJECTIVE_IMPL_H
+
+#include <math.h>
+#include <stddef.h>
+
+#include "brdfit/objective.h"
+
+struct bf_objective {
+    const bf_model *model;  /* not owned: must outlive the objective */
+    bf_samples *samples;    /* not owned, not to be changed while the objective lives */
+    const bf_geometry *geom;
+    bf_residual residual;
+    size_t n;               /* samples */
+    int C, P, nz;           /* channels, model-vector length, free (internal) entries */
+
+    /* Per model-vector entry k (P each). */
+    double *lo, *hi;        /* effective bounds in model space (closed: open ends nudged in) */
+    unsigned char *fixed;
+    double *fixval;         /* value of fixed entries */
+    bf_scale *scale;        /* internal scale actually used (after the LOG fallback) */
+    int *zpos;              /* position in z, or -1 when fixed */
+
+    /* Per internal entry j (nz each). */
+    int *kidx;              /* model-vector entry */
+    double *zlo, *zhi;      /* internal bounds */
+
+    double *sw;             /* NULL, or per-sample sqrt of the combined weight */
+    double *delta;          /* C floors of the relative form */
+    size_t nvalid;          /* samples above the horizon */
+
+    /* Energy constraint: colour parameters (their offsets) summed per channel. */
+    int ncolour;
+    int *colour_off;
+
+    bf_problem problem;
+};
+
+/* ---- Residual forms (inline: they run once per residual) -----------------------------
+ * ln(1 + u), with u floored at -1 + 1e-12 so that a negative measurement (u < -1) gives a
+ * large negative but finite value, not NaN. */
+#define BF_OBJ_LOG_FLOOR (-1.0 + 1e-12)
+static inline double bf_obj_log1p(double u)
+{
+    return log1p(u > BF_OBJ_LOG_FLOOR ? u : BF_OBJ_LOG_FLOOR);
+}
+
+/* The cube root has an infinite slope at 0, which would put Inf in the Jacobian wherever
+ * the model is 0 (and f c = 0 is common: dark colours, zero lobes). Below |u| = eps we
+ * use the odd cubic cbrt(eps) (4t - t^3)/3, t = u/eps, which meets cbrt in value and
+ * slope at |u| = eps (C1), is monotone, and has slope (4/3) eps^(-2/3) (1.3e6) at 0.
+ * eps = 1e-9 (f cos in 1/sr): darker than any measurement, so the residual differs from
+ * cbrt(f c) - cbrt(m c) only where both are black. Negative u keeps its sign. */
+#define BF_OBJ_CBRT_EPS 1e-9
+#define BF_OBJ_CBRT_EPS3 1e-3 /* cbrt(BF_OBJ_CBRT_EPS) */
+static inline double bf_obj_cbrt(double u, double *d)
+{
+    if (fabs(u) >= BF_OBJ_CBRT_EPS) {
+        double r = cbrt(u);
+        if (d)
+            *d = r / (3.0 * u);
+        return r;
+    }
+    double t = u / BF_OBJ_CBRT_EPS;
+    if (d)
+        *d = BF_OBJ_CBRT_EPS3 / BF_OBJ_CBRT_EPS * (4.0 - 3.0 * t * t) / 3.0;
+    return BF_OBJ_CBRT_EPS3 * (4.0 * t - t * t * t) / 3.0;
+}
+
+/* r(f) for one model value f against the measurement mm at cosine c (= N.L), and
+ * *drdf = dr/df. delta is the channel's floor for the relative form. Finite for every
+ * finite input, negative measurements included. */
+static inline double bf_obj_form(bf_residual form, double f, double mm, double c, double delta,
+                                 double *drdf)
+{
+    switch (form) {
+    case BF_RESIDUAL_COSINE:
+        *drdf = c;
+        return (f - mm) * c;
+    case BF_RESIDUAL_LOG: {
+        double u = f * c;
+        *drdf = u > BF_OBJ_LOG_FLOOR ? c / (1.0 + u) : 0.0;
+        return bf_obj_log1p(u) - bf_obj_log1p(mm * c);
+    }
+    case BF_RESIDUAL_CBRT: {
+        double d;
+        double r = bf_obj_cbrt(f * c, &d) - bf_obj_cbrt(mm * c, NULL);
+        *drdf = d * c;
+        return r;
+    }
+    case BF_RESIDUAL_RELATIVE: {
+        double s = 1.0 / (fabs(mm) + delta);
+        *drdf = s;
+        return (f - mm) * s;
+    }
+    case BF_RESIDUAL_LINEAR:
+    default:
+        *drdf = 1.0;
+        return f - mm;
+    }
+}
+
+/* ---- Internal parametrisation (parametrisation.c) ---------------------------------- */
+/* Chooses the scale of each entry from the model's hint and the effective bounds, and
+ * fills zpos, kidx, zlo, zhi and nz. */
+void bf_obj_setup_scale(bf_objective *o);
+/* One entry: model value <-> internal value, and dx/dz at x. */
+double bf_obj_to_z(bf_scale sc, double x);
+double bf_obj_to_x(bf_scale sc, double z);
+double bf_obj_dxdz(bf_scale sc, double x);
+
+/* ---- Overrides (overrides.c) ---------------------------------------------------------
+ * Fills lo, hi, fixed, fixval from the model's bounds and the overrides, in order (a
+ * later override of the same entry replaces an earlier one). */
+int bf_obj_apply_overrides(bf_objective *o, const bf_override *ov, int nov, bf_error *err);
+
+/* ---- Solid-angle weights (solid_angle.c) ---------------------------------------------
+ * n weights, one per sample, from its MERL cell's extent; mean 1 over the samples above
+ * the horizon. BF_ERR_ARG without a MERL origin. */
+int bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err);
+
+/* ---- Evaluation (objective.c) --------------------------------------------------------
+ * Residuals r0..r1-1 at the model vector x, and when jac is not NULL their Jacobian
+ * with respect to ncols columns: jac[(r - r0) * ncols + j] = dres/dx[cols[j]] * colscale[j].
+ * Used for the internal Jacobian (free entries, chain rule dx/dz) and for standard
+ * errors (free entries, model space). Returns 0, or -1 when out of memory. */
+int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res,
+                  double *jac, int ncols, const int *cols, const double *colscale);
+
+#endif

@@ -1,0 +1,170 @@
+/* Standard errors of the model parameters from the Jacobian at the solution.
+ *
+ * J is taken with respect to the free model parameters (model space, not the internal
+ * scale), for the residuals in the objective's form and weights. Then
+ *   cov = s^2 (J^T J)^-1,  s^2 = SSR / (n - k),
+ * n the residuals of samples above the horizon, k the free parameters.
+ *
+ * (J^T J)^-1 is computed from an eigen-decomposition (cyclic Jacobi) of J^T J scaled to
+ * unit diagonal rather than a Cholesky factorisation: where J^T J is singular it tells
+ * which parameters take part in the null space. Each of those (say rho_s_1 and rho_s_2
+ * of two identical lobes) gets NaN, and each determined parameter gets its variance from
+ * the non-null part (the pseudo-inverse), which for a regular matrix is the inverse. An
+ * eigenvalue counts as null below 1e-12 of the largest (the scaled matrix has unit
+ * diagonal, so this is a condition number of 1e12, the limit of double precision for a
+ * normal matrix). A parameter the residuals do not depend on at all (zero column) is NaN
+ * too. With n <= k there is no estimate of s^2 and every free parameter is NaN. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "objective_impl.h"
+
+#define ROWS_PER_BLOCK 4096
+#define NULL_EIGEN 1e-12
+#define NULL_SHARE 1e-6
+
+/* Cyclic Jacobi: a (k x k, symmetric, destroyed) -> eigenvalues on its diagonal, v the
+ * eigenvectors as columns. */
+static void jacobi(double *a, double *v, int k)
+{
+    for (int i = 0; i < k; i++)
+        for (int j = 0; j < k; j++)
+            v[i * k + j] = i == j;
+    for (int sweep = 0; sweep < 100; sweep++) {
+        double off = 0.0, diag = 0.0;
+        for (int i = 0; i < k; i++)
+            for (int j = 0; j < k; j++)
+                if (i != j)
+                    off += a[i * k + j] * a[i * k + j];
+                else
+                    diag += a[i * k + j] * a[i * k + j];
+        if (off <= 1e-32 * diag)
+            return;
+        for (int p = 0; p < k; p++)
+            for (int q = p + 1; q < k; q++) {
+                double apq = a[p * k + q];
+                if (apq == 0.0)
+                    continue;
+                double theta = (a[q * k + q] - a[p * k + p]) / (2.0 * apq);
+                double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                for (int r = 0; r < k; r++) { /* A P */
+                    double arp = a[r * k + p], arq = a[r * k + q];
+                    a[r * k + p] = c * arp - s * arq;
+                    a[r * k + q] = s * arp + c * arq;
+                }
+                for (int r = 0; r < k; r++) { /* P^T (A P) */
+                    double apr = a[p * k + r], aqr = a[q * k + r];
+                    a[p * k + r] = c * apr - s * aqr;
+                    a[q * k + r] = s * apr + c * aqr;
+                }
+                for (int r = 0; r < k; r++) { /* V P */
+                    double vrp = v[r * k + p], vrq = v[r * k + q];
+                    v[r * k + p] = c * vrp - s * vrq;
+                    v[r * k + q] = s * vrp + c * vrq;
+                }
+            }
+    }
+}
+
+/* se[j] for the nz free entries from J^T J (nz x nz) and s^2. work: 2 nz^2 + nz
+ * doubles; idx: nz ints. */
+static void covariance_diag(const double *jtj, int nz, double s2, double *se, double *work, int *idx)
+{
+    double *d = work + 2 * (size_t)nz * nz;
+    int k = 0;
+    for (int j = 0; j < nz; j++) {
+        se[j] = NAN;
+        d[j] = jtj[j * nz + j];
+        if (d[j] > 0.0 && isfinite(d[j]))
+            idx[k++] = j;
+    }
+    if (k == 0)
+        return;
+    double *a = work, *v = work + (size_t)nz * nz;
+    for (int p = 0; p < k; p++)
+        for (int q = 0; q < k; q++)
+            a[p * k + q] = jtj[idx[p] * nz + idx[q]] / sqrt(d[idx[p]] * d[idx[q]]);
+    jacobi(a, v, k);
+    double lmax = 0.0;
+    for (int e = 0; e < k; e++)
+        if (a[e * k + e] > lmax)
+            lmax = a[e * k + e];
+    for (int p = 0; p < k; p++) {
+        double var = 0.0, nullshare = 0.0;
+        for (int e = 0; e < k; e++) {
+            double lam = a[e * k + e], vv = v[p * k + e] * v[p * k + e];
+            if (lam > NULL_EIGEN * lmax)
+                var += vv / lam;
+            else
+                nullshare += vv;
+        }
+        if (nullshare <= NULL_SHARE && isfinite(var))
+            se[idx[p]] = sqrt(s2 * var / d[idx[p]]);
+    }
+}
+
+int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
+{
+    int rc = bf_model_check(o->model, x, err);
+    if (rc)
+        return rc;
+    const int nz = o->nz;
+    for (int k = 0; k < o->P; k++)
+        se[k] = 0.0;
+    if (nz == 0)
+        return BF_OK;
+    size_t nres = o->n * (size_t)o->C, nz2 = (size_t)nz * nz;
+    double *ones = malloc((size_t)nz * sizeof *ones);
+    double *res = malloc(ROWS_PER_BLOCK * sizeof *res);
+    double *jac = malloc(ROWS_PER_BLOCK * (size_t)nz * sizeof *jac);
+    double *jtj = calloc(nz2, sizeof *jtj);
+    double *sez = malloc((size_t)nz * sizeof *sez);
+    double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
+    int *idx = malloc((size_t)nz * sizeof *idx);
+    if (!ones || !res || !jac || !jtj || !sez || !work || !idx) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
+        goto done;
+    }
+    for (int j = 0; j < nz; j++)
+        ones[j] = 1.0;
+    double ssr = 0.0;
+    for (size_t r0 = 0; r0 < nres; r0 += ROWS_PER_BLOCK) {
+        size_t r1 = r0 + ROWS_PER_BLOCK < nres ? r0 + ROWS_PER_BLOCK : nres;
+        if (bf_obj_eval_x(o, x, r0, r1, res, jac, nz, o->kidx, ones)) {
+            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
+            goto done;
+        }
+        for (size_t r = 0; r < r1 - r0; r++) {
+            const double *jr = jac + r * (size_t)nz;
+            ssr += res[r] * res[r];
+            for (int a = 0; a < nz; a++) {
+                if (jr[a] == 0.0)
+                    continue;
+                for (int b = a; b < nz; b++)
+                    jtj[a * nz + b] += jr[a] * jr[b];
+            }
+        }
+    }
+    for (int a = 0; a < nz; a++)
+        for (int b = 0; b < a; b++)
+            jtj[a * nz + b] = jtj[b * nz + a];
+    size_t n = o->nvalid * (size_t)o->C;
+    if (n <= (size_t)nz || !isfinite(ssr)) {
+        for (int j = 0; j < nz; j++)
+            sez[j] = NAN;
+    } else {
+        covariance_diag(jtj, nz, ssr / (double)(n - (size_t)nz), sez, work, idx);
+    }
+    for (int j = 0; j < nz; j++)
+        se[o->kidx[j]] = sez[j];
+done:
+    free(ones);
+    free(res);
+    free(jac);
+    free(jtj);
+    free(sez);
+    free(work);
+    free(idx);
+    return rc;
+}

@@ -1,0 +1,384 @@
+/* The fit driver on synthetic data with known answers (noiseless, so the optimum is the
+ * generating parameters): recovery from the data-driven start with Ceres and with an
+ * NLopt method, the start itself, multistart determinism, fixed parameters, a fit that
+ * cannot succeed, and the result file read back as a parameter file. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "brdfit/fit.h"
+#include "brdfit/io.h"
+#include "support.h"
+#include "synth.h"
+
+#define NSAMPLES 4096
+
+/* Noiseless samples of spec at x, uniform in solid angle. */
+static bf_samples *synth(const char *spec, int C, const double *x, bf_synth_pattern pattern, size_t n)
+{
+    bf_model *m = ts_model(spec, C);
+    bf_synth_options o;
+    memset(&o, 0, sizeof o);
+    o.pattern = pattern;
+    o.count = n;
+    o.seed = 11;
+    bf_samples *s = NULL;
+    bf_error err;
+    if (bf_synth_generate(m, x, &o, &s, &err) != BF_OK)
+        fail_msg("bf_synth_generate %s: %s", spec, err.msg);
+    bf_model_free(m);
+    return s;
+}
+
+static void default_options(bf_fit_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->objective.residual = BF_RESIDUAL_LINEAR;
+    o->objective.use_weights = 1;
+    o->solver.backend = BF_BACKEND_CERES;
+    o->starts = 1;
+}
+
+static void fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
+{
+    bf_error err;
+    if (bf_fit(s, spec, o, r, &err) != BF_OK)
+        fail_msg("bf_fit %s: %s", spec, err.msg);
+    if (!r->ok)
+        fail_msg("fit %s failed: %s", spec, r->solution.termination);
+}
+
+static void assert_params(const bf_fit_result *r, const double *truth, double tol, const char *spec)
+{
+    int P = bf_model_nfree(r->model);
+    for (int k = 0; k < P; k++) {
+        char what[96];
+        snprintf(what, sizeof what, "%s parameter %d", spec, k);
+        ts_assert_rel(r->x[k], truth[k], tol, what);
+    }
+}
+
+/* ---- recovery ------------------------------------------------------------------- */
+
+typedef struct truth_case {
+    const char *spec;
+    double x[8]; /* RGB: colour parameters three values each, in table order */
+} truth_case;
+
+static const truth_case cases[] = {
+    {"lambert", {0.7, 0.45, 0.2}},
+    {"walter", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.15, 0.3}},
+    {"cook_torrance", {0.4, 0.35, 0.3, 0.7, 0.6, 0.5, 0.25, 0.2}},
+    {"phong", {0.3, 0.4, 0.5, 0.6, 0.6, 0.6, 40.0}},
+    {"ward", {0.5, 0.4, 0.3, 0.2, 0.25, 0.3, 0.1, 0.25}},
+};
+
+static void test_recover_ceres(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const truth_case *t = &cases[i];
+        bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, NSAMPLES);
+        bf_fit_options o;
+        default_options(&o);
+        bf_fit_result r;
+        fit_ok(s, t->spec, &o, &r);
+        assert_params(&r, t->x, 1e-6, t->spec);
+        assert_int_equal(r.metrics.n, 3 * NSAMPLES);
+        assert_int_equal(r.metrics.k, bf_model_nfree(r.model));
+        assert_int_equal(r.samples, NSAMPLES);
+        assert_int_equal(r.starts, 1);
+        assert_true(r.metrics.rmse < 1e-9);
+        assert_string_equal(r.solution.backend, "ceres");
+        bf_fit_result_free(&r);
+        bf_samples_free(s);
+    }
+}
+
+static void test_recover_nlopt(void **state)
+{
+    (void)state;
+    const truth_case *t = &cases[1]; /* walter */
+    bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, NSAMPLES);
+    bf_fit_options o;
+    default_options(&o);
+    o.solver.backend = BF_BACKEND_NLOPT;
+    o.solver.algorithm = "LD_LBFGS";
+    o.solver.max_iterations = 20000;
+    o.solver.function_tolerance = 1e-15;
+    o.solver.parameter_tolerance = 1e-13;
+    bf_fit_result r;
+    fit_ok(s, t->spec, &o, &r);
+    assert_string_equal(r.solution.backend, "nlopt");
+    assert_params(&r, t->x, 1e-6, t->spec);
+    bf_fit_result_free(&r);
+    bf_samples_free(s);
+}
+
+/* ---- the data-driven start -------------------------------------------------------- */
+
+static void assert_start_in_bounds(const bf_model *m, const double *x)
+{
+    bf_error err;
+    if (bf_model_check(m, x, &err) != BF_OK)
+        fail_msg("start out of bounds: %s", err.msg);
+}
+
+static void test_initial_guess_walter(void **state)
+{
+    (void)state;
+    /* Shiny to rough lobes, dielectric and brighter Fresnel: rho_d within a factor 3
+     * and alpha within a factor 2 of the truth. */
+    static const double alphas[] = {0.05, 0.15, 0.4}, f0s[] = {0.04, 0.3};
+    for (size_t a = 0; a < 6; a++) {
+        double truth[8] = {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, alphas[a % 3], f0s[a / 3]};
+        bf_samples *s = synth("walter", 3, truth, BF_SYNTH_UNIFORM, 20000);
+        bf_model *m = ts_model("walter", 3);
+        double x[8];
+        bf_error err;
+        assert_int_equal(bf_fit_initial_guess(m, s, x, &err), BF_OK);
+        assert_start_in_bounds(m, x);
+        for (int c = 0; c < 3; c++)
+            if (!(x[c] > truth[c] / 3 && x[c] < truth[c] * 3))
+                fail_msg("rho_d[%d] start %g for truth %g (alpha %g, f0 %g)", c, x[c], truth[c], truth[6], truth[7]);
+        if (!(x[6] > truth[6] / 2 && x[6] < truth[6] * 2))
+            fail_msg("alpha start %g for truth %g (f0 %g)", x[6], truth[6], truth[7]);
+        bf_model_free(m);
+        bf_samples_free(s);
+    }
+}
+
+/* Data without a lobe, without near-specular samples, negative, or only at grazing
+ * angles: a finite start inside the bounds for every model, and the Lambertian level. */
+static void test_initial_guess_hard_data(void **state)
+{
+    (void)state;
+    const double rho[3] = {0.6, 0.5, 0.4};
+    bf_samples *lam = synth("lambert", 3, rho, BF_SYNTH_UNIFORM, 3000);
+
+    /* Far from the mirror direction only: theta_h > 35 degrees. */
+    bf_samples *far = synth("walter", 3, cases[1].x, BF_SYNTH_UNIFORM, 3000);
+    const bf_geometry *g = bf_samples_geometry(far, NULL);
+    unsigned char *keep = malloc(far->n);
+    for (size_t i = 0; i < far->n; i++)
+        keep[i] = g->hz[i] < cos(35 * DEG);
+    assert_int_equal(bf_samples_keep(far, keep, NULL), BF_OK);
+    free(keep);
+
+    /* Grazing only: both directions beyond 80 degrees. */
+    bf_samples *graze = synth("walter", 3, cases[1].x, BF_SYNTH_UNIFORM, 40000);
+    keep = malloc(graze->n);
+    for (size_t i = 0; i < graze->n; i++)
+        keep[i] = graze->theta_i[i] > 80 && graze->theta_o[i] > 80;
+    assert_int_equal(bf_samples_keep(graze, keep, NULL), BF_OK);
+    free(keep);
+    assert_true(graze->n > 10);
+
+    /* Negative and zero values. */
+    bf_samples *neg = synth("lambert", 3, rho, BF_SYNTH_UNIFORM, 1000);
+    for (size_t i = 0; i < neg->n * 3; i++)
+        neg->value[i] = (i % 3 == 0) ? -0.01 : (i % 3 == 1 ? 0.0 : neg->value[i]);
+
+    bf_samples *sets[] = {lam, far, graze, neg};
+    char **specs;
+    int ns = ts_all_specs(&specs);
+    for (int k = 0; k < ns; k++) {
+        bf_model *m = ts_model(specs[k], 3);
+        double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+        for (size_t j = 0; j < sizeof sets / sizeof sets[0]; j++) {
+            bf_error err;
+            if (bf_fit_initial_guess(m, sets[j], x, &err) != BF_OK)
+                fail_msg("%s on set %zu: %s", specs[k], j, err.msg);
+            assert_start_in_bounds(m, x);
+        }
+        /* Lambertian data: the diffuse colour exactly, lobes small. */
+        bf_error err;
+        assert_int_equal(bf_fit_initial_guess(m, lam, x, &err), BF_OK);
+        int id = bf_model_find_param(m, "rho_d");
+        if (id >= 0)
+            for (int c = 0; c < 3; c++)
+                ts_assert_rel(x[bf_model_param_offset(m, id) + c], rho[c], 1e-12, "lambert rho_d start");
+        free(x);
+        bf_model_free(m);
+    }
+    ts_free_specs(specs, ns);
+
+    /* A specular model fitted to Lambertian data converges to the Lambertian answer. */
+    bf_fit_options o;
+    default_options(&o);
+    bf_fit_result r;
+    fit_ok(lam, "walter", &o, &r);
+    for (int c = 0; c < 3; c++)
+        ts_assert_near(r.x[c], rho[c], 1e-4, 0.0, "rho_d of walter on Lambertian data");
+    assert_true(r.metrics.rmse < 1e-4);
+    bf_fit_result_free(&r);
+
+    for (size_t j = 0; j < sizeof sets / sizeof sets[0]; j++)
+        bf_samples_free(sets[j]);
+}
+
+/* ---- multistart, fixing, failure ------------------------------------------------------ */
+
+static void test_multistart_deterministic(void **state)
+{
+    (void)state;
+    const truth_case *t = &cases[2]; /* cook_torrance */
+    bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, 2000);
+    bf_fit_options o;
+    default_options(&o);
+    o.starts = 5;
+    o.seed = 1234;
+    o.solver.threads = 2;
+    bf_fit_result a, b;
+    fit_ok(s, t->spec, &o, &a);
+    fit_ok(s, t->spec, &o, &b);
+    assert_int_equal(a.starts, 5);
+    assert_int_equal(b.starts, 5);
+    assert_int_equal(a.seed, 1234);
+    assert_int_equal(a.threads, 2);
+    int P = bf_model_nfree(a.model);
+    assert_memory_equal(a.x, b.x, (size_t)P * sizeof *a.x);
+    assert_true(a.solution.final_cost == b.solution.final_cost);
+    /* The best of five is at least as good as the data-driven start alone, which
+     * already finds the truth. */
+    assert_params(&a, t->x, 1e-6, t->spec);
+    bf_fit_result_free(&a);
+    bf_fit_result_free(&b);
+    bf_samples_free(s);
+}
+
+static void test_fix_holds(void **state)
+{
+    (void)state;
+    const truth_case *t = &cases[1]; /* walter, f0 = 0.3 */
+    bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, NSAMPLES);
+    bf_override ov[2];
+    bf_error err;
+    assert_int_equal(bf_override_parse_fix("f0=0.3", &ov[0], &err), BF_OK);
+    assert_int_equal(bf_override_parse_fix("rho_d[1]=0.3", &ov[1], &err), BF_OK);
+    bf_fit_options o;
+    default_options(&o);
+    o.objective.overrides = ov;
+    o.objective.noverrides = 2;
+    bf_fit_result r;
+    fit_ok(s, t->spec, &o, &r);
+    assert_true(r.x[7] == 0.3);
+    assert_true(r.x[1] == 0.3);
+    assert_true(r.fixed[7] && r.fixed[1] && !r.fixed[0] && !r.fixed[6]);
+    assert_true(r.stderr_[7] == 0.0);
+    assert_int_equal(r.metrics.k, bf_model_nfree(r.model) - 2);
+    assert_params(&r, t->x, 1e-6, "walter with f0 and rho_d[1] fixed at the truth");
+    bf_fit_result_free(&r);
+
+    /* Fixed away from the truth: held, and the rest compensates (a worse fit). */
+    assert_int_equal(bf_override_parse_fix("f0=0.9", &ov[0], &err), BF_OK);
+    o.objective.noverrides = 1;
+    fit_ok(s, t->spec, &o, &r);
+    assert_true(r.x[7] == 0.9);
+    assert_true(r.metrics.rmse > 1e-6);
+    bf_fit_result_free(&r);
+    bf_samples_free(s);
+}
+
+static int all_finite(const double *x, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (!isfinite(x[k]))
+            return 0;
+    return 1;
+}
+
+/* Values whose squares overflow: no start has a finite cost. The fit says so and
+ * reports the data-driven start, which is finite. */
+static void test_impossible_fit(void **state)
+{
+    (void)state;
+    const double rho[3] = {0.5, 0.5, 0.5};
+    bf_samples *s = synth("lambert", 3, rho, BF_SYNTH_UNIFORM, 500);
+    for (size_t i = 0; i < s->n * 3; i++)
+        s->value[i] = 1e300;
+    bf_model *m = ts_model("walter", 3);
+    double start[8];
+    bf_error err;
+    assert_int_equal(bf_fit_initial_guess(m, s, start, &err), BF_OK);
+    bf_model_free(m);
+    bf_fit_options o;
+    default_options(&o);
+    o.starts = 3;
+    bf_fit_result r;
+    assert_int_equal(bf_fit(s, "walter", &o, &r, &err), BF_OK);
+    assert_false(r.ok);
+    assert_true(r.solution.termination[0] != '\0');
+    assert_true(all_finite(r.x, 8));
+    assert_memory_equal(r.x, start, sizeof start);
+    bf_fit_result_free(&r);
+
+    /* Bad specification and options: errors, not failed fits. */
+    assert_int_not_equal(bf_fit(s, "no_such_model", &o, &r, &err), BF_OK);
+    assert_non_null(strstr(err.msg, "no_such_model"));
+    o.solver.algorithm = "no_such_method";
+    assert_int_not_equal(bf_fit(s, "walter", &o, &r, &err), BF_OK);
+    assert_null(strchr(err.msg, '\n'));
+    bf_samples_free(s);
+}
+
+/* ---- the result file ------------------------------------------------------------------ */
+
+static void test_result_json_round_trip(void **state)
+{
+    (void)state;
+    /* Parameters that need all 17 digits, with two lobes so options include lobes. */
+    double truth[14] = {0.123456789012345678, 0.3, 0.1 / 3.0, 0.7, 0.6, 0.5, 0.1 + 1e-16, 0.04,
+                        0.2, 0.2, 0.2, 0.37, 0.5};
+    const char *spec = "walter:lobes=2";
+    bf_model *m = ts_model(spec, 3);
+    assert_int_equal(bf_model_nfree(m), 13);
+    bf_model_free(m);
+    bf_samples *s = synth(spec, 3, truth, BF_SYNTH_UNIFORM, 2000);
+    bf_fit_options o;
+    default_options(&o);
+    o.start = truth; /* the fit moves off the exact truth by rounding: any 17-digit values do */
+    bf_fit_result r;
+    bf_error err;
+    assert_int_equal(bf_fit(s, spec, &o, &r, &err), BF_OK);
+    const char *path = ts_tmp_path("fit.json");
+    assert_int_equal(bf_fit_write_json(&r, "data.csv", path, &err), BF_OK);
+    bf_model *back = NULL;
+    double *x = NULL;
+    if (bf_params_read(path, &back, &x, &err) != BF_OK)
+        fail_msg("bf_params_read: %s", err.msg);
+    assert_string_equal(bf_model_spec(back), bf_model_spec(r.model));
+    assert_int_equal(bf_model_channels(back), 3);
+    assert_memory_equal(x, r.x, 13 * sizeof *x);
+    free(x);
+    bf_model_free(back);
+
+    /* Several fits: {"fits": [...]}, which is not a parameter file. */
+    const bf_fit_result *list[2] = {&r, &r};
+    const char *lpath = ts_tmp_path("fits.json");
+    assert_int_equal(bf_fit_write_json_list(list, 2, "data.csv", lpath, &err), BF_OK);
+    assert_int_not_equal(bf_params_read(lpath, &back, &x, &err), BF_OK);
+    bf_fit_result_free(&r);
+    bf_samples_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_recover_ceres),
+        cmocka_unit_test(test_recover_nlopt),
+        cmocka_unit_test(test_initial_guess_walter),
+        cmocka_unit_test(test_initial_guess_hard_data),
+        cmocka_unit_test(test_multistart_deterministic),
+        cmocka_unit_test(test_fix_holds),
+        cmocka_unit_test(test_impossible_fit),
+        cmocka_unit_test(test_result_json_round_trip),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

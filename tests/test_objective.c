@@ -1,0 +1,817 @@
+/* The objective: residual forms at hand-computed points, the internal Jacobian against
+ * central differences (several models, every form, fixed parameters and bounds, row
+ * ranges that start and end mid-sample), the internal parametrisation, overrides,
+ * solid-angle weights of MERL cells, the energy constraint and standard errors. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "brdfit/objective.h"
+#include "support.h"
+
+static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, BF_RESIDUAL_LOG,
+                                        BF_RESIDUAL_CBRT, BF_RESIDUAL_RELATIVE};
+#define NFORMS 5
+
+/* n samples of C channels at random directions above the horizon (degrees). */
+static bf_samples *random_samples(size_t n, int C, uint64_t seed)
+{
+    bf_samples *s = bf_samples_new(n, C, NULL);
+    assert_non_null(s);
+    ts_rng r = {seed};
+    ts_random_dirs(&r, n, s->theta_i, s->phi_i, s->theta_o, s->phi_o);
+    for (size_t i = 0; i < n; i++) {
+        s->theta_i[i] /= DEG;
+        s->phi_i[i] /= DEG;
+        s->theta_o[i] /= DEG;
+        s->phi_o[i] /= DEG;
+    }
+    return s;
+}
+
+/* Evaluates the problem on [r0, r1) at z, into new arrays. */
+static void eval_range(const bf_problem *p, const double *z, size_t r0, size_t r1, double **res,
+                       double **jac)
+{
+    *res = malloc((r1 - r0 + 1) * sizeof **res);
+    *jac = jac ? malloc(((r1 - r0) * (size_t)p->npar + 1) * sizeof **jac) : NULL;
+    assert_int_equal(p->eval(p->ctx, z, r0, r1, *res, jac ? *jac : NULL), 0);
+}
+
+static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form,
+                              const bf_override *ov, int nov)
+{
+    bf_objective_options o = {.residual = form, .overrides = ov, .noverrides = nov};
+    bf_error err = {0};
+    bf_objective *obj = bf_objective_new(m, s, &o, &err);
+    if (!obj)
+        fail_msg("bf_objective_new: %s", err.msg);
+    return obj;
+}
+
+/* ---- Residual forms at hand-computed points ----------------------------------------- */
+
+/* One sample at theta_i = 60 degrees (c = 1/2), Lambert (f = rho_d / pi, independent of
+ * direction), C = 1: every form's value and derivative by hand. */
+static void test_forms_values(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("lambert", 1);
+    bf_samples *s = bf_samples_new(1, 1, NULL);
+    s->theta_i[0] = 60;
+    s->theta_o[0] = 30;
+    s->phi_o[0] = 180;
+    const double mm = 0.1, rho = 0.6, f = rho / M_PI, c = cos(60 * DEG);
+    s->value[0] = mm;
+    const double want[NFORMS] = {
+        f - mm,
+        (f - mm) * c,
+        log(1 + f * c) - log(1 + mm * c),
+        cbrt(f * c) - cbrt(mm * c),
+        (f - mm) / (0.1 + 1e-3 * 0.1), /* delta = 1e-3 mean |m| */
+    };
+    const double dwant[NFORMS] = {
+        1 / M_PI,
+        c / M_PI,
+        c / (1 + f * c) / M_PI,
+        c / (3 * cbrt(f * c) * cbrt(f * c)) / M_PI,
+        1 / (0.1 + 1e-4) / M_PI,
+    };
+    for (int k = 0; k < NFORMS; k++) {
+        bf_objective *obj = make_obj(m, s, all_forms[k], NULL, 0);
+        const bf_problem *p = bf_objective_problem(obj);
+        assert_int_equal(p->nres, 1);
+        assert_int_equal(p->npar, 1);
+        double x = rho, z, r, J;
+        bf_objective_to_internal(obj, &x, &z);
+        assert_int_equal(p->eval(p->ctx, &z, 0, 1, &r, &J), 0);
+        ts_assert_rel(r, want[k], 1e-14, bf_residual_name(all_forms[k]));
+        ts_assert_rel(J, dwant[k], 1e-14, bf_residual_name(all_forms[k]));
+        bf_objective_free(obj);
+    }
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* Negative and zero measurements, a black model: every form finite; log floors 1 + m c
+ * at 1e-12; cbrt's slope at f c = 0 is the documented (4/3) eps^(-2/3). */
+static void test_forms_extremes(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("lambert", 1);
+    bf_samples *s = bf_samples_new(3, 1, NULL);
+    for (int i = 0; i < 3; i++) {
+        s->theta_i[i] = 60;
+        s->theta_o[i] = 30;
+    }
+    s->value[0] = -5.0; /* m c = -2.5 < -1 */
+    s->value[1] = 0.0;
+    s->value[2] = -1e-3;
+    const double c = cos(60 * DEG);
+    for (int k = 0; k < NFORMS; k++) {
+        bf_objective *obj = make_obj(m, s, all_forms[k], NULL, 0);
+        const bf_problem *p = bf_objective_problem(obj);
+        for (int which = 0; which < 2; which++) {
+            double x = which ? 0.0 : 1.0, z, r[3], J[3];
+            bf_objective_to_internal(obj, &x, &z);
+            assert_int_equal(p->eval(p->ctx, &z, 0, 3, r, J), 0);
+            for (int i = 0; i < 3; i++)
+                if (!isfinite(r[i]) || !isfinite(J[i]))
+                    fail_msg("%s: residual %d not finite (%g, %g)", bf_residual_name(all_forms[k]), i, r[i], J[i]);
+            if (all_forms[k] == BF_RESIDUAL_LOG)
+                ts_assert_rel(r[0], log1p(x * c / M_PI) - log(1e-12), 1e-4, "log floor");
+            if (all_forms[k] == BF_RESIDUAL_CBRT && x == 0.0) {
+                ts_assert_rel(J[1], 4.0 / 3.0 * 1e6 * c / M_PI, 1e-12, "cbrt slope at 0");
+                assert_true(r[1] == 0.0);
+                ts_assert_rel(r[2], -cbrt(-1e-3 * c), 1e-15, "cbrt of a negative measurement");
+            }
+        }
+        bf_objective_free(obj);
+    }
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* Sample weights (sqrt(w) on the residual) and samples below the horizon (0, zero row). */
+static void test_weights_and_horizon(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("lambert", 2);
+    bf_samples *s = bf_samples_new(3, 2, NULL);
+    assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
+    for (int i = 0; i < 3; i++) {
+        s->theta_i[i] = 20;
+        s->theta_o[i] = 40;
+        s->value[2 * i] = 0.05;
+        s->value[2 * i + 1] = 0.07;
+    }
+    s->theta_i[1] = 95; /* below the horizon */
+    s->weight[0] = 4.0;
+    s->weight[2] = 0.25;
+    bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .use_weights = 1};
+    bf_objective *obj = bf_objective_new(m, s, &o, NULL);
+    assert_non_null(obj);
+    const bf_problem *p = bf_objective_problem(obj);
+    assert_int_equal(p->nres, 6);
+    double x[2] = {0.3, 0.4}, z[2], r[6], J[12];
+    bf_objective_to_internal(obj, x, z);
+    assert_int_equal(p->eval(p->ctx, z, 0, 6, r, J), 0);
+    ts_assert_rel(r[0], 2.0 * (0.3 / M_PI - 0.05), 1e-15, "weighted r0");
+    ts_assert_rel(r[1], 2.0 * (0.4 / M_PI - 0.07), 1e-15, "weighted r1");
+    assert_true(r[2] == 0.0 && r[3] == 0.0);
+    for (int j = 4; j < 8; j++)
+        assert_true(J[j] == 0.0);
+    ts_assert_rel(r[4], 0.5 * (0.3 / M_PI - 0.05), 1e-15, "weighted r4");
+    ts_assert_rel(J[0], 2.0 / M_PI, 1e-15, "weighted J");
+    assert_true(J[1] == 0.0);
+    bf_objective_free(obj);
+    /* Without use_weights the weights are ignored. */
+    o.use_weights = 0;
+    obj = bf_objective_new(m, s, &o, NULL);
+    p = bf_objective_problem(obj);
+    assert_int_equal(p->eval(p->ctx, z, 0, 2, r, NULL), 0);
+    ts_assert_rel(r[0], 0.3 / M_PI - 0.05, 1e-15, "unweighted r0");
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* ---- The internal Jacobian against central differences ------------------------------ */
+
+typedef struct jac_case {
+    const char *spec;
+    const char *fix, *bound; /* NULL or override text */
+    double n_phong;          /* > 0: the exponent n set to this */
+} jac_case;
+
+/* x in the interior: each free entry at least 2% of its internal range from the bounds,
+ * so that the central differences never cross a clamp. */
+static void interior(const bf_objective *obj, const bf_problem *p, double *x, double *z)
+{
+    bf_objective_to_internal(obj, x, z);
+    for (int j = 0; j < p->npar; j++) {
+        double lo = p->lo[j], hi = p->hi[j], w = 0.02 * (hi - lo);
+        if (z[j] < lo + w)
+            z[j] = lo + w;
+        if (z[j] > hi - w)
+            z[j] = hi - w;
+    }
+    bf_objective_to_model(obj, z, x);
+}
+
+static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
+{
+    const int C = 3;
+    const size_t n = 40;
+    bf_model *m = ts_model(jc->spec, C);
+    bf_samples *s = random_samples(n, C, seed);
+    int P = bf_model_nfree(m);
+    double *x = malloc((size_t)P * sizeof *x), *xm = malloc((size_t)P * sizeof *xm);
+    ts_rng r = {seed * 7 + 1};
+    /* Measurements from other parameters, some negative and some zero. */
+    ts_random_params(m, &r, TS_PARAMS_MODERATE, xm);
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    bf_model_eval(m, xm, g, s->value, NULL);
+    for (size_t i = 0; i < n * (size_t)C; i++) {
+        double u = ts_uniform(&r);
+        s->value[i] *= 0.5 + ts_uniform(&r);
+        if (u < 0.1)
+            s->value[i] = -0.2 * ts_uniform(&r);
+        else if (u < 0.15)
+            s->value[i] = 0.0;
+    }
+    bf_override ov[2];
+    int nov = 0;
+    if (jc->fix)
+        assert_int_equal(bf_override_parse_fix(jc->fix, &ov[nov++], NULL), BF_OK);
+    if (jc->bound)
+        assert_int_equal(bf_override_parse_bound(jc->bound, &ov[nov++], NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, form, ov, nov);
+    const bf_problem *p = bf_objective_problem(obj);
+    assert_int_equal(p->nres, n * (size_t)C);
+    int nfixed = 0, want_fixed = 0;
+    for (int k = 0; k < P; k++)
+        nfixed += bf_objective_fixed(obj, k);
+    if (jc->fix)
+        want_fixed = ov[0].channel >= 0 ? 1 : bf_model_param(m, bf_model_find_param(m, ov[0].name))->colour ? C : 1;
+    assert_int_equal(nfixed, want_fixed);
+    assert_int_equal(p->npar, P - nfixed);
+    ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
+    if (jc->n_phong > 0)
+        x[bf_model_param_offset(m, bf_model_find_param(m, "n"))] = jc->n_phong;
+    int nz = p->npar;
+    double *z = malloc((size_t)nz * sizeof *z), *zp = malloc((size_t)nz * sizeof *zp);
+    interior(obj, p, x, z);
+
+    /* Rows [r0, r1) starting and ending mid-sample (C = 3). */
+    size_t r0 = 4, r1 = n * (size_t)C - 5, nr = r1 - r0;
+    double *res, *jac;
+    eval_range(p, z, r0, r1, &res, &jac);
+    double *rp = malloc(nr * sizeof *rp), *rm = malloc(nr * sizeof *rm);
+    for (int j = 0; j < nz; j++) {
+        double h = 1e-6 * fmax(1.0, fabs(z[j]));
+        memcpy(zp, z, (size_t)nz * sizeof *z);
+        zp[j] = z[j] + h;
+        assert_int_equal(p->eval(p->ctx, zp, r0, r1, rp, NULL), 0);
+        zp[j] = z[j] - h;
+        assert_int_equal(p->eval(p->ctx, zp, r0, r1, rm, NULL), 0);
+        double colmax = 0.0;
+        for (size_t q = 0; q < nr; q++)
+            colmax = fmax(colmax, fabs(jac[q * (size_t)nz + (size_t)j]));
+        for (size_t q = 0; q < nr; q++) {
+            double fd = (rp[q] - rm[q]) / (2 * h), an = jac[q * (size_t)nz + (size_t)j];
+            if (!isfinite(an) || fabs(fd - an) > 1e-5 * fabs(fd) + 1e-6 * colmax + 1e-9)
+                fail_msg("%s, %s, fix %s, bound %s: row %zu, z[%d]: analytic %.10g, differences %.10g",
+                         jc->spec, bf_residual_name(form), jc->fix ? jc->fix : "-",
+                         jc->bound ? jc->bound : "-", r0 + q, j, an, fd);
+        }
+    }
+    free(rp);
+    free(rm);
+    free(res);
+    free(jac);
+    free(z);
+    free(zp);
+    free(x);
+    free(xm);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+static const jac_case jac_cases[] = {
+    {"lambert", NULL, NULL, 0},
+    {"lambert", "rho_d[1]=0.25", NULL, 0},
+    {"walter", NULL, NULL, 0},
+    {"walter", "f0=0.04", "alpha=0.05:0.6", 0},
+    {"walter", "rho_s[0]=0.2", "rho_d=0.1:0.9", 0},
+    {"cook_torrance:lobes=2", NULL, NULL, 0},
+    {"cook_torrance:lobes=2", "m_2=0.3", "rho_s_1[2]=0.1:0.5", 0},
+    {"disney", NULL, NULL, 0},
+    {"disney", "metallic=0.5", "roughness=0.2:0.9", 0},
+    {"phong", NULL, NULL, 0},
+    {"phong", NULL, NULL, 2e4},
+    {"phong", "rho_d=0.2", "n=100:1e5", 3e4},
+};
+
+static void test_jacobian_fd(void **state)
+{
+    (void)state;
+    for (size_t c = 0; c < sizeof jac_cases / sizeof jac_cases[0]; c++)
+        for (int k = 0; k < NFORMS; k++)
+            check_jacobian(&jac_cases[c], all_forms[k], 1000 + 17 * c + (uint64_t)k);
+}
+
+/* Any row range gives the same residuals and Jacobian rows as the whole set. */
+static void test_row_ranges(void **state)
+{
+    (void)state;
+    const int C = 3;
+    const size_t n = 700; /* spans several of the evaluator's sample chunks */
+    bf_model *m = ts_model("cook_torrance:lobes=2", C);
+    bf_samples *s = random_samples(n, C, 5);
+    ts_rng r = {9};
+    for (size_t i = 0; i < n * (size_t)C; i++)
+        s->value[i] = ts_uniform(&r);
+    s->theta_i[10] = 91; /* one below the horizon */
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LOG, NULL, 0);
+    const bf_problem *p = bf_objective_problem(obj);
+    int P = bf_model_nfree(m), nz = p->npar;
+    assert_int_equal(nz, P);
+    double *x = malloc((size_t)P * sizeof *x), *z = malloc((size_t)nz * sizeof *z);
+    ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
+    bf_objective_to_internal(obj, x, z);
+    double *res, *jac;
+    eval_range(p, z, 0, p->nres, &res, &jac);
+    for (size_t q = 30; q < 33; q++)
+        assert_true(res[q] == 0.0); /* sample 10 */
+    const size_t ranges[][2] = {{0, 1}, {1, 2}, {2, 7}, {5, 17}, {100, 1601}, {1, 2099}, {2098, 2100}, {1000, 1000}};
+    for (size_t t = 0; t < sizeof ranges / sizeof ranges[0]; t++) {
+        size_t r0 = ranges[t][0], r1 = ranges[t][1];
+        double *rr = malloc((r1 - r0 + 1) * sizeof *rr), *jj = malloc(((r1 - r0) * (size_t)nz + 1) * sizeof *jj);
+        assert_int_equal(p->eval(p->ctx, z, r0, r1, rr, jj), 0);
+        for (size_t q = r0; q < r1; q++) {
+            assert_true(rr[q - r0] == res[q]);
+            assert_memory_equal(jj + (q - r0) * (size_t)nz, jac + q * (size_t)nz, (size_t)nz * sizeof *jj);
+        }
+        /* Residuals only. */
+        assert_int_equal(p->eval(p->ctx, z, r0, r1, rr, NULL), 0);
+        for (size_t q = r0; q < r1; q++)
+            assert_true(rr[q - r0] == res[q]);
+        free(rr);
+        free(jj);
+    }
+    free(res);
+    free(jac);
+    free(x);
+    free(z);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* ---- Internal parametrisation -------------------------------------------------------- */
+
+static void test_parametrisation(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("walter", 3); /* rho_d[3] rho_s[3] alpha f0 */
+    bf_model *ph = ts_model("phong", 3);  /* rho_d[3] rho_s[3] n (LOG1P) */
+    bf_samples *s = random_samples(10, 3, 3);
+    bf_override ov[2];
+    assert_int_equal(bf_override_parse_fix("f0=0.04", &ov[0], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_bound("alpha=0.01:0.5", &ov[1], NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 2);
+    assert_int_equal(bf_objective_nz(obj), 7);
+    const bf_problem *p = bf_objective_problem(obj);
+    assert_int_equal(p->npar, 7);
+    /* Internal bounds: linear for the colours, log for alpha. */
+    for (int j = 0; j < 6; j++) {
+        assert_true(p->lo[j] == 0.0);
+        assert_true(p->hi[j] == 1.0);
+    }
+    ts_assert_rel(p->lo[6], log(0.01), 1e-15, "ln lo");
+    ts_assert_rel(p->hi[6], log(0.5), 1e-15, "ln hi");
+    for (int k = 0; k < 8; k++)
+        assert_int_equal(bf_objective_fixed(obj, k), k == 7);
+    double lo[8], hi[8];
+    bf_objective_bounds(obj, lo, hi);
+    assert_true(lo[6] == 0.01 && hi[6] == 0.5 && lo[7] == 0.04 && hi[7] == 0.04);
+
+    double x[8] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.07, 0.9}, z[7], x2[8];
+    bf_objective_to_internal(obj, x, z);
+    ts_assert_rel(z[6], log(0.07), 1e-15, "z alpha");
+    assert_true(z[0] == 0.1 && z[5] == 0.6);
+    bf_objective_to_model(obj, z, x2);
+    for (int k = 0; k < 7; k++)
+        ts_assert_rel(x2[k], x[k], 1e-15, "round trip");
+    assert_true(x2[7] == 0.04); /* fixed: its value, whatever x held */
+    /* to_internal clamps into the effective bounds. */
+    x[6] = 0.9;
+    x[0] = -1.0;
+    bf_objective_to_internal(obj, x, z);
+    ts_assert_rel(z[6], log(0.5), 1e-15, "clamped alpha");
+    assert_true(z[0] == 0.0);
+    bf_objective_free(obj);
+
+    obj = make_obj(ph, s, BF_RESIDUAL_LINEAR, NULL, 0);
+    p = bf_objective_problem(obj);
+    assert_int_equal(p->npar, 7);
+    assert_true(p->lo[6] == 0.0);
+    ts_assert_rel(p->hi[6], log1p(1e6), 1e-15, "log1p hi");
+    double xp[7] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 12345.0}, zp[7], xp2[7];
+    bf_objective_to_internal(obj, xp, zp);
+    ts_assert_rel(zp[6], log1p(12345.0), 1e-15, "z n");
+    bf_objective_to_model(obj, zp, xp2);
+    ts_assert_rel(xp2[6], 12345.0, 1e-14, "n round trip");
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+    bf_model_free(ph);
+}
+
+/* An open lower bound (Brady's a in (0, 3]) is nudged in, so z never maps onto it. */
+static void test_open_bounds(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("brady", 1);
+    bf_samples *s = random_samples(10, 1, 4);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, NULL, 0);
+    int P = bf_model_nfree(m);
+    double lo[16], hi[16];
+    bf_objective_bounds(obj, lo, hi);
+    int ka = bf_model_param_offset(m, bf_model_find_param(m, "a"));
+    assert_true(lo[ka] > 0.0 && lo[ka] < 1e-8);
+    assert_true(hi[ka] == 3.0);
+    const bf_problem *p = bf_objective_problem(obj);
+    double *z = malloc((size_t)p->npar * sizeof *z), *x = malloc((size_t)P * sizeof *x);
+    for (int j = 0; j < p->npar; j++)
+        z[j] = p->lo[j];
+    bf_objective_to_model(obj, z, x);
+    assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
+    free(z);
+    free(x);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* ---- Overrides ----------------------------------------------------------------------- */
+
+static void expect_parse_error(int bound, const char *text, const char *fragment)
+{
+    bf_override ov;
+    bf_error err = {0};
+    int rc = bound ? bf_override_parse_bound(text, &ov, &err) : bf_override_parse_fix(text, &ov, &err);
+    assert_int_equal(rc, BF_ERR_ARG);
+    if (!strstr(err.msg, text) || !strstr(err.msg, fragment) || strchr(err.msg, '\n'))
+        fail_msg("'%s': message '%s' lacks the text or '%s'", text, err.msg, fragment);
+}
+
+static void test_override_parse(void **state)
+{
+    (void)state;
+    bf_override ov;
+    assert_int_equal(bf_override_parse_fix("alpha=0.1", &ov, NULL), BF_OK);
+    assert_string_equal(ov.name, "alpha");
+    assert_int_equal(ov.channel, -1);
+    assert_int_equal(ov.fix, 1);
+    assert_true(ov.value == 0.1);
+    assert_int_equal(bf_override_parse_fix("rho_d[2]=0.3", &ov, NULL), BF_OK);
+    assert_string_equal(ov.name, "rho_d");
+    assert_int_equal(ov.channel, 2);
+    assert_true(ov.value == 0.3);
+    assert_int_equal(bf_override_parse_bound("alpha=0.01:0.5", &ov, NULL), BF_OK);
+    assert_string_equal(ov.name, "alpha");
+    assert_int_equal(ov.fix, 0);
+    assert_true(ov.lo == 0.01 && ov.hi == 0.5);
+    assert_int_equal(bf_override_parse_bound("rho_s_2[0]=1e-3:2e-1", &ov, NULL), BF_OK);
+    assert_string_equal(ov.name, "rho_s_2");
+    assert_int_equal(ov.channel, 0);
+    assert_true(ov.lo == 1e-3 && ov.hi == 2e-1);
+
+    expect_parse_error(0, "alpha0.1", "NAME=VALUE");
+    expect_parse_error(0, "=0.1", "no parameter name");
+    expect_parse_error(0, "alpha=", "not a finite number");
+    expect_parse_error(0, "alpha=abc", "not a finite number");
+    expect_parse_error(0, "alpha=0.1x", "not a finite number");
+    expect_parse_error(0, "alpha=nan", "not a finite number");
+    expect_parse_error(0, "alpha=inf", "not a finite number");
+    expect_parse_error(0, "rho_d[x]=1", "channel index");
+    expect_parse_error(0, "rho_d[-1]=1", "channel index");
+    expect_parse_error(0, "rho_d[1=1", "channel index");
+    expect_parse_error(0, "rho_d[1]x=1", "channel index");
+    expect_parse_error(1, "alpha=0.1", "LO:HI");
+    expect_parse_error(1, "alpha=0.5:0.1", "not below");
+    expect_parse_error(1, "alpha=0.5:0.5", "fix");
+    expect_parse_error(1, "alpha=:0.5", "lower bound");
+    expect_parse_error(1, "alpha=0.1:", "upper bound");
+    expect_parse_error(1, "alpha=0.1:0.5:0.7", "upper bound");
+}
+
+/* Validation against the model in bf_objective_new: one-line errors naming the target. */
+static void expect_new_error(const char *text, int bound, int code, const char *fragment)
+{
+    bf_model *m = ts_model("walter", 3);
+    bf_samples *s = random_samples(5, 3, 1);
+    bf_override ov;
+    if (bound)
+        assert_int_equal(bf_override_parse_bound(text, &ov, NULL), BF_OK);
+    else
+        assert_int_equal(bf_override_parse_fix(text, &ov, NULL), BF_OK);
+    bf_objective_options o = {.overrides = &ov, .noverrides = 1};
+    bf_error err = {0};
+    assert_null(bf_objective_new(m, s, &o, &err));
+    assert_int_equal(err.code, code);
+    if (!strstr(err.msg, fragment) || !strstr(err.msg, ov.name))
+        fail_msg("'%s': message '%s' lacks '%s' or the name", text, err.msg, fragment);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+static void test_override_validation(void **state)
+{
+    (void)state;
+    expect_new_error("beta=0.1", 0, BF_ERR_ARG, "no parameter 'beta'");
+    expect_new_error("rho_d[3]=0.1", 0, BF_ERR_ARG, "channel 3 out of range");
+    expect_new_error("alpha[0]=0.1", 0, BF_ERR_ARG, "no channel index");
+    expect_new_error("alpha=2", 0, BF_ERR_RANGE, "outside the model's bounds");
+    expect_new_error("alpha=0", 0, BF_ERR_RANGE, "outside the model's bounds");
+    expect_new_error("f0=-0.1", 0, BF_ERR_RANGE, "outside the model's bounds");
+    expect_new_error("alpha=0:0.5", 1, BF_ERR_RANGE, "only be narrowed");
+    expect_new_error("rho_s=0.1:2", 1, BF_ERR_RANGE, "only be narrowed");
+    expect_new_error("rho_s[1]=0.1:inf", 1, BF_ERR_RANGE, "only be narrowed");
+
+    /* Applied: a channel fixed, the others free; a later override of the same entry
+     * replaces an earlier one; model lo kept where the bound equals it. */
+    bf_model *m = ts_model("walter", 3);
+    bf_samples *s = random_samples(5, 3, 1);
+    bf_override ov[3];
+    assert_int_equal(bf_override_parse_fix("rho_d[1]=0.3", &ov[0], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_fix("alpha=0.2", &ov[1], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_bound("alpha=1e-4:0.4", &ov[2], NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 3);
+    assert_int_equal(bf_objective_nz(obj), 7);
+    double lo[8], hi[8];
+    bf_objective_bounds(obj, lo, hi);
+    for (int k = 0; k < 8; k++)
+        assert_int_equal(bf_objective_fixed(obj, k), k == 1);
+    assert_true(lo[1] == 0.3 && hi[1] == 0.3);
+    assert_true(lo[0] == 0.0 && hi[0] == 1.0);
+    assert_true(lo[6] == 1e-4 && hi[6] == 0.4);
+    bf_objective_free(obj);
+    /* Channel mismatch. */
+    bf_model *m1 = ts_model("walter", 1);
+    bf_error err = {0};
+    assert_null(bf_objective_new(m1, s, NULL, &err));
+    assert_int_equal(err.code, BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "channel"));
+    bf_model_free(m1);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+static void test_residual_names(void **state)
+{
+    (void)state;
+    for (int k = 0; k < NFORMS; k++) {
+        bf_residual r;
+        assert_int_equal(bf_residual_parse(bf_residual_name(all_forms[k]), &r, NULL), BF_OK);
+        assert_int_equal(r, all_forms[k]);
+    }
+    bf_residual r;
+    bf_error err = {0};
+    assert_int_equal(bf_residual_parse("squared", &r, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "squared"));
+    assert_non_null(strstr(err.msg, "cbrt"));
+}
+
+/* ---- Solid-angle weights -------------------------------------------------------------- */
+
+/* The cell's measure by the midpoint rule on the raw integrand 4 cos(td) sin(th) sin(td)
+ * over its extent (phi_d cells are all equal): independent of the code's closed form. */
+static double cell_measure(int i, int j)
+{
+    double h0 = (i / 90.0) * (i / 90.0) * M_PI / 2, h1 = ((i + 1) / 90.0) * ((i + 1) / 90.0) * M_PI / 2;
+    double d0 = j / 90.0 * M_PI / 2, d1 = (j + 1) / 90.0 * M_PI / 2;
+    const int N = 2000;
+    double sh = 0, sd = 0;
+    for (int q = 0; q < N; q++) {
+        double th = h0 + (q + 0.5) * (h1 - h0) / N, td = d0 + (q + 0.5) * (d1 - d0) / N;
+        sh += sin(th) * (h1 - h0) / N;
+        sd += 4 * cos(td) * sin(td) * (d1 - d0) / N;
+    }
+    return sh * sd;
+}
+
+static void test_solid_angle(void **state)
+{
+    (void)state;
+    /* Cells (theta_h index, theta_d index) at phi_d index 90, all above the horizon. */
+    static const int cells[][2] = {{0, 0}, {1, 0}, {1, 10}, {10, 5}, {30, 30}, {60, 20}, {85, 1}, {88, 0}, {89, 0}, {45, 44}};
+    const size_t n = sizeof cells / sizeof cells[0];
+    bf_model *m = ts_model("lambert", 3);
+    bf_samples *s = bf_samples_new(n, 3, NULL);
+    s->merl = calloc(1, sizeof *s->merl);
+    s->merl->cell = calloc(n, sizeof *s->merl->cell);
+    for (size_t q = 0; q < n; q++) {
+        int32_t cell = 90 + cells[q][1] * 180 + cells[q][0] * 180 * 90;
+        s->merl->cell[q] = cell;
+        bf_merl_cell_directions(cell, &s->theta_i[q], &s->phi_i[q], &s->theta_o[q], &s->phi_o[q]);
+    }
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    for (size_t q = 0; q < n; q++)
+        assert_true(bf_geometry_valid(g, q));
+    /* Measured 0 and rho_d = 1 (f = 1/pi): the linear residual is sqrt(w) / pi. */
+    bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .solid_angle = 1};
+    bf_error err = {0};
+    bf_objective *obj = bf_objective_new(m, s, &o, &err);
+    if (!obj)
+        fail_msg("%s", err.msg);
+    const bf_problem *p = bf_objective_problem(obj);
+    double x[3] = {1, 1, 1}, z[3], r[3 * 10];
+    bf_objective_to_internal(obj, x, z);
+    assert_int_equal(p->eval(p->ctx, z, 0, 3 * n, r, NULL), 0);
+    double w[10], sum = 0, msum = 0;
+    for (size_t q = 0; q < n; q++) {
+        w[q] = (r[3 * q] * M_PI) * (r[3 * q] * M_PI);
+        assert_true(r[3 * q + 1] == r[3 * q] && r[3 * q + 2] == r[3 * q]);
+        assert_true(w[q] > 0);
+        sum += w[q];
+        msum += cell_measure(cells[q][0], cells[q][1]);
+    }
+    ts_assert_rel(sum / (double)n, 1.0, 1e-13, "mean weight");
+    for (size_t q = 0; q < n; q++)
+        ts_assert_rel(w[q], cell_measure(cells[q][0], cells[q][1]) * (double)n / msum, 1e-6, "cell weight");
+    /* Cells are narrow near theta_h = 0 and wide near 90: weights follow. */
+    assert_true(w[8] > 50 * w[1]);  /* (89, 0) against (1, 0) */
+    assert_true(w[1] > 2 * w[0]);   /* (1, 0) against (0, 0) */
+    bf_objective_free(obj);
+
+    /* Without a MERL origin: an error. */
+    bf_samples_drop_origin(s);
+    memset(&err, 0, sizeof err);
+    assert_null(bf_objective_new(m, s, &o, &err));
+    assert_int_equal(err.code, BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "MERL"));
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* ---- Energy constraint ------------------------------------------------------------------ */
+
+static void test_constraint(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("walter", 3);
+    bf_samples *s = random_samples(5, 3, 2);
+    bf_override ov;
+    assert_int_equal(bf_override_parse_fix("rho_s[1]=0.7", &ov, NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, &ov, 1);
+    const bf_problem *p = bf_objective_problem(obj);
+    assert_non_null(p->constraint);
+    double x[8] = {0.5, 0.2, 0.1, 0.3, 0.7, 0.1, 0.1, 0.5}, z[7], grad[7];
+    bf_objective_to_internal(obj, x, z);
+    /* sums 0.8, 0.9, 0.2: channel 1 rules, and only rho_d[1] is free there */
+    ts_assert_rel(p->constraint(p->ctx, z, grad), -0.1, 1e-14, "constraint");
+    for (int j = 0; j < 7; j++)
+        assert_true(grad[j] == (j == 1 ? 1.0 : 0.0));
+    x[3] = 0.9; /* channel 0: 1.4 */
+    bf_objective_to_internal(obj, x, z);
+    ts_assert_rel(p->constraint(p->ctx, z, grad), 0.4, 1e-14, "violated");
+    for (int j = 0; j < 7; j++)
+        assert_true(grad[j] == (j == 0 || j == 3 ? 1.0 : 0.0));
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* ---- Standard errors ----------------------------------------------------------------------- */
+
+/* Lambert, C = 1: f = rho_d / pi everywhere, so J = 1/pi (linear) or c_i / pi (cosine), and
+ * se(rho_d) = s / sqrt(sum J_i^2), s^2 = SSR / (n - 1). */
+static void test_stderr_lambert(void **state)
+{
+    (void)state;
+    const size_t n = 50;
+    bf_model *m = ts_model("lambert", 1);
+    bf_samples *s = random_samples(n, 1, 11);
+    ts_rng r = {3};
+    for (size_t i = 0; i < n; i++)
+        s->value[i] = 0.1 + 0.02 * ts_uniform(&r);
+    s->theta_i[7] = 100; /* below the horizon: does not count in n */
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    for (int form = 0; form < 2; form++) {
+        bf_residual rf = form ? BF_RESIDUAL_COSINE : BF_RESIDUAL_LINEAR;
+        bf_objective *obj = make_obj(m, s, rf, NULL, 0);
+        double x = 0.35, se;
+        assert_int_equal(bf_objective_stderr(obj, &x, &se, NULL), BF_OK);
+        double ssr = 0, sjj = 0;
+        size_t nv = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (!bf_geometry_valid(g, i))
+                continue;
+            double c = form ? g->lz[i] : 1.0, res = (x / M_PI - s->value[i]) * c;
+            ssr += res * res;
+            sjj += (c / M_PI) * (c / M_PI);
+            nv++;
+        }
+        assert_int_equal(nv, n - 1);
+        ts_assert_rel(se, sqrt(ssr / (double)(nv - 1)) / sqrt(sjj), 1e-12, "se(rho_d)");
+        bf_objective_free(obj);
+    }
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* Phong with n fixed is linear in rho_d and rho_s, with correlated columns: the
+ * covariance is the inverse of a 2 x 2 J^T J per channel, computed here by hand. */
+static void test_stderr_phong(void **state)
+{
+    (void)state;
+    const size_t n = 60;
+    const int C = 3;
+    bf_model *m = ts_model("phong", C);
+    bf_samples *s = random_samples(n, C, 12);
+    ts_rng r = {4};
+    for (size_t i = 0; i < n * (size_t)C; i++)
+        s->value[i] = 0.05 + 0.5 * ts_uniform(&r);
+    bf_override ov;
+    assert_int_equal(bf_override_parse_fix("n=8", &ov, NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, &ov, 1);
+    double x[7] = {0.3, 0.4, 0.5, 0.2, 0.1, 0.6, 8}, se[7];
+    assert_int_equal(bf_objective_stderr(obj, x, se, NULL), BF_OK);
+    assert_true(se[6] == 0.0);
+    /* Columns: a_i = f(rho_d = 1, rho_s = 0), b_i = f(0, 1) (the model is linear). */
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    double xa[7] = {1, 1, 1, 0, 0, 0, 8}, xb[7] = {0, 0, 0, 1, 1, 1, 8};
+    double *a = ts_eval(m, xa, g), *b = ts_eval(m, xb, g), *f = ts_eval(m, x, g);
+    double ssr = 0;
+    for (size_t q = 0; q < n * (size_t)C; q++)
+        ssr += (f[q] - s->value[q]) * (f[q] - s->value[q]);
+    double s2 = ssr / (double)(n * (size_t)C - 6);
+    for (int c = 0; c < C; c++) {
+        double aa = 0, ab = 0, bb = 0;
+        for (size_t i = 0; i < n; i++) {
+            size_t q = i * (size_t)C + (size_t)c;
+            aa += a[q] * a[q];
+            ab += a[q] * b[q];
+            bb += b[q] * b[q];
+        }
+        double det = aa * bb - ab * ab;
+        ts_assert_rel(se[c], sqrt(s2 * bb / det), 1e-9, "se(rho_d)");
+        ts_assert_rel(se[3 + c], sqrt(s2 * aa / det), 1e-9, "se(rho_s)");
+    }
+    free(a);
+    free(b);
+    free(f);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+/* Two identical lobes: rho_s_1 and rho_s_2 are not determined (NaN), rho_d is. A
+ * parameter the residuals do not depend on (f0 of a lobe whose rho_s is 0) is NaN too. */
+static void test_stderr_singular(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("cook_torrance:lobes=2", 1); /* rho_d rho_s_1 m_1 f0_1 rho_s_2 m_2 f0_2 */
+    bf_samples *s = random_samples(80, 1, 13);
+    ts_rng r = {5};
+    for (size_t i = 0; i < 80; i++)
+        s->value[i] = 0.05 + 0.5 * ts_uniform(&r);
+    bf_override ov[4];
+    assert_int_equal(bf_override_parse_fix("m_1=0.2", &ov[0], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_fix("m_2=0.2", &ov[1], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_fix("f0_1=0.5", &ov[2], NULL), BF_OK);
+    assert_int_equal(bf_override_parse_fix("f0_2=0.5", &ov[3], NULL), BF_OK);
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 4);
+    double x[7] = {0.3, 0.2, 0.2, 0.5, 0.1, 0.2, 0.5}, se[7];
+    assert_int_equal(bf_objective_stderr(obj, x, se, NULL), BF_OK);
+    assert_true(isfinite(se[0]) && se[0] > 0);
+    assert_true(isnan(se[1]) && isnan(se[4]));
+    assert_true(se[2] == 0 && se[3] == 0 && se[5] == 0 && se[6] == 0);
+    bf_objective_free(obj);
+
+    /* f0_2 with rho_s_2 = 0: a zero column. */
+    assert_int_equal(bf_override_parse_fix("m_2=0.05", &ov[1], NULL), BF_OK);
+    obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 2);
+    double x2[7] = {0.3, 0.2, 0.2, 0.5, 0.0, 0.05, 0.5};
+    assert_int_equal(bf_objective_stderr(obj, x2, se, NULL), BF_OK);
+    assert_true(isfinite(se[0]) && isfinite(se[1]) && isfinite(se[3]) && isfinite(se[4]));
+    assert_true(isnan(se[6]));
+    /* Out of bounds: an error, not numbers. */
+    x2[0] = 2.0;
+    assert_int_equal(bf_objective_stderr(obj, x2, se, NULL), BF_ERR_RANGE);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_forms_values),
+        cmocka_unit_test(test_forms_extremes),
+        cmocka_unit_test(test_weights_and_horizon),
+        cmocka_unit_test(test_jacobian_fd),
+        cmocka_unit_test(test_row_ranges),
+        cmocka_unit_test(test_parametrisation),
+        cmocka_unit_test(test_open_bounds),
+        cmocka_unit_test(test_override_parse),
+        cmocka_unit_test(test_override_validation),
+        cmocka_unit_test(test_residual_names),
+        cmocka_unit_test(test_solid_angle),
+        cmocka_unit_test(test_constraint),
+        cmocka_unit_test(test_stderr_lambert),
+        cmocka_unit_test(test_stderr_phong),
+        cmocka_unit_test(test_stderr_singular),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
