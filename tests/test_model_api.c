@@ -201,7 +201,7 @@ static void test_eval_range(void **state)
     for (size_t i = 0; i < N * 3; i++)
         part[i] = -1.0;
     bf_model_eval_range(m, x, g, 0, 130, part, gp);
-    bf_model_eval_range(m, x, g, 130, N, part, gp);
+    bf_model_eval_range(m, x, g, 130, N, part + 130 * 3, gp + 130 * 3 * (size_t)P); /* relative to i0 */
     assert_memory_equal(all, part, N * 3 * sizeof *all);
     assert_memory_equal(ga, gp, N * 3 * (size_t)P * sizeof *ga);
     free(all);

@@ -76,7 +76,9 @@ int bf_model_check(const bf_model *m, const double *x, bf_error *err);
  * Jacobian: grad[(i*C + c)*P + k] = d values[i*C + c] / d x[k]. Thread-safe. */
 void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
                    double *values, double *grad);
-/* The same for samples [i0, i1) only; outputs are indexed as for the whole set. */
+/* The same for samples [i0, i1) only, for callers that split the work (threads,
+ * chunks): outputs start at sample i0, i.e. values[(i - i0)*C + c] and
+ * grad[((i - i0)*C + c)*P + k], so a buffer for (i1 - i0) samples suffices. */
 void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
                          size_t i0, size_t i1, double *values, double *grad);
 

@@ -48,9 +48,8 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
     const double *meas = o->samples->value;
     for (size_t ib = first; ib < end; ib += chunk) {
         size_t ie = ib + chunk < end ? ib + chunk : end;
-        /* The model indexes its outputs by absolute sample; shift the chunk buffers so
-         * that sample ib lands at their start (never dereferenced outside them). */
-        bf_model_eval_range(o->model, x, g, ib, ie, vals - ib * C, jac ? grad - ib * C * P : NULL);
+        /* Range outputs start at sample ib: the chunk buffers hold exactly the chunk. */
+        bf_model_eval_range(o->model, x, g, ib, ie, vals, jac ? grad : NULL);
         for (size_t i = ib; i < ie; i++) {
             size_t c0 = i == first ? r0 - i * C : 0;
             size_t c1 = (i + 1) * C > r1 ? r1 - i * C : C;

@@ -30,13 +30,13 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
     const double kd = 28.0 / (23.0 * M_PI);
 
     for (size_t i = i0; i < i1; i++) {
-        double *row0 = grad ? grad + i * (size_t)C * (size_t)P : NULL;
+        double *row0 = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
         if (row0)
             memset(row0, 0, (size_t)C * (size_t)P * sizeof *row0);
         double nl = g->lz[i], nv_ = g->vz[i];
         if (!(nl > 0.0 && nv_ > 0.0)) {
             for (int c = 0; c < C; c++)
-                values[i * (size_t)C + (size_t)c] = 0.0;
+                values[(i - i0) * (size_t)C + (size_t)c] = 0.0;
             continue;
         }
         double s2 = g->sin2h[i], hz = g->hz[i], vh = g->vh[i];
@@ -71,7 +71,7 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
             double rs = rho_s[c], rd = rho_d[c];
             double F = rs + (1.0 - rs) * m5;
             double spec = spec0 * F;
-            values[i * (size_t)C + (size_t)c] = spec + rd * (1.0 - rs) * diff0;
+            values[(i - i0) * (size_t)C + (size_t)c] = spec + rd * (1.0 - rs) * diff0;
             if (row0) {
                 double *row = row0 + (size_t)c * (size_t)P;
                 row[o_d + c] = (1.0 - rs) * diff0;

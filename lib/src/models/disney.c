@@ -123,8 +123,8 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     const double spec08 = spec * 0.08;
 
     for (size_t i = i0; i < i1; i++) {
-        double *out = values + i * (size_t)C;
-        double *rows = grad ? grad + i * (size_t)C * (size_t)P : NULL;
+        double *out = values + (i - i0) * (size_t)C;
+        double *rows = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
         if (!bf_geometry_valid(g, i)) {
             for (int c = 0; c < C; c++)
                 out[c] = 0.0;

@@ -47,7 +47,7 @@ struct bf_family {
     /* Adds the parameters for m->lobes and m->opt (via bf_model_add_param) and sets
      * reciprocal / energy_conserving. Returns BF_OK or an error. */
     int (*configure)(bf_model *m, bf_error *err);
-    /* Evaluator over samples [i0, i1) (values and grad as bf_model_eval): either the
+    /* Evaluator over samples [i0, i1), outputs relative to i0 (as bf_model_eval_range): either the
      * family's own, or bf_eval_diffuse_lobes together with a `lobe` shape. */
     void (*eval)(const bf_model *m, const double *x, const bf_geometry *g,
                  size_t i0, size_t i1, double *values, double *grad);

@@ -31,7 +31,7 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
             int valid = bf_geometry_valid(g, i);
             for (int c = 0; c < C; c++) {
                 double f = 0.0;
-                double *row = grad ? grad + ((i * (size_t)C) + (size_t)c) * (size_t)P : NULL;
+                double *row = grad ? grad + (((i - i0) * (size_t)C) + (size_t)c) * (size_t)P : NULL;
                 if (row)
                     memset(row, 0, (size_t)P * sizeof *row);
                 if (valid) {
@@ -50,7 +50,7 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
                         }
                     }
                 }
-                values[i * (size_t)C + (size_t)c] = f;
+                values[(i - i0) * (size_t)C + (size_t)c] = f;
             }
         }
     }

@@ -27,7 +27,7 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     const double dA = -0.33 * sig / (qa * qa), dB = 0.081 * sig / (qb * qb);
 
     for (size_t i = i0; i < i1; i++) {
-        double *row0 = grad ? grad + i * (size_t)C * (size_t)P : NULL;
+        double *row0 = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
         if (row0)
             memset(row0, 0, (size_t)C * (size_t)P * sizeof *row0);
         double nl = g->lz[i], nv = g->vz[i];
@@ -39,7 +39,7 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
             dshape = (dA + dB * t) * (1.0 / M_PI);
         }
         for (int c = 0; c < C; c++) {
-            values[i * (size_t)C + (size_t)c] = rho_d[c] * shape;
+            values[(i - i0) * (size_t)C + (size_t)c] = rho_d[c] * shape;
             if (row0) {
                 double *row = row0 + (size_t)c * (size_t)P;
                 row[o_d + c] = shape;
