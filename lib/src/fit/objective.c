@@ -66,7 +66,8 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
                 }
                 double d;
                 size_t li = (i - ib) * C + c;
-                res[row] = w * bf_obj_form(o->residual, vals[li], meas[r], cs, o->delta[c], &d);
+                double t = o->meas_t ? o->meas_t[r] : bf_obj_form_meas(o->residual, meas[r], cs);
+                res[row] = w * bf_obj_form_t(o->residual, vals[li], meas[r], cs, o->delta[c], t, &d);
                 if (jr) {
                     const double *gr = grad + li * P, s = w * d;
                     for (int j = 0; j < ncols; j++)
@@ -149,6 +150,7 @@ void bf_objective_free(bf_objective *o)
     free(o->zhi);
     free(o->sw);
     free(o->delta);
+    free(o->meas_t);
     free(o->colour_off);
     free(o);
 }
@@ -174,6 +176,20 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
         o->sw[i] = w > 0.0 && isfinite(w) ? sqrt(w) : 0.0;
     }
     return BF_OK;
+}
+
+/* The log and cbrt forms' measurement terms, once (their log1p or cbrt was a third of
+ * an evaluation). Without the memory for them each evaluation computes them itself. */
+static void setup_meas_terms(bf_objective *o)
+{
+    if (o->residual != BF_RESIDUAL_LOG && o->residual != BF_RESIDUAL_CBRT)
+        return;
+    const size_t C = (size_t)o->C;
+    if (!(o->meas_t = malloc(o->n * C * sizeof *o->meas_t)))
+        return;
+    for (size_t i = 0; i < o->n; i++)
+        for (size_t c = 0; c < C; c++)
+            o->meas_t[i * C + c] = bf_obj_form_meas(o->residual, o->samples->value[i * C + c], o->geom->lz[i]);
 }
 
 static void setup_delta(bf_objective *o)
@@ -257,6 +273,7 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     if (setup_weights(o, opt, err))
         goto fail;
     setup_delta(o);
+    setup_meas_terms(o);
 
     for (int i = 0; i < bf_model_nparams(m); i++)
         if (bf_model_param(m, i)->colour)

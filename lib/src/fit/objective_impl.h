@@ -31,6 +31,7 @@ struct bf_objective {
 
     double *sw;             /* NULL, or per-sample sqrt of the combined weight */
     double *delta;          /* C floors of the relative form */
+    double *meas_t;         /* NULL, or n*C terms bf_obj_form_meas (log and cbrt forms) */
     size_t nvalid;          /* samples above the horizon */
 
     /* Energy constraint: colour parameters (their offsets) summed per channel. */
@@ -71,11 +72,23 @@ static inline double bf_obj_cbrt(double u, double *d)
     return BF_OBJ_CBRT_EPS3 * (4.0 * t - t * t * t) / 3.0;
 }
 
+/* The measurement's own term of the log and cbrt forms (ln(1 + m c), cbrt(m c)), which
+ * the objective computes once per residual rather than at every evaluation; 0 for the
+ * other forms. */
+static inline double bf_obj_form_meas(bf_residual form, double mm, double c)
+{
+    switch (form) {
+    case BF_RESIDUAL_LOG: return bf_obj_log1p(mm * c);
+    case BF_RESIDUAL_CBRT: return bf_obj_cbrt(mm * c, NULL);
+    default: return 0.0;
+    }
+}
+
 /* r(f) for one model value f against the measurement mm at cosine c (= N.L), and
- * *drdf = dr/df. delta is the channel's floor for the relative form. Finite for every
- * finite input, negative measurements included. */
-static inline double bf_obj_form(bf_residual form, double f, double mm, double c, double delta,
-                                 double *drdf)
+ * *drdf = dr/df; t = bf_obj_form_meas(form, mm, c). delta is the channel's floor for the
+ * relative form. Finite for every finite input, negative measurements included. */
+static inline double bf_obj_form_t(bf_residual form, double f, double mm, double c, double delta,
+                                   double t, double *drdf)
 {
     switch (form) {
     case BF_RESIDUAL_COSINE:
@@ -84,11 +97,11 @@ static inline double bf_obj_form(bf_residual form, double f, double mm, double c
     case BF_RESIDUAL_LOG: {
         double u = f * c;
         *drdf = u > BF_OBJ_LOG_FLOOR ? c / (1.0 + u) : 0.0;
-        return bf_obj_log1p(u) - bf_obj_log1p(mm * c);
+        return bf_obj_log1p(u) - t;
     }
     case BF_RESIDUAL_CBRT: {
         double d;
-        double r = bf_obj_cbrt(f * c, &d) - bf_obj_cbrt(mm * c, NULL);
+        double r = bf_obj_cbrt(f * c, &d) - t;
         *drdf = d * c;
         return r;
     }

@@ -125,8 +125,11 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 // npar + 1 residuals when longer, see the top of the file).
 class RangeCost final : public ceres::CostFunction {
 public:
-    RangeCost(const bf_problem *p, const bf_loss &loss, size_t r0, size_t r1, ScratchPool *pool)
-        : p_(p), loss_(loss), r0_(r0), r1_(r1), pool_(pool)
+    // passes: NULL, or counts the evaluations this block really makes (for the first
+    // block: the whole set's evaluations, cached answers not counted).
+    RangeCost(const bf_problem *p, const bf_loss &loss, size_t r0, size_t r1, ScratchPool *pool,
+              int *passes = nullptr)
+        : p_(p), loss_(loss), r0_(r0), r1_(r1), pool_(pool), passes_(passes)
     {
         const size_t np = static_cast<size_t>(p->npar);
         compressed_ = r1 - r0 > np + 1;
@@ -138,60 +141,110 @@ public:
                   double **jacobians) const override
     {
         double *jac = jacobians ? jacobians[0] : nullptr;
-        if (!compressed_)
+        if (!compressed_) {
+            if (passes_)
+                ++*passes_;
             return raw(parameters[0], residuals, jac);
+        }
         const size_t n = r1_ - r0_, np = static_cast<size_t>(p_->npar);
+        const double *x = parameters[0];
+        if (cached(x, jac != nullptr)) {
+            if (jac) {
+                std::copy(cache_g_.begin(), cache_g_.end(), residuals);
+                std::copy(cache_F_.begin(), cache_F_.end(), jac);
+            } else { // exactly what the residual-only path computes
+                std::fill(residuals, residuals + np + 1, 0.0);
+                residuals[0] = std::sqrt(cache_rr_);
+            }
+            return true;
+        }
+        cache_state_ = kEmpty;
+        if (passes_)
+            ++*passes_;
         std::unique_ptr<ScratchPool::Buffers> b = pool_->take();
         b->res.resize(n);
         if (jac)
             b->jac.resize(n * np);
-        bool ok = raw(parameters[0], b->res.data(), jac ? b->jac.data() : nullptr);
+        bool ok = raw(x, b->res.data(), jac ? b->jac.data() : nullptr, false);
+        double rr = 0.0;
         if (ok)
-            ok = compress(b->res.data(), jac ? b->jac.data() : nullptr, residuals, jac);
+            ok = compress(b->res.data(), jac ? b->jac.data() : nullptr, residuals, jac, &rr);
         pool_->give(std::move(b));
+        if (ok) {
+            cache_x_.assign(x, x + np);
+            cache_rr_ = rr;
+            cache_state_ = jac ? kWithJacobian : kResiduals;
+            if (jac) {
+                cache_g_.assign(residuals, residuals + np + 1);
+                cache_F_.assign(jac, jac + (np + 1) * np);
+            }
+        }
         return ok;
     }
 
     // The block's own residuals and Jacobian (loss applied). False when eval fails or
     // gives a non-finite value: Ceres then treats the point as invalid and shrinks the
-    // step.
-    bool raw(const double *x, double *res, double *jac) const
+    // step. check_finite false leaves that test to compress(): a NaN or Inf anywhere in
+    // r or in column k of J makes |r|^2 or (J'J)_kk non-finite, which it rejects.
+    bool raw(const double *x, double *res, double *jac, bool check_finite = true) const
     {
         if (p_->eval(p_->ctx, x, r0_, r1_, res, jac) != 0)
             return false;
         const size_t n = r1_ - r0_, np = static_cast<size_t>(p_->npar);
-        for (size_t i = 0; i < n; i++)
-            if (!std::isfinite(res[i]))
-                return false;
-        if (jac)
-            for (size_t i = 0; i < n * np; i++)
-                if (!std::isfinite(jac[i]))
+        if (check_finite) {
+            for (size_t i = 0; i < n; i++)
+                if (!std::isfinite(res[i]))
                     return false;
+            if (jac)
+                for (size_t i = 0; i < n * np; i++)
+                    if (!std::isfinite(jac[i]))
+                        return false;
+        }
         if (loss_.kind != BF_LOSS_NONE)
             apply_loss(res, jac, n, np);
         return true;
     }
 
 private:
+    // The last evaluation of this block is reused when Ceres asks again at the same
+    // point, which it does at every iteration: a bounded problem's trust-region step is
+    // checked by a line search that evaluates the candidate with its gradient, then
+    // the candidate's cost is evaluated, then, once accepted, its Jacobian. The answers
+    // are the ones a fresh evaluation would give (the same code on the same input).
+    // Ceres evaluates a block from one thread at a time, so the cache needs no lock.
+    enum CacheState { kEmpty, kResiduals, kWithJacobian };
+    bool cached(const double *x, bool want_jacobian) const
+    {
+        if (cache_state_ == kEmpty || (want_jacobian && cache_state_ != kWithJacobian))
+            return false;
+        return std::equal(cache_x_.begin(), cache_x_.end(), x);
+    }
+
     // [z; sqrt(|r|^2 - |z|^2)] and [F; 0] from r (n) and J (n x p); J NULL: [|r|; 0].
-    bool compress(const double *res, const double *jac, double *out, double *out_jac) const
+    // *rr_out: |r|^2.
+    bool compress(const double *res, const double *jac, double *out, double *out_jac,
+                  double *rr_out) const
     {
         const Eigen::Index n = static_cast<Eigen::Index>(r1_ - r0_), np = p_->npar;
         Eigen::Map<const Eigen::VectorXd> r(res, n);
         Eigen::Map<Eigen::VectorXd> g(out, np + 1);
         const double rr = r.squaredNorm();
+        *rr_out = rr;
         g.setZero();
+        if (!std::isfinite(rr))
+            return false;
         if (!out_jac) {
             g[0] = std::sqrt(rr);
             return std::isfinite(g[0]);
         }
-        Eigen::Map<const RowMatrix> J(jac, n, np);
         Eigen::Map<RowMatrix> F(out_jac, np + 1, np);
         F.setZero();
-        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(np, np); // J'J, one triangle computed
-        A.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
+        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(np, np); // J'J
+        Eigen::VectorXd b = Eigen::VectorXd::Zero(np);     // J'r
+        normal_equations(jac, res, n, np, A.data(), b.data());
         A.triangularView<Eigen::StrictlyUpper>() = A.transpose();
-        const Eigen::VectorXd b = J.transpose() * r;
+        if (!A.diagonal().allFinite())
+            return false;
         // Jacobi scaling first, so that a parameter whose column is tiny next to the
         // others is not taken for a null direction.
         Eigen::VectorXd d(np);
@@ -220,6 +273,30 @@ private:
         return g.allFinite() && F.allFinite();
     }
 
+    // The lower triangle of J'J (a, column-major np x np, zeroed) and J'r (b, zeroed)
+    // for J (n x np, row-major) and r, skipping zero entries: a residual of one channel
+    // does not depend on the other channels' colour parameters, so in RGB fits half of
+    // every row is zero. NaN and Inf entries are kept (they reach the diagonal).
+    static void normal_equations(const double *jac, const double *res, Eigen::Index n,
+                                 Eigen::Index np, double *a, double *b)
+    {
+        std::vector<Eigen::Index> nz(static_cast<size_t>(np));
+        for (Eigen::Index i = 0; i < n; i++) {
+            const double *row = jac + i * np, ri = res[i];
+            Eigen::Index m = 0;
+            for (Eigen::Index k = 0; k < np; k++)
+                if (row[k] != 0.0)
+                    nz[m++] = k;
+            for (Eigen::Index u = 0; u < m; u++) {
+                const Eigen::Index k = nz[u];
+                const double jk = row[k];
+                b[k] += jk * ri;
+                for (Eigen::Index v = 0; v <= u; v++) // a(k, l), l = nz[v] <= k
+                    a[nz[v] * np + k] += jk * row[nz[v]];
+            }
+        }
+    }
+
     // r -> g = sign(r) sqrt(rho(r^2)); dg/dr = rho'(s) |r| / sqrt(rho(s)) (1 at r = 0).
     void apply_loss(double *res, double *jac, size_t n, size_t np) const
     {
@@ -243,7 +320,11 @@ private:
     bf_loss loss_;
     size_t r0_, r1_;
     ScratchPool *pool_;
+    int *passes_;
     bool compressed_;
+    mutable CacheState cache_state_ = kEmpty;
+    mutable std::vector<double> cache_x_, cache_g_, cache_F_;
+    mutable double cache_rr_ = 0.0;
 };
 
 struct NamedAlgorithm {
@@ -393,12 +474,14 @@ void run_ceres(const bf_problem *p, const bf_loss &loss, const ceres::Solver::Op
                ScratchPool *pool,
                const std::vector<std::pair<size_t, size_t>> &blocks, const std::vector<double> &lo,
                const std::vector<double> &hi, const std::vector<char> &held, double *x,
-               ceres::Solver::Summary *sum)
+               ceres::Solver::Summary *sum, int *passes)
 {
     const int np = p->npar;
     ceres::Problem problem; // owns the cost functions and the manifold
-    for (const auto &b : blocks)
-        problem.AddResidualBlock(new RangeCost(p, loss, b.first, b.second, pool), nullptr, x);
+    for (size_t b = 0; b < blocks.size(); b++)
+        problem.AddResidualBlock(new RangeCost(p, loss, blocks[b].first, blocks[b].second, pool,
+                                               b == 0 ? passes : nullptr),
+                                 nullptr, x);
     std::vector<int> fixed;
     for (int k = 0; k < np; k++) {
         if (held[k]) {
@@ -531,11 +614,11 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
         if (watch)
             opt.callbacks.push_back(&watcher);
         sum = ceres::Solver::Summary();
-        run_ceres(p, o->loss, opt, &pool, blocks, lo, hi, held, x, &sum);
+        int passes = 0; // Ceres' own counts include the answers served from the cache
+        run_ceres(p, o->loss, opt, &pool, blocks, lo, hi, held, x, &sum, &passes);
         rounds++;
         iterations += sum.iterations.empty() ? 0 : static_cast<int>(sum.iterations.size() - 1);
-        evaluations += std::max(0, sum.num_residual_evaluations) +
-                       std::max(0, sum.num_jacobian_evaluations);
+        evaluations += passes;
         seconds += std::max(0.0, sum.total_time_in_seconds);
         if (rounds == 1)
             initial_cost = sum.initial_cost;
