@@ -109,7 +109,7 @@ static void time_parts(bf_samples *s, const bf_objective_options *oo, double *t_
     *t_metrics = *t_stderr = 1e30;
     for (int rep = 0; rep < 3; rep++) {
         double t0 = now();
-        if (bf_metrics_compute(m, x, s, p->npar, &met, err) != BF_OK)
+        if (bf_metrics_compute(m, x, s, p->npar, 1, &met, err) != BF_OK)
             die("metrics", err);
         double t1 = now();
         if (bf_objective_stderr(obj, x, se, err) != BF_OK)

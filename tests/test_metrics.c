@@ -34,7 +34,7 @@ static void test_metrics_values(void **state)
     const double x[2] = {0.5, 0.25};
     bf_metrics mt;
     bf_error err = {0};
-    assert_int_equal(bf_metrics_compute(m, x, s, 2, &mt, &err), BF_OK);
+    assert_int_equal(bf_metrics_compute(m, x, s, 2, 1, &mt, &err), BF_OK);
 
     const double f[2] = {0.5 / M_PI, 0.25 / M_PI}, cs[4] = {1, cos(60 * DEG), 0, 1};
     const int used[3] = {0, 1, 3};
@@ -81,20 +81,20 @@ static void test_metrics_edges(void **state)
     double x = 0.5;
     s->value[0] = s->value[1] = 0.5 / M_PI;
     bf_metrics mt;
-    assert_int_equal(bf_metrics_compute(m, &x, s, 1, &mt, NULL), BF_OK);
+    assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, NULL), BF_OK);
     assert_true(mt.rmse == 0.0 && mt.max_err == 0.0 && mt.rmse_rel == 0.0);
     assert_true(isfinite(mt.aic) && isfinite(mt.bic));
     ts_assert_rel(mt.aic, 2 * log(DBL_MIN) + 2, 1e-15, "aic of an exact fit");
 
     s->value[0] = -3.0; /* c = 1: 1 + m c = -2 */
     s->value[1] = 0.0;
-    assert_int_equal(bf_metrics_compute(m, &x, s, 1, &mt, NULL), BF_OK);
+    assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, NULL), BF_OK);
     double dl = log1p(0.5 / M_PI) - log(1e-12), dl1 = log1p(0.5 / M_PI);
     ts_assert_rel(mt.rmse_log, sqrt((dl * dl + dl1 * dl1) / 2), 1e-6, "floored log");
     ts_assert_rel(mt.rmse_rel, fabs(0.5 / M_PI + 3.0) / 3.0, 1e-15, "rel over m != 0");
 
     s->value[0] = 0.0;
-    assert_int_equal(bf_metrics_compute(m, &x, s, 1, &mt, NULL), BF_OK);
+    assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, NULL), BF_OK);
     assert_true(isnan(mt.rmse_rel));
     assert_true(isfinite(mt.rmse));
 
@@ -103,11 +103,11 @@ static void test_metrics_edges(void **state)
     s = bf_samples_new(1, 1, NULL);
     s->theta_i[0] = 90;
     bf_error err = {0};
-    assert_int_equal(bf_metrics_compute(m, &x, s, 1, &mt, &err), BF_ERR_ARG);
+    assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "horizon"));
     bf_model *m3 = ts_model("lambert", 3);
     double x3[3] = {0.5, 0.5, 0.5};
-    assert_int_equal(bf_metrics_compute(m3, x3, s, 1, &mt, &err), BF_ERR_ARG);
+    assert_int_equal(bf_metrics_compute(m3, x3, s, 1, 1, &mt, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "channels"));
     bf_model_free(m3);
     bf_samples_free(s);

@@ -28,8 +28,9 @@ typedef struct bf_metrics {
     double rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, bic;
 } bf_metrics;
 
-int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, bf_metrics *out,
-                       bf_error *err);
+/* threads: 0 or 1 for one; the result is the same for any count. */
+int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+                       bf_metrics *out, bf_error *err);
 
 #ifdef __cplusplus
 }

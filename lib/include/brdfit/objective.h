@@ -54,6 +54,8 @@ typedef struct bf_objective_options {
     int use_weights;       /* multiply by the samples' own weights when they have some */
     const bf_override *overrides;
     int noverrides;
+    int threads;           /* threads for the objective's own passes (standard errors);
+                              the back ends take theirs from bf_solver_options */
 } bf_objective_options;
 
 typedef struct bf_objective bf_objective;

@@ -116,7 +116,10 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
         bf_fit_result_free(r);
         return rc;
     }
-    bf_objective *obj = bf_objective_new(m, s, &o->objective, err);
+    bf_objective_options oo = o->objective; /* its own passes use the solver's threads */
+    if (oo.threads < 1)
+        oo.threads = o->solver.threads;
+    bf_objective *obj = bf_objective_new(m, s, &oo, err);
     if (!obj) {
         bf_fit_result_free(r);
         return err ? err->code : BF_ERR_ARG;
@@ -202,7 +205,7 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
     }
     for (int k = 0; k < P; k++)
         r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
-    if ((rc = bf_metrics_compute(m, r->x, s, nz, &r->metrics, err)) != BF_OK ||
+    if ((rc = bf_metrics_compute(m, r->x, s, nz, oo.threads, &r->metrics, err)) != BF_OK ||
         (rc = bf_objective_stderr(obj, r->x, r->stderr_, err)) != BF_OK)
         goto done;
     r->samples = s->n;

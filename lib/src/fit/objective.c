@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "objective_impl.h"
+#include "parallel.h"
 
 /* Model-gradient scratch per chunk of samples: about 128 KiB whatever C and P are. */
 #define CHUNK_DOUBLES 16384
@@ -180,16 +181,26 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
 
 /* The log and cbrt forms' measurement terms, once (their log1p or cbrt was a third of
  * an evaluation). Without the memory for them each evaluation computes them itself. */
+enum { MEAS_CHUNK = 16384 }; /* samples */
+
+/* The measurement's term of the log or cbrt form for one chunk of samples. */
+static void meas_terms_chunk(void *ctx, size_t chunk)
+{
+    bf_objective *o = ctx;
+    const size_t C = (size_t)o->C;
+    size_t i1 = (chunk + 1) * MEAS_CHUNK < o->n ? (chunk + 1) * MEAS_CHUNK : o->n;
+    for (size_t i = chunk * MEAS_CHUNK; i < i1; i++)
+        for (size_t c = 0; c < C; c++)
+            o->meas_t[i * C + c] = bf_obj_form_meas(o->residual, o->samples->value[i * C + c], o->geom->lz[i]);
+}
+
 static void setup_meas_terms(bf_objective *o)
 {
     if (o->residual != BF_RESIDUAL_LOG && o->residual != BF_RESIDUAL_CBRT)
         return;
-    const size_t C = (size_t)o->C;
-    if (!(o->meas_t = malloc(o->n * C * sizeof *o->meas_t)))
+    if (!(o->meas_t = malloc(o->n * (size_t)o->C * sizeof *o->meas_t)))
         return;
-    for (size_t i = 0; i < o->n; i++)
-        for (size_t c = 0; c < C; c++)
-            o->meas_t[i * C + c] = bf_obj_form_meas(o->residual, o->samples->value[i * C + c], o->geom->lz[i]);
+    bf_parallel_for((o->n + MEAS_CHUNK - 1) / MEAS_CHUNK, o->threads, meas_terms_chunk, o);
 }
 
 static void setup_delta(bf_objective *o)
@@ -240,6 +251,7 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     o->samples = s;
     o->geom = g;
     o->residual = opt->residual;
+    o->threads = opt->threads;
     o->n = s->n;
     o->C = s->channels;
     o->P = bf_model_nfree(m);

@@ -15,6 +15,7 @@ struct bf_objective {
     bf_samples *samples;    /* not owned, not to be changed while the objective lives */
     const bf_geometry *geom;
     bf_residual residual;
+    int threads;            /* for the objective's own passes (standard errors) */
     size_t n;               /* samples */
     int C, P, nz;           /* channels, model-vector length, free (internal) entries */
 

@@ -13,11 +13,14 @@
  * eigenvalue counts as null below 1e-12 of the largest (the scaled matrix has unit
  * diagonal, so this is a condition number of 1e12, the limit of double precision for a
  * normal matrix). A parameter the residuals do not depend on at all (zero column) is NaN
- * too. With n <= k there is no estimate of s^2 and every free parameter is NaN. */
+ * too. With n <= k there is no estimate of s^2 and every free parameter is NaN.
+ * J^T J is accumulated over fixed row chunks on the objective's threads and the chunks
+ * are added in order, so the result does not depend on the thread count. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "objective_impl.h"
+#include "parallel.h"
 
 #define ROWS_PER_BLOCK 4096
 #define NULL_EIGEN 1e-12
@@ -104,6 +107,47 @@ static void covariance_diag(const double *jtj, int nz, double s2, double *se, do
     }
 }
 
+/* One chunk of rows: its SSR and upper triangle of J^T J, summed in chunk order later
+ * so the result does not depend on the thread count. */
+typedef struct job {
+    const bf_objective *o;
+    const double *x, *ones;
+    size_t nres;
+    int nz;
+    double *ssr;    /* per chunk */
+    double *jtj;    /* per chunk, nz*nz */
+    int failed;     /* written only as 1 by any chunk */
+} job;
+
+static void chunk_jtj(void *ctx, size_t c)
+{
+    job *j = ctx;
+    const int nz = j->nz;
+    size_t r0 = c * ROWS_PER_BLOCK, r1 = r0 + ROWS_PER_BLOCK < j->nres ? r0 + ROWS_PER_BLOCK : j->nres;
+    double *res = malloc(ROWS_PER_BLOCK * sizeof *res);
+    double *jac = malloc(ROWS_PER_BLOCK * (size_t)nz * sizeof *jac);
+    if (!res || !jac || bf_obj_eval_x(j->o, j->x, r0, r1, res, jac, nz, j->o->kidx, j->ones)) {
+        j->failed = 1;
+        free(res);
+        free(jac);
+        return;
+    }
+    double ssr = 0.0, *jtj = j->jtj + c * (size_t)nz * nz;
+    for (size_t r = 0; r < r1 - r0; r++) {
+        const double *jr = jac + r * (size_t)nz;
+        ssr += res[r] * res[r];
+        for (int a = 0; a < nz; a++) {
+            if (jr[a] == 0.0)
+                continue;
+            for (int b = a; b < nz; b++)
+                jtj[a * nz + b] += jr[a] * jr[b];
+        }
+    }
+    j->ssr[c] = ssr;
+    free(res);
+    free(jac);
+}
+
 int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
     int rc = bf_model_check(o->model, x, err);
@@ -115,56 +159,50 @@ int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_e
     if (nz == 0)
         return BF_OK;
     size_t nres = o->n * (size_t)o->C, nz2 = (size_t)nz * nz;
+    size_t nchunks = (nres + ROWS_PER_BLOCK - 1) / ROWS_PER_BLOCK;
     double *ones = malloc((size_t)nz * sizeof *ones);
-    double *res = malloc(ROWS_PER_BLOCK * sizeof *res);
-    double *jac = malloc(ROWS_PER_BLOCK * (size_t)nz * sizeof *jac);
     double *jtj = calloc(nz2, sizeof *jtj);
     double *sez = malloc((size_t)nz * sizeof *sez);
     double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
     int *idx = malloc((size_t)nz * sizeof *idx);
-    if (!ones || !res || !jac || !jtj || !sez || !work || !idx) {
+    job j = {o, x, ones, nres, nz, calloc(nchunks + 1, sizeof(double)), calloc(nchunks * nz2 + 1, sizeof(double)), 0};
+    if (!ones || !jtj || !sez || !work || !idx || !j.ssr || !j.jtj) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
     }
-    for (int j = 0; j < nz; j++)
-        ones[j] = 1.0;
+    for (int k = 0; k < nz; k++)
+        ones[k] = 1.0;
+    bf_parallel_for(nchunks, o->threads, chunk_jtj, &j);
+    if (j.failed) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
+        goto done;
+    }
     double ssr = 0.0;
-    for (size_t r0 = 0; r0 < nres; r0 += ROWS_PER_BLOCK) {
-        size_t r1 = r0 + ROWS_PER_BLOCK < nres ? r0 + ROWS_PER_BLOCK : nres;
-        if (bf_obj_eval_x(o, x, r0, r1, res, jac, nz, o->kidx, ones)) {
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
-            goto done;
-        }
-        for (size_t r = 0; r < r1 - r0; r++) {
-            const double *jr = jac + r * (size_t)nz;
-            ssr += res[r] * res[r];
-            for (int a = 0; a < nz; a++) {
-                if (jr[a] == 0.0)
-                    continue;
-                for (int b = a; b < nz; b++)
-                    jtj[a * nz + b] += jr[a] * jr[b];
-            }
-        }
+    for (size_t c = 0; c < nchunks; c++) {
+        ssr += j.ssr[c];
+        const double *p = j.jtj + c * nz2;
+        for (size_t e = 0; e < nz2; e++)
+            jtj[e] += p[e];
     }
     for (int a = 0; a < nz; a++)
         for (int b = 0; b < a; b++)
             jtj[a * nz + b] = jtj[b * nz + a];
     size_t n = o->nvalid * (size_t)o->C;
     if (n <= (size_t)nz || !isfinite(ssr)) {
-        for (int j = 0; j < nz; j++)
-            sez[j] = NAN;
+        for (int k = 0; k < nz; k++)
+            sez[k] = NAN;
     } else {
         covariance_diag(jtj, nz, ssr / (double)(n - (size_t)nz), sez, work, idx);
     }
-    for (int j = 0; j < nz; j++)
-        se[o->kidx[j]] = sez[j];
+    for (int k = 0; k < nz; k++)
+        se[o->kidx[k]] = sez[k];
 done:
     free(ones);
-    free(res);
-    free(jac);
     free(jtj);
     free(sez);
     free(work);
     free(idx);
+    free(j.ssr);
+    free(j.jtj);
     return rc;
 }
