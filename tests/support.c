@@ -309,3 +309,21 @@ void ts_expect_read_error(ts_reader reader, const char *name, const char *text, 
     if (!strstr(err.msg, fragment) || !strstr(err.msg, path) || strchr(err.msg, '\n'))
         fail_msg("%s: message '%s' lacks the path or '%s'", name, err.msg, fragment);
 }
+
+void ts_fit_defaults(bf_fit_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->objective.residual = BF_RESIDUAL_LINEAR;
+    o->objective.use_weights = 1;
+    o->solver.backend = BF_BACKEND_CERES;
+    o->starts = 1;
+}
+
+void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
+{
+    bf_error err;
+    if (bf_fit(s, spec, o, r, &err) != BF_OK)
+        fail_msg("bf_fit %s: %s", spec, err.msg);
+    if (!r->ok)
+        fail_msg("fit %s failed: %s", spec, r->solution.termination);
+}

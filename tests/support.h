@@ -8,6 +8,7 @@
 
 #include "brdfit/geometry.h"
 #include "brdfit/model.h"
+#include "brdfit/fit.h"
 #include "brdfit/samples.h"
 
 #ifndef M_PI
@@ -77,6 +78,12 @@ void ts_write_file(const char *path, const char *text, size_t len);
 typedef int (*ts_reader)(const char *path, bf_samples **out, bf_error *err);
 void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
                           const char *fragment);
+
+/* Fit options the fitting tests start from: linear residual, sample weights, Ceres,
+ * one start. */
+void ts_fit_defaults(bf_fit_options *o);
+/* bf_fit that fails the test on an error or an unusable fit. */
+void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r);
 
 /* Single value of channel c at one direction pair in degrees. */
 double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,

@@ -36,24 +36,6 @@ static bf_samples *synth(const char *spec, int C, const double *x, bf_synth_patt
     return s;
 }
 
-static void default_options(bf_fit_options *o)
-{
-    memset(o, 0, sizeof *o);
-    o->objective.residual = BF_RESIDUAL_LINEAR;
-    o->objective.use_weights = 1;
-    o->solver.backend = BF_BACKEND_CERES;
-    o->starts = 1;
-}
-
-static void fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
-{
-    bf_error err;
-    if (bf_fit(s, spec, o, r, &err) != BF_OK)
-        fail_msg("bf_fit %s: %s", spec, err.msg);
-    if (!r->ok)
-        fail_msg("fit %s failed: %s", spec, r->solution.termination);
-}
-
 static void assert_params(const bf_fit_result *r, const double *truth, double tol, const char *spec)
 {
     int P = bf_model_nfree(r->model);
@@ -86,9 +68,9 @@ static void test_recover_ceres(void **state)
         const truth_case *t = &cases[i];
         bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, NSAMPLES);
         bf_fit_options o;
-        default_options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
-        fit_ok(s, t->spec, &o, &r);
+        ts_fit_ok(s, t->spec, &o, &r);
         assert_params(&r, t->x, 1e-6, t->spec);
         assert_int_equal(r.metrics.n, 3 * NSAMPLES);
         assert_int_equal(r.metrics.k, bf_model_nfree(r.model));
@@ -107,14 +89,14 @@ static void test_recover_nlopt(void **state)
     const truth_case *t = &cases[1]; /* walter */
     bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, NSAMPLES);
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     o.solver.backend = BF_BACKEND_NLOPT;
     o.solver.algorithm = "LD_LBFGS";
     o.solver.max_iterations = 20000;
     o.solver.function_tolerance = 1e-15;
     o.solver.parameter_tolerance = 1e-13;
     bf_fit_result r;
-    fit_ok(s, t->spec, &o, &r);
+    ts_fit_ok(s, t->spec, &o, &r);
     assert_string_equal(r.solution.backend, "nlopt");
     assert_params(&r, t->x, 1e-6, t->spec);
     bf_fit_result_free(&r);
@@ -211,9 +193,9 @@ static void test_initial_guess_hard_data(void **state)
 
     /* A specular model fitted to Lambertian data converges to the Lambertian answer. */
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     bf_fit_result r;
-    fit_ok(lam, "walter", &o, &r);
+    ts_fit_ok(lam, "walter", &o, &r);
     for (int c = 0; c < 3; c++)
         ts_assert_near(r.x[c], rho[c], 1e-4, 0.0, "rho_d of walter on Lambertian data");
     assert_true(r.metrics.rmse < 1e-4);
@@ -231,13 +213,13 @@ static void test_multistart_deterministic(void **state)
     const truth_case *t = &cases[2]; /* cook_torrance */
     bf_samples *s = synth(t->spec, 3, t->x, BF_SYNTH_UNIFORM, 2000);
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     o.starts = 5;
     o.seed = 1234;
     o.solver.threads = 2;
     bf_fit_result a, b;
-    fit_ok(s, t->spec, &o, &a);
-    fit_ok(s, t->spec, &o, &b);
+    ts_fit_ok(s, t->spec, &o, &a);
+    ts_fit_ok(s, t->spec, &o, &b);
     assert_int_equal(a.starts, 5);
     assert_int_equal(b.starts, 5);
     assert_int_equal(a.seed, 1234);
@@ -263,11 +245,11 @@ static void test_fix_holds(void **state)
     assert_int_equal(bf_override_parse_fix("f0=0.3", &ov[0], &err), BF_OK);
     assert_int_equal(bf_override_parse_fix("rho_d[1]=0.3", &ov[1], &err), BF_OK);
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     o.objective.overrides = ov;
     o.objective.noverrides = 2;
     bf_fit_result r;
-    fit_ok(s, t->spec, &o, &r);
+    ts_fit_ok(s, t->spec, &o, &r);
     assert_true(r.x[7] == 0.3);
     assert_true(r.x[1] == 0.3);
     assert_true(r.fixed[7] && r.fixed[1] && !r.fixed[0] && !r.fixed[6]);
@@ -279,7 +261,7 @@ static void test_fix_holds(void **state)
     /* Fixed away from the truth: held, and the rest compensates (a worse fit). */
     assert_int_equal(bf_override_parse_fix("f0=0.9", &ov[0], &err), BF_OK);
     o.objective.noverrides = 1;
-    fit_ok(s, t->spec, &o, &r);
+    ts_fit_ok(s, t->spec, &o, &r);
     assert_true(r.x[7] == 0.9);
     assert_true(r.metrics.rmse > 1e-6);
     bf_fit_result_free(&r);
@@ -309,7 +291,7 @@ static void test_impossible_fit(void **state)
     assert_int_equal(bf_fit_initial_guess(m, s, start, &err), BF_OK);
     bf_model_free(m);
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     o.starts = 3;
     bf_fit_result r;
     assert_int_equal(bf_fit(s, "walter", &o, &r, &err), BF_OK);
@@ -342,7 +324,7 @@ static void test_result_json_round_trip(void **state)
     bf_model_free(m);
     bf_samples *s = synth(spec, 3, truth, BF_SYNTH_UNIFORM, 2000);
     bf_fit_options o;
-    default_options(&o);
+    ts_fit_defaults(&o);
     o.start = truth; /* the fit moves off the exact truth by rounding: any 17-digit values do */
     bf_fit_result r;
     bf_error err;

@@ -59,15 +59,6 @@ static bf_samples *stratified(const char *spec, const double *x, size_t n)
     return generate(spec, x, &o);
 }
 
-static void options(bf_fit_options *o)
-{
-    memset(o, 0, sizeof *o);
-    o->objective.residual = BF_RESIDUAL_LINEAR;
-    o->objective.use_weights = 1;
-    o->solver.backend = BF_BACKEND_CERES;
-    o->starts = 1;
-}
-
 /* Runs the fit; fails the test on an error, on NaN parameters or metrics, or on a
  * failed fit without a reason. Returns r->ok. */
 static int fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, const char *what)
@@ -127,7 +118,7 @@ static void test_near_mirror(void **state)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         bf_samples *s = gonio(cases[i].spec, cases[i].x, 0.01);
         bf_fit_options o;
-        options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
         if (fit(s, cases[i].spec, &o, &r, "near-mirror")) {
             /* Noiseless: the peak is resolved, so the truth itself. */
@@ -155,7 +146,7 @@ static void test_large_exponents(void **state)
         double x[7] = {0.3, 0.4, 0.5, 0.5, 0.55, 0.6, cases[i].n};
         bf_samples *s = gonio(cases[i].spec, x, 0.01);
         bf_fit_options o;
-        options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
         if (!fit(s, cases[i].spec, &o, &r, "large exponent"))
             fail_msg("%s n = %g did not converge: %s", cases[i].spec, cases[i].n, r.solution.termination);
@@ -176,7 +167,7 @@ static void test_lambertian_data(void **state)
     static const char *const specs[] = {"walter", "cook_torrance", "phong"};
     for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
         bf_fit_options o;
-        options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
         if (!fit(s, specs[i], &o, &r, "lambertian data"))
             fail_msg("%s on Lambertian data did not converge: %s", specs[i], r.solution.termination);
@@ -213,7 +204,7 @@ static void test_grazing_only(void **state)
     double lambert_rmse = 0.0;
     for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
         bf_fit_options o;
-        options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
         int ok = fit(s, specs[i], &o, &r, "grazing only");
         if (!ok)
@@ -248,7 +239,7 @@ static void test_f0_near_one(void **state)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         bf_samples *s = stratified(cases[i].spec, cases[i].x, 4096);
         bf_fit_options o;
-        options(&o);
+        ts_fit_defaults(&o);
         bf_fit_result r;
         if (!fit(s, cases[i].spec, &o, &r, "f0 near 1"))
             fail_msg("%s with f0 %g: %s", cases[i].spec, cases[i].x[7], r.solution.termination);
@@ -294,7 +285,7 @@ static void test_zeros_and_negatives(void **state)
         for (size_t j = 0; j < sizeof specs / sizeof specs[0]; j++) {
             for (int res = 0; res < 2; res++) {
                 bf_fit_options o;
-                options(&o);
+                ts_fit_defaults(&o);
                 /* log and cbrt residuals of a negative value: ln(1 + m c) and cbrt(m c)
                  * are defined for m c > -1; they must stay finite. */
                 o.objective.residual = res == 0 ? BF_RESIDUAL_LINEAR : BF_RESIDUAL_LOG;

@@ -162,11 +162,7 @@ static double max_abs_value(const bf_samples *s)
 
 static void fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
 {
-    bf_error err;
-    if (bf_fit(s, spec, o, r, &err) != BF_OK)
-        fail_msg("bf_fit %s: %s", spec, err.msg);
-    if (!r->ok)
-        fail_msg("fit %s failed: %s", spec, r->solution.termination);
+    ts_fit_ok(s, spec, o, r);
     for (int k = 0; k < bf_model_nfree(r->model); k++)
         if (!isfinite(r->x[k]))
             fail_msg("fit %s: parameter %d is %g", spec, k, r->x[k]);
@@ -254,11 +250,7 @@ static void assert_recovered(const truth_case *t, const bf_fit_result *r, double
 
 static void base_options(bf_fit_options *o)
 {
-    memset(o, 0, sizeof *o);
-    o->objective.residual = BF_RESIDUAL_LINEAR;
-    o->objective.use_weights = 1;
-    o->solver.backend = BF_BACKEND_CERES;
-    o->starts = 1;
+    ts_fit_defaults(o);
     o->seed = 2;
 }
 
