@@ -7,7 +7,6 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
-  libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
+  libceres-dev libnlopt-dev libopenimageio-dev \
   libcjson-dev libcmocka-dev jq >/dev/null
-# openimageio-tools: Debian's OpenImageIO CMake package refers to its binaries.
 # jq: the command-line tests check brdfit's JSON output with it.
