@@ -28,11 +28,11 @@
 #include "brdfit/io.h"
 #include "commands.h"
 #include "data_options.h"
+#include "fit_options.h"
 
 static const char cmd[] = "brdfit fit";
 
 #define MAX_MODELS 64
-#define MAX_OVERRIDES 64
 
 static void usage(FILE *out)
 {
@@ -41,78 +41,8 @@ static void usage(FILE *out)
             "  -m, --model SPECS          models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
             "                             (a comma starts a new model where a model name follows; repeatable)\n"
             "  -o FILE                    result JSON (one model: a parameter file; several: {\"fits\": [...]})\n"
-            "fitting:\n"
-            "  --residual linear|cosine|log|cbrt|relative   residual form (default log)\n"
-            "  --loss none|huber|cauchy|soft_l1|arctan[:SCALE]   robust loss (default none)\n"
-            "  --fix NAME=VALUE           hold a parameter (NAME or NAME[c]) at VALUE (repeatable)\n"
-            "  --bound NAME=LO:HI         narrow a parameter's bounds (repeatable)\n"
-            "  --solid-angle              weight MERL cells by their solid angle\n"
-            "  --no-weights               ignore the samples' own weights\n"
-            "  --constrain-energy         energy conservation as a constraint (NLopt LD_SLSQP, LD_MMA, GN_ISRES)\n"
-            "optimizer:\n"
-            "  --backend ceres|nlopt      (default ceres)\n"
-            "  --algorithm NAME           ceres: lm (default), dogleg; nlopt: LD_LBFGS (default), LD_SLSQP,\n"
-            "                             LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM,\n"
-            "                             GN_ISRES, G_MLSL_LDS\n"
-            "  --local NAME               local method of G_MLSL_LDS (default LD_LBFGS)\n"
-            "  --max-iterations N         (default: ceres 100 iterations, nlopt 2000 evaluations)\n"
-            "  --starts N                 the data-driven start and N-1 seeded random ones (default 1)\n"
-            "  --seed K                   seeds the multistart and any subsampling (default 0)\n"
-            "  --threads N                (default: every core)\n"
-            "%s",
-            data_options_usage);
-}
-
-static int parse_int(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (!*s || *end || errno || v < lo || v > hi)
-        return 0;
-    *out = v;
-    return 1;
-}
-
-/* A token of the -m list starts a new model when it has no '=' or has a ':' itself. */
-static int starts_model(const char *tok, size_t len)
-{
-    const char *eq = memchr(tok, '=', len), *colon = memchr(tok, ':', len);
-    return !eq || colon;
-}
-
-/* Splits list into model specs (copied into specs[]). Returns the new count or -1. */
-static int split_models(const char *list, char **specs, int n)
-{
-    const char *p = list;
-    while (*p) {
-        const char *comma = strchr(p, ',');
-        size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        if (len == 0) {
-            fprintf(stderr, "%s: empty model name in -m '%s'\n", cmd, list);
-            return -1;
-        }
-        if (starts_model(p, len) || n == 0) {
-            if (n >= MAX_MODELS) {
-                fprintf(stderr, "%s: more than %d models\n", cmd, MAX_MODELS);
-                return -1;
-            }
-            if (!(specs[n] = strndup(p, len)))
-                return -1;
-            n++;
-        } else { /* an option of the previous model */
-            size_t old = strlen(specs[n - 1]);
-            char *s = realloc(specs[n - 1], old + len + 2);
-            if (!s)
-                return -1;
-            s[old] = ',';
-            memcpy(s + old + 1, p, len);
-            s[old + len + 1] = '\0';
-            specs[n - 1] = s;
-        }
-        p = comma ? comma + 1 : p + len;
-    }
-    return n;
+            "%s%s",
+            fit_options_usage, data_options_usage);
 }
 
 static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se, int C)
@@ -151,16 +81,9 @@ int cmd_fit(int argc, char **argv)
 {
     data_options dopt;
     memset(&dopt, 0, sizeof dopt);
-    bf_fit_options fo;
-    memset(&fo, 0, sizeof fo);
-    fo.objective.residual = BF_RESIDUAL_LOG;
-    fo.objective.use_weights = 1;
-    fo.solver.backend = BF_BACKEND_CERES;
-    fo.starts = 1;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    fo.solver.threads = cores > 0 ? (int)cores : 1;
-    bf_override overrides[MAX_OVERRIDES];
-    int nover = 0, nmodels = 0, status = 2;
+    fit_options fopt;
+    fit_options_init(&fopt);
+    int nmodels = 0, status = 2;
     char *specs[MAX_MODELS] = {0};
     const char *data = NULL, *out_path = NULL;
     bf_error err;
@@ -176,6 +99,8 @@ int cmd_fit(int argc, char **argv)
             goto done;
         }
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
@@ -188,26 +113,7 @@ int cmd_fit(int argc, char **argv)
             data = a;
             continue;
         }
-        /* Flags without a value. */
-        if (!strcmp(a, "--solid-angle")) {
-            fo.objective.solid_angle = 1;
-            continue;
-        }
-        if (!strcmp(a, "--no-weights")) {
-            fo.objective.use_weights = 0;
-            continue;
-        }
-        if (!strcmp(a, "--constrain-energy")) {
-            fo.solver.use_constraint = 1;
-            continue;
-        }
-        static const char *const with_value[] = {"-m", "--model", "-o", "--residual", "--loss", "--fix", "--bound",
-                                                 "--backend", "--algorithm", "--local", "--max-iterations",
-                                                 "--starts", "--threads"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-            known |= !strcmp(a, with_value[k]);
-        if (!known) {
+        if (strcmp(a, "-m") && strcmp(a, "--model") && strcmp(a, "-o")) {
             fprintf(stderr, "%s: unknown option '%s' (see brdfit fit --help)\n", cmd, a);
             goto done;
         }
@@ -216,58 +122,13 @@ int cmd_fit(int argc, char **argv)
             goto done;
         }
         const char *v = argv[++i];
-        long n;
-        if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
-            int k = split_models(v, specs, nmodels);
+        if (!strcmp(a, "-o")) {
+            out_path = v;
+        } else {
+            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
             if (k < 0)
                 goto done;
             nmodels = k;
-        } else if (!strcmp(a, "-o")) {
-            out_path = v;
-        } else if (!strcmp(a, "--residual")) {
-            if (bf_residual_parse(v, &fo.objective.residual, &err) != BF_OK) {
-                fprintf(stderr, "%s: --residual: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!strcmp(a, "--loss")) {
-            if (bf_loss_parse(v, &fo.solver.loss, &err) != BF_OK) {
-                fprintf(stderr, "%s: --loss: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!strcmp(a, "--fix") || !strcmp(a, "--bound")) {
-            if (nover >= MAX_OVERRIDES) {
-                fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, MAX_OVERRIDES);
-                goto done;
-            }
-            int rc = a[2] == 'f' ? bf_override_parse_fix(v, &overrides[nover], &err)
-                                 : bf_override_parse_bound(v, &overrides[nover], &err);
-            if (rc != BF_OK) {
-                fprintf(stderr, "%s: %s: %s\n", cmd, a, err.msg);
-                goto done;
-            }
-            nover++;
-        } else if (!strcmp(a, "--backend")) {
-            if (!strcmp(v, "ceres"))
-                fo.solver.backend = BF_BACKEND_CERES;
-            else if (!strcmp(v, "nlopt"))
-                fo.solver.backend = BF_BACKEND_NLOPT;
-            else {
-                fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--algorithm")) {
-            fo.solver.algorithm = v;
-        } else if (!strcmp(a, "--local")) {
-            fo.solver.local_algorithm = v;
-        } else if (!parse_int(v, 1, 100000000, &n)) {
-            fprintf(stderr, "%s: %s needs a positive integer, got '%s'\n", cmd, a, v);
-            goto done;
-        } else if (!strcmp(a, "--max-iterations")) {
-            fo.solver.max_iterations = (int)n;
-        } else if (!strcmp(a, "--starts")) {
-            fo.starts = (int)n;
-        } else { /* --threads */
-            fo.solver.threads = (int)n;
         }
     }
     if (!data || nmodels == 0) {
@@ -284,9 +145,7 @@ int cmd_fit(int argc, char **argv)
         }
         bf_model_free(m);
     }
-    fo.seed = dopt.prep.seed;
-    fo.objective.overrides = overrides;
-    fo.objective.noverrides = nover;
+    fit_options_finish(&fopt, dopt.prep.seed);
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))
@@ -295,7 +154,7 @@ int cmd_fit(int argc, char **argv)
     FILE *info = out_path && !strcmp(out_path, "-") ? stderr : stdout;
     int all_ok = 1;
     for (int k = 0; k < nmodels; k++) {
-        int rc = bf_fit(s, specs[k], &fo, &results[nres], &err);
+        int rc = bf_fit(s, specs[k], &fopt.fit, &results[nres], &err);
         if (rc != BF_OK) {
             fprintf(stderr, "%s: %s: %s\n", cmd, specs[k], err.msg);
             status = rc == BF_ERR_ARG ? 2 : 1;

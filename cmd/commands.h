@@ -7,5 +7,7 @@ int cmd_eval(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 #endif

@@ -7,6 +7,7 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
-  libceres-dev libnlopt-dev libopenimageio-dev \
+  libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libcmocka-dev jq >/dev/null
-# jq: the command-line tests check brdfit's JSON output with it.
+# jq and openimageio-tools (iinfo, oiiotool): the command-line tests check brdfit's JSON
+# output and images with them.

@@ -1,0 +1,425 @@
+/* brdfit compare DATA... -m MODEL,...|all [options]: fits every model to every data file,
+ * ranks the models per material and across materials, prints a summary and writes the
+ * JSON and CSV tables.
+ *
+ * Decisions:
+ *  - --error picks the error behind the Pareto fronts, the tolerance and the mean error:
+ *    rmse_log (default; ln(1 + f cos) weighs the diffuse floor and the highlight alike,
+ *    as the default log residual does), rmse, rmse_cos or rmse_rel. AIC and BIC are
+ *    always computed from the linear residuals (metrics.h).
+ *  - --tolerance is relative: a model is within it when its error <= best * (1 + tol).
+ *    The simplest model is the one with the fewest free parameters within tolerance
+ *    (ties: lower error, then earlier in -m).
+ *  - Only fits that succeeded are ranked; failed ones are listed and counted (exit 1).
+ *  - --jobs N fits N models/materials at once, each fit with --threads / N threads (at
+ *    least 1). Results do not depend on the order fits finish in: each has its slot.
+ *    Fit times do depend on the load, so compare times from runs with the same --jobs.
+ *  - Every data file is read (and checked) before any fit starts: bad data costs no fit
+ *    time and leaves no output. The samples stay in memory for the whole run.
+ *  - SIGINT: no new fit starts, running fits finish, the outputs are written with what
+ *    finished ("interrupted": true; fits never run are "not_run") and the exit status is
+ *    130. A second SIGINT ends the process at once (default action).
+ *  - `all` is every registered family with its default options.
+ *  - Exit: 0 all fits ok; 1 bad data, a failed fit or an unwritable output; 2 bad usage;
+ *    130 interrupted. */
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "brdfit/compare.h"
+#include "brdfit/fit.h"
+#include "commands.h"
+#include "data_options.h"
+#include "fit_options.h"
+
+static const char cmd[] = "brdfit compare";
+
+#define MAX_MODELS 128
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: brdfit compare DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv]\n"
+            "  -m, --model SPECS          models to compare (as brdfit fit; repeatable), or all: every\n"
+            "                             registered model with its default options\n"
+            "  --error rmse|rmse_log|rmse_cos|rmse_rel   error for the Pareto fronts and the tolerance\n"
+            "                             (default rmse_log)\n"
+            "  --tolerance T              relative: the simplest model with error <= best * (1 + T)\n"
+            "                             is chosen (default 0.05)\n"
+            "  --jobs N                   fits run at once (default 1); each gets --threads / N threads\n"
+            "  --json FILE                everything, machine-readable (stable keys)\n"
+            "  --csv FILE                 one row per material x model\n"
+            "  --quiet                    no progress on stderr\n"
+            "%s%s",
+            fit_options_usage, data_options_usage);
+}
+
+static volatile sig_atomic_t interrupted;
+static void on_sigint(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The shared state of the fitting workers. */
+typedef struct run {
+    bf_compare *cmp;
+    bf_samples **samples;
+    bf_fit_result *results; /* nmaterials * nmodels; slot i * nmodels + j */
+    unsigned char *have;    /* 1 where results[] holds a result to free */
+    const bf_fit_options *fo;
+    pthread_mutex_t lock;
+    int next, total, done, running;
+    int quiet, tty;
+    double t0;
+} run;
+
+/* Called with the lock held. */
+static void progress(run *r, int idx)
+{
+    if (r->quiet)
+        return;
+    if (r->tty) {
+        char bar[31];
+        int w = (int)(30.0 * r->done / r->total);
+        for (int k = 0; k < 30; k++)
+            bar[k] = k < w ? '#' : '.';
+        bar[30] = '\0';
+        double el = now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
+        fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, r->done, r->total);
+        if (isfinite(eta))
+            fprintf(stderr, ", ETA %.0f s   ", eta);
+        if (r->done == r->total)
+            fputc('\n', stderr);
+    } else {
+        int nm = r->cmp->nmodels;
+        const bf_compare_fit *f = &r->cmp->materials[idx / nm].fits[idx % nm];
+        fprintf(stderr, "%s: %d/%d %s on %s: %s", cmd, r->done, r->total, r->cmp->models[idx % nm],
+                r->cmp->materials[idx / nm].data, bf_compare_state_name(f->state));
+        if (f->state == BF_CMP_ERROR)
+            fprintf(stderr, " (%s)", f->message);
+        else
+            fprintf(stderr, ", %s %.4g, %.2f s", bf_compare_metric_name(r->cmp->metric),
+                    bf_compare_metric_value(&f->metrics, r->cmp->metric), f->seconds);
+        fputc('\n', stderr);
+    }
+    fflush(stderr);
+}
+
+static void *worker(void *arg)
+{
+    run *r = arg;
+    int nm = r->cmp->nmodels;
+    for (;;) {
+        pthread_mutex_lock(&r->lock);
+        if (interrupted || r->next >= r->total) {
+            pthread_mutex_unlock(&r->lock);
+            return NULL;
+        }
+        int idx = r->next++;
+        r->running++;
+        pthread_mutex_unlock(&r->lock);
+
+        bf_error err;
+        bf_fit_result *res = &r->results[idx];
+        int rc = bf_fit(r->samples[idx / nm], r->cmp->models[idx % nm], r->fo, res, &err);
+
+        pthread_mutex_lock(&r->lock);
+        bf_compare_fit *f = &r->cmp->materials[idx / nm].fits[idx % nm];
+        if (rc == BF_OK) {
+            r->have[idx] = 1;
+            f->state = res->ok ? BF_CMP_OK : BF_CMP_FAILED;
+            f->metrics = res->metrics;
+            f->seconds = res->seconds;
+            f->result = res;
+        } else {
+            f->state = BF_CMP_ERROR;
+            snprintf(f->message, sizeof f->message, "%s", err.msg);
+        }
+        r->running--;
+        r->done++;
+        progress(r, idx);
+        pthread_mutex_unlock(&r->lock);
+    }
+}
+
+static void print_material(FILE *out, const bf_compare *c, const bf_compare_material *m)
+{
+    fprintf(out, "%s  (%zu samples, %d channel%s)\n", m->data, m->samples, m->channels, m->channels == 1 ? "" : "s");
+    fprintf(out, "  %-4s %-4s %-28s %4s %12s %14s %14s %9s  %s\n", "BIC#", "AIC#", "model", "k",
+            bf_compare_metric_name(c->metric), "AIC", "BIC", "time s", "pareto");
+    /* Ranked fits by BIC rank (ties in model order), then the rest in model order. */
+    for (int rank = 1; rank <= c->nmodels; rank++)
+        for (int j = 0; j < c->nmodels; j++) {
+            const bf_compare_fit *f = &m->fits[j];
+            if (f->rank_bic != rank)
+                continue;
+            fprintf(out, "  %-4d %-4d %-28s %4d %12.6g %14.6g %14.6g %9.3f  %s%s%s\n", f->rank_bic, f->rank_aic,
+                    c->models[j], f->metrics.k, f->error, f->metrics.aic, f->metrics.bic, f->seconds,
+                    f->pareto_k ? "k" : "-", f->pareto_time ? "t" : "-", m->simplest == j ? "  <- simplest" : "");
+        }
+    for (int j = 0; j < c->nmodels; j++)
+        if (!m->fits[j].rank_bic)
+            fprintf(out, "  %-4s %-4s %-28s %s%s%s\n", "-", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
+                    m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
+    if (m->simplest >= 0)
+        fprintf(out, "  simplest within %g%% of the best %s (%s): %s\n", 100.0 * c->tolerance,
+                bf_compare_metric_name(c->metric), c->models[m->best], c->models[m->simplest]);
+    else
+        fprintf(out, "  no model fitted\n");
+}
+
+static void print_summary(FILE *out, const bf_compare *c)
+{
+    fprintf(out, "summary over %d materials\n", c->nmaterials);
+    fprintf(out, "  %-28s %9s %13s %13s %14s %8s\n", "model", "materials", "mean BIC#", "mean AIC#", "mean error",
+            "simplest");
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_compare_summary *s = &c->summary[j];
+        fprintf(out, "  %-28s %9d %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank_bic,
+                s->mean_rank_aic, s->mean_error, s->chosen);
+    }
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    data_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    fit_options fopt;
+    fit_options_init(&fopt);
+    int status = 2, nmodels = 0, ndata = 0, jobs = 1, quiet = 0, all = 0;
+    char *specs[MAX_MODELS] = {0};
+    const char **data = calloc((size_t)argc, sizeof *data);
+    const char *json_path = NULL, *csv_path = NULL;
+    bf_compare_metric metric = BF_CMP_RMSE_LOG;
+    double tolerance = 0.05;
+    bf_compare cmp;
+    memset(&cmp, 0, sizeof cmp);
+    bf_samples **samples = NULL;
+    bf_fit_result *results = NULL;
+    unsigned char *have = NULL;
+    bf_error err;
+    if (!data) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 1;
+    }
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            status = 0;
+            goto done;
+        }
+        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d < 0)
+            goto done;
+        if (d > 0)
+            continue;
+        if (a[0] != '-' || !a[1]) {
+            data[ndata++] = a;
+            continue;
+        }
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        static const char *const with_value[] = {"-m", "--model", "--error", "--tolerance", "--jobs", "--json",
+                                                 "--csv"};
+        int known = 0;
+        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
+            known |= !strcmp(a, with_value[k]);
+        if (!known) {
+            fprintf(stderr, "%s: unknown option '%s' (see brdfit compare --help)\n", cmd, a);
+            goto done;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+            goto done;
+        }
+        const char *v = argv[++i];
+        char *end;
+        if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
+            if (!strcmp(v, "all")) {
+                all = 1;
+                continue;
+            }
+            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
+            if (k < 0)
+                goto done;
+            nmodels = k;
+        } else if (!strcmp(a, "--error")) {
+            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
+                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+                goto done;
+            }
+        } else if (!strcmp(a, "--tolerance")) {
+            errno = 0;
+            tolerance = strtod(v, &end);
+            if (!*v || *end || errno || !isfinite(tolerance) || tolerance < 0) {
+                fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
+                goto done;
+            }
+        } else if (!strcmp(a, "--jobs")) {
+            errno = 0;
+            long n = strtol(v, &end, 10);
+            if (!*v || *end || errno || n < 1 || n > 1024) {
+                fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
+                goto done;
+            }
+            jobs = (int)n;
+        } else if (!strcmp(a, "--json")) {
+            json_path = v;
+        } else { /* --csv */
+            csv_path = v;
+        }
+    }
+    if (all)
+        for (int f = 0; f < bf_family_count(); f++) {
+            if (nmodels >= MAX_MODELS) {
+                fprintf(stderr, "%s: more than %d models\n", cmd, MAX_MODELS);
+                goto done;
+            }
+            if (!(specs[nmodels] = strdup(bf_family_get(f)->name)))
+                goto done;
+            nmodels++;
+        }
+    if (ndata == 0 || nmodels == 0) {
+        fprintf(stderr, "%s: %s (see brdfit compare --help)\n", cmd,
+                ndata == 0 ? "at least one data file is required" : "-m MODEL,...|all is required");
+        goto done;
+    }
+    if (json_path && csv_path && !strcmp(json_path, csv_path)) {
+        fprintf(stderr, "%s: --json and --csv name the same file '%s'\n", cmd, json_path);
+        goto done;
+    }
+    for (int k = 0; k < nmodels; k++) {
+        bf_model *m = bf_model_create(specs[k], 1, &err);
+        if (!m) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            goto done;
+        }
+        bf_model_free(m);
+    }
+    fit_options_finish(&fopt, dopt.prep.seed);
+    /* The --threads budget is shared between the concurrent fits. */
+    if (jobs > nmodels * ndata)
+        jobs = nmodels * ndata;
+    fopt.fit.solver.threads = fopt.fit.solver.threads / jobs > 1 ? fopt.fit.solver.threads / jobs : 1;
+
+    status = 1;
+    if (bf_compare_init(&cmp, ndata, data, nmodels, (const char *const *)specs, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    cmp.metric = metric;
+    cmp.tolerance = tolerance;
+    cmp.residual = bf_residual_name(fopt.fit.objective.residual);
+    size_t total = (size_t)ndata * (size_t)nmodels;
+    samples = calloc((size_t)ndata, sizeof *samples);
+    results = calloc(total, sizeof *results);
+    have = calloc(total, 1);
+    if (!samples || !results || !have) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        goto done;
+    }
+    for (int i = 0; i < ndata; i++) {
+        if (!(samples[i] = data_options_load(&dopt, data[i], NULL, cmd)))
+            goto done;
+        /* The geometry is computed on first use: compute it here, before threads share it. */
+        if (!bf_samples_geometry(samples[i], &err)) {
+            fprintf(stderr, "%s: %s: %s\n", cmd, data[i], err.msg);
+            goto done;
+        }
+        cmp.materials[i].samples = samples[i]->n;
+        cmp.materials[i].channels = samples[i]->channels;
+    }
+
+    run r = {.cmp = &cmp, .samples = samples, .results = results, .have = have, .fo = &fopt.fit,
+             .total = (int)total, .quiet = quiet, .tty = isatty(STDERR_FILENO), .t0 = now()};
+    pthread_mutex_init(&r.lock, NULL);
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
+    sigemptyset(&sa.sa_mask);
+    interrupted = 0;
+    sigaction(SIGINT, &sa, &old);
+    pthread_t tid[1024];
+    int started = 0;
+    for (; started < jobs; started++)
+        if (pthread_create(&tid[started], NULL, worker, &r) != 0)
+            break;
+    if (started == 0)
+        worker(&r); /* no thread to be had: fit on this one */
+    for (int t = 0; t < started; t++)
+        pthread_join(tid[t], NULL);
+    sigaction(SIGINT, &old, NULL);
+    pthread_mutex_destroy(&r.lock);
+    cmp.interrupted = r.done < r.total;
+    if (cmp.interrupted && !quiet && r.tty)
+        fputc('\n', stderr);
+
+    bf_compare_rank(&cmp);
+    for (int i = 0; i < ndata; i++)
+        print_material(stdout, &cmp, &cmp.materials[i]);
+    if (ndata > 1)
+        print_summary(stdout, &cmp);
+    fflush(stdout);
+
+    /* HTML report hook: a report writer takes the same ranked table (bf_compare), the
+     * fit results (cmp.materials[i].fits[j].result) and the samples, here. */
+    if (json_path && bf_compare_write_json(&cmp, json_path, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    if (csv_path && bf_compare_write_csv(&cmp, csv_path, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    int bad = 0;
+    for (int i = 0; i < ndata; i++)
+        for (int j = 0; j < nmodels; j++)
+            bad += cmp.materials[i].fits[j].state == BF_CMP_FAILED || cmp.materials[i].fits[j].state == BF_CMP_ERROR;
+    if (cmp.interrupted) {
+        fprintf(stderr, "%s: interrupted after %d of %d fits; the outputs hold the finished ones\n", cmd, r.done,
+                r.total);
+        status = 130;
+    } else if (bad) {
+        fprintf(stderr, "%s: %d of %d fits failed\n", cmd, bad, r.total);
+        status = 1;
+    } else {
+        status = 0;
+    }
+done:
+    if (results)
+        for (size_t k = 0; k < (size_t)ndata * (size_t)nmodels; k++)
+            if (have[k])
+                bf_fit_result_free(&results[k]);
+    if (samples)
+        for (int i = 0; i < ndata; i++)
+            bf_samples_free(samples[i]);
+    free(samples);
+    free(results);
+    free(have);
+    bf_compare_free(&cmp);
+    for (int k = 0; k < nmodels; k++)
+        free(specs[k]);
+    free(data);
+    return status;
+}

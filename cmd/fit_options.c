@@ -1,0 +1,183 @@
+/* Fitting options shared by brdfit fit and brdfit compare (same spelling, same defaults
+ * and the same messages as brdfit fit). */
+#include "fit_options.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+const char fit_options_usage[] =
+    "fitting:\n"
+    "  --residual linear|cosine|log|cbrt|relative   residual form (default log)\n"
+    "  --loss none|huber|cauchy|soft_l1|arctan[:SCALE]   robust loss (default none)\n"
+    "  --fix NAME=VALUE           hold a parameter (NAME or NAME[c]) at VALUE (repeatable)\n"
+    "  --bound NAME=LO:HI         narrow a parameter's bounds (repeatable)\n"
+    "  --solid-angle              weight MERL cells by their solid angle\n"
+    "  --no-weights               ignore the samples' own weights\n"
+    "  --constrain-energy         energy conservation as a constraint (NLopt LD_SLSQP, LD_MMA, GN_ISRES)\n"
+    "optimizer:\n"
+    "  --backend ceres|nlopt      (default ceres)\n"
+    "  --algorithm NAME           ceres: lm (default), dogleg; nlopt: LD_LBFGS (default), LD_SLSQP,\n"
+    "                             LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM,\n"
+    "                             GN_ISRES, G_MLSL_LDS\n"
+    "  --local NAME               local method of G_MLSL_LDS (default LD_LBFGS)\n"
+    "  --max-iterations N         (default: ceres 100 iterations, nlopt 2000 evaluations)\n"
+    "  --starts N                 the data-driven start and N-1 seeded random ones (default 1)\n"
+    "  --seed K                   seeds the multistart and any subsampling (default 0)\n"
+    "  --threads N                (default: every core)\n";
+
+void fit_options_init(fit_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->fit.objective.residual = BF_RESIDUAL_LOG;
+    o->fit.objective.use_weights = 1;
+    o->fit.solver.backend = BF_BACKEND_CERES;
+    o->fit.starts = 1;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    o->fit.solver.threads = cores > 0 ? (int)cores : 1;
+}
+
+void fit_options_finish(fit_options *o, uint64_t seed)
+{
+    o->fit.seed = seed;
+    o->fit.objective.overrides = o->overrides;
+    o->fit.objective.noverrides = o->noverrides;
+}
+
+static int parse_int(const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (!*s || *end || errno || v < lo || v > hi)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd)
+{
+    const char *a = argv[*i];
+    bf_error err;
+    if (!strcmp(a, "--solid-angle")) {
+        o->fit.objective.solid_angle = 1;
+        return 1;
+    }
+    if (!strcmp(a, "--no-weights")) {
+        o->fit.objective.use_weights = 0;
+        return 1;
+    }
+    if (!strcmp(a, "--constrain-energy")) {
+        o->fit.solver.use_constraint = 1;
+        return 1;
+    }
+    static const char *const with_value[] = {"--residual", "--loss", "--fix", "--bound", "--backend",
+                                             "--algorithm", "--local", "--max-iterations", "--starts",
+                                             "--threads"};
+    int known = 0;
+    for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
+        known |= !strcmp(a, with_value[k]);
+    if (!known)
+        return 0;
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+        return -1;
+    }
+    const char *v = argv[++*i];
+    long n;
+    if (!strcmp(a, "--residual")) {
+        if (bf_residual_parse(v, &o->fit.objective.residual, &err) != BF_OK) {
+            fprintf(stderr, "%s: --residual: %s\n", cmd, err.msg);
+            return -1;
+        }
+    } else if (!strcmp(a, "--loss")) {
+        if (bf_loss_parse(v, &o->fit.solver.loss, &err) != BF_OK) {
+            fprintf(stderr, "%s: --loss: %s\n", cmd, err.msg);
+            return -1;
+        }
+    } else if (!strcmp(a, "--fix") || !strcmp(a, "--bound")) {
+        if (o->noverrides >= FIT_OPTIONS_MAX_OVERRIDES) {
+            fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, FIT_OPTIONS_MAX_OVERRIDES);
+            return -1;
+        }
+        bf_override *ov = &o->overrides[o->noverrides];
+        int rc = a[2] == 'f' ? bf_override_parse_fix(v, ov, &err) : bf_override_parse_bound(v, ov, &err);
+        if (rc != BF_OK) {
+            fprintf(stderr, "%s: %s: %s\n", cmd, a, err.msg);
+            return -1;
+        }
+        o->noverrides++;
+    } else if (!strcmp(a, "--backend")) {
+        if (!strcmp(v, "ceres"))
+            o->fit.solver.backend = BF_BACKEND_CERES;
+        else if (!strcmp(v, "nlopt"))
+            o->fit.solver.backend = BF_BACKEND_NLOPT;
+        else {
+            fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else if (!strcmp(a, "--algorithm")) {
+        o->fit.solver.algorithm = v;
+    } else if (!strcmp(a, "--local")) {
+        o->fit.solver.local_algorithm = v;
+    } else if (!parse_int(v, 1, 100000000, &n)) {
+        fprintf(stderr, "%s: %s needs a positive integer, got '%s'\n", cmd, a, v);
+        return -1;
+    } else if (!strcmp(a, "--max-iterations")) {
+        o->fit.solver.max_iterations = (int)n;
+    } else if (!strcmp(a, "--starts")) {
+        o->fit.starts = (int)n;
+    } else { /* --threads */
+        o->fit.solver.threads = (int)n;
+    }
+    return 1;
+}
+
+static int starts_model(const char *tok, size_t len)
+{
+    const char *eq = memchr(tok, '=', len), *colon = memchr(tok, ':', len);
+    return !eq || colon;
+}
+
+int fit_options_split_models(const char *list, char **specs, int n, int max, const char *cmd)
+{
+    const char *p = list;
+    if (!*p) {
+        fprintf(stderr, "%s: empty model list in -m\n", cmd);
+        return -1;
+    }
+    while (*p) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        if (len == 0) {
+            fprintf(stderr, "%s: empty model name in -m '%s'\n", cmd, list);
+            return -1;
+        }
+        if (starts_model(p, len) || n == 0) {
+            if (n >= max) {
+                fprintf(stderr, "%s: more than %d models\n", cmd, max);
+                return -1;
+            }
+            if (!(specs[n] = strndup(p, len))) {
+                fprintf(stderr, "%s: out of memory\n", cmd);
+                return -1;
+            }
+            n++;
+        } else { /* an option of the previous model */
+            size_t old = strlen(specs[n - 1]);
+            char *s = realloc(specs[n - 1], old + len + 2);
+            if (!s) {
+                fprintf(stderr, "%s: out of memory\n", cmd);
+                return -1;
+            }
+            s[old] = ',';
+            memcpy(s + old + 1, p, len);
+            s[old + len + 1] = '\0';
+            specs[n - 1] = s;
+        }
+        p = comma ? comma + 1 : p + len;
+    }
+    return n;
+}

@@ -1,0 +1,43 @@
+/* Image files through OpenImageIO (C++ only, behind a small extern "C" shim). The
+ * format follows the extension: .png (8-bit sRGB) or .exr (linear 32-bit float). */
+#ifndef BRDFIT_IMAGE_H
+#define BRDFIT_IMAGE_H
+
+#include "brdfit/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An image in memory: width * height pixels, row-major from the top row, channels
+ * interleaved (pixels[(y*width + x)*channels + c]). */
+typedef struct bf_image {
+    int width, height, channels;
+    float *pixels;
+} bf_image;
+
+/* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise. */
+int bf_image_format_of(const char *path);
+
+/* Writes an RGB float image (width*height*3 values).
+ * - .exr: the values as they are (linear, scene-referred), 32-bit float.
+ * - .png: the values are display-referred (tone-mapped by the caller, see render.h's
+ *   bf_tonemap): clamped to [0, 1] (NaN -> 0), sRGB-encoded, rounded to 8 bits.
+ * The file is written under a temporary name beside the target and renamed into place,
+ * so a failed write leaves no file. Errors: BF_ERR_ARG (unknown extension, bad size),
+ * BF_ERR_IO naming the file. */
+int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
+
+/* Reads any image OpenImageIO reads, every channel as float: EXR values as stored, PNG
+ * values as stored codes / 255 (still sRGB-encoded: no colour conversion). On success
+ * img->pixels is malloc'd; free with bf_image_free. */
+int bf_image_read(const char *path, bf_image *img, bf_error *err);
+void bf_image_free(bf_image *img);
+
+/* The sRGB transfer function (linear [0, 1] -> encoded [0, 1]) the PNG writer applies. */
+float bf_srgb_encode(float linear);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

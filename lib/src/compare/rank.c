@@ -1,0 +1,213 @@
+/* Ranking fits of several models to several materials: BIC/AIC ranks, Pareto fronts,
+ * the simplest model within tolerance, and the summary across materials. */
+#include "brdfit/compare.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const metric_names[] = {"rmse", "rmse_log", "rmse_cos", "rmse_rel"};
+
+int bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err)
+{
+    for (int i = 0; i < (int)(sizeof metric_names / sizeof metric_names[0]); i++)
+        if (text && !strcmp(text, metric_names[i])) {
+            *out = (bf_compare_metric)i;
+            return BF_OK;
+        }
+    return bf_fail(err, BF_ERR_ARG, "unknown error metric '%s' (rmse, rmse_log, rmse_cos, rmse_rel)",
+                   text ? text : "");
+}
+
+const char *bf_compare_metric_name(bf_compare_metric m)
+{
+    return (unsigned)m < sizeof metric_names / sizeof metric_names[0] ? metric_names[m] : "?";
+}
+
+double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which)
+{
+    switch (which) {
+    case BF_CMP_RMSE: return m->rmse;
+    case BF_CMP_RMSE_LOG: return m->rmse_log;
+    case BF_CMP_RMSE_COS: return m->rmse_cos;
+    case BF_CMP_RMSE_REL: return m->rmse_rel;
+    }
+    return NAN;
+}
+
+const char *bf_compare_state_name(bf_compare_state s)
+{
+    switch (s) {
+    case BF_CMP_NOT_RUN: return "not_run";
+    case BF_CMP_OK: return "ok";
+    case BF_CMP_FAILED: return "failed";
+    case BF_CMP_ERROR: return "error";
+    }
+    return "?";
+}
+
+int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
+                    const char *const *models, bf_error *err)
+{
+    memset(c, 0, sizeof *c);
+    c->metric = BF_CMP_RMSE_LOG;
+    c->tolerance = 0.05;
+    if (nmaterials < 1 || nmodels < 1)
+        return bf_fail(err, BF_ERR_ARG, "a comparison needs at least one material and one model");
+    c->nmaterials = nmaterials;
+    c->nmodels = nmodels;
+    c->models = calloc((size_t)nmodels, sizeof *c->models);
+    c->materials = calloc((size_t)nmaterials, sizeof *c->materials);
+    c->summary = calloc((size_t)nmodels, sizeof *c->summary);
+    int ok = c->models && c->materials && c->summary;
+    for (int j = 0; ok && j < nmodels; j++)
+        ok = (c->models[j] = strdup(models[j])) != NULL;
+    for (int i = 0; ok && i < nmaterials; i++) {
+        bf_compare_material *m = &c->materials[i];
+        m->best = m->simplest = -1;
+        ok = (m->data = strdup(data[i])) && (m->fits = calloc((size_t)nmodels, sizeof *m->fits));
+    }
+    if (!ok) {
+        bf_compare_free(c);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for a comparison table");
+    }
+    return BF_OK;
+}
+
+void bf_compare_free(bf_compare *c)
+{
+    if (c->models)
+        for (int j = 0; j < c->nmodels; j++)
+            free(c->models[j]);
+    if (c->materials)
+        for (int i = 0; i < c->nmaterials; i++) {
+            free(c->materials[i].data);
+            free(c->materials[i].fits);
+        }
+    free(c->models);
+    free(c->materials);
+    free(c->summary);
+    memset(c, 0, sizeof *c);
+}
+
+void bf_compare_pareto(int n, const double *x, const double *y, int *on)
+{
+    for (int i = 0; i < n; i++) {
+        on[i] = !isnan(x[i]) && !isnan(y[i]);
+        for (int j = 0; on[i] && j < n; j++) {
+            if (j == i || isnan(x[j]) || isnan(y[j]))
+                continue;
+            if (x[j] <= x[i] && y[j] <= y[i] && (x[j] < x[i] || y[j] < y[i]))
+                on[i] = 0;
+        }
+    }
+}
+
+/* Competition ranks of v over the flagged entries: 1 + how many are strictly smaller,
+ * so exact ties share a rank. O(n^2): n is a handful of models. */
+static void rank_values(int n, const double *v, const int *use, int *rank)
+{
+    for (int i = 0; i < n; i++) {
+        rank[i] = 0;
+        if (!use[i])
+            continue;
+        rank[i] = 1;
+        for (int j = 0; j < n; j++)
+            if (use[j] && v[j] < v[i])
+                rank[i]++;
+    }
+}
+
+static void rank_material(bf_compare *c, bf_compare_material *m)
+{
+    int n = c->nmodels;
+    int *use = calloc((size_t)n * 4, sizeof *use);
+    double *v = calloc((size_t)n * 4, sizeof *v);
+    if (!use || !v) { /* nothing ranked rather than a crash; the outputs show nulls */
+        free(use);
+        free(v);
+        return;
+    }
+    int *r = use + n, *on_k = use + 2 * n, *on_t = use + 3 * n;
+    double *bic = v, *aic = v + n, *kk = v + 2 * n, *sec = v + 3 * n;
+    double *err = malloc((size_t)n * sizeof *err);
+    if (!err) {
+        free(use);
+        free(v);
+        return;
+    }
+    m->best = m->simplest = -1;
+    for (int j = 0; j < n; j++) {
+        bf_compare_fit *f = &m->fits[j];
+        f->rank_bic = f->rank_aic = f->pareto_k = f->pareto_time = f->within_tolerance = 0;
+        f->error = NAN;
+        /* A fit with a non-finite error or criterion cannot be placed: left unranked. */
+        double e = bf_compare_metric_value(&f->metrics, c->metric);
+        use[j] = f->state == BF_CMP_OK && isfinite(e) && isfinite(f->metrics.bic) && isfinite(f->metrics.aic);
+        if (use[j])
+            f->error = e;
+        err[j] = f->error;
+        bic[j] = f->metrics.bic;
+        aic[j] = f->metrics.aic;
+        kk[j] = use[j] ? f->metrics.k : NAN;
+        sec[j] = use[j] ? f->seconds : NAN;
+        if (use[j] && (m->best < 0 || e < m->fits[m->best].error))
+            m->best = j;
+    }
+    rank_values(n, bic, use, r);
+    for (int j = 0; j < n; j++)
+        m->fits[j].rank_bic = r[j];
+    rank_values(n, aic, use, r);
+    for (int j = 0; j < n; j++)
+        m->fits[j].rank_aic = r[j];
+    bf_compare_pareto(n, kk, err, on_k);
+    bf_compare_pareto(n, sec, err, on_t);
+    for (int j = 0; j < n; j++) {
+        m->fits[j].pareto_k = on_k[j];
+        m->fits[j].pareto_time = on_t[j];
+    }
+    if (m->best >= 0) {
+        double limit = m->fits[m->best].error * (1.0 + c->tolerance);
+        for (int j = 0; j < n; j++) {
+            bf_compare_fit *f = &m->fits[j];
+            if (!use[j] || !(f->error <= limit))
+                continue;
+            f->within_tolerance = 1;
+            if (m->simplest < 0) {
+                m->simplest = j;
+                continue;
+            }
+            const bf_compare_fit *s = &m->fits[m->simplest];
+            if (f->metrics.k < s->metrics.k || (f->metrics.k == s->metrics.k && f->error < s->error))
+                m->simplest = j;
+        }
+    }
+    free(use);
+    free(v);
+    free(err);
+}
+
+void bf_compare_rank(bf_compare *c)
+{
+    for (int i = 0; i < c->nmaterials; i++)
+        rank_material(c, &c->materials[i]);
+    for (int j = 0; j < c->nmodels; j++) {
+        bf_compare_summary *s = &c->summary[j];
+        double rb = 0, ra = 0, e = 0;
+        memset(s, 0, sizeof *s);
+        for (int i = 0; i < c->nmaterials; i++) {
+            const bf_compare_material *m = &c->materials[i];
+            const bf_compare_fit *f = &m->fits[j];
+            if (!f->rank_bic)
+                continue;
+            s->ranked++;
+            rb += f->rank_bic;
+            ra += f->rank_aic;
+            e += f->error;
+            s->chosen += m->simplest == j;
+        }
+        s->mean_rank_bic = s->ranked ? rb / s->ranked : NAN;
+        s->mean_rank_aic = s->ranked ? ra / s->ranked : NAN;
+        s->mean_error = s->ranked ? e / s->ranked : NAN;
+    }
+}

@@ -1,0 +1,315 @@
+/* Pictures: the lit sphere (Lambert radiance exact at the centre, lit where the light
+ * is, black background), the theta_h x theta_d image against direct model evaluation
+ * and MERL cells, slice plots (lines and overlaid samples where expected), and the
+ * OpenImageIO shim (EXR round trip, PNG sRGB codes, errors leave no file). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "brdfit/image.h"
+#include "brdfit/render.h"
+#include "support.h"
+
+static float *px(float *rgb, int w, int x, int y) { return rgb + 3 * ((size_t)y * (size_t)w + (size_t)x); }
+
+static void vec_angles(const double v[3], double *theta, double *phi)
+{
+    *theta = atan2(sqrt(v[0] * v[0] + v[1] * v[1]), v[2]) / DEG;
+    *phi = atan2(v[1], v[0]) / DEG;
+}
+
+/* Lambert rho/pi at the centre with the light along the view, through an EXR file. */
+static void test_sphere_lambert_exr(void **state)
+{
+    (void)state;
+    const double rho[3] = {0.8, 0.5, 0.2};
+    bf_model *m = ts_model("lambert", 3);
+    const int N = 65;
+    bf_dir light = {0.0, 0.0};
+    bf_sphere_options o = {N, {0.0, 0.0}, &light, 1};
+    float *rgb = malloc((size_t)N * N * 3 * sizeof *rgb);
+    bf_error err;
+    assert_int_equal(bf_render_sphere(m, rho, &o, rgb, &err), BF_OK);
+    const char *path = ts_tmp_path("lambert.exr");
+    assert_int_equal(bf_image_write_rgb(path, N, N, rgb, &err), BF_OK);
+    bf_image img;
+    assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
+    assert_int_equal(img.width, N);
+    assert_int_equal(img.height, N);
+    assert_int_equal(img.channels, 3);
+    for (int c = 0; c < 3; c++) {
+        ts_assert_near(px(img.pixels, N, 32, 32)[c], rho[c] / M_PI, 1e-6, 1e-7, "centre");
+        assert_true(px(img.pixels, N, 0, 0)[c] == 0.0f); /* background exactly 0 */
+        assert_true(px(img.pixels, N, N - 1, 5)[c] == 0.0f);
+        /* Off-centre: cos(theta_L) = n_z = sqrt(1 - sx^2). */
+        double sx = 2.0 * (50 + 0.5) / N - 1.0;
+        ts_assert_near(px(img.pixels, N, 50, 32)[c], rho[c] / M_PI * sqrt(1.0 - sx * sx), 1e-6, 1e-7,
+                       "off centre");
+    }
+    bf_image_free(&img);
+    free(rgb);
+    bf_model_free(m);
+}
+
+/* Lit where the light is, dark behind; several lights add. */
+static void test_sphere_lighting(void **state)
+{
+    (void)state;
+    const double rho = 0.5;
+    bf_model *m = ts_model("lambert", 1);
+    const int N = 64;
+    float *a = malloc((size_t)N * N * 3 * sizeof *a), *b = malloc((size_t)N * N * 3 * sizeof *b);
+    float *ab = malloc((size_t)N * N * 3 * sizeof *ab);
+    bf_error err;
+    bf_dir grazing = {80.0, 0.0}, top = {0.0, 0.0}, both[2] = {{80.0, 0.0}, {0.0, 0.0}};
+    bf_sphere_options o = {N, {0.0, 0.0}, &grazing, 1};
+    assert_int_equal(bf_render_sphere(m, &rho, &o, a, &err), BF_OK);
+    /* Light from +x at 80 degrees: the +x limb is brighter than the centre, the -x limb black. */
+    assert_true(px(a, N, N - 6, N / 2)[0] > px(a, N, N / 2, N / 2)[0]);
+    assert_true(px(a, N, 5, N / 2)[0] == 0.0f);
+    assert_true(px(a, N, N / 2, N / 2)[0] > 0.0f);
+    o.lights = &top;
+    assert_int_equal(bf_render_sphere(m, &rho, &o, b, &err), BF_OK);
+    assert_true(px(b, N, N / 2, N / 2)[0] > 0.99f * (float)(rho / M_PI)); /* bright centre */
+    assert_true(px(b, N, N / 2, N / 2)[0] > 2.0f * px(b, N, 2, N / 2)[0]); /* dim limb (cos 0.39) */
+    o.lights = both;
+    o.nlights = 2;
+    assert_int_equal(bf_render_sphere(m, &rho, &o, ab, &err), BF_OK);
+    for (size_t q = 0; q < (size_t)N * N * 3; q++)
+        assert_true(fabsf(ab[q] - (a[q] + b[q])) <= 1e-6f);
+    /* Grey: the three channels agree. */
+    assert_true(px(ab, N, 20, 30)[0] == px(ab, N, 20, 30)[2]);
+    /* Viewed from the light's side (view 80,0), the bright limb faces the camera: the
+     * centre is brighter than with the top view's grazing light. */
+    o.lights = &grazing;
+    o.nlights = 1;
+    o.view = grazing;
+    assert_int_equal(bf_render_sphere(m, &rho, &o, b, &err), BF_OK);
+    assert_true(px(b, N, N / 2, N / 2)[0] > 0.99f * (float)(rho / M_PI));
+    free(a);
+    free(b);
+    free(ab);
+    bf_model_free(m);
+}
+
+/* The half/difference directions are MERL's at cell centres. */
+static void test_halfdiff_dirs_merl(void **state)
+{
+    (void)state;
+    const int cells[][3] = {{3, 10, 20}, {45, 60, 90}, {80, 5, 170}, {10, 85, 1}};
+    for (size_t t = 0; t < sizeof cells / sizeof cells[0]; t++) {
+        int i = cells[t][0], j = cells[t][1], k = cells[t][2];
+        double th = ((i + 0.5) / 90) * ((i + 0.5) / 90) * M_PI / 2, td = (j + 0.5) / 90 * M_PI / 2;
+        double pd = (k + 0.5) / 180 * M_PI, L[3], V[3], ti, pi_, to, po, eti, epi, eto, epo;
+        bf_halfdiff_dirs(th, td, pd, L, V);
+        bf_merl_cell_directions(k + j * 180 + i * 180 * 90, &eti, &epi, &eto, &epo);
+        vec_angles(L, &ti, &pi_);
+        vec_angles(V, &to, &po);
+        ts_assert_near(ti, eti, 0, 1e-9, "theta_i");
+        ts_assert_near(to, eto, 0, 1e-9, "theta_o");
+        ts_assert_near(pi_, epi, 0, 1e-9, "phi_i");
+        ts_assert_near(po + 360.0, epo, 0, 1e-9, "phi_o");
+    }
+}
+
+/* Pixels of the model image equal the model at their (theta_h, theta_d, phi_d). */
+static void test_halfdiff_model(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("walter", 3);
+    double x[8];
+    assert_true(bf_model_nfree(m) <= 8);
+    bf_model_defaults(m, x);
+    const int W = 45, H = 30;
+    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
+    bf_error err;
+    assert_int_equal(bf_render_halfdiff_model(m, x, W, H, 90.0, rgb, &err), BF_OK);
+    const int at[][2] = {{0, 0}, {10, 5}, {22, 14}, {44, 29}, {3, 27}};
+    for (size_t t = 0; t < sizeof at / sizeof at[0]; t++) {
+        int i = at[t][0], j = at[t][1];
+        double th = (i + 0.5) / W * 90.0 * DEG, td = (j + 0.5) / H * 90.0 * DEG, L[3], V[3];
+        double ti, pi_, to, po;
+        bf_halfdiff_dirs(th, td, 90.0 * DEG, L, V);
+        vec_angles(L, &ti, &pi_);
+        vec_angles(V, &to, &po);
+        /* Theta_h from the pixel column: H is (sin th, 0, cos th). */
+        double Hv[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+        ts_assert_near(atan2(sqrt(Hv[0] * Hv[0] + Hv[1] * Hv[1]), Hv[2]), th, 0, 1e-12, "theta_h");
+        ts_assert_near(acos(L[0] * Hv[0] / sqrt(Hv[0] * Hv[0] + Hv[1] * Hv[1] + Hv[2] * Hv[2]) +
+                            L[2] * Hv[2] / sqrt(Hv[0] * Hv[0] + Hv[1] * Hv[1] + Hv[2] * Hv[2])),
+                       td, 0, 1e-9, "theta_d");
+        for (int c = 0; c < 3; c++)
+            ts_assert_near(px(rgb, W, i, j)[c], ts_eval1(m, x, ti, pi_, to, po, c), 1e-6, 1e-9, "pixel");
+    }
+    free(rgb);
+    bf_model_free(m);
+}
+
+/* MERL tables: a pixel shows the cell it falls in, invalid cells are 0. */
+static void test_halfdiff_merl(void **state)
+{
+    (void)state;
+    bf_error err;
+    bf_samples *s = bf_samples_new(2, 3, &err);
+    s->merl = calloc(1, sizeof *s->merl);
+    s->merl->raw = calloc(3 * (size_t)BF_MERL_CELLS, sizeof(double));
+    s->merl->cell = calloc(2, sizeof(int32_t));
+    /* Pixel (i, j) of a 90x90 image at phi_d 90: theta_h = i + 0.5 degrees (MERL bin
+     * floor(sqrt(th/90)*90)), theta_d bin j, phi_d bin 90. */
+    int ih = (int)floor(sqrt(20.5 / 90.0) * 90), cell = 90 + 7 * 180 + ih * 180 * 90;
+    s->merl->cell[0] = cell;
+    s->merl->cell[1] = 90 + 7 * 180 + 6 * 180 * 90; /* pixel 0 (0.5 deg): sqrt(0.5/90)*90 = 6.7 */
+    for (int c = 0; c < 3; c++) {
+        s->value[c] = 0.1 * (c + 1);
+        s->value[3 + c] = 5.0 + c;
+    }
+    const int W = 90;
+    float *rgb = malloc((size_t)W * W * 3 * sizeof *rgb);
+    assert_int_equal(bf_render_halfdiff_merl(s, W, W, 90.0, rgb, &err), BF_OK);
+    for (int c = 0; c < 3; c++) {
+        assert_true(px(rgb, W, 20, 7)[c] == (float)(0.1 * (c + 1)));
+        assert_true(px(rgb, W, 20, 8)[c] == 0.0f);   /* another theta_d bin: no sample */
+        assert_true(px(rgb, W, 0, 7)[c] == (float)(5.0 + c));
+    }
+    /* phi_d 270 folds onto 90 by reciprocity. */
+    assert_int_equal(bf_render_halfdiff_merl(s, W, W, 270.0, rgb, &err), BF_OK);
+    assert_true(px(rgb, W, 20, 7)[0] == (float)0.1);
+    bf_samples_drop_origin(s);
+    assert_int_not_equal(bf_render_halfdiff_merl(s, W, W, 90.0, rgb, &err), BF_OK);
+    free(rgb);
+    bf_samples_free(s);
+}
+
+static int is_white(const float *p) { return p[0] == 1.0f && p[1] == 1.0f && p[2] == 1.0f; }
+
+/* A Lambert slice is one horizontal black line at log10(rho/pi). */
+static void test_slice_lambert(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("lambert", 1);
+    const double rho = 0.5, inc[1] = {30.0};
+    const int W = 200, H = 150;
+    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
+    bf_error err;
+    bf_slice_range r;
+    /* Measured samples: two in the plane (one each side), one out of it, one at another
+     * incidence angle. */
+    bf_samples *s = bf_samples_new(4, 1, &err);
+    const double ang[4][4] = {{30, 0, 20, 180}, {31, 10, 50, 10}, {30, 0, 45, 90}, {60, 0, 20, 180}};
+    for (int q = 0; q < 4; q++) {
+        s->theta_i[q] = ang[q][0];
+        s->phi_i[q] = ang[q][1];
+        s->theta_o[q] = ang[q][2];
+        s->phi_o[q] = ang[q][3];
+        s->value[q] = 0.5;
+    }
+    bf_slice_options o = {W, H, inc, 1, s, 2.0};
+    assert_int_equal(bf_render_slice(m, &rho, &o, rgb, &r, &err), BF_OK);
+    assert_true(r.log10_lo == -1.0 && r.log10_hi == 0.0);
+    assert_int_equal(r.overlaid, 2);
+    int yline = (int)lround(r.y1 - (log10(rho / M_PI) + 1.0) * (r.y1 - r.y0));
+    int xmid = (r.x0 + r.x1) / 2 - 20; /* away from the mirror marker */
+    for (int c = 0; c < 3; c++)
+        assert_true(px(rgb, W, xmid, yline)[c] == 0.0f);
+    assert_true(is_white(px(rgb, W, xmid, yline - 5)));
+    assert_true(is_white(px(rgb, W, xmid, yline + 5)));
+    assert_true(is_white(px(rgb, W, 2, 2))); /* outside the frame */
+    /* The dot of the sample at theta_o = +20 (value 0.5 at log10 -0.30). */
+    int xd = (int)lround(r.x0 + (20.0 + 90.0) / 180.0 * (r.x1 - r.x0));
+    int yd = (int)lround(r.y1 - (log10(0.5) + 1.0) * (r.y1 - r.y0));
+    assert_true(px(rgb, W, xd, yd)[0] == 0.0f && px(rgb, W, xd + 1, yd + 1)[0] == 0.0f);
+    assert_true(is_white(px(rgb, W, xd, yd - 6)));
+    bf_samples_free(s);
+    free(rgb);
+    bf_model_free(m);
+}
+
+/* A glossy slice peaks at the mirror angle, in the channel colours. */
+static void test_slice_peak(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("walter", 3);
+    double x[8];
+    bf_model_defaults(m, x);
+    const double inc[1] = {40.0};
+    const int W = 361, H = 240;
+    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
+    bf_error err;
+    bf_slice_range r;
+    bf_slice_options o = {W, H, inc, 1, NULL, 2.0};
+    assert_int_equal(bf_render_slice(m, x, &o, rgb, &r, &err), BF_OK);
+    int top_x = -1, top_y = H;
+    for (int y = r.y0; y <= r.y1 && top_x < 0; y++)
+        for (int xx = r.x0; xx <= r.x1; xx++) {
+            const float *p = px(rgb, W, xx, y);
+            if (!is_white(p) && !(p[0] == p[1] && p[1] == p[2])) { /* a coloured curve */
+                top_x = xx;
+                top_y = y;
+                break;
+            }
+        }
+    assert_true(top_x >= 0);
+    double theta_top = -90.0 + 180.0 * (top_x - r.x0) / (r.x1 - r.x0);
+    assert_true(fabs(theta_top - 40.0) < 3.0);
+    assert_true(top_y < r.y1);
+    free(rgb);
+    bf_model_free(m);
+}
+
+/* PNG: sRGB-encoded 8-bit codes; errors leave no file. */
+static void test_png_and_errors(void **state)
+{
+    (void)state;
+    const float rgb[2 * 1 * 3] = {0.0f, 0.5f, 1.0f, 2.0f, -1.0f, 0.0031308f};
+    bf_error err;
+    const char *path = ts_tmp_path("two.png");
+    assert_int_equal(bf_image_write_rgb(path, 2, 1, rgb, &err), BF_OK);
+    bf_image img;
+    assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
+    assert_int_equal(img.width, 2);
+    assert_int_equal(img.height, 1);
+    const float want[6] = {0.0f, 188.0f, 255.0f, 255.0f, 0.0f, 10.0f};
+    for (int q = 0; q < 6; q++)
+        ts_assert_near(img.pixels[q] * 255.0, want[q], 0, 1e-3, "png code");
+    bf_image_free(&img);
+    assert_int_equal(access(path, R_OK), 0);
+    assert_int_equal(bf_image_write_rgb(ts_tmp_path("x.jpg"), 2, 1, rgb, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "x.jpg"));
+    assert_int_equal(bf_image_write_rgb("/nonexistent-dir/x.exr", 2, 1, rgb, &err), BF_ERR_IO);
+    assert_non_null(strstr(err.msg, "/nonexistent-dir/x.exr"));
+    assert_null(strchr(err.msg, '\n'));
+    assert_int_not_equal(bf_image_read(ts_tmp_path("missing.exr"), &img, &err), BF_OK);
+    assert_null(img.pixels);
+}
+
+static void test_tonemap(void **state)
+{
+    (void)state;
+    float v[4] = {0.0f, 1.0f, 10.0f, 1000.0f};
+    bf_tonemap(v, 4, BF_TONEMAP_LOG, 1.0, 4.0);
+    assert_true(v[0] == 0.0f && v[3] == 1.0f);
+    ts_assert_near(v[1], 0.25, 1e-6, 0, "1 is 3 decades below 1000");
+    float w[2] = {1.0f, 3.0f};
+    bf_tonemap(w, 2, BF_TONEMAP_REINHARD, 2.0, 0);
+    ts_assert_near(w[0], 2.0 / 3.0, 1e-6, 0, "reinhard");
+    ts_assert_near(w[1], 6.0 / 7.0, 1e-6, 0, "reinhard");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sphere_lambert_exr), cmocka_unit_test(test_sphere_lighting),
+        cmocka_unit_test(test_halfdiff_dirs_merl), cmocka_unit_test(test_halfdiff_model),
+        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert),
+        cmocka_unit_test(test_slice_peak),         cmocka_unit_test(test_png_and_errors),
+        cmocka_unit_test(test_tonemap),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
