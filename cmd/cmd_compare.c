@@ -1,6 +1,6 @@
 /* brdfit compare DATA... -m MODEL,...|all [options]: fits every model to every data file,
  * ranks the models per material and across materials, prints a summary and writes the
- * JSON and CSV tables.
+ * JSON and CSV tables and the HTML report.
  *
  * Decisions:
  *  - --error picks the error behind the Pareto fronts, the tolerance and the mean error:
@@ -20,6 +20,9 @@
  *    finished ("interrupted": true; fits never run are "not_run") and the exit status is
  *    130. A second SIGINT ends the process at once (default action).
  *  - `all` is every registered family with its default options.
+ *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
+ *    any fit: an existing DIR that is neither empty nor a previous report is refused
+ *    (exit 1) rather than replaced. The report is written after the summary is printed.
  *  - Exit: 0 all fits ok; 1 bad data, a failed fit or an unwritable output; 2 bad usage;
  *    130 interrupted. */
 #include <errno.h>
@@ -55,6 +58,8 @@ static void usage(FILE *out)
             "  --jobs N                   fits run at once (default 1); each gets --threads / N threads\n"
             "  --json FILE                everything, machine-readable (stable keys)\n"
             "  --csv FILE                 one row per material x model\n"
+            "  --html DIR                 a report to read in a browser: DIR/index.html and its images\n"
+            "                             (an existing DIR is replaced only if it is a previous report)\n"
             "  --quiet                    no progress on stderr\n"
             "%s%s",
             fit_options_usage, data_options_usage);
@@ -203,7 +208,7 @@ int cmd_compare(int argc, char **argv)
     int status = 2, nmodels = 0, ndata = 0, jobs = 1, quiet = 0, all = 0;
     char *specs[MAX_MODELS] = {0};
     const char **data = calloc((size_t)argc, sizeof *data);
-    const char *json_path = NULL, *csv_path = NULL;
+    const char *json_path = NULL, *csv_path = NULL, *html_dir = NULL;
     bf_compare_metric metric = BF_CMP_RMSE_LOG;
     double tolerance = 0.05;
     bf_compare cmp;
@@ -240,7 +245,7 @@ int cmd_compare(int argc, char **argv)
             continue;
         }
         static const char *const with_value[] = {"-m", "--model", "--error", "--tolerance", "--jobs", "--json",
-                                                 "--csv"};
+                                                 "--csv", "--html"};
         int known = 0;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
             known |= !strcmp(a, with_value[k]);
@@ -285,6 +290,8 @@ int cmd_compare(int argc, char **argv)
             jobs = (int)n;
         } else if (!strcmp(a, "--json")) {
             json_path = v;
+        } else if (!strcmp(a, "--html")) {
+            html_dir = v;
         } else { /* --csv */
             csv_path = v;
         }
@@ -306,6 +313,12 @@ int cmd_compare(int argc, char **argv)
     }
     if (json_path && csv_path && !strcmp(json_path, csv_path)) {
         fprintf(stderr, "%s: --json and --csv name the same file '%s'\n", cmd, json_path);
+        goto done;
+    }
+    /* A folder the report may not replace is refused before any fit runs. */
+    if (html_dir && bf_compare_html_check(html_dir, &err) != BF_OK) {
+        fprintf(stderr, "%s: --html %s\n", cmd, err.msg);
+        status = err.code == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
     for (int k = 0; k < nmodels; k++) {
@@ -382,8 +395,11 @@ int cmd_compare(int argc, char **argv)
         print_summary(stdout, &cmp);
     fflush(stdout);
 
-    /* HTML report hook: a report writer takes the same ranked table (bf_compare), the
-     * fit results (cmp.materials[i].fits[j].result) and the samples, here. */
+    /* The HTML report: the ranked table, each fit's result and the samples. */
+    if (html_dir && bf_compare_write_html(&cmp, samples, html_dir, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
     if (json_path && bf_compare_write_json(&cmp, json_path, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;

@@ -14,7 +14,7 @@ static const struct {
     {"info", cmd_info, "info DATA [data options] [--json]      what a data file holds"},
     {"convert", cmd_convert, "convert IN OUT [data options] [--to csv|merl]   between formats"},
     {"fit", cmd_fit, "fit DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]   fit models to data"},
-    {"compare", cmd_compare, "compare DATA... -m MODEL,...|all [options] [--json R.json] [--csv R.csv]   rank models"},
+    {"compare", cmd_compare, "compare DATA... -m MODEL,...|all [options] [--json R.json] [--csv R.csv] [--html DIR]   rank models"},
     {"render", cmd_render, "render --params P.json [--slice|--half-diff] [options] -o OUT.png|OUT.exr   pictures"},
 };
 

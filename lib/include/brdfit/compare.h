@@ -100,6 +100,15 @@ void bf_compare_pareto(int n, const double *x, const double *y, int *on);
 int bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
 int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
 
+/* The HTML report: DIR/index.html and its PNG images (relative links), built in a
+ * temporary sibling folder and renamed into place, so a failure leaves nothing. An
+ * existing DIR is replaced only if it holds BF_REPORT_MARKER (a previous report) or is
+ * empty; otherwise BF_ERR_IO. samples: nmaterials sets (or NULL) for the overlays.
+ * bf_compare_html_check says early (before fitting) whether DIR could be written. */
+#define BF_REPORT_MARKER ".brdfit-report"
+int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
+int bf_compare_html_check(const char *dir, bf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

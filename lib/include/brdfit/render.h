@@ -89,6 +89,23 @@ int bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, doubl
  * difference vector rotated by theta_h about y, V its mirror about H. */
 void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3]);
 
+/* ---- Scatter plot ----------------------------------------------------------------
+ * n points (x[i], y[i]) on white inside a black frame (10 px margin), no text: the axes
+ * span the drawable values padded by 5% (log axes in log10; points <= 0 or NaN there are
+ * left out); highlight (NULL: none) marks points drawn in red and joined in x order,
+ * the rest grey. bf_scatter_range says what the axes span, for a caption. */
+typedef struct bf_scatter_options {
+    int width, height;     /* >= 40 each */
+    int log_x, log_y;      /* 1: log10 axis */
+} bf_scatter_options;
+typedef struct bf_scatter_range {
+    double x_lo, x_hi, y_lo, y_hi; /* axis ends (log10 of the value on a log axis) */
+    int x0, y0, x1, y1;            /* plot area in pixels, inclusive */
+    int drawn;                     /* points drawn */
+} bf_scatter_range;
+int bf_render_scatter(int n, const double *x, const double *y, const int *highlight,
+                      const bf_scatter_options *o, float *rgb, bf_scatter_range *range, bf_error *err);
+
 /* ---- Display mapping for 8-bit images ------------------------------------------
  * In place over n floats: CLAMP: exposure * v (the PNG writer clamps to [0, 1]);
  * REINHARD: e/(1 + e) with e = exposure * v; LOG: log10(e) mapped from

@@ -1,0 +1,475 @@
+/* The comparison as an HTML report: one folder holding index.html and its PNG images,
+ * links relative, so it opens from disk without a server.
+ *
+ * Decisions:
+ *  - The folder is built under a temporary sibling (DIR.tmp-XXXXXX) and renamed into
+ *    place at the end: a failed run leaves no report and no partial folder.
+ *  - An existing DIR is replaced only when it holds BF_REPORT_MARKER (a previous report)
+ *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
+ *  - Pictures are small (spheres 160x160, slices 320x240, scatter plots 480x320) so a
+ *    report over many fits stays quick; each model's pictures come from its fitted
+ *    parameters. Spheres share one display mapping (clamp, exposure 1) so they compare.
+ *  - MERL tables: render.h renders spheres only from models, so the measurement is shown
+ *    as its theta_h x theta_d image (phi_d 90) beside each model's, with a difference
+ *    image: |log10(model / measured)|, mean over channels, black = equal, white = one
+ *    decade or more, blue where the table has no valid value.
+ *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
+#define _XOPEN_SOURCE 700
+#include "brdfit/compare.h"
+
+#include <errno.h>
+#include <ftw.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <dirent.h>
+
+#include "brdfit/image.h"
+#include "brdfit/render.h"
+
+enum { SPHERE = 160, SLICE_W = 320, SLICE_H = 240, PLOT_W = 480, PLOT_H = 320, HD = 160 };
+
+typedef struct report {
+    const bf_compare *c;
+    bf_samples *const *samples;
+    const char *tmp; /* the folder being written */
+    FILE *fp;
+    float *buf;      /* big enough for the largest picture */
+    float *buf2;
+    bf_error *err;
+} report;
+
+static void esc(FILE *fp, const char *s)
+{
+    for (; *s; s++)
+        switch (*s) {
+        case '&': fputs("&amp;", fp); break;
+        case '<': fputs("&lt;", fp); break;
+        case '>': fputs("&gt;", fp); break;
+        case '"': fputs("&quot;", fp); break;
+        case '\'': fputs("&#39;", fp); break;
+        default: fputc(*s, fp);
+        }
+}
+
+static void num(FILE *fp, double v)
+{
+    if (isfinite(v))
+        fprintf(fp, "<td>%.5g</td>", v);
+    else
+        fputs("<td>&ndash;</td>", fp);
+}
+
+/* Writes a display-referred RGB buffer as NAME in the report folder and links it. */
+static int image(report *r, const char *name, int w, int h, const float *rgb, const char *alt)
+{
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
+        return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
+    if (bf_image_write_rgb(path, w, h, rgb, r->err) != BF_OK)
+        return r->err->code;
+    fprintf(r->fp, "<img src=\"%s\" width=\"%d\" height=\"%d\" alt=\"", name, w, h);
+    esc(r->fp, alt);
+    fputs("\">", r->fp);
+    return BF_OK;
+}
+
+static const bf_fit_result *fitted(const bf_compare_fit *f)
+{
+    return f->state == BF_CMP_OK && f->result && f->result->model ? f->result : NULL;
+}
+
+static void model_table(report *r, const bf_compare_material *m)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    fprintf(fp, "<table>\n<tr><th>model</th><th>k</th><th>%s</th><th>RMSE</th><th>log RMSE</th><th>AIC</th>"
+                "<th>BIC</th><th>time s</th><th>BIC rank</th><th>AIC rank</th><th>Pareto k</th>"
+                "<th>Pareto time</th><th>simplest</th></tr>\n",
+            bf_compare_metric_name(c->metric));
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_compare_fit *f = &m->fits[j];
+        fprintf(fp, "<tr%s><td class=\"spec\">", m->simplest == j ? " class=\"chosen\"" : "");
+        esc(fp, c->models[j]);
+        fputs("</td>", fp);
+        if (!f->rank_bic) {
+            fprintf(fp, "<td colspan=\"12\">%s", bf_compare_state_name(f->state));
+            if (f->state == BF_CMP_ERROR) {
+                fputs(": ", fp);
+                esc(fp, f->message);
+            }
+            fputs("</td></tr>\n", fp);
+            continue;
+        }
+        fprintf(fp, "<td>%d</td>", f->metrics.k);
+        num(fp, f->error);
+        num(fp, f->metrics.rmse);
+        num(fp, f->metrics.rmse_log);
+        num(fp, f->metrics.aic);
+        num(fp, f->metrics.bic);
+        fprintf(fp, "<td>%.3f</td><td>%d</td><td>%d</td><td>%s</td><td>%s</td><td>%s</td></tr>\n", f->seconds,
+                f->rank_bic, f->rank_aic, f->pareto_k ? "&#9679;" : "", f->pareto_time ? "&#9679;" : "",
+                m->simplest == j ? "simplest" : (f->within_tolerance ? "within" : ""));
+    }
+    fputs("</table>\n", fp);
+    if (m->simplest >= 0) {
+        fprintf(fp, "<p>Simplest model within %g%% of the best %s (", 100.0 * c->tolerance,
+                bf_compare_metric_name(c->metric));
+        esc(fp, c->models[m->best]);
+        fputs("): <b>", fp);
+        esc(fp, c->models[m->simplest]);
+        fputs("</b>. &#9679; marks the Pareto fronts (no other model is at least as good in both "
+              "and better in one).</p>\n",
+              fp);
+    } else {
+        fputs("<p>No model fitted.</p>\n", fp);
+    }
+}
+
+static int scatter(report *r, int i, const bf_compare_material *m, int by_time)
+{
+    int n = r->c->nmodels;
+    double *x = malloc(2 * (size_t)n * sizeof *x);
+    int *on = malloc((size_t)n * sizeof *on);
+    if (!x || !on) {
+        free(x);
+        free(on);
+        return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
+    }
+    double *y = x + n;
+    for (int j = 0; j < n; j++) {
+        const bf_compare_fit *f = &m->fits[j];
+        x[j] = f->rank_bic ? (by_time ? f->seconds : (double)f->metrics.k) : NAN;
+        y[j] = f->rank_bic ? f->error : NAN;
+        on[j] = by_time ? f->pareto_time : f->pareto_k;
+    }
+    /* Errors span decades, so a log axis; linear when one is 0 (an exact fit). */
+    int log_y = 1;
+    for (int j = 0; j < n; j++)
+        log_y &= !(y[j] <= 0.0);
+    bf_scatter_options o = {PLOT_W, PLOT_H, by_time, log_y};
+    bf_scatter_range g;
+    char name[64], alt[128];
+    snprintf(name, sizeof name, "m%d-%s.png", i + 1, by_time ? "time" : "k");
+    snprintf(alt, sizeof alt, "%s against %s", bf_compare_metric_name(r->c->metric),
+             by_time ? "fitting time" : "free parameters");
+    int rc = bf_render_scatter(n, x, y, on, &o, r->buf, &g, r->err);
+    free(x);
+    free(on);
+    fputs("<figure>", r->fp);
+    if (rc == BF_OK)
+        rc = image(r, name, PLOT_W, PLOT_H, r->buf, alt);
+    if (rc != BF_OK)
+        return rc;
+    fprintf(r->fp, "<figcaption>%s (y, %s%.3g to %.3g) against %s (x, %s%.3g to %.3g); red: Pareto front"
+                   "</figcaption></figure>\n",
+            bf_compare_metric_name(r->c->metric), log_y ? "log10 " : "", g.y_lo, g.y_hi, by_time ? "fitting time" : "free parameters k",
+            by_time ? "log10 s, " : "", g.x_lo, g.x_hi);
+    return BF_OK;
+}
+
+/* |log10(model / measured)| as grey, one decade = white; blue where nothing measured. */
+static void difference(float *model, const float *meas, size_t npx)
+{
+    for (size_t p = 0; p < npx; p++) {
+        double d = 0.0;
+        int valid = 1;
+        for (int ch = 0; ch < 3; ch++) {
+            double a = meas[3 * p + ch], b = model[3 * p + ch];
+            if (!(a > 0)) {
+                valid = 0;
+                break;
+            }
+            d += fabs(log10(fmax(b, 1e-8) / a)) / 3.0;
+        }
+        float g = (float)fmin(d, 1.0);
+        model[3 * p] = valid ? g : 0.1f;
+        model[3 * p + 1] = valid ? g : 0.2f;
+        model[3 * p + 2] = valid ? g : 0.6f;
+    }
+}
+
+static int pictures(report *r, int i, const bf_compare_material *m)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    bf_samples *s = r->samples ? r->samples[i] : NULL;
+    char name[64];
+    int rc;
+
+    fputs("<h3>Slices</h3>\n<p>log10 f against the viewing angle in the plane of incidence (&minus;90&deg; to "
+          "90&deg;, mirror side right) for incidence 0&deg;, 30&deg; and 60&deg; (lighter: larger); dots: "
+          "measured samples within 2&deg; of the plane.</p>\n<div class=\"row\">\n",
+          fp);
+    static const double inc[3] = {0.0, 30.0, 60.0};
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *res = fitted(&m->fits[j]);
+        if (!res)
+            continue;
+        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0};
+        bf_slice_range sr;
+        if ((rc = bf_render_slice(res->model, res->x, &so, r->buf, &sr, r->err)) != BF_OK)
+            return rc;
+        snprintf(name, sizeof name, "m%d-slice-%d.png", i + 1, j + 1);
+        fputs("<figure>", fp);
+        if ((rc = image(r, name, SLICE_W, SLICE_H, r->buf, c->models[j])) != BF_OK)
+            return rc;
+        fputs("<figcaption>", fp);
+        esc(fp, c->models[j]);
+        fprintf(fp, "<br>log10 f %ld to %ld, %zu samples shown</figcaption></figure>\n", lround(sr.log10_lo),
+                lround(sr.log10_hi), sr.overlaid);
+    }
+    fputs("</div>\n<h3>Spheres</h3>\n<p>Light from 45&deg;, viewed from above, all with the same mapping. ", fp);
+    if (s && s->merl)
+        fputs("A sphere of the measurement is not drawn (the renderer draws models only); see the "
+              "half/difference images below.", fp);
+    fputs("</p>\n<div class=\"row\">\n", fp);
+    bf_dir light = {45.0, 0.0};
+    bf_sphere_options sp = {SPHERE, {0.0, 0.0}, &light, 1};
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *res = fitted(&m->fits[j]);
+        if (!res)
+            continue;
+        if ((rc = bf_render_sphere(res->model, res->x, &sp, r->buf, r->err)) != BF_OK)
+            return rc;
+        bf_tonemap(r->buf, 3 * (size_t)SPHERE * SPHERE, BF_TONEMAP_CLAMP, 1.0, 4.0);
+        snprintf(name, sizeof name, "m%d-sphere-%d.png", i + 1, j + 1);
+        fputs("<figure>", fp);
+        if ((rc = image(r, name, SPHERE, SPHERE, r->buf, c->models[j])) != BF_OK)
+            return rc;
+        fputs("<figcaption>", fp);
+        esc(fp, c->models[j]);
+        fputs("</figcaption></figure>\n", fp);
+    }
+    fputs("</div>\n", fp);
+    if (!s || !s->merl)
+        return BF_OK;
+
+    /* MERL: the measurement's theta_h x theta_d image, each model's, and their difference. */
+    size_t npx = (size_t)HD * HD;
+    fputs("<h3>Measurement and models: theta_h (x, 0&ndash;90&deg;) by theta_d (y, downwards), phi_d "
+          "90&deg;</h3>\n<p>Log mapping, 4 decades below each image's maximum. Difference: |log10(model / "
+          "measured)|, black equal, white one decade or more, blue no measured value.</p>\n<div class=\"row\">\n",
+          fp);
+    if ((rc = bf_render_halfdiff_merl(s, HD, HD, 90.0, r->buf2, r->err)) != BF_OK)
+        return rc;
+    memcpy(r->buf, r->buf2, 3 * npx * sizeof *r->buf);
+    bf_tonemap(r->buf, 3 * npx, BF_TONEMAP_LOG, 1.0, 4.0);
+    snprintf(name, sizeof name, "m%d-hd-measured.png", i + 1);
+    fputs("<figure>", fp);
+    if ((rc = image(r, name, HD, HD, r->buf, "measured")) != BF_OK)
+        return rc;
+    fputs("<figcaption>measured</figcaption></figure>\n</div>\n", fp);
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *res = fitted(&m->fits[j]);
+        if (!res)
+            continue;
+        fputs("<div class=\"row\">\n", fp);
+        if ((rc = bf_render_halfdiff_model(res->model, res->x, HD, HD, 90.0, r->buf, r->err)) != BF_OK)
+            return rc;
+        float *diff = r->buf + 3 * npx;
+        memcpy(diff, r->buf, 3 * npx * sizeof *r->buf);
+        difference(diff, r->buf2, npx);
+        bf_tonemap(r->buf, 3 * npx, BF_TONEMAP_LOG, 1.0, 4.0);
+        for (int d = 0; d < 2; d++) {
+            snprintf(name, sizeof name, "m%d-hd-%s-%d.png", i + 1, d ? "diff" : "model", j + 1);
+            fputs("<figure>", fp);
+            if ((rc = image(r, name, HD, HD, r->buf + 3 * npx * (size_t)d, c->models[j])) != BF_OK)
+                return rc;
+            fputs("<figcaption>", fp);
+            esc(fp, c->models[j]);
+            fputs(d ? " &minus; measured" : "", fp);
+            fputs("</figcaption></figure>\n", fp);
+        }
+        fputs("</div>\n", fp);
+    }
+    return BF_OK;
+}
+
+static void summary(report *r)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    fprintf(fp, "<h2 id=\"summary\">Summary over %d materials</h2>\n<table class=\"summary\">\n<tr><th>model</th>"
+                "<th>materials ranked</th><th>mean BIC rank</th><th>mean AIC rank</th><th>mean %s</th>"
+                "<th>chosen simplest</th></tr>\n",
+            c->nmaterials, bf_compare_metric_name(c->metric));
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_compare_summary *s = &c->summary[j];
+        fputs("<tr><td class=\"spec\">", fp);
+        esc(fp, c->models[j]);
+        fprintf(fp, "</td><td>%d</td>", s->ranked);
+        num(fp, s->mean_rank_bic);
+        num(fp, s->mean_rank_aic);
+        num(fp, s->mean_error);
+        fprintf(fp, "<td>%d</td></tr>\n", s->chosen);
+    }
+    fputs("</table>\n", fp);
+}
+
+static const char css[] =
+    "body{font-family:sans-serif;margin:1.5em;color:#222;max-width:1200px}"
+    "table{border-collapse:collapse;margin:.5em 0}"
+    "th,td{border:1px solid #bbb;padding:.2em .5em;text-align:right;font-size:90%}"
+    "th{background:#eee}td.spec{text-align:left;font-family:monospace}"
+    "tr.chosen td{background:#e6f4e6;font-weight:bold}"
+    ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
+    "figcaption{font-size:80%;max-width:480px;font-family:monospace}"
+    "h2{border-bottom:2px solid #ccc;margin-top:1.5em}";
+
+static int page(report *r)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    fprintf(fp, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                "<title>brdfit comparison</title>\n<style>%s</style>\n</head>\n<body>\n"
+                "<h1>brdfit comparison: %d material%s, %d model%s</h1>\n",
+            css, c->nmaterials, c->nmaterials == 1 ? "" : "s", c->nmodels, c->nmodels == 1 ? "" : "s");
+    fprintf(fp, "<p>Error: %s; tolerance %g%%", bf_compare_metric_name(c->metric), 100.0 * c->tolerance);
+    if (c->residual)
+        fprintf(fp, "; fit residual: %s", c->residual);
+    fputs(c->interrupted ? ". <b>Interrupted: some fits never ran.</b></p>\n" : ".</p>\n", fp);
+    if (c->nmaterials > 1)
+        summary(r);
+    for (int i = 0; i < c->nmaterials; i++) {
+        const bf_compare_material *m = &c->materials[i];
+        fprintf(fp, "<h2 id=\"m%d\">", i + 1);
+        esc(fp, m->data);
+        fprintf(fp, "</h2>\n<p>%zu samples, %d channel%s.</p>\n", m->samples, m->channels, m->channels == 1 ? "" : "s");
+        model_table(r, m);
+        fputs("<div class=\"row\">\n", fp);
+        int rc;
+        if ((rc = scatter(r, i, m, 0)) != BF_OK || (rc = scatter(r, i, m, 1)) != BF_OK)
+            return rc;
+        fputs("</div>\n", fp);
+        if ((rc = pictures(r, i, m)) != BF_OK)
+            return rc;
+    }
+    fputs("</body>\n</html>\n", fp);
+    return BF_OK;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *f)
+{
+    (void)st;
+    (void)flag;
+    (void)f;
+    return remove(path);
+}
+
+static void remove_tree(const char *path)
+{
+    nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* 1: DIR may be replaced (a previous report, or empty); 0: it may not; -1: not there. */
+static int replaceable(const char *dir)
+{
+    struct stat st;
+    if (lstat(dir, &st) != 0)
+        return errno == ENOENT ? -1 : 0;
+    if (!S_ISDIR(st.st_mode))
+        return 0;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, BF_REPORT_MARKER);
+    if (access(path, F_OK) == 0)
+        return 1;
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    struct dirent *e;
+    int empty = 1;
+    while (empty && (e = readdir(d)))
+        empty = !strcmp(e->d_name, ".") || !strcmp(e->d_name, "..");
+    closedir(d);
+    return empty;
+}
+
+int bf_compare_html_check(const char *dir, bf_error *err)
+{
+    if (!dir || !*dir)
+        return bf_fail(err, BF_ERR_ARG, "report folder: empty name");
+    if (replaceable(dir) == 0)
+        return bf_fail(err, BF_ERR_IO, "%s: exists and is not a brdfit report (no %s): not replacing it", dir,
+                       BF_REPORT_MARKER);
+    return BF_OK;
+}
+
+int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
+{
+    if (!c)
+        return bf_fail(err, BF_ERR_ARG, "report: no comparison");
+    int rc = bf_compare_html_check(dir, err);
+    if (rc != BF_OK)
+        return rc;
+    char target[4000], tmp[4096], old[4096];
+    size_t len = strlen(dir);
+    while (len > 1 && dir[len - 1] == '/')
+        len--;
+    if (len >= sizeof target)
+        return bf_fail(err, BF_ERR_ARG, "%s: path too long", dir);
+    memcpy(target, dir, len);
+    target[len] = '\0';
+    snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", target);
+    if (!mkdtemp(tmp))
+        return bf_fail(err, BF_ERR_IO, "%s: cannot create the report folder: %s", target, strerror(errno));
+    chmod(tmp, 0755); /* mkdtemp makes it private; a report is meant to be shared */
+
+    report r = {c, samples, tmp, NULL, NULL, NULL, err};
+    size_t big = 3 * (size_t)PLOT_W * PLOT_H; /* the largest picture; >= 2 half-diff images */
+    r.buf = malloc(big * sizeof *r.buf);
+    r.buf2 = malloc(3 * (size_t)HD * HD * sizeof *r.buf2);
+    char path[4200];
+    if (!r.buf || !r.buf2)
+        rc = bf_fail(err, BF_ERR_NOMEM, "report: out of memory");
+    if (rc == BF_OK) {
+        snprintf(path, sizeof path, "%s/%s", tmp, BF_REPORT_MARKER);
+        FILE *mk = fopen(path, "w");
+        if (!mk || fputs("brdfit compare report: this folder is replaced by the next report written here\n", mk) < 0)
+            rc = bf_fail(err, BF_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+        if (mk && fclose(mk) != 0 && rc == BF_OK)
+            rc = bf_fail(err, BF_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+    }
+    if (rc == BF_OK) {
+        snprintf(path, sizeof path, "%s/index.html", tmp);
+        if (!(r.fp = fopen(path, "w")))
+            rc = bf_fail(err, BF_ERR_IO, "%s/index.html: cannot write: %s", target, strerror(errno));
+    }
+    if (rc == BF_OK)
+        rc = page(&r);
+    if (r.fp) {
+        int bad = ferror(r.fp);
+        if ((fclose(r.fp) != 0 || bad) && rc == BF_OK)
+            rc = bf_fail(err, BF_ERR_IO, "%s/index.html: cannot write", target);
+    }
+    free(r.buf);
+    free(r.buf2);
+
+    /* Into place: an old report is moved aside first and removed only once the new one is in. */
+    int had = rc == BF_OK ? replaceable(target) : -1;
+    if (rc == BF_OK && had == 0)
+        rc = bf_fail(err, BF_ERR_IO, "%s: appeared while the report was written and is not a brdfit report", target);
+    if (rc == BF_OK && had == 1) {
+        snprintf(old, sizeof old, "%s.old-XXXXXX", target);
+        if (!mkdtemp(old) || rename(target, old) != 0) {
+            rc = bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
+            rmdir(old);
+        }
+    }
+    if (rc == BF_OK && rename(tmp, target) != 0) {
+        rc = bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
+        if (had == 1)
+            rename(old, target);
+    }
+    if (rc != BF_OK) {
+        remove_tree(tmp);
+        return rc;
+    }
+    if (had == 1)
+        remove_tree(old);
+    return BF_OK;
+}

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# brdfit compare --html: two synthetic materials x three models make one report folder
+# (index.html + PNGs, relative links, the images' sizes as the page says); the model
+# table per material and the summary across materials; a failing run leaves nothing; an
+# existing folder that is not a report is refused before any fit, a previous report is
+# replaced.
+set -u
+BRDFIT=$1
+SYNTH=$3
+tmp=$(mktemp -d)
+trap 'chmod -R u+w "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
+fails=0
+pass=0
+ok() { pass=$((pass + 1)); }
+bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+cat > "$tmp/lam.json" <<'JSON'
+{"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}
+JSON
+cat > "$tmp/wal.json" <<'JSON'
+{"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,
+ "params": {"rho_d": [0.3, 0.2, 0.1], "rho_s": [0.8, 0.8, 0.7], "alpha": 0.1, "f0": 0.05}}
+JSON
+"$SYNTH" --params "$tmp/lam.json" --pattern uniform --count 800 --noise 0.01 --seed 1 -o "$tmp/lam<1>.csv" &&
+"$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 800 --noise 0.01 --seed 2 -o "$tmp/wal.csv" ||
+  bad "brdfit-synth failed"
+MODELS=lambert,walter,cook_torrance
+R=$tmp/out/report
+
+# --- a report ---------------------------------------------------------------------------
+mkdir -p "$tmp/out"
+if "$BRDFIT" compare "$tmp/lam<1>.csv" "$tmp/wal.csv" -m $MODELS --threads 2 --quiet --html "$R" \
+     >"$tmp/stdout" 2>"$tmp/err"; then
+  ok
+else
+  bad "compare --html failed: $(cat "$tmp/err")"
+fi
+[ -f "$R/index.html" ] && ok || bad "no index.html"
+[ -f "$R/.brdfit-report" ] && ok || bad "no marker file"
+[ -z "$(ls -a "$tmp/out" | grep -v -x -e . -e .. -e report)" ] && ok || bad "leftovers beside the report: $(ls -a "$tmp/out")"
+html=$R/index.html
+# Every <img>: a relative name that exists in the folder, with the size the page states.
+nimg=0
+while read -r src w h; do
+  nimg=$((nimg + 1))
+  case $src in /* | *:* | */*) bad "image link not relative to the folder: $src"; continue ;; esac
+  [ -f "$R/$src" ] || { bad "missing image $src"; continue; }
+  size=$(iinfo "$R/$src" | grep -o '[0-9]* x *[0-9]*' | head -1 | tr -d ' ')
+  [ "$size" = "${w}x${h}" ] && ok || bad "$src is $size, the page says ${w}x${h}"
+done < <(grep -o '<img src="[^"]*" width="[0-9]*" height="[0-9]*"' "$html" |
+         sed 's/<img src="\([^"]*\)" width="\([0-9]*\)" height="\([0-9]*\)"/\1 \2 \3/')
+# Per material: 2 scatter plots + 3 slices + 3 spheres.
+[ "$nimg" = 16 ] && ok || bad "expected 16 images, found $nimg"
+[ "$(grep -c '<img' "$html")" = "$nimg" ] && ok || bad "an <img> the size check did not parse"
+[ "$(ls "$R"/*.png | wc -l)" = 16 ] && ok || bad "PNG count: $(ls "$R")"
+# Spheres are 160x160 and plots 480x320, as asked for a quick report.
+grep -q 'src="m1-sphere-1.png" width="160" height="160"' "$html" && ok || bad "sphere size"
+grep -q 'src="m2-k.png" width="480" height="320"' "$html" && ok || bad "scatter plot size"
+# The model table lists the three models per material, in a row each; the summary table.
+for m in lambert walter cook_torrance; do
+  [ "$(grep -c "<tr[^>]*><td class=\"spec\">$m</td><td>" "$html")" = 3 ] && ok ||
+    bad "$m: expected 2 material rows + 1 summary row"
+done
+grep -q '<h2 id="summary">Summary over 2 materials</h2>' "$html" && ok || bad "no summary table"
+# lambert is the simplest on the Lambert data (and its row is marked), walter on Walter's.
+awk '/<h2 id="m1">/{m=1} /<h2 id="m2">/{m=2} /class="chosen"/{print m, $0}' "$html" > "$tmp/chosen"
+grep -q '^1 .*spec">lambert<' "$tmp/chosen" && grep -q '^2 .*spec">walter<' "$tmp/chosen" &&
+  [ "$(wc -l < "$tmp/chosen")" = 2 ] && ok || bad "chosen rows: $(cat "$tmp/chosen")"
+# File names are escaped: the data file is called lam<1>.csv.
+grep -q 'lam&lt;1&gt;.csv</h2>' "$html" && ok || bad "file name not escaped"
+grep -q 'lam<1>' "$html" && bad "raw '<' from a file name in the page" || ok
+# The sphere of a fitted model is lit (not blank); the scatter plot shows red front points.
+oiiotool "$R/m1-sphere-1.png" --printstats 2>/dev/null | grep -q 'Stats Max: *[1-9]' && ok ||
+  bad "sphere is black: $(oiiotool "$R/m1-sphere-1.png" --printstats 2>&1 | grep Max)"
+
+# --- a previous report is replaced ----------------------------------------------------------
+touch "$R/stale.png"
+"$BRDFIT" compare "$tmp/wal.csv" -m lambert --quiet --html "$R" >/dev/null 2>"$tmp/err" && ok ||
+  bad "replacing a report failed: $(cat "$tmp/err")"
+[ -f "$R/index.html" ] && [ ! -e "$R/stale.png" ] && ok || bad "previous report not replaced"
+grep -q Summary "$html" && bad "one material: no summary expected" || ok
+[ -z "$(ls -a "$tmp/out" | grep -v -x -e . -e .. -e report)" ] && ok || bad "leftovers: $(ls -a "$tmp/out")"
+
+# --- an existing folder that is not a report is refused, before fitting -----------------
+mkdir -p "$tmp/mine" && echo keep > "$tmp/mine/notes.txt"
+"$BRDFIT" compare "$tmp/wal.csv" -m lambert --quiet --html "$tmp/mine" >"$tmp/stdout" 2>"$tmp/err"
+rc=$?
+[ $rc = 1 ] && ok || bad "non-report folder: exit $rc"
+[ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "mine: exists and is not a brdfit report" "$tmp/err" && ok ||
+  bad "message: $(cat "$tmp/err")"
+[ ! -s "$tmp/stdout" ] && ok || bad "fits ran before the refusal"
+[ "$(ls -a "$tmp/mine" | wc -l)" = 3 ] && [ "$(cat "$tmp/mine/notes.txt")" = keep ] && ok || bad "folder touched"
+echo x > "$tmp/afile"
+"$BRDFIT" compare "$tmp/wal.csv" -m lambert --quiet --html "$tmp/afile" >/dev/null 2>&1
+[ $? = 1 ] && [ "$(cat "$tmp/afile")" = x ] && ok || bad "a file as DIR"
+
+# --- a failing run leaves nothing --------------------------------------------------------
+# The parent is a file: the folder cannot be made.
+"$BRDFIT" compare "$tmp/wal.csv" -m lambert --quiet --html "$tmp/afile/report" >/dev/null 2>"$tmp/err"
+rc=$?
+[ $rc = 1 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "afile/report" "$tmp/err" && ok ||
+  bad "unwritable DIR: exit $rc, $(cat "$tmp/err")"
+# A parent that cannot be written to (skipped as root, who writes anywhere).
+if [ "$(id -u)" != 0 ]; then
+  mkdir "$tmp/ro" && chmod a-w "$tmp/ro"
+  "$BRDFIT" compare "$tmp/wal.csv" -m lambert --quiet --html "$tmp/ro/report" >/dev/null 2>&1
+  [ $? = 1 ] && [ -z "$(ls -A "$tmp/ro")" ] && ok || bad "read-only parent: $(ls -A "$tmp/ro")"
+fi
+# Bad data fails before anything is written.
+echo "theta_i,phi_i" > "$tmp/broken.csv"
+"$BRDFIT" compare "$tmp/broken.csv" -m lambert --quiet --html "$tmp/out2/r" >/dev/null 2>&1
+[ $? = 1 ] && [ ! -e "$tmp/out2" ] && ok || bad "bad data left $(ls -R "$tmp/out2" 2>&1)"
+# --html needs a value.
+"$BRDFIT" compare "$tmp/wal.csv" -m lambert --html >/dev/null 2>&1
+[ $? = 2 ] && ok || bad "--html without a value"
+
+echo "cli_report: $pass passed, $fails failed"
+[ $fails = 0 ]
