@@ -4,14 +4,7 @@
 # of --jobs; SIGINT keeps finished fits; bad usage and bad data (one line on stderr,
 # exit 2 or 1, no output files).
 set -u
-BRDFIT=$1
-SYNTH=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 cat > "$tmp/lam.json" <<'EOF'
 {"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}
@@ -132,5 +125,4 @@ printf 'theta_i,phi_i,theta_o,phi_o,value\n10,0,oops,180,0.1\n' > "$tmp/broken.c
 expect_fail 1 "malformed data" "$tmp/broken.csv" -m lambert
 grep -q 'broken.csv' "$tmp/err" && ok || bad "malformed data file not named: $(cat "$tmp/err")"
 
-echo "cli_compare: $pass passed, $fails failed"
-[ $fails = 0 ]
+finish

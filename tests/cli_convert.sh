@@ -2,15 +2,7 @@
 # brdfit convert between formats: byte-exact CSV and MERL round trips, the measured
 # formats to CSV, column mapping, and bad input (one-line error, no output file).
 set -u
-BRDFIT=$1
-DATA=$2
-SYNTH=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fails=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 rows() { tail -n +2 "$1" | wc -l; }
 
 # CSV -> CSV gives back the same text (canonical numbers, weights kept).
@@ -65,5 +57,4 @@ expect_error 2 "cannot tell the output format" "$tmp/o.txt" "$tmp/a.csv" "$tmp/o
 expect_error 2 "unknown format 'xyz'" "$tmp/o.csv" "$tmp/a.csv" "$tmp/o.csv" --format xyz
 expect_error 2 "needs IN and OUT" "$tmp/o.csv" "$tmp/a.csv"
 
-echo "$pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish

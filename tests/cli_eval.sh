@@ -2,14 +2,7 @@
 # brdfit eval and brdfit models from the shell: values, JSON listing, and bad input
 # (one-line error naming the file and problem, non-zero exit, no output file).
 set -u
-BRDFIT=$1
-DATA=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 # --- good input --------------------------------------------------------------
 if "$BRDFIT" eval --params "$DATA/lambert_rgb.json" --dirs "$DATA/dirs_small.csv" -o "$tmp/out.csv" 2>"$tmp/err"; then
@@ -111,5 +104,4 @@ if "$BRDFIT" eval --params "$P" 2>"$tmp/err"; then bad "missing --dirs accepted"
 fi
 if "$BRDFIT" frobnicate 2>/dev/null; then bad "unknown command accepted"; else ok; fi
 
-echo "$pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish

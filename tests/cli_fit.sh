@@ -3,15 +3,7 @@
 # generating model's values; several models; a failed fit; bad usage and bad data (one
 # line on stderr, exit 2 or 1, no output file).
 set -u
-BRDFIT=$1
-DATA=$2
-SYNTH=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 cat > "$tmp/truth.json" <<'EOF'
 {"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,
@@ -118,5 +110,4 @@ printf 'theta_i,phi_i,theta_o,phi_o,value\n95,0,10,180,0.5\n' > "$tmp/below.csv"
 expect_error "no usable sample" 1 'below.csv' "$tmp/below.csv" -m walter
 if "$BRDFIT" fit --help | grep -q -- '--residual'; then ok; else bad "fit --help"; fi
 
-echo "$pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish

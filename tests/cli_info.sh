@@ -2,14 +2,7 @@
 # brdfit info from the shell: counts, channels and coverage on small data, the prep
 # report, JSON output, and bad input (one-line error, exit 1 bad data, 2 bad usage).
 set -u
-BRDFIT=$1
-DATA=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 # Five samples: one on the horizon, one negative, one with a zero.
 cat > "$tmp/s.csv" <<'CSV'
@@ -52,5 +45,4 @@ expect 1 "no sample left" "$tmp/s.csv" --max-theta 5
 expect 1 "s.csv: cannot make RGB" "$tmp/s.csv" --rgb
 expect 1 "missing.csv" "$tmp/missing.csv"
 
-echo "$pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish

@@ -3,14 +3,7 @@
 # size that OpenImageIO reads back (iinfo), and bad usage / bad input: a one-line error,
 # exit 2 or 1, and no image file.
 set -u
-BRDFIT=$1
-DATA=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 P=$DATA/lambert_rgb.json
 
 # --- good input: the image exists, has the size asked for, and nothing else is left ---
@@ -70,5 +63,4 @@ expect_error bad-params 1 "short.json" "$tmp/e.png" --params "$tmp/short.json"
 expect_error half-diff-not-merl 1 "dirs_small.csv" "$tmp/e.exr" --half-diff --data "$DATA/dirs_small.csv"
 expect_error unwritable 1 "no-such-dir" "$tmp/no-such-dir/e.png" --params "$P"
 
-echo "cli_render: $pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish

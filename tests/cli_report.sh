@@ -5,14 +5,7 @@
 # existing folder that is not a report is refused before any fit, a previous report is
 # replaced.
 set -u
-BRDFIT=$1
-SYNTH=$3
-tmp=$(mktemp -d)
-trap 'chmod -R u+w "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 cat > "$tmp/lam.json" <<'JSON'
 {"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}
@@ -114,5 +107,4 @@ echo "theta_i,phi_i" > "$tmp/broken.csv"
 "$BRDFIT" compare "$tmp/wal.csv" -m lambert --html >/dev/null 2>&1
 [ $? = 2 ] && ok || bad "--html without a value"
 
-echo "cli_report: $pass passed, $fails failed"
-[ $fails = 0 ]
+finish

@@ -3,14 +3,7 @@
 # and bad usage or input (one line on stderr, exit 2 or 1, no output file).
 # Arguments: the brdfit binary (unused), tests/data, the brdfit-synth binary.
 set -u
-DATA=$2
-SYNTH=${3:?usage: cli_synth.sh BRDFIT DATA_DIR BRDFIT_SYNTH}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-pass=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+source "$(dirname "$0")/common_cli.sh" "$@"
 
 P="$DATA/lambert_rgb.json"
 printf '{"model":"walter","options":{"fresnel":"schlick"},"channels":3,\n"params":{"rho_d":[0.5,0.3,0.1],"rho_s":[0.6,0.6,0.6],"alpha":0.2,"f0":0.04}}\n' > "$tmp/walter.json"
@@ -144,5 +137,4 @@ expect_error "merl from one channel" 1 "mono.json: pattern merl needs a 3-channe
 expect_error "unwritable output" 1 "no/such/dir/o.csv: cannot create" "$tmp/no/such/dir/o.csv" --params "$P" --pattern uniform --count 5
 "$SYNTH" --help | grep -q '^usage: brdfit-synth' && ok || bad "--help"
 
-echo "$pass passed, $fails failed"
-[ "$fails" = 0 ]
+finish
