@@ -125,4 +125,15 @@ printf 'theta_i,phi_i,theta_o,phi_o,value\n10,0,oops,180,0.1\n' > "$tmp/broken.c
 expect_fail 1 "malformed data" "$tmp/broken.csv" -m lambert
 grep -q 'broken.csv' "$tmp/err" && ok || bad "malformed data file not named: $(cat "$tmp/err")"
 
+# Two bundled real materials (the Cornell car paint, the MERL felt slice in ALTA form)
+# and three models: both fitted and ranked, the glossy paint not called Lambertian.
+EX="$DATA/../../examples/cornell/cayman.brdf"
+if "$BRDFIT" compare "$EX" "$DATA/alta/pink-felt-1d.alta" -m lambert,walter,cook_torrance --quiet \
+     --json "$tmp/bundled.json" >/dev/null 2>&1; then
+  jq -e '(.materials | length) == 2 and ([.materials[].fits[] | select(.ok)] | length) == 6
+         and .materials[0].simplest != "lambert"' "$tmp/bundled.json" >/dev/null && ok || bad "bundled compare contents"
+else
+  bad "bundled compare run"
+fi
+
 finish

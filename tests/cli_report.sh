@@ -107,4 +107,16 @@ echo "theta_i,phi_i" > "$tmp/broken.csv"
 "$BRDFIT" compare "$tmp/wal.csv" -m lambert --html >/dev/null 2>&1
 [ $? = 2 ] && ok || bad "--html without a value"
 
+# A MERL table: the measured sphere leads the spheres, and the half-diff images of the
+# measurement, each model and their difference are there.
+printf '{"model":"walter","channels":3,"params":{"rho_d":[0.5,0.3,0.1],"rho_s":[0.6,0.6,0.6],"alpha":0.2,"f0":0.04}}' > "$tmp/wm.json"
+if "$SYNTH" --params "$tmp/wm.json" --pattern merl --seed 1 -o "$tmp/wm.binary" >/dev/null 2>&1 &&
+   "$BRDFIT" compare "$tmp/wm.binary" -m lambert,walter --html "$tmp/merl_report" --quiet >/dev/null 2>&1; then
+  for f in m1-sphere-measured.png m1-hd-measured.png m1-hd-model-2.png m1-hd-diff-2.png; do
+    [ -s "$tmp/merl_report/$f" ] && grep -q "src=\"$f\"" "$tmp/merl_report/index.html" && ok || bad "MERL report: $f"
+  done
+else
+  bad "MERL report run"
+fi
+
 finish

@@ -40,6 +40,10 @@ typedef struct bf_sphere_options {
 
 int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err);
+/* The same sphere of a measured MERL table (read with its origin): each pixel's pair of
+ * directions takes the value of the cell MERL's own lookup picks (half/difference
+ * angles, phi_d folded by reciprocity); 0 where that cell is invalid. */
+int bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
 
 /* ---- In-plane slices -------------------------------------------------------------
  * For each incidence angle theta_i (light at phi_i = 0), f at viewing directions in the

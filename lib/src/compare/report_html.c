@@ -9,8 +9,8 @@
  *  - Pictures are small (spheres 160x160, slices 320x240, scatter plots 480x320) so a
  *    report over many fits stays quick; each model's pictures come from its fitted
  *    parameters. Spheres share one display mapping (clamp, exposure 1) so they compare.
- *  - MERL tables: render.h renders spheres only from models, so the measurement is shown
- *    as its theta_h x theta_d image (phi_d 90) beside each model's, with a difference
+ *  - MERL tables: a sphere of the measurement leads the row of spheres, and the table's
+ *    theta_h x theta_d image (phi_d 90) stands beside each model's, with a difference
  *    image: |log10(model / measured)|, mean over channels, black = equal, white = one
  *    decade or more, blue where the table has no valid value.
  *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
@@ -223,13 +223,29 @@ static int pictures(report *r, int i, const bf_compare_material *m)
         fprintf(fp, "<br>log10 f %ld to %ld, %zu samples shown</figcaption></figure>\n", lround(sr.log10_lo),
                 lround(sr.log10_hi), sr.overlaid);
     }
-    fputs("</div>\n<h3>Spheres</h3>\n<p>Light from 45&deg;, viewed from above, all with the same mapping. ", fp);
-    if (s && s->merl)
-        fputs("A sphere of the measurement is not drawn (the renderer draws models only); see the "
-              "half/difference images below.", fp);
+    fputs("</div>\n<h3>Spheres</h3>\n<p>Light from 45&deg;, viewed from above, all with the same mapping.",
+          fp);
+    /* A sphere of the table needs most of its cells: a subsampled table would show as
+     * scattered dots, so it is drawn only from a dense one. */
+    int dense = s && s->merl && s->n >= (size_t)BF_MERL_CELLS / 4;
+    if (dense)
+        fputs(" The first is the measured table itself (each pixel the cell MERL's lookup picks).", fp);
+    else if (s && s->merl)
+        fprintf(fp, " The measured table is not drawn as a sphere: %zu samples are too few of its cells "
+                    "(subsampled?).", s->n);
     fputs("</p>\n<div class=\"row\">\n", fp);
     bf_dir light = {45.0, 0.0};
     bf_sphere_options sp = {SPHERE, {0.0, 0.0}, &light, 1};
+    if (dense) {
+        if ((rc = bf_render_sphere_merl(s, &sp, r->buf, r->err)) != BF_OK)
+            return rc;
+        bf_tonemap(r->buf, 3 * (size_t)SPHERE * SPHERE, BF_TONEMAP_CLAMP, 1.0, 4.0);
+        snprintf(name, sizeof name, "m%d-sphere-measured.png", i + 1);
+        fputs("<figure>", fp);
+        if ((rc = image(r, name, SPHERE, SPHERE, r->buf, "measured")) != BF_OK)
+            return rc;
+        fputs("<figcaption>measured</figcaption></figure>\n", fp);
+    }
     for (int j = 0; j < c->nmodels; j++) {
         const bf_fit_result *res = fitted(&m->fits[j]);
         if (!res)

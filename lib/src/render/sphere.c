@@ -32,12 +32,62 @@ static void normalise(double v[3])
     v[2] /= l;
 }
 
-int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
-                     bf_error *err)
+/* What a sphere shows: C channels of f at every sample of a geometry (0 below the
+ * horizon). A model, or a measured table. */
+typedef struct source {
+    int C;
+    void (*eval)(const struct source *src, const bf_geometry *g, double *f);
+    const bf_model *m;
+    const double *x;
+    const bf_samples *s;
+    const int32_t *sample_of; /* MERL cell -> sample, -1 for none */
+} source;
+
+static void eval_model(const source *src, const bf_geometry *g, double *f)
+{
+    bf_model_eval(src->m, src->x, g, f, NULL);
+}
+
+/* The MERL cell MERL's own lookup picks for directions L, V in the local frame (half and
+ * difference angles, phi_d folded into [0, pi) by reciprocity), or -1. */
+static int32_t merl_lookup(const double L[3], const double V[3])
+{
+    double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+    normalise(h);
+    double th = acos(h[2] > 1.0 ? 1.0 : h[2]), ph = atan2(h[1], h[0]);
+    /* D = L rotated by -phi_h about z, then by -theta_h about y. */
+    double c = cos(-ph), s_ = sin(-ph);
+    double d0 = c * L[0] - s_ * L[1], d1 = s_ * L[0] + c * L[1], d2 = L[2];
+    double ct = cos(-th), st = sin(-th);
+    double e0 = ct * d0 + st * d2, e2 = -st * d0 + ct * d2;
+    double td = acos(e2 > 1.0 ? 1.0 : e2 < -1.0 ? -1.0 : e2), pd = atan2(d1, e0);
+    if (pd < 0.0)
+        pd += M_PI;
+    int ih = (int)floor(sqrt(th / (M_PI / 2)) * BF_MERL_TH), jd = (int)floor(td / (M_PI / 2) * BF_MERL_TD);
+    int kd = (int)floor(pd / M_PI * BF_MERL_PD);
+    if (ih < 0 || ih >= BF_MERL_TH || jd < 0 || jd >= BF_MERL_TD)
+        return -1;
+    kd = kd < 0 ? 0 : kd >= BF_MERL_PD ? BF_MERL_PD - 1 : kd;
+    return kd + jd * BF_MERL_PD + ih * BF_MERL_PD * BF_MERL_TD;
+}
+
+static void eval_merl(const source *src, const bf_geometry *g, double *f)
+{
+    const int C = src->C;
+    for (size_t q = 0; q < g->n; q++) {
+        double L[3] = {g->lx[q], g->ly[q], g->lz[q]}, V[3] = {g->vx[q], g->vy[q], g->vz[q]};
+        int32_t cell = bf_geometry_valid(g, q) ? merl_lookup(L, V) : -1;
+        int32_t smp = cell >= 0 ? src->sample_of[cell] : -1;
+        for (int c = 0; c < C; c++)
+            f[q * (size_t)C + (size_t)c] = smp >= 0 ? src->s->value[(size_t)smp * (size_t)C + (size_t)c] : 0.0;
+    }
+}
+
+static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
     if (!o || o->size < 1 || o->nlights < 1 || !o->lights)
         return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
-    const int N = o->size, C = bf_model_channels(m);
+    const int N = o->size, C = src->C;
     const size_t npx = (size_t)N * (size_t)N;
     memset(rgb, 0, npx * 3 * sizeof *rgb);
 
@@ -104,10 +154,10 @@ int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options
             status = err ? err->code : BF_ERR_NOMEM;
             goto done;
         }
-        bf_model_eval(m, x, g, f, NULL);
+        src->eval(src, g, f);
         for (size_t q = 0; q < n; q++) {
             if (!bf_geometry_valid(g, q))
-                continue; /* models give 0 there; skip to keep the sum exact */
+                continue; /* sources give 0 there; skip to keep the sum exact */
             double c[3];
             bf_channels_to_rgb(f + q * (size_t)C, C, c);
             for (int k = 0; k < 3; k++)
@@ -125,4 +175,29 @@ done:
     free(f);
     free(acc);
     return status;
+}
+
+int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
+                     bf_error *err)
+{
+    source src = {bf_model_channels(m), eval_model, m, x, NULL, NULL};
+    return render(&src, o, rgb, err);
+}
+
+int bf_render_sphere_merl(const bf_samples *s, const bf_sphere_options *o, float *rgb, bf_error *err)
+{
+    if (!s || !s->merl)
+        return bf_fail(err, BF_ERR_ARG, "sphere render: the data is not a MERL table as read");
+    int32_t *sample_of = malloc((size_t)BF_MERL_CELLS * sizeof *sample_of);
+    if (!sample_of)
+        return bf_fail(err, BF_ERR_NOMEM, "sphere render: out of memory");
+    for (size_t c = 0; c < (size_t)BF_MERL_CELLS; c++)
+        sample_of[c] = -1;
+    for (size_t i = 0; i < s->n; i++)
+        if (s->merl->cell[i] >= 0 && s->merl->cell[i] < BF_MERL_CELLS)
+            sample_of[s->merl->cell[i]] = (int32_t)i;
+    source src = {s->channels, eval_merl, NULL, NULL, s, sample_of};
+    int rc = render(&src, o, rgb, err);
+    free(sample_of);
+    return rc;
 }
