@@ -107,14 +107,14 @@ static void test_subset(void **state)
     bf_samples_free(s);
 }
 
-/* The full files of ../shared/data: 1439 geometries x 31 wavelengths each, all values
+/* The full bundled files (examples/cornell): 1439 geometries x 31 wavelengths each, all values
  * non-negative; peaks as SOURCE.txt gives them. Missing files fail the test. */
 static void check_full(const char *path, double peak)
 {
     bf_samples *s = NULL;
     bf_error err = {0};
     if (bf_samples_read_cornell(path, &s, &err) != BF_OK)
-        fail_msg("%s (the shared data sets belong at ../shared/data beside the checkout)", err.msg);
+        fail_msg("%s", err.msg);
     assert_int_equal(s->n, 1439);
     check_wavelengths(s);
     double max = 0.0;
@@ -140,8 +140,8 @@ static void check_full(const char *path, double peak)
 static void test_full_shared_files(void **state)
 {
     (void)state;
-    check_full(BRDFIT_SHARED_DATA "/cornell/cayman.brdf", 645.800964);
-    check_full(BRDFIT_SHARED_DATA "/cornell/garnet_red.brdf", 38.368774);
+    check_full(BRDFIT_EXAMPLES "/cornell/cayman.brdf", 645.800964);
+    check_full(BRDFIT_EXAMPLES "/cornell/garnet_red.brdf", 38.368774);
 }
 
 /* Records are a stream: split across lines, several per line, comments anywhere,

@@ -1,4 +1,4 @@
-/* Fits of measured data nobody synthesised (../shared/data, BRDFIT_SHARED_DATA):
+/* Fits of measured data nobody synthesised (bundled: examples/cornell, tests/data/nist_ptfe):
  * Cornell "Cayman Metallic" and "Garnet Red" car paints (spectral, as RGB like
  * --rgb) and NIST sintered PTFE (f_r11, monochrome). Lambert and every other family
  * (default options) from the data-driven start: every fit converges, and every
@@ -31,7 +31,7 @@ static int verbose(void) { return getenv("BRDFIT_TEST_VERBOSE") != NULL; }
 static bf_samples *read_cornell(const char *name)
 {
     char path[512];
-    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_SHARED_DATA, name);
+    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_EXAMPLES, name);
     bf_read_options ro;
     memset(&ro, 0, sizeof ro);
     bf_samples *s = NULL;
@@ -50,7 +50,7 @@ static bf_samples *read_cornell(const char *name)
 static bf_samples *read_ptfe(void)
 {
     char path[512];
-    snprintf(path, sizeof path, "%s/nist_ptfe/PTFE.data.random.csv", BRDFIT_SHARED_DATA);
+    snprintf(path, sizeof path, "%s/nist_ptfe/PTFE.data.random.csv", BRDFIT_TEST_DATA);
     bf_read_options ro;
     memset(&ro, 0, sizeof ro);
     ro.format = BF_FORMAT_CSV;

@@ -111,7 +111,7 @@ static void test_ptfe(void **state)
 {
     (void)state;
     check_ptfe(BRDFIT_TEST_DATA "/nist_ptfe/PTFE.data.random.head40.csv", 40);
-    check_ptfe(BRDFIT_SHARED_DATA "/nist_ptfe/PTFE.data.random.csv", 1760);
+    check_ptfe(BRDFIT_TEST_DATA "/nist_ptfe/PTFE.data.random.csv", 1760);
 }
 
 static void expect_error(const char *name, const char *text, const bf_csv_map *map, const char *fragment)
