@@ -23,6 +23,9 @@
  *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
  *    any fit: an existing DIR that is neither empty nor a previous report is refused
  *    (exit 1) rather than replaced. The report is written after the summary is printed.
+ *  - --scene FILE (a data option): every fit and every error in the ranking is over the
+ *    scene's samples with their scene weights (fit.weighted_metrics), so the selection
+ *    follows the directions the scene uses; the summary names the scene.
  *  - Exit: 0 all fits ok; 1 bad data, a failed fit or an unwritable output; 2 bad usage;
  *    130 interrupted. */
 #include <errno.h>
@@ -330,6 +333,7 @@ int cmd_compare(int argc, char **argv)
         bf_model_free(m);
     }
     fit_options_finish(&fopt, dopt.prep.seed);
+    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
     /* The --threads budget is shared between the concurrent fits. */
     if (jobs > nmodels * ndata)
         jobs = nmodels * ndata;
@@ -389,6 +393,9 @@ int cmd_compare(int argc, char **argv)
         fputc('\n', stderr);
 
     bf_compare_rank(&cmp);
+    if (data_options_has_scene(&dopt))
+        printf("scene %s: errors, AIC and BIC over the scene's directions, weighted as it weighs them\n",
+               dopt.scene);
     for (int i = 0; i < ndata; i++)
         print_material(stdout, &cmp, &cmp.materials[i]);
     if (ndata > 1)

@@ -15,6 +15,9 @@
  *  - -o with one model writes the result object (a parameter file for brdfit eval);
  *    with several, {"fits": [result, ...]}, which eval does not take. A failed fit is
  *    still written (ok: false, the start as parameters) and the exit status is 1.
+ *  - --accuracy fast|balanced|best is a bundle of options (fit_options.c); options the
+ *    user gives win whatever their order. The fast preset's subsample reaches the data
+ *    options here, after parsing, and only when no --subsample was given.
  *  - Exit: 0 when every fit is ok; 1 for bad data, a failed fit or an unwritable output;
  *    2 for bad usage (options, model specs, parameter names in --fix/--bound). */
 #include <errno.h>
@@ -41,8 +44,8 @@ static void usage(FILE *out)
             "  -m, --model SPECS          models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
             "                             (a comma starts a new model where a model name follows; repeatable)\n"
             "  -o FILE                    result JSON (one model: a parameter file; several: {\"fits\": [...]})\n"
-            "%s%s",
-            fit_options_usage, data_options_usage);
+            "%s%s%s",
+            fit_accuracy_usage, fit_options_usage, data_options_usage);
 }
 
 static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se, int C)
@@ -83,7 +86,7 @@ int cmd_fit(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     fit_options fopt;
     fit_options_init(&fopt);
-    int nmodels = 0, status = 2;
+    int nmodels = 0, status = 2, subsample_given = 0;
     char *specs[MAX_MODELS] = {0};
     const char *data = NULL, *out_path = NULL;
     bf_error err;
@@ -98,9 +101,12 @@ int cmd_fit(int argc, char **argv)
             status = 0;
             goto done;
         }
+        subsample_given |= !strcmp(a, "--subsample");
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse_accuracy(&fopt, argc, argv, &i, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
@@ -146,6 +152,10 @@ int cmd_fit(int argc, char **argv)
         bf_model_free(m);
     }
     fit_options_finish(&fopt, dopt.prep.seed);
+    /* With a scene, error is reported over the scene's directions, weighted as it weighs them. */
+    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+    if (!subsample_given)
+        dopt.prep.subsample = fit_options_preset_subsample(&fopt);
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

@@ -25,9 +25,10 @@ static cJSON *range_json(bf_range r)
     return o;
 }
 
-static void print_json(const char *path, const bf_samples *s, const bf_prep *p, const bf_prep_report *r,
-                       const bf_samples_info *info)
+static void print_json(const char *path, const bf_samples *s, const data_options *o, const bf_prep_report *r,
+                       const data_scene_report *sr, const bf_samples_info *info)
 {
+    const bf_prep *p = &o->prep;
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "file", path);
     cJSON_AddNumberToObject(root, "samples_read", (double)r->read);
@@ -49,6 +50,15 @@ static void print_json(const char *path, const bf_samples *s, const bf_prep *p, 
     cJSON_AddStringToObject(prep, "negative_action", negative_action(p->negative));
     cJSON_AddNumberToObject(prep, "subsampled_out", (double)r->subsampled_out);
     cJSON_AddNumberToObject(prep, "kept", (double)r->kept);
+    if (o->scene) {
+        /* The scene runs after the drops and before subsampling. */
+        cJSON *sc = cJSON_AddObjectToObject(root, "scene");
+        cJSON_AddStringToObject(sc, "file", o->scene);
+        cJSON_AddNumberToObject(sc, "samples_in", (double)sr->in);
+        cJSON_AddNumberToObject(sc, "kept", (double)sr->kept);
+    } else {
+        cJSON_AddNullToObject(root, "scene");
+    }
 
     cJSON *cov = cJSON_AddObjectToObject(root, "coverage_deg");
     cJSON_AddItemToObject(cov, "theta_i", range_json(info->theta_i));
@@ -91,9 +101,10 @@ static void print_channel_names(const bf_samples *s)
     }
 }
 
-static void print_text(const char *path, const bf_samples *s, const bf_prep *p, const bf_prep_report *r,
-                       const bf_samples_info *info)
+static void print_text(const char *path, const bf_samples *s, const data_options *o, const bf_prep_report *r,
+                       const data_scene_report *sr, const bf_samples_info *info)
 {
+    const bf_prep *p = &o->prep;
     printf("%s: %zu samples read, %zu used\n", path, r->read, info->n);
     printf("channels: %d (", s->channels);
     print_channel_names(s);
@@ -113,6 +124,8 @@ static void print_text(const char *path, const bf_samples *s, const bf_prep *p, 
            "subsampling; %zu with negative values %s\n",
            r->below_horizon, r->nonfinite, r->above_max_theta, r->subsampled_out, r->negative,
            done[p->negative]);
+    if (o->scene)
+        printf("scene %s: kept %zu of %zu samples (those its lights and views use)\n", o->scene, sr->kept, sr->in);
     if (p->subsample > 0 && r->subsampled_out == 0)
         printf("subsample %zu: all %zu samples kept (no more available)\n", p->subsample, info->n);
 
@@ -167,7 +180,8 @@ int cmd_info(int argc, char **argv)
         return 2;
     }
     bf_prep_report report;
-    bf_samples *s = data_options_load(&o, path, &report, cmd);
+    data_scene_report scene;
+    bf_samples *s = data_options_load_scene(&o, path, &report, &scene, cmd);
     if (!s)
         return 1;
     bf_samples_info info;
@@ -178,9 +192,9 @@ int cmd_info(int argc, char **argv)
         return 1;
     }
     if (json)
-        print_json(path, s, &o.prep, &report, &info);
+        print_json(path, s, &o, &report, &scene, &info);
     else
-        print_text(path, s, &o.prep, &report, &info);
+        print_text(path, s, &o, &report, &scene, &info);
     bf_samples_info_free(&info);
     bf_samples_free(s);
     return 0;

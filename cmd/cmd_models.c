@@ -115,10 +115,14 @@ int cmd_models(int argc, char **argv)
     if (!json) {
         for (int f = 0; f < bf_family_count(); f++)
             print_text(bf_family_get(f));
+        printf("All models: option mono=specular|all|NAME[+NAME...] ties colour parameters across channels\n"
+               "  (specular: every colour parameter but the diffuse colour; one value for all channels)\n");
         return 0;
     }
     cJSON *root = cJSON_CreateObject();
     cJSON *arr = cJSON_AddArrayToObject(root, "models");
+    cJSON_AddStringToObject(root, "mono", "every model accepts mono=specular|all|NAME[+NAME...]: the named colour "
+                                          "parameters take one value for all channels");
     for (int f = 0; f < bf_family_count(); f++)
         cJSON_AddItemToArray(arr, family_json(bf_family_get(f)));
     char *s = cJSON_Print(root);

@@ -9,5 +9,8 @@ int cmd_convert(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_tradeoff(int argc, char **argv);
+int cmd_select(int argc, char **argv);
+int cmd_regress(int argc, char **argv);
 
 #endif

@@ -1,6 +1,8 @@
 /* Parsing of the shared data options, and reading + preprocessing in one call. */
 #include "data_options.h"
 
+#include "brdfit/scene.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,7 +20,9 @@ const char data_options_usage[] =
     "  --rgb | --luminance              spectral to three bands / to one channel\n"
     "  --max-theta DEG                  drop samples with theta_i or theta_o above DEG\n"
     "  --negative keep|drop|clamp       negative values (default keep: they are data)\n"
-    "  --subsample N [--seed K]         seeded stratified subsample to N samples\n";
+    "  --subsample N [--seed K]         seeded stratified subsample to N samples\n"
+    "  --scene FILE                     keep and weight the samples a scene's lights and views\n"
+    "                                   use (JSON; README \"Scenes\"); error is reported over them\n";
 
 static int parse_number(const char *s, double *out)
 {
@@ -32,7 +36,8 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
 {
     const char *a = argv[*i];
     static const char *const with_value[] = {"--format", "--angles", "--values", "--weight", "--channels",
-                                             "--max-theta", "--negative", "--subsample", "--seed"};
+                                             "--max-theta", "--negative", "--subsample", "--seed",
+                                             "--scene"};
     int needs = 0;
     for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
         needs |= strcmp(a, with_value[k]) == 0;
@@ -82,6 +87,8 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
         o->read.csv.channels = v;
     } else if (!strcmp(a, "--weight")) {
         o->read.csv.weight_col = v;
+    } else if (!strcmp(a, "--scene")) {
+        o->scene = v;
     } else if (!strcmp(a, "--channels")) {
         o->prep.channels = v;
     } else if (!strcmp(a, "--max-theta")) {
@@ -117,19 +124,75 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
     return 1;
 }
 
+int data_options_has_scene(const data_options *o)
+{
+    return o->scene != NULL;
+}
+
+/* The scene goes between preprocessing's drops and its subsampling: prep without the
+ * subsample, the scene, then prep again with only the subsample (nothing else is left to
+ * drop), so that --subsample N means N samples inside the scene. */
+static int apply_scene(const data_options *o, bf_samples *s, bf_prep_report *report, data_scene_report *sr,
+                       const char *path, const char *cmd)
+{
+    bf_error err;
+    bf_scene *sc = NULL;
+    if (bf_scene_read(o->scene, &sc, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    sr->in = s->n;
+    int rc = bf_scene_apply(sc, s, &sr->kept, &err);
+    bf_scene_free(sc);
+    if (rc != BF_OK) {
+        fprintf(stderr, "%s: %s: scene %s: %s\n", cmd, path, o->scene, err.msg);
+        return -1;
+    }
+    bf_prep sub = {.subsample = o->prep.subsample, .seed = o->prep.seed};
+    bf_prep_report r2;
+    if (bf_samples_prep(s, &sub, &r2, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
+        return -1;
+    }
+    report->subsampled_out = r2.subsampled_out;
+    report->kept = s->n;
+    return 0;
+}
+
 bf_samples *data_options_load(const data_options *o, const char *path, bf_prep_report *report,
                               const char *cmd)
 {
+    return data_options_load_scene(o, path, report, NULL, cmd);
+}
+
+bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_prep_report *report,
+                                    data_scene_report *scene, const char *cmd)
+{
     bf_error err;
     bf_samples *s = NULL;
+    bf_prep_report rep;
+    data_scene_report sr = {0, 0};
+    if (!report)
+        report = &rep;
+    if (scene)
+        *scene = sr;
     if (bf_samples_read(path, &o->read, &s, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return NULL;
     }
-    if (bf_samples_prep(s, &o->prep, report, &err) != BF_OK) {
+    bf_prep p = o->prep;
+    if (o->scene)
+        p.subsample = 0;
+    if (bf_samples_prep(s, &p, report, &err) != BF_OK) {
         fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
         bf_samples_free(s);
         return NULL;
     }
+    if (o->scene && apply_scene(o, s, report, &sr, path, cmd) != 0) {
+        bf_samples_free(s);
+        return NULL;
+    }
+    if (scene)
+        *scene = sr;
     return s;
 }

@@ -10,7 +10,14 @@ typedef struct data_options {
     bf_read_options read;
     bf_prep prep;
     char angles_buf[256]; /* storage for --angles names */
+    const char *scene;    /* --scene FILE (brdfit/scene.h), read when data is loaded; NULL: none */
 } data_options;
+
+/* What --scene did to one data set: the samples it was given (after preprocessing's
+ * drops, before subsampling) and those inside the scene. */
+typedef struct data_scene_report {
+    size_t in, kept;
+} data_scene_report;
 
 /* Usage lines for the options below, for a command's --help. */
 extern const char data_options_usage[];
@@ -19,8 +26,18 @@ extern const char data_options_usage[];
  * returns 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
 int data_options_parse(data_options *o, int argc, char **argv, int *i, const char *cmd);
 
-/* Reads path and applies the preprocessing; prints a one-line error on failure. */
+/* Reads path and applies the preprocessing, then the scene (drops and weights; before
+ * any subsampling, so --subsample N gives N samples inside the scene); prints a one-line
+ * error on failure ("cmd: FILE:LINE: problem" for a bad scene file). report->kept and
+ * ->subsampled_out describe the final set. */
 bf_samples *data_options_load(const data_options *o, const char *path, bf_prep_report *report,
                               const char *cmd);
+/* The same, and what the scene kept (scene may be NULL; zeroed without --scene). */
+bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_prep_report *report,
+                                    data_scene_report *scene, const char *cmd);
+
+/* 1 when --scene was given: error should then be reported over the scene's directions
+ * (bf_fit_options.weighted_metrics). */
+int data_options_has_scene(const data_options *o);
 
 #endif

@@ -7,11 +7,43 @@
 
 #define FIT_OPTIONS_MAX_OVERRIDES 64
 
+/* brdfit fit --accuracy: option bundles measured with brdfit tradeoff (fit_options.c
+ * says which figures chose them). A preset fills only what the user did not set. */
+typedef enum fit_accuracy {
+    FIT_ACCURACY_NONE = 0, /* not given: brdfit fit's defaults */
+    FIT_ACCURACY_FAST,
+    FIT_ACCURACY_BALANCED,
+    FIT_ACCURACY_BEST,
+} fit_accuracy;
+
+/* Bits of fit_options.given: the options the user set explicitly. */
+enum {
+    FIT_GIVEN_BACKEND = 1u << 0,
+    FIT_GIVEN_ALGORITHM = 1u << 1,
+    FIT_GIVEN_STARTS = 1u << 2,
+    FIT_GIVEN_RESIDUAL = 1u << 3,
+    FIT_GIVEN_MAX_ITERATIONS = 1u << 4,
+};
+
 typedef struct fit_options {
     bf_fit_options fit;
     bf_override overrides[FIT_OPTIONS_MAX_OVERRIDES];
     int noverrides;
+    fit_accuracy accuracy;
+    unsigned given; /* FIT_GIVEN_* */
 } fit_options;
+
+/* Usage lines for --accuracy (brdfit fit only). */
+extern const char fit_accuracy_usage[];
+
+/* If argv[*i] is --accuracy, consumes it and its value and returns 1; 0 if it is not;
+ * -1 after printing a one-line error. Only brdfit fit takes it (its subsample part
+ * needs the data options: fit_options_preset_subsample). */
+int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, const char *cmd);
+
+/* The preset's training sample count (stratified subsample), 0 for none. The command
+ * applies it to its data options when the user gave no --subsample. */
+size_t fit_options_preset_subsample(const fit_options *o);
 
 /* Usage lines for the options below, for a command's --help. */
 extern const char fit_options_usage[];
@@ -23,7 +55,8 @@ void fit_options_init(fit_options *o);
  * 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
 int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd);
 
-/* Points the fit options at the overrides and takes the seed (after parsing). */
+/* Points the fit options at the overrides, takes the seed and fills in the --accuracy
+ * preset where the user set nothing (after parsing, so order on the line is moot). */
 void fit_options_finish(fit_options *o, uint64_t seed);
 
 /* Splits a -m list into model specs appended to specs[n..max-1]: a comma starts a new

@@ -16,6 +16,9 @@ static const struct {
     {"fit", cmd_fit, "fit DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]   fit models to data"},
     {"compare", cmd_compare, "compare DATA... -m MODEL,...|all [options] [--json R.json] [--csv R.csv] [--html DIR]   rank models"},
     {"render", cmd_render, "render --params P.json [--slice|--half-diff] [options] -o OUT.png|OUT.exr   pictures"},
+    {"tradeoff", cmd_tradeoff, "tradeoff DATA -m MODEL [options] [--json T.json] [--csv T.csv] [--plot T.png]   fitting time against accuracy"},
+    {"select", cmd_select, "select DATA [--models ...] [--tolerance T] [--scene SCENE.json]   the smallest model that serves"},
+    {"regress", cmd_regress, "regress BASELINE.json [--update] [--junit OUT.xml]   re-run fits and compare with a baseline"},
 };
 
 static void usage(FILE *out)

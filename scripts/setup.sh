@@ -8,6 +8,6 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
-  libcjson-dev libcmocka-dev jq >/dev/null
+  libcjson-dev libcmocka-dev libxml2-dev jq >/dev/null
 # jq and openimageio-tools (iinfo, oiiotool): the command-line tests check brdfit's JSON
 # output and images with them.

@@ -110,4 +110,22 @@ printf 'theta_i,phi_i,theta_o,phi_o,value\n95,0,10,180,0.5\n' > "$tmp/below.csv"
 expect_error "no usable sample" 1 'below.csv' "$tmp/below.csv" -m walter
 if "$BRDFIT" fit --help | grep -q -- '--residual'; then ok; else bad "fit --help"; fi
 
+# --accuracy: presets fill only what was not given, whatever the order on the line.
+"$SYNTH" --params "$tmp/truth.json" --pattern uniform --count 20000 --seed 6 -o "$tmp/big.csv" || bad "brdfit-synth (big)"
+acc() { # ARGS... -> "samples starts backend" of the result
+  "$BRDFIT" fit "$tmp/big.csv" -m walter --threads 2 -o "$tmp/acc.json" "$@" >/dev/null 2>"$tmp/err" &&
+    jq -r '"\(.samples) \(.optimizer.starts) \(.optimizer.backend)"' "$tmp/acc.json"
+}
+[ "$(acc --accuracy fast)" = "16000 1 ceres" ] && ok || bad "fast: $(acc --accuracy fast) $(cat "$tmp/err")"
+[ "$(acc --accuracy balanced)" = "20000 1 ceres" ] && ok || bad "balanced: $(acc --accuracy balanced)"
+[ "$(acc --accuracy best)" = "20000 4 ceres" ] && ok || bad "best: $(acc --accuracy best)"
+[ "$(acc)" = "20000 1 ceres" ] && ok || bad "no preset: $(acc)"
+[ "$(acc --subsample 5000 --accuracy fast --starts 2)" = "5000 2 ceres" ] && ok || bad "explicit before: $(acc --subsample 5000 --accuracy fast --starts 2)"
+[ "$(acc --accuracy best --starts 3 --backend nlopt)" = "20000 3 nlopt" ] && ok || bad "explicit after: $(acc --accuracy best --starts 3 --backend nlopt)"
+[ "$(acc --accuracy fast --subsample 0)" = "20000 1 ceres" ] && ok || bad "--subsample 0 keeps all: $(acc --accuracy fast --subsample 0)"
+expect_error "bad accuracy" 2 "--accuracy takes fast, balanced or best, got 'quick'" "$W" -m walter --accuracy quick
+expect_error "accuracy without value" 2 '--accuracy needs a value' "$W" -m walter --accuracy
+"$BRDFIT" fit --help | grep -q -- '--accuracy fast|balanced|best' && ok || bad "fit --help lacks --accuracy"
+"$BRDFIT" fit --help | grep -q -- 'fast: --subsample [0-9]* --backend ceres --starts 1' && ok || bad "fit --help lacks the fast preset"
+
 finish

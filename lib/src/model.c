@@ -34,6 +34,15 @@ static int apply_option(bf_model *m, const char *kv, size_t len, int *seen, bf_e
     size_t klen = (size_t)(eq - kv), vlen = len - klen - 1;
     const char *val = eq + 1;
 
+    if (klen == 4 && strncmp(kv, "mono", 4) == 0) {
+        if (vlen >= sizeof m->mono)
+            return bf_fail(err, BF_ERR_ARG, "model %s: mono value '%.*s' is too long", f->info.name, (int)vlen, val);
+        if (seen[BF_MAX_OPTIONS + 1]++)
+            return bf_fail(err, BF_ERR_ARG, "model %s: option mono given twice", f->info.name);
+        memcpy(m->mono, val, vlen);
+        m->mono[vlen] = '\0';
+        return BF_OK;
+    }
     if (klen == 5 && strncmp(kv, "lobes", 5) == 0) {
         if (!f->info.lobes)
             return bf_fail(err, BF_ERR_ARG, "model %s does not accept lobes", f->info.name);
@@ -91,6 +100,108 @@ static void make_canonical_spec(bf_model *m)
         len = strlen(m->spec);
         snprintf(m->spec + len, cap - len, "%clobes=%d", no ? ',' : ':', m->lobes);
     }
+    if (m->mono[0]) {
+        len = strlen(m->spec);
+        snprintf(m->spec + len, cap - len, "%cmono=%s", strchr(m->spec, ':') ? ',' : ':', m->mono);
+    }
+}
+
+/* Which colour parameters mono=WHAT ties (tie[i] = 1); rewrites m->mono canonically:
+ * "specular" or "all" when the set is one of those, else the names joined by '+'. */
+static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
+{
+    const char *fam = m->family->info.name;
+    int first = -1, ncolour = 0;
+    for (int i = 0; i < m->nparam; i++)
+        if (m->param[i].colour) {
+            ncolour++;
+            if (first < 0)
+                first = i;
+        }
+    int all = !strcmp(m->mono, "all"), spec = !strcmp(m->mono, "specular");
+    if (all || spec) {
+        for (int i = 0; i < m->nparam; i++)
+            tie[i] = m->param[i].colour && (all || i != first);
+    } else {
+        for (const char *p = m->mono; *p;) {
+            size_t len = strcspn(p, "+");
+            char name[BF_NAME_LEN];
+            snprintf(name, sizeof name, "%.*s", (int)(len < sizeof name ? len : sizeof name - 1), p);
+            int i = bf_model_find_param(m, name);
+            if (i < 0 || len >= sizeof name)
+                return bf_fail(err, BF_ERR_ARG, "model %s: mono names '%.*s', which is not one of its parameters",
+                               fam, (int)len, p);
+            if (!m->param[i].colour)
+                return bf_fail(err, BF_ERR_ARG, "model %s: mono names %s, which is not a colour parameter", fam,
+                               name);
+            tie[i] = 1;
+            p += len;
+            if (*p == '+')
+                p++;
+        }
+    }
+    int ntie = 0, is_spec = 1;
+    for (int i = 0; i < m->nparam; i++) {
+        ntie += tie[i];
+        if (m->param[i].colour && tie[i] != (i != first))
+            is_spec = 0;
+    }
+    if (ntie == 0)
+        return bf_fail(err, BF_ERR_ARG, "model %s: mono=%s ties nothing (its only colour parameter is %s)", fam,
+                       m->mono, first >= 0 ? m->param[first].name : "none");
+    if (ntie == ncolour)
+        snprintf(m->mono, sizeof m->mono, "all");
+    else if (is_spec)
+        snprintf(m->mono, sizeof m->mono, "specular");
+    else {
+        m->mono[0] = '\0';
+        for (int i = 0; i < m->nparam; i++)
+            if (tie[i]) {
+                size_t len = strlen(m->mono);
+                snprintf(m->mono + len, sizeof m->mono - len, "%s%s", len ? "+" : "", m->param[i].name);
+            }
+    }
+    return BF_OK;
+}
+
+/* Applies mono: the tied parameters become one value; the evaluator keeps the untied
+ * model as `inner` and a map from its vector onto this one (only needed for C > 1). */
+static int mono_apply(bf_model *m, bf_error *err)
+{
+    unsigned char tie[BF_MAX_PARAMS] = {0};
+    int rc = mono_resolve(m, tie, err);
+    if (rc != BF_OK)
+        return rc;
+    const int C = m->channels;
+    bf_model *in = NULL;
+    if (C > 1) {
+        if (!(in = malloc(sizeof *in)))
+            return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+        *in = *m;
+        for (int i = 0; i < in->nparam; i++)
+            in->param[i].name = in->names[i];
+        in->mono[0] = '\0';
+    }
+    m->nfree = 0;
+    for (int i = 0; i < m->nparam; i++) {
+        if (tie[i]) {
+            m->param[i].colour = 0;
+            m->param[i].mono = 1;
+        }
+        m->offset[i] = m->nfree;
+        m->nfree += m->param[i].colour ? C : 1;
+    }
+    if (!in)
+        return BF_OK;
+    if (!(m->xmap = malloc((size_t)in->nfree * sizeof *m->xmap))) {
+        free(in);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    }
+    for (int i = 0; i < in->nparam; i++)
+        for (int c = 0; c < (in->param[i].colour ? C : 1); c++)
+            m->xmap[in->offset[i] + c] = m->offset[i] + (m->param[i].colour ? c : 0);
+    m->inner = in;
+    return BF_OK;
 }
 
 bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
@@ -119,7 +230,7 @@ bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
     m->channels = channels;
     m->lobes = 1;
     m->reciprocal = 1;
-    int seen[BF_MAX_OPTIONS + 1] = {0};
+    int seen[BF_MAX_OPTIONS + 2] = {0}; /* the family's options, lobes, mono */
     if (colon) {
         const char *p = colon + 1;
         for (;;) {
@@ -134,7 +245,7 @@ bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
             p = comma + 1;
         }
     }
-    if (f->configure(m, err) != BF_OK) {
+    if (f->configure(m, err) != BF_OK || (m->mono[0] && mono_apply(m, err) != BF_OK)) {
         free(m);
         return NULL;
     }
@@ -142,7 +253,14 @@ bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
     return m;
 }
 
-void bf_model_free(bf_model *m) { free(m); }
+void bf_model_free(bf_model *m)
+{
+    if (!m)
+        return;
+    free(m->inner);
+    free(m->xmap);
+    free(m);
+}
 
 int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open,
                             double hi, int hi_open, double def, bf_scale scale, int lobe,
@@ -202,6 +320,8 @@ int bf_model_nfree(const bf_model *m) { return m->nfree; }
 
 const char *bf_model_option(const bf_model *m, const char *key)
 {
+    if (strcmp(key, "mono") == 0)
+        return m->mono[0] ? m->mono : NULL;
     int v = bf_model_opt(m, key);
     if (v < 0) {
         if (strcmp(key, "lobes") == 0 && m->family->info.lobes) {
@@ -266,6 +386,47 @@ int bf_model_check(const bf_model *m, const double *x, bf_error *err)
     return BF_OK;
 }
 
+/* A model with tied (mono) parameters: the untied model on the expanded vector, and its
+ * Jacobian columns summed onto the tied entries, a chunk of samples at a time. Out of
+ * memory (no error path here) gives NaN, which every caller treats as a failed step. */
+static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                      double *values, double *grad)
+{
+    const bf_model *in = m->inner;
+    const size_t C = (size_t)m->channels, P = (size_t)m->nfree, Pi = (size_t)in->nfree;
+    size_t chunk = grad ? 16384 / (C * Pi) : 0;
+    if (chunk < 1)
+        chunk = 1;
+    if (chunk > i1 - i0)
+        chunk = i1 - i0;
+    double *xi = malloc(Pi * sizeof *xi), *gi = grad ? malloc(chunk * C * Pi * sizeof *gi) : NULL;
+    if (!xi || (grad && !gi)) {
+        for (size_t r = 0; r < (i1 - i0) * C; r++) {
+            values[r] = NAN;
+            for (size_t k = 0; grad && k < P; k++)
+                grad[r * P + k] = NAN;
+        }
+    } else {
+        for (size_t k = 0; k < Pi; k++)
+            xi[k] = x[m->xmap[k]];
+        if (!grad)
+            in->family->eval(in, xi, g, i0, i1, values, NULL);
+        for (size_t a = i0; grad && a < i1; a += chunk) {
+            size_t b = a + chunk < i1 ? a + chunk : i1;
+            in->family->eval(in, xi, g, a, b, values + (a - i0) * C, gi);
+            for (size_t r = 0; r < (b - a) * C; r++) {
+                double *out = grad + ((a - i0) * C + r) * P;
+                const double *gr = gi + r * Pi;
+                memset(out, 0, P * sizeof *out);
+                for (size_t k = 0; k < Pi; k++)
+                    out[m->xmap[k]] += gr[k];
+            }
+        }
+    }
+    free(xi);
+    free(gi);
+}
+
 void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
                          size_t i0, size_t i1, double *values, double *grad)
 {
@@ -273,7 +434,10 @@ void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *
         i1 = g->n;
     if (i0 >= i1)
         return;
-    m->family->eval(m, x, g, i0, i1, values, grad);
+    if (m->inner)
+        eval_mono(m, x, g, i0, i1, values, grad);
+    else
+        m->family->eval(m, x, g, i0, i1, values, grad);
 }
 
 void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,

@@ -22,6 +22,8 @@ typedef struct bf_fit_options {
     int starts;          /* >= 1: the data-driven start, then starts-1 seeded random ones */
     uint64_t seed;       /* multistart (and the solver's stochastic methods) */
     const double *start; /* NULL: data-driven; else a model vector to start from */
+    int weighted_metrics; /* 1: the result's metrics use the samples' weights (a scene's
+                             directions, scene.h); 0: every sample counts alike */
 } bf_fit_options;
 
 typedef struct bf_fit_result {

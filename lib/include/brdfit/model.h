@@ -26,6 +26,8 @@ typedef struct bf_param_info {
     double def;         /* default value */
     bf_scale scale;
     int lobe;           /* 0 for parameters outside the lobes, k >= 1 for lobe k */
+    int mono;           /* 1: a colour parameter that the spec option mono ties across
+                           channels: one value for every channel (colour is then 0) */
 } bf_param_info;
 
 typedef struct bf_option_info {
@@ -48,7 +50,13 @@ const bf_family_info *bf_family_get(int i);
 
 typedef struct bf_model bf_model;
 
-/* channels >= 1. Returns NULL and fills err on unknown model, option or value. */
+/* channels >= 1. Returns NULL and fills err on unknown model, option or value.
+ *
+ * Besides the family's options and lobes=K, every spec accepts mono=WHAT, which ties
+ * colour parameters across channels (one value for all of them: a white highlight
+ * on coloured data costs one parameter instead of C): WHAT is "specular" (every colour
+ * parameter but the first, the diffuse colour), "all", or parameter names joined by '+'
+ * ("rho_s+rho_s_2"). The canonical spec writes it last. */
 bf_model *bf_model_create(const char *spec, int channels, bf_error *err);
 void bf_model_free(bf_model *m);
 

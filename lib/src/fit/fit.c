@@ -205,7 +205,8 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
     }
     for (int k = 0; k < P; k++)
         r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
-    if ((rc = bf_metrics_compute(m, r->x, s, nz, oo.threads, &r->metrics, err)) != BF_OK ||
+    if ((rc = bf_metrics_compute_weighted(m, r->x, s, nz, oo.threads, o->weighted_metrics, &r->metrics,
+                                          err)) != BF_OK ||
         (rc = bf_objective_stderr(obj, r->x, r->stderr_, err)) != BF_OK)
         goto done;
     r->samples = s->n;

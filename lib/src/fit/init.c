@@ -142,7 +142,21 @@ static void set_widths(const bf_model *m, double *x, double h)
     }
 }
 
-static int is_weight(const bf_param_info *p) { return p->colour && p->lobe >= 1; }
+/* Colour parameters, tied (mono: one value, the mean of what each channel asks) or not. */
+static int is_coloured(const bf_param_info *p) { return p->colour || p->mono; }
+static int is_weight(const bf_param_info *p) { return is_coloured(p) && p->lobe >= 1; }
+static int is_diffuse(const bf_param_info *p) { return is_coloured(p) && p->lobe == 0; }
+
+/* Channel c's value v of parameter p into its entry: a mono entry takes the mean. */
+static void put_channel(const bf_model *m, int i, double *x, int c, double v)
+{
+    const bf_param_info *p = bf_model_param(m, i);
+    double *e = x + bf_model_param_offset(m, i) + (p->colour ? c : 0);
+    if (p->mono)
+        *e = (c ? *e : 0.0) + v / bf_model_channels(m);
+    else
+        *e = v;
+}
 
 /* Weighted SSR of y ~ d/pi + r f1 over n values with stride C, weights w (n). */
 static double ssr_of(const double *y, const double *f1, const double *w, size_t n, int C, double d, double r)
@@ -201,7 +215,7 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
         for (int c = 0; c < (p->colour ? C : 1); c++) {
             if (is_weight(p))
                 v[c] = clamp_param(p, ldexp(1.0, 1 - p->lobe));
-            else if (p->colour && p->lobe == 0)
+            else if (is_diffuse(p))
                 v[c] = clamp_param(p, 0.0);
         }
     }
@@ -213,14 +227,14 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
         ssr += fit_two(y + c, f1 + c, g->lz, g->n, C, &d, &r);
         for (int i = 0; i < np; i++) {
             const bf_param_info *p = bf_model_param(m, i);
-            int o = bf_model_param_offset(m, i) + c;
+            int o = bf_model_param_offset(m, i) + (p->colour ? c : 0);
             if (is_weight(p)) {
-                x[o] = clamp_param(p, r > 0.0 ? r * xs[o] : 1e-3);
+                put_channel(m, i, x, c, clamp_param(p, r > 0.0 ? r * xs[o] : 1e-3));
                 if (r * xs[o] / p->hi > *over)
                     *over = r * xs[o] / p->hi;
             }
-            else if (p->colour && p->lobe == 0)
-                x[o] = clamp_param(p, d);
+            else if (is_diffuse(p))
+                put_channel(m, i, x, c, clamp_param(p, d));
         }
     }
     return isfinite(ssr) ? ssr : HUGE_VAL;
@@ -293,10 +307,9 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
         diffuse[c] = q[(size_t)(0.15 * (double)(k - 1) + 0.5)];
     }
     for (int i = 0; i < np; i++) {
-        const bf_param_info *p = bf_model_param(m, i);
-        if (p->colour && p->lobe == 0)
+        if (is_diffuse(bf_model_param(m, i)))
             for (int c = 0; c < C; c++)
-                x[bf_model_param_offset(m, i) + c] = diffuse[c];
+                put_channel(m, i, x, c, diffuse[c]);
     }
     int has_weight = 0, has_width = 0;
     char base[64];
@@ -353,7 +366,7 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
             const bf_param_info *p = bf_model_param(m, i);
             if (is_weight(p))
                 for (int c = 0; c < C; c++)
-                    x[bf_model_param_offset(m, i) + c] = 0.01;
+                    put_channel(m, i, x, c, 0.01);
         }
         goto clamp;
     }

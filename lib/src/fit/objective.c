@@ -116,7 +116,7 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
     for (int c = 0; c < o->C; c++) {
         double sum = 0.0;
         for (int q = 0; q < o->ncolour; q++)
-            sum += x[o->colour_off[q] + c];
+            sum += x[o->colour_off[q] + c * o->colour_step[q]];
         if (sum > bsum) {
             bsum = sum;
             best = c;
@@ -126,7 +126,7 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
         for (int j = 0; j < o->nz; j++)
             grad[j] = 0.0;
         for (int q = 0; q < o->ncolour; q++) {
-            int k = o->colour_off[q] + best;
+            int k = o->colour_off[q] + best * o->colour_step[q];
             if (o->zpos[k] >= 0)
                 grad[o->zpos[k]] = bf_obj_dxdz(o->scale[k], x[k]);
         }
@@ -153,6 +153,7 @@ void bf_objective_free(bf_objective *o)
     free(o->delta);
     free(o->meas_t);
     free(o->colour_off);
+    free(o->colour_step);
     free(o);
 }
 
@@ -267,8 +268,10 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     o->zhi = malloc(P1 * sizeof *o->zhi);
     o->delta = malloc((size_t)o->C * sizeof *o->delta);
     o->colour_off = malloc(np * sizeof *o->colour_off);
+    o->colour_step = malloc(np * sizeof *o->colour_step);
     if (!o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx ||
-        !o->zlo || !o->zhi || !o->delta || !o->colour_off) {
+        !o->zlo || !o->zhi || !o->delta || !o->colour_off ||
+        !o->colour_step) {
         bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
     }
@@ -288,8 +291,10 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     setup_meas_terms(o);
 
     for (int i = 0; i < bf_model_nparams(m); i++)
-        if (bf_model_param(m, i)->colour)
+        if (bf_model_param(m, i)->colour || bf_model_param(m, i)->mono) {
+            o->colour_step[o->ncolour] = bf_model_param(m, i)->colour;
             o->colour_off[o->ncolour++] = bf_model_param_offset(m, i);
+        }
 
     o->problem.nres = o->n * (size_t)o->C;
     o->problem.npar = o->nz;

@@ -35,9 +35,10 @@ struct bf_objective {
     double *meas_t;         /* NULL, or n*C terms bf_obj_form_meas (log and cbrt forms) */
     size_t nvalid;          /* samples above the horizon */
 
-    /* Energy constraint: colour parameters (their offsets) summed per channel. */
+    /* Energy constraint: colour parameters summed per channel; channel c's entry is
+     * colour_off + c * colour_step (step 0 for a mono parameter: one value for all). */
     int ncolour;
-    int *colour_off;
+    int *colour_off, *colour_step;
 
     bf_problem problem;
 };

@@ -6,6 +6,7 @@
  * NaN and Inf (an undetermined standard error, metrics of a failed fit) are null. */
 #include "brdfit/fit.h"
 #include "brdfit/io.h"
+#include "io/json_out.h"
 
 #include <cjson/cJSON.h>
 #include <ctype.h>
@@ -13,10 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static cJSON *number(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
-
-static void add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, number(v)); }
 
 /* "walter:fresnel=schlick,lobes=2" -> {"fresnel": "schlick", "lobes": 2}. */
 static cJSON *options_json(const bf_model *m)
@@ -37,26 +34,6 @@ static cJSON *options_json(const bf_model *m)
             cJSON_AddItemToObject(o, key, digits ? cJSON_CreateNumber(atof(val)) : cJSON_CreateString(val));
         }
         p = end;
-    }
-    return o;
-}
-
-/* {name: value or [per channel]} from a model-length vector. */
-static cJSON *named(const bf_model *m, const double *v)
-{
-    cJSON *o = cJSON_CreateObject();
-    int C = bf_model_channels(m);
-    for (int i = 0; o && i < bf_model_nparams(m); i++) {
-        const bf_param_info *p = bf_model_param(m, i);
-        const double *x = v + bf_model_param_offset(m, i);
-        if (p->colour) {
-            cJSON *a = cJSON_CreateArray();
-            for (int c = 0; c < C; c++)
-                cJSON_AddItemToArray(a, number(x[c]));
-            cJSON_AddItemToObject(o, p->name, a);
-        } else {
-            add_number(o, p->name, x[0]);
-        }
     }
     return o;
 }
@@ -98,7 +75,7 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
     cJSON_AddStringToObject(o, "model", bf_model_name(m));
     cJSON_AddItemToObject(o, "options", options_json(m));
     cJSON_AddNumberToObject(o, "channels", bf_model_channels(m));
-    cJSON_AddItemToObject(o, "params", named(m, r->x));
+    cJSON_AddItemToObject(o, "params", bf_json_params(m, r->x));
     if (data_path)
         cJSON_AddStringToObject(o, "data", data_path);
     else
@@ -106,18 +83,9 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
     cJSON_AddNumberToObject(o, "samples", (double)r->samples);
     cJSON_AddStringToObject(o, "residual", bf_residual_name(r->residual));
 
-    cJSON *mt = cJSON_AddObjectToObject(o, "metrics");
-    add_number(mt, "rmse", r->metrics.rmse);
-    add_number(mt, "rmse_cos", r->metrics.rmse_cos);
-    add_number(mt, "rmse_log", r->metrics.rmse_log);
-    add_number(mt, "rmse_rel", r->metrics.rmse_rel);
-    add_number(mt, "max_err", r->metrics.max_err);
-    cJSON_AddNumberToObject(mt, "n", (double)r->metrics.n);
-    cJSON_AddNumberToObject(mt, "k", r->metrics.k);
-    add_number(mt, "aic", r->metrics.aic);
-    add_number(mt, "bic", r->metrics.bic);
+    cJSON_AddItemToObject(o, "metrics", bf_json_metrics(&r->metrics));
 
-    cJSON_AddItemToObject(o, "stderr", named(m, r->stderr_));
+    cJSON_AddItemToObject(o, "stderr", bf_json_params(m, r->stderr_));
     cJSON_AddItemToObject(o, "fixed", fixed_names(r));
 
     const bf_solution *s = &r->solution;
@@ -126,10 +94,10 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
     cJSON_AddStringToObject(op, "algorithm", s->algorithm);
     cJSON_AddNumberToObject(op, "iterations", s->iterations);
     cJSON_AddNumberToObject(op, "evaluations", s->evaluations);
-    add_number(op, "initial_cost", s->initial_cost);
-    add_number(op, "final_cost", s->final_cost);
+    bf_json_add_number(op, "initial_cost", s->initial_cost);
+    bf_json_add_number(op, "final_cost", s->final_cost);
     cJSON_AddStringToObject(op, "termination", s->termination);
-    add_number(op, "seconds", s->seconds);
+    bf_json_add_number(op, "seconds", s->seconds);
     cJSON_AddNumberToObject(op, "threads", r->threads);
     cJSON_AddNumberToObject(op, "starts", r->starts);
     /* A seed above 2^53 would not survive a JSON number: write it as a string then. */
@@ -141,32 +109,15 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
         cJSON_AddStringToObject(op, "seed", buf);
     }
     cJSON_AddBoolToObject(o, "ok", r->ok);
-    add_number(o, "seconds", r->seconds);
+    bf_json_add_number(o, "seconds", r->seconds);
     return o;
-}
-
-static int write_root(cJSON *root, const char *out_path, bf_error *err)
-{
-    char *text = root ? cJSON_Print(root) : NULL;
-    cJSON_Delete(root);
-    if (!text)
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the result", out_path ? out_path : "-");
-    bf_outfile f;
-    int rc = bf_outfile_open(&f, out_path, err);
-    if (rc == BF_OK) {
-        fputs(text, f.fp);
-        fputc('\n', f.fp);
-        rc = bf_outfile_commit(&f, err);
-    }
-    free(text);
-    return rc;
 }
 
 int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err)
 {
     if (!r || !r->model || !r->x)
         return bf_fail(err, BF_ERR_ARG, "no fit result to write");
-    return write_root(result_json(r, data_path), out_path, err);
+    return bf_json_write(result_json(r, data_path), out_path, "the result", err);
 }
 
 int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
@@ -181,5 +132,5 @@ int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *dat
         }
         cJSON_AddItemToArray(fits, result_json(r[i], data_path));
     }
-    return write_root(root, out_path, err);
+    return bf_json_write(root, out_path, "the results", err);
 }

@@ -32,6 +32,13 @@ struct bf_model {
     int lobe_nscalar[BF_MAX_LOBES + 1];
 
     char spec[160];
+
+    /* The spec option mono (see model.h): the parameters it names have colour 0 and mono
+     * 1 here, and the family's evaluator runs on `inner`, the same model without the tie,
+     * through a vector expanded by xmap (inner entry -> entry here). NULL/0 otherwise. */
+    char mono[64];
+    struct bf_model *inner;
+    int *xmap;
 };
 
 /* Shape of lobe k over samples [i0, i0 + cnt): S[j] for j < cnt and, when dS is not

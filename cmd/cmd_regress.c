@@ -1,0 +1,335 @@
+/* brdfit regress BASELINE.json [--update] [--junit OUT.xml] [--case NAME] [--verbose]:
+ * re-runs the fits a baseline lists and compares them with its expected values.
+ *
+ * Decisions:
+ *  - Each case's "options" are brdfit fit's data and fit options, parsed by the same
+ *    functions as brdfit fit; --threads defaults to 1 (not every core) so results are
+ *    identical across machines. -m and -o have no place there: the case's "model" names
+ *    the model and the baseline is the output.
+ *  - Everything that can be checked before fitting is: every case's options, model and
+ *    data file. A bad baseline stops with exit 2 and one line naming the file and line,
+ *    before any fit runs and without writing the JUnit file.
+ *  - "data" and the value of --scene are relative to the baseline's folder, so a
+ *    baseline runs from any working directory.
+ *  - A case that cannot run (unreadable data, a fit error) is an error, not a failure:
+ *    JUnit <error>, exit 1, and --update writes nothing.
+ *  - Exit: 0 every case passed (or --update wrote the baseline); 1 a case failed or could
+ *    not run, or an output could not be written; 2 bad usage or a bad baseline. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "brdfit/fit.h"
+#include "brdfit/regress.h"
+#include "commands.h"
+#include "data_options.h"
+#include "fit_options.h"
+
+static const char cmd[] = "brdfit regress";
+
+#define MAX_SELECTED 256
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: brdfit regress BASELINE.json [--update] [--junit OUT.xml] [--case NAME]... [--verbose]\n"
+            "  --update         run every case and rewrite the baseline with the values obtained\n"
+            "                   (names, data, options and tolerances kept; nothing written if a case\n"
+            "                   cannot run)\n"
+            "  --junit FILE     JUnit XML report for CI systems\n"
+            "  --case NAME      run only this case (repeatable)\n"
+            "  --verbose        print every compared value, not only those that moved\n"
+            "A case's \"options\" are brdfit fit's data and fit options (see brdfit fit --help);\n"
+            "--threads defaults to 1. Exit 0 all pass, 1 a case failed or could not run, 2 bad\n"
+            "usage or a bad baseline.\n");
+}
+
+/* One case's parsed options. The argv holds the baseline's strings, except --scene
+ * values, resolved against the baseline's folder (owned). */
+typedef struct case_run {
+    data_options dopt;
+    fit_options fopt;
+    char **argv;
+    char **owned;
+    int argc, nowned;
+} case_run;
+
+static void case_run_free(case_run *r)
+{
+    for (int k = 0; k < r->nowned; k++)
+        free(r->owned[k]);
+    free(r->owned);
+    free(r->argv);
+}
+
+/* Parses case c's options; 0, or 2 after a one-line error naming the baseline's line. */
+static int prepare(const bf_regress_baseline *b, int c, case_run *r)
+{
+    const bf_regress_case *cs = &b->cases[c];
+    memset(r, 0, sizeof *r);
+    fit_options_init(&r->fopt);
+    r->fopt.fit.solver.threads = 1;
+    r->argc = cs->noptions;
+    r->argv = calloc((size_t)cs->noptions + 1, sizeof *r->argv);
+    r->owned = calloc((size_t)cs->noptions + 1, sizeof *r->owned);
+    if (!r->argv || !r->owned) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 2;
+    }
+    for (int k = 0; k < cs->noptions; k++) {
+        r->argv[k] = cs->options[k];
+        if (k > 0 && !strcmp(cs->options[k - 1], "--scene")) {
+            if (!(r->argv[k] = r->owned[r->nowned++] = bf_regress_resolve(b, cs->options[k]))) {
+                fprintf(stderr, "%s: out of memory\n", cmd);
+                return 2;
+            }
+        }
+    }
+    int subsample_given = 0;
+    for (int i = 0; i < r->argc; i++) {
+        /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
+        char prefix[1024];
+        snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->option_lines[i], cs->name);
+        const char *a = r->argv[i];
+        subsample_given |= !strcmp(a, "--subsample");
+        int d = data_options_parse(&r->dopt, r->argc, r->argv, &i, prefix);
+        if (d == 0)
+            d = fit_options_parse(&r->fopt, r->argc, r->argv, &i, prefix);
+        if (d == 0)
+            d = fit_options_parse_accuracy(&r->fopt, r->argc, r->argv, &i, prefix);
+        if (d < 0)
+            return 2;
+        if (d > 0)
+            continue;
+        if (!strcmp(a, "-m") || !strcmp(a, "--model") || !strcmp(a, "-o"))
+            fprintf(stderr, "%s: option '%s' has no place in a baseline (the case's \"model\" names the model)\n",
+                    prefix, a);
+        else
+            fprintf(stderr, "%s: unknown option '%s' (brdfit fit's data and fit options only)\n", prefix, a);
+        return 2;
+    }
+    /* As brdfit fit does: the preset's subsample unless --subsample was given, and with a
+     * scene the metrics over its directions, weighted as it weighs them. */
+    fit_options_finish(&r->fopt, r->dopt.prep.seed);
+    if (!subsample_given)
+        r->dopt.prep.subsample = fit_options_preset_subsample(&r->fopt);
+    r->fopt.fit.weighted_metrics = data_options_has_scene(&r->dopt);
+    if (access(cs->data_path, R_OK) != 0) {
+        fprintf(stderr, "%s: %s:%d: case '%s': data file '%s': %s\n", cmd, b->path, cs->data_line, cs->name,
+                cs->data_path, strerror(errno));
+        return 2;
+    }
+    return 0;
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Why path did not load: data_options_load has said it on stderr; reading once more
+ * (only after a failure) gives the message for the JUnit report too. */
+static void load_failure(const case_run *cr, const char *path, char *msg, size_t size)
+{
+    bf_samples *s = NULL;
+    bf_error e;
+    if (bf_samples_read(path, &cr->dopt.read, &s, &e) != BF_OK)
+        snprintf(msg, size, "%s", e.msg);
+    else if (bf_samples_prep(s, &cr->dopt.prep, NULL, &e) != BF_OK)
+        snprintf(msg, size, "%s: %s", path, e.msg);
+    else
+        snprintf(msg, size, "%s: the scene %s could not be applied", path, cr->dopt.scene ? cr->dopt.scene : "");
+    bf_samples_free(s);
+}
+
+/* Loads, fits and compares case c; the fit stays in *r for --update. Returns BF_OK, or
+ * an error only when memory runs out (a case that cannot run is an ERROR outcome, its
+ * reason printed on stderr). */
+static int run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_result *r, bf_regress_outcome *out,
+               bf_error *err)
+{
+    const bf_regress_case *cs = &b->cases[c];
+    char prefix[1024], msg[1200];
+    snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->data_line, cs->name);
+    double t0 = now();
+    bf_samples *s = data_options_load(&cr->dopt, cs->data_path, NULL, prefix);
+    int rc;
+    if (!s) {
+        load_failure(cr, cs->data_path, msg, sizeof msg);
+        rc = bf_regress_set_error(out, msg, err);
+    } else if (bf_fit(s, cs->model, &cr->fopt.fit, r, err) != BF_OK) {
+        fprintf(stderr, "%s: %s:%d: case '%s': %s\n", cmd, b->path, cs->model_line, cs->name, err->msg);
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        rc = bf_regress_set_error(out, msg, err);
+    } else {
+        rc = bf_regress_check(b, c, r, out, err);
+    }
+    bf_samples_free(s);
+    out->seconds = now() - t0;
+    return rc;
+}
+
+static void print_lines(char *const *lines, int n)
+{
+    for (int i = 0; i < n; i++)
+        printf("%s\n", lines[i]);
+}
+
+int cmd_regress(int argc, char **argv)
+{
+    const char *path = NULL, *junit = NULL;
+    const char *selected[MAX_SELECTED];
+    int nselected = 0, update = 0, verbose = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--update")) {
+            update = 1;
+        } else if (!strcmp(a, "--verbose") || !strcmp(a, "-v")) {
+            verbose = 1;
+        } else if (!strcmp(a, "--junit") || !strcmp(a, "--case")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+                return 2;
+            }
+            if (a[2] == 'j')
+                junit = argv[++i];
+            else if (nselected >= MAX_SELECTED) {
+                fprintf(stderr, "%s: more than %d --case options\n", cmd, MAX_SELECTED);
+                return 2;
+            } else
+                selected[nselected++] = argv[++i];
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "%s: unknown option '%s' (see brdfit regress --help)\n", cmd, a);
+            return 2;
+        } else if (path) {
+            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, path, a);
+            return 2;
+        } else {
+            path = a;
+        }
+    }
+    if (!path) {
+        fprintf(stderr, "%s: a baseline file is required (see brdfit regress --help)\n", cmd);
+        return 2;
+    }
+
+    bf_error err;
+    bf_regress_baseline *b = NULL;
+    if (bf_regress_load(path, &b, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return err.code == BF_ERR_NOMEM ? 1 : 2;
+    }
+    int status = 2, n = b->ncases;
+    case_run *runs = calloc((size_t)n, sizeof *runs);
+    bf_regress_outcome *outs = calloc((size_t)n, sizeof *outs);
+    unsigned char *run_it = calloc((size_t)n, 1);
+    if (!runs || !outs || !run_it) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        status = 1;
+        goto done;
+    }
+    for (int k = 0; k < nselected; k++) {
+        int found = 0;
+        for (int c = 0; c < n; c++)
+            if (!strcmp(b->cases[c].name, selected[k]))
+                found = run_it[c] = 1;
+        if (!found) {
+            fprintf(stderr, "%s: %s: no case named '%s'\n", cmd, path, selected[k]);
+            goto done;
+        }
+    }
+    for (int c = 0; c < n; c++) {
+        run_it[c] |= nselected == 0;
+        if (prepare(b, c, &runs[c]) != 0)
+            goto done;
+    }
+
+    status = 1;
+    int passed = 0, failed = 0, errors = 0, changed = 0;
+    for (int c = 0; c < n; c++) {
+        const bf_regress_case *cs = &b->cases[c];
+        if (!run_it[c]) {
+            outs[c].status = BF_REGRESS_SKIPPED;
+            continue;
+        }
+        bf_fit_result r;
+        memset(&r, 0, sizeof r);
+        if (run(b, c, &runs[c], &r, &outs[c], &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            bf_fit_result_free(&r);
+            goto done;
+        }
+        const bf_regress_outcome *o = &outs[c];
+        passed += o->status == BF_REGRESS_PASS;
+        failed += o->status == BF_REGRESS_FAIL;
+        errors += o->status == BF_REGRESS_ERROR;
+        if (o->status == BF_REGRESS_ERROR) {
+            printf("ERROR %s (could not run)\n  %s\n", cs->name, o->lines[0]);
+        } else if (!update) {
+            printf("%s %s (%.2f s)\n", o->status == BF_REGRESS_PASS ? "PASS" : "FAIL", cs->name, o->seconds);
+            print_lines(verbose ? o->checked : o->lines, verbose ? o->nchecked : o->nlines);
+        } else {
+            char **changes = NULL;
+            int nchanges = 0;
+            int rc = bf_regress_update(b, c, &r, &changes, &nchanges, &err);
+            if (rc == BF_OK) {
+                printf("%s %s (%.2f s)\n", nchanges ? "UPDATED" : "UNCHANGED", cs->name, o->seconds);
+                print_lines(changes, nchanges);
+                changed += nchanges > 0;
+            }
+            for (int k = 0; k < nchanges; k++)
+                free(changes[k]);
+            free(changes);
+            if (rc != BF_OK) {
+                fprintf(stderr, "%s: %s\n", cmd, err.msg);
+                bf_fit_result_free(&r);
+                goto done;
+            }
+        }
+        fflush(stdout);
+        bf_fit_result_free(&r);
+    }
+
+    int write_failed = 0;
+    if (junit && bf_regress_write_junit(b, outs, junit, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        write_failed = 1;
+    }
+    if (update) {
+        if (errors) {
+            printf("regress: %s not updated: %d case%s could not run\n", path, errors, errors == 1 ? "" : "s");
+        } else if (bf_regress_write(b, path, &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            write_failed = 1;
+        } else {
+            printf("regress: wrote %s (%d case%s run, %d changed)\n", path, passed + failed,
+                   passed + failed == 1 ? "" : "s", changed);
+        }
+        status = errors || write_failed ? 1 : 0;
+    } else {
+        printf("regress: %d passed, %d failed", passed, failed);
+        if (errors)
+            printf(", %d could not run", errors);
+        printf("\n");
+        status = failed || errors || write_failed ? 1 : 0;
+    }
+done:
+    for (int c = 0; runs && c < n; c++)
+        case_run_free(&runs[c]);
+    for (int c = 0; outs && c < n; c++)
+        bf_regress_outcome_free(&outs[c]);
+    free(runs);
+    free(outs);
+    free(run_it);
+    bf_regress_free(b);
+    return status;
+}

@@ -1,0 +1,245 @@
+/* brdfit select DATA [-m MODEL,...] [--tolerance T] [--scene SCENE.json] [options]:
+ * fits candidate models and names the one with the fewest free parameters whose error
+ * is within T of the best candidate's (see lib/include/brdfit/select.h).
+ *
+ * Decisions:
+ *  - Without -m, the default candidates (bf_select_default_candidates): diffuse models,
+ *    isotropic and anisotropic single lobes, two lobes, and for colour data each model
+ *    with a coloured highlight also with mono=specular (one highlight value for every
+ *    channel).
+ *  - The error is --error (default rmse_log, as compare) over the fitted samples; with
+ *    --scene the samples are the scene's and the error is weighted by the scene, so the
+ *    choice follows what the scene can see.
+ *  - --abs-tolerance (default 1e-6) treats errors this close to the best as equal: on
+ *    noiseless data every adequate model reaches ~1e-15, where a relative tolerance alone
+ *    would pick whichever rounding was luckiest.
+ *  - -o writes the chosen model's fit result (a parameter file for brdfit eval).
+ *  - Exit: 0 when a model was chosen; 1 for bad data or when no candidate could be
+ *    fitted; 2 for bad usage. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/select.h"
+#include "commands.h"
+#include "data_options.h"
+#include "fit_options.h"
+
+static const char cmd[] = "brdfit select";
+
+#define MAX_MODELS 128
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: brdfit select DATA [--models MODEL,...] [--tolerance T] [--scene SCENE.json] [options]\n"
+            "  -m, --models SPECS         candidates (as brdfit fit; repeatable); default: diffuse models,\n"
+            "                             one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
+            "                             data each with mono=specular (a white highlight)\n"
+            "  --tolerance T              relative: candidates with error <= best * (1 + T) + A qualify\n"
+            "                             (default 0.05); the one with the fewest free parameters is chosen,\n"
+            "                             then isotropic, one lobe, monochrome highlight, lower error\n"
+            "  --abs-tolerance A          absolute part of the tolerance (default 1e-6)\n"
+            "  --error rmse|rmse_log|rmse_cos|rmse_rel   the error compared (default rmse_log)\n"
+            "  --json FILE                every candidate and the choice, machine-readable\n"
+            "  -o FILE                    the chosen model's fit result (a parameter file)\n"
+            "  --quiet                    no progress on stderr\n"
+            "%s%s",
+            fit_options_usage, data_options_usage);
+}
+
+static void progress(void *ctx, const bf_select *s, int i)
+{
+    (void)ctx;
+    const bf_select_candidate *c = &s->c[i];
+    if (c->state == BF_CMP_ERROR)
+        fprintf(stderr, "[%d/%d] %s: %s\n", i + 1, s->n, c->spec, c->message);
+    else
+        fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", i + 1, s->n, c->spec, c->result.metrics.k,
+                bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result.metrics, s->metric),
+                c->seconds, c->state == BF_CMP_OK ? "" : " (failed)");
+}
+
+static void table(FILE *out, const bf_select *s)
+{
+    int *order = malloc((size_t)s->n * sizeof *order);
+    if (!order)
+        return;
+    bf_select_order(s, order);
+    fprintf(out, "%-3s %-40s %4s %-6s %5s %-8s %12s %8s\n", "", "model", "k", "aniso", "lobes", "specular",
+            bf_compare_metric_name(s->metric), "seconds");
+    for (int j = 0; j < s->n; j++) {
+        const bf_select_candidate *c = &s->c[order[j]];
+        const char *mark = order[j] == s->chosen ? "=>" : c->within ? "ok" : "";
+        char err[32];
+        if (c->state == BF_CMP_OK)
+            snprintf(err, sizeof err, "%.6g", c->error);
+        else
+            snprintf(err, sizeof err, "%s", bf_compare_state_name(c->state));
+        fprintf(out, "%-3s %-40s %4d %-6s %5d %-8s %12s %8.3f\n", mark, c->spec, c->k, c->anisotropic ? "yes" : "no",
+                c->lobes, c->coloured_specular ? "colour" : "mono", err, c->seconds);
+    }
+    free(order);
+    if (s->chosen >= 0) {
+        const bf_select_candidate *b = &s->c[s->best], *c = &s->c[s->chosen];
+        fprintf(out, "chosen: %s (k %d, %s %.6g; best %s %.6g with k %d; tolerance %g + %g)\n", c->spec, c->k,
+                bf_compare_metric_name(s->metric), c->error, b->spec, b->error, b->k, s->tolerance, s->abs_tolerance);
+    }
+}
+
+static int parse_nonneg(const char *v, double *out)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(v, &end);
+    if (!*v || *end || errno || !isfinite(x) || x < 0)
+        return 0;
+    *out = x;
+    return 1;
+}
+
+int cmd_select(int argc, char **argv)
+{
+    data_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    fit_options fopt;
+    fit_options_init(&fopt);
+    char *specs[MAX_MODELS] = {0};
+    int nmodels = 0, status = 2, quiet = 0;
+    double tolerance = 0.05, abs_tolerance = 1e-6;
+    bf_compare_metric metric = BF_CMP_RMSE_LOG;
+    const char *data = NULL, *json_path = NULL, *out_path = NULL;
+    const char **defaults = NULL;
+    bf_samples *s = NULL;
+    bf_select sel;
+    memset(&sel, 0, sizeof sel);
+    bf_error err;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            status = 0;
+            goto done;
+        }
+        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d < 0)
+            goto done;
+        if (d > 0)
+            continue;
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        if (a[0] != '-' || !a[1]) {
+            if (data) {
+                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, a);
+                goto done;
+            }
+            data = a;
+            continue;
+        }
+        static const char *const valued[] = {"-m", "--model", "--models", "--tolerance", "--abs-tolerance", "--error",
+                                             "--json", "-o"};
+        int known = 0;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            known |= !strcmp(a, valued[k]);
+        if (!known) {
+            fprintf(stderr, "%s: unknown option '%s' (see brdfit select --help)\n", cmd, a);
+            goto done;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+            goto done;
+        }
+        const char *v = argv[++i];
+        if (!strcmp(a, "-m") || !strcmp(a, "--model") || !strcmp(a, "--models")) {
+            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
+            if (k < 0)
+                goto done;
+            nmodels = k;
+        } else if (!strcmp(a, "--tolerance") || !strcmp(a, "--abs-tolerance")) {
+            if (!parse_nonneg(v, !strcmp(a, "--tolerance") ? &tolerance : &abs_tolerance)) {
+                fprintf(stderr, "%s: %s needs a number >= 0, got '%s'\n", cmd, a, v);
+                goto done;
+            }
+        } else if (!strcmp(a, "--error")) {
+            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
+                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+                goto done;
+            }
+        } else if (!strcmp(a, "--json")) {
+            json_path = v;
+        } else {
+            out_path = v;
+        }
+    }
+    if (!data) {
+        fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
+        goto done;
+    }
+    if (json_path && out_path && !strcmp(json_path, out_path) && strcmp(json_path, "-")) {
+        fprintf(stderr, "%s: --json and -o name the same file '%s'\n", cmd, json_path);
+        goto done;
+    }
+    /* Candidate specs are checked before any data is read. */
+    for (int k = 0; k < nmodels; k++) {
+        bf_model *m = bf_model_create(specs[k], 1, &err);
+        if (!m) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            goto done;
+        }
+        bf_model_free(m);
+    }
+    fit_options_finish(&fopt, dopt.prep.seed);
+    /* With a scene, error is reported over the scene's directions, as it weighs them. */
+    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+
+    status = 1;
+    if (!(s = data_options_load(&dopt, data, NULL, cmd)))
+        goto done;
+    const char *const *list = (const char *const *)specs;
+    int n = nmodels;
+    if (n == 0) {
+        if ((n = bf_select_default_candidates(s->channels, &defaults)) < 0) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            goto done;
+        }
+        list = defaults;
+    }
+    if (bf_select_init(&sel, n, list, s->channels, metric, tolerance, abs_tolerance, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        status = err.code == BF_ERR_ARG ? 2 : 1;
+        goto done;
+    }
+    if (bf_select_run(&sel, s, &fopt.fit, quiet ? NULL : progress, NULL, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    FILE *info = (json_path && !strcmp(json_path, "-")) || (out_path && !strcmp(out_path, "-")) ? stderr : stdout;
+    table(info, &sel);
+    if (sel.chosen < 0) {
+        fprintf(stderr, "%s: no candidate could be fitted to %s\n", cmd, data);
+        goto done;
+    }
+    if (json_path && bf_select_write_json(&sel, data, json_path, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    if (out_path && bf_fit_write_json(&sel.c[sel.chosen].result, data, out_path, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    status = 0;
+done:
+    bf_select_free(&sel);
+    free(defaults);
+    for (int k = 0; k < nmodels; k++)
+        free(specs[k]);
+    bf_samples_free(s);
+    return status;
+}

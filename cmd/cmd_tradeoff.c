@@ -1,0 +1,459 @@
+/* brdfit tradeoff DATA -m MODEL [options]: fitting time against accuracy on one data set,
+ * over training sample counts, optimizer methods, residual forms and multistart counts;
+ * each setting is fitted on a seeded training set and judged on held-out test samples.
+ *
+ * Decisions:
+ *  - The data options (reading, preprocessing, even --subsample) apply to the file as
+ *    read; then --test-fraction of what is left is held out (seeded uniform random,
+ *    tradeoff.h), and --samples counts apply to the rest: each a seeded stratified
+ *    subsample, as `brdfit fit --subsample N` draws it. Counts at or above the training
+ *    size are one "all" row.
+ *  - The fit options are the base setting; the lists replace their part of it. Without
+ *    --methods: the base method if --backend or --algorithm was given, else
+ *    ceres,LD_LBFGS. Without --residuals / --starts-list: the base residual / starts.
+ *  - Fits run one at a time (each with --threads), since they are timed; --repeats R
+ *    refits each setting R times and keeps the least time.
+ *  - Every option, model, method and output path is checked before any data is read or
+ *    fit run: bad usage costs no time and leaves no file (exit 2).
+ *  - Exit: 0 when every setting fitted; 1 bad data, a failed fit (the tables are still
+ *    written, the row marked) or an unwritable output; 2 bad usage. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/image.h"
+#include "brdfit/tradeoff.h"
+#include "commands.h"
+#include "data_options.h"
+#include "fit_options.h"
+
+static const char cmd[] = "brdfit tradeoff";
+
+#define MAX_LIST 64
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: brdfit tradeoff DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png]\n"
+            "  -m, --model SPEC           the model to fit (one)\n"
+            "  --samples N,...|all        training sample counts (default 1000,4000,16000,64000,all;\n"
+            "                             'k' suffix: thousands); counts >= the training set are 'all'\n"
+            "  --methods M,...            ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
+            "                             (LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
+            "                             --algorithm setting if given, else ceres,LD_LBFGS\n"
+            "  --residuals R,...          residual forms (default: --residual, log)\n"
+            "  --starts-list N,...        multistart counts (default: --starts, 1)\n"
+            "  --test-fraction F          held-out share of the samples, seeded random (default 0.2)\n"
+            "  --repeats N                fit each setting N times, keep the least time (default 1)\n"
+            "  --error rmse|rmse_log|rmse_cos|rmse_rel   test error to judge by (default rmse_log)\n"
+            "  --tolerance T              recommend the fastest setting with test error <= best * (1 + T)\n"
+            "                             (default 0.05)\n"
+            "  --json FILE                the table, machine-readable (stable keys)\n"
+            "  --csv FILE                 one row per setting\n"
+            "  --plot FILE.png|.exr       test error against fitting time, Pareto front in red\n"
+            "  --plot-size WxH            (default 640x400)\n"
+            "  --quiet                    no progress on stderr\n"
+            "%s%s",
+            fit_options_usage, data_options_usage);
+}
+
+/* Splits a comma list into at most MAX_LIST items (pointers into buf). */
+static int split_list(char *buf, char **items, const char *opt)
+{
+    int n = 0;
+    for (char *p = buf;;) {
+        char *comma = strchr(p, ',');
+        if (comma)
+            *comma = '\0';
+        if (!*p) {
+            fprintf(stderr, "%s: %s: empty item in the list\n", cmd, opt);
+            return -1;
+        }
+        if (n >= MAX_LIST) {
+            fprintf(stderr, "%s: %s: more than %d items\n", cmd, opt, MAX_LIST);
+            return -1;
+        }
+        items[n++] = p;
+        if (!comma)
+            return n;
+        p = comma + 1;
+    }
+}
+
+static int parse_count(const char *s, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    long mul = 1;
+    if (*end == 'k' || *end == 'K') {
+        mul = 1000;
+        end++;
+    }
+    if (!*s || *end || errno || v < 1 || v > hi / mul)
+        return 0;
+    *out = v * mul;
+    return 1;
+}
+
+static const char *method_of(const bf_solver_options *so)
+{
+    if (so->backend == BF_BACKEND_CERES)
+        return so->algorithm && !strcmp(so->algorithm, "dogleg") ? "ceres:dogleg" : "ceres";
+    return so->algorithm ? so->algorithm : "LD_LBFGS";
+}
+
+/* The setting as brdfit fit options. */
+static void fit_args(const bf_tradeoff_row *r, char *buf, size_t size)
+{
+    char sub[48] = "";
+    if (!r->all)
+        snprintf(sub, sizeof sub, "--subsample %zu ", r->samples);
+    const char *m = r->method;
+    if (!strcmp(m, "ceres") || !strcmp(m, "lm") || !strcmp(m, "ceres:lm"))
+        m = "--backend ceres";
+    else if (!strcmp(m, "ceres:dogleg") || !strcmp(m, "dogleg"))
+        m = "--backend ceres --algorithm dogleg";
+    char mbuf[128];
+    if (m == r->method) {
+        const char *alg = !strncmp(r->method, "nlopt:", 6) ? r->method + 6 : r->method;
+        snprintf(mbuf, sizeof mbuf, "--backend nlopt --algorithm %s", strcmp(alg, "nlopt") ? alg : "LD_LBFGS");
+        m = mbuf;
+    }
+    snprintf(buf, size, "%s%s --residual %s --starts %d", sub, m, bf_residual_name(r->residual), r->starts);
+}
+
+static void print_table(FILE *out, const bf_tradeoff *t)
+{
+    fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total,
+            t->train_n, t->test_n, t->channels, t->channels == 1 ? "" : "s");
+    const char *en = bf_compare_metric_name(t->metric);
+    fprintf(out, "  %4s %8s %-14s %-9s %6s %9s %6s %12s %12s  %s\n", "#", "samples", "method", "residual", "starts",
+            "time s", "iters", "train", "test", "marks");
+    for (int i = 0; i < t->nrows; i++) {
+        const bf_tradeoff_row *r = &t->rows[i];
+        char n[24];
+        if (r->all)
+            snprintf(n, sizeof n, "all");
+        else
+            snprintf(n, sizeof n, "%zu", r->samples);
+        fprintf(out, "  %4d %8s %-14s %-9s %6d ", i + 1, n, r->method, bf_residual_name(r->residual), r->starts);
+        if (!r->ran) {
+            fprintf(out, "error: %s\n", r->message);
+            continue;
+        }
+        fprintf(out, "%9.3f %6d %12.6g %12.6g  %s%s%s%s%s\n", r->seconds, r->iterations,
+                bf_compare_metric_value(&r->train, t->metric), bf_compare_metric_value(&r->test, t->metric),
+                r->ok ? "" : "FAILED ", r->on_front ? "front " : "", r->within_tolerance ? "tol " : "",
+                i == t->best ? "best " : "", i == t->recommended ? "<- recommended" : "");
+    }
+    fprintf(out, "  (train/test: %s; front: Pareto front of time against test error; tol: within %g%% of the best)\n",
+            en, 100.0 * t->tolerance);
+}
+
+int cmd_tradeoff(int argc, char **argv)
+{
+    data_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    fit_options fopt;
+    fit_options_init(&fopt);
+    int status = 2, quiet = 0, nspecs = 0;
+    char *specs[2] = {0};
+    const char *data = NULL, *json_path = NULL, *csv_path = NULL, *plot_path = NULL;
+    const char *samples_arg = "1000,4000,16000,64000,all", *methods_arg = NULL, *residuals_arg = NULL,
+               *starts_arg = NULL;
+    double test_fraction = 0.2, tolerance = 0.05;
+    int repeats = 1, plot_w = 640, plot_h = 400;
+    bf_compare_metric metric = BF_CMP_RMSE_LOG;
+    char *bufs[4] = {0};
+    bf_samples *all = NULL, *train = NULL, *test = NULL;
+    bf_tradeoff t;
+    memset(&t, 0, sizeof t);
+    bf_error err;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            status = 0;
+            goto done;
+        }
+        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d < 0)
+            goto done;
+        if (d > 0)
+            continue;
+        if (a[0] != '-' || !a[1]) {
+            if (data) {
+                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, a);
+                goto done;
+            }
+            data = a;
+            continue;
+        }
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        static const char *const with_value[] = {"-m", "--model", "--samples", "--methods", "--residuals",
+                                                 "--starts-list", "--test-fraction", "--repeats", "--error",
+                                                 "--tolerance", "--json", "--csv", "--plot", "--plot-size"};
+        int known = 0;
+        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
+            known |= !strcmp(a, with_value[k]);
+        if (!known) {
+            fprintf(stderr, "%s: unknown option '%s' (see brdfit tradeoff --help)\n", cmd, a);
+            goto done;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+            goto done;
+        }
+        const char *v = argv[++i];
+        char *end;
+        long n;
+        if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
+            for (int k = 0; k < nspecs; k++)
+                free(specs[k]);
+            if ((nspecs = fit_options_split_models(v, specs, 0, 2, cmd)) < 0) {
+                nspecs = 0;
+                goto done;
+            }
+            if (nspecs != 1) {
+                fprintf(stderr, "%s: -m takes one model, got '%s'\n", cmd, v);
+                goto done;
+            }
+        } else if (!strcmp(a, "--samples")) {
+            samples_arg = v;
+        } else if (!strcmp(a, "--methods")) {
+            methods_arg = v;
+        } else if (!strcmp(a, "--residuals")) {
+            residuals_arg = v;
+        } else if (!strcmp(a, "--starts-list")) {
+            starts_arg = v;
+        } else if (!strcmp(a, "--test-fraction")) {
+            errno = 0;
+            test_fraction = strtod(v, &end);
+            if (!*v || *end || errno || !(test_fraction > 0.0 && test_fraction < 1.0)) {
+                fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", cmd,
+                        v);
+                goto done;
+            }
+        } else if (!strcmp(a, "--repeats")) {
+            if (!parse_count(v, 1000, &n)) {
+                fprintf(stderr, "%s: --repeats needs an integer from 1 to 1000, got '%s'\n", cmd, v);
+                goto done;
+            }
+            repeats = (int)n;
+        } else if (!strcmp(a, "--error")) {
+            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
+                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+                goto done;
+            }
+        } else if (!strcmp(a, "--tolerance")) {
+            errno = 0;
+            tolerance = strtod(v, &end);
+            if (!*v || *end || errno || !isfinite(tolerance) || tolerance < 0) {
+                fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
+                goto done;
+            }
+        } else if (!strcmp(a, "--plot-size")) {
+            long w, h;
+            char *x;
+            errno = 0;
+            w = strtol(v, &x, 10);
+            h = *x == 'x' ? strtol(x + 1, &end, 10) : 0;
+            if (*x != 'x' || *end || errno || w < 40 || h < 40 || w > 8192 || h > 8192) {
+                fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", cmd, v);
+                goto done;
+            }
+            plot_w = (int)w;
+            plot_h = (int)h;
+        } else if (!strcmp(a, "--json")) {
+            json_path = v;
+        } else if (!strcmp(a, "--csv")) {
+            csv_path = v;
+        } else { /* --plot */
+            plot_path = v;
+        }
+    }
+    if (!data || nspecs == 0) {
+        fprintf(stderr, "%s: %s (see brdfit tradeoff --help)\n", cmd,
+                !data ? "a data file is required" : "-m MODEL is required");
+        goto done;
+    }
+    if (plot_path && !bf_image_format_of(plot_path)) {
+        fprintf(stderr, "%s: --plot %s: the name must end in .png or .exr\n", cmd, plot_path);
+        goto done;
+    }
+    const char *outs[3] = {json_path, csv_path, plot_path};
+    for (int x = 0; x < 3; x++)
+        for (int y = x + 1; y < 3; y++)
+            if (outs[x] && outs[y] && !strcmp(outs[x], outs[y])) {
+                fprintf(stderr, "%s: two outputs name the same file '%s'\n", cmd, outs[x]);
+                goto done;
+            }
+    if (plot_path && !strcmp(plot_path, "-")) {
+        fprintf(stderr, "%s: --plot needs a file name\n", cmd);
+        goto done;
+    }
+    bf_model *probe = bf_model_create(specs[0], 1, &err);
+    if (!probe) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    bf_model_free(probe);
+    fit_options_finish(&fopt, dopt.prep.seed);
+    /* With a scene, errors are measured over the scene's directions, weighted by it. */
+    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+
+    /* The lists. */
+    if (!methods_arg)
+        methods_arg = fopt.fit.solver.backend != BF_BACKEND_CERES || fopt.fit.solver.algorithm
+                          ? method_of(&fopt.fit.solver)
+                          : "ceres,LD_LBFGS";
+    char starts_default[16], *items[4][MAX_LIST];
+    snprintf(starts_default, sizeof starts_default, "%d", fopt.fit.starts);
+    const char *args[4] = {samples_arg, methods_arg,
+                           residuals_arg ? residuals_arg : bf_residual_name(fopt.fit.objective.residual),
+                           starts_arg ? starts_arg : starts_default};
+    static const char *const names[4] = {"--samples", "--methods", "--residuals", "--starts-list"};
+    int counts_n[4];
+    for (int l = 0; l < 4; l++) {
+        if (!(bufs[l] = strdup(args[l]))) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            goto done;
+        }
+        if ((counts_n[l] = split_list(bufs[l], items[l], names[l])) < 0)
+            goto done;
+    }
+    size_t sample_counts[MAX_LIST];
+    bf_residual residuals[MAX_LIST];
+    int starts[MAX_LIST];
+    for (int k = 0; k < counts_n[0]; k++) {
+        long n;
+        if (!strcmp(items[0][k], "all"))
+            sample_counts[k] = 0;
+        else if (parse_count(items[0][k], 1000000000L, &n))
+            sample_counts[k] = (size_t)n;
+        else {
+            fprintf(stderr, "%s: --samples: '%s' is not a positive count or 'all'\n", cmd, items[0][k]);
+            goto done;
+        }
+    }
+    for (int k = 0; k < counts_n[1]; k++) {
+        bf_solver_options so = fopt.fit.solver;
+        if (bf_tradeoff_method_apply(items[1][k], &so, &err) != BF_OK) {
+            fprintf(stderr, "%s: --methods: %s\n", cmd, err.msg);
+            goto done;
+        }
+    }
+    for (int k = 0; k < counts_n[2]; k++)
+        if (bf_residual_parse(items[2][k], &residuals[k], &err) != BF_OK) {
+            fprintf(stderr, "%s: --residuals: %s\n", cmd, err.msg);
+            goto done;
+        }
+    for (int k = 0; k < counts_n[3]; k++) {
+        long n;
+        if (!parse_count(items[3][k], 100000, &n)) {
+            fprintf(stderr, "%s: --starts-list: '%s' is not a positive integer\n", cmd, items[3][k]);
+            goto done;
+        }
+        starts[k] = (int)n;
+    }
+
+    status = 1;
+    if (!(all = data_options_load(&dopt, data, NULL, cmd)))
+        goto done;
+    if (bf_tradeoff_split(all, test_fraction, dopt.prep.seed, &train, &test, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, data, err.msg);
+        goto done;
+    }
+    if (bf_tradeoff_init(&t, data, specs[0], train->n, counts_n[0], sample_counts, counts_n[1],
+                         (const char *const *)items[1], counts_n[2], residuals, counts_n[3], starts, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        status = err.code == BF_ERR_ARG ? 2 : 1;
+        goto done;
+    }
+    t.total = all->n;
+    t.test_n = test->n;
+    t.channels = all->channels;
+    t.test_fraction = test_fraction;
+    t.seed = dopt.prep.seed;
+    t.repeats = repeats;
+    t.metric = metric;
+    t.tolerance = tolerance;
+    bf_samples_free(all);
+    all = NULL;
+
+    int all_ok = 1;
+    bf_scatter_range range;
+    memset(&range, 0, sizeof range);
+    for (int i = 0; i < t.nrows; i++) {
+        const bf_tradeoff_row *r = &t.rows[i];
+        int rc = bf_tradeoff_run_row(&t, i, train, test, &fopt.fit, &err);
+        if (rc == BF_ERR_NOMEM) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            goto done;
+        }
+        all_ok &= r->ran && r->ok;
+        if (!quiet) {
+            fprintf(stderr, "%s: %d/%d %zu%s %s %s starts %d: ", cmd, i + 1, t.nrows, r->samples,
+                    r->all ? " (all)" : "", r->method, bf_residual_name(r->residual), r->starts);
+            if (r->ran)
+                fprintf(stderr, "%s%s %.4g, %.3f s\n", r->ok ? "" : "FAILED, ", bf_compare_metric_name(metric),
+                        bf_compare_metric_value(&r->test, metric), r->seconds);
+            else
+                fprintf(stderr, "error: %s\n", r->message);
+            fflush(stderr);
+        }
+    }
+    bf_tradeoff_rank(&t);
+    /* The table goes to stdout unless a machine-readable output does. */
+    FILE *info = (json_path && !strcmp(json_path, "-")) || (csv_path && !strcmp(csv_path, "-")) ? stderr : stdout;
+    print_table(info, &t);
+    if (t.recommended >= 0) {
+        const bf_tradeoff_row *r = &t.rows[t.recommended], *b = &t.rows[t.best];
+        char fa[256];
+        fit_args(r, fa, sizeof fa);
+        fprintf(info, "recommended: #%d (%s %.4g in %.3f s; best #%d: %.4g in %.3f s): brdfit fit %s -m %s %s\n",
+               t.recommended + 1, bf_compare_metric_name(metric), r->error, r->seconds, t.best + 1, b->error,
+               b->seconds, data, t.model, fa);
+    } else {
+        fprintf(info, "recommended: none (no setting fitted)\n");
+    }
+    fflush(info);
+
+    if ((json_path && bf_tradeoff_write_json(&t, json_path, &err) != BF_OK) ||
+        (csv_path && bf_tradeoff_write_csv(&t, csv_path, &err) != BF_OK) ||
+        (plot_path && bf_tradeoff_write_plot(&t, plot_path, plot_w, plot_h, &range, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
+    /* The image has no text: its axes are said here. */
+    int log_y = 1; /* as bf_tradeoff_write_plot decides */
+    for (int i = 0; i < t.nrows; i++)
+        log_y &= !(t.rows[i].error <= 0.0);
+    if (plot_path)
+        fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting time (x, log10 s, %.3g to %.3g); "
+                      "red: Pareto front\n",
+                plot_path, bf_compare_metric_name(metric), log_y ? "log10 " : "",
+                range.y_lo, range.y_hi, range.x_lo, range.x_hi);
+    if (!all_ok)
+        fprintf(stderr, "%s: %s\n", cmd, t.recommended >= 0 ? "some settings failed" : "every setting failed");
+    status = all_ok ? 0 : 1;
+done:
+    bf_tradeoff_free(&t);
+    bf_samples_free(all);
+    bf_samples_free(train);
+    bf_samples_free(test);
+    for (int k = 0; k < nspecs; k++)
+        free(specs[k]);
+    for (int l = 0; l < 4; l++)
+        free(bufs[l]);
+    return status;
+}

@@ -1,0 +1,146 @@
+/* Regression baselines: a JSON file listing data files, fit settings and the expected
+ * parameters and metrics with tolerances; checking fit results against it, rewriting it
+ * with new results, and a JUnit XML report for CI systems.
+ *
+ * The caller runs the fits (options are brdfit fit's, parsed by the command); this
+ * layer only reads the baseline, compares bf_fit_results with it and writes files.
+ *
+ * {"brdfit_baseline": 1,
+ *  "tolerance": {"params": {"rel": 1e-6, "abs": 1e-9}, "metrics": {"rel": 1e-6, "abs": 1e-12}},
+ *  "cases": [{"name": "cayman-walter", "data": "../cornell/cayman.brdf", "model": "walter",
+ *             "options": ["--rgb", "--seed", "1"],
+ *             "tolerance": {"params": {"alpha": {"rel": 1e-4}}},
+ *             "expected": {"ok": true, "params": {"alpha": 0.12, ...}, "metrics": {"rmse": ...}}}]}
+ *
+ * A value passes when |got - expected| <= abs + rel |expected|. Tolerances resolve from
+ * the most general to the most specific: built-in defaults, the file's group ("params"
+ * or "metrics") rel/abs, the file's per-name entry, the case's group rel/abs, the case's
+ * per-name entry; each layer may set rel, abs or both. */
+#ifndef BRDFIT_REGRESS_H
+#define BRDFIT_REGRESS_H
+
+#include <stddef.h>
+
+#include "brdfit/error.h"
+#include "brdfit/fit.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Built-in defaults, used where the file sets nothing. */
+#define BF_REGRESS_PARAMS_REL 1e-6
+#define BF_REGRESS_PARAMS_ABS 1e-9
+#define BF_REGRESS_METRICS_REL 1e-6
+#define BF_REGRESS_METRICS_ABS 1e-12
+
+typedef struct bf_tolerance {
+    double rel, abs;
+} bf_tolerance;
+
+/* One expected quantity: a parameter (scalar, or one value per channel) or a metric.
+ * null in the file (a non-finite value) reads as NaN. */
+typedef struct bf_regress_value {
+    char *name;
+    int n;          /* values */
+    int array;      /* written as an array (colour parameters) */
+    double *v;
+    int line;
+} bf_regress_value;
+
+typedef struct bf_regress_case {
+    char *name;
+    char *data;        /* as written */
+    char *data_path;   /* resolved against the baseline's folder */
+    char *model;       /* model spec, as for brdfit fit -m (one model) */
+    int noptions;
+    char **options;    /* brdfit fit's data and fit options, as written */
+    int *option_lines; /* line of each option in the baseline */
+    int line, data_line, model_line, options_line;
+    int expect_ok;     /* expected.ok (default true) */
+    int nparams, nmetrics;
+    bf_regress_value *params, *metrics; /* only those the case pins */
+} bf_regress_case;
+
+typedef struct bf_regress_baseline {
+    char *path;   /* as given */
+    char *dir;    /* folder that relative paths in the file start from */
+    int ncases;
+    bf_regress_case *cases;
+    struct cJSON *doc; /* the parsed file: tolerances and order survive an update */
+    char *text;        /* the file's text (line numbers of later messages) */
+} bf_regress_baseline;
+
+/* Metric names a baseline may pin ("n" and "k" are compared like the others). */
+extern const char *const bf_regress_metric_names[];
+extern const int bf_regress_nmetric_names;
+
+/* Reads and checks a baseline: structure, types, known keys, unique case names, model
+ * specs, tolerances >= 0. Errors name the file and line. bf_regress_parse does the same
+ * on text already in memory (path: for messages and the relative-path folder). */
+int bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err);
+int bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err);
+void bf_regress_free(bf_regress_baseline *b);
+
+/* path resolved against the baseline's folder (absolute paths unchanged); malloc'd. */
+char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
+
+/* Line of a value in the file: JSON path segments separated by '/', array elements by
+ * index, e.g. "cases/0/options/3"; the line of the deepest segment found (1 if none). */
+int bf_regress_line(const bf_regress_baseline *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* The tolerance for a quantity of case c; group "params" or "metrics". */
+bf_tolerance bf_regress_tolerance(const bf_regress_baseline *b, int c, const char *group, const char *name);
+
+typedef enum bf_regress_status {
+    BF_REGRESS_PASS = 0,
+    BF_REGRESS_FAIL,    /* ran; something moved beyond tolerance or the structure differs */
+    BF_REGRESS_ERROR,   /* could not run (data unreadable, fit error) */
+    BF_REGRESS_SKIPPED, /* not selected */
+} bf_regress_status;
+
+typedef struct bf_regress_outcome {
+    bf_regress_status status;
+    double seconds;
+    int nlines;
+    char **lines;   /* FAIL: one per quantity that moved ("params.alpha: expected ...");
+                       ERROR: the reason */
+    int nchecked;
+    char **checked; /* every compared value, passing or not (for --verbose) */
+} bf_regress_outcome;
+
+/* Compares r with case c's expectations: fills out (status PASS or FAIL, the lines).
+ * Expected ok false passes when the fit failed (values unchecked) and fails when it
+ * succeeded. Returns BF_OK unless memory runs out. */
+int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
+                     bf_error *err);
+/* Marks case c as not runnable with message (status ERROR). */
+int bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
+void bf_regress_outcome_free(bf_regress_outcome *out);
+
+/* Sets case c's expectations to r in the document: expected.ok; the parameters and
+ * metrics the case pins (every one when it pins none of the group, and the model's own
+ * names and channel count where they differ). A failed fit (r->ok 0) sets ok false and
+ * leaves the values. Appends one line per change to *changes ("params.alpha: 0.12 ->
+ * 0.1201"; caller frees each and the array). */
+int bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
+                      bf_error *err);
+/* Writes the document (2-space indent, arrays of scalars on one line, numbers that
+ * read back exactly) to path through a temporary file. */
+int bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
+
+/* JUnit XML: <testsuites><testsuite name="brdfit regress" tests failures errors time>,
+ * one <testcase name classname=(baseline path) time> per case not skipped, <failure>
+ * holding the diff lines, <error> the reason a case could not run. Written through a
+ * temporary file. */
+int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
+                           bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,111 @@
+/* Fitting time against accuracy on one data set: a grid of training sample counts,
+ * optimizer methods, residual forms and multistart counts, each fitted on a seeded
+ * training set and judged on a disjoint held-out test set; the Pareto front of time
+ * against test error and the fastest setting within a tolerance of the best.
+ *
+ * The caller builds the grid (bf_tradeoff_init), runs each row (bf_tradeoff_run_row, in
+ * any order, one at a time, since rows are timed) and ranks (bf_tradeoff_rank); the
+ * writers read the filled table. */
+#ifndef BRDFIT_TRADEOFF_H
+#define BRDFIT_TRADEOFF_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "brdfit/compare.h"
+#include "brdfit/error.h"
+#include "brdfit/fit.h"
+#include "brdfit/metrics.h"
+#include "brdfit/render.h"
+#include "brdfit/samples.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A method as the command line names it: "ceres" (Levenberg-Marquardt), "ceres:dogleg"
+ * (or "dogleg", "lm"), "nlopt" (LD_LBFGS) or an NLopt algorithm name ("LD_LBFGS",
+ * "LN_BOBYQA" ...). Sets backend and algorithm in so (algorithm points into text).
+ * Unknown names are BF_ERR_ARG, checked by the back end itself on a one-parameter
+ * problem, so the list of names lives in one place (the solvers). */
+int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err);
+
+/* Splits s into a training and a test set, disjoint, together every sample: the test set
+ * is a seeded uniform random subset of exactly round(n * fraction) samples (at least 1,
+ * and at least 1 left for training), both in the original order. fraction in (0, 1).
+ * Weights and channel names are copied; the MERL origin is not (neither set is a table). */
+int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+                      bf_samples **test, bf_error *err);
+
+typedef struct bf_tradeoff_row {
+    /* The setting (bf_tradeoff_init). */
+    size_t samples;      /* training samples fitted (the whole training set when all) */
+    int all;             /* 1: the whole training set, no subsampling */
+    const char *method;  /* as given (points into the init lists) */
+    bf_residual residual;
+    int starts;
+    /* Filled by bf_tradeoff_run_row. */
+    int ran;             /* 1: a fit ran (ok or not); 0: not run or an error (message) */
+    int ok;
+    double seconds;      /* bf_fit_result.seconds, minimum over the repeats */
+    int iterations;
+    bf_metrics train, test;
+    char message[512];   /* why the fit could not run (a bf_error message) */
+    /* Filled by bf_tradeoff_rank (0 / NaN for rows not ok). */
+    double error;        /* the chosen metric on the test set */
+    int on_front;        /* Pareto front of seconds against error */
+    int within_tolerance;
+} bf_tradeoff_row;
+
+typedef struct bf_tradeoff {
+    char *data, *model;  /* owned copies */
+    size_t total, train_n, test_n;
+    int channels;
+    double test_fraction;
+    uint64_t seed;
+    int repeats;
+    bf_compare_metric metric;
+    double tolerance;
+    int nrows;
+    bf_tradeoff_row *rows; /* owned */
+    int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */
+} bf_tradeoff;
+
+/* The grid: the full product of the lists, sample counts outermost. counts are training
+ * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
+ * sorted ascending and deduplicated, so rows run in ascending sample count. Then
+ * methods, residuals, starts, in the order given. Every list must be non-empty. */
+int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+                     const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
+                     const bf_residual *residuals, int nstarts, const int *starts, bf_error *err);
+void bf_tradeoff_free(bf_tradeoff *t);
+
+/* Runs row i: subsamples train (seeded stratified, bf_prep with t->seed) unless the row is
+ * all, fits t->model with base overridden by the row's method, residual and starts,
+ * t->repeats times (same seed each time: the same fit, so the minimum time is the
+ * fit's time with the least interference), and measures the best fit on train and test
+ * (every metric). Returns BF_OK when the row was filled (a fit that could not run says so
+ * in row->message and returns its error code too). */
+int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
+                        bf_error *err);
+
+/* error from t->metric on the test set, the Pareto front of (seconds, error) over the ok
+ * rows, best (lowest error; ties to the faster, then the earlier row), within tolerance
+ * (error <= best * (1 + tolerance)) and recommended: the fastest row within tolerance
+ * (ties to the lower error, then the earlier row). */
+void bf_tradeoff_rank(bf_tradeoff *t);
+
+/* Outputs through bf_outfile (no partial file on failure; "-": stdout). JSON: every key
+ * always present (null where not applicable); CSV: a header and one row per grid row. */
+int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
+int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
+
+/* Test error (log axis unless some error is 0) against fitting time (log axis), the
+ * Pareto front in red, as a width x height PNG (bf_render_scatter); range may be NULL. */
+int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, int height,
+                           bf_scatter_range *range, bf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

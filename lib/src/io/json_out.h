@@ -1,0 +1,26 @@
+/* Internal: what every JSON writer of the library shares (cJSON): finite numbers or
+ * null, parameters by name as in a parameter file, and writing a document through
+ * bf_outfile so that a failure leaves no partial file. */
+#ifndef BF_JSON_OUT_H
+#define BF_JSON_OUT_H
+
+#include <cjson/cJSON.h>
+
+#include "brdfit/error.h"
+#include "brdfit/metrics.h"
+#include "brdfit/model.h"
+
+/* v, or null when v is NaN or infinite (JSON has no such numbers). */
+cJSON *bf_json_number(double v);
+void bf_json_add_number(cJSON *o, const char *key, double v);
+/* s, or null. */
+void bf_json_add_string(cJSON *o, const char *key, const char *s);
+/* {name: value or [per channel]} from a model vector x; null when m or x is NULL. */
+cJSON *bf_json_params(const bf_model *m, const double *x);
+/* {rmse, rmse_cos, rmse_log, rmse_rel, max_err, n, k, aic, bic}, as in a result file. */
+cJSON *bf_json_metrics(const bf_metrics *m);
+/* Prints root (formatted) to path ("-" or NULL: stdout) and deletes it. what names the
+ * document in messages ("the comparison"). */
+int bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err);
+
+#endif

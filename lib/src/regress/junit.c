@@ -1,0 +1,114 @@
+/* JUnit XML for CI systems, written with libxml2's xmlTextWriter (escaping and
+ * well-formedness are its job) into memory, then through a temporary file renamed into
+ * place, so an interrupted run leaves no partial report. */
+#include "brdfit/regress.h"
+
+#include <libxml/xmlwriter.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/io.h"
+
+static const xmlChar *X(const char *s) { return (const xmlChar *)s; }
+
+static int attr(xmlTextWriterPtr w, const char *name, const char *value)
+{
+    return xmlTextWriterWriteAttribute(w, X(name), X(value)) < 0 ? -1 : 0;
+}
+
+static int attr_int(xmlTextWriterPtr w, const char *name, int v)
+{
+    char buf[16];
+    snprintf(buf, sizeof buf, "%d", v);
+    return attr(w, name, buf);
+}
+
+static int attr_time(xmlTextWriterPtr w, double seconds)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.3f", seconds);
+    return attr(w, "time", buf);
+}
+
+/* The diff lines (without their indent), one per line, as the element's text. */
+static int problem(xmlTextWriterPtr w, const char *element, const char *message, const bf_regress_outcome *o)
+{
+    if (xmlTextWriterStartElement(w, X(element)) < 0 || attr(w, "message", message) != 0)
+        return -1;
+    for (int i = 0; i < o->nlines; i++) {
+        const char *line = o->lines[i] + strspn(o->lines[i], " ");
+        if ((i > 0 && xmlTextWriterWriteString(w, X("\n")) < 0) || xmlTextWriterWriteString(w, X(line)) < 0)
+            return -1;
+    }
+    return xmlTextWriterEndElement(w) < 0 ? -1 : 0;
+}
+
+static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_regress_outcome *outs)
+{
+    int tests = 0, failures = 0, errors = 0;
+    double seconds = 0.0;
+    for (int i = 0; i < b->ncases; i++) {
+        if (outs[i].status == BF_REGRESS_SKIPPED)
+            continue;
+        tests++;
+        failures += outs[i].status == BF_REGRESS_FAIL;
+        errors += outs[i].status == BF_REGRESS_ERROR;
+        seconds += outs[i].seconds;
+    }
+    if (xmlTextWriterSetIndent(w, 1) < 0 || xmlTextWriterStartDocument(w, NULL, "UTF-8", NULL) < 0)
+        return -1;
+    for (int level = 0; level < 2; level++) {
+        if (xmlTextWriterStartElement(w, X(level ? "testsuite" : "testsuites")) < 0)
+            return -1;
+        if ((level && attr(w, "name", "brdfit regress") != 0) || attr_int(w, "tests", tests) != 0 ||
+            attr_int(w, "failures", failures) != 0 || attr_int(w, "errors", errors) != 0 || attr_time(w, seconds) != 0)
+            return -1;
+    }
+    for (int i = 0; i < b->ncases; i++) {
+        const bf_regress_outcome *o = &outs[i];
+        if (o->status == BF_REGRESS_SKIPPED)
+            continue;
+        if (xmlTextWriterStartElement(w, X("testcase")) < 0 || attr(w, "name", b->cases[i].name) != 0 ||
+            attr(w, "classname", b->path) != 0 || attr_time(w, o->seconds) != 0)
+            return -1;
+        if (o->status == BF_REGRESS_FAIL) {
+            char message[64];
+            snprintf(message, sizeof message, "%d value%s differ%s from the baseline", o->nlines,
+                     o->nlines == 1 ? "" : "s", o->nlines == 1 ? "s" : "");
+            if (problem(w, "failure", message, o) != 0)
+                return -1;
+        } else if (o->status == BF_REGRESS_ERROR) {
+            if (problem(w, "error", o->nlines ? o->lines[0] : "the case could not run", o) != 0)
+                return -1;
+        }
+        if (xmlTextWriterEndElement(w) < 0)
+            return -1;
+    }
+    return xmlTextWriterEndDocument(w) < 0 ? -1 : 0; /* closes every open element */
+}
+
+int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
+                           bf_error *err)
+{
+    xmlBufferPtr buf = xmlBufferCreate();
+    xmlTextWriterPtr w = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
+    if (!w) {
+        xmlBufferFree(buf);
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+    }
+    int bad = write_doc(w, b, outs);
+    xmlFreeTextWriter(w); /* flushes into buf */
+    if (bad) {
+        xmlBufferFree(buf);
+        return bf_fail(err, BF_ERR_ARG, "%s: cannot write the JUnit XML (a name or message is not UTF-8?)", path);
+    }
+    bf_outfile f;
+    int rc = bf_outfile_open(&f, path, err);
+    if (rc == BF_OK) {
+        fwrite(xmlBufferContent(buf), 1, (size_t)xmlBufferLength(buf), f.fp);
+        rc = bf_outfile_commit(&f, err);
+    }
+    xmlBufferFree(buf);
+    return rc;
+}

@@ -1,0 +1,237 @@
+/* Model selection: the smallest candidate within tolerance of the best (see select.h). */
+#include "brdfit/select.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/json_out.h"
+
+/* In order of complexity; the mono variants are added after each coloured model. */
+static const char *const default_specs[] = {
+    "lambert",
+    "oren_nayar",
+    "blinn_phong",
+    "ward_iso",
+    "cook_torrance",
+    "walter",
+    "ashikhmin_shirley_iso",
+    "lafortune",
+    "ward",
+    "walter_aniso",
+    "ashikhmin_shirley",
+    "cook_torrance:lobes=2",
+    "walter:lobes=2",
+};
+static const char *const default_mono_specs[] = {
+    "lambert",
+    "oren_nayar",
+    "blinn_phong:mono=specular",
+    "ward_iso:mono=specular",
+    "cook_torrance:mono=specular",
+    "walter:mono=specular",
+    "ashikhmin_shirley_iso:mono=specular",
+    "lafortune:mono=specular",
+    "ward:mono=specular",
+    "walter_aniso:mono=specular",
+    "ashikhmin_shirley:mono=specular",
+    "cook_torrance:lobes=2,mono=specular",
+    "walter:lobes=2,mono=specular",
+};
+enum { NDEFAULT = sizeof default_specs / sizeof default_specs[0] };
+
+int bf_select_default_candidates(int channels, const char ***specs)
+{
+    const char **out = malloc(2 * NDEFAULT * sizeof *out);
+    int n = 0;
+    if (!out) {
+        *specs = NULL;
+        return -1;
+    }
+    for (int i = 0; i < NDEFAULT; i++) {
+        out[n++] = default_specs[i];
+        if (channels > 1 && strcmp(default_specs[i], default_mono_specs[i]))
+            out[n++] = default_mono_specs[i];
+    }
+    *specs = (const char **)out;
+    return n;
+}
+
+static int family_anisotropic(const char *name)
+{
+    for (int i = 0; i < bf_family_count(); i++)
+        if (!strcmp(bf_family_get(i)->name, name))
+            return bf_family_get(i)->anisotropic;
+    return 0;
+}
+
+/* A colour parameter besides the first (the diffuse colour) makes the highlight
+ * coloured; with one channel there is no colour to speak of. */
+static int coloured_specular(const bf_model *m)
+{
+    int colours = 0;
+    for (int i = 0; i < bf_model_nparams(m); i++)
+        colours += bf_model_param(m, i)->colour;
+    return bf_model_channels(m) > 1 && colours > 1;
+}
+
+int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
+                   double tolerance, double abs_tolerance, bf_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->best = s->chosen = -1;
+    if (n < 1)
+        return bf_fail(err, BF_ERR_ARG, "select: no candidate models");
+    if (!(tolerance >= 0.0) || !(abs_tolerance >= 0.0))
+        return bf_fail(err, BF_ERR_ARG, "select: tolerances must be >= 0");
+    if (!(s->c = calloc((size_t)n, sizeof *s->c)))
+        return bf_fail(err, BF_ERR_NOMEM, "select: out of memory");
+    s->n = n;
+    s->metric = metric;
+    s->tolerance = tolerance;
+    s->abs_tolerance = abs_tolerance;
+    for (int i = 0; i < n; i++) {
+        bf_select_candidate *c = &s->c[i];
+        if (strlen(specs[i]) >= sizeof c->spec) {
+            bf_select_free(s);
+            return bf_fail(err, BF_ERR_ARG, "model spec '%.40s...' is too long", specs[i]);
+        }
+        snprintf(c->spec, sizeof c->spec, "%s", specs[i]);
+        bf_model *m = bf_model_create(specs[i], channels, err);
+        if (!m) {
+            bf_select_free(s);
+            return BF_ERR_ARG;
+        }
+        c->k = bf_model_nfree(m);
+        c->anisotropic = family_anisotropic(bf_model_name(m));
+        c->lobes = bf_model_lobes(m);
+        c->coloured_specular = coloured_specular(m);
+        c->error = NAN;
+        bf_model_free(m);
+    }
+    return BF_OK;
+}
+
+void bf_select_free(bf_select *s)
+{
+    if (!s)
+        return;
+    for (int i = 0; i < s->n && s->c; i++)
+        bf_fit_result_free(&s->c[i].result);
+    free(s->c);
+    memset(s, 0, sizeof *s);
+    s->best = s->chosen = -1;
+}
+
+int bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
+                  void *ctx, bf_error *err)
+{
+    (void)err;
+    for (int i = 0; i < s->n; i++) {
+        bf_select_candidate *c = &s->c[i];
+        bf_error e;
+        int rc = bf_fit(data, c->spec, o, &c->result, &e);
+        if (rc != BF_OK) {
+            c->state = BF_CMP_ERROR;
+            snprintf(c->message, sizeof c->message, "%s", e.msg);
+        } else {
+            c->state = c->result.ok ? BF_CMP_OK : BF_CMP_FAILED;
+            c->seconds = c->result.seconds;
+            c->k = c->result.metrics.k; /* fixed parameters (--fix) do not count */
+        }
+        if (progress)
+            progress(ctx, s, i);
+    }
+    bf_select_choose(s);
+    return BF_OK;
+}
+
+/* The order of preference between two candidates (negative: a first). */
+static int prefer(const bf_select *s, int a, int b)
+{
+    const bf_select_candidate *x = &s->c[a], *y = &s->c[b];
+    if (x->k != y->k)
+        return x->k - y->k;
+    if (x->anisotropic != y->anisotropic)
+        return x->anisotropic - y->anisotropic;
+    if (x->lobes != y->lobes)
+        return x->lobes - y->lobes;
+    if (x->coloured_specular != y->coloured_specular)
+        return x->coloured_specular - y->coloured_specular;
+    /* Unfitted candidates (NaN error) after fitted ones. */
+    int nx = isnan(x->error), ny = isnan(y->error);
+    if (nx != ny)
+        return nx - ny;
+    if (!nx && x->error != y->error)
+        return x->error < y->error ? -1 : 1;
+    return a - b;
+}
+
+void bf_select_choose(bf_select *s)
+{
+    s->best = s->chosen = -1;
+    for (int i = 0; i < s->n; i++) {
+        bf_select_candidate *c = &s->c[i];
+        c->within = 0;
+        c->error = c->state == BF_CMP_OK ? bf_compare_metric_value(&c->result.metrics, s->metric) : NAN;
+        if (!isnan(c->error) && (s->best < 0 || c->error < s->c[s->best].error))
+            s->best = i;
+    }
+    if (s->best < 0)
+        return;
+    double limit = s->c[s->best].error * (1.0 + s->tolerance) + s->abs_tolerance;
+    for (int i = 0; i < s->n; i++) {
+        bf_select_candidate *c = &s->c[i];
+        c->within = !isnan(c->error) && c->error <= limit;
+        if (c->within && (s->chosen < 0 || prefer(s, i, s->chosen) < 0))
+            s->chosen = i;
+    }
+}
+
+void bf_select_order(const bf_select *s, int *order)
+{
+    for (int i = 0; i < s->n; i++)
+        order[i] = i;
+    /* Insertion sort: the list is short, and qsort has no context argument in C11. */
+    for (int i = 1; i < s->n; i++)
+        for (int j = i; j > 0 && prefer(s, order[j - 1], order[j]) > 0; j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+}
+
+int bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddNumberToObject(root, "version", 1);
+    bf_json_add_string(root, "data", data);
+    bf_json_add_string(root, "error", bf_compare_metric_name(s->metric));
+    cJSON_AddNumberToObject(root, "tolerance", s->tolerance);
+    cJSON_AddNumberToObject(root, "abs_tolerance", s->abs_tolerance);
+    bf_json_add_string(root, "best", s->best >= 0 ? s->c[s->best].spec : NULL);
+    bf_json_add_string(root, "chosen", s->chosen >= 0 ? s->c[s->chosen].spec : NULL);
+    cJSON *list = cJSON_AddArrayToObject(root, "candidates");
+    for (int i = 0; i < s->n; i++) {
+        const bf_select_candidate *c = &s->c[i];
+        int ran = c->state == BF_CMP_OK || c->state == BF_CMP_FAILED;
+        cJSON *o = cJSON_CreateObject();
+        bf_json_add_string(o, "model", c->spec);
+        bf_json_add_string(o, "spec", ran ? bf_model_spec(c->result.model) : NULL);
+        cJSON_AddNumberToObject(o, "k", c->k);
+        cJSON_AddBoolToObject(o, "anisotropic", c->anisotropic);
+        cJSON_AddNumberToObject(o, "lobes", c->lobes);
+        cJSON_AddBoolToObject(o, "coloured_specular", c->coloured_specular);
+        bf_json_add_string(o, "status", bf_compare_state_name(c->state));
+        bf_json_add_string(o, "message", c->state == BF_CMP_ERROR ? c->message : NULL);
+        bf_json_add_number(o, "error", c->error);
+        cJSON_AddBoolToObject(o, "within_tolerance", c->within);
+        cJSON_AddBoolToObject(o, "chosen", i == s->chosen);
+        bf_json_add_number(o, "seconds", ran ? c->seconds : NAN);
+        cJSON_AddItemToObject(o, "metrics", ran ? bf_json_metrics(&c->result.metrics) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "params", ran ? bf_json_params(c->result.model, c->result.x) : cJSON_CreateNull());
+        cJSON_AddItemToArray(list, o);
+    }
+    return bf_json_write(root, path, "the selection", err);
+}

@@ -1,0 +1,224 @@
+/* The tradeoff grid: methods, the train/test split and the rows in their order.
+ *
+ * Decisions:
+ *  - The test set is a uniform random subset (not stratified): it then has the same
+ *    angular density as the data, so its error is the error a user of the whole data set
+ *    would see. The training subsamples are stratified (bf_samples_prep), as
+ *    `brdfit fit --subsample` does, so a tradeoff row is exactly what fit would run.
+ *  - Sample counts at or above the training size are the same setting as "all": one row. */
+#include "brdfit/tradeoff.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/prep.h"
+
+/* ---- Methods ------------------------------------------------------------------- */
+
+static int one_residual(void *ctx, const double *x, size_t r0, size_t r1, double *res, double *jac)
+{
+    (void)ctx;
+    for (size_t r = r0; r < r1; r++) {
+        res[r - r0] = x[0] - 1.0;
+        if (jac)
+            jac[r - r0] = 1.0;
+    }
+    return 0;
+}
+
+int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
+{
+    if (!text || !*text)
+        return bf_fail(err, BF_ERR_ARG, "empty method name");
+    bf_solver_options o = *so;
+    o.local_algorithm = so->local_algorithm;
+    if (!strcmp(text, "ceres") || !strcmp(text, "ceres:lm") || !strcmp(text, "lm")) {
+        o.backend = BF_BACKEND_CERES;
+        o.algorithm = "lm";
+    } else if (!strcmp(text, "ceres:dogleg") || !strcmp(text, "dogleg")) {
+        o.backend = BF_BACKEND_CERES;
+        o.algorithm = "dogleg";
+    } else if (!strcmp(text, "nlopt")) {
+        o.backend = BF_BACKEND_NLOPT;
+        o.algorithm = "LD_LBFGS";
+    } else {
+        o.backend = BF_BACKEND_NLOPT;
+        o.algorithm = !strncmp(text, "nlopt:", 6) ? text + 6 : text;
+    }
+    /* Let the back end judge the name on a trivial problem: one parameter, one residual. */
+    double lo = -10.0, hi = 10.0, x = 0.0;
+    bf_problem p = {.nres = 1, .npar = 1, .lo = &lo, .hi = &hi, .eval = one_residual};
+    bf_solver_options probe = o;
+    probe.threads = 1;
+    probe.max_iterations = 5;
+    probe.max_seconds = 0.0;
+    probe.constant = NULL;
+    probe.use_constraint = 0;
+    probe.loss.kind = BF_LOSS_NONE;
+    bf_solution sol;
+    bf_error e;
+    if (bf_solve(&p, &probe, &x, &sol, &e) != BF_OK && e.code == BF_ERR_ARG)
+        return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, e.msg);
+    *so = o;
+    return BF_OK;
+}
+
+/* ---- Train / test split -------------------------------------------------------- */
+
+static uint64_t splitmix64(uint64_t *x)
+{
+    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* A new sample set holding the samples of s where mask[i] == want, in order. */
+static bf_samples *subset(const bf_samples *s, const unsigned char *mask, unsigned char want, size_t k,
+                          bf_error *err)
+{
+    const int C = s->channels;
+    bf_samples *o = bf_samples_new(k, C, err);
+    if (!o)
+        return NULL;
+    for (int c = 0; c < C; c++)
+        if (bf_samples_set_channel_name(o, c, s->channel_names[c], err) != BF_OK)
+            goto fail;
+    if (s->wavelength) {
+        if (!(o->wavelength = malloc((size_t)C * sizeof *o->wavelength))) {
+            bf_fail(err, BF_ERR_NOMEM, "out of memory for the train/test split");
+            goto fail;
+        }
+        memcpy(o->wavelength, s->wavelength, (size_t)C * sizeof *o->wavelength);
+    }
+    if (s->weight && bf_samples_add_weights(o, err) != BF_OK)
+        goto fail;
+    size_t j = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (mask[i] != want)
+            continue;
+        o->theta_i[j] = s->theta_i[i];
+        o->phi_i[j] = s->phi_i[i];
+        o->theta_o[j] = s->theta_o[i];
+        o->phi_o[j] = s->phi_o[i];
+        memcpy(o->value + j * (size_t)C, s->value + i * (size_t)C, (size_t)C * sizeof *o->value);
+        if (s->weight)
+            o->weight[j] = s->weight[i];
+        j++;
+    }
+    return o;
+fail:
+    bf_samples_free(o);
+    return NULL;
+}
+
+int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+                      bf_samples **test, bf_error *err)
+{
+    *train = *test = NULL;
+    if (!(fraction > 0.0 && fraction < 1.0))
+        return bf_fail(err, BF_ERR_ARG, "test fraction must be in (0, 1), got %g", fraction);
+    const size_t n = s->n;
+    if (n < 2)
+        return bf_fail(err, BF_ERR_ARG, "%zu sample%s: too few to hold any out for testing", n,
+                       n == 1 ? "" : "s");
+    double want = floor((double)n * fraction + 0.5);
+    size_t k = want < 1.0 ? 1 : want > (double)(n - 1) ? n - 1 : (size_t)want;
+    unsigned char *mask = malloc(n + 1);
+    if (!mask)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the train/test split");
+    /* Selection sampling (Knuth, TAOCP 3.4.2 Algorithm S): exactly k of n, uniformly; the
+     * stream is set apart from the subsampling one by a constant. */
+    uint64_t state = seed ^ 0x5465737453706c74ull;
+    size_t need = k;
+    for (size_t i = 0; i < n; i++) {
+        double u = (double)(splitmix64(&state) >> 11) * 0x1.0p-53;
+        mask[i] = (double)(n - i) * u < (double)need;
+        need -= mask[i];
+    }
+    int rc = BF_OK;
+    if (!(*test = subset(s, mask, 1, k, err)) || !(*train = subset(s, mask, 0, n - k, err))) {
+        bf_samples_free(*test);
+        *test = NULL;
+        rc = err ? err->code : BF_ERR_NOMEM;
+    }
+    free(mask);
+    return rc;
+}
+
+/* ---- Grid ---------------------------------------------------------------------- */
+
+static int cmp_size(const void *a, const void *b)
+{
+    size_t x = *(const size_t *)a, y = *(const size_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+                     const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
+                     const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
+{
+    memset(t, 0, sizeof *t);
+    t->best = t->recommended = -1;
+    t->repeats = 1;
+    t->tolerance = 0.05;
+    t->metric = BF_CMP_RMSE_LOG;
+    t->train_n = train_n;
+    if (ncounts < 1 || nmethods < 1 || nresiduals < 1 || nstarts < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: every list (samples, methods, residuals, starts) needs an entry");
+    if (train_n < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: no training sample");
+    for (int s = 0; s < nstarts; s++)
+        if (starts[s] < 1)
+            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 1, got %d", starts[s]);
+    /* Counts >= the training size (and 0) are "all", kept as train_n; sorted, unique. */
+    size_t *c = malloc((size_t)ncounts * sizeof *c);
+    if (!c)
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    for (int k = 0; k < ncounts; k++)
+        c[k] = counts[k] == 0 || counts[k] >= train_n ? train_n : counts[k];
+    qsort(c, (size_t)ncounts, sizeof *c, cmp_size);
+    int nc = 0;
+    for (int k = 0; k < ncounts; k++)
+        if (nc == 0 || c[k] != c[nc - 1])
+            c[nc++] = c[k];
+    size_t rows = (size_t)nc * (size_t)nmethods * (size_t)nresiduals * (size_t)nstarts;
+    if (rows > 100000) {
+        free(c);
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most 100000)", rows);
+    }
+    t->data = strdup(data ? data : "");
+    t->model = strdup(model ? model : "");
+    t->rows = calloc(rows, sizeof *t->rows);
+    if (!t->data || !t->model || !t->rows) {
+        free(c);
+        bf_tradeoff_free(t);
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    }
+    t->nrows = (int)rows;
+    int i = 0;
+    for (int a = 0; a < nc; a++)
+        for (int m = 0; m < nmethods; m++)
+            for (int r = 0; r < nresiduals; r++)
+                for (int s = 0; s < nstarts; s++) {
+                    bf_tradeoff_row *row = &t->rows[i++];
+                    row->samples = c[a];
+                    row->all = c[a] == train_n;
+                    row->method = methods[m];
+                    row->residual = residuals[r];
+                    row->starts = starts[s];
+                    row->error = NAN;
+                }
+    free(c);
+    return BF_OK;
+}
+
+void bf_tradeoff_free(bf_tradeoff *t)
+{
+    free(t->data);
+    free(t->model);
+    free(t->rows);
+    memset(t, 0, sizeof *t);
+    t->best = t->recommended = -1;
+}

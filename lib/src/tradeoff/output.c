@@ -1,0 +1,206 @@
+/* The tradeoff table as JSON and CSV, and the error-against-time plot.
+ * JSON keys are stable: every key is written for every row, null where it does not
+ * apply (a row that did not run, NaN metrics). */
+#include "brdfit/tradeoff.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "brdfit/image.h"
+#include "brdfit/io.h"
+#include "brdfit/render.h"
+
+static const char *row_status(const bf_tradeoff_row *r)
+{
+    return r->ran ? (r->ok ? "ok" : "failed") : (r->message[0] ? "error" : "not_run");
+}
+
+static cJSON *number(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
+static void add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, number(v)); }
+
+static cJSON *metrics_json(const bf_metrics *m, int ran)
+{
+    if (!ran)
+        return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    add_number(o, "n", (double)m->n);
+    add_number(o, "rmse", m->rmse);
+    add_number(o, "rmse_log", m->rmse_log);
+    add_number(o, "rmse_cos", m->rmse_cos);
+    add_number(o, "rmse_rel", m->rmse_rel);
+    add_number(o, "max_err", m->max_err);
+    return o;
+}
+
+static cJSON *tradeoff_json(const bf_tradeoff *t)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddNumberToObject(root, "version", 1);
+    cJSON_AddStringToObject(root, "data", t->data);
+    cJSON_AddStringToObject(root, "model", t->model);
+    cJSON_AddNumberToObject(root, "samples", (double)t->total);
+    cJSON_AddNumberToObject(root, "train_samples", (double)t->train_n);
+    cJSON_AddNumberToObject(root, "test_samples", (double)t->test_n);
+    cJSON_AddNumberToObject(root, "channels", t->channels);
+    cJSON_AddNumberToObject(root, "test_fraction", t->test_fraction);
+    cJSON_AddNumberToObject(root, "seed", (double)t->seed);
+    cJSON_AddNumberToObject(root, "repeats", t->repeats);
+    cJSON_AddStringToObject(root, "error", bf_compare_metric_name(t->metric));
+    cJSON_AddNumberToObject(root, "tolerance", t->tolerance);
+    cJSON_AddItemToObject(root, "best", t->best >= 0 ? cJSON_CreateNumber(t->best) : cJSON_CreateNull());
+    cJSON_AddItemToObject(root, "recommended",
+                          t->recommended >= 0 ? cJSON_CreateNumber(t->recommended) : cJSON_CreateNull());
+    cJSON *rows = cJSON_AddArrayToObject(root, "rows");
+    for (int i = 0; i < t->nrows; i++) {
+        const bf_tradeoff_row *r = &t->rows[i];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "index", i);
+        cJSON_AddNumberToObject(o, "samples", (double)r->samples);
+        cJSON_AddBoolToObject(o, "all", r->all);
+        cJSON_AddStringToObject(o, "method", r->method ? r->method : "");
+        cJSON_AddStringToObject(o, "residual", bf_residual_name(r->residual));
+        cJSON_AddNumberToObject(o, "starts", r->starts);
+        cJSON_AddStringToObject(o, "status", row_status(r));
+        cJSON_AddBoolToObject(o, "ok", r->ran && r->ok);
+        cJSON_AddItemToObject(o, "message", r->message[0] ? cJSON_CreateString(r->message) : cJSON_CreateNull());
+        add_number(o, "seconds", r->ran ? r->seconds : NAN);
+        add_number(o, "iterations", r->ran ? r->iterations : NAN);
+        add_number(o, "error", r->error);
+        cJSON_AddItemToObject(o, "train", metrics_json(&r->train, r->ran));
+        cJSON_AddItemToObject(o, "test", metrics_json(&r->test, r->ran));
+        cJSON_AddBoolToObject(o, "on_front", r->on_front);
+        cJSON_AddBoolToObject(o, "within_tolerance", r->within_tolerance);
+        cJSON_AddBoolToObject(o, "best", i == t->best);
+        cJSON_AddBoolToObject(o, "recommended", i == t->recommended);
+        cJSON_AddItemToArray(rows, o);
+    }
+    return root;
+}
+
+int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err)
+{
+    const char *name = path ? path : "-";
+    cJSON *root = tradeoff_json(t);
+    char *text = root ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    if (!text)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the tradeoff table", name);
+    bf_outfile f;
+    int rc = bf_outfile_open(&f, path, err);
+    if (rc == BF_OK) {
+        if (fputs(text, f.fp) < 0 || fputc('\n', f.fp) == EOF) {
+            bf_outfile_abort(&f);
+            rc = bf_fail(err, BF_ERR_IO, "%s: write failed", name);
+        } else {
+            rc = bf_outfile_commit(&f, err);
+        }
+    }
+    cJSON_free(text);
+    return rc;
+}
+
+/* Empty field for NaN, else the shortest exact text. */
+static void put_number(FILE *fp, double v)
+{
+    char buf[40];
+    fputc(',', fp);
+    if (isfinite(v))
+        fputs(bf_format_double(v, buf, sizeof buf), fp);
+}
+
+/* Method names are the user's text: quoted when they hold a CSV special character. */
+static void put_text(FILE *fp, const char *s)
+{
+    int quote = 0;
+    for (const char *p = s; *p; p++)
+        quote |= *p == ',' || *p == '"' || *p == '\n' || *p == '\r';
+    if (!quote) {
+        fputs(s, fp);
+        return;
+    }
+    fputc('"', fp);
+    for (const char *p = s; *p; p++) {
+        if (*p == '"')
+            fputc('"', fp);
+        fputc(*p, fp);
+    }
+    fputc('"', fp);
+}
+
+static void put_metrics(FILE *fp, const bf_metrics *m, int ran)
+{
+    put_number(fp, ran ? m->rmse : NAN);
+    put_number(fp, ran ? m->rmse_log : NAN);
+    put_number(fp, ran ? m->rmse_cos : NAN);
+    put_number(fp, ran ? m->rmse_rel : NAN);
+    put_number(fp, ran ? m->max_err : NAN);
+}
+
+int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
+{
+    const char *name = path ? path : "-";
+    bf_outfile f;
+    int rc = bf_outfile_open(&f, path, err);
+    if (rc != BF_OK)
+        return rc;
+    FILE *fp = f.fp;
+    fprintf(fp, "samples,all,method,residual,starts,status,seconds,iterations,error,"
+                "train_rmse,train_rmse_log,train_rmse_cos,train_rmse_rel,train_max_err,"
+                "test_rmse,test_rmse_log,test_rmse_cos,test_rmse_rel,test_max_err,"
+                "on_front,within_tolerance,best,recommended\n");
+    for (int i = 0; i < t->nrows; i++) {
+        const bf_tradeoff_row *r = &t->rows[i];
+        fprintf(fp, "%zu,%d,", r->samples, r->all);
+        put_text(fp, r->method ? r->method : "");
+        fprintf(fp, ",%s,%d,%s", bf_residual_name(r->residual), r->starts, row_status(r));
+        put_number(fp, r->ran ? r->seconds : NAN);
+        put_number(fp, r->ran ? (double)r->iterations : NAN);
+        put_number(fp, r->error);
+        put_metrics(fp, &r->train, r->ran);
+        put_metrics(fp, &r->test, r->ran);
+        fprintf(fp, ",%d,%d,%d,%d\n", r->on_front, r->within_tolerance, i == t->best, i == t->recommended);
+    }
+    if (ferror(fp)) {
+        bf_outfile_abort(&f);
+        return bf_fail(err, BF_ERR_IO, "%s: write failed", name);
+    }
+    return bf_outfile_commit(&f, err);
+}
+
+int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, int height, bf_scatter_range *range,
+                           bf_error *err)
+{
+    if (width < 40 || height < 40 || width > 8192 || height > 8192)
+        return bf_fail(err, BF_ERR_ARG, "plot size %dx%d: each side must be 40 to 8192 pixels", width, height);
+    int n = t->nrows > 0 ? t->nrows : 1;
+    double *x = malloc(2 * (size_t)n * sizeof *x);
+    int *on = malloc((size_t)n * sizeof *on);
+    float *rgb = malloc((size_t)width * (size_t)height * 3 * sizeof *rgb);
+    int rc;
+    if (!x || !on || !rgb) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the plot", path);
+    } else {
+        double *y = x + n;
+        /* Errors span decades: a log axis, linear when one is 0 (an exact fit). */
+        int log_y = 1;
+        for (int i = 0; i < t->nrows; i++) {
+            x[i] = t->rows[i].error >= 0.0 ? t->rows[i].seconds : NAN;
+            y[i] = t->rows[i].error;
+            on[i] = t->rows[i].on_front;
+            log_y &= !(y[i] <= 0.0);
+        }
+        bf_scatter_options o = {width, height, 1, log_y};
+        bf_scatter_range g;
+        rc = bf_render_scatter(t->nrows, x, y, on, &o, rgb, &g, err);
+        if (rc == BF_OK)
+            rc = bf_image_write_rgb(path, width, height, rgb, err);
+        if (rc == BF_OK && range)
+            *range = g;
+    }
+    free(x);
+    free(on);
+    free(rgb);
+    return rc;
+}

@@ -1,0 +1,129 @@
+/* One tradeoff row: subsample the training set, fit, time over repeats, judge on the
+ * held-out test set.
+ *
+ * Decisions:
+ *  - The subsample is bf_samples_prep's seeded stratified one (what `brdfit fit
+ *    --subsample N --seed K` does), drawn from the training set only, so no test sample
+ *    is ever fitted.
+ *  - Repeats refit with the same options and seed: the fit is the same each time, so
+ *    the minimum of the times is the fit's cost with the least interference from other
+ *    work; the metrics come from the first. */
+#include "brdfit/tradeoff.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/prep.h"
+
+/* A full copy of s (no MERL origin), to subsample in place. */
+static bf_samples *copy_samples(const bf_samples *s, bf_error *err)
+{
+    const int C = s->channels;
+    bf_samples *o = bf_samples_new(s->n, C, err);
+    if (!o)
+        return NULL;
+    for (int c = 0; c < C; c++)
+        if (bf_samples_set_channel_name(o, c, s->channel_names[c], err) != BF_OK)
+            goto fail;
+    if (s->wavelength) {
+        if (!(o->wavelength = malloc((size_t)C * sizeof *o->wavelength))) {
+            bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+            goto fail;
+        }
+        memcpy(o->wavelength, s->wavelength, (size_t)C * sizeof *o->wavelength);
+    }
+    if (s->weight) {
+        if (bf_samples_add_weights(o, err) != BF_OK)
+            goto fail;
+        memcpy(o->weight, s->weight, s->n * sizeof *o->weight);
+    }
+    memcpy(o->theta_i, s->theta_i, s->n * sizeof *o->theta_i);
+    memcpy(o->phi_i, s->phi_i, s->n * sizeof *o->phi_i);
+    memcpy(o->theta_o, s->theta_o, s->n * sizeof *o->theta_o);
+    memcpy(o->phi_o, s->phi_o, s->n * sizeof *o->phi_o);
+    memcpy(o->value, s->value, s->n * (size_t)C * sizeof *o->value);
+    return o;
+fail:
+    bf_samples_free(o);
+    return NULL;
+}
+
+static int row_error(bf_tradeoff_row *row, bf_error *err)
+{
+    snprintf(row->message, sizeof row->message, "%s", err->msg);
+    return err->code;
+}
+
+int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
+                        bf_error *err)
+{
+    bf_error local;
+    if (!err)
+        err = &local;
+    if (i < 0 || i >= t->nrows)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: no row %d", i);
+    bf_tradeoff_row *row = &t->rows[i];
+    row->ran = row->ok = 0;
+    row->seconds = NAN;
+    row->iterations = 0;
+    row->message[0] = '\0';
+    memset(&row->train, 0, sizeof row->train);
+    memset(&row->test, 0, sizeof row->test);
+
+    bf_fit_options o = *base;
+    o.objective.residual = row->residual;
+    o.starts = row->starts;
+    if (bf_tradeoff_method_apply(row->method, &o.solver, err) != BF_OK)
+        return row_error(row, err);
+
+    bf_samples *fit_set = train, *sub = NULL;
+    if (!row->all && row->samples < train->n) {
+        if (!(sub = copy_samples(train, err)))
+            return row_error(row, err);
+        bf_prep p;
+        memset(&p, 0, sizeof p);
+        p.subsample = row->samples;
+        p.seed = t->seed;
+        if (bf_samples_prep(sub, &p, NULL, err) != BF_OK) {
+            bf_samples_free(sub);
+            return row_error(row, err);
+        }
+        fit_set = sub;
+    }
+
+    int repeats = t->repeats > 0 ? t->repeats : 1, rc = BF_OK;
+    bf_fit_result best;
+    memset(&best, 0, sizeof best);
+    for (int k = 0; k < repeats; k++) {
+        bf_fit_result r;
+        if ((rc = bf_fit(fit_set, t->model, &o, &r, err)) != BF_OK)
+            break;
+        if (k == 0) {
+            best = r;
+            row->seconds = r.seconds;
+        } else {
+            if (r.seconds < row->seconds)
+                row->seconds = r.seconds;
+            bf_fit_result_free(&r);
+        }
+    }
+    if (rc == BF_OK) {
+        row->ran = 1;
+        row->ok = best.ok;
+        row->iterations = best.solution.iterations;
+        row->train = best.metrics;
+        /* Weighted like the training metrics (a scene's weights), so both judge alike. */
+        rc = bf_metrics_compute_weighted(best.model, best.x, test, best.metrics.k, o.solver.threads,
+                                         o.weighted_metrics, &row->test, err);
+        if (rc != BF_OK)
+            row->ran = row->ok = 0;
+    }
+    if (rc != BF_OK)
+        row_error(row, err);
+    if (best.model)
+        bf_fit_result_free(&best);
+    bf_samples_free(sub);
+    return rc;
+}
