@@ -324,14 +324,9 @@ int cmd_compare(int argc, char **argv)
         status = err.code == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
-    for (int k = 0; k < nmodels; k++) {
-        bf_model *m = bf_model_create(specs[k], 1, &err);
-        if (!m) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            goto done;
-        }
-        bf_model_free(m);
-    }
+    /* Model specs are checked before any data is read. */
+    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+        goto done;
     fit_options_finish(&fopt, dopt.prep.seed);
     fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
     /* The --threads budget is shared between the concurrent fits. */

@@ -143,14 +143,8 @@ int cmd_fit(int argc, char **argv)
         goto done;
     }
     /* Model specs are checked before any data is read. */
-    for (int k = 0; k < nmodels; k++) {
-        bf_model *m = bf_model_create(specs[k], 1, &err);
-        if (!m) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            goto done;
-        }
-        bf_model_free(m);
-    }
+    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+        goto done;
     fit_options_finish(&fopt, dopt.prep.seed);
     /* With a scene, error is reported over the scene's directions, weighted as it weighs them. */
     fopt.fit.weighted_metrics = data_options_has_scene(&dopt);

@@ -46,8 +46,8 @@ static void usage(FILE *out)
             "  --json FILE                every candidate and the choice, machine-readable\n"
             "  -o FILE                    the chosen model's fit result (a parameter file)\n"
             "  --quiet                    no progress on stderr\n"
-            "%s%s",
-            fit_options_usage, data_options_usage);
+            "%s%s%s",
+            fit_accuracy_usage, fit_options_usage, data_options_usage);
 }
 
 static void progress(void *ctx, const bf_select *s, int i)
@@ -107,7 +107,7 @@ int cmd_select(int argc, char **argv)
     fit_options fopt;
     fit_options_init(&fopt);
     char *specs[MAX_MODELS] = {0};
-    int nmodels = 0, status = 2, quiet = 0;
+    int nmodels = 0, status = 2, quiet = 0, subsample_given = 0;
     double tolerance = 0.05, abs_tolerance = 1e-6;
     bf_compare_metric metric = BF_CMP_RMSE_LOG;
     const char *data = NULL, *json_path = NULL, *out_path = NULL;
@@ -124,9 +124,12 @@ int cmd_select(int argc, char **argv)
             status = 0;
             goto done;
         }
+        subsample_given |= !strcmp(a, "--subsample");
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = fit_options_parse_accuracy(&fopt, argc, argv, &i, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
@@ -186,18 +189,14 @@ int cmd_select(int argc, char **argv)
         fprintf(stderr, "%s: --json and -o name the same file '%s'\n", cmd, json_path);
         goto done;
     }
-    /* Candidate specs are checked before any data is read. */
-    for (int k = 0; k < nmodels; k++) {
-        bf_model *m = bf_model_create(specs[k], 1, &err);
-        if (!m) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            goto done;
-        }
-        bf_model_free(m);
-    }
+    /* Model specs are checked before any data is read. */
+    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+        goto done;
     fit_options_finish(&fopt, dopt.prep.seed);
     /* With a scene, error is reported over the scene's directions, as it weighs them. */
     fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+    if (!subsample_given) /* --accuracy fast: a subsample, applied inside the scene */
+        dopt.prep.subsample = fit_options_preset_subsample(&fopt);
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

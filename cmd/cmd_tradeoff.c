@@ -125,6 +125,14 @@ static void fit_args(const bf_tradeoff_row *r, char *buf, size_t size)
     snprintf(buf, size, "%s%s --residual %s --starts %d", sub, m, bf_residual_name(r->residual), r->starts);
 }
 
+/* Appends " ARG" to buf, in single quotes when the shell would split or expand it. */
+static void append_arg(char *buf, size_t size, const char *arg)
+{
+    size_t len = strlen(buf);
+    int plain = *arg && !strpbrk(arg, " \t\n'\"\\$`*?[]{}()<>|&;#~!");
+    snprintf(buf + len, size - len, plain ? " %s" : " '%s'", arg);
+}
+
 static void print_table(FILE *out, const bf_tradeoff *t)
 {
     fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total,
@@ -172,6 +180,7 @@ int cmd_tradeoff(int argc, char **argv)
     bf_tradeoff t;
     memset(&t, 0, sizeof t);
     bf_error err;
+    char data_args[1024] = "";
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -180,7 +189,11 @@ int cmd_tradeoff(int argc, char **argv)
             status = 0;
             goto done;
         }
+        int i0 = i;
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        if (d > 0) /* repeated in the recommended command line */
+            for (int j = i0; j <= i; j++)
+                append_arg(data_args, sizeof data_args, argv[j]);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
         if (d < 0)
@@ -301,12 +314,8 @@ int cmd_tradeoff(int argc, char **argv)
         fprintf(stderr, "%s: --plot needs a file name\n", cmd);
         goto done;
     }
-    bf_model *probe = bf_model_create(specs[0], 1, &err);
-    if (!probe) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    if (fit_options_check_models(specs, 1, cmd) < 0)
         goto done;
-    }
-    bf_model_free(probe);
     fit_options_finish(&fopt, dopt.prep.seed);
     /* With a scene, errors are measured over the scene's directions, weighted by it. */
     fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
@@ -420,9 +429,9 @@ int cmd_tradeoff(int argc, char **argv)
         const bf_tradeoff_row *r = &t.rows[t.recommended], *b = &t.rows[t.best];
         char fa[256];
         fit_args(r, fa, sizeof fa);
-        fprintf(info, "recommended: #%d (%s %.4g in %.3f s; best #%d: %.4g in %.3f s): brdfit fit %s -m %s %s\n",
+        fprintf(info, "recommended: #%d (%s %.4g in %.3f s; best #%d: %.4g in %.3f s): brdfit fit %s%s -m %s %s\n",
                t.recommended + 1, bf_compare_metric_name(metric), r->error, r->seconds, t.best + 1, b->error,
-               b->seconds, data, t.model, fa);
+               b->seconds, data, data_args, t.model, fa);
     } else {
         fprintf(info, "recommended: none (no setting fitted)\n");
     }

@@ -265,3 +265,17 @@ int fit_options_split_models(const char *list, char **specs, int n, int max, con
     }
     return n;
 }
+
+int fit_options_check_models(char *const *specs, int n, const char *cmd)
+{
+    for (int k = 0; k < n; k++) {
+        bf_error err;
+        bf_model *m = bf_model_create(specs[k], 1, &err);
+        if (!m) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            return -1;
+        }
+        bf_model_free(m);
+    }
+    return 0;
+}

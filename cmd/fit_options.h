@@ -33,7 +33,7 @@ typedef struct fit_options {
     unsigned given; /* FIT_GIVEN_* */
 } fit_options;
 
-/* Usage lines for --accuracy (brdfit fit only). */
+/* Usage lines for --accuracy (brdfit fit and brdfit select). */
 extern const char fit_accuracy_usage[];
 
 /* If argv[*i] is --accuracy, consumes it and its value and returns 1; 0 if it is not;
@@ -64,5 +64,9 @@ void fit_options_finish(fit_options *o, uint64_t seed);
  * stay whole ("microfacet:D=ggx,G=smith_ggx,walter" is two models). Returns the new
  * count, or -1 after printing a one-line error. */
 int fit_options_split_models(const char *list, char **specs, int n, int max, const char *cmd);
+
+/* Checks that every spec names a model (before any data is read): 0, or -1 after
+ * printing the first bad one's one-line error. */
+int fit_options_check_models(char *const *specs, int n, const char *cmd);
 
 #endif

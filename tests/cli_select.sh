@@ -61,6 +61,14 @@ else
   bad "select with a scene: $(cat "$tmp/err")"
 fi
 
+# --- --accuracy fast: the preset's subsample (16000) leaves 2000 samples whole; --subsample wins
+"$BRDFIT" select "$tmp/lam.csv" -m lambert,walter --accuracy fast --threads 2 --quiet --json "$tmp/acc.json" \
+    >/dev/null 2>"$tmp/err" && jq -e '.chosen == "lambert" and .candidates[0].metrics.n == 6000' "$tmp/acc.json" \
+    >/dev/null && ok || bad "--accuracy fast: $(cat "$tmp/err")"
+"$BRDFIT" select "$tmp/lam.csv" -m lambert --subsample 500 --accuracy fast --threads 2 --quiet --json "$tmp/acc.json" \
+    >/dev/null 2>"$tmp/err" && jq -e '.candidates[0].metrics.n == 1500' "$tmp/acc.json" >/dev/null && ok ||
+  bad "--subsample with --accuracy: $(cat "$tmp/err")"
+
 # --- bad usage and bad data ------------------------------------------------------------------
 expect() { # expect STATUS FRAGMENT ARGS...: exit status, one line naming the problem, no outputs
   local want=$1 frag=$2
@@ -78,6 +86,7 @@ expect 2 "--tolerance needs a number >= 0" "$tmp/lam.csv" --tolerance -1 --json 
 expect 2 "a data file is required" -m lambert --json "$tmp/o.json"
 expect 2 "--error" "$tmp/lam.csv" --error nope --json "$tmp/o.json"
 expect 2 "mono" "$tmp/lam.csv" -m lambert:mono=specular --json "$tmp/o.json"
+expect 2 "accuracy" "$tmp/lam.csv" -m lambert --accuracy nope --json "$tmp/o.json"
 expect 1 "$tmp/missing.csv" "$tmp/missing.csv" -m lambert --json "$tmp/o.json" -o "$tmp/f.json"
 printf 'theta_i,phi_i,theta_o,phi_o,value\n10,0,20,180,nan\n' > "$tmp/nan.csv"
 expect 1 "nan.csv:2" "$tmp/nan.csv" -m lambert --json "$tmp/o.json" -o "$tmp/f.json"

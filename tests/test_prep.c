@@ -392,9 +392,9 @@ static void test_no_sample_left(void **state)
 
 /* ---- Stratified subsample ----------------------------------------------------------- */
 
-/* Strata the tests place samples in: (theta_h, theta_d) = (1, 10), (20, 30), (40, 45),
+/* Strata the tests place samples in: (theta_h, theta_d) = (1, 10), (20, 30), (40, 47),
  * (5, 60) degrees fall in sqrt-theta_h bins 1, 7, 10, 3 and theta_d bins 0, 2, 4, 5. */
-static const double strata[4][2] = {{1, 10}, {20, 30}, {40, 45}, {5, 60}};
+static const double strata[4][2] = {{1, 10}, {20, 30}, {40, 47}, {5, 60}};
 
 /* counts[k] samples in stratum k, interleaved; weight = index; stratum of sample i in
  * which[i] (caller frees). */
@@ -450,21 +450,24 @@ static void test_subsample_quotas(void **state)
     bf_samples_free(s);
     free(which);
 
-    /* 500, 300, 137, 63 of 1000 to 100: 50, 30, 13.7, 6.3 -> 50, 30, 14, 6. */
+    /* 500, 300, 137, 63 of 1000 to 100: one each, then 96 in proportion to 499, 299,
+     * 136, 62 of 996: 48.10, 28.82, 13.11, 5.98 -> 48, 28, 13, 5 and the two largest
+     * remainders: 1 + 48, 1 + 29, 1 + 13, 1 + 6. */
     size_t counts4[4] = {500, 300, 137, 63}, got4[4];
     s = make_strata(counts4, 4, &which);
     p.subsample = 100;
     assert_int_equal(bf_samples_prep(s, &p, &r, NULL), BF_OK);
     assert_int_equal(s->n, 100);
     kept_per_stratum(s, which, got4, 4);
-    assert_int_equal(got4[0], 50);
+    assert_int_equal(got4[0], 49);
     assert_int_equal(got4[1], 30);
     assert_int_equal(got4[2], 14);
-    assert_int_equal(got4[3], 6);
+    assert_int_equal(got4[3], 7);
     bf_samples_free(s);
     free(which);
 
-    /* Any N: exactly N kept, every stratum within rounding of its share. */
+    /* Any N: exactly N kept, every stratum within rounding of its share (one each
+     * first when N >= 4, then proportional to what is left). */
     for (size_t N = 1; N < 1000; N += 37) {
         s = make_strata(counts4, 4, &which);
         p.subsample = N;
@@ -472,12 +475,30 @@ static void test_subsample_quotas(void **state)
         assert_int_equal(s->n, N);
         kept_per_stratum(s, which, got4, 4);
         for (int k = 0; k < 4; k++) {
-            double share = (double)N * (double)counts4[k] / 1000.0;
+            double share = N >= 4 ? 1.0 + (double)(N - 4) * (double)(counts4[k] - 1) / 996.0
+                                  : (double)N * (double)counts4[k] / 1000.0;
             assert_true((double)got4[k] >= floor(share) && (double)got4[k] <= ceil(share));
         }
         bf_samples_free(s);
         free(which);
     }
+}
+
+/* A stratum of one sample among a thousand (a highlight caught once) survives a
+ * subsample to 10, where its proportional share (0.01) would round to nothing. */
+static void test_subsample_keeps_rare_strata(void **state)
+{
+    (void)state;
+    int *which;
+    size_t counts[3] = {600, 399, 1}, got[3];
+    bf_samples *s = make_strata(counts, 3, &which);
+    bf_prep p = {.subsample = 10, .seed = 3};
+    assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
+    kept_per_stratum(s, which, got, 3);
+    assert_int_equal(got[2], 1);
+    assert_int_equal(got[0] + got[1], 9);
+    bf_samples_free(s);
+    free(which);
 }
 
 static size_t *subsample_markers(uint64_t seed, size_t N)
@@ -569,6 +590,7 @@ int main(void)
         cmocka_unit_test(test_drops_keep_origin_cells),
         cmocka_unit_test(test_no_sample_left),
         cmocka_unit_test(test_subsample_quotas),
+        cmocka_unit_test(test_subsample_keeps_rare_strata),
         cmocka_unit_test(test_subsample_deterministic),
         cmocka_unit_test(test_subsample_uniform),
         cmocka_unit_test(test_subsample_more_than_available),

@@ -152,3 +152,43 @@ int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
     }
     return BF_OK;
 }
+
+bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_error *err)
+{
+    const size_t C = (size_t)s->channels;
+    size_t n = 0;
+    for (size_t i = 0; i < s->n; i++)
+        n += !keep || keep[i];
+    bf_samples *o = bf_samples_new(n, s->channels, err);
+    if (!o)
+        return NULL;
+    for (size_t c = 0; c < C; c++)
+        if (bf_samples_set_channel_name(o, (int)c, s->channel_names[c], err) != BF_OK)
+            goto fail;
+    if (s->wavelength) {
+        if (!(o->wavelength = malloc(C * sizeof *o->wavelength))) {
+            bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+            goto fail;
+        }
+        memcpy(o->wavelength, s->wavelength, C * sizeof *o->wavelength);
+    }
+    if (s->weight && bf_samples_add_weights(o, err) != BF_OK)
+        goto fail;
+    size_t j = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (keep && !keep[i])
+            continue;
+        o->theta_i[j] = s->theta_i[i];
+        o->phi_i[j] = s->phi_i[i];
+        o->theta_o[j] = s->theta_o[i];
+        o->phi_o[j] = s->phi_o[i];
+        memcpy(o->value + j * C, s->value + i * C, C * sizeof *o->value);
+        if (s->weight)
+            o->weight[j] = s->weight[i];
+        j++;
+    }
+    return o;
+fail:
+    bf_samples_free(o);
+    return NULL;
+}

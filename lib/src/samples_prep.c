@@ -366,8 +366,10 @@ static uint64_t splitmix64(uint64_t *x)
 
 static double uniform01(uint64_t *x) { return (double)(splitmix64(x) >> 11) * 0x1.0p-53; }
 
-/* Quotas proportional to the stratum counts, summing to N exactly (largest remainder,
- * ties to the lower stratum); inside each stratum Knuth's selection sampling
+/* Quotas summing to N exactly: when N allows, every non-empty stratum first gets one
+ * sample (a highlight held by a handful of samples must not vanish from a small
+ * subsample), then the rest goes in proportion to the samples each stratum has left
+ * (largest remainder, ties to the lower stratum); inside each stratum Knuth's selection sampling
  * (TAOCP 3.4.2, Algorithm S) walks the samples in order, keeping each with probability
  * (still needed) / (still to see): a uniform random subset of exactly the quota, in the
  * original order, from one splitmix64 stream seeded with `seed`. */
@@ -389,14 +391,19 @@ static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
         st[i] = (unsigned char)stratum_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
         count[st[i]]++;
     }
+    size_t nonempty = 0;
+    for (int k = 0; k < K; k++)
+        nonempty += count[k] > 0;
+    size_t base = N >= nonempty ? 1 : 0, left_n = n - base * nonempty, left_N = N - base * nonempty;
     size_t assigned = 0;
     for (int k = 0; k < K; k++) {
-        uint64_t p = (uint64_t)N * count[k];
-        quota[k] = (size_t)(p / n);
-        rem[k] = p % n;
+        size_t first = count[k] > 0 ? base : 0;
+        uint64_t p = left_n ? (uint64_t)left_N * (count[k] - first) : 0;
+        quota[k] = first + (size_t)(left_n ? p / left_n : 0);
+        rem[k] = left_n ? p % left_n : 0;
         assigned += quota[k];
     }
-    /* The remainders sum to (N - assigned) n, each below n: enough non-zero ones. */
+    /* The remainders sum to (N - assigned) left_n, each below left_n: enough non-zero ones. */
     for (size_t left = N - assigned; left > 0; left--) {
         int best = -1;
         for (int k = 0; k < K; k++)

@@ -48,6 +48,11 @@ void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temp
 /* Shortest decimal text that reads back as exactly v ("%.17g" at most). buf >= 32. */
 const char *bf_format_double(double v, char *buf, size_t size);
 
+/* CSV fields for the table writers: text quoted when it holds a comma, quote or line
+ * break (RFC 4180); a number as ",v" (bf_format_double), or "," alone when not finite. */
+void bf_csv_put_text(FILE *fp, const char *s);
+void bf_csv_put_number(FILE *fp, double v);
+
 #ifdef __cplusplus
 }
 #endif

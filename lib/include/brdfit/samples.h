@@ -59,6 +59,11 @@ const bf_geometry *bf_samples_geometry(bf_samples *s, bf_error *err);
  * free the origin instead (bf_samples_drop_origin): it no longer describes the data. */
 int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err);
 
+/* A new sample set with the samples of s whose keep[i] is non-zero (keep NULL: all),
+ * in order: directions, values, weights, channel names and wavelengths; no MERL origin
+ * (a copy describes no table) and no geometry yet. */
+bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_error *err);
+
 /* ---- Reading and writing ------------------------------------------------------- */
 
 typedef enum bf_format {

@@ -9,29 +9,6 @@
 
 #include "brdfit/io.h"
 
-static void put_text(FILE *fp, const char *s)
-{
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, fp);
-        return;
-    }
-    fputc('"', fp);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', fp);
-        fputc(*s, fp);
-    }
-    fputc('"', fp);
-}
-
-static void put_number(FILE *fp, double v)
-{
-    char buf[40];
-    fputc(',', fp);
-    if (isfinite(v))
-        fputs(bf_format_double(v, buf, sizeof buf), fp);
-}
-
 static void put_int(FILE *fp, int v, int present)
 {
     fputc(',', fp);
@@ -55,21 +32,21 @@ int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err)
             const bf_compare_fit *x = &m->fits[j];
             const bf_metrics *q = &x->metrics;
             int ran = x->state == BF_CMP_OK || x->state == BF_CMP_FAILED, ranked = x->rank_bic > 0;
-            put_text(fp, m->data);
+            bf_csv_put_text(fp, m->data);
             fputc(',', fp);
-            put_text(fp, c->models[j]);
+            bf_csv_put_text(fp, c->models[j]);
             fprintf(fp, ",%s", bf_compare_state_name(x->state));
             put_int(fp, q->k, ran);
-            put_number(fp, ran ? (double)q->n : NAN);
-            put_number(fp, x->error);
-            put_number(fp, ran ? q->rmse : NAN);
-            put_number(fp, ran ? q->rmse_log : NAN);
-            put_number(fp, ran ? q->rmse_cos : NAN);
-            put_number(fp, ran ? q->rmse_rel : NAN);
-            put_number(fp, ran ? q->max_err : NAN);
-            put_number(fp, ran ? q->aic : NAN);
-            put_number(fp, ran ? q->bic : NAN);
-            put_number(fp, ran ? x->seconds : NAN);
+            bf_csv_put_number(fp, ran ? (double)q->n : NAN);
+            bf_csv_put_number(fp, x->error);
+            bf_csv_put_number(fp, ran ? q->rmse : NAN);
+            bf_csv_put_number(fp, ran ? q->rmse_log : NAN);
+            bf_csv_put_number(fp, ran ? q->rmse_cos : NAN);
+            bf_csv_put_number(fp, ran ? q->rmse_rel : NAN);
+            bf_csv_put_number(fp, ran ? q->max_err : NAN);
+            bf_csv_put_number(fp, ran ? q->aic : NAN);
+            bf_csv_put_number(fp, ran ? q->bic : NAN);
+            bf_csv_put_number(fp, ran ? x->seconds : NAN);
             put_int(fp, x->rank_bic, ranked);
             put_int(fp, x->rank_aic, ranked);
             put_int(fp, x->pareto_k, 1);

@@ -2,6 +2,7 @@
 #include "brdfit/io.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -84,4 +85,27 @@ const char *bf_format_double(double v, char *buf, size_t size)
             break;
     }
     return buf;
+}
+
+void bf_csv_put_text(FILE *fp, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, fp);
+        return;
+    }
+    fputc('"', fp);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', fp);
+        fputc(*s, fp);
+    }
+    fputc('"', fp);
+}
+
+void bf_csv_put_number(FILE *fp, double v)
+{
+    char buf[40];
+    fputc(',', fp);
+    if (isfinite(v))
+        fputs(bf_format_double(v, buf, sizeof buf), fp);
 }

@@ -1,5 +1,6 @@
 /* Parameter files (JSON, via cJSON): model, options, channels and named values. */
 #include "brdfit/io.h"
+#include "read_text.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -7,36 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static char *slurp(const char *path, size_t *len, bf_error *err)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) {
-        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-        return NULL;
-    }
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, fp);
-        if (n < cap - 1)
-            break;
-        char *nb = realloc(buf, cap *= 2);
-        if (!nb)
-            free(buf);
-        buf = nb;
-    }
-    int bad = ferror(fp);
-    fclose(fp);
-    if (!buf || bad) {
-        free(buf);
-        bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
-        return NULL;
-    }
-    buf[n] = '\0';
-    *len = n;
-    return buf;
-}
 
 static size_t line_at(const char *text, const char *pos)
 {
@@ -181,7 +152,7 @@ int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err
     *model = NULL;
     *x = NULL;
     size_t len;
-    char *text = slurp(path, &len, err);
+    char *text = bf_read_text(path, &len, err);
     if (!text)
         return err ? err->code : BF_ERR_IO;
     int rc = BF_OK;

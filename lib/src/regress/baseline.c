@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/read_text.h"
 #include "regress/regress_impl.h"
 
 const char *const bf_regress_metric_names[] = {"rmse", "rmse_cos", "rmse_log", "rmse_rel", "max_err",
@@ -531,36 +532,10 @@ int bf_regress_parse(const char *text, const char *path, bf_regress_baseline **o
 int bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err)
 {
     *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    size_t cap = 1 << 16, len = 0;
-    char *text = malloc(cap);
-    for (size_t got; text && (got = fread(text + len, 1, cap - len - 1, f)) > 0;) {
-        len += got;
-        if (len + 1 == cap) {
-            char *grown = realloc(text, cap *= 2);
-            if (!grown) {
-                free(text);
-                text = NULL;
-                break;
-            }
-            text = grown;
-        }
-    }
-    int bad = ferror(f);
-    fclose(f);
+    size_t len;
+    char *text = bf_read_text(path, &len, err);
     if (!text)
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
-    if (bad) {
-        free(text);
-        return bf_fail(err, BF_ERR_IO, "%s: read error", path);
-    }
-    text[len] = '\0';
-    if (strlen(text) != len) {
-        free(text);
-        return bf_fail(err, BF_ERR_PARSE, "%s:1: a baseline is JSON text, this file holds a NUL byte", path);
-    }
+        return err ? err->code : BF_ERR_IO;
     int rc = bf_regress_parse(text, path, out, err);
     free(text);
     return rc;

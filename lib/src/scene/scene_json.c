@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/read_text.h"
+
 /* ---- Positions in the text ------------------------------------------------------ */
 
 static const char *skip_ws(const char *p)
@@ -326,31 +328,10 @@ int bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error 
 int bf_scene_read(const char *path, bf_scene **out, bf_error *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, fp);
-        if (n < cap - 1)
-            break;
-        char *nb = realloc(buf, cap *= 2);
-        if (!nb)
-            free(buf);
-        buf = nb;
-    }
-    int bad = ferror(fp);
-    fclose(fp);
-    if (!buf || bad) {
-        free(buf);
-        return bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
-    }
-    buf[n] = '\0';
-    if (strlen(buf) != n) {
-        free(buf);
-        return bf_fail(err, BF_ERR_PARSE, "%s: not a text file (NUL byte)", path);
-    }
+    size_t n;
+    char *buf = bf_read_text(path, &n, err);
+    if (!buf)
+        return err ? err->code : BF_ERR_IO;
     int rc = bf_scene_parse(buf, path, out, err);
     free(buf);
     return rc;

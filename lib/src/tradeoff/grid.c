@@ -74,45 +74,6 @@ static uint64_t splitmix64(uint64_t *x)
     return z ^ (z >> 31);
 }
 
-/* A new sample set holding the samples of s where mask[i] == want, in order. */
-static bf_samples *subset(const bf_samples *s, const unsigned char *mask, unsigned char want, size_t k,
-                          bf_error *err)
-{
-    const int C = s->channels;
-    bf_samples *o = bf_samples_new(k, C, err);
-    if (!o)
-        return NULL;
-    for (int c = 0; c < C; c++)
-        if (bf_samples_set_channel_name(o, c, s->channel_names[c], err) != BF_OK)
-            goto fail;
-    if (s->wavelength) {
-        if (!(o->wavelength = malloc((size_t)C * sizeof *o->wavelength))) {
-            bf_fail(err, BF_ERR_NOMEM, "out of memory for the train/test split");
-            goto fail;
-        }
-        memcpy(o->wavelength, s->wavelength, (size_t)C * sizeof *o->wavelength);
-    }
-    if (s->weight && bf_samples_add_weights(o, err) != BF_OK)
-        goto fail;
-    size_t j = 0;
-    for (size_t i = 0; i < s->n; i++) {
-        if (mask[i] != want)
-            continue;
-        o->theta_i[j] = s->theta_i[i];
-        o->phi_i[j] = s->phi_i[i];
-        o->theta_o[j] = s->theta_o[i];
-        o->phi_o[j] = s->phi_o[i];
-        memcpy(o->value + j * (size_t)C, s->value + i * (size_t)C, (size_t)C * sizeof *o->value);
-        if (s->weight)
-            o->weight[j] = s->weight[i];
-        j++;
-    }
-    return o;
-fail:
-    bf_samples_free(o);
-    return NULL;
-}
-
 int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
                       bf_samples **test, bf_error *err)
 {
@@ -138,7 +99,10 @@ int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_sa
         need -= mask[i];
     }
     int rc = BF_OK;
-    if (!(*test = subset(s, mask, 1, k, err)) || !(*train = subset(s, mask, 0, n - k, err))) {
+    if ((*test = bf_samples_copy(s, mask, err)))
+        for (size_t i = 0; i < n; i++)
+            mask[i] = !mask[i];
+    if (!*test || !(*train = bf_samples_copy(s, mask, err))) {
         bf_samples_free(*test);
         *test = NULL;
         rc = err ? err->code : BF_ERR_NOMEM;

@@ -11,28 +11,16 @@
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/render.h"
+#include "io/json_out.h"
 
 static const char *row_status(const bf_tradeoff_row *r)
 {
     return r->ran ? (r->ok ? "ok" : "failed") : (r->message[0] ? "error" : "not_run");
 }
 
-static cJSON *number(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
-static void add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, number(v)); }
 
-static cJSON *metrics_json(const bf_metrics *m, int ran)
-{
-    if (!ran)
-        return cJSON_CreateNull();
-    cJSON *o = cJSON_CreateObject();
-    add_number(o, "n", (double)m->n);
-    add_number(o, "rmse", m->rmse);
-    add_number(o, "rmse_log", m->rmse_log);
-    add_number(o, "rmse_cos", m->rmse_cos);
-    add_number(o, "rmse_rel", m->rmse_rel);
-    add_number(o, "max_err", m->max_err);
-    return o;
-}
+/* A metrics object as in a result file (null for a row that did not run). */
+static cJSON *metrics_json(const bf_metrics *m, int ran) { return ran ? bf_json_metrics(m) : cJSON_CreateNull(); }
 
 static cJSON *tradeoff_json(const bf_tradeoff *t)
 {
@@ -65,9 +53,9 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
         cJSON_AddStringToObject(o, "status", row_status(r));
         cJSON_AddBoolToObject(o, "ok", r->ran && r->ok);
         cJSON_AddItemToObject(o, "message", r->message[0] ? cJSON_CreateString(r->message) : cJSON_CreateNull());
-        add_number(o, "seconds", r->ran ? r->seconds : NAN);
-        add_number(o, "iterations", r->ran ? r->iterations : NAN);
-        add_number(o, "error", r->error);
+        bf_json_add_number(o, "seconds", r->ran ? r->seconds : NAN);
+        bf_json_add_number(o, "iterations", r->ran ? r->iterations : NAN);
+        bf_json_add_number(o, "error", r->error);
         cJSON_AddItemToObject(o, "train", metrics_json(&r->train, r->ran));
         cJSON_AddItemToObject(o, "test", metrics_json(&r->test, r->ran));
         cJSON_AddBoolToObject(o, "on_front", r->on_front);
@@ -81,61 +69,16 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
 
 int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err)
 {
-    const char *name = path ? path : "-";
-    cJSON *root = tradeoff_json(t);
-    char *text = root ? cJSON_Print(root) : NULL;
-    cJSON_Delete(root);
-    if (!text)
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the tradeoff table", name);
-    bf_outfile f;
-    int rc = bf_outfile_open(&f, path, err);
-    if (rc == BF_OK) {
-        if (fputs(text, f.fp) < 0 || fputc('\n', f.fp) == EOF) {
-            bf_outfile_abort(&f);
-            rc = bf_fail(err, BF_ERR_IO, "%s: write failed", name);
-        } else {
-            rc = bf_outfile_commit(&f, err);
-        }
-    }
-    cJSON_free(text);
-    return rc;
-}
-
-/* Empty field for NaN, else the shortest exact text. */
-static void put_number(FILE *fp, double v)
-{
-    char buf[40];
-    fputc(',', fp);
-    if (isfinite(v))
-        fputs(bf_format_double(v, buf, sizeof buf), fp);
-}
-
-/* Method names are the user's text: quoted when they hold a CSV special character. */
-static void put_text(FILE *fp, const char *s)
-{
-    int quote = 0;
-    for (const char *p = s; *p; p++)
-        quote |= *p == ',' || *p == '"' || *p == '\n' || *p == '\r';
-    if (!quote) {
-        fputs(s, fp);
-        return;
-    }
-    fputc('"', fp);
-    for (const char *p = s; *p; p++) {
-        if (*p == '"')
-            fputc('"', fp);
-        fputc(*p, fp);
-    }
-    fputc('"', fp);
+    return bf_json_write(tradeoff_json(t), path, "the tradeoff table", err);
 }
 
 static void put_metrics(FILE *fp, const bf_metrics *m, int ran)
 {
-    put_number(fp, ran ? m->rmse : NAN);
-    put_number(fp, ran ? m->rmse_log : NAN);
-    put_number(fp, ran ? m->rmse_cos : NAN);
-    put_number(fp, ran ? m->rmse_rel : NAN);
-    put_number(fp, ran ? m->max_err : NAN);
+    bf_csv_put_number(fp, ran ? m->rmse : NAN);
+    bf_csv_put_number(fp, ran ? m->rmse_log : NAN);
+    bf_csv_put_number(fp, ran ? m->rmse_cos : NAN);
+    bf_csv_put_number(fp, ran ? m->rmse_rel : NAN);
+    bf_csv_put_number(fp, ran ? m->max_err : NAN);
 }
 
 int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
@@ -153,11 +96,11 @@ int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
     for (int i = 0; i < t->nrows; i++) {
         const bf_tradeoff_row *r = &t->rows[i];
         fprintf(fp, "%zu,%d,", r->samples, r->all);
-        put_text(fp, r->method ? r->method : "");
+        bf_csv_put_text(fp, r->method ? r->method : "");
         fprintf(fp, ",%s,%d,%s", bf_residual_name(r->residual), r->starts, row_status(r));
-        put_number(fp, r->ran ? r->seconds : NAN);
-        put_number(fp, r->ran ? (double)r->iterations : NAN);
-        put_number(fp, r->error);
+        bf_csv_put_number(fp, r->ran ? r->seconds : NAN);
+        bf_csv_put_number(fp, r->ran ? (double)r->iterations : NAN);
+        bf_csv_put_number(fp, r->error);
         put_metrics(fp, &r->train, r->ran);
         put_metrics(fp, &r->test, r->ran);
         fprintf(fp, ",%d,%d,%d,%d\n", r->on_front, r->within_tolerance, i == t->best, i == t->recommended);

@@ -17,39 +17,6 @@
 
 #include "brdfit/prep.h"
 
-/* A full copy of s (no MERL origin), to subsample in place. */
-static bf_samples *copy_samples(const bf_samples *s, bf_error *err)
-{
-    const int C = s->channels;
-    bf_samples *o = bf_samples_new(s->n, C, err);
-    if (!o)
-        return NULL;
-    for (int c = 0; c < C; c++)
-        if (bf_samples_set_channel_name(o, c, s->channel_names[c], err) != BF_OK)
-            goto fail;
-    if (s->wavelength) {
-        if (!(o->wavelength = malloc((size_t)C * sizeof *o->wavelength))) {
-            bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
-            goto fail;
-        }
-        memcpy(o->wavelength, s->wavelength, (size_t)C * sizeof *o->wavelength);
-    }
-    if (s->weight) {
-        if (bf_samples_add_weights(o, err) != BF_OK)
-            goto fail;
-        memcpy(o->weight, s->weight, s->n * sizeof *o->weight);
-    }
-    memcpy(o->theta_i, s->theta_i, s->n * sizeof *o->theta_i);
-    memcpy(o->phi_i, s->phi_i, s->n * sizeof *o->phi_i);
-    memcpy(o->theta_o, s->theta_o, s->n * sizeof *o->theta_o);
-    memcpy(o->phi_o, s->phi_o, s->n * sizeof *o->phi_o);
-    memcpy(o->value, s->value, s->n * (size_t)C * sizeof *o->value);
-    return o;
-fail:
-    bf_samples_free(o);
-    return NULL;
-}
-
 static int row_error(bf_tradeoff_row *row, bf_error *err)
 {
     snprintf(row->message, sizeof row->message, "%s", err->msg);
@@ -80,7 +47,7 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
 
     bf_samples *fit_set = train, *sub = NULL;
     if (!row->all && row->samples < train->n) {
-        if (!(sub = copy_samples(train, err)))
+        if (!(sub = bf_samples_copy(train, NULL, err)))
             return row_error(row, err);
         bf_prep p;
         memset(&p, 0, sizeof p);

@@ -1,0 +1,51 @@
+/* Whole-file reading for the JSON readers (see read_text.h). */
+#include "read_text.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* 1-based line of byte offset off. */
+static size_t line_of(const char *text, size_t off)
+{
+    size_t line = 1;
+    for (size_t i = 0; i < off; i++)
+        line += text[i] == '\n';
+    return line;
+}
+
+char *bf_read_text(const char *path, size_t *len, bf_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, fp);
+        if (n < cap - 1)
+            break;
+        char *nb = realloc(buf, cap *= 2);
+        if (!nb)
+            free(buf);
+        buf = nb;
+    }
+    int bad = ferror(fp);
+    fclose(fp);
+    if (!buf || bad) {
+        free(buf);
+        bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
+        return NULL;
+    }
+    buf[n] = '\0';
+    if (strlen(buf) != n) {
+        bf_fail(err, BF_ERR_PARSE, "%s:%zu: not a text file (a NUL byte)", path, line_of(buf, strlen(buf)));
+        free(buf);
+        return NULL;
+    }
+    *len = n;
+    return buf;
+}
