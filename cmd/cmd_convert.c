@@ -57,7 +57,8 @@ int cmd_convert(int argc, char **argv)
         return 2;
     }
     bf_prep_report rep;
-    bf_samples *s = data_options_load(&opt, paths[0], &rep, "brdfit convert");
+    data_scene_report scene;
+    bf_samples *s = data_options_load_scene(&opt, paths[0], &rep, &scene, "brdfit convert");
     if (!s)
         return 1;
     bf_error err;
@@ -66,9 +67,9 @@ int cmd_convert(int argc, char **argv)
         fprintf(stderr, "brdfit convert: %s\n", err.msg);
     else
         printf("%s: %zu samples, %d channels (read %zu; dropped %zu below the horizon, %zu non-finite, "
-               "%zu above max theta, %zu by subsampling)\n",
+               "%zu above max theta, %zu outside the scene, %zu by subsampling)\n",
                paths[1], s->n, s->channels, rep.read, rep.below_horizon, rep.nonfinite,
-               rep.above_max_theta, rep.subsampled_out);
+               rep.above_max_theta, scene.in - scene.kept, rep.subsampled_out);
     bf_samples_free(s);
     return rc == BF_OK ? 0 : 1;
 }

@@ -185,7 +185,7 @@ int cmd_select(int argc, char **argv)
         fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
         goto done;
     }
-    if (json_path && out_path && !strcmp(json_path, out_path) && strcmp(json_path, "-")) {
+    if (json_path && out_path && !strcmp(json_path, out_path)) {
         fprintf(stderr, "%s: --json and -o name the same file '%s'\n", cmd, json_path);
         goto done;
     }

@@ -133,6 +133,16 @@ static void append_arg(char *buf, size_t size, const char *arg)
     snprintf(buf + len, size - len, plain ? " %s" : " '%s'", arg);
 }
 
+/* The fit options each row sets itself (fit_args), left out of the repeated base ones. */
+static int row_sets(const char *opt)
+{
+    static const char *const set[] = {"--backend", "--algorithm", "--residual", "--starts"};
+    for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
+        if (!strcmp(opt, set[k]))
+            return 1;
+    return 0;
+}
+
 static void print_table(FILE *out, const bf_tradeoff *t)
 {
     fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total,
@@ -180,7 +190,7 @@ int cmd_tradeoff(int argc, char **argv)
     bf_tradeoff t;
     memset(&t, 0, sizeof t);
     bf_error err;
-    char data_args[1024] = "";
+    char data_args[2048] = ""; /* data and base fit options, for the recommended command */
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -194,8 +204,9 @@ int cmd_tradeoff(int argc, char **argv)
         if (d > 0) /* repeated in the recommended command line */
             for (int j = i0; j <= i; j++)
                 append_arg(data_args, sizeof data_args, argv[j]);
-        if (d == 0)
-            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d == 0 && (d = fit_options_parse(&fopt, argc, argv, &i, cmd)) > 0 && !row_sets(argv[i0]))
+            for (int j = i0; j <= i; j++) /* the base setting, also repeated */
+                append_arg(data_args, sizeof data_args, argv[j]);
         if (d < 0)
             goto done;
         if (d > 0)

@@ -37,8 +37,9 @@ typedef struct fit_options {
 extern const char fit_accuracy_usage[];
 
 /* If argv[*i] is --accuracy, consumes it and its value and returns 1; 0 if it is not;
- * -1 after printing a one-line error. Only brdfit fit takes it (its subsample part
- * needs the data options: fit_options_preset_subsample). */
+ * -1 after printing a one-line error. brdfit fit, select and regress take it (kept out
+ * of fit_options_parse because its subsample part needs the command's data options:
+ * fit_options_preset_subsample). */
 int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, const char *cmd);
 
 /* The preset's training sample count (stratified subsample), 0 for none. The command

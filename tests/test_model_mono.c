@@ -14,7 +14,9 @@
 #include "brdfit/fit.h"
 #include "support.h"
 
-enum { NDIRS = 40 };
+/* Above eval_mono's chunk (16384 / (C P) samples: 682 for walter on RGB), so several
+ * chunks, and ranges that do not start at 0, are checked. */
+enum { NDIRS = 1500 };
 
 static bf_geometry *random_geometry(ts_rng *r)
 {
@@ -76,6 +78,7 @@ static void test_bad_specs(void **state)
         {"walter:mono=rho_q", "not one of its parameters"},
         {"walter:mono=rho_s,mono=rho_d", "given twice"},
         {"walter:mono=", "not key=value"},
+        {"walter:mono=rho_s+", "ends with"},
         {"disney:mono=specular", "ties nothing"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
@@ -136,6 +139,16 @@ static void check_against_untied(const char *untied_spec, const char *mono_spec,
         free(a);
         free(b);
     }
+    /* A range not starting at 0 gives the same values and Jacobian rows. */
+    const size_t i0 = 700, i1 = NDIRS;
+    double *gr = malloc((i1 - i0) * (size_t)C * (size_t)Pm * sizeof *gr);
+    bf_model_eval_range(mm, xm, g, i0, i1, v2, gr);
+    for (size_t q = 0; q < (i1 - i0) * (size_t)C; q++) {
+        assert_true(v2[q] == vm[i0 * (size_t)C + q]);
+        for (int k = 0; k < Pm; k++)
+            assert_true(gr[q * (size_t)Pm + (size_t)k] == grad[(i0 * (size_t)C + q) * (size_t)Pm + (size_t)k]);
+    }
+    free(gr);
     free(v2);
     free(vm);
     free(vu);

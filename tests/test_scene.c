@@ -268,6 +268,20 @@ static void test_rotation_invariance(void **state)
     assert_int_equal(bf_scene_weights(sc, s, w2, &err), BF_OK);
     for (int i = 0; i < 2 * N; i++)
         ts_assert_near(w2[i], w[i], 1e-9, 1e-12, "rotated scene");
+
+    /* Mirroring the scene (every azimuth negated) changes nothing: the relative azimuth
+     * is folded, as an isotropic BRDF is the same at +dphi and -dphi. */
+    for (int k = 0; k < sc->nlights; k++)
+        sc->lights[k].phi = -sc->lights[k].phi;
+    sc->views[0].phi = -sc->views[0].phi;
+    sc->reciprocal = 0;
+    assert_int_equal(bf_scene_weights(sc, s, w2, &err), BF_OK);
+    for (int k = 0; k < sc->nlights; k++)
+        sc->lights[k].phi = -sc->lights[k].phi;
+    sc->views[0].phi = -sc->views[0].phi;
+    assert_int_equal(bf_scene_weights(sc, s, w, &err), BF_OK);
+    for (int i = 0; i < 2 * N; i++)
+        ts_assert_near(w2[i], w[i], 1e-9, 1e-12, "mirrored scene");
     bf_scene_free(sc);
     bf_samples_free(s);
 }
@@ -285,7 +299,7 @@ static void test_apply(void **state)
     weights_of(text, s, w);
     assert_true(w[2] == 0.0 && w[4] == 0.0);
     assert_true(w[0] > 0 && w[1] > 0 && w[3] > 0);
-    /* Existing weights are multiplied. */
+    /* The data's own weights stay as they were; the scene's go apart. */
     assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
     const double own[5] = {1, 3, 5, 0.5, 7};
     memcpy(s->weight, own, sizeof own);
@@ -298,17 +312,27 @@ static void test_apply(void **state)
     const int from[3] = {0, 1, 3};
     double mean = (w[0] + w[1] + w[3]) / 3.0;
     for (int k = 0; k < 3; k++) {
-        ts_assert_rel(s->weight[k], own[from[k]] * w[from[k]] / mean, 1e-12, "applied weight");
+        assert_true(s->weight[k] == own[from[k]]);
+        ts_assert_rel(s->scene_weight[k], w[from[k]] / mean, 1e-12, "scene weight");
         assert_true(s->theta_o[k] == dirs[from[k]][2] && s->theta_i[k] == dirs[from[k]][0]);
     }
     bf_samples_free(s);
 
-    /* Unweighted data gets weights averaging 1 over the kept samples. */
+    /* Unweighted data gets scene weights averaging 1 over the kept samples, and no own
+     * weights; a second scene multiplies the first's weights. */
     s = make_samples(5, dirs);
     assert_int_equal(bf_scene_apply(sc, s, &kept, &err), BF_OK);
-    assert_non_null(s->weight);
-    ts_assert_rel((s->weight[0] + s->weight[1] + s->weight[2]) / 3.0, 1.0, 1e-12, "mean weight");
-    ts_assert_rel(s->weight[1] / s->weight[0], exp(-2.0), 1e-9, "weight ratio");
+    assert_null(s->weight);
+    assert_non_null(s->scene_weight);
+    ts_assert_rel((s->scene_weight[0] + s->scene_weight[1] + s->scene_weight[2]) / 3.0, 1.0, 1e-12, "mean weight");
+    ts_assert_rel(s->scene_weight[1] / s->scene_weight[0], exp(-2.0), 1e-9, "weight ratio");
+    double before[3];
+    memcpy(before, s->scene_weight, sizeof before);
+    assert_int_equal(bf_scene_apply(sc, s, &kept, &err), BF_OK);
+    assert_int_equal(kept, 3);
+    ts_assert_rel(s->scene_weight[1] / s->scene_weight[0], exp(-4.0), 1e-9, "weight ratio, twice");
+    ts_assert_rel(s->scene_weight[2] / s->scene_weight[0], before[2] * before[2] / (before[0] * before[0]), 1e-9,
+                  "weight ratio, twice");
     bf_scene_free(sc);
     bf_samples_free(s);
 
@@ -321,11 +345,22 @@ static void test_apply(void **state)
     assert_int_equal(kept, 0);
     assert_int_equal(s->n, 5);
     assert_null(s->weight);
+    assert_null(s->scene_weight);
     bf_scene_free(sc);
     bf_samples_free(s);
 }
 
 /* ---- Weighted metrics -------------------------------------------------------------- */
+
+/* Scene weights, all 1 (as bf_scene_apply would leave them, before the test sets them). */
+static int add_scene_weights(bf_samples *s)
+{
+    s->scene_weight = malloc((s->n + 1) * sizeof *s->scene_weight);
+    assert_non_null(s->scene_weight);
+    for (size_t i = 0; i < s->n; i++)
+        s->scene_weight[i] = 1.0;
+    return BF_OK;
+}
 
 /* n random samples above the horizon, C = 2, values near a Lambert level with noise. */
 static bf_samples *random_samples(size_t n, uint64_t seed)
@@ -367,7 +402,7 @@ static void test_weighted_metrics_unit_weights(void **state)
     assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &w0, &err), BF_OK);
     assert_metrics_equal(&w0, &plain);
     /* Weights all 1: exactly the unweighted metrics. */
-    assert_int_equal(bf_samples_add_weights(s, &err), BF_OK);
+    assert_int_equal(add_scene_weights(s), BF_OK);
     assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &w1, &err), BF_OK);
     assert_int_equal(w1.weighted, 1);
     assert_metrics_equal(&w1, &plain);
@@ -375,7 +410,7 @@ static void test_weighted_metrics_unit_weights(void **state)
     /* Any thread count gives the same weighted result. */
     ts_rng rng = {3};
     for (size_t i = 0; i < s->n; i++)
-        s->weight[i] = 4 * ts_uniform(&rng);
+        s->scene_weight[i] = 4 * ts_uniform(&rng);
     bf_metrics t1, t3;
     assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &t1, &err), BF_OK);
     assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 3, 1, &t3, &err), BF_OK);
@@ -392,21 +427,21 @@ static void test_weighted_metrics_duplicates(void **state)
     const double x[2] = {0.4, 0.25};
     enum { N = 300 };
     bf_samples *s = random_samples(N, 11);
-    assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
+    assert_int_equal(add_scene_weights(s), BF_OK);
     size_t total = 0;
     for (size_t i = 0; i < N; i++) {
-        s->weight[i] = (double)(i % 4); /* 0, 1, 2, 3 */
+        s->scene_weight[i] = (double)(i % 4); /* 0, 1, 2, 3 */
         total += i % 4;
     }
     /* A weight-0 sample (and a negative one) with a huge error must not count. */
     s->value[0] = 50.0;
-    s->weight[4] = -2.0;
+    s->scene_weight[4] = -2.0;
     s->value[8] = -40.0;
     bf_samples *d = bf_samples_new(total, 2, NULL);
     assert_non_null(d);
     size_t j = 0;
     for (size_t i = 0; i < N; i++)
-        for (int r = 0; r < (int)(s->weight[i] > 0 ? s->weight[i] : 0); r++, j++) {
+        for (int r = 0; r < (int)(s->scene_weight[i] > 0 ? s->scene_weight[i] : 0); r++, j++) {
             d->theta_i[j] = s->theta_i[i];
             d->phi_i[j] = s->phi_i[i];
             d->theta_o[j] = s->theta_o[i];
@@ -428,7 +463,7 @@ static void test_weighted_metrics_duplicates(void **state)
     /* n counts each value of positive weight once; AIC and BIC use that n. */
     size_t npos = 0;
     for (size_t i = 0; i < N; i++)
-        npos += s->weight[i] > 0;
+        npos += s->scene_weight[i] > 0;
     assert_int_equal(mw.n, 2 * npos);
     double msr = md.rmse * md.rmse;
     ts_assert_rel(mw.aic, (double)mw.n * log(msr) + 4.0, 1e-10, "aic");
@@ -436,7 +471,7 @@ static void test_weighted_metrics_duplicates(void **state)
 
     /* Every weight 0: no value to measure. */
     for (size_t i = 0; i < N; i++)
-        s->weight[i] = 0.0;
+        s->scene_weight[i] = 0.0;
     assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &mw, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "positive weight"));
     bf_samples_free(d);
@@ -444,14 +479,40 @@ static void test_weighted_metrics_duplicates(void **state)
     bf_model_free(m);
 }
 
+/* The data's own weights never enter a scene's metrics: without scene weights (a
+ * ranges-only scene, or a scene keeping everything) they equal the plain metrics. */
+static void test_own_weights_not_in_scene_metrics(void **state)
+{
+    (void)state;
+    bf_samples *s = random_samples(300, 11);
+    assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
+    for (size_t i = 0; i < s->n; i++)
+        s->weight[i] = i % 3 == 0 ? 100.0 : 0.01;
+    bf_error err;
+    bf_model *m = ts_model("lambert", 2);
+    const double x[2] = {0.4, 0.2};
+    bf_metrics plain, w;
+    assert_int_equal(bf_metrics_compute(m, x, s, 2, 1, &plain, &err), BF_OK);
+    assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &w, &err), BF_OK);
+    assert_metrics_equal(&plain, &w);
+    bf_scene *sc = parse_ok("{}");
+    assert_int_equal(bf_scene_apply(sc, s, NULL, &err), BF_OK);
+    assert_null(s->scene_weight);
+    assert_int_equal(bf_metrics_compute_weighted(m, x, s, 2, 1, 1, &w, &err), BF_OK);
+    assert_metrics_equal(&plain, &w);
+    bf_scene_free(sc);
+    bf_model_free(m);
+    bf_samples_free(s);
+}
+
 /* bf_fit reports weighted metrics when asked, and the usual ones otherwise. */
 static void test_fit_weighted_metrics(void **state)
 {
     (void)state;
     bf_samples *s = random_samples(400, 5);
-    assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
+    assert_int_equal(add_scene_weights(s), BF_OK);
     for (size_t i = 0; i < s->n; i++)
-        s->weight[i] = i < 200 ? 1.0 : 0.1;
+        s->scene_weight[i] = i < 200 ? 1.0 : 0.1;
     bf_fit_options o;
     ts_fit_defaults(&o);
     o.weighted_metrics = 1;
@@ -485,6 +546,7 @@ int main(void)
         cmocka_unit_test(test_apply),
         cmocka_unit_test(test_weighted_metrics_unit_weights),
         cmocka_unit_test(test_weighted_metrics_duplicates),
+        cmocka_unit_test(test_own_weights_not_in_scene_metrics),
         cmocka_unit_test(test_fit_weighted_metrics),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

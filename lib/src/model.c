@@ -136,8 +136,8 @@ static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
                                name);
             tie[i] = 1;
             p += len;
-            if (*p == '+')
-                p++;
+            if (*p == '+' && !*++p)
+                return bf_fail(err, BF_ERR_ARG, "model %s: mono=%s ends with '+'", fam, m->mono);
         }
     }
     int ntie = 0, is_spec = 1;

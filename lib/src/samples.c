@@ -70,6 +70,7 @@ void bf_samples_free(bf_samples *s)
     free(s->theta_i);
     free(s->value);
     free(s->weight);
+    free(s->scene_weight);
     bf_samples_drop_origin(s);
     bf_geometry_free(s->geom);
     free(s);
@@ -134,6 +135,8 @@ int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
         memmove(s->value + j * C, s->value + i * C, C * sizeof *s->value);
         if (s->weight)
             s->weight[j] = s->weight[i];
+        if (s->scene_weight)
+            s->scene_weight[j] = s->scene_weight[i];
         if (s->merl)
             s->merl->cell[j] = s->merl->cell[i];
         j++;
@@ -174,6 +177,10 @@ bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_e
     }
     if (s->weight && bf_samples_add_weights(o, err) != BF_OK)
         goto fail;
+    if (s->scene_weight && !(o->scene_weight = malloc((n + 1) * sizeof *o->scene_weight))) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+        goto fail;
+    }
     size_t j = 0;
     for (size_t i = 0; i < s->n; i++) {
         if (keep && !keep[i])
@@ -185,6 +192,8 @@ bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_e
         memcpy(o->value + j * C, s->value + i * C, C * sizeof *o->value);
         if (s->weight)
             o->weight[j] = s->weight[i];
+        if (s->scene_weight)
+            o->scene_weight[j] = s->scene_weight[i];
         j++;
     }
     return o;

@@ -38,7 +38,7 @@ int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
     info->n = s->n;
     info->channels = s->channels;
     info->theta_i = info->theta_o = info->theta_h = info->theta_d = none;
-    info->weighted = s->weight != NULL;
+    info->weighted = s->weight != NULL || s->scene_weight != NULL; /* own or a scene's */
     info->value = malloc(C * sizeof *info->value);
     info->mean = malloc(C * sizeof *info->mean);
     size_t *nfinite = calloc(C, sizeof *nfinite);

@@ -23,8 +23,8 @@ extern "C" {
  *   parameters. bf_metrics_compute does not apply sample weights (metrics compare fits,
  *   whatever the objective was).
  *
- * Weighted (bf_metrics_compute_weighted with weighted = 1, samples with weights w_i;
- * a scene's restriction, scene.h): every mean becomes sum w e^2 / sum w over the values
+ * Weighted (bf_metrics_compute_weighted with weighted = 1: w_i the samples' scene
+ * weights, scene.h; the data's own weights never count here): every mean becomes sum w e^2 / sum w over the values
  * with w > 0 (negative weights count as 0, as in the objective), max_err and n cover
  * only those values, and AIC/BIC use SSR/n = sum w (f - m)^2 / sum w. With every weight
  * 1 (or no weights) the results equal the unweighted ones exactly; with integer weights
@@ -35,13 +35,13 @@ typedef struct bf_metrics {
     size_t n;
     int k;
     double rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, bic;
-    int weighted; /* 1: computed with the samples' weights */
+    int weighted; /* 1: computed with the samples' scene weights */
 } bf_metrics;
 
 /* threads: 0 or 1 for one; the result is the same for any count. */
 int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                        bf_metrics *out, bf_error *err);
-/* The same; weighted = 1 applies the samples' weights (if they have any) as above. */
+/* The same; weighted = 1 applies the samples' scene weights (if they have any) as above. */
 int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                                 int weighted, bf_metrics *out, bf_error *err);
 

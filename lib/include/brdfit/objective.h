@@ -51,7 +51,8 @@ typedef struct bf_objective_options {
     int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:
                               from the cell's extent in theta_h, theta_d, phi_d); needs a
                               MERL origin, else BF_ERR_ARG */
-    int use_weights;       /* multiply by the samples' own weights when they have some */
+    int use_weights;       /* multiply by the samples' own weights when they have some
+                              (a scene's weights, s->scene_weight, always apply) */
     const bf_override *overrides;
     int noverrides;
     int threads;           /* threads for the objective's own passes (standard errors);

@@ -34,7 +34,10 @@ typedef struct bf_samples {
      * back has the same text. The geometry converts once. */
     double *theta_i, *phi_i, *theta_o, *phi_o;
     double *value;          /* n * C, value[i*C + c]: BRDF in 1/sr */
-    double *weight;         /* NULL (all 1), or n weights */
+    double *weight;         /* NULL (all 1), or n weights: the data's own */
+    double *scene_weight;   /* NULL (all 1), or n weights a scene gave (bf_scene_apply):
+                               the fit multiplies them with the data's own weights (used
+                               or not), and a scene's metrics are weighted by them alone */
     bf_merl_origin *merl;   /* NULL unless read from a MERL table and not reshaped since */
     bf_geometry *geom;      /* NULL until bf_samples_geometry */
 } bf_samples;

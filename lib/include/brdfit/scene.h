@@ -17,8 +17,9 @@
  * where Kl(L) = sum over lights of weight * exp(-a^2 / (2 radius^2)), a the angle between
  * L and the light direction (0 beyond 3 radius), and the same for views. Explicit
  * directions are compared after rotating each configuration about the normal so that its
- * light has azimuth 0 (isotropic materials: only relative azimuth matters); sample and
- * scene alike. So with both lists the product is taken per (light, view) pair, each pair
+ * light has azimuth 0 and folding the view's relative azimuth into [0, 180] degrees
+ * (isotropic materials: only |phi_o - phi_i| matters, and measured sets often hold one
+ * sign of it only, as MERL's phi_d does); sample and scene alike. So with both lists the product is taken per (light, view) pair, each pair
  * rotated by its own light's azimuth, and summed over pairs:
  *   Kl Kv = sum_(l,v) w_l w_v exp(-(a_L^2 + a_V^2) / (2 radius^2))
  * With one list only, a direction's azimuth has no meaning after the rotation: only its
@@ -63,10 +64,10 @@ void bf_scene_free(bf_scene *sc);
 /* w[i] >= 0 for each of s's n samples, as above (0: outside the scene). */
 int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err);
 
-/* Restricts s in place to the scene: drops samples of weight 0 and multiplies the rest's
- * weights (adding weights when s has none) by their scene weight, scaled so that the
- * scene weights average 1 over the kept samples. When every kept sample has the same
- * scene weight (a ranges-only scene) the weights are left as they are (none stay none).
+/* Restricts s in place to the scene: drops samples of weight 0 and gives the rest their
+ * scene weight in s->scene_weight (kept apart from the data's own weights), scaled so
+ * that it averages 1 over the kept samples. When every kept sample has the same scene
+ * weight (a ranges-only scene) no scene weights are added: the scene only selects.
  * kept (may be NULL) gets the count. BF_ERR_ARG when no sample lies in the scene; s is
  * then unchanged. */
 int bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err);

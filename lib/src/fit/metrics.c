@@ -97,7 +97,7 @@ int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *
     if (!g)
         return err ? (int)err->code : BF_ERR_NOMEM;
     size_t nchunks = (s->n + CHUNK - 1) / CHUNK;
-    job j = {m, x, g, s->value, weighted ? s->weight : NULL, s->n, C, calloc(nchunks + 1, sizeof(partial))};
+    job j = {m, x, g, s->value, weighted ? s->scene_weight : NULL, s->n, C, calloc(nchunks + 1, sizeof(partial))};
     if (!j.part)
         return bf_fail(err, BF_ERR_NOMEM, "metrics: out of memory");
     bf_parallel_for(nchunks, threads, chunk_sums, &j);

@@ -6,7 +6,8 @@
  *   res = sqrt(w_i) form(f, m, cos theta_i)                 (forms: objective_impl.h)
  *   d res / d z_j = sqrt(w_i) form'(f) d f / d x_k  dx_k / dz_j,  k the entry of z_j
  * with w_i the product of the sample's own weight (use_weights; negative weights count
- * as 0) and its solid-angle weight (solid_angle). Samples below the horizon (cos theta_i
+ * as 0), its solid-angle weight (solid_angle) and its scene weight (always, when a scene
+ * gave one). Samples below the horizon (cos theta_i
  * <= 0 or cos theta_o <= 0) have residual 0 and a zero Jacobian row: the model is 0 there
  * whatever was measured, and nres must stay n*C (preprocessing normally drops them).
  *
@@ -162,7 +163,7 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
 {
     bf_samples *s = o->samples;
     int use_w = opt->use_weights && s->weight;
-    if (!use_w && !opt->solid_angle)
+    if (!use_w && !opt->solid_angle && !s->scene_weight)
         return BF_OK;
     if (!(o->sw = malloc((o->n + 1) * sizeof *o->sw)))
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective's weights");
@@ -174,7 +175,7 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
             return rc;
     }
     for (size_t i = 0; i < o->n; i++) {
-        double w = o->sw[i] * (use_w ? s->weight[i] : 1.0);
+        double w = o->sw[i] * (use_w ? s->weight[i] : 1.0) * (s->scene_weight ? s->scene_weight[i] : 1.0);
         o->sw[i] = w > 0.0 && isfinite(w) ? sqrt(w) : 0.0;
     }
     return BF_OK;

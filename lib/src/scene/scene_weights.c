@@ -67,7 +67,7 @@ static int prepare(const bf_scene *sc, prepared *q, bf_error *err)
                 double t = v->theta * DEG, ph = (v->phi - (l ? l->phi : 0.0)) * DEG;
                 p->vt = t;
                 p->vx = sin(t) * cos(ph);
-                p->vy = sin(t) * sin(ph);
+                p->vy = fabs(sin(t) * sin(ph)); /* relative azimuth folded: see scene.h */
                 p->vz = cos(t);
             }
         }
@@ -142,10 +142,10 @@ int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err
                 double d = (po[i] - pi_[i]) * DEG, cd = cos(d), sd = sin(d);
                 double so = sin(tor[i]), si = sin(tir[i]);
                 dx[i] = so * cd;
-                dy[i] = so * sd;
+                dy[i] = fabs(so * sd);
                 dz[i] = cos(tor[i]);
                 rx[i] = si * cd;
-                ry[i] = -si * sd;
+                ry[i] = fabs(si * sd);
                 rz[i] = cos(tir[i]);
             }
         const oriented direct = {ti, to, tir, tor, dx, dy, dz};
@@ -198,10 +198,15 @@ int bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *er
         rc = bf_samples_keep(s, keep, err);
     /* Weights change only where the scene weighs samples differently: a ranges-only
      * scene selects, and leaves unweighted data unweighted. */
-    if (rc == BF_OK && !equal && (rc = bf_samples_add_weights(s, err)) == BF_OK) {
+    /* Scene weights stay apart from the data's own (a scene's metrics use them alone);
+     * a ranges-only scene only selects, and a second scene multiplies the first's. */
+    if (rc == BF_OK && !equal) {
+        int fresh = s->scene_weight == NULL;
+        if (fresh && !(s->scene_weight = malloc((k + 1) * sizeof *s->scene_weight)))
+            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu scene weights", k);
         const double scale = (double)k / sum;
-        for (size_t i = 0; i < k; i++)
-            s->weight[i] *= w[i] * scale;
+        for (size_t i = 0; rc == BF_OK && i < k; i++)
+            s->scene_weight[i] = w[i] * scale * (fresh ? 1.0 : s->scene_weight[i]);
     }
     free(w);
     free(keep);
