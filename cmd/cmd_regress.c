@@ -24,6 +24,7 @@
 
 #include "brdfit/fit.h"
 #include "brdfit/regress.h"
+#include "brdfit/scene.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -122,6 +123,14 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
                 cs->data_path, strerror(errno));
         return 2;
     }
+    /* A bad scene file is a bad baseline too, found before any fit runs. */
+    bf_scene *sc = NULL;
+    bf_error e;
+    if (r->dopt.scene && bf_scene_read(r->dopt.scene, &sc, &e) != BF_OK) {
+        fprintf(stderr, "%s: %s:%d: case '%s': --scene: %s\n", cmd, b->path, cs->data_line, cs->name, e.msg);
+        return 2;
+    }
+    bf_scene_free(sc);
     return 0;
 }
 
@@ -142,8 +151,14 @@ static void load_failure(const case_run *cr, const char *path, char *msg, size_t
         snprintf(msg, size, "%s", e.msg);
     else if (bf_samples_prep(s, &cr->dopt.prep, NULL, &e) != BF_OK)
         snprintf(msg, size, "%s: %s", path, e.msg);
-    else
-        snprintf(msg, size, "%s: the scene %s could not be applied", path, cr->dopt.scene ? cr->dopt.scene : "");
+    else {
+        bf_scene *sc = NULL;
+        if (cr->dopt.scene && (bf_scene_read(cr->dopt.scene, &sc, &e) != BF_OK || bf_scene_apply(sc, s, NULL, &e) != BF_OK))
+            snprintf(msg, size, "%s: --scene %s: %s", path, cr->dopt.scene, e.msg);
+        else
+            snprintf(msg, size, "%s: could not be loaded", path);
+        bf_scene_free(sc);
+    }
     bf_samples_free(s);
 }
 

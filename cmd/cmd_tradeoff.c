@@ -386,6 +386,13 @@ int cmd_tradeoff(int argc, char **argv)
         starts[k] = (int)n;
     }
 
+    /* Bad usage before any data is read (the sample counts may still merge later). */
+    double settings = (double)counts_n[0] * counts_n[1] * counts_n[2] * counts_n[3];
+    if (settings > BF_TRADEOFF_MAX_ROWS) {
+        fprintf(stderr, "%s: %.0f settings is too many (at most %d): shorten the lists\n", cmd, settings,
+                BF_TRADEOFF_MAX_ROWS);
+        goto done;
+    }
     status = 1;
     if (!(all = data_options_load(&dopt, data, NULL, cmd)))
         goto done;

@@ -71,6 +71,9 @@ typedef struct bf_tradeoff {
     int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */
 } bf_tradeoff;
 
+/* The most settings a grid may hold (the product of the list lengths). */
+#define BF_TRADEOFF_MAX_ROWS 100000
+
 /* The grid: the full product of the lists, sample counts outermost. counts are training
  * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
  * sorted ascending and deduplicated, so rows run in ascending sample count. Then

@@ -148,9 +148,10 @@ int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t
         if (nc == 0 || c[k] != c[nc - 1])
             c[nc++] = c[k];
     size_t rows = (size_t)nc * (size_t)nmethods * (size_t)nresiduals * (size_t)nstarts;
-    if (rows > 100000) {
+    if (rows > BF_TRADEOFF_MAX_ROWS) {
         free(c);
-        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most 100000)", rows);
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows,
+                       BF_TRADEOFF_MAX_ROWS);
     }
     t->data = strdup(data ? data : "");
     t->model = strdup(model ? model : "");
