@@ -40,6 +40,7 @@
 
 #include "brdfit/compare.h"
 #include "brdfit/fit.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -247,20 +248,11 @@ int cmd_compare(int argc, char **argv)
             quiet = 1;
             continue;
         }
-        static const char *const with_value[] = {"-m", "--model", "--error", "--tolerance", "--jobs", "--json",
-                                                 "--csv", "--html"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-            known |= !strcmp(a, with_value[k]);
-        if (!known) {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit compare --help)\n", cmd, a);
+        static const char *const valued[] = {"-m", "--model", "--error", "--tolerance", "--jobs", "--json",
+                                             "--csv", "--html"};
+        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
+        if (!v)
             goto done;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-            goto done;
-        }
-        const char *v = argv[++i];
         char *end;
         if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
             if (!strcmp(v, "all")) {
@@ -327,8 +319,7 @@ int cmd_compare(int argc, char **argv)
     /* Model specs are checked before any data is read. */
     if (fit_options_check_models(specs, nmodels, cmd) < 0)
         goto done;
-    fit_options_finish(&fopt, dopt.prep.seed);
-    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+    fit_options_finish(&fopt, &dopt);
     /* The --threads budget is shared between the concurrent fits. */
     if (jobs > nmodels * ndata)
         jobs = nmodels * ndata;

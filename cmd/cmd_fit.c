@@ -29,6 +29,7 @@
 
 #include "brdfit/fit.h"
 #include "brdfit/io.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -86,7 +87,7 @@ int cmd_fit(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     fit_options fopt;
     fit_options_init(&fopt);
-    int nmodels = 0, status = 2, subsample_given = 0;
+    int nmodels = 0, status = 2;
     char *specs[MAX_MODELS] = {0};
     const char *data = NULL, *out_path = NULL;
     bf_error err;
@@ -101,7 +102,6 @@ int cmd_fit(int argc, char **argv)
             status = 0;
             goto done;
         }
-        subsample_given |= !strcmp(a, "--subsample");
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
@@ -119,15 +119,10 @@ int cmd_fit(int argc, char **argv)
             data = a;
             continue;
         }
-        if (strcmp(a, "-m") && strcmp(a, "--model") && strcmp(a, "-o")) {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit fit --help)\n", cmd, a);
+        static const char *const valued[] = {"-m", "--model", "-o"};
+        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
+        if (!v)
             goto done;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-            goto done;
-        }
-        const char *v = argv[++i];
         if (!strcmp(a, "-o")) {
             out_path = v;
         } else {
@@ -145,11 +140,7 @@ int cmd_fit(int argc, char **argv)
     /* Model specs are checked before any data is read. */
     if (fit_options_check_models(specs, nmodels, cmd) < 0)
         goto done;
-    fit_options_finish(&fopt, dopt.prep.seed);
-    /* With a scene, error is reported over the scene's directions, weighted as it weighs them. */
-    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
-    if (!subsample_given)
-        dopt.prep.subsample = fit_options_preset_subsample(&fopt);
+    fit_options_finish(&fopt, &dopt);
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

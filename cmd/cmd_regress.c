@@ -89,13 +89,11 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
             }
         }
     }
-    int subsample_given = 0;
     for (int i = 0; i < r->argc; i++) {
         /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
         char prefix[1024];
         snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->option_lines[i], cs->name);
         const char *a = r->argv[i];
-        subsample_given |= !strcmp(a, "--subsample");
         int d = data_options_parse(&r->dopt, r->argc, r->argv, &i, prefix);
         if (d == 0)
             d = fit_options_parse(&r->fopt, r->argc, r->argv, &i, prefix);
@@ -113,11 +111,8 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
         return 2;
     }
     /* As brdfit fit does: the preset's subsample unless --subsample was given, and with a
-     * scene the metrics over its directions, weighted as it weighs them. */
-    fit_options_finish(&r->fopt, r->dopt.prep.seed);
-    if (!subsample_given)
-        r->dopt.prep.subsample = fit_options_preset_subsample(&r->fopt);
-    r->fopt.fit.weighted_metrics = data_options_has_scene(&r->dopt);
+     * scene the metrics over its directions. */
+    fit_options_finish(&r->fopt, &r->dopt);
     if (access(cs->data_path, R_OK) != 0) {
         fprintf(stderr, "%s: %s:%d: case '%s': data file '%s': %s\n", cmd, b->path, cs->data_line, cs->name,
                 cs->data_path, strerror(errno));

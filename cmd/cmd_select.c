@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "brdfit/select.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -107,7 +108,7 @@ int cmd_select(int argc, char **argv)
     fit_options fopt;
     fit_options_init(&fopt);
     char *specs[MAX_MODELS] = {0};
-    int nmodels = 0, status = 2, quiet = 0, subsample_given = 0;
+    int nmodels = 0, status = 2, quiet = 0;
     double tolerance = 0.05, abs_tolerance = 1e-6;
     bf_compare_metric metric = BF_CMP_RMSE_LOG;
     const char *data = NULL, *json_path = NULL, *out_path = NULL;
@@ -124,7 +125,6 @@ int cmd_select(int argc, char **argv)
             status = 0;
             goto done;
         }
-        subsample_given |= !strcmp(a, "--subsample");
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
@@ -148,18 +148,9 @@ int cmd_select(int argc, char **argv)
         }
         static const char *const valued[] = {"-m", "--model", "--models", "--tolerance", "--abs-tolerance", "--error",
                                              "--json", "-o"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
-            known |= !strcmp(a, valued[k]);
-        if (!known) {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit select --help)\n", cmd, a);
+        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
+        if (!v)
             goto done;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-            goto done;
-        }
-        const char *v = argv[++i];
         if (!strcmp(a, "-m") || !strcmp(a, "--model") || !strcmp(a, "--models")) {
             int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
             if (k < 0)
@@ -192,11 +183,9 @@ int cmd_select(int argc, char **argv)
     /* Model specs are checked before any data is read. */
     if (fit_options_check_models(specs, nmodels, cmd) < 0)
         goto done;
-    fit_options_finish(&fopt, dopt.prep.seed);
-    /* With a scene, error is reported over the scene's directions, as it weighs them. */
-    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
-    if (!subsample_given) /* --accuracy fast: a subsample, applied inside the scene */
-        dopt.prep.subsample = fit_options_preset_subsample(&fopt);
+    /* With a scene, error is reported over the scene's directions; --accuracy fast's
+     * subsample is drawn inside the scene. */
+    fit_options_finish(&fopt, &dopt);
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

@@ -25,6 +25,7 @@
 
 #include "brdfit/image.h"
 #include "brdfit/tradeoff.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -223,21 +224,12 @@ int cmd_tradeoff(int argc, char **argv)
             quiet = 1;
             continue;
         }
-        static const char *const with_value[] = {"-m", "--model", "--samples", "--methods", "--residuals",
-                                                 "--starts-list", "--test-fraction", "--repeats", "--error",
-                                                 "--tolerance", "--json", "--csv", "--plot", "--plot-size"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-            known |= !strcmp(a, with_value[k]);
-        if (!known) {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit tradeoff --help)\n", cmd, a);
+        static const char *const valued[] = {"-m", "--model", "--samples", "--methods", "--residuals",
+                                             "--starts-list", "--test-fraction", "--repeats", "--error",
+                                             "--tolerance", "--json", "--csv", "--plot", "--plot-size"};
+        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
+        if (!v)
             goto done;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-            goto done;
-        }
-        const char *v = argv[++i];
         char *end;
         long n;
         if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
@@ -327,9 +319,8 @@ int cmd_tradeoff(int argc, char **argv)
     }
     if (fit_options_check_models(specs, 1, cmd) < 0)
         goto done;
-    fit_options_finish(&fopt, dopt.prep.seed);
     /* With a scene, errors are measured over the scene's directions, weighted by it. */
-    fopt.fit.weighted_metrics = data_options_has_scene(&dopt);
+    fit_options_finish(&fopt, &dopt);
 
     /* The lists. */
     if (!methods_arg)

@@ -118,8 +118,10 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
         }
         if (!strcmp(a, "--seed"))
             o->prep.seed = (uint64_t)n;
-        else
+        else {
             o->prep.subsample = (size_t)n;
+            o->subsample_given = 1;
+        }
     }
     return 1;
 }

@@ -89,11 +89,6 @@ int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, co
     return -1;
 }
 
-size_t fit_options_preset_subsample(const fit_options *o)
-{
-    return presets[o->accuracy].subsample;
-}
-
 void fit_options_init(fit_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -105,10 +100,13 @@ void fit_options_init(fit_options *o)
     o->fit.solver.threads = cores > 0 ? (int)cores : 1;
 }
 
-void fit_options_finish(fit_options *o, uint64_t seed)
+void fit_options_finish(fit_options *o, data_options *d)
 {
-    o->fit.seed = seed;
+    o->fit.seed = d->prep.seed;
+    o->fit.weighted_metrics = data_options_has_scene(d);
     const preset *p = &presets[o->accuracy];
+    if (!d->subsample_given && p->subsample > 0)
+        d->prep.subsample = p->subsample;
     if (o->accuracy != FIT_ACCURACY_NONE) {
         /* A back end and its algorithm go together: either given keeps both. */
         if (!(o->given & (FIT_GIVEN_BACKEND | FIT_GIVEN_ALGORITHM))) {

@@ -4,6 +4,7 @@
 #define BRDFIT_FIT_OPTIONS_H
 
 #include "brdfit/fit.h"
+#include "data_options.h"
 
 #define FIT_OPTIONS_MAX_OVERRIDES 64
 
@@ -38,13 +39,8 @@ extern const char fit_accuracy_usage[];
 
 /* If argv[*i] is --accuracy, consumes it and its value and returns 1; 0 if it is not;
  * -1 after printing a one-line error. brdfit fit, select and regress take it (kept out
- * of fit_options_parse because its subsample part needs the command's data options:
- * fit_options_preset_subsample). */
+ * of fit_options_parse: compare and tradeoff do not; fit_options_finish applies it). */
 int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, const char *cmd);
-
-/* The preset's training sample count (stratified subsample), 0 for none. The command
- * applies it to its data options when the user gave no --subsample. */
-size_t fit_options_preset_subsample(const fit_options *o);
 
 /* Usage lines for the options below, for a command's --help. */
 extern const char fit_options_usage[];
@@ -56,9 +52,11 @@ void fit_options_init(fit_options *o);
  * 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
 int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd);
 
-/* Points the fit options at the overrides, takes the seed and fills in the --accuracy
- * preset where the user set nothing (after parsing, so order on the line is moot). */
-void fit_options_finish(fit_options *o, uint64_t seed);
+/* After parsing (so order on the line is moot): points the fit options at the
+ * overrides, takes the data options' seed, fills in the --accuracy preset where the user
+ * set nothing (its subsample goes to d unless --subsample was given), and with a scene
+ * asks for metrics over the scene's directions (weighted as the scene weighs them). */
+void fit_options_finish(fit_options *o, data_options *d);
 
 /* Splits a -m list into model specs appended to specs[n..max-1]: a comma starts a new
  * model only where the next token has no '=' or has a ':' of its own, so option lists

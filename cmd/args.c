@@ -1,0 +1,22 @@
+/* Command-line helpers every subcommand shares (see args.h). */
+#include "args.h"
+
+#include <stdio.h>
+#include <string.h>
+
+const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd)
+{
+    const char *a = argv[*i];
+    size_t k = 0;
+    while (k < n && strcmp(a, valued[k]))
+        k++;
+    if (k == n) {
+        fprintf(stderr, "%s: unknown option '%s' (see %s --help)\n", cmd, a, cmd);
+        return NULL;
+    }
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+        return NULL;
+    }
+    return argv[++*i];
+}
