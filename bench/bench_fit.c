@@ -1,10 +1,12 @@
 /* Fit speed on a full MERL table: walter (GGX, Smith, Schlick; one lobe, RGB) with the
  * parameters of examples/walter_rgb.json, sampled at every MERL cell centre above the
  * horizon (about 1.1 M cells x 3 channels, noiseless), then fitted from the data-driven
- * start with Ceres and the NLopt methods. Per method: the whole bf_fit (start, solve,
- * metrics, standard errors) and the solve alone, iterations, evaluations, time per
- * iteration, final cost and the recovered alpha's relative error. Times are the best of
- * the repeats; every repeat fits the same data from the same start.
+ * start with Ceres and the NLopt methods. First the parts: the data-driven start, one
+ * fused pass of the objective (the floor under a Ceres iteration), a cost-only pass,
+ * metrics and standard errors. Per method: the whole bf_fit (start, solve, metrics,
+ * standard errors) and the solve alone, iterations, evaluations, time per iteration,
+ * final cost and the recovered alpha's relative error. Times are the best of the
+ * repeats; every repeat fits the same data from the same start.
  *
  * usage: bench_fit [--threads N] [--residual FORM] [--repeats R]
  *                  [--methods ceres,LD_LBFGS,...] [--data TABLE.binary] [--write TABLE.binary]
@@ -79,37 +81,38 @@ static bf_samples *generate(bf_error *err)
     return s;
 }
 
-/* The parts of a fit besides the solve, at the start (one thread each, best of 3):
- * one full residual + Jacobian evaluation of the objective, in blocks as a back end asks
- * for them (the floor under any iteration), the metrics and the standard errors. */
-static void time_parts(bf_samples *s, const bf_objective_options *oo, double *t_eval,
-                       double *t_metrics, double *t_stderr, bf_error *err)
+/* The parts of a fit besides the solve, at the start (best of 3): one fused pass of the
+ * objective (cost, J'r and J'J: what a Ceres iteration costs) and a cost-only pass on
+ * `threads` threads, then the metrics and the standard errors. */
+static void time_parts(bf_samples *s, const bf_objective_options *oo, int threads, double *t_pass,
+                       double *t_cost, double *t_metrics, double *t_stderr, bf_error *err)
 {
     bf_model *m = bf_model_create(SPEC, 3, err);
     bf_objective *obj = m ? bf_objective_new(m, s, oo, err) : NULL;
     if (!obj)
         die("objective", err);
     const bf_problem *p = bf_objective_problem(obj);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x), z[16];
+    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x), z[16], jtr[16], jtj[256], ssq;
     if (bf_fit_initial_guess(m, s, x, err) != BF_OK)
         die("initial guess", err);
     bf_objective_to_internal(obj, x, z);
-    const size_t block = 8192;
-    double *res = malloc(block * sizeof *res), *jac = malloc(block * (size_t)p->npar * sizeof *jac);
-    double best = 1e30;
+    *t_pass = *t_cost = 1e30;
     for (int rep = 0; rep < 3; rep++) {
         double t0 = now();
-        for (size_t r0 = 0; r0 < p->nres; r0 += block)
-            p->eval(p->ctx, z, r0, r0 + block < p->nres ? r0 + block : p->nres, res, jac);
-        best = fmin(best, now() - t0);
+        if (bf_problem_normal(p, z, NULL, threads, &ssq, jtr, jtj) != 0)
+            die("fused pass", NULL);
+        double t1 = now();
+        if (bf_problem_normal(p, z, NULL, threads, &ssq, NULL, NULL) != 0)
+            die("cost pass", NULL);
+        *t_pass = fmin(*t_pass, t1 - t0);
+        *t_cost = fmin(*t_cost, now() - t1);
     }
-    *t_eval = best;
     double se[16];
     bf_metrics met;
     *t_metrics = *t_stderr = 1e30;
     for (int rep = 0; rep < 3; rep++) {
         double t0 = now();
-        if (bf_metrics_compute(m, x, s, p->npar, 1, &met, err) != BF_OK)
+        if (bf_metrics_compute(m, x, s, p->npar, threads, &met, err) != BF_OK)
             die("metrics", err);
         double t1 = now();
         if (bf_objective_stderr(obj, x, se, err) != BF_OK)
@@ -117,8 +120,6 @@ static void time_parts(bf_samples *s, const bf_objective_options *oo, double *t_
         *t_metrics = fmin(*t_metrics, t1 - t0);
         *t_stderr = fmin(*t_stderr, now() - t1);
     }
-    free(res);
-    free(jac);
     free(x);
     bf_objective_free(obj);
     bf_model_free(m);
@@ -163,7 +164,7 @@ int main(int argc, char **argv)
     double t0 = now();
     bf_samples *s = NULL;
     if (data) {
-        if (bf_samples_read_merl(data, &s, &err) != BF_OK)
+        if (bf_samples_read_merl(data, 0, &s, &err) != BF_OK)
             die(data, &err);
     } else {
         s = generate(&err);
@@ -183,10 +184,12 @@ int main(int argc, char **argv)
         die("initial guess", &err);
     const int ia = bf_model_param_offset(m, bf_model_find_param(m, "alpha"));
     ts = now() - ts;
-    double t_eval, t_metrics, t_stderr;
-    time_parts(s, &fo.objective, &t_eval, &t_metrics, &t_stderr, &err);
-    printf("data-driven start %.3f s (alpha %.4g); 1 thread: objective residuals + Jacobian %.3f s, "
-           "metrics %.3f s, standard errors %.3f s\n", ts, x0[ia], t_eval, t_metrics, t_stderr);
+    double t_pass, t_cost, t_metrics, t_stderr;
+    fo.objective.threads = threads;
+    time_parts(s, &fo.objective, threads, &t_pass, &t_cost, &t_metrics, &t_stderr, &err);
+    printf("data-driven start %.3f s (alpha %.4g); %d thread%s: fused pass (cost, J'r, J'J) %.4f s, "
+           "cost alone %.4f s, metrics %.4f s, standard errors %.4f s\n", ts, x0[ia], threads,
+           threads == 1 ? "" : "s", t_pass, t_cost, t_metrics, t_stderr);
     printf("%-10s %8s %8s %8s %6s %6s %10s %12s %10s\n", "method", "fit s", "fit cpu", "solve s", "iter",
            "evals", "s/iter", "final cost", "alpha err");
 

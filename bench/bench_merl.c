@@ -1,7 +1,9 @@
 /* MERL table speed: reading a full table (the file read alone against
- * bf_samples_read_merl) and writing it (with the origin, and without it, where every
- * sample's cell is found from its directions). The table is generated in a temporary
- * directory with MERL's layout: cells below the horizon -1, the others random.
+ * bf_samples_read_merl, with and without keeping the raw table), preparing it for a fit
+ * (preprocessing and a walter objective with the log residual: geometry, weights,
+ * measurement terms), and writing it (with the raw table, and without: invalid cells
+ * written as -1). The table is generated in a temporary directory with MERL's layout:
+ * cells below the horizon -1, the others random.
  * usage: bench_merl [repeats] [directory] */
 #include <math.h>
 #include <stdint.h>
@@ -11,6 +13,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "brdfit/objective.h"
+#include "brdfit/prep.h"
 #include "brdfit/samples.h"
 
 static double now(void)
@@ -60,7 +64,11 @@ int main(int argc, char **argv)
     char *buf = malloc(bytes);
     bf_error err;
     bf_samples *s = NULL;
-    double best_file = 1e30, best_read = 1e30, best_write = 1e30, best_write_plain = 1e30;
+    bf_model *m = bf_model_create("walter", 3, &err);
+    if (!m)
+        die("model", &err);
+    double best_file = 1e30, best_read = 1e30, best_raw = 1e30, best_prep = 1e30, best_write = 1e30;
+    double best_write_plain = 1e30;
     for (int r = 0; r < reps; r++) {
         double t0 = now();
         FILE *fp = fopen(in, "rb");
@@ -69,31 +77,44 @@ int main(int argc, char **argv)
         fclose(fp);
         double t1 = now();
         bf_samples_free(s);
-        if (bf_samples_read_merl(in, &s, &err) != BF_OK)
+        if (bf_samples_read_merl(in, 0, &s, &err) != BF_OK)
             die("read", &err);
         double t2 = now();
+        bf_prep_report rep;
+        bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
+        bf_objective *obj = NULL;
+        if (bf_samples_prep(s, NULL, &rep, &err) != BF_OK || !(obj = bf_objective_new(m, s, &oo, &err)))
+            die("prepare", &err);
+        bf_objective_free(obj);
+        double t3 = now();
         if (bf_samples_write_merl(s, out, &err) != BF_OK)
             die("write", &err);
-        double t3 = now();
+        double t4 = now();
+        bf_samples_free(s);
+        if (bf_samples_read_merl(in, 1, &s, &err) != BF_OK)
+            die("read with the raw table", &err);
+        double t5 = now();
+        if (bf_samples_write_merl(s, out, &err) != BF_OK)
+            die("write with the raw table", &err);
+        double t6 = now();
         best_file = fmin(best_file, t1 - t0);
         best_read = fmin(best_read, t2 - t1);
-        best_write = fmin(best_write, t3 - t2);
-    }
-    /* Without the origin every sample's cell comes from bf_merl_cell_of. */
-    bf_samples_drop_origin(s);
-    for (int r = 0; r < reps; r++) {
-        double t0 = now();
-        if (bf_samples_write_merl(s, out, &err) != BF_OK)
-            die("write without origin", &err);
-        best_write_plain = fmin(best_write_plain, now() - t0);
+        best_prep = fmin(best_prep, t3 - t2);
+        best_write_plain = fmin(best_write_plain, t4 - t3);
+        best_raw = fmin(best_raw, t5 - t4);
+        best_write = fmin(best_write, t6 - t5);
     }
     printf("MERL table: %zu bytes, %zu valid samples of %d cells; best of %d\n", bytes, s->n,
            BF_MERL_CELLS, reps);
-    printf("  file read alone (fread)         %7.3f s\n", best_file);
-    printf("  bf_samples_read_merl            %7.3f s  (+%.3f s over the file read)\n", best_read,
-           best_read - best_file);
-    printf("  bf_samples_write_merl (origin)  %7.3f s\n", best_write);
-    printf("  bf_samples_write_merl (no origin, cells from directions) %7.3f s\n", best_write_plain);
+    printf("  file read alone (fread)             %7.3f s\n", best_file);
+    printf("  bf_samples_read_merl                %7.3f s  (%.2f x the file read)\n", best_read,
+           best_read / best_file);
+    printf("  bf_samples_read_merl, raw kept      %7.3f s\n", best_raw);
+    printf("  prep + walter objective (log, 2 threads) %7.3f s\n", best_prep);
+    printf("  read + prepare                      %7.3f s\n", best_read + best_prep);
+    printf("  bf_samples_write_merl (raw table)   %7.3f s\n", best_write);
+    printf("  bf_samples_write_merl (no raw)      %7.3f s\n", best_write_plain);
+    bf_model_free(m);
     bf_samples_free(s);
     free(buf);
     remove(in);

@@ -56,6 +56,8 @@ int cmd_convert(int argc, char **argv)
         fprintf(stderr, "brdfit convert: %s: cannot tell the output format (use .csv, .binary or --to)\n", paths[1]);
         return 2;
     }
+    /* A MERL table written back keeps the bytes of the cells it does not change. */
+    opt.read.keep_origin = to == BF_FORMAT_MERL;
     bf_prep_report rep;
     data_scene_report scene;
     bf_samples *s = data_options_load_scene(&opt, paths[0], &rep, &scene, "brdfit convert");

@@ -227,7 +227,7 @@ int cmd_render(int argc, char **argv)
     if (data) {
         if (halfdiff) {
             /* Cells as read: preprocessing would reshape the table. */
-            if (bf_samples_read_merl(data, &s, &err) != BF_OK) {
+            if (bf_samples_read_merl(data, 0, &s, &err) != BF_OK) {
                 fprintf(stderr, "%s: %s\n", cmd, err.msg);
                 goto done;
             }

@@ -237,7 +237,9 @@ int bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *
         return bf_fail(err, BF_ERR_ARG, "unknown pattern %d", (int)p);
     }
 
-    bf_samples *s = bf_samples_new(n, channels, err);
+    /* MERL cells stay cells (no angle arrays): the same directions and geometry as the
+     * table read back. */
+    bf_samples *s = p == BF_SYNTH_MERL ? bf_samples_new_cells(n, channels, err) : bf_samples_new(n, channels, err);
     if (!s)
         return err ? err->code : BF_ERR_NOMEM;
     switch (p) {
@@ -250,10 +252,8 @@ int bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *
     case BF_SYNTH_MERL: {
         size_t i = 0;
         for (int32_t c = 0; c < BF_MERL_CELLS; c++)
-            if (merl_above(c)) {
-                bf_merl_cell_directions(c, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
-                i++;
-            }
+            if (merl_above(c))
+                s->merl->cell[i++] = c;
         break;
     }
     default: /* uniform, cosine, random: incident then outgoing direction per pair */

@@ -279,7 +279,7 @@ static void test_read_values(void **state)
     write_raw_file(path, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read_merl(path, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(path, 1, &s, &err), BF_OK);
     assert_int_equal(s->n, nvalid);
     assert_int_equal(s->channels, 3);
     assert_string_equal(s->channel_names[0], "r");
@@ -287,6 +287,7 @@ static void test_read_values(void **state)
     assert_string_equal(s->channel_names[2], "b");
     assert_null(s->weight);
     assert_non_null(s->merl);
+    assert_null(s->theta_i); /* addressed by cells: no angle arrays */
     assert_memory_equal(s->merl->raw, raw, NRAW * sizeof *raw);
     /* Every valid cell once, in index order; every invalid one skipped. */
     size_t m = 0;
@@ -298,17 +299,76 @@ static void test_read_values(void **state)
         for (int p = 0; p < 3; p++)
             assert_true(same_bits(s->value[3 * m + (size_t)p], raw[p * NCELLS + c] * scale[p]));
         bf_merl_cell_directions((int32_t)c, &ti, &pi_, &to, &po);
-        assert_true(s->theta_i[m] == ti && s->phi_i[m] == pi_ && s->theta_o[m] == to && s->phi_o[m] == po);
+        double dir[4];
+        bf_samples_direction(s, m, dir);
+        assert_true(dir[0] == ti && dir[1] == pi_ && dir[2] == to && dir[3] == po);
         if (c == unit) {
             ts_assert_rel(s->value[3 * m], 1.0, 1e-15, "R of raw 1500");
             ts_assert_rel(s->value[3 * m + 1], 1.15, 1e-15, "G of raw 1500");
             ts_assert_rel(s->value[3 * m + 2], 1.66, 1e-15, "B of raw 1500");
         }
         if (c == below)
-            assert_true(s->theta_i[m] > 90 || s->theta_o[m] > 90);
+            assert_true(dir[0] > 90 || dir[2] > 90);
         m++;
     }
     assert_int_equal(m, s->n);
+    /* Without the raw table: the same samples, cells and values, and no raw. */
+    bf_samples *t;
+    assert_int_equal(bf_samples_read_merl(path, 0, &t, &err), BF_OK);
+    assert_null(t->merl->raw);
+    assert_int_equal(t->n, s->n);
+    assert_memory_equal(t->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
+    assert_memory_equal(t->value, s->value, 3 * s->n * sizeof *s->value);
+    bf_samples_free(t);
+    bf_samples_free(s);
+    free(raw);
+}
+
+/* The generated geometry of cell-addressed samples against the stored geometry of the
+ * same directions given as angles: the same vectors to rounding, the same horizon. */
+static void test_cell_geometry(void **state)
+{
+    (void)state;
+    size_t nvalid;
+    double *raw = random_table(13, &nvalid);
+    const char *path = ts_tmp_path("geom.binary");
+    write_raw_file(path, good_dims, raw, NRAW, 0);
+    bf_samples *s;
+    bf_error err;
+    assert_int_equal(bf_samples_read_merl(path, 0, &s, &err), BF_OK);
+    const bf_geometry *g = bf_samples_geometry(s, &err);
+    assert_non_null(g);
+    assert_false(bf_geometry_stored(g));
+    double *rad = malloc(4 * s->n * sizeof *rad);
+    for (size_t i = 0; i < s->n; i++) {
+        double dir[4];
+        bf_samples_direction(s, i, dir);
+        for (int k = 0; k < 4; k++)
+            rad[k * s->n + i] = dir[k] * (M_PI / 180.0);
+    }
+    bf_geometry *ga = bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, &err);
+    assert_non_null(ga);
+    bf_geometry_block gb;
+    for (size_t i0 = 0; i0 < s->n; i0 += BF_GEOMETRY_BLOCK) {
+        size_t cnt = s->n - i0 < BF_GEOMETRY_BLOCK ? s->n - i0 : BF_GEOMETRY_BLOCK;
+        const bf_geometry *v = bf_geometry_view(g, i0, cnt, &gb);
+        for (size_t q = 0; q < cnt; q++) {
+            size_t i = i0 + q;
+            const double a[11] = {v->lx[q], v->ly[q], v->lz[q], v->vx[q], v->vy[q], v->vz[q],
+                                  v->hx[q], v->hy[q], v->hz[q], v->vh[q], v->sin2h[q]};
+            const double b[11] = {ga->lx[i], ga->ly[i], ga->lz[i], ga->vx[i], ga->vy[i], ga->vz[i],
+                                  ga->hx[i], ga->hy[i], ga->hz[i], ga->vh[i], ga->sin2h[i]};
+            assert_int_equal(bf_geometry_valid(v, q), bf_geometry_valid(ga, i));
+            assert_int_equal(bf_geometry_valid_at(g, i), bf_geometry_valid(ga, i));
+            if (!bf_geometry_valid(ga, i))
+                continue;
+            for (int k = 0; k < 11; k++)
+                if (fabs(a[k] - b[k]) > 1e-13)
+                    fail_msg("sample %zu, field %d: %.17g generated, %.17g from angles", i, k, a[k], b[k]);
+        }
+    }
+    bf_geometry_free(ga);
+    free(rad);
     bf_samples_free(s);
     free(raw);
 }
@@ -324,7 +384,7 @@ static void test_round_trip_bytes(void **state)
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read_merl(in, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(in, 1, &s, &err), BF_OK);
     assert_int_equal(bf_samples_write_merl(s, out, &err), BF_OK);
     assert_int_equal(bf_samples_write(s, out2, BF_FORMAT_AUTO, &err), BF_OK); /* by extension */
     unsigned char *a = slurp(in, &n1), *b = slurp(out, &n2), *c = slurp(out2, &n3);
@@ -348,7 +408,7 @@ static void test_keep_then_write(void **state)
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read_merl(in, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(in, 1, &s, &err), BF_OK);
     unsigned char *keep = malloc(s->n);
     unsigned char *dropped = calloc(NCELLS, 1);
     for (size_t i = 0; i < s->n; i++) {
@@ -380,12 +440,12 @@ static void test_changed_values(void **state)
     write_raw_file(in, good_dims, raw, NRAW, 0);
     bf_samples *s, *t;
     bf_error err;
-    assert_int_equal(bf_samples_read_merl(in, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(in, 1, &s, &err), BF_OK);
     ts_rng r = {5};
     for (size_t x = 0; x < 3 * s->n; x += 2)
         s->value[x] = ts_uniform(&r) * pow(10.0, 6 * ts_uniform(&r) - 3);
     assert_int_equal(bf_samples_write_merl(s, out, &err), BF_OK);
-    assert_int_equal(bf_samples_read_merl(out, &t, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(out, 0, &t, &err), BF_OK);
     assert_int_equal(t->n, s->n);
     /* Raw * scale cannot reach every double: within one ulp, and exact for most. */
     size_t exact = 0;
@@ -445,7 +505,7 @@ static void test_write_without_origin(void **state)
     }
     free(f);
     bf_samples *back;
-    assert_int_equal(bf_samples_read_merl(path, &back, &err), BF_OK);
+    assert_int_equal(bf_samples_read_merl(path, 0, &back, &err), BF_OK);
     assert_int_equal(back->n, 4);
     for (int i = 0; i < 4; i++) {
         assert_int_equal(back->merl->cell[i], cells[i]);
@@ -501,15 +561,17 @@ static void test_write_errors(void **state)
 
 static void expect_read_error(const char *path, int code, const char *frag1, const char *frag2)
 {
-    bf_samples *s = (bf_samples *)&s; /* must come back NULL */
-    bf_error err;
-    assert_int_equal(bf_samples_read_merl(path, &s, &err), code);
-    assert_null(s);
-    assert_null(strchr(err.msg, '\n'));
-    expect_msg(&err, path);
-    expect_msg(&err, frag1);
-    if (frag2)
-        expect_msg(&err, frag2);
+    for (int keep_raw = 0; keep_raw < 2; keep_raw++) { /* both layouts of the reader */
+        bf_samples *s = (bf_samples *)&s; /* must come back NULL */
+        bf_error err;
+        assert_int_equal(bf_samples_read_merl(path, keep_raw, &s, &err), code);
+        assert_null(s);
+        assert_null(strchr(err.msg, '\n'));
+        expect_msg(&err, path);
+        expect_msg(&err, frag1);
+        if (frag2)
+            expect_msg(&err, frag2);
+    }
 }
 
 static void test_read_errors(void **state)
@@ -562,6 +624,7 @@ int main(void)
         cmocka_unit_test(test_cell_of_inverse),
         cmocka_unit_test(test_horizon_count),
         cmocka_unit_test(test_read_values),
+        cmocka_unit_test(test_cell_geometry),
         cmocka_unit_test(test_round_trip_bytes),
         cmocka_unit_test(test_keep_then_write),
         cmocka_unit_test(test_changed_values),

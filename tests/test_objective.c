@@ -12,7 +12,9 @@
 
 #include <cmocka.h>
 
+#include "brdfit/metrics.h"
 #include "brdfit/objective.h"
+#include "fit/objective_impl.h"
 #include "support.h"
 
 static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, BF_RESIDUAL_LOG,
@@ -306,6 +308,184 @@ static void test_jacobian_fd(void **state)
     for (size_t c = 0; c < sizeof jac_cases / sizeof jac_cases[0]; c++)
         for (int k = 0; k < NFORMS; k++)
             check_jacobian(&jac_cases[c], all_forms[k], 1000 + 17 * c + (uint64_t)k);
+}
+
+/* ---- The fused pass -------------------------------------------------------------------
+ * bf_problem.normal against sums built here from eval's residuals and Jacobian rows
+ * (with the loss applied as solve.h defines it): lobe models and others, mono ties,
+ * fixed parameters, sample weights, MERL cells and robust losses; the same bits for
+ * every thread count. */
+typedef struct normal_case {
+    const char *spec;
+    const char *fix;
+    bf_residual form;
+    const char *loss;
+    int weights, cells;
+} normal_case;
+
+static const normal_case normal_cases[] = {
+    {"lambert", NULL, BF_RESIDUAL_LOG, NULL, 0, 0},
+    {"walter", NULL, BF_RESIDUAL_LOG, NULL, 0, 0},
+    {"walter", "f0=0.04", BF_RESIDUAL_LINEAR, "huber:0.01", 1, 0},
+    {"walter:mono=specular", NULL, BF_RESIDUAL_LOG, NULL, 0, 1},
+    {"cook_torrance:lobes=2", "m_2=0.3", BF_RESIDUAL_CBRT, "cauchy:0.1", 1, 1},
+    {"lafortune:lobes=2,mono=all", NULL, BF_RESIDUAL_RELATIVE, NULL, 0, 0},
+    {"disney", NULL, BF_RESIDUAL_LOG, "soft_l1:0.05", 0, 1},
+    {"oren_nayar:mono=all", "sigma=0.3", BF_RESIDUAL_COSINE, NULL, 1, 0},
+    {"ashikhmin_shirley", NULL, BF_RESIDUAL_LOG, NULL, 0, 1},
+};
+
+/* n samples at MERL cell centres above the horizon (cells spread over the table). */
+static bf_samples *cell_samples(size_t n, uint64_t seed)
+{
+    bf_samples *s = bf_samples_new_cells(n, 3, NULL);
+    assert_non_null(s);
+    ts_rng r = {seed};
+    for (size_t i = 0; i < n;) {
+        int32_t c = (int32_t)(ts_uniform(&r) * BF_MERL_CELLS);
+        double d[4];
+        bf_merl_cell_directions(c, &d[0], &d[1], &d[2], &d[3]);
+        if (d[0] < 89.0 && d[2] < 89.0)
+            s->merl->cell[i++] = c;
+    }
+    return s;
+}
+
+static void check_normal(const normal_case *nc, uint64_t seed)
+{
+    const int C = 3;
+    const size_t n = 9000; /* three chunks of the pass, the last one short */
+    bf_model *m = bf_model_create(nc->spec, C, NULL);
+    assert_non_null(m);
+    bf_samples *s = nc->cells ? cell_samples(n, seed) : random_samples(n, C, seed);
+    ts_rng r = {seed + 1};
+    const int P = bf_model_nfree(m);
+    double *x = malloc((size_t)P * sizeof *x);
+    ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    assert_non_null(g);
+    bf_model_eval(m, x, g, s->value, NULL); /* data from the model, then perturbed */
+    for (size_t v = 0; v < n * (size_t)C; v++)
+        s->value[v] *= 1.0 + 0.3 * (ts_uniform(&r) - 0.5);
+    if (nc->weights) {
+        assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
+        for (size_t i = 0; i < n; i++)
+            s->weight[i] = 0.2 + ts_uniform(&r);
+    }
+    bf_override ov[1];
+    int nov = 0;
+    if (nc->fix)
+        assert_int_equal(bf_override_parse_fix(nc->fix, &ov[nov++], NULL), BF_OK);
+    bf_objective_options oo = {.residual = nc->form, .overrides = ov, .noverrides = nov, .use_weights = 1};
+    bf_error err = {0};
+    bf_objective *obj = bf_objective_new(m, s, &oo, &err);
+    if (!obj)
+        fail_msg("%s: %s", nc->spec, err.msg);
+    const bf_problem *p = bf_objective_problem(obj);
+    bf_loss loss = {BF_LOSS_NONE, 1.0};
+    if (nc->loss)
+        assert_int_equal(bf_loss_parse(nc->loss, &loss, NULL), BF_OK);
+    const int nz = p->npar;
+    double *z = malloc((size_t)nz * sizeof *z);
+    bf_objective_to_internal(obj, x, z);
+
+    /* The reference, from eval. */
+    double *res, *jac;
+    eval_range(p, z, 0, p->nres, &res, &jac);
+    double ssq = 0.0, *tr = calloc((size_t)nz, sizeof *tr), *tj = calloc((size_t)nz * (size_t)nz, sizeof *tj);
+    for (size_t q = 0; q < p->nres; q++) {
+        double dg, gq = bf_loss_residual(&loss, res[q], &dg);
+        ssq += gq * gq;
+        for (int a = 0; a < nz; a++) {
+            double ja = dg * jac[q * (size_t)nz + (size_t)a];
+            tr[a] += gq * ja;
+            for (int b = 0; b < nz; b++)
+                tj[a * nz + b] += ja * dg * jac[q * (size_t)nz + (size_t)b];
+        }
+    }
+    double scale = 0.0;
+    for (int a = 0; a < nz; a++)
+        scale = fmax(scale, sqrt(fabs(tj[a * nz + a])));
+
+    double ssq1, ssq3, ssq0, *tr1 = malloc((size_t)nz * sizeof *tr1), *tr3 = malloc((size_t)nz * sizeof *tr3);
+    double *tj1 = malloc((size_t)nz * (size_t)nz * sizeof *tj1), *tj3 = malloc((size_t)nz * (size_t)nz * sizeof *tj3);
+    assert_non_null(p->normal);
+    assert_int_equal(bf_problem_normal(p, z, &loss, 1, &ssq1, tr1, tj1), 0);
+    assert_int_equal(bf_problem_normal(p, z, &loss, 3, &ssq3, tr3, tj3), 0);
+    assert_int_equal(bf_problem_normal(p, z, &loss, 2, &ssq0, NULL, NULL), 0);
+    /* The same bits for every thread count, and the cost alone as with the sums. */
+    assert_memory_equal(&ssq1, &ssq3, sizeof ssq1);
+    assert_memory_equal(&ssq1, &ssq0, sizeof ssq1);
+    assert_memory_equal(tr1, tr3, (size_t)nz * sizeof *tr1);
+    assert_memory_equal(tj1, tj3, (size_t)nz * (size_t)nz * sizeof *tj1);
+    ts_assert_rel(ssq1, ssq, 1e-12, nc->spec);
+    for (int a = 0; a < nz; a++) {
+        if (fabs(tr1[a] - tr[a]) > 1e-11 * sqrt(ssq) * scale)
+            fail_msg("%s: J'g[%d] %.17g, from eval %.17g", nc->spec, a, tr1[a], tr[a]);
+        for (int b = 0; b < nz; b++)
+            if (fabs(tj1[a * nz + b] - tj[a * nz + b]) > 1e-11 * scale * scale)
+                fail_msg("%s: J'J[%d][%d] %.17g, from eval %.17g", nc->spec, a, b, tj1[a * nz + b], tj[a * nz + b]);
+    }
+    free(tr), free(tj), free(tr1), free(tr3), free(tj1), free(tj3);
+    free(res), free(jac), free(z), free(x);
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
+static void test_normal_pass(void **state)
+{
+    (void)state;
+    for (size_t c = 0; c < sizeof normal_cases / sizeof normal_cases[0]; c++)
+        check_normal(&normal_cases[c], 5000 + 31 * c);
+}
+
+/* The end of a fit: metrics and standard errors from one pass (bf_obj_final) equal, to
+ * the bit, the metrics pass and bf_objective_stderr, with and without scene weights. */
+static void test_final_pass(void **state)
+{
+    (void)state;
+    const char *const specs[] = {"walter", "disney", "lafortune:mono=specular", "oren_nayar"};
+    for (size_t c = 0; c < 4; c++)
+        for (int weighted = 0; weighted < 2; weighted++) {
+            const size_t n = 6000;
+            bf_model *m = bf_model_create(specs[c], 3, NULL);
+            bf_samples *s = c % 2 ? cell_samples(n, 70 + c) : random_samples(n, 3, 70 + c);
+            ts_rng r = {80 + c};
+            const int P = bf_model_nfree(m);
+            double *x = malloc((size_t)P * sizeof *x), *se1 = malloc((size_t)P * sizeof *se1);
+            double *se2 = malloc((size_t)P * sizeof *se2);
+            ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
+            bf_model_eval(m, x, bf_samples_geometry(s, NULL), s->value, NULL);
+            for (size_t v = 0; v < 3 * n; v++)
+                s->value[v] *= 1.0 + 0.2 * (ts_uniform(&r) - 0.5);
+            if (weighted) {
+                s->scene_weight = malloc(n * sizeof *s->scene_weight);
+                for (size_t i = 0; i < n; i++)
+                    s->scene_weight[i] = i % 7 ? ts_uniform(&r) : 0.0;
+            }
+            bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
+            bf_objective *obj = bf_objective_new(m, s, &oo, NULL);
+            assert_non_null(obj);
+            bf_metrics a, b;
+            bf_error err;
+            assert_int_equal(bf_obj_final(obj, x, weighted, P, &a, se1, &err), BF_OK);
+            assert_int_equal(bf_metrics_compute_weighted(m, x, s, P, 1, weighted, &b, &err), BF_OK);
+            assert_int_equal(bf_objective_stderr(obj, x, se2, &err), BF_OK);
+            assert_memory_equal(se1, se2, (size_t)P * sizeof *se1);
+            assert_int_equal(a.n, b.n);
+            assert_int_equal(a.k, b.k);
+            assert_int_equal(a.weighted, b.weighted);
+            assert_int_equal(a.weighted, weighted);
+            const double got[7] = {a.rmse, a.rmse_cos, a.rmse_log, a.rmse_rel, a.max_err, a.aic, a.bic};
+            const double want[7] = {b.rmse, b.rmse_cos, b.rmse_log, b.rmse_rel, b.max_err, b.aic, b.bic};
+            /* The same sums in the same order: the same bits. */
+            assert_memory_equal(got, want, sizeof got);
+            free(x), free(se1), free(se2);
+            bf_objective_free(obj);
+            bf_samples_free(s);
+            bf_model_free(m);
+        }
 }
 
 /* Any row range gives the same residuals and Jacobian rows as the whole set. */
@@ -634,12 +814,18 @@ static void test_solid_angle(void **state)
     assert_true(w[1] > 2 * w[0]);   /* (1, 0) against (0, 0) */
     bf_objective_free(obj);
 
-    /* Without a MERL origin: an error. */
-    bf_samples_drop_origin(s);
+    /* Samples that are not MERL cells (a copy, its cells taken away): an error. */
+    bf_samples *plain = bf_samples_copy(s, NULL, &err);
+    assert_non_null(plain);
+    assert_memory_equal(plain->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
+    free(plain->merl->cell);
+    free(plain->merl);
+    plain->merl = NULL;
     memset(&err, 0, sizeof err);
-    assert_null(bf_objective_new(m, s, &o, &err));
+    assert_null(bf_objective_new(m, plain, &o, &err));
     assert_int_equal(err.code, BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "MERL"));
+    bf_samples_free(plain);
     bf_samples_free(s);
     bf_model_free(m);
 }
@@ -802,6 +988,8 @@ int main(void)
         cmocka_unit_test(test_weights_and_horizon),
         cmocka_unit_test(test_jacobian_fd),
         cmocka_unit_test(test_row_ranges),
+        cmocka_unit_test(test_normal_pass),
+        cmocka_unit_test(test_final_pass),
         cmocka_unit_test(test_parametrisation),
         cmocka_unit_test(test_open_bounds),
         cmocka_unit_test(test_override_parse),

@@ -73,7 +73,7 @@ static void test_select_names_and_indices(void **state)
     assert_string_equal(s->channel_names[0], "b");
     assert_string_equal(s->channel_names[1], "r");
     assert_true(s->value[0] == 2 && s->value[1] == 0 && s->value[2] == 12 && s->value[3] == 10);
-    assert_null(s->merl); /* channels changed: the origin no longer describes the data */
+    assert_null(s->merl->raw); /* channels changed: the raw table no longer describes the data */
     assert_int_equal(r.read, 2);
     assert_int_equal(r.kept, 2);
     bf_samples_free(s);
@@ -180,7 +180,7 @@ static void test_rgb_by_wavelength(void **state)
     give_origin(s);
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     assert_rgb(s, 650, 545, 445);
-    assert_null(s->merl);
+    assert_null(s->merl->raw);
     bf_samples_free(s);
     /* 380..720: the channels outside 400-700 nm count in no band. */
     s = make_spectral(35, 380, 1);
@@ -242,7 +242,7 @@ static void test_luminance(void **state)
     assert_string_equal(s->channel_names[0], "luminance");
     ts_assert_rel(s->value[0], 0.7152 + 2 * 0.0722, 1e-15, "Rec. 709 Y");
     ts_assert_rel(s->value[1], 10 * 0.2126 + 11 * 0.7152 + 12 * 0.0722, 1e-15, "Rec. 709 Y");
-    assert_null(s->merl);
+    assert_null(s->merl->raw);
     bf_samples_free(s);
     /* Weights follow the names, not the order. */
     s = make(1, 3);

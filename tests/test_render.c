@@ -181,8 +181,14 @@ static void test_halfdiff_merl(void **state)
     /* phi_d 270 folds onto 90 by reciprocity. */
     assert_int_equal(bf_render_halfdiff_merl(s, W, W, 270.0, rgb, &err), BF_OK);
     assert_true(px(rgb, W, 20, 7)[0] == (float)0.1);
-    bf_samples_drop_origin(s);
-    assert_int_not_equal(bf_render_halfdiff_merl(s, W, W, 90.0, rgb, &err), BF_OK);
+    /* Samples that are not MERL cells (a copy, its cells taken away): an error. */
+    bf_samples *plain = bf_samples_copy(s, NULL, &err);
+    assert_memory_equal(plain->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
+    free(plain->merl->cell);
+    free(plain->merl);
+    plain->merl = NULL;
+    assert_int_not_equal(bf_render_halfdiff_merl(plain, W, W, 90.0, rgb, &err), BF_OK);
+    bf_samples_free(plain);
     free(rgb);
     bf_samples_free(s);
 }

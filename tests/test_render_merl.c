@@ -24,7 +24,7 @@ static bf_samples *merl_of(const bf_model *m, const double *x, const char *name)
     if (bf_synth_generate(m, x, &so, &gen, &err) != BF_OK)
         fail_msg("%s", err.msg);
     const char *path = ts_tmp_path(name);
-    if (bf_samples_write_merl(gen, path, &err) != BF_OK || bf_samples_read_merl(path, &s, &err) != BF_OK)
+    if (bf_samples_write_merl(gen, path, &err) != BF_OK || bf_samples_read_merl(path, 0, &s, &err) != BF_OK)
         fail_msg("%s", err.msg);
     bf_samples_free(gen);
     return s;

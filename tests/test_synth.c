@@ -366,14 +366,17 @@ static void test_merl_pattern(void **state)
     assert_int_equal(s->n, n_above);
     assert_int_equal(s->n, BF_MERL_CELLS - 361784); /* the count merl.c documents */
     int32_t prev = -1;
+    assert_null(s->theta_i); /* MERL cells, as a table read back */
     for (size_t i = 0; i < s->n; i++) {
-        const int32_t cell = bf_merl_cell_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
-        if (cell <= prev || !above[cell])
+        double dir[4];
+        bf_samples_direction(s, i, dir);
+        const int32_t cell = bf_merl_cell_of(dir[0], dir[1], dir[2], dir[3]);
+        if (cell <= prev || !above[cell] || cell != s->merl->cell[i])
             fail_msg("sample %zu: cell %d after %d (above the horizon: %d)", i, cell, prev,
                      cell >= 0 ? above[cell] : -1);
         double ti, pi_, to, po;
         bf_merl_cell_directions(cell, &ti, &pi_, &to, &po);
-        assert_true(ti == s->theta_i[i] && pi_ == s->phi_i[i] && to == s->theta_o[i] && po == s->phi_o[i]);
+        assert_true(ti == dir[0] && pi_ == dir[1] && to == dir[2] && po == dir[3]);
         for (int c = 0; c < 3; c++)
             ts_assert_rel(s->value[3 * i + (size_t)c], rho[c] / M_PI, 1e-15, "merl Lambert value");
         prev = cell;
@@ -387,11 +390,11 @@ static void test_merl_pattern(void **state)
     bf_error err;
     assert_int_equal(bf_samples_write(s, path, BF_FORMAT_AUTO, &err), BF_OK);
     bf_samples *back = NULL;
-    if (bf_samples_read_merl(path, &back, &err) != BF_OK)
+    if (bf_samples_read_merl(path, 0, &back, &err) != BF_OK)
         fail_msg("reading back: %s", err.msg);
     assert_int_equal(back->n, s->n);
     assert_memory_equal(back->value, s->value, s->n * 3 * sizeof *s->value);
-    assert_memory_equal(back->theta_i, s->theta_i, 4 * s->n * sizeof *s->theta_i);
+    assert_memory_equal(back->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
     remove(path);
     bf_samples_free(back);
     bf_samples_free(s);

@@ -3,13 +3,16 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "big_alloc.h"
+#include "merl_cells.h"
+
 enum { NFIELDS = 11 };
 
 static bf_geometry *alloc_geometry(size_t n, bf_error *err)
 {
     bf_geometry *g = calloc(1, sizeof *g);
     /* One block for all fields; +1 so n = 0 still gets a valid pointer. */
-    double *block = g ? malloc((NFIELDS * n + 1) * sizeof *block) : NULL;
+    double *block = g ? bf_big_malloc((NFIELDS * n + 1) * sizeof *block) : NULL;
     if (!g || !block) {
         free(g);
         free(block);
@@ -98,10 +101,83 @@ bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V
     return g;
 }
 
+bf_geometry *bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_error *err)
+{
+    for (size_t i = 0; i < n; i++)
+        if (cell[i] < 0 || cell[i] >= BF_MERL_CELLS) {
+            bf_fail(err, BF_ERR_RANGE, "sample %zu: MERL cell %ld is out of range", i, (long)cell[i]);
+            return NULL;
+        }
+    bf_geometry *g = calloc(1, sizeof *g);
+    if (!g) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for a geometry");
+        return NULL;
+    }
+    g->n = n;
+    g->cell = cell;
+    return g;
+}
+
 void bf_geometry_free(bf_geometry *g)
 {
     if (g) {
         free(g->lx);
         free(g);
     }
+}
+
+/* Points v's 11 arrays at field[f] + i0, in the struct's order. */
+static void point_fields(bf_geometry *v, double *const field[11], size_t i0)
+{
+    double **dst[11] = {&v->lx, &v->ly, &v->lz, &v->vx, &v->vy, &v->vz,
+                        &v->hx, &v->hy, &v->hz, &v->vh, &v->sin2h};
+    for (int f = 0; f < 11; f++)
+        *dst[f] = field[f] + i0;
+}
+
+const bf_geometry *bf_geometry_view(const bf_geometry *g, size_t i0, size_t cnt, bf_geometry_block *b)
+{
+    bf_geometry *v = &b->view;
+    v->n = cnt;
+    v->cell = NULL;
+    if (bf_geometry_stored(g)) {
+        double *const field[11] = {g->lx, g->ly, g->lz, g->vx, g->vy, g->vz,
+                                   g->hx, g->hy, g->hz, g->vh, g->sin2h};
+        point_fields(v, field, i0);
+        return v;
+    }
+    double *field[11];
+    for (int f = 0; f < 11; f++)
+        field[f] = b->buf + (size_t)f * BF_GEOMETRY_BLOCK;
+    point_fields(v, field, 0);
+    /* bf_merl_cell_vectors, with the (theta_h, theta_d) row's sines and cosines kept:
+     * the samples of a table run through phi_d within a row. */
+    const bf_merl_trig *t = bf_merl_trig_get();
+    int32_t row = -1;
+    double sth = 0.0, cth = 1.0, std_ = 0.0, ctd = 1.0;
+    for (size_t j = 0; j < cnt; j++) {
+        const int32_t cell = g->cell[i0 + j], r = cell / BF_MERL_PD, k = cell - r * BF_MERL_PD;
+        if (r != row) {
+            const int jd = r % BF_MERL_TD, ih = r / BF_MERL_TD;
+            sth = t->sth[ih], cth = t->cth[ih], std_ = t->std_[jd], ctd = t->ctd[jd];
+            row = r;
+        }
+        double L[3], V[3];
+        bf_merl_centre_lv(sth, cth, std_, ctd, t->spd[k], t->cpd[k], L, V);
+        v->lx[j] = L[0], v->ly[j] = L[1], v->lz[j] = L[2];
+        v->vx[j] = V[0], v->vy[j] = V[1], v->vz[j] = V[2];
+        v->hx[j] = sth, v->hy[j] = 0.0, v->hz[j] = cth;
+        v->vh[j] = ctd;
+        v->sin2h[j] = sth * sth;
+    }
+    return v;
+}
+
+int bf_geometry_valid_at(const bf_geometry *g, size_t i)
+{
+    if (bf_geometry_stored(g))
+        return bf_geometry_valid(g, i);
+    double L[3], V[3], H[3], vh, sin2h;
+    bf_merl_cell_vectors(bf_merl_trig_get(), g->cell[i], L, V, H, &vh, &sin2h);
+    return L[2] > 0.0 && V[2] > 0.0;
 }

@@ -427,6 +427,15 @@ static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, 
     free(gi);
 }
 
+static void eval_stored(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                        double *values, double *grad)
+{
+    if (m->inner)
+        eval_mono(m, x, g, i0, i1, values, grad);
+    else
+        m->family->eval(m, x, g, i0, i1, values, grad);
+}
+
 void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
                          size_t i0, size_t i1, double *values, double *grad)
 {
@@ -434,10 +443,18 @@ void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *
         i1 = g->n;
     if (i0 >= i1)
         return;
-    if (m->inner)
-        eval_mono(m, x, g, i0, i1, values, grad);
-    else
-        m->family->eval(m, x, g, i0, i1, values, grad);
+    if (bf_geometry_stored(g)) {
+        eval_stored(m, x, g, i0, i1, values, grad);
+        return;
+    }
+    /* A generated geometry: a block of it at a time (families read stored arrays). */
+    const size_t C = (size_t)m->channels, P = (size_t)m->nfree;
+    bf_geometry_block b;
+    for (size_t a = i0; a < i1; a += BF_GEOMETRY_BLOCK) {
+        size_t cnt = i1 - a < BF_GEOMETRY_BLOCK ? i1 - a : BF_GEOMETRY_BLOCK;
+        const bf_geometry *v = bf_geometry_view(g, a, cnt, &b);
+        eval_stored(m, x, v, 0, cnt, values + (a - i0) * C, grad ? grad + (a - i0) * C * P : NULL);
+    }
 }
 
 void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,

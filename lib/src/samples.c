@@ -1,10 +1,13 @@
-/* Sample sets: allocation, channel names, weights, geometry, filtering. */
+/* Sample sets: allocation, channel names, weights, directions, geometry, filtering. */
 #include "brdfit/samples.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "big_alloc.h"
+#include "merl_cells.h"
 
 static const char *default_name(int C, int c, char *buf, size_t size)
 {
@@ -17,7 +20,8 @@ static const char *default_name(int C, int c, char *buf, size_t size)
     return buf;
 }
 
-bf_samples *bf_samples_new(size_t n, int channels, bf_error *err)
+/* The parts every sample set has: channel names and values. */
+static bf_samples *new_common(size_t n, int channels, bf_error *err)
 {
     if (channels < 1) {
         bf_fail(err, BF_ERR_ARG, "a sample set needs at least one channel");
@@ -29,14 +33,9 @@ bf_samples *bf_samples_new(size_t n, int channels, bf_error *err)
     s->n = n;
     s->channels = channels;
     s->channel_names = calloc((size_t)channels, sizeof *s->channel_names);
-    /* One block for the four angle arrays; +1 keeps n = 0 allocations valid. */
-    s->theta_i = calloc(4 * n + 1, sizeof *s->theta_i);
-    s->value = calloc(n * (size_t)channels + 1, sizeof *s->value);
-    if (!s->channel_names || !s->theta_i || !s->value)
+    s->value = bf_big_calloc(n * (size_t)channels + 1, sizeof *s->value);
+    if (!s->channel_names || !s->value)
         goto nomem;
-    s->phi_i = s->theta_i + n;
-    s->theta_o = s->theta_i + 2 * n;
-    s->phi_o = s->theta_i + 3 * n;
     for (int c = 0; c < channels; c++) {
         char buf[16];
         if (!(s->channel_names[c] = strdup(default_name(channels, c, buf, sizeof buf))))
@@ -49,14 +48,66 @@ nomem:
     return NULL;
 }
 
+bf_samples *bf_samples_new(size_t n, int channels, bf_error *err)
+{
+    bf_samples *s = new_common(n, channels, err);
+    if (!s)
+        return NULL;
+    /* One block for the four angle arrays; +1 keeps n = 0 allocations valid. */
+    if (!(s->theta_i = bf_big_calloc(4 * n + 1, sizeof *s->theta_i))) {
+        bf_samples_free(s);
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
+        return NULL;
+    }
+    s->phi_i = s->theta_i + n;
+    s->theta_o = s->theta_i + 2 * n;
+    s->phi_o = s->theta_i + 3 * n;
+    return s;
+}
+
+bf_samples *bf_samples_new_cells(size_t n, int channels, bf_error *err)
+{
+    bf_samples *s = new_common(n, channels, err);
+    if (!s)
+        return NULL;
+    if (!(s->merl = calloc(1, sizeof *s->merl)) || !(s->merl->cell = bf_big_calloc(n + 1, sizeof *s->merl->cell))) {
+        bf_samples_free(s);
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
+        return NULL;
+    }
+    return s;
+}
+
 void bf_samples_drop_origin(bf_samples *s)
 {
     if (s->merl) {
         free(s->merl->raw);
-        free(s->merl->cell);
-        free(s->merl);
-        s->merl = NULL;
+        s->merl->raw = NULL;
     }
+}
+
+void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4])
+{
+    if (s->theta_i) {
+        dir[0] = s->theta_i + i0;
+        dir[1] = s->phi_i + i0;
+        dir[2] = s->theta_o + i0;
+        dir[3] = s->phi_o + i0;
+        return;
+    }
+    const bf_merl_trig *t = bf_merl_trig_get();
+    double *ti = buf, *pi_ = buf + cnt, *to = buf + 2 * cnt, *po = buf + 3 * cnt;
+    for (size_t j = 0; j < cnt; j++)
+        bf_merl_cell_angles(t, s->merl->cell[i0 + j], &ti[j], &pi_[j], &to[j], &po[j]);
+    dir[0] = ti, dir[1] = pi_, dir[2] = to, dir[3] = po;
+}
+
+void bf_samples_direction(const bf_samples *s, size_t i, double dir[4])
+{
+    const double *d[4];
+    bf_samples_angle_block(s, i, 1, dir, d);
+    for (int k = 0; k < 4; k++)
+        dir[k] = d[k][0];
 }
 
 void bf_samples_free(bf_samples *s)
@@ -71,7 +122,11 @@ void bf_samples_free(bf_samples *s)
     free(s->value);
     free(s->weight);
     free(s->scene_weight);
-    bf_samples_drop_origin(s);
+    if (s->merl) {
+        free(s->merl->raw);
+        free(s->merl->cell);
+        free(s->merl);
+    }
     bf_geometry_free(s->geom);
     free(s);
 }
@@ -90,7 +145,7 @@ int bf_samples_add_weights(bf_samples *s, bf_error *err)
 {
     if (s->weight)
         return BF_OK;
-    if (!(s->weight = malloc((s->n + 1) * sizeof *s->weight)))
+    if (!(s->weight = bf_big_malloc((s->n + 1) * sizeof *s->weight)))
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu weights", s->n);
     for (size_t i = 0; i < s->n; i++)
         s->weight[i] = 1.0;
@@ -101,7 +156,9 @@ const bf_geometry *bf_samples_geometry(bf_samples *s, bf_error *err)
 {
     if (s->geom)
         return s->geom;
-    double *rad = malloc((4 * s->n + 1) * sizeof *rad);
+    if (!s->theta_i)
+        return s->geom = bf_geometry_from_merl_cells(s->n, s->merl->cell, err);
+    double *rad = bf_big_malloc((4 * s->n + 1) * sizeof *rad);
     if (!rad) {
         bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", s->n);
         return NULL;
@@ -121,17 +178,19 @@ int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
     size_t j = 0;
     for (size_t i = 0; i < s->n; i++) {
         if (!keep[i]) {
-            if (s->merl) { /* the written table must not bring the sample back */
+            if (s->merl && s->merl->raw) { /* the written table must not bring the sample back */
                 int32_t cell = s->merl->cell[i];
                 for (int p = 0; p < 3; p++)
                     s->merl->raw[(size_t)p * BF_MERL_CELLS + (size_t)cell] = -1.0;
             }
             continue;
         }
-        s->theta_i[j] = s->theta_i[i];
-        s->phi_i[j] = s->phi_i[i];
-        s->theta_o[j] = s->theta_o[i];
-        s->phi_o[j] = s->phi_o[i];
+        if (s->theta_i) {
+            s->theta_i[j] = s->theta_i[i];
+            s->phi_i[j] = s->phi_i[i];
+            s->theta_o[j] = s->theta_o[i];
+            s->phi_o[j] = s->phi_o[i];
+        }
         memmove(s->value + j * C, s->value + i * C, C * sizeof *s->value);
         if (s->weight)
             s->weight[j] = s->weight[i];
@@ -142,13 +201,15 @@ int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
         j++;
     }
     if (j != s->n) {
-        /* The angle arrays live in one block of 4n: move the three later ones down. */
-        memmove(s->theta_i + j, s->phi_i, j * sizeof *s->theta_i);
-        memmove(s->theta_i + 2 * j, s->theta_o, j * sizeof *s->theta_i);
-        memmove(s->theta_i + 3 * j, s->phi_o, j * sizeof *s->theta_i);
-        s->phi_i = s->theta_i + j;
-        s->theta_o = s->theta_i + 2 * j;
-        s->phi_o = s->theta_i + 3 * j;
+        if (s->theta_i) {
+            /* The angle arrays live in one block of 4n: move the three later ones down. */
+            memmove(s->theta_i + j, s->phi_i, j * sizeof *s->theta_i);
+            memmove(s->theta_i + 2 * j, s->theta_o, j * sizeof *s->theta_i);
+            memmove(s->theta_i + 3 * j, s->phi_o, j * sizeof *s->theta_i);
+            s->phi_i = s->theta_i + j;
+            s->theta_o = s->theta_i + 2 * j;
+            s->phi_o = s->theta_i + 3 * j;
+        }
         s->n = j;
         bf_geometry_free(s->geom);
         s->geom = NULL;
@@ -162,9 +223,16 @@ bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_e
     size_t n = 0;
     for (size_t i = 0; i < s->n; i++)
         n += !keep || keep[i];
-    bf_samples *o = bf_samples_new(n, s->channels, err);
+    bf_samples *o = s->theta_i ? bf_samples_new(n, s->channels, err) : bf_samples_new_cells(n, s->channels, err);
     if (!o)
         return NULL;
+    /* MERL cells are per-sample data (solid-angle weights use them), whichever way the
+     * directions are held. */
+    if (s->merl && !o->merl &&
+        (!(o->merl = calloc(1, sizeof *o->merl)) || !(o->merl->cell = bf_big_calloc(n + 1, sizeof *o->merl->cell)))) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+        goto fail;
+    }
     for (size_t c = 0; c < C; c++)
         if (bf_samples_set_channel_name(o, (int)c, s->channel_names[c], err) != BF_OK)
             goto fail;
@@ -185,10 +253,14 @@ bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_e
     for (size_t i = 0; i < s->n; i++) {
         if (keep && !keep[i])
             continue;
-        o->theta_i[j] = s->theta_i[i];
-        o->phi_i[j] = s->phi_i[i];
-        o->theta_o[j] = s->theta_o[i];
-        o->phi_o[j] = s->phi_o[i];
+        if (s->theta_i) {
+            o->theta_i[j] = s->theta_i[i];
+            o->phi_i[j] = s->phi_i[i];
+            o->theta_o[j] = s->theta_o[i];
+            o->phi_o[j] = s->phi_o[i];
+        }
+        if (s->merl)
+            o->merl->cell[j] = s->merl->cell[i];
         memcpy(o->value + j * C, s->value + i * C, C * sizeof *o->value);
         if (s->weight)
             o->weight[j] = s->weight[i];

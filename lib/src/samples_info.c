@@ -54,33 +54,41 @@ int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
     for (size_t c = 0; c < C; c++)
         info->value[c] = none;
     const double deg = 180.0 / M_PI;
-    for (size_t i = 0; i < s->n; i++) {
-        const double *v = s->value + i * C;
-        int nonfinite = 0, negative = 0, zero = 0;
-        for (size_t c = 0; c < C; c++) {
-            if (!isfinite(v[c])) {
-                nonfinite = 1;
+    bf_geometry_block gb;
+    double abuf[4 * BF_GEOMETRY_BLOCK];
+    for (size_t b0 = 0; b0 < s->n; b0 += BF_GEOMETRY_BLOCK) {
+        size_t cnt = s->n - b0 < BF_GEOMETRY_BLOCK ? s->n - b0 : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(g, b0, cnt, &gb);
+        const double *dir[4];
+        bf_samples_angle_block(s, b0, cnt, abuf, dir);
+        for (size_t j = 0; j < cnt; j++) {
+            const double *v = s->value + (b0 + j) * C;
+            int nonfinite = 0, negative = 0, zero = 0;
+            for (size_t c = 0; c < C; c++) {
+                if (!isfinite(v[c])) {
+                    nonfinite = 1;
+                    continue;
+                }
+                negative |= v[c] < 0.0;
+                zero |= v[c] == 0.0;
+                widen(&info->value[c], v[c]);
+                nfinite[c]++;
+                double t = sum[c] + v[c];
+                comp[c] += fabs(sum[c]) >= fabs(v[c]) ? (sum[c] - t) + v[c] : (v[c] - t) + sum[c];
+                sum[c] = t;
+            }
+            info->nonfinite += nonfinite;
+            info->negative += negative;
+            info->zero += zero;
+            if (!bf_geometry_valid(gv, j)) {
+                info->below_horizon++;
                 continue;
             }
-            negative |= v[c] < 0.0;
-            zero |= v[c] == 0.0;
-            widen(&info->value[c], v[c]);
-            nfinite[c]++;
-            double t = sum[c] + v[c];
-            comp[c] += fabs(sum[c]) >= fabs(v[c]) ? (sum[c] - t) + v[c] : (v[c] - t) + sum[c];
-            sum[c] = t;
+            widen(&info->theta_i, dir[0][j]);
+            widen(&info->theta_o, dir[2][j]);
+            widen(&info->theta_h, atan2(sqrt(gv->sin2h[j]), gv->hz[j]) * deg);
+            widen(&info->theta_d, theta_d(gv, j) * deg);
         }
-        info->nonfinite += nonfinite;
-        info->negative += negative;
-        info->zero += zero;
-        if (!bf_geometry_valid(g, i)) {
-            info->below_horizon++;
-            continue;
-        }
-        widen(&info->theta_i, s->theta_i[i]);
-        widen(&info->theta_o, s->theta_o[i]);
-        widen(&info->theta_h, atan2(sqrt(g->sin2h[i]), g->hz[i]) * deg);
-        widen(&info->theta_d, theta_d(g, i) * deg);
     }
     for (size_t c = 0; c < C; c++)
         info->mean[c] = nfinite[c] ? (sum[c] + comp[c]) / (double)nfinite[c] : NAN;

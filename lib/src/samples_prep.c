@@ -32,12 +32,15 @@
 #include <string.h>
 #include <strings.h>
 
+#include "big_alloc.h"
+#include "merl_cells.h"
+
 /* ---- Channels ---------------------------------------------------------------- */
 
 /* New channel arrays for n samples and K channels; names zeroed. */
 static int alloc_channels(size_t n, int K, double **vals, char ***names, bf_error *err)
 {
-    *vals = calloc(n * (size_t)K + 1, sizeof **vals);
+    *vals = bf_big_calloc(n * (size_t)K + 1, sizeof **vals);
     *names = calloc((size_t)K, sizeof **names);
     if (!*vals || !*names) {
         free(*vals);
@@ -334,6 +337,15 @@ enum { STRATA_H = 16, STRATA_D = 8 };
 
 /* Stratum of a direction pair: theta_h in 16 bins of sqrt(theta_h / 90 deg) (dense
  * near the specular peak, like MERL's table), theta_d in 8 linear bins over 0-90 deg. */
+static int stratum_of_half(double th, double td)
+{
+    int ih = (int)(sqrt(fmax(th, 0.0) / (M_PI / 2)) * STRATA_H);
+    int id = (int)(td / (M_PI / 2) * STRATA_D);
+    ih = ih < 0 ? 0 : ih >= STRATA_H ? STRATA_H - 1 : ih;
+    id = id < 0 ? 0 : id >= STRATA_D ? STRATA_D - 1 : id;
+    return ih * STRATA_D + id;
+}
+
 static int stratum_of(double ti, double pi_, double to, double po)
 {
     const double d = M_PI / 180.0;
@@ -347,11 +359,17 @@ static int stratum_of(double ti, double pi_, double to, double po)
         H[k] /= len;
     double th = atan2(hypot(H[0], H[1]), H[2]);
     double td = acos(fmin(1.0, fmax(-1.0, L[0] * H[0] + L[1] * H[1] + L[2] * H[2])));
-    int ih = (int)(sqrt(fmax(th, 0.0) / (M_PI / 2)) * STRATA_H);
-    int id = (int)(td / (M_PI / 2) * STRATA_D);
-    ih = ih < 0 ? 0 : ih >= STRATA_H ? STRATA_H - 1 : ih;
-    id = id < 0 ? 0 : id >= STRATA_D ? STRATA_D - 1 : id;
-    return ih * STRATA_D + id;
+    return stratum_of_half(th, td);
+}
+
+/* The strata of MERL cells by (theta_h, theta_d) row, from the centres' angles: a
+ * table's million cells then cost a lookup each. */
+static void cell_strata(unsigned char table[BF_MERL_TH * BF_MERL_TD])
+{
+    for (int i = 0; i < BF_MERL_TH; i++)
+        for (int j = 0; j < BF_MERL_TD; j++)
+            table[i * BF_MERL_TD + j] =
+                (unsigned char)stratum_of_half(bf_merl_centre_theta_h(i), bf_merl_centre_theta_d(j));
 }
 
 /* splitmix64 (Steele, Lea and Flood 2014): one 64-bit state, every seed (0 included)
@@ -373,22 +391,25 @@ static double uniform01(uint64_t *x) { return (double)(splitmix64(x) >> 11) * 0x
  * (TAOCP 3.4.2, Algorithm S) walks the samples in order, keeping each with probability
  * (still needed) / (still to see): a uniform random subset of exactly the quota, in the
  * original order, from one splitmix64 stream seeded with `seed`. */
-static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
+int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err)
 {
     enum { K = STRATA_H * STRATA_D };
     const size_t n = s->n;
     if (n > UINT32_MAX) /* N * count must fit in 64 bits */
         return bf_fail(err, BF_ERR_ARG, "too many samples (%zu) to subsample", n);
-    unsigned char *st = malloc(n + 1), *keep = malloc(n + 1);
-    if (!st || !keep) {
-        free(st);
-        free(keep);
+    if (N >= n)
+        return bf_fail(err, BF_ERR_ARG, "subsample of %zu from %zu samples: nothing to choose", N, n);
+    unsigned char *st = bf_big_malloc(n + 1);
+    if (!st)
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for subsampling %zu samples", n);
-    }
     size_t count[K] = {0}, quota[K], seen[K] = {0};
     uint64_t rem[K];
+    unsigned char rows[BF_MERL_TH * BF_MERL_TD];
+    if (!s->theta_i)
+        cell_strata(rows);
     for (size_t i = 0; i < n; i++) {
-        st[i] = (unsigned char)stratum_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
+        st[i] = (unsigned char)(s->theta_i ? stratum_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i])
+                                           : rows[s->merl->cell[i] / BF_MERL_PD]);
         count[st[i]]++;
     }
     size_t nonempty = 0;
@@ -420,8 +441,18 @@ static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
         quota[k] -= keep[i];
         seen[k]++;
     }
-    int rc = bf_samples_keep(s, keep, err);
     free(st);
+    return BF_OK;
+}
+
+static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
+{
+    unsigned char *keep = bf_big_malloc(s->n + 1);
+    if (!keep)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for subsampling %zu samples", s->n);
+    int rc = bf_samples_subsample_mask(s, N, seed, keep, err);
+    if (rc == BF_OK)
+        rc = bf_samples_keep(s, keep, err);
     free(keep);
     return rc;
 }
@@ -444,14 +475,29 @@ int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_
         return rc;
 
     const size_t C = (size_t)s->channels;
-    unsigned char *keep = malloc(s->n + 1);
+    unsigned char *keep = bf_big_malloc(s->n + 1);
     if (!keep)
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples", s->n);
     size_t kept = 0;
+    const bf_merl_trig *trig = s->theta_i ? NULL : bf_merl_trig_get();
     for (size_t i = 0; i < s->n; i++) {
         double *v = s->value + i * C;
-        const double ti = s->theta_i[i], to = s->theta_o[i];
-        int finite = isfinite(ti) && isfinite(to) && isfinite(s->phi_i[i]) && isfinite(s->phi_o[i]);
+        double ti = 0.0, to = 0.0;
+        int finite = 1, below;
+        if (s->theta_i) {
+            ti = s->theta_i[i], to = s->theta_o[i];
+            finite = isfinite(ti) && isfinite(to) && isfinite(s->phi_i[i]) && isfinite(s->phi_o[i]);
+            below = below_horizon(ti) || below_horizon(to);
+        } else { /* a cell centre: the horizon as its generated geometry decides it */
+            double L[3], V[3], H[3], vh, s2h;
+            bf_merl_cell_vectors(trig, s->merl->cell[i], L, V, H, &vh, &s2h);
+            below = !(L[2] > 0.0 && V[2] > 0.0);
+            if (!below && p->max_theta > 0.0) {
+                double dir[4];
+                bf_samples_direction(s, i, dir);
+                ti = dir[0], to = dir[2];
+            }
+        }
         int negative = 0;
         for (size_t c = 0; c < C; c++) {
             finite &= isfinite(v[c]) != 0;
@@ -460,7 +506,7 @@ int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_
         keep[i] = 0;
         if (!finite)
             r.nonfinite++;
-        else if (below_horizon(ti) || below_horizon(to))
+        else if (below)
             r.below_horizon++;
         else if (p->max_theta > 0.0 && (ti > p->max_theta || to > p->max_theta))
             r.above_max_theta++;

@@ -24,7 +24,24 @@ typedef struct bf_fit_options {
     const double *start; /* NULL: data-driven; else a model vector to start from */
     int weighted_metrics; /* 1: the result's metrics use the samples' weights (a scene's
                              directions, scene.h); 0: every sample counts alike */
+    /* Presolve: every start is first solved on a seeded stratified subsample of this
+     * many samples, and the best of them then on all samples (the result is a solution
+     * of the whole set; the presolve only saves passes over it; that last solve stops at
+     * a relative cost change of 1e-9 unless solver.function_tolerance says otherwise).
+     * 0: automatic (BF_FIT_PRESOLVE_SAMPLES when the data has at least
+     * BF_FIT_PRESOLVE_MIN samples); < 0: never. */
+    long presolve;
 } bf_fit_options;
+
+#define BF_FIT_PRESOLVE_SAMPLES 32768
+#define BF_FIT_PRESOLVE_MIN (4 * BF_FIT_PRESOLVE_SAMPLES)
+
+/* What the presolve did (samples 0: none ran). */
+typedef struct bf_presolve_info {
+    size_t samples;
+    int iterations, evaluations;
+    double seconds;
+} bf_presolve_info;
 
 typedef struct bf_fit_result {
     bf_model *model;        /* configured with the samples' channel count (owned) */
@@ -32,7 +49,8 @@ typedef struct bf_fit_result {
     double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
     unsigned char *fixed;   /* 1 where fixed */
     bf_metrics metrics;
-    bf_solution solution;   /* of the best start */
+    bf_solution solution;   /* of the best start (the solve on all samples) */
+    bf_presolve_info presolve;
     int starts;             /* starts run */
     size_t samples;         /* samples fitted (metrics.n counts samples x channels) */
     int threads;            /* the solver's thread count, as run */

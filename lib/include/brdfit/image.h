@@ -1,5 +1,10 @@
-/* Image files through OpenImageIO (C++ only, behind a small extern "C" shim). The
- * format follows the extension: .png (8-bit sRGB) or .exr (linear 32-bit float). */
+/* Image files through OpenImageIO. The format follows the extension: .png (8-bit sRGB)
+ * or .exr (linear 32-bit float). Reading and writing files goes through a separately
+ * loaded module, libbrdfit-oiio.so, loaded on the first call that needs it (so programs
+ * that use no images never load OpenImageIO); it is looked for in $BRDFIT_PLUGIN_DIR if
+ * set, else beside the executable as installed, the build tree, the install directory.
+ * If it cannot be loaded, those calls fail with BF_ERR_IO ("image support ... could not
+ * be loaded: ..."). bf_image_format_of, bf_srgb_encode and bf_image_free need no module. */
 #ifndef BRDFIT_IMAGE_H
 #define BRDFIT_IMAGE_H
 

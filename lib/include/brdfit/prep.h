@@ -45,6 +45,10 @@ typedef struct bf_prep_report {
  * spectral data, no sample left. */
 int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
 
+/* The seeded stratified subsample of bf_prep.subsample as a mask: keep[i] = 1 for the
+ * N samples chosen (N < s->n), 0 for the others; s is not changed. */
+int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err);
+
 /* ---- What a data set holds (brdfit info) --------------------------------------- */
 typedef struct bf_range { double lo, hi; } bf_range;
 

@@ -3,6 +3,7 @@
 #ifndef BRDFIT_SOLVE_H
 #define BRDFIT_SOLVE_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -11,6 +12,8 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+struct bf_loss;
 
 typedef struct bf_problem {
     size_t nres; /* residuals */
@@ -25,6 +28,16 @@ typedef struct bf_problem {
     /* Optional inequality constraint c(x) <= 0 with its gradient (grad may be NULL), used
      * by the NLopt methods that accept constraints (LD_SLSQP, LD_MMA, GN_ISRES). */
     double (*constraint)(void *ctx, const double *x, double *grad);
+    /* Optional fused pass, which every back end prefers to eval: one sweep over all
+     * residuals that never stores the Jacobian (a full MERL table has 3.3 M residuals).
+     * With each residual r made g = bf_loss_residual(loss, r) and J its Jacobian row (of
+     * g): *ssq = sum g^2; jtr (NULL: not wanted) = sum g J (npar); jtj (NULL: not
+     * wanted) = sum J'J (npar x npar, row-major, both triangles). The result must not
+     * depend on `threads` (sum fixed chunks in a fixed order). A non-finite residual or
+     * Jacobian entry shows as a non-finite *ssq or diagonal. Returns 0, or non-zero to
+     * abort (out of memory). NULL: the back ends build the same sums from eval. */
+    int (*normal)(void *ctx, const double *x, const struct bf_loss *loss, int threads, double *ssq,
+                  double *jtr, double *jtj);
 } bf_problem;
 
 typedef enum bf_loss_kind {
@@ -45,8 +58,35 @@ typedef struct bf_loss {
 
 /* Parses "huber:0.1", "cauchy", "none" ... (scale 1 when omitted). */
 int bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
-/* rho(s) and rho'(s). */
+/* rho(s) and rho'(s); rho' is floored at DBL_MIN, so a residual never loses its weight
+ * entirely. */
 double bf_loss_eval(const bf_loss *l, double s, double *d1);
+
+/* The residual every back end minimises in place of r: g = sign(r) sqrt(rho(r^2)), so
+ * that 1/2 sum g^2 is the robust cost 1/2 sum rho(r^2) and sum g dg/dx its exact
+ * gradient, while the Gauss-Newton model of g stays positive semi-definite (a loss on
+ * the squared norm of a whole block, as ceres::LossFunction applies it, would be
+ * rho(sum r^2)). *dg = dg/dr = rho'(r^2) |r| / g (1 at r = 0). l NULL or kind NONE: g = r. */
+static inline double bf_loss_residual(const bf_loss *l, double r, double *dg)
+{
+    if (!l || l->kind == BF_LOSS_NONE) {
+        *dg = 1.0;
+        return r;
+    }
+    double d1, g = sqrt(bf_loss_eval(l, r * r, &d1));
+    if (!(g > 0.0)) {
+        *dg = 1.0;
+        return r;
+    }
+    *dg = d1 * fabs(r) / g;
+    return copysign(g, r);
+}
+
+/* The fused sums of bf_problem.normal for any problem: its own normal when it has one,
+ * else built from eval over fixed chunks of residuals on `threads` threads (summed in
+ * chunk order, so independent of the thread count). Same contract as normal. */
+int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq,
+                      double *jtr, double *jtj);
 
 typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
 

@@ -35,6 +35,8 @@
  *     every value clamped inside its bounds (open bounds: just inside). */
 #include "brdfit/fit.h"
 
+#include "big_alloc.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -114,11 +116,47 @@ static double width_value(width_kind w, double h)
     }
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of q[0 .. n-1] (q is reordered): Hoare's selection with a
+ * median-of-three pivot, O(n) where a sort would be O(n log n), and the same value a sort
+ * would put at k. */
+static double select_kth(double *q, size_t n, size_t k)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
+    size_t lo = 0, hi = n - 1;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        double a = q[lo], b = q[mid], c = q[hi];
+        double pivot = a < b ? (b < c ? b : a < c ? c : a) : (a < c ? a : b < c ? c : b);
+        size_t i = lo, j = hi;
+        while (i <= j) {
+            while (q[i] < pivot)
+                i++;
+            while (q[j] > pivot)
+                j--;
+            if (i <= j) {
+                double t = q[i];
+                q[i] = q[j];
+                q[j] = t;
+                i++;
+                if (j == 0)
+                    break;
+                j--;
+            }
+        }
+        if (k <= j)
+            hi = j;
+        else if (k >= i)
+            lo = i;
+        else
+            return q[k];
+    }
+    return q[k];
 }
+
+/* Per sample, one byte: its theta_h bin (bits 0-5) and whether it is far from the
+ * specular direction (FAR); INVALID for a sample that is below the horizon or not
+ * finite. */
+#define FAR 0x80u
+#define INVALID 0xffu
 
 static int bin_of(double th)
 {
@@ -273,38 +311,54 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
 
     int rc = BF_OK;
     size_t n = s->n, nvalid = 0, nfar = 0;
-    double *th = malloc(n * sizeof *th + 1);
+    unsigned char *code = bf_big_malloc(n + 1);
     double *q = malloc((QUANTILE_CAP + 1) * sizeof *q);
     double *diffuse = calloc((size_t)C, sizeof *diffuse);
     double *xs = malloc((size_t)P * sizeof *xs + 1), *xb = malloc((size_t)P * sizeof *xb + 1);
     double *xk = malloc((size_t)P * sizeof *xk + 1);
     double *ev = NULL, *f1 = NULL;
     bf_geometry *sg = NULL;
-    if (!th || !q || !diffuse || !xs || !xb || !xk) {
+    if (!code || !q || !diffuse || !xs || !xb || !xk) {
         rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
         goto done;
     }
-    for (size_t i = 0; i < n; i++) {
-        int ok = bf_geometry_valid(g, i);
-        for (int c = 0; c < C && ok; c++)
-            ok = isfinite(s->value[i * C + c]);
-        th[i] = ok ? atan2(sqrt(g->sin2h[i]), g->hz[i]) : -1.0;
-        nvalid += ok;
-        nfar += ok && th[i] > DIFFUSE_MIN_THETA_H;
+    bf_geometry_block gb;
+    for (size_t ib = 0; ib < n; ib += BF_GEOMETRY_BLOCK) {
+        size_t cnt = n - ib < BF_GEOMETRY_BLOCK ? n - ib : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(g, ib, cnt, &gb);
+        double last_s2 = NAN, last_hz = NAN, th = 0.0;
+        for (size_t q = 0; q < cnt; q++) {
+            size_t i = ib + q;
+            int ok = bf_geometry_valid(gv, q);
+            for (int c = 0; c < C && ok; c++)
+                ok = isfinite(s->value[i * C + c]);
+            if (!ok) {
+                code[i] = INVALID;
+                continue;
+            }
+            /* Samples in a row often share H (a MERL table runs through phi_d). */
+            if (gv->sin2h[q] != last_s2 || gv->hz[q] != last_hz) {
+                last_s2 = gv->sin2h[q], last_hz = gv->hz[q];
+                th = atan2(sqrt(last_s2), last_hz);
+            }
+            int far = th > DIFFUSE_MIN_THETA_H;
+            code[i] = (unsigned char)(bin_of(th) | (far ? FAR : 0u));
+            nvalid++;
+            nfar += (size_t)far;
+        }
     }
     if (nvalid == 0)
         goto clamp; /* nothing to learn from: defaults */
 
     /* 1. Diffuse level per channel, from a strided subset of at most QUANTILE_CAP. */
-    double far_min = nfar > 0 ? DIFFUSE_MIN_THETA_H : -0.5;
+    const unsigned char far_mask = nfar > 0 ? FAR : 0u; /* none far: every valid sample */
     size_t pool = nfar > 0 ? nfar : nvalid, stride = (pool + QUANTILE_CAP - 1) / QUANTILE_CAP;
     for (int c = 0; c < C; c++) {
         size_t k = 0, seen = 0;
         for (size_t i = 0; i < n && k < QUANTILE_CAP; i++)
-            if (th[i] > far_min && seen++ % stride == 0)
+            if (code[i] != INVALID && (code[i] & far_mask) == far_mask && seen++ % stride == 0)
                 q[k++] = s->value[i * C + c] * M_PI;
-        qsort(q, k, sizeof *q, cmp_double);
-        diffuse[c] = q[(size_t)(0.15 * (double)(k - 1) + 0.5)];
+        diffuse[c] = select_kth(q, k, (size_t)(0.15 * (double)(k - 1) + 0.5));
     }
     for (int i = 0; i < np; i++) {
         if (is_diffuse(bf_model_param(m, i)))
@@ -327,12 +381,12 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
     double sum[NBINS] = {0};
     size_t cnt[NBINS] = {0};
     for (size_t i = 0; i < n; i++) {
-        if (th[i] < 0.0)
+        if (code[i] == INVALID)
             continue;
         double v = 0.0;
         for (int c = 0; c < C; c++)
             v += s->value[i * C + c] / C;
-        int b = bin_of(th[i]);
+        int b = code[i] & 0x3f;
         sum[b] += v - dmean;
         cnt[b]++;
     }
@@ -415,13 +469,14 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
     double *V = L + 3 * (SHAPE_CAP + 2);
     size_t in_last = 0, in_rest = 0;
     for (size_t i = 0; i < n && ns < SHAPE_CAP; i++) {
-        if (th[i] < 0.0)
+        if (code[i] == INVALID)
             continue;
-        int b = bin_of(th[i]);
+        int b = code[i] & 0x3f;
         if (b == last ? in_last++ % last_stride != 0 : b > last && in_rest++ % rest_stride != 0)
             continue;
-        L[3 * ns] = g->lx[i], L[3 * ns + 1] = g->ly[i], L[3 * ns + 2] = g->lz[i];
-        V[3 * ns] = g->vx[i], V[3 * ns + 1] = g->vy[i], V[3 * ns + 2] = g->vz[i];
+        const bf_geometry *gv = bf_geometry_view(g, i, 1, &gb);
+        L[3 * ns] = gv->lx[0], L[3 * ns + 1] = gv->ly[0], L[3 * ns + 2] = gv->lz[0];
+        V[3 * ns] = gv->vx[0], V[3 * ns + 1] = gv->vy[0], V[3 * ns + 2] = gv->vz[0];
         for (int c = 0; c < C; c++)
             ev[ns * C + c] = s->value[i * C + c];
         ns++;
@@ -471,7 +526,7 @@ clamp:
     }
 done:
     bf_geometry_free(sg);
-    free(th);
+    free(code);
     free(q);
     free(diffuse);
     free(xs);

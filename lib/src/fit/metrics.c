@@ -13,14 +13,12 @@
 #include <string.h>
 
 #include "brdfit/metrics.h"
-#include "objective_impl.h"
+#include "metrics_impl.h"
 #include "parallel.h"
 
 /* Sums over one chunk of samples, combined in chunk order afterwards. */
 typedef struct partial {
-    double ssr, scos, slog, srel, maxe;
-    double wsum, wrel; /* sums of the weights behind ssr.. and srel */
-    size_t n, nrel;
+    bf_metric_sums s;
     int failed; /* out of memory */
 } partial;
 
@@ -35,47 +33,51 @@ typedef struct job {
     partial *part;
 } job;
 
-enum { CHUNK = 8192 }; /* samples: a value buffer that stays in cache */
+void bf_metric_chunk(bf_metric_sums *p, const double *f, const double *mv, const double *dl, const double *cs,
+                     const double *w, size_t cnt, int C)
+{
+    /* Summed on this thread's stack and stored once: neighbouring chunks' sums share
+     * cache lines. */
+    bf_metric_sums sums = *p;
+    for (size_t i = 0; i < cnt; i++) {
+        if (!(cs[i] > 0.0))
+            continue;
+        /* w * x with w = 1 is x exactly: unweighted results are unchanged. */
+        const double wi = w ? (w[i] > 0.0 ? w[i] : 0.0) : 1.0;
+        if (!(wi > 0.0))
+            continue;
+        for (int ch = 0; ch < C; ch++) {
+            const size_t r = i * (size_t)C + (size_t)ch;
+            if (dl)
+                bf_metric_add_dl(&sums, f[r], mv[r], cs[i], wi, dl[r]);
+            else
+                bf_metric_add(&sums, f[r], mv[r], cs[i], wi);
+        }
+    }
+    *p = sums;
+}
 
 static void chunk_sums(void *ctx, size_t c)
 {
     job *j = ctx;
     partial *p = &j->part[c];
-    size_t i0 = c * CHUNK, i1 = i0 + CHUNK < j->n ? i0 + CHUNK : j->n;
+    size_t i0 = c * BF_METRIC_CHUNK, i1 = i0 + BF_METRIC_CHUNK < j->n ? i0 + BF_METRIC_CHUNK : j->n;
     const int C = j->C;
-    double *f = malloc((i1 - i0) * (size_t)C * sizeof *f);
+    double *f = malloc((i1 - i0) * ((size_t)C + 1) * sizeof *f);
     if (!f) {
         p->failed = 1;
         return;
     }
-    bf_model_eval_range(j->m, j->x, j->g, i0, i1, f, NULL);
-    for (size_t i = i0; i < i1; i++) {
-        if (!bf_geometry_valid(j->g, i))
-            continue;
-        /* w * x with w = 1 is x exactly: unweighted results are unchanged. */
-        double w = j->weight ? (j->weight[i] > 0.0 ? j->weight[i] : 0.0) : 1.0;
-        if (!(w > 0.0))
-            continue;
-        double cs = j->g->lz[i];
-        for (int ch = 0; ch < C; ch++) {
-            size_t r = i * (size_t)C + (size_t)ch;
-            double fv = f[(i - i0) * (size_t)C + (size_t)ch], mv = j->value[r], d = fv - mv;
-            p->ssr += w * (d * d);
-            p->scos += w * ((d * cs) * (d * cs));
-            double dl = bf_obj_log1p(fv * cs) - bf_obj_log1p(mv * cs);
-            p->slog += w * (dl * dl);
-            p->wsum += w;
-            if (mv != 0.0) {
-                double q = d / fabs(mv);
-                p->srel += w * (q * q);
-                p->wrel += w;
-                p->nrel++;
-            }
-            if (fabs(d) > p->maxe)
-                p->maxe = fabs(d);
-            p->n++;
-        }
+    double *cs = f + (i1 - i0) * (size_t)C;
+    bf_geometry_block gb;
+    for (size_t ib = i0; ib < i1; ib += BF_GEOMETRY_BLOCK) {
+        size_t cnt = i1 - ib < BF_GEOMETRY_BLOCK ? i1 - ib : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(j->g, ib, cnt, &gb);
+        bf_model_eval_range(j->m, j->x, gv, 0, cnt, f + (ib - i0) * (size_t)C, NULL);
+        for (size_t q = 0; q < cnt; q++)
+            cs[ib - i0 + q] = bf_geometry_valid(gv, q) ? gv->lz[q] : 0.0;
     }
+    bf_metric_chunk(&p->s, f, j->value + i0 * (size_t)C, NULL, cs, j->weight ? j->weight + i0 : NULL, i1 - i0, C);
     free(f);
 }
 
@@ -96,43 +98,54 @@ int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *
     const bf_geometry *g = bf_samples_geometry(s, err);
     if (!g)
         return err ? (int)err->code : BF_ERR_NOMEM;
-    size_t nchunks = (s->n + CHUNK - 1) / CHUNK;
+    size_t nchunks = (s->n + BF_METRIC_CHUNK - 1) / BF_METRIC_CHUNK;
     job j = {m, x, g, s->value, weighted ? s->scene_weight : NULL, s->n, C, calloc(nchunks + 1, sizeof(partial))};
     if (!j.part)
         return bf_fail(err, BF_ERR_NOMEM, "metrics: out of memory");
     bf_parallel_for(nchunks, threads, chunk_sums, &j);
-    partial t = {0};
+    bf_metric_sums t = {0};
+    int failed = 0;
     for (size_t c = 0; c < nchunks; c++) {
-        const partial *p = &j.part[c];
-        t.failed |= p->failed;
-        t.ssr += p->ssr;
-        t.scos += p->scos;
-        t.slog += p->slog;
-        t.srel += p->srel;
-        t.wsum += p->wsum;
-        t.wrel += p->wrel;
-        t.maxe = p->maxe > t.maxe ? p->maxe : t.maxe;
-        t.n += p->n;
-        t.nrel += p->nrel;
+        failed |= j.part[c].failed;
+        bf_metric_sums_add(&t, &j.part[c].s);
     }
     free(j.part);
-    if (t.failed)
+    if (failed)
         return bf_fail(err, BF_ERR_NOMEM, "metrics: out of memory for %zu values", s->n * (size_t)C);
-    if (t.n == 0)
+    return bf_metric_sums_finish(&t, k, j.weight != NULL, out, err);
+}
+
+void bf_metric_sums_add(bf_metric_sums *t, const bf_metric_sums *p)
+{
+    t->ssr += p->ssr;
+    t->scos += p->scos;
+    t->slog += p->slog;
+    t->srel += p->srel;
+    t->wsum += p->wsum;
+    t->wrel += p->wrel;
+    t->maxe = p->maxe > t->maxe ? p->maxe : t->maxe;
+    t->n += p->n;
+    t->nrel += p->nrel;
+}
+
+int bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metrics *out, bf_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (t->n == 0)
         return bf_fail(err, BF_ERR_ARG, "metrics: no samples above the horizon%s",
-                       j.weight ? " with a positive weight" : "");
+                       weighted ? " with a positive weight" : "");
     /* Unweighted, wsum counts the values exactly (sums of 1.0), so dn is n. */
-    double dn = (double)t.n, wn = t.wsum, msr = t.ssr / wn;
+    double dn = (double)t->n, wn = t->wsum, msr = t->ssr / wn;
     if (msr < DBL_MIN)
         msr = DBL_MIN;
-    out->n = t.n;
+    out->n = t->n;
     out->k = k;
-    out->weighted = j.weight != NULL;
-    out->rmse = sqrt(t.ssr / wn);
-    out->rmse_cos = sqrt(t.scos / wn);
-    out->rmse_log = sqrt(t.slog / wn);
-    out->rmse_rel = t.nrel ? sqrt(t.srel / t.wrel) : NAN;
-    out->max_err = t.maxe;
+    out->weighted = weighted;
+    out->rmse = sqrt(t->ssr / wn);
+    out->rmse_cos = sqrt(t->scos / wn);
+    out->rmse_log = sqrt(t->slog / wn);
+    out->rmse_rel = t->nrel ? sqrt(t->srel / t->wrel) : NAN;
+    out->max_err = t->maxe;
     out->aic = dn * log(msr) + 2.0 * k;
     out->bic = dn * log(msr) + k * log(dn);
     return BF_OK;

@@ -19,11 +19,30 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "objective_impl.h"
 #include "parallel.h"
 
-/* Model-gradient scratch per chunk of samples: about 128 KiB whatever C and P are. */
-#define CHUNK_DOUBLES 16384
+/* Model-gradient scratch per block of samples: about 128 KiB whatever C and P are, and
+ * at most one geometry block (generated geometries are made a block at a time). */
+#define BLOCK_DOUBLES 16384
+
+static size_t block_samples(const bf_objective *o, int with_grad)
+{
+    size_t b = BLOCK_DOUBLES / ((size_t)o->C * (with_grad ? (size_t)o->P + 1 : 1));
+    if (b < 1)
+        b = 1;
+    return b < BF_GEOMETRY_BLOCK ? b : BF_GEOMETRY_BLOCK;
+}
+
+/* The residual of sample i, channel c (value f, geometry view gv at sample j) and dr/df. */
+static inline double residual_of(const bf_objective *o, size_t i, size_t c, double f, double cs, double *drdf)
+{
+    const size_t r = i * (size_t)o->C + c;
+    const double mm = o->samples->value[r];
+    const double t = o->meas_t ? o->meas_t[r] : bf_obj_form_meas(o->residual, mm, cs);
+    return bf_obj_form_t(o->residual, f, mm, cs, o->delta[c], t, drdf);
+}
 
 int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res,
                   double *jac, int ncols, const int *cols, const double *colscale)
@@ -34,9 +53,7 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
     if (r0 >= r1)
         return 0;
     size_t first = r0 / C, end = (r1 + C - 1) / C;
-    size_t chunk = CHUNK_DOUBLES / (C * (jac ? P + 1 : 1));
-    if (chunk < 1)
-        chunk = 1;
+    size_t chunk = block_samples(o, jac != NULL);
     if (chunk > end - first)
         chunk = end - first;
     double *vals = malloc(chunk * C * sizeof *vals);
@@ -46,17 +63,16 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
         free(grad);
         return -1;
     }
-    const bf_geometry *g = o->geom;
-    const double *meas = o->samples->value;
+    bf_geometry_block gb;
     for (size_t ib = first; ib < end; ib += chunk) {
         size_t ie = ib + chunk < end ? ib + chunk : end;
-        /* Range outputs start at sample ib: the chunk buffers hold exactly the chunk. */
-        bf_model_eval_range(o->model, x, g, ib, ie, vals, jac ? grad : NULL);
+        const bf_geometry *gv = bf_geometry_view(o->geom, ib, ie - ib, &gb);
+        bf_model_eval_range(o->model, x, gv, 0, ie - ib, vals, jac ? grad : NULL);
         for (size_t i = ib; i < ie; i++) {
             size_t c0 = i == first ? r0 - i * C : 0;
             size_t c1 = (i + 1) * C > r1 ? r1 - i * C : C;
-            int valid = bf_geometry_valid(g, i);
-            double w = o->sw ? o->sw[i] : 1.0, cs = g->lz[i];
+            int valid = bf_geometry_valid(gv, i - ib);
+            double w = o->sw ? o->sw[i] : 1.0, cs = gv->lz[i - ib];
             for (size_t c = c0; c < c1; c++) {
                 size_t r = i * C + c, row = r - r0;
                 double *jr = jac ? jac + row * (size_t)ncols : NULL;
@@ -68,8 +84,7 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
                 }
                 double d;
                 size_t li = (i - ib) * C + c;
-                double t = o->meas_t ? o->meas_t[r] : bf_obj_form_meas(o->residual, meas[r], cs);
-                res[row] = w * bf_obj_form_t(o->residual, vals[li], meas[r], cs, o->delta[c], t, &d);
+                res[row] = w * residual_of(o, i, c, vals[li], cs, &d);
                 if (jr) {
                     const double *gr = grad + li * P, s = w * d;
                     for (int j = 0; j < ncols; j++)
@@ -83,20 +98,46 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
     return 0;
 }
 
-/* The problem's eval: z -> x, the chain rule dx/dz as column scales. Per-call buffers
- * only, so concurrent calls for disjoint ranges share nothing mutable. */
+/* z -> x and the chain rule dx/dz as column scales. The vectors are small: on the stack
+ * for every model of the registry. */
+static int with_model_vector(const bf_objective *o, const double *z, double **x, double **colscale, double *stack,
+                             size_t stack_len)
+{
+    size_t need = (size_t)o->P + (size_t)o->nz + 1;
+    *x = need <= stack_len ? stack : malloc(need * sizeof **x);
+    if (!*x)
+        return -1;
+    *colscale = *x + o->P;
+    bf_objective_to_model(o, z, *x);
+    for (int j = 0; j < o->nz; j++)
+        (*colscale)[j] = bf_obj_dxdz(o->scale[o->kidx[j]], (*x)[o->kidx[j]]);
+    return 0;
+}
+
+/* The problem's eval. Concurrent calls for disjoint ranges share nothing mutable. */
 static int problem_eval(void *ctx, const double *z, size_t r0, size_t r1, double *res, double *jac)
 {
     const bf_objective *o = ctx;
-    double *x = malloc(((size_t)o->P + (size_t)o->nz + 1) * sizeof *x);
-    if (!x)
+    double stack[256], *x, *colscale;
+    if (with_model_vector(o, z, &x, &colscale, stack, 256))
         return -1;
-    double *colscale = x + o->P;
-    bf_objective_to_model(o, z, x);
-    for (int j = 0; j < o->nz; j++)
-        colscale[j] = bf_obj_dxdz(o->scale[o->kidx[j]], x[o->kidx[j]]);
     int rc = bf_obj_eval_x(o, x, r0, r1, res, jac, o->nz, o->kidx, colscale);
-    free(x);
+    if (x != stack)
+        free(x);
+    return rc;
+}
+
+/* The problem's fused pass (solve.h). */
+static int problem_normal(void *ctx, const double *z, const bf_loss *loss, int threads, double *ssq, double *jtr,
+                          double *jtj)
+{
+    const bf_objective *o = ctx;
+    double stack[256], *x, *colscale;
+    if (with_model_vector(o, z, &x, &colscale, stack, 256))
+        return -1;
+    int rc = bf_obj_normal_x(o, x, loss, threads, o->nz, o->kidx, colscale, ssq, jtr, jtj);
+    if (x != stack)
+        free(x);
     return rc;
 }
 
@@ -165,7 +206,7 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
     int use_w = opt->use_weights && s->weight;
     if (!use_w && !opt->solid_angle && !s->scene_weight)
         return BF_OK;
-    if (!(o->sw = malloc((o->n + 1) * sizeof *o->sw)))
+    if (!(o->sw = bf_big_malloc((o->n + 1) * sizeof *o->sw)))
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective's weights");
     for (size_t i = 0; i < o->n; i++)
         o->sw[i] = 1.0;
@@ -181,41 +222,75 @@ static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_er
     return BF_OK;
 }
 
-/* The log and cbrt forms' measurement terms, once (their log1p or cbrt was a third of
- * an evaluation). Without the memory for them each evaluation computes them itself. */
-enum { MEAS_CHUNK = 16384 }; /* samples */
+/* One pass over the samples (fixed chunks on the objective's threads, summed in chunk
+ * order): the samples above the horizon (nvalid), per channel the relative form's floor
+ * from the mean |m| over them, and the log and cbrt forms' measurement terms (their
+ * log1p or cbrt would be a third of every evaluation; without the memory for them each
+ * evaluation computes them itself). */
+enum { SCAN_CHUNK = 16384 }; /* samples */
 
-/* The measurement's term of the log or cbrt form for one chunk of samples. */
-static void meas_terms_chunk(void *ctx, size_t chunk)
+typedef struct scan_job {
+    bf_objective *o;
+    size_t *nvalid; /* per chunk */
+    double *sum;    /* per chunk, C: sum |m| over valid samples */
+} scan_job;
+
+static void scan_chunk(void *ctx, size_t chunk)
 {
-    bf_objective *o = ctx;
+    scan_job *j = ctx;
+    bf_objective *o = j->o;
     const size_t C = (size_t)o->C;
-    size_t i1 = (chunk + 1) * MEAS_CHUNK < o->n ? (chunk + 1) * MEAS_CHUNK : o->n;
-    for (size_t i = chunk * MEAS_CHUNK; i < i1; i++)
+    const double *value = o->samples->value;
+    size_t i1 = (chunk + 1) * SCAN_CHUNK < o->n ? (chunk + 1) * SCAN_CHUNK : o->n, nvalid = 0;
+    double sum[64] = {0}, *sp = C <= 64 ? sum : j->sum + chunk * C; /* on the stack when it fits */
+    bf_geometry_block gb;
+    for (size_t ib = chunk * SCAN_CHUNK; ib < i1; ib += BF_GEOMETRY_BLOCK) {
+        size_t cnt = i1 - ib < BF_GEOMETRY_BLOCK ? i1 - ib : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
+        for (size_t q = 0; q < cnt; q++) {
+            const double *v = value + (ib + q) * C;
+            if (o->meas_t)
+                for (size_t c = 0; c < C; c++)
+                    o->meas_t[(ib + q) * C + c] = bf_obj_form_meas(o->residual, v[c], gv->lz[q]);
+            if (!bf_geometry_valid(gv, q))
+                continue;
+            nvalid++;
+            for (size_t c = 0; c < C; c++)
+                sp[c] += fabs(v[c]);
+        }
+    }
+    j->nvalid[chunk] = nvalid;
+    if (sp == sum)
+        memcpy(j->sum + chunk * C, sum, C * sizeof *sum);
+}
+
+static int scan_samples(bf_objective *o)
+{
+    const size_t C = (size_t)o->C, nchunks = (o->n + SCAN_CHUNK - 1) / SCAN_CHUNK;
+    if ((o->residual == BF_RESIDUAL_LOG || o->residual == BF_RESIDUAL_CBRT))
+        o->meas_t = bf_big_malloc(o->n * C * sizeof *o->meas_t + 1); /* NULL: computed as needed */
+    scan_job j = {o, calloc(nchunks + 1, sizeof(size_t)), calloc(nchunks * C + 1, sizeof(double))};
+    double *sum = calloc(C, sizeof *sum);
+    if (!j.nvalid || !j.sum || !sum) {
+        free(j.nvalid);
+        free(j.sum);
+        free(sum);
+        return -1;
+    }
+    bf_parallel_for(nchunks, o->threads, scan_chunk, &j);
+    for (size_t k = 0; k < nchunks; k++) {
+        o->nvalid += j.nvalid[k];
         for (size_t c = 0; c < C; c++)
-            o->meas_t[i * C + c] = bf_obj_form_meas(o->residual, o->samples->value[i * C + c], o->geom->lz[i]);
-}
-
-static void setup_meas_terms(bf_objective *o)
-{
-    if (o->residual != BF_RESIDUAL_LOG && o->residual != BF_RESIDUAL_CBRT)
-        return;
-    if (!(o->meas_t = malloc(o->n * (size_t)o->C * sizeof *o->meas_t)))
-        return;
-    bf_parallel_for((o->n + MEAS_CHUNK - 1) / MEAS_CHUNK, o->threads, meas_terms_chunk, o);
-}
-
-static void setup_delta(bf_objective *o)
-{
-    const int C = o->C;
-    for (int c = 0; c < C; c++) {
-        double sum = 0.0;
-        for (size_t i = 0; i < o->n; i++)
-            if (bf_geometry_valid(o->geom, i))
-                sum += fabs(o->samples->value[i * (size_t)C + (size_t)c]);
-        double d = o->nvalid ? 1e-3 * sum / (double)o->nvalid : 0.0;
+            sum[c] += j.sum[k * C + c];
+    }
+    for (size_t c = 0; c < C; c++) {
+        double d = o->nvalid ? 1e-3 * sum[c] / (double)o->nvalid : 0.0;
         o->delta[c] = d > 0.0 && isfinite(d) ? d : 1e-3;
     }
+    free(j.nvalid);
+    free(j.sum);
+    free(sum);
+    return 0;
 }
 
 bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
@@ -280,16 +355,16 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
         goto fail;
     bf_obj_setup_scale(o);
 
-    for (size_t i = 0; i < o->n; i++)
-        o->nvalid += (size_t)bf_geometry_valid(g, i);
+    if (scan_samples(o)) {
+        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
+        goto fail;
+    }
     if (o->nvalid == 0) {
         bf_fail(err, BF_ERR_ARG, "no samples above the horizon to fit (%zu samples)", o->n);
         goto fail;
     }
     if (setup_weights(o, opt, err))
         goto fail;
-    setup_delta(o);
-    setup_meas_terms(o);
 
     for (int i = 0; i < bf_model_nparams(m); i++)
         if (bf_model_param(m, i)->colour || bf_model_param(m, i)->mono) {
@@ -302,6 +377,7 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     o->problem.lo = o->zlo;
     o->problem.hi = o->zhi;
     o->problem.eval = problem_eval;
+    o->problem.normal = problem_normal;
     o->problem.ctx = o;
     o->problem.constraint = o->ncolour > 0 ? problem_constraint : NULL;
     return o;

@@ -14,15 +14,14 @@
  * diagonal, so this is a condition number of 1e12, the limit of double precision for a
  * normal matrix). A parameter the residuals do not depend on at all (zero column) is NaN
  * too. With n <= k there is no estimate of s^2 and every free parameter is NaN.
- * J^T J is accumulated over fixed row chunks on the objective's threads and the chunks
- * are added in order, so the result does not depend on the thread count. */
+ * J^T J comes from the objective's fused pass (fixed chunks added in order), so the
+ * result does not depend on the thread count. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "metrics_impl.h"
 #include "objective_impl.h"
-#include "parallel.h"
 
-#define ROWS_PER_BLOCK 4096
 #define NULL_EIGEN 1e-12
 #define NULL_SHARE 1e-6
 
@@ -107,86 +106,20 @@ static void covariance_diag(const double *jtj, int nz, double s2, double *se, do
     }
 }
 
-/* One chunk of rows: its SSR and upper triangle of J^T J, summed in chunk order later
- * so the result does not depend on the thread count. */
-typedef struct job {
-    const bf_objective *o;
-    const double *x, *ones;
-    size_t nres;
-    int nz;
-    double *ssr;    /* per chunk */
-    double *jtj;    /* per chunk, nz*nz */
-    int failed;     /* written only as 1 by any chunk */
-} job;
-
-static void chunk_jtj(void *ctx, size_t c)
+/* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
+ * squared residuals. */
+static int stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, bf_error *err)
 {
-    job *j = ctx;
-    const int nz = j->nz;
-    size_t r0 = c * ROWS_PER_BLOCK, r1 = r0 + ROWS_PER_BLOCK < j->nres ? r0 + ROWS_PER_BLOCK : j->nres;
-    double *res = malloc(ROWS_PER_BLOCK * sizeof *res);
-    double *jac = malloc(ROWS_PER_BLOCK * (size_t)nz * sizeof *jac);
-    if (!res || !jac || bf_obj_eval_x(j->o, j->x, r0, r1, res, jac, nz, j->o->kidx, j->ones)) {
-        j->failed = 1;
-        free(res);
-        free(jac);
-        return;
-    }
-    double ssr = 0.0, *jtj = j->jtj + c * (size_t)nz * nz;
-    for (size_t r = 0; r < r1 - r0; r++) {
-        const double *jr = jac + r * (size_t)nz;
-        ssr += res[r] * res[r];
-        for (int a = 0; a < nz; a++) {
-            if (jr[a] == 0.0)
-                continue;
-            for (int b = a; b < nz; b++)
-                jtj[a * nz + b] += jr[a] * jr[b];
-        }
-    }
-    j->ssr[c] = ssr;
-    free(res);
-    free(jac);
-}
-
-int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
-{
-    int rc = bf_model_check(o->model, x, err);
-    if (rc)
-        return rc;
     const int nz = o->nz;
-    for (int k = 0; k < o->P; k++)
-        se[k] = 0.0;
-    if (nz == 0)
-        return BF_OK;
-    size_t nres = o->n * (size_t)o->C, nz2 = (size_t)nz * nz;
-    size_t nchunks = (nres + ROWS_PER_BLOCK - 1) / ROWS_PER_BLOCK;
-    double *ones = malloc((size_t)nz * sizeof *ones);
-    double *jtj = calloc(nz2, sizeof *jtj);
+    size_t nz2 = (size_t)nz * nz;
     double *sez = malloc((size_t)nz * sizeof *sez);
     double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
     int *idx = malloc((size_t)nz * sizeof *idx);
-    job j = {o, x, ones, nres, nz, calloc(nchunks + 1, sizeof(double)), calloc(nchunks * nz2 + 1, sizeof(double)), 0};
-    if (!ones || !jtj || !sez || !work || !idx || !j.ssr || !j.jtj) {
+    int rc = BF_OK;
+    if (!sez || !work || !idx) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
     }
-    for (int k = 0; k < nz; k++)
-        ones[k] = 1.0;
-    bf_parallel_for(nchunks, o->threads, chunk_jtj, &j);
-    if (j.failed) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
-        goto done;
-    }
-    double ssr = 0.0;
-    for (size_t c = 0; c < nchunks; c++) {
-        ssr += j.ssr[c];
-        const double *p = j.jtj + c * nz2;
-        for (size_t e = 0; e < nz2; e++)
-            jtj[e] += p[e];
-    }
-    for (int a = 0; a < nz; a++)
-        for (int b = 0; b < a; b++)
-            jtj[a * nz + b] = jtj[b * nz + a];
     size_t n = o->nvalid * (size_t)o->C;
     if (n <= (size_t)nz || !isfinite(ssr)) {
         for (int k = 0; k < nz; k++)
@@ -197,12 +130,58 @@ int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_e
     for (int k = 0; k < nz; k++)
         se[o->kidx[k]] = sez[k];
 done:
-    free(ones);
-    free(jtj);
     free(sez);
     free(work);
     free(idx);
-    free(j.ssr);
-    free(j.jtj);
+    return rc;
+}
+
+/* The pass behind both: J'J of the plain residuals (no loss) with respect to the model
+ * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
+static int final_pass(const bf_objective *o, const double *x, int weighted, bf_metric_sums *metrics, double *se,
+                      bf_error *err)
+{
+    int rc = bf_model_check(o->model, x, err);
+    if (rc)
+        return rc;
+    const int nz = o->nz;
+    for (int k = 0; k < o->P; k++)
+        se[k] = 0.0;
+    if (nz == 0 && !metrics)
+        return BF_OK;
+    double *ones = calloc((size_t)nz + 1, sizeof *ones);
+    double *jtj = calloc((size_t)nz * nz + 1, sizeof *jtj);
+    double ssr = 0.0;
+    if (!ones || !jtj) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
+        goto done;
+    }
+    for (int k = 0; k < nz; k++)
+        ones[k] = 1.0;
+    if (bf_obj_normal_metrics(o, x, NULL, o->threads, nz, o->kidx, ones, &ssr, NULL, nz ? jtj : NULL, weighted,
+                              metrics)) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
+        goto done;
+    }
+    if (nz > 0)
+        rc = stderr_from(o, jtj, ssr, se, err);
+done:
+    free(ones);
+    free(jtj);
+    return rc;
+}
+
+int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
+{
+    return final_pass(o, x, 0, NULL, se, err);
+}
+
+int bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
+                 bf_error *err)
+{
+    bf_metric_sums sums;
+    int rc = final_pass(o, x, weighted, &sums, se, err);
+    if (rc == BF_OK)
+        rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
     return rc;
 }

@@ -100,6 +100,13 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
     bf_json_add_number(op, "seconds", s->seconds);
     cJSON_AddNumberToObject(op, "threads", r->threads);
     cJSON_AddNumberToObject(op, "starts", r->starts);
+    if (r->presolve.samples > 0) { /* the starts' solves on a subsample (fit.h) */
+        cJSON *pre = cJSON_AddObjectToObject(op, "presolve");
+        cJSON_AddNumberToObject(pre, "samples", (double)r->presolve.samples);
+        cJSON_AddNumberToObject(pre, "iterations", r->presolve.iterations);
+        cJSON_AddNumberToObject(pre, "evaluations", r->presolve.evaluations);
+        bf_json_add_number(pre, "seconds", r->presolve.seconds);
+    }
     /* A seed above 2^53 would not survive a JSON number: write it as a string then. */
     if (r->seed <= (1ull << 53))
         cJSON_AddNumberToObject(op, "seed", (double)r->seed);

@@ -19,6 +19,8 @@
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 
+#include "big_alloc.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -53,115 +55,7 @@ static void swap_bytes(void *data, size_t count, size_t width)
         }
 }
 
-/* ---- Cell centres ----------------------------------------------------------------- */
-
-/* Centre angles in radians of bin i (theta_h, non-linear), j (theta_d), k (phi_d). */
-static double centre_theta_h(int i)
-{
-    double u = (i + 0.5) / BF_MERL_TH;
-    return u * u * (M_PI / 2);
-}
-static double centre_theta_d(int j) { return (j + 0.5) / BF_MERL_TD * (M_PI / 2); }
-static double centre_phi_d(int k) { return (k + 0.5) / BF_MERL_PD * M_PI; }
-
-/* Sines and cosines of the centre angles per bin index, so that a whole table costs
- * 360 sin/cos pairs plus the inverse trigonometry of the output angles. */
-typedef struct centre_trig {
-    double sth[BF_MERL_TH], cth[BF_MERL_TH];
-    double std_[BF_MERL_TD], ctd[BF_MERL_TD];
-    double spd[BF_MERL_PD], cpd[BF_MERL_PD];
-} centre_trig;
-
-static void centre_trig_init(centre_trig *t)
-{
-    for (int i = 0; i < BF_MERL_TH; i++) {
-        t->sth[i] = sin(centre_theta_h(i));
-        t->cth[i] = cos(centre_theta_h(i));
-    }
-    for (int j = 0; j < BF_MERL_TD; j++) {
-        t->std_[j] = sin(centre_theta_d(j));
-        t->ctd[j] = cos(centre_theta_d(j));
-    }
-    for (int k = 0; k < BF_MERL_PD; k++) {
-        t->spd[k] = sin(centre_phi_d(k));
-        t->cpd[k] = cos(centre_phi_d(k));
-    }
-}
-
-/* Directions in degrees from the centre's sines and cosines. theta by atan2 rather than
- * acos keeps full precision near the pole; phi_i lies in (0, 180) and phi_o in
- * (180, 360) because phi_d is in (0, pi). */
-static void centre_directions(double sth, double cth, double std_, double ctd, double spd,
-                              double cpd, double *ti, double *pi_, double *to, double *po)
-{
-    const double r2d = 180.0 / M_PI;
-    double dx = std_ * cpd, dy = std_ * spd, dz = ctd;
-    double lx = dx * cth + dz * sth, lz = dz * cth - dx * sth;
-    double vx = dz * sth - dx * cth, vz = dz * cth + dx * sth;
-    double pxy_l = sqrt(lx * lx + dy * dy), pxy_v = sqrt(vx * vx + dy * dy);
-    *ti = atan2(pxy_l, lz) * r2d;
-    *pi_ = atan2(dy, lx) * r2d;
-    *to = atan2(pxy_v, vz) * r2d;
-    *po = (atan2(-dy, vx) + 2 * M_PI) * r2d;
-}
-
-void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o,
-                             double *phi_o)
-{
-    int k = cell % BF_MERL_PD, j = cell / BF_MERL_PD % BF_MERL_TD, i = cell / (BF_MERL_PD * BF_MERL_TD);
-    /* The same expressions as centre_trig_init, so a table read and a single cell give
-     * identical bits. */
-    double th = centre_theta_h(i), td = centre_theta_d(j), pd = centre_phi_d(k);
-    centre_directions(sin(th), cos(th), sin(td), cos(td), sin(pd), cos(pd), theta_i, phi_i,
-                      theta_o, phi_o);
-}
-
-int32_t bf_merl_cell_of(double theta_i, double phi_i, double theta_o, double phi_o)
-{
-    const double d2r = M_PI / 180.0, tol = 1e-9;
-    if (!isfinite(theta_i) || !isfinite(phi_i) || !isfinite(theta_o) || !isfinite(phi_o))
-        return -1;
-    double ti = theta_i * d2r, pi_ = phi_i * d2r, to = theta_o * d2r, po = phi_o * d2r;
-    double L[3] = {sin(ti) * cos(pi_), sin(ti) * sin(pi_), cos(ti)};
-    double V[3] = {sin(to) * cos(po), sin(to) * sin(po), cos(to)};
-    double H[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
-    double hxy = sqrt(H[0] * H[0] + H[1] * H[1]);
-    if (hxy == 0.0)
-        return -1; /* theta_h = 0 (or L = -V): no cell centre */
-    /* MERL's std_coords_to_half_diff_coords: D = Ry(-theta_h) Rz(-phi_h) L. */
-    double th = atan2(hxy, H[2]), ph = atan2(H[1], H[0]);
-    double cph = cos(ph), sph = sin(ph), cth = cos(th), sth = sin(th);
-    double tx = cph * L[0] + sph * L[1], ty = cph * L[1] - sph * L[0], tz = L[2];
-    double dx = tx * cth - tz * sth, dy = ty, dz = tx * sth + tz * cth;
-    double td = atan2(sqrt(dx * dx + dy * dy), dz), pd = atan2(dy, dx);
-    if (pd < 0.0) /* reciprocity: phi_d and phi_d + pi are the same cell */
-        pd += M_PI;
-    if (pd >= M_PI)
-        pd -= M_PI;
-    /* MERL's lookup bins (floor), then the centre of that bin must match. */
-    double fi = floor(sqrt(th / (M_PI / 2)) * BF_MERL_TH);
-    double fj = floor(td / (M_PI / 2) * BF_MERL_TD), fk = floor(pd / M_PI * BF_MERL_PD);
-    if (!(fi >= 0 && fi < BF_MERL_TH && fj >= 0 && fj < BF_MERL_TD && fk >= 0 && fk < BF_MERL_PD))
-        return -1;
-    int i = (int)fi, j = (int)fj, k = (int)fk;
-    /* phi_d is measured from the plane of N and H, whose azimuth phi_h is only as
-     * precise as (L + V)_xy: near normal H with L and V near grazing (|(L + V)_xy| down to
-     * 8.5e-7 at theta_h bin 0, theta_d bin 89) the directions' own rounding (about 1e-15)
-     * moves phi_d by more than 1e-9. Its tolerance grows accordingly, which still is far
-     * below the bin width (pi/180) and amounts to directions within 1e-14 of the centre. */
-    double tol_pd = tol + 1e-14 / hxy;
-    if (fabs(th - centre_theta_h(i)) > tol || fabs(td - centre_theta_d(j)) > tol ||
-        fabs(pd - centre_phi_d(k)) > tol_pd)
-        return -1;
-    return (int32_t)(k + BF_MERL_PD * (j + BF_MERL_TD * i));
-}
-
 /* ---- Reading ---------------------------------------------------------------------- */
-
-static int cell_valid(const double *raw, size_t c)
-{
-    return raw[c] >= 0.0 && raw[BF_MERL_CELLS + c] >= 0.0 && raw[2 * (size_t)BF_MERL_CELLS + c] >= 0.0;
-}
 
 /* Size of the rest of a stream already read up to `pos`, for the error message. */
 static size_t stream_size(FILE *fp, size_t pos)
@@ -176,122 +70,148 @@ static size_t stream_size(FILE *fp, size_t pos)
     return pos;
 }
 
-/* Reads the header and the raw table, checked: dimensions, exact size, finite values.
- * On success *raw (3 * BF_MERL_CELLS, host byte order) belongs to the caller. */
-static int read_table(const char *path, double **raw, bf_error *err)
+static int read_error(FILE *fp, const char *path, bf_error *err)
 {
-    *raw = NULL;
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    int rc = BF_OK;
-    double *t = NULL;
+    (void)fp;
+    return bf_fail(err, BF_ERR_IO, "%s: read error: %s", path, strerror(errno));
+}
+
+/* The header: dimensions checked, fp left at the first table byte. */
+static int read_header(FILE *fp, const char *path, bf_error *err)
+{
     int32_t dims[3];
     size_t got = fread(dims, 1, HEADER_BYTES, fp);
-    if (ferror(fp)) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: read error: %s", path, strerror(errno));
-        goto done;
-    }
-    if (got == 0) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s: empty file (a MERL table is %zu bytes)", path,
-                     (size_t)FILE_BYTES);
-        goto done;
-    }
-    if (got < HEADER_BYTES) {
-        rc = bf_fail(err, BF_ERR_PARSE,
-                     "%s: byte offset %zu: file ends inside the 12-byte MERL header (3 int32 dimensions)",
-                     path, got);
-        goto done;
-    }
+    if (ferror(fp))
+        return read_error(fp, path, err);
+    if (got == 0)
+        return bf_fail(err, BF_ERR_PARSE, "%s: empty file (a MERL table is %zu bytes)", path, (size_t)FILE_BYTES);
+    if (got < HEADER_BYTES)
+        return bf_fail(err, BF_ERR_PARSE,
+                       "%s: byte offset %zu: file ends inside the 12-byte MERL header (3 int32 dimensions)", path,
+                       got);
     if (host_is_big_endian())
         swap_bytes(dims, 3, sizeof dims[0]);
-    if (dims[0] != merl_dims[0] || dims[1] != merl_dims[1] || dims[2] != merl_dims[2]) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s: byte offset 0: dimensions %ld x %ld x %ld, expected %d x %d x %d",
-                     path, (long)dims[0], (long)dims[1], (long)dims[2], BF_MERL_TH, BF_MERL_TD, BF_MERL_PD);
-        goto done;
-    }
-    if (!(t = malloc(TABLE_DOUBLES * sizeof *t))) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL table", path);
-        goto done;
-    }
-    got = fread(t, 1, TABLE_DOUBLES * sizeof *t, fp);
-    if (ferror(fp)) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: read error: %s", path, strerror(errno));
-        goto done;
-    }
-    if (got < TABLE_DOUBLES * sizeof *t) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s: truncated: %zu bytes, a %d x %d x %d MERL table is %zu bytes",
-                     path, HEADER_BYTES + got, BF_MERL_TH, BF_MERL_TD, BF_MERL_PD, (size_t)FILE_BYTES);
-        goto done;
-    }
-    if (fgetc(fp) != EOF) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s: wrong size: %zu bytes, a %d x %d x %d MERL table is %zu bytes",
-                     path, stream_size(fp, FILE_BYTES + 1), BF_MERL_TH, BF_MERL_TD, BF_MERL_PD,
-                     (size_t)FILE_BYTES);
-        goto done;
-    }
-    if (host_is_big_endian())
-        swap_bytes(t, TABLE_DOUBLES, sizeof *t);
-    for (size_t x = 0; x < TABLE_DOUBLES; x++)
-        if (!isfinite(t[x])) {
-            size_t p = x / BF_MERL_CELLS, c = x % BF_MERL_CELLS;
-            rc = bf_fail(err, BF_ERR_PARSE,
-                         "%s: byte offset %zu: raw value %s in plane %s (theta_h %zu, theta_d %zu, phi_d %zu)",
-                         path, HEADER_BYTES + x * sizeof *t, isnan(t[x]) ? "NaN" : "Inf", plane_name[p],
-                         c / (BF_MERL_PD * BF_MERL_TD), c / BF_MERL_PD % BF_MERL_TD, c % BF_MERL_PD);
-            goto done;
-        }
-done:
-    fclose(fp);
-    if (rc != BF_OK) {
-        free(t);
-        return rc;
-    }
-    *raw = t;
+    if (dims[0] != merl_dims[0] || dims[1] != merl_dims[1] || dims[2] != merl_dims[2])
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset 0: dimensions %ld x %ld x %ld, expected %d x %d x %d",
+                       path, (long)dims[0], (long)dims[1], (long)dims[2], BF_MERL_TH, BF_MERL_TD, BF_MERL_PD);
     return BF_OK;
 }
 
-int bf_samples_read_merl(const char *path, bf_samples **out, bf_error *err)
+/* The three planes, checked (exact size, finite values), into dst: planar
+ * (dst[p * CELLS + c], the raw table as stored) or interleaved (dst[c * 3 + p], the
+ * samples' layout), a chunk at a time so no second copy of the table is needed. */
+enum { READ_CHUNK = 65536 }; /* doubles */
+
+static int read_planes(FILE *fp, const char *path, double *dst, int interleaved, bf_error *err)
 {
-    *out = NULL;
-    double *raw;
-    int rc = read_table(path, &raw, err);
-    if (rc != BF_OK)
-        return rc;
-    size_t n = 0;
-    for (size_t c = 0; c < BF_MERL_CELLS; c++)
-        n += (size_t)cell_valid(raw, c);
-    bf_samples *s = bf_samples_new(n, 3, err);
-    if (!s) {
-        free(raw);
-        return err ? err->code : BF_ERR_NOMEM;
-    }
-    /* Channel names are "r", "g", "b" for C = 3 (bf_samples_new). */
-    if (!(s->merl = calloc(1, sizeof *s->merl)) || !(s->merl->cell = malloc((n + 1) * sizeof *s->merl->cell))) {
-        free(raw);
-        bf_samples_free(s);
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu samples", path, n);
-    }
-    s->merl->raw = raw;
-    centre_trig t;
-    centre_trig_init(&t);
-    const double *R = raw, *G = raw + BF_MERL_CELLS, *B = raw + 2 * (size_t)BF_MERL_CELLS;
-    size_t m = 0, c = 0;
-    for (int i = 0; i < BF_MERL_TH; i++)
-        for (int j = 0; j < BF_MERL_TD; j++)
-            for (int k = 0; k < BF_MERL_PD; k++, c++) {
-                if (!(R[c] >= 0.0 && G[c] >= 0.0 && B[c] >= 0.0))
-                    continue;
-                centre_directions(t.sth[i], t.cth[i], t.std_[j], t.ctd[j], t.spd[k], t.cpd[k],
-                                  &s->theta_i[m], &s->phi_i[m], &s->theta_o[m], &s->phi_o[m]);
-                s->value[3 * m] = R[c] * merl_scale[0];
-                s->value[3 * m + 1] = G[c] * merl_scale[1];
-                s->value[3 * m + 2] = B[c] * merl_scale[2];
-                s->merl->cell[m] = (int32_t)c;
-                m++;
+    double *buf = malloc(READ_CHUNK * sizeof *buf);
+    if (!buf)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory reading the MERL table", path);
+    int rc = BF_OK;
+    for (size_t p = 0; p < 3 && rc == BF_OK; p++)
+        for (size_t c0 = 0; c0 < (size_t)BF_MERL_CELLS && rc == BF_OK; c0 += READ_CHUNK) {
+            const size_t want = (size_t)BF_MERL_CELLS - c0 < READ_CHUNK ? (size_t)BF_MERL_CELLS - c0 : READ_CHUNK;
+            const size_t x0 = p * (size_t)BF_MERL_CELLS + c0; /* doubles before this chunk */
+            size_t got = fread(buf, 1, want * sizeof *buf, fp);
+            if (ferror(fp)) {
+                rc = read_error(fp, path, err);
+                break;
             }
+            if (got < want * sizeof *buf) {
+                rc = bf_fail(err, BF_ERR_PARSE, "%s: truncated: %zu bytes, a %d x %d x %d MERL table is %zu bytes",
+                             path, HEADER_BYTES + x0 * sizeof *buf + got, BF_MERL_TH, BF_MERL_TD, BF_MERL_PD,
+                             (size_t)FILE_BYTES);
+                break;
+            }
+            if (host_is_big_endian())
+                swap_bytes(buf, want, sizeof *buf);
+            size_t bad = want;
+            for (size_t q = 0; q < want; q++)
+                if (!isfinite(buf[q])) {
+                    bad = q;
+                    break;
+                }
+            if (bad < want) {
+                const size_t c = c0 + bad;
+                rc = bf_fail(err, BF_ERR_PARSE,
+                             "%s: byte offset %zu: raw value %s in plane %s (theta_h %zu, theta_d %zu, phi_d %zu)",
+                             path, HEADER_BYTES + (x0 + bad) * sizeof *buf, isnan(buf[bad]) ? "NaN" : "Inf",
+                             plane_name[p], c / (BF_MERL_PD * BF_MERL_TD), c / BF_MERL_PD % BF_MERL_TD,
+                             c % BF_MERL_PD);
+                break;
+            }
+            if (interleaved)
+                for (size_t q = 0; q < want; q++)
+                    dst[3 * (c0 + q) + p] = buf[q];
+            else
+                memcpy(dst + x0, buf, want * sizeof *buf);
+        }
+    free(buf);
+    if (rc == BF_OK && fgetc(fp) != EOF)
+        rc = bf_fail(err, BF_ERR_PARSE, "%s: wrong size: %zu bytes, a %d x %d x %d MERL table is %zu bytes", path,
+                     stream_size(fp, FILE_BYTES + 1), BF_MERL_TH, BF_MERL_TD, BF_MERL_PD, (size_t)FILE_BYTES);
+    return rc;
+}
+
+/* Samples from a table: the valid cells (every plane >= 0), values scaled. `raw` is
+ * planar or interleaved as read_planes wrote it; interleaved, values are compacted in
+ * place and the buffer becomes the samples' value array (n is only known after the
+ * whole table is read, and this keeps the peak at one table instead of two). */
+static int table_samples(const char *path, double *table, int interleaved, bf_samples **out, bf_error *err)
+{
+    int32_t *cell = bf_big_malloc((size_t)BF_MERL_CELLS * sizeof *cell);
+    double *vals = interleaved ? table : bf_big_malloc(TABLE_DOUBLES * sizeof *vals);
+    bf_samples *s = bf_samples_new_cells(0, 3, err);
+    if (!cell || !vals || !s) {
+        free(cell);
+        if (!interleaved)
+            free(vals);
+        bf_samples_free(s);
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL samples", path);
+    }
+    size_t n = 0;
+    for (size_t c = 0; c < (size_t)BF_MERL_CELLS; c++) {
+        double r[3];
+        for (int p = 0; p < 3; p++)
+            r[p] = interleaved ? table[3 * c + (size_t)p] : table[(size_t)p * BF_MERL_CELLS + c];
+        if (!(r[0] >= 0.0 && r[1] >= 0.0 && r[2] >= 0.0))
+            continue;
+        for (int p = 0; p < 3; p++)
+            vals[3 * n + (size_t)p] = r[p] * merl_scale[p]; /* 3n <= 3c: in place is safe */
+        cell[n++] = (int32_t)c;
+    }
+    /* Shrinking: realloc only fails to move, never to keep what it has. */
+    double *v2 = realloc(vals, (3 * n + 1) * sizeof *vals);
+    int32_t *c2 = realloc(cell, (n + 1) * sizeof *cell);
+    free(s->value);
+    free(s->merl->cell);
+    s->value = v2 ? v2 : vals;
+    s->merl->cell = c2 ? c2 : cell;
+    s->n = n;
+    if (!interleaved)
+        s->merl->raw = table;
     *out = s;
     return BF_OK;
+}
+
+int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err)
+{
+    *out = NULL;
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    double *table = NULL;
+    int rc = read_header(fp, path, err);
+    if (rc == BF_OK && !(table = bf_big_malloc(TABLE_DOUBLES * sizeof *table)))
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL table", path);
+    if (rc == BF_OK)
+        rc = read_planes(fp, path, table, !keep_raw, err);
+    fclose(fp);
+    if (rc == BF_OK)
+        rc = table_samples(path, table, !keep_raw, out, err);
+    if (rc != BF_OK)
+        free(table);
+    return rc;
 }
 
 /* ---- Writing ---------------------------------------------------------------------- */
@@ -316,9 +236,12 @@ static int fill_table(const bf_samples *s, const char *path, double *table, uint
                       bf_error *err)
 {
     const bf_merl_origin *o = s->merl;
+    const double *raw = o ? o->raw : NULL;
     for (size_t i = 0; i < s->n; i++) {
         int32_t cell = o ? o->cell[i] : bf_merl_cell_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
-        if (cell < 0 || cell >= BF_MERL_CELLS)
+        if (o && (cell < 0 || cell >= BF_MERL_CELLS))
+            return bf_fail(err, BF_ERR_ARG, "%s: sample %zu: MERL cell %ld is out of range", path, i + 1, (long)cell);
+        if (cell < 0)
             return bf_fail(err, BF_ERR_ARG,
                            "%s: sample %zu (theta_i %.17g, phi_i %.17g, theta_o %.17g, phi_o %.17g) is not at a MERL cell centre",
                            path, i + 1, s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
@@ -337,8 +260,8 @@ static int fill_table(const bf_samples *s, const char *path, double *table, uint
                                isfinite(v) ? "negative values mark invalid cells" : "not finite");
             double *slot = table + (size_t)p * BF_MERL_CELLS + (size_t)cell;
             /* Unchanged values keep their raw bits: a table read and written is the same file. */
-            if (o && o->raw[(size_t)p * BF_MERL_CELLS + (size_t)cell] * merl_scale[p] == v)
-                *slot = o->raw[(size_t)p * BF_MERL_CELLS + (size_t)cell];
+            if (raw && raw[(size_t)p * BF_MERL_CELLS + (size_t)cell] * merl_scale[p] == v)
+                *slot = raw[(size_t)p * BF_MERL_CELLS + (size_t)cell];
             else
                 *slot = raw_for(v, merl_scale[p]);
         }
@@ -361,7 +284,7 @@ int bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err)
         free(owner);
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL table", path);
     }
-    if (s->merl)
+    if (s->merl && s->merl->raw)
         memcpy(table, s->merl->raw, TABLE_DOUBLES * sizeof *table);
     else
         for (size_t x = 0; x < TABLE_DOUBLES; x++)

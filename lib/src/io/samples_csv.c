@@ -140,10 +140,11 @@ int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
     if (s->weight)
         fputs(",weight", o.fp);
     fputc('\n', o.fp);
-    const double *angle[4] = {s->theta_i, s->phi_i, s->theta_o, s->phi_o};
     for (size_t i = 0; i < s->n; i++) {
+        double dir[4];
+        bf_samples_direction(s, i, dir);
         for (int k = 0; k < 4; k++)
-            fprintf(o.fp, "%s%s", k ? "," : "", bf_format_double(angle[k][i], buf, sizeof buf));
+            fprintf(o.fp, "%s%s", k ? "," : "", bf_format_double(dir[k], buf, sizeof buf));
         for (size_t c = 0; c < C; c++)
             fprintf(o.fp, ",%s", bf_format_double(s->value[i * C + c], buf, sizeof buf));
         if (s->weight)

@@ -50,7 +50,7 @@ int bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **o
         return err ? err->code : BF_ERR_IO;
     switch (f) {
     case BF_FORMAT_MERL:
-        return bf_samples_read_merl(path, out, err);
+        return bf_samples_read_merl(path, opt ? opt->keep_origin : 0, out, err);
     case BF_FORMAT_CORNELL:
         return bf_samples_read_cornell(path, out, err);
     case BF_FORMAT_ALTA:

@@ -2,19 +2,64 @@
  * computes its scalar lobe shapes S_k and their derivatives over a block of samples;
  * this driver spreads them over the channels and writes the Jacobian rows. */
 #include "family.h"
+#include "lobes.h"
 
 #include <math.h>
 #include <string.h>
 
-#define BF_MAX_LOBE_SCALARS 8
+_Static_assert(BF_LOBE_BLOCK == BF_BLOCK, "lobe shapes are laid out in blocks of BF_BLOCK samples");
+
+/* Lobes actually configured (0 for a diffuse-only model). */
+static int lobe_count(const bf_model *m)
+{
+    int K = 0;
+    while (K < m->lobes && m->lobe_first[K + 1] != 0)
+        K++;
+    return K;
+}
+
+int bf_model_lobe_layout(const bf_model *m, bf_lobe_layout *out)
+{
+    if (m->inner || m->family->eval != bf_eval_diffuse_lobes)
+        return 0;
+    memset(out, 0, sizeof *out);
+    out->lobes = lobe_count(m);
+    out->diffuse = m->offset[0];
+    for (int k = 1; k <= out->lobes; k++) {
+        int first = m->lobe_first[k];
+        out->weight[k - 1] = m->offset[first];
+        out->scalar[k - 1] = m->offset[first + 1];
+        out->nscalar[k - 1] = m->lobe_nscalar[k];
+        if (m->lobe_nscalar[k] > BF_MAX_LOBE_SCALARS)
+            return 0;
+    }
+    return 1;
+}
+
+const bf_model *bf_model_untied(const bf_model *m, const int **map)
+{
+    *map = m->inner ? m->xmap : NULL;
+    return m->inner ? m->inner : m;
+}
+
+void bf_model_lobe_shape(const bf_model *m, const double *x, int k, const bf_geometry *g, size_t i0, size_t cnt,
+                         double *S, double *dS)
+{
+    int first = m->lobe_first[k + 1];
+    m->family->lobe(m, k + 1, x + m->offset[first + 1], g, i0, cnt, S, dS);
+    for (size_t j = 0; j < cnt; j++) /* the lobe functions may leave anything there */
+        if (!bf_geometry_valid(g, i0 + j)) {
+            S[j] = 0.0;
+            for (int q = 0; dS && q < m->lobe_nscalar[k + 1]; q++)
+                dS[q * BF_BLOCK + j] = 0.0;
+        }
+}
 
 void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
                            size_t i0, size_t i1, double *values, double *grad)
 {
     const int C = m->channels, P = m->nfree;
-    int K = 0; /* lobes actually configured (0 for a diffuse-only model) */
-    while (K < m->lobes && m->lobe_first[K + 1] != 0)
-        K++;
+    const int K = lobe_count(m);
     const double *rho_d = x + m->offset[0];
     double S[BF_MAX_LOBES][BF_BLOCK];
     double dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_BLOCK];

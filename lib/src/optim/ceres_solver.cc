@@ -1,40 +1,38 @@
 // The Ceres back end: our own thin extern "C" wrapper (the stock ceres/c_api.h has no
 // options, bounds, threads or summary, and prints). The only C++ file of the library.
 //
-// Shape of the Ceres problem: one parameter block of npar doubles, and the nres
-// residuals split into B contiguous blocks, each one CostFunction whose Evaluate calls
-// problem->eval over its range (our Jacobian layout is Ceres' layout for one parameter
-// block).
+// Shape of the Ceres problem: one parameter block of npar doubles and one residual
+// block of npar + 1 residuals that stands for all nres residuals of the problem.
 //
-// Block compression. Fits are tall and thin (millions of residuals, a few parameters),
-// and Ceres' own work per iteration on an n x p Jacobian (copies, scaling, J'J, model
-// residuals) cost about four times the evaluation itself on a MERL-sized problem. So a
-// block of n > p + 1 residuals r with Jacobian J hands Ceres p + 1 residuals instead:
-// with J'J = F'F (F from the eigen-decomposition of the Jacobi-scaled J'J) and
-// F'z = J'r, the block's residuals are [z; sqrt(|r|^2 - |z|^2)] with Jacobian [F; 0].
-// Cost |r|^2, gradient J'r, Gauss-Newton matrix J'J and the model cost change
-// r'J d + |J d|^2 / 2 are then all exactly those of the full block, so every Ceres
-// step is the one the uncompressed problem would take (the conditioning is that of the
-// normal equations, as with Ceres' default dense_normal_cholesky). Residual-only
-// evaluations (step acceptance needs only the cost) return [|r|; 0].
+// Compression. Fits are tall and thin (millions of residuals, a few parameters): Ceres'
+// own work on an n x p Jacobian (copies, scaling, J'J, model residuals) would cost
+// several times the evaluation, and the Jacobian alone is 200 MB for a MERL table. So
+// the problem's fused pass (bf_problem_normal: sum r^2, J'r and J'J in one sweep, no
+// Jacobian stored) is handed to Ceres as p + 1 residuals: with J'J = F'F (F from the
+// eigen-decomposition of the Jacobi-scaled J'J) and F'z = J'r, the residuals are
+// [z; sqrt(|r|^2 - |z|^2)] with Jacobian [F; 0]. Cost |r|^2, gradient J'r,
+// Gauss-Newton matrix J'J and the model cost change r'J d + |J d|^2 / 2 are then all
+// exactly those of the full problem, so every Ceres step is the one the uncompressed
+// problem would take (the conditioning is that of the normal equations, as with Ceres'
+// default dense_normal_cholesky). Residual-only evaluations (step acceptance needs only
+// the cost) return [|r|; 0].
 //
-// Robust losses are applied per residual here, not with ceres::LossFunction: Ceres
-// applies a loss to the squared norm of a whole residual block, which for our large
-// blocks would be rho(sum r^2) instead of sum rho(r^2). Each residual r is replaced by
-// g = sign(r) sqrt(rho(r^2)), so that Ceres' cost 1/2 sum g^2 is exactly the robust cost
-// 1/2 sum rho(r^2) and its gradient sum rho'(r^2) r dr/dx is exact; the Gauss-Newton
-// model of g is a valid (positive semi-definite) robust model. rho uses Ceres' own
-// definitions (see solve.h), written so that small residuals keep full precision.
+// Threads: the fused pass runs on the requested threads over fixed chunks summed in
+// order, so a solve gives the same bits for every thread count; Ceres itself runs on one.
+//
+// Robust losses are applied per residual by the fused pass (bf_loss_residual in
+// solve.h: g = sign(r) sqrt(rho(r^2))), not with ceres::LossFunction, which would apply
+// rho to the squared norm of the whole block.
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 #include <new>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -47,202 +45,85 @@
 
 namespace {
 
-// Block size: the Jacobian of a block (rows x npar doubles, 512 KB) stays in cache
-// between eval writing it and the compression reading it; at least 4 blocks per thread
-// so Ceres' dynamic scheduling balances the load. Compressed blocks are p + 1 residuals
-// each, so many blocks cost Ceres next to nothing.
-constexpr size_t kBlockJacobianDoubles = 65536;
-constexpr size_t kMinBlockResiduals = 256;
-constexpr size_t kBlocksPerThread = 4;
-
-// rho(s) and rho'(s) as in solve.h (Ceres' definitions), accurate for s -> 0.
-double loss_rho(const bf_loss &l, double s, double *d1)
-{
-    const double a = l.scale;
-    switch (l.kind) {
-    case BF_LOSS_HUBER:
-        if (s <= a * a) {
-            *d1 = 1.0;
-            return s;
-        } else {
-            const double r = std::sqrt(s);
-            *d1 = a / r;
-            return 2.0 * a * r - a * a;
-        }
-    case BF_LOSS_CAUCHY: {
-        const double t = s / (a * a);
-        *d1 = 1.0 / (1.0 + t);
-        return a * a * std::log1p(t);
-    }
-    case BF_LOSS_SOFT_L1: {
-        // 2 a^2 (sqrt(1 + t) - 1) = 2 s / (sqrt(1 + t) + 1): no cancellation.
-        const double q = std::sqrt(1.0 + s / (a * a));
-        *d1 = 1.0 / q;
-        return 2.0 * s / (q + 1.0);
-    }
-    case BF_LOSS_ARCTAN: {
-        const double t = s / a;
-        *d1 = 1.0 / (1.0 + t * t);
-        return a * std::atan(t);
-    }
-    case BF_LOSS_NONE:
-    default:
-        *d1 = 1.0;
-        return s;
-    }
-}
-
-// Scratch buffers for the uncompressed residuals and Jacobian of a block, shared by
-// the threads of one solve: each Evaluate takes one and gives it back.
-class ScratchPool {
-public:
-    struct Buffers {
-        std::vector<double> res, jac;
-    };
-    std::unique_ptr<Buffers> take()
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (free_.empty())
-            return std::make_unique<Buffers>();
-        std::unique_ptr<Buffers> b = std::move(free_.back());
-        free_.pop_back();
-        return b;
-    }
-    void give(std::unique_ptr<Buffers> b)
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        free_.push_back(std::move(b));
-    }
-
-private:
-    std::mutex mutex_;
-    std::vector<std::unique_ptr<Buffers>> free_;
-};
-
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// One contiguous range of residuals [r0, r1) as a Ceres cost function (compressed to
-// npar + 1 residuals when longer, see the top of the file).
-class RangeCost final : public ceres::CostFunction {
+// The whole problem as one compressed Ceres cost function (see the top of the file).
+// One instance serves every active-set round of a solve, so the point a round ends at
+// is not evaluated again when the next one starts or when its gradient is checked.
+class NormalCost final : public ceres::CostFunction {
 public:
-    // passes: NULL, or counts the evaluations this block really makes (for the first
-    // block: the whole set's evaluations, cached answers not counted).
-    RangeCost(const bf_problem *p, const bf_loss &loss, size_t r0, size_t r1, ScratchPool *pool,
-              int *passes = nullptr)
-        : p_(p), loss_(loss), r0_(r0), r1_(r1), pool_(pool), passes_(passes)
+    NormalCost(const bf_problem *p, const bf_loss &loss, int threads) : p_(p), loss_(loss), threads_(threads)
     {
-        const size_t np = static_cast<size_t>(p->npar);
-        compressed_ = r1 - r0 > np + 1;
-        set_num_residuals(static_cast<int>(compressed_ ? np + 1 : r1 - r0));
+        set_num_residuals(p->npar + 1);
         mutable_parameter_block_sizes()->push_back(p->npar);
     }
 
     bool Evaluate(double const *const *parameters, double *residuals,
                   double **jacobians) const override
     {
-        double *jac = jacobians ? jacobians[0] : nullptr;
-        if (!compressed_) {
-            if (passes_)
-                ++*passes_;
-            return raw(parameters[0], residuals, jac);
-        }
-        const size_t n = r1_ - r0_, np = static_cast<size_t>(p_->npar);
-        const double *x = parameters[0];
-        if (cached(x, jac != nullptr)) {
-            if (jac) {
-                std::copy(cache_g_.begin(), cache_g_.end(), residuals);
-                std::copy(cache_F_.begin(), cache_F_.end(), jac);
-            } else { // exactly what the residual-only path computes
-                std::fill(residuals, residuals + np + 1, 0.0);
-                residuals[0] = std::sqrt(cache_rr_);
-            }
-            return true;
-        }
-        cache_state_ = kEmpty;
-        if (passes_)
-            ++*passes_;
-        std::unique_ptr<ScratchPool::Buffers> b = pool_->take();
-        b->res.resize(n);
-        if (jac)
-            b->jac.resize(n * np);
-        bool ok = raw(x, b->res.data(), jac ? b->jac.data() : nullptr, false);
-        double rr = 0.0;
-        if (ok)
-            ok = compress(b->res.data(), jac ? b->jac.data() : nullptr, residuals, jac, &rr);
-        pool_->give(std::move(b));
-        if (ok) {
-            cache_x_.assign(x, x + np);
-            cache_rr_ = rr;
-            cache_state_ = jac ? kWithJacobian : kResiduals;
-            if (jac) {
-                cache_g_.assign(residuals, residuals + np + 1);
-                cache_F_.assign(jac, jac + (np + 1) * np);
-            }
-        }
-        return ok;
-    }
-
-    // The block's own residuals and Jacobian (loss applied). False when eval fails or
-    // gives a non-finite value: Ceres then treats the point as invalid and shrinks the
-    // step. check_finite false leaves that test to compress(): a NaN or Inf anywhere in
-    // r or in column k of J makes |r|^2 or (J'J)_kk non-finite, which it rejects.
-    bool raw(const double *x, double *res, double *jac, bool check_finite = true) const
-    {
-        if (p_->eval(p_->ctx, x, r0_, r1_, res, jac) != 0)
+        const size_t np = static_cast<size_t>(p_->npar);
+        if (!update(parameters[0]))
             return false;
-        const size_t n = r1_ - r0_, np = static_cast<size_t>(p_->npar);
-        if (check_finite) {
-            for (size_t i = 0; i < n; i++)
-                if (!std::isfinite(res[i]))
-                    return false;
-            if (jac)
-                for (size_t i = 0; i < n * np; i++)
-                    if (!std::isfinite(jac[i]))
-                        return false;
+        if (jacobians && jacobians[0]) {
+            std::copy(cache_g_.begin(), cache_g_.end(), residuals);
+            std::copy(cache_F_.begin(), cache_F_.end(), jacobians[0]);
+        } else { // the cost alone: exactly |r|^2 / 2 as well
+            std::fill(residuals, residuals + np + 1, 0.0);
+            residuals[0] = std::sqrt(cache_ssq_);
         }
-        if (loss_.kind != BF_LOSS_NONE)
-            apply_loss(res, jac, n, np);
         return true;
     }
 
-private:
-    // The last evaluation of this block is reused when Ceres asks again at the same
-    // point, which it does at every iteration: a bounded problem's trust-region step is
-    // checked by a line search that evaluates the candidate with its gradient, then
-    // the candidate's cost is evaluated, then, once accepted, its Jacobian. The answers
-    // are the ones a fresh evaluation would give (the same code on the same input).
-    // Ceres evaluates a block from one thread at a time, so the cache needs no lock.
-    enum CacheState { kEmpty, kResiduals, kWithJacobian };
-    bool cached(const double *x, bool want_jacobian) const
+    // The cost's gradient sum g dg/dx at x; false if x cannot be evaluated.
+    bool gradient(const double *x, std::vector<double> &grad) const
     {
-        if (cache_state_ == kEmpty || (want_jacobian && cache_state_ != kWithJacobian))
+        if (!update(x))
             return false;
-        return std::equal(cache_x_.begin(), cache_x_.end(), x);
+        grad = cache_jtr_;
+        return true;
     }
 
-    // [z; sqrt(|r|^2 - |z|^2)] and [F; 0] from r (n) and J (n x p); J NULL: [|r|; 0].
-    // *rr_out: |r|^2.
-    bool compress(const double *res, const double *jac, double *out, double *out_jac,
-                  double *rr_out) const
+    int passes() const { return passes_; }
+
+private:
+    // The fused pass at x unless it is the last point evaluated (Ceres asks again at the
+    // same point at every iteration). Every pass computes the Jacobian's sums too: Ceres
+    // asks for them at almost every point whose cost it asks for (the line search of a
+    // bounded step, or the Jacobian once a step is accepted), and one pass with them
+    // costs less than two passes. Ceres evaluates the one block from one thread at a
+    // time, so the cache needs no lock.
+    bool update(const double *x) const
     {
-        const Eigen::Index n = static_cast<Eigen::Index>(r1_ - r0_), np = p_->npar;
-        Eigen::Map<const Eigen::VectorXd> r(res, n);
-        Eigen::Map<Eigen::VectorXd> g(out, np + 1);
-        const double rr = r.squaredNorm();
-        *rr_out = rr;
-        g.setZero();
+        const size_t np = static_cast<size_t>(p_->npar);
+        if (cache_state_ != kEmpty && std::equal(cache_x_.begin(), cache_x_.end(), x))
+            return cache_state_ == kValid;
+        ++passes_;
+        cache_state_ = kInvalid;
+        cache_x_.assign(x, x + np);
+        double ssq = 0.0;
+        cache_jtr_.assign(np, 0.0);
+        std::vector<double> jtj(np * np);
+        if (bf_problem_normal(p_, x, &loss_, threads_, &ssq, cache_jtr_.data(), jtj.data()) != 0)
+            return false; // out of memory: Ceres treats the point as invalid
+        cache_g_.assign(np + 1, 0.0);
+        cache_F_.assign((np + 1) * np, 0.0);
+        cache_ssq_ = ssq;
+        if (compress(ssq, jtj.data(), cache_jtr_.data(), cache_g_.data(), cache_F_.data()))
+            cache_state_ = kValid;
+        return cache_state_ == kValid;
+    }
+
+    // [z; sqrt(|r|^2 - |z|^2)] (g, np + 1) and [F; 0] (F, (np + 1) x np, row-major)
+    // from |r|^2, J'J (a, np x np) and J'r (b). False for non-finite input (a NaN or Inf
+    // residual or Jacobian entry reaches |r|^2 or the diagonal of J'J).
+    bool compress(double rr, const double *a, const double *b, double *gout, double *fout) const
+    {
+        const Eigen::Index np = p_->npar;
+        Eigen::Map<Eigen::VectorXd> g(gout, np + 1);
+        Eigen::Map<RowMatrix> F(fout, np + 1, np);
         if (!std::isfinite(rr))
             return false;
-        if (!out_jac) {
-            g[0] = std::sqrt(rr);
-            return std::isfinite(g[0]);
-        }
-        Eigen::Map<RowMatrix> F(out_jac, np + 1, np);
-        F.setZero();
-        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(np, np); // J'J
-        Eigen::VectorXd b = Eigen::VectorXd::Zero(np);     // J'r
-        normal_equations(jac, res, n, np, A.data(), b.data());
-        A.triangularView<Eigen::StrictlyUpper>() = A.transpose();
+        const Eigen::Map<const RowMatrix> A(a, np, np);
         if (!A.diagonal().allFinite())
             return false;
         // Jacobi scaling first, so that a parameter whose column is tiny next to the
@@ -251,18 +132,20 @@ private:
         for (Eigen::Index k = 0; k < np; k++)
             d[k] = A(k, k) > 0.0 ? 1.0 / std::sqrt(A(k, k)) : 0.0;
         const Eigen::MatrixXd As = d.asDiagonal() * A * d.asDiagonal();
+        if (!As.allFinite())
+            return false;
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(As);
         if (es.info() != Eigen::Success)
             return false;
         const Eigen::VectorXd &lam = es.eigenvalues();
         const Eigen::MatrixXd &V = es.eigenvectors();
-        const Eigen::VectorXd db = d.cwiseProduct(b);
+        const Eigen::VectorXd db = d.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(b, np));
         const double tol = std::max(lam.maxCoeff(), 0.0) * static_cast<double>(np) *
                            std::numeric_limits<double>::epsilon();
         double zz = 0.0;
         for (Eigen::Index j = 0; j < np; j++) {
             if (!(lam[j] > tol))
-                continue; // (numerically) null in this block: no step information
+                continue; // (numerically) null: no step information
             const double s = std::sqrt(lam[j]);
             for (Eigen::Index k = 0; k < np; k++)
                 F(j, k) = d[k] > 0.0 ? s * V(k, j) / d[k] : 0.0;
@@ -273,58 +156,14 @@ private:
         return g.allFinite() && F.allFinite();
     }
 
-    // The lower triangle of J'J (a, column-major np x np, zeroed) and J'r (b, zeroed)
-    // for J (n x np, row-major) and r, skipping zero entries: a residual of one channel
-    // does not depend on the other channels' colour parameters, so in RGB fits half of
-    // every row is zero. NaN and Inf entries are kept (they reach the diagonal).
-    static void normal_equations(const double *jac, const double *res, Eigen::Index n,
-                                 Eigen::Index np, double *a, double *b)
-    {
-        std::vector<Eigen::Index> nz(static_cast<size_t>(np));
-        for (Eigen::Index i = 0; i < n; i++) {
-            const double *row = jac + i * np, ri = res[i];
-            Eigen::Index m = 0;
-            for (Eigen::Index k = 0; k < np; k++)
-                if (row[k] != 0.0)
-                    nz[m++] = k;
-            for (Eigen::Index u = 0; u < m; u++) {
-                const Eigen::Index k = nz[u];
-                const double jk = row[k];
-                b[k] += jk * ri;
-                for (Eigen::Index v = 0; v <= u; v++) // a(k, l), l = nz[v] <= k
-                    a[nz[v] * np + k] += jk * row[nz[v]];
-            }
-        }
-    }
-
-    // r -> g = sign(r) sqrt(rho(r^2)); dg/dr = rho'(s) |r| / sqrt(rho(s)) (1 at r = 0).
-    void apply_loss(double *res, double *jac, size_t n, size_t np) const
-    {
-        for (size_t i = 0; i < n; i++) {
-            const double r = res[i], s = r * r;
-            double d1;
-            const double rho = loss_rho(loss_, s, &d1);
-            const double g = std::sqrt(rho);
-            double dg = 1.0;
-            if (g > 0.0) {
-                dg = d1 * std::fabs(r) / g;
-                res[i] = std::copysign(g, r);
-            }
-            if (jac)
-                for (size_t k = 0; k < np; k++)
-                    jac[i * np + k] *= dg;
-        }
-    }
-
     const bf_problem *p_;
     bf_loss loss_;
-    size_t r0_, r1_;
-    ScratchPool *pool_;
-    int *passes_;
-    bool compressed_;
+    int threads_;
+    mutable int passes_ = 0;
+    enum CacheState { kEmpty, kValid, kInvalid };
     mutable CacheState cache_state_ = kEmpty;
-    mutable std::vector<double> cache_x_, cache_g_, cache_F_;
-    mutable double cache_rr_ = 0.0;
+    mutable std::vector<double> cache_x_, cache_g_, cache_F_, cache_jtr_;
+    mutable double cache_ssq_ = 0.0;
 };
 
 struct NamedAlgorithm {
@@ -393,95 +232,73 @@ bool all_finite(const double *x, int n)
 
 // Bounds. Ceres handles a bound only by projecting each step onto the box: when the
 // optimum has a parameter on its bound and that parameter is coupled to others, the
-// projected Gauss-Newton steps are wrong for the free parameters and the solve crawls
-// until a tolerance stops it far from the optimum. So bounds get an active set around
-// Ceres: a parameter that sits on its bound with the gradient pushing outwards is held
-// there (SubsetManifold) and the rest re-solved, until the held set satisfies the KKT
-// sign conditions. A callback ends a round early once a free parameter has stayed on a
-// bound for kStallIterations iterations, so the crawl costs a few iterations only.
+// projected Gauss-Newton steps are wrong for the free parameters, the trust region
+// shrinks at every step and the solve crawls. So bounds get an active set around Ceres
+// (a primal active-set method): a round ends early once free parameters have sat on
+// their bounds for kStallIterations iterations, and they are then held there
+// (SubsetManifold) for the next round; when a round converges, a held parameter whose
+// gradient points into the box is released and one on its bound whose gradient points
+// out is held, until the held set satisfies the KKT sign conditions.
 constexpr int kStallIterations = 3;
 
-class BoundWatch final : public ceres::IterationCallback {
+// Slow progress. A model with a direction the data hardly determine (two lobes where one
+// would do, a weight against a shape parameter) has a long curved valley, along which
+// Levenberg-Marquardt takes many small successful steps, each lowering the cost by about
+// the function tolerance: dozens of passes for a change in the error far below its
+// sampling noise. A round ends as converged when the cost fell by less than
+// kSlowRelative (relative) over the last kSlowWindow successful steps.
+constexpr int kSlowWindow = 5;
+constexpr double kSlowRelative = 1e-8;
+
+// Watches a round: ends it on a stall at a bound (kBound) or on slow progress (kSlow).
+class RoundWatch final : public ceres::IterationCallback {
 public:
-    BoundWatch(const double *x, const std::vector<double> &lo, const std::vector<double> &hi,
+    enum Reason { kNone, kBound, kSlow };
+    RoundWatch(const double *x, const std::vector<double> &lo, const std::vector<double> &hi,
                const std::vector<char> &held)
         : x_(x), lo_(lo), hi_(hi), held_(held)
     {
     }
-    ceres::CallbackReturnType operator()(const ceres::IterationSummary &) override
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary &it) override
     {
         bool on_bound = false;
         for (size_t k = 0; k < held_.size(); k++)
             if (!held_[k] && (x_[k] == lo_[k] || x_[k] == hi_[k]))
                 on_bound = true;
         streak_ = on_bound ? streak_ + 1 : 0;
-        return streak_ >= kStallIterations ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
-                                           : ceres::SOLVER_CONTINUE;
+        if (streak_ >= kStallIterations) {
+            reason_ = kBound;
+            return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        }
+        if (it.iteration == 0 || it.step_is_successful)
+            costs_.push_back(it.cost);
+        const size_t n = costs_.size();
+        if (n > static_cast<size_t>(kSlowWindow) &&
+            costs_[n - 1 - kSlowWindow] - costs_[n - 1] <= kSlowRelative * costs_[n - 1]) {
+            reason_ = kSlow;
+            return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        }
+        return ceres::SOLVER_CONTINUE;
     }
+    Reason reason() const { return reason_; }
 
 private:
     const double *x_;
     const std::vector<double> &lo_, &hi_;
     const std::vector<char> &held_;
     int streak_ = 0;
+    std::vector<double> costs_;
+    Reason reason_ = kNone;
 };
 
-// Gradient of the cost, sum_i g_i dg_i/dx, over all blocks with up to `threads`
-// threads; each thread sums a fixed set of blocks and the partial sums are added in
-// thread order, so the result does not depend on scheduling. False if eval fails.
-bool cost_gradient(const bf_problem *p, const bf_loss &loss,
-                   const std::vector<std::pair<size_t, size_t>> &blocks, int threads,
-                   const double *x, std::vector<double> &grad)
-{
-    const size_t np = static_cast<size_t>(p->npar);
-    const int nt = std::max(1, std::min<int>(threads, static_cast<int>(blocks.size())));
-    std::vector<std::vector<double>> part(nt, std::vector<double>(np, 0.0));
-    std::vector<char> ok(nt, 1);
-    auto work = [&](int t) {
-        std::vector<double> res, jac;
-        for (size_t b = static_cast<size_t>(t); b < blocks.size(); b += nt) {
-            const size_t r0 = blocks[b].first, r1 = blocks[b].second, n = r1 - r0;
-            res.resize(n);
-            jac.resize(n * np);
-            RangeCost cost(p, loss, r0, r1, nullptr);
-            if (!cost.raw(x, res.data(), jac.data())) {
-                ok[t] = 0;
-                return;
-            }
-            for (size_t i = 0; i < n; i++)
-                for (size_t k = 0; k < np; k++)
-                    part[t][k] += res[i] * jac[i * np + k];
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < nt; t++)
-        pool.emplace_back(work, t);
-    work(0);
-    for (std::thread &th : pool)
-        th.join();
-    grad.assign(np, 0.0);
-    for (int t = 0; t < nt; t++) {
-        if (!ok[t])
-            return false;
-        for (size_t k = 0; k < np; k++)
-            grad[k] += part[t][k];
-    }
-    return true;
-}
-
 // One Ceres solve from x with the parameters flagged in `held` constant.
-void run_ceres(const bf_problem *p, const bf_loss &loss, const ceres::Solver::Options &opt,
-               ScratchPool *pool,
-               const std::vector<std::pair<size_t, size_t>> &blocks, const std::vector<double> &lo,
-               const std::vector<double> &hi, const std::vector<char> &held, double *x,
-               ceres::Solver::Summary *sum, int *passes)
+void run_ceres(NormalCost *cost, int np, const ceres::Solver::Options &opt, const std::vector<double> &lo,
+               const std::vector<double> &hi, const std::vector<char> &held, double *x, ceres::Solver::Summary *sum)
 {
-    const int np = p->npar;
-    ceres::Problem problem; // owns the cost functions and the manifold
-    for (size_t b = 0; b < blocks.size(); b++)
-        problem.AddResidualBlock(new RangeCost(p, loss, blocks[b].first, blocks[b].second, pool,
-                                               b == 0 ? passes : nullptr),
-                                 nullptr, x);
+    ceres::Problem::Options po;
+    po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP; // it lives for every round
+    ceres::Problem problem(po); // owns the manifold
+    problem.AddResidualBlock(cost, nullptr, x);
     std::vector<int> fixed;
     for (int k = 0; k < np; k++) {
         if (held[k]) {
@@ -570,7 +387,8 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
     opt.function_tolerance = o->function_tolerance > 0 ? o->function_tolerance : 1e-10;
     opt.gradient_tolerance = o->gradient_tolerance > 0 ? o->gradient_tolerance : 1e-12;
     opt.parameter_tolerance = o->parameter_tolerance > 0 ? o->parameter_tolerance : 1e-10;
-    opt.num_threads = std::max(1, o->threads);
+    opt.num_threads = 1; // the fused pass has the threads (see the top of the file)
+    const int threads = std::max(1, o->threads);
     // Silence: no progress table, no glog lines from the minimizer.
     opt.minimizer_progress_to_stdout = false;
     opt.logging_type = ceres::SILENT;
@@ -582,25 +400,20 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
     for (int k = 0; k < np; k++)
         x[k] = std::min(std::max(x[k], lo[k]), hi[k]);
 
-    // Blocks: enough for load balance across threads, none larger than the cache-sized
-    // block, none empty; residual ranges split as evenly as possible.
-    const size_t nres = p->nres;
-    const size_t rows = std::max(kMinBlockResiduals, kBlockJacobianDoubles / static_cast<size_t>(np));
-    size_t nblocks = std::max(kBlocksPerThread * static_cast<size_t>(opt.num_threads),
-                              (nres + rows - 1) / rows);
-    nblocks = std::min(nblocks, nres);
-    ScratchPool pool;
-    std::vector<std::pair<size_t, size_t>> blocks(nblocks);
-    for (size_t b = 0; b < nblocks; b++)
-        blocks[b] = {nres * b / nblocks, nres * (b + 1) / nblocks};
-
-    // Active-set rounds (see BoundWatch); the iteration and time limits are shared.
+    // Active-set rounds (see RoundWatch); the iteration and time limits are shared.
+    NormalCost cost(p, o->loss, threads);
     std::vector<char> user_held(np, 0), held(np, 0);
     for (int k = 0; k < np; k++)
         user_held[k] = held[k] = o->constant && o->constant[k];
+    // A start on a bound (a previous solve's answer, as the fit's presolve hands over) is
+    // taken as active from the start; the KKT check releases it if that was wrong.
+    for (int k = 0; k < np; k++)
+        if (x[k] == lo[k] || x[k] == hi[k])
+            held[k] = 1;
+    std::vector<std::vector<char>> seen; // the held sets rounds started with: no cycling
     std::vector<double> best(x, x + np), grad;
-    bool watch = true, have_result = false;
-    int rounds = 0, iterations = 0, evaluations = 0;
+    bool have_result = false;
+    int rounds = 0, iterations = 0;
     double seconds = 0.0, initial_cost = 0.0, final_cost = 0.0;
     ceres::Solver::Summary sum;
     for (const int max_rounds = 2 * np + 2; rounds < max_rounds;) {
@@ -608,17 +421,15 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
         opt.max_solver_time_in_seconds = o->max_seconds > 0 ? o->max_seconds - seconds : 1e9;
         if (have_result && (opt.max_num_iterations <= 0 || opt.max_solver_time_in_seconds <= 0))
             break;
-        BoundWatch watcher(x, lo, hi, held);
+        seen.push_back(held);
+        RoundWatch watcher(x, lo, hi, held);
         opt.callbacks.clear();
-        opt.update_state_every_iteration = watch;
-        if (watch)
-            opt.callbacks.push_back(&watcher);
+        opt.update_state_every_iteration = true;
+        opt.callbacks.push_back(&watcher);
         sum = ceres::Solver::Summary();
-        int passes = 0; // Ceres' own counts include the answers served from the cache
-        run_ceres(p, o->loss, opt, &pool, blocks, lo, hi, held, x, &sum, &passes);
+        run_ceres(&cost, np, opt, lo, hi, held, x, &sum);
         rounds++;
         iterations += sum.iterations.empty() ? 0 : static_cast<int>(sum.iterations.size() - 1);
-        evaluations += passes;
         seconds += std::max(0.0, sum.total_time_in_seconds);
         if (rounds == 1)
             initial_cost = sum.initial_cost;
@@ -632,29 +443,44 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
         best.assign(x, x + np);
         final_cost = sum.final_cost;
         have_result = true;
-        const bool stopped = sum.termination_type == ceres::USER_SUCCESS;
-
-        // KKT check: hold a bound parameter whose gradient points out of the box,
-        // release one whose gradient points in. Skipped when nothing touches a bound.
-        bool touching = stopped;
-        for (int k = 0; k < np; k++)
-            touching = touching || (!user_held[k] && (held[k] || x[k] == lo[k] || x[k] == hi[k]));
-        if (!touching)
-            break;
-        if (!cost_gradient(p, o->loss, blocks, opt.num_threads, x, grad))
-            break;
-        evaluations++;
-        std::vector<char> next(user_held);
-        for (int k = 0; k < np; k++)
-            if (!user_held[k])
-                next[k] = (x[k] == lo[k] && grad[k] > 0.0) || (x[k] == hi[k] && grad[k] < 0.0);
-        if (next == held) {
-            if (!stopped)
-                break; // a converged round with a consistent active set: done
-            watch = false; // stopped early, yet nothing to hold: finish without the watch
+        std::vector<char> next(held);
+        const bool slow = sum.termination_type == ceres::USER_SUCCESS && watcher.reason() == RoundWatch::kSlow;
+        if (slow) { // converged, for every purpose below
+            sum.termination_type = ceres::CONVERGENCE;
+            char why[96];
+            snprintf(why, sizeof why, "cost decreased by less than %g (relative) over the last %d steps",
+                     kSlowRelative, kSlowWindow);
+            sum.message = why;
         }
+        if (sum.termination_type == ceres::USER_SUCCESS) {
+            // Stopped on a stall: hold what sits on its bound.
+            for (int k = 0; k < np; k++)
+                if (x[k] == lo[k] || x[k] == hi[k])
+                    next[k] = 1;
+        } else {
+            // Converged (or out of iterations): the KKT signs, where anything touches a
+            // bound.
+            bool touching = false;
+            for (int k = 0; k < np; k++)
+                touching = touching || (!user_held[k] && (held[k] || x[k] == lo[k] || x[k] == hi[k]));
+            if (!touching || sum.termination_type != ceres::CONVERGENCE)
+                break;
+            if (!cost.gradient(x, grad))
+                break;
+            for (int k = 0; k < np; k++)
+                if (!user_held[k])
+                    next[k] = (x[k] == lo[k] && grad[k] > 0.0) || (x[k] == hi[k] && grad[k] < 0.0);
+            if (next == held)
+                break; // a consistent active set: done
+        }
+        // A set tried already would go round in circles (a parameter that the gradient
+        // lets go and the steps bring back): the rounds end, each round having only
+        // lowered the cost.
+        if (std::find(seen.begin(), seen.end(), next) != seen.end())
+            break;
         held.swap(next);
     }
+    const int evaluations = cost.passes();
 
     // No usable round: the cost is unknown (Ceres says -1), which must not look like
     // the best cost of a multistart.

@@ -1,11 +1,9 @@
 /* The NLopt back end: minimises F(x) = 1/2 sum rho(r_i^2) through NLopt's C API.
  *
- * Residuals (and, when NLopt asks for a gradient, Jacobian rows) are evaluated in fixed
- * chunks of BF_NLOPT_CHUNK rows, so memory is O(chunk * npar) per thread, never
- * O(nres * npar); each chunk reduces its rows to a partial cost and a partial J^T (rho' r),
- * and the partials are summed in chunk order on the calling thread. Chunk boundaries do
- * not depend on the thread count, so the cost and gradient, and hence the whole solve,
- * are bit-for-bit identical for any o->threads.
+ * The cost and its gradient come from the problem's fused pass (bf_problem_normal: the
+ * residuals and their Jacobian rows reduced chunk by chunk, nothing of size
+ * nres x npar stored, chunks summed in a fixed order), so the cost and gradient, and
+ * hence the whole solve, are bit-for-bit identical for any o->threads.
  *
  * Constant parameters are removed from the vector NLopt sees (lo = hi would break
  * BOBYQA, whose trust region needs hi - lo > 0); they stay at their start values.
@@ -21,15 +19,11 @@
 
 #include <math.h>
 #include <nlopt.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <time.h>
-
-#define BF_NLOPT_CHUNK 8192
-#define BF_NLOPT_MAX_THREADS 256
 
 enum { ALG_GLOBAL = 1, ALG_CONSTRAINTS = 2, ALG_GRADIENT = 4 };
 
@@ -75,181 +69,30 @@ static void alg_list(char *buf, size_t size, int need, int avoid)
     }
 }
 
-typedef struct nl_state nl_state;
-
-/* What a pool thread gets: the state and its thread index. */
-typedef struct nl_worker_arg {
-    nl_state *st;
-    int t;
-} nl_worker_arg;
-
-struct nl_state {
+typedef struct nl_state {
     const bf_problem *p;
     bf_loss loss;
+    int threads;
     int npar, nfree;
     int *freeidx;        /* free index -> problem index */
     double *xfull;       /* problem vector: constants at their start, the rest from NLopt */
     double *gfull;       /* gradient over the problem vector */
-    size_t nchunks;
-    double *csum;        /* per chunk: cost, then npar gradient entries */
-    unsigned char *cfail;
-    int want_grad;
-    int nthreads;
-    double **res, **jac; /* per thread chunk buffers */
-    /* worker pool: threads 1 .. nthreads-1 wait for a new generation, thread 0 is the caller */
-    pthread_t *tid;
-    nl_worker_arg *args;
-    int nstarted;
-    int nbuf;            /* entries of res and jac (nthreads may shrink below it) */
-    int pool_live;       /* mutex and condition variables initialised */
-    pthread_mutex_t mu;
-    pthread_cond_t go, done;
-    unsigned long gen;
-    int pending, quit;
     /* bookkeeping */
     int evals, failures;
     double best;
     double *xbest;
-};
-
-/* One chunk: residuals (and Jacobian rows), reduced to its partial cost and gradient. */
-static void chunk_eval(nl_state *st, int t, size_t c)
-{
-    const bf_problem *p = st->p;
-    const int np = st->npar;
-    const size_t r0 = c * BF_NLOPT_CHUNK;
-    const size_t r1 = r0 + BF_NLOPT_CHUNK < p->nres ? r0 + BF_NLOPT_CHUNK : p->nres;
-    const size_t m = r1 - r0;
-    double *res = st->res[t];
-    double *jac = st->want_grad ? st->jac[t] : NULL;
-    double *out = st->csum + c * (size_t)(np + 1);
-    if (p->eval(p->ctx, st->xfull, r0, r1, res, jac) != 0) {
-        st->cfail[c] = 1;
-        return;
-    }
-    st->cfail[c] = 0;
-    double cost = 0.0;
-    if (jac)
-        memset(out + 1, 0, (size_t)np * sizeof *out);
-    const int plain = st->loss.kind == BF_LOSS_NONE;
-    for (size_t i = 0; i < m; i++) {
-        const double r = res[i];
-        double d1 = 1.0;
-        cost += plain ? r * r : bf_loss_eval(&st->loss, r * r, &d1);
-        if (jac) {
-            /* d/dx 1/2 rho(r^2) = rho'(r^2) r dr/dx */
-            const double w = d1 * r;
-            const double *J = jac + i * (size_t)np;
-            for (int k = 0; k < np; k++)
-                out[1 + k] += w * J[k];
-        }
-    }
-    out[0] = 0.5 * cost;
-}
-
-static void run_chunks(nl_state *st, int t)
-{
-    for (size_t c = (size_t)t; c < st->nchunks; c += (size_t)st->nthreads)
-        chunk_eval(st, t, c);
-}
-
-static void *pool_worker(void *arg)
-{
-    nl_worker_arg *a = arg;
-    nl_state *st = a->st;
-    unsigned long seen = 0;
-    for (;;) {
-        pthread_mutex_lock(&st->mu);
-        while (st->gen == seen && !st->quit)
-            pthread_cond_wait(&st->go, &st->mu);
-        if (st->quit) {
-            pthread_mutex_unlock(&st->mu);
-            return NULL;
-        }
-        seen = st->gen;
-        pthread_mutex_unlock(&st->mu);
-        run_chunks(st, a->t);
-        pthread_mutex_lock(&st->mu);
-        if (--st->pending == 0)
-            pthread_cond_signal(&st->done);
-        pthread_mutex_unlock(&st->mu);
-    }
-}
-
-/* Starts nthreads-1 workers; on a failed pthread_create runs with those it has. */
-static void pool_start(nl_state *st)
-{
-    st->nstarted = 0;
-    if (st->nthreads <= 1)
-        return;
-    pthread_mutex_init(&st->mu, NULL);
-    pthread_cond_init(&st->go, NULL);
-    pthread_cond_init(&st->done, NULL);
-    st->pool_live = 1;
-    for (int t = 1; t < st->nthreads; t++) {
-        st->args[t].st = st;
-        st->args[t].t = t;
-        if (pthread_create(&st->tid[t], NULL, pool_worker, &st->args[t]) != 0)
-            break;
-        st->nstarted++;
-    }
-    /* Fewer threads than asked: the chunk stride shrinks, the sums stay the same. */
-    st->nthreads = st->nstarted + 1;
-}
-
-static void pool_stop(nl_state *st)
-{
-    if (!st->pool_live)
-        return;
-    pthread_mutex_lock(&st->mu);
-    st->quit = 1;
-    pthread_cond_broadcast(&st->go);
-    pthread_mutex_unlock(&st->mu);
-    for (int t = 1; t <= st->nstarted; t++)
-        pthread_join(st->tid[t], NULL);
-    pthread_cond_destroy(&st->done);
-    pthread_cond_destroy(&st->go);
-    pthread_mutex_destroy(&st->mu);
-}
+} nl_state;
 
 /* Cost at the free vector z (and its gradient when grad is not NULL). A failed or
  * non-finite evaluation gives HUGE_VAL and a zero gradient, so NLopt never sees NaN. */
 static double evaluate(nl_state *st, const double *z, double *grad)
 {
-    const int np = st->npar;
     for (int j = 0; j < st->nfree; j++)
         st->xfull[st->freeidx[j]] = z[j];
-    st->want_grad = grad != NULL;
     st->evals++;
-    if (st->nthreads > 1) {
-        pthread_mutex_lock(&st->mu);
-        st->gen++;
-        st->pending = st->nthreads - 1;
-        pthread_cond_broadcast(&st->go);
-        pthread_mutex_unlock(&st->mu);
-        run_chunks(st, 0);
-        pthread_mutex_lock(&st->mu);
-        while (st->pending > 0)
-            pthread_cond_wait(&st->done, &st->mu);
-        pthread_mutex_unlock(&st->mu);
-    } else {
-        run_chunks(st, 0);
-    }
-    double cost = 0.0;
-    int ok = 1;
-    if (grad)
-        memset(st->gfull, 0, (size_t)np * sizeof *st->gfull);
-    for (size_t c = 0; c < st->nchunks; c++) { /* fixed order: reproducible sums */
-        const double *in = st->csum + c * (size_t)(np + 1);
-        if (st->cfail[c]) {
-            ok = 0;
-            break;
-        }
-        cost += in[0];
-        if (grad)
-            for (int k = 0; k < np; k++)
-                st->gfull[k] += in[1 + k];
-    }
+    double ssq = 0.0;
+    int ok = bf_problem_normal(st->p, st->xfull, &st->loss, st->threads, &ssq, grad ? st->gfull : NULL, NULL) == 0;
+    double cost = 0.5 * ssq;
     if (grad)
         for (int j = 0; j < st->nfree; j++) {
             grad[j] = st->gfull[st->freeidx[j]];
@@ -300,20 +143,9 @@ static double nl_constraint(unsigned n, const double *z, double *grad, void *dat
 
 static void state_free(nl_state *st)
 {
-    pool_stop(st);
-    for (int t = 0; t < st->nbuf; t++) {
-        free(st->res[t]);
-        free(st->jac[t]);
-    }
-    free(st->res);
-    free(st->jac);
-    free(st->tid);
-    free(st->args);
     free(st->freeidx);
     free(st->xfull);
     free(st->gfull);
-    free(st->csum);
-    free(st->cfail);
     free(st->xbest);
 }
 
@@ -322,42 +154,20 @@ static int state_init(nl_state *st, const bf_problem *p, const bf_solver_options
     memset(st, 0, sizeof *st);
     st->p = p;
     st->loss = o->loss;
+    st->threads = o->threads > 1 ? o->threads : 1;
     st->npar = p->npar;
-    st->nchunks = (p->nres + BF_NLOPT_CHUNK - 1) / BF_NLOPT_CHUNK;
-    int threads = o->threads > 1 ? o->threads : 1;
-    if (threads > BF_NLOPT_MAX_THREADS)
-        threads = BF_NLOPT_MAX_THREADS;
-    if ((size_t)threads > st->nchunks) /* more threads than chunks would idle */
-        threads = (int)st->nchunks;
-    st->nthreads = threads;
     const size_t np = (size_t)p->npar;
-    const size_t rows = p->nres < BF_NLOPT_CHUNK ? p->nres : BF_NLOPT_CHUNK;
     st->freeidx = malloc(np * sizeof *st->freeidx);
     st->xfull = malloc(np * sizeof *st->xfull);
     st->gfull = malloc(np * sizeof *st->gfull);
     st->xbest = malloc(np * sizeof *st->xbest);
-    st->csum = malloc(st->nchunks * (np + 1) * sizeof *st->csum);
-    st->cfail = calloc(st->nchunks, 1);
-    st->res = calloc((size_t)threads, sizeof *st->res);
-    st->jac = calloc((size_t)threads, sizeof *st->jac);
-    st->tid = calloc((size_t)threads, sizeof *st->tid);
-    st->args = calloc((size_t)threads, sizeof *st->args);
-    if (!st->freeidx || !st->xfull || !st->gfull || !st->xbest || !st->csum || !st->cfail ||
-        !st->res || !st->jac || !st->tid || !st->args)
+    if (!st->freeidx || !st->xfull || !st->gfull || !st->xbest)
         return -1;
-    st->nbuf = threads;
-    for (int t = 0; t < threads; t++) {
-        st->res[t] = malloc(rows * sizeof **st->res);
-        st->jac[t] = malloc(rows * np * sizeof **st->jac);
-        if (!st->res[t] || !st->jac[t])
-            return -1;
-    }
     memcpy(st->xfull, x, np * sizeof *x);
     for (int k = 0; k < p->npar; k++)
         if (!(o->constant && o->constant[k]))
             st->freeidx[st->nfree++] = k;
     st->best = HUGE_VAL;
-    pool_start(st);
     return 0;
 }
 

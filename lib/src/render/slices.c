@@ -146,16 +146,18 @@ int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *
     size_t overlaid = 0;
     bf_samples *s = o->samples;
     for (size_t q = 0; s && q < s->n; q++) {
+        double dir[4]; /* theta_i, phi_i, theta_o, phi_o */
+        bf_samples_direction(s, q, dir);
         int k = 0;
-        while (k < nk && !(fabs(s->theta_i[q] - o->incidence[k]) <= o->plane_tol))
+        while (k < nk && !(fabs(dir[0] - o->incidence[k]) <= o->plane_tol))
             k++;
         if (k == nk)
             continue;
-        double d = (s->phi_o[q] - s->phi_i[q]) * (M_PI / 180.0);
-        double off = asin(fmin(1.0, fabs(sin(s->theta_o[q] * (M_PI / 180.0)) * sin(d)))) * (180.0 / M_PI);
-        if (!(off <= o->plane_tol) || !(s->theta_o[q] < 90.0))
+        double d = (dir[3] - dir[1]) * (M_PI / 180.0);
+        double off = asin(fmin(1.0, fabs(sin(dir[2] * (M_PI / 180.0)) * sin(d)))) * (180.0 / M_PI);
+        if (!(off <= o->plane_tol) || !(dir[2] < 90.0))
             continue;
-        double t = cos(d) < 0.0 ? s->theta_o[q] : -s->theta_o[q];
+        double t = cos(d) < 0.0 ? dir[2] : -dir[2];
         double sv[3];
         bf_channels_to_rgb(s->value + q * (size_t)s->channels, s->channels, sv);
         int sch = s->channels == 3 ? 3 : 1, drawn = 0;

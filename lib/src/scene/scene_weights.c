@@ -129,10 +129,12 @@ int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err
         return rc;
     const int rotate = q.lights && q.views;
     double sw[CHUNK], tir[CHUNK], tor[CHUNK];
-    double dx[CHUNK], dy[CHUNK], dz[CHUNK], rx[CHUNK], ry[CHUNK], rz[CHUNK];
+    double dx[CHUNK], dy[CHUNK], dz[CHUNK], rx[CHUNK], ry[CHUNK], rz[CHUNK], abuf[4 * CHUNK];
     for (size_t i0 = 0; i0 < s->n; i0 += CHUNK) {
         const size_t m = s->n - i0 < CHUNK ? s->n - i0 : CHUNK;
-        const double *ti = s->theta_i + i0, *to = s->theta_o + i0, *pi_ = s->phi_i + i0, *po = s->phi_o + i0;
+        const double *dir[4];
+        bf_samples_angle_block(s, i0, m, abuf, dir);
+        const double *ti = dir[0], *pi_ = dir[1], *to = dir[2], *po = dir[3];
         for (size_t i = 0; i < m; i++) {
             tir[i] = ti[i] * DEG;
             tor[i] = to[i] * DEG;

@@ -1,0 +1,511 @@
+/* The objective's fused pass (bf_problem.normal, solve.h): sum g^2, J'g and J'J of the
+ * loss-weighted residuals in one sweep over the samples, nothing of size n x p stored.
+ *
+ * The samples are cut into fixed chunks (the same for every thread count); each chunk
+ * keeps its own sums, over the whole model vector, and the chunks are added in chunk
+ * order, so the result does not depend on the threads. The sums are taken to the
+ * requested columns once at the end: J_z = J_x[:, cols] diag(colscale), so
+ * J_z'J_z = D (J_x'J_x)[cols, cols] D.
+ *
+ * Two ways through a chunk:
+ *  - lobe models ("rho_d/pi + sum_k rho_s_k S_k", models/lobes.h): per block the lobe
+ *    shapes S_k and their derivatives, then per residual its few non-zero Jacobian
+ *    entries (its channel's rho_d and rho_s_k, and every lobe scalar) straight into a
+ *    small per-channel J'J. A mono-tied model is summed over its untied entries and the
+ *    sums folded onto the tied ones at the end (J_tied = J_untied M, so
+ *    J_tied'J_tied = M' J_untied'J_untied M).
+ *  - any other model: its values and full gradient rows per block (bf_model_eval_range),
+ *    then per channel the columns its rows use, gathered, and each sum one dot product. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "metrics_impl.h"
+#include "models/lobes.h"
+#include "objective_impl.h"
+#include "parallel.h"
+
+enum { NORMAL_CHUNK = BF_METRIC_CHUNK }; /* samples: the metrics' chunks (metrics_impl.h) */
+#define BLOCK_DOUBLES 16384   /* gradient scratch of the generic path: about 128 KiB */
+
+typedef struct normal_job {
+    const bf_objective *o;
+    const bf_model *m;      /* the model evaluated: o->model, or its untied form */
+    const double *x;        /* m's vector */
+    int P;                  /* m's vector length */
+    int lobe_path;
+    bf_lobe_layout lay;
+    const bf_loss *loss;
+    int want_jac, want_jtj;
+    double *part;           /* per chunk: ssq, jtr (P), jtj (P^2, lower triangle) */
+    bf_metric_sums *msum;   /* NULL, or per chunk: the metrics' sums (metrics_impl.h) */
+    const double *mweight;  /* the metrics' weights (a scene's), NULL: all 1 */
+    int failed;
+} normal_job;
+
+static size_t normal_part(int P) { return 1 + (size_t)P + (size_t)P * (size_t)P; }
+
+/* The final pass keeps a chunk's model values (and, for the log form, the metrics' log
+ * differences) and cosines, and sums the metrics from them in bf_metric_chunk's order,
+ * so that they equal bf_metrics_compute's to the bit. */
+typedef struct metric_buf {
+    size_t i0;         /* the chunk's first sample */
+    double *f, *dl;    /* per value of the chunk; dl only for the log form */
+    double *cs;        /* per sample: cos theta_i, 0 below the horizon */
+} metric_buf;
+
+/* One value kept (the final pass only). raw is the residual form's value: for the log
+ * form it is the metrics' log difference itself (the objective's measurement term is
+ * bf_obj_log1p(m c) too), which saves two logarithms. */
+static inline __attribute__((always_inline)) void metric_value(const normal_job *j, bf_residual form, metric_buf *mb,
+                                                               size_t i, size_t ch, double f, double cs, double raw)
+{
+    const size_t r = (i - mb->i0) * (size_t)j->o->C + ch;
+    mb->f[r] = f;
+    if (form == BF_RESIDUAL_LOG)
+        mb->dl[r] = raw;
+    mb->cs[i - mb->i0] = cs;
+}
+
+/* The residual of measurement value[r] for model value f at cosine cs, and the scale
+ * of its Jacobian row (w dr/df dg/dr), for one residual form: the form is a constant in
+ * each call of the switches below, so the compiler drops its switch from the loops. */
+static inline __attribute__((always_inline)) double
+residual_at(const normal_job *j, bf_residual form, size_t r, size_t ch, double f, double w, double cs, double *s,
+            double *raw)
+{
+    const bf_objective *o = j->o;
+    const double mm = o->samples->value[r];
+    const double t = o->meas_t ? o->meas_t[r] : bf_obj_form_meas(form, mm, cs);
+    double d, dg = 1.0;
+    *raw = bf_obj_form_t(form, f, mm, cs, o->delta[ch], t, &d);
+    double g = w * *raw;
+    if (j->loss && j->loss->kind != BF_LOSS_NONE)
+        g = bf_loss_residual(j->loss, g, &dg);
+    *s = w * d * dg;
+    return g;
+}
+
+/* sum a[k] b[k] in four interleaved partial sums (a fixed order: the same bits every
+ * time, and independent additions the processor can overlap). */
+static double dot(const double *restrict a, const double *restrict b, size_t n)
+{
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    size_t k = 0;
+    for (; k + 4 <= n; k += 4) {
+        s0 += a[k] * b[k];
+        s1 += a[k + 1] * b[k + 1];
+        s2 += a[k + 2] * b[k + 2];
+        s3 += a[k + 3] * b[k + 3];
+    }
+    for (; k < n; k++)
+        s0 += a[k] * b[k];
+    return (s0 + s1) + (s2 + s3);
+}
+
+/* ---- Lobe models ------------------------------------------------------------------- */
+
+/* Per chunk: per channel, the sums over the local entries u of a residual of that
+ * channel (u = 0 rho_d[c], 1 .. K rho_s_k[c], then every lobe's scalars in order), and
+ * one block's Jacobian columns over those entries. */
+typedef struct lobe_sums {
+    int L;        /* local entries */
+    double *tr;   /* C * L */
+    double *tj;   /* C * L * L, lower triangle */
+    double *col;  /* (L + 2) * BF_LOBE_BLOCK: the columns, then g and s of the block */
+} lobe_sums;
+
+/* One block of one channel: the residuals (form a constant in each call of the switch
+ * in lobe_channels, so the compiler drops its switch from the loop), then the block's
+ * Jacobian columns, then each of the sums as one dot product over the block. */
+static inline __attribute__((always_inline)) double
+lobe_block(const normal_job *j, bf_residual form, size_t ch, const bf_geometry *gv, size_t ib, size_t cnt,
+           const double (*S)[BF_LOBE_BLOCK], const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
+           lobe_sums *ls, metric_buf *ms)
+{
+    const bf_objective *o = j->o;
+    const bf_lobe_layout *lay = &j->lay;
+    const size_t C = (size_t)o->C;
+    const int K = lay->lobes, L = ls->L;
+    const double *restrict sw = o->sw, *restrict lz = gv->lz, *restrict vz = gv->vz;
+    double *restrict col = ls->col, *restrict g = col + (size_t)L * BF_LOBE_BLOCK, *restrict sc = g + BF_LOBE_BLOCK;
+    double wk[BF_MAX_LOBES];
+    for (int k = 0; k < K; k++)
+        wk[k] = j->x[lay->weight[k] + (int)ch];
+    const double fd = j->x[lay->diffuse + (int)ch] * (1.0 / M_PI);
+    double ssq = 0.0;
+    for (size_t q = 0; q < cnt; q++) {
+        g[q] = sc[q] = 0.0;
+        if (!(lz[q] > 0.0 && vz[q] > 0.0))
+            continue; /* below the horizon: residual 0, Jacobian row 0 */
+        const size_t i = ib + q;
+        double f = fd;
+        for (int k = 0; k < K; k++)
+            f += wk[k] * S[k][q];
+        double raw;
+        g[q] = residual_at(j, form, i * C + ch, ch, f, sw ? sw[i] : 1.0, lz[q], &sc[q], &raw);
+        ssq += g[q] * g[q];
+        if (ms)
+            metric_value(j, form, ms, i, ch, f, lz[q], raw);
+    }
+    if (!j->want_jac)
+        return ssq;
+    /* The columns: d f / d rho_d = 1/pi, d f / d rho_s_k = S_k, d f / d scalar = rho_s_k
+     * dS_k, each times the row's scale s. */
+    for (size_t q = 0; q < cnt; q++)
+        col[q] = sc[q] * (1.0 / M_PI);
+    int u = 1 + K;
+    for (int k = 0; k < K; k++) {
+        double *ck = col + (size_t)(1 + k) * BF_LOBE_BLOCK;
+        for (size_t q = 0; q < cnt; q++)
+            ck[q] = sc[q] * S[k][q];
+        for (int v = 0; v < lay->nscalar[k]; v++, u++) {
+            double *cu = col + (size_t)u * BF_LOBE_BLOCK;
+            const double *d = dS[k] + (size_t)v * BF_LOBE_BLOCK;
+            for (size_t q = 0; q < cnt; q++)
+                cu[q] = sc[q] * wk[k] * d[q];
+        }
+    }
+    double *tr = ls->tr + ch * (size_t)L, *tj = ls->tj ? ls->tj + ch * (size_t)L * (size_t)L : NULL;
+    for (int a = 0; a < L; a++) {
+        const double *ca = col + (size_t)a * BF_LOBE_BLOCK;
+        tr[a] += dot(ca, g, cnt);
+        for (int b = 0; tj && b <= a; b++)
+            tj[a * L + b] += dot(ca, col + (size_t)b * BF_LOBE_BLOCK, cnt);
+    }
+    return ssq;
+}
+
+static double lobe_channels(const normal_job *j, const bf_geometry *gv, size_t ib, size_t cnt,
+                            const double (*S)[BF_LOBE_BLOCK], const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
+                            lobe_sums *ls, metric_buf *ms)
+{
+    double ssq = 0.0;
+    for (size_t ch = 0; ch < (size_t)j->o->C; ch++)
+        switch (j->o->residual) {
+        case BF_RESIDUAL_LOG:
+            ssq += lobe_block(j, BF_RESIDUAL_LOG, ch, gv, ib, cnt, S, dS, ls, ms);
+            break;
+        default:
+            ssq += lobe_block(j, j->o->residual, ch, gv, ib, cnt, S, dS, ls, ms);
+            break;
+        }
+    return ssq;
+}
+
+/* The model entry of local entry u of channel ch. */
+static int lobe_entry(const bf_lobe_layout *lay, int u, int ch)
+{
+    if (u == 0)
+        return lay->diffuse + ch;
+    if (u <= lay->lobes)
+        return lay->weight[u - 1] + ch;
+    u -= 1 + lay->lobes;
+    for (int k = 0; k < lay->lobes; k++) {
+        if (u < lay->nscalar[k])
+            return lay->scalar[k] + u;
+        u -= lay->nscalar[k];
+    }
+    return -1; /* not reached */
+}
+
+/* A chunk's sums: *ssq, jtr and jtj (P entries, lower triangle). 0, or -1 when out of
+ * memory. */
+static int lobe_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out, double *jtr, double *jtj,
+                      metric_buf *ms)
+{
+    const bf_objective *o = j->o;
+    const bf_lobe_layout *lay = &j->lay;
+    const int K = lay->lobes, C = o->C, P = j->P;
+    int L = 1 + K;
+    for (int k = 0; k < K; k++)
+        L += lay->nscalar[k];
+    lobe_sums ls = {L, calloc((size_t)C * (size_t)L, sizeof(double)),
+                    j->want_jtj ? calloc((size_t)C * (size_t)L * (size_t)L, sizeof(double)) : NULL,
+                    malloc(((size_t)L + 2) * BF_LOBE_BLOCK * sizeof(double))};
+    if (!ls.tr || !ls.col || (j->want_jtj && !ls.tj)) {
+        free(ls.tr);
+        free(ls.tj);
+        free(ls.col);
+        return -1;
+    }
+    double S[BF_MAX_LOBES][BF_LOBE_BLOCK], dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK];
+    double ssq = 0.0;
+    bf_geometry_block gb;
+    for (size_t ib = i0; ib < i1; ib += BF_LOBE_BLOCK) {
+        const size_t cnt = i1 - ib < BF_LOBE_BLOCK ? i1 - ib : BF_LOBE_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
+        for (int k = 0; k < K; k++)
+            bf_model_lobe_shape(j->m, j->x, k, gv, 0, cnt, S[k], j->want_jac ? dS[k] : NULL);
+        ssq += lobe_channels(j, gv, ib, cnt, S, dS, &ls, ms);
+    }
+    if (j->want_jac) { /* local entries to model entries (lower triangle of the chunk's sums) */
+        for (int ch = 0; ch < C; ch++)
+            for (int a = 0; a < L; a++) {
+                const int ka = lobe_entry(lay, a, ch);
+                jtr[ka] += ls.tr[(size_t)ch * (size_t)L + (size_t)a];
+                for (int b = 0; ls.tj && b <= a; b++) {
+                    const int kb = lobe_entry(lay, b, ch);
+                    const double v = ls.tj[((size_t)ch * (size_t)L + (size_t)a) * (size_t)L + (size_t)b];
+                    jtj[ka >= kb ? (size_t)ka * (size_t)P + (size_t)kb : (size_t)kb * (size_t)P + (size_t)ka] += v;
+                }
+            }
+    }
+    free(ls.tr);
+    free(ls.tj);
+    free(ls.col);
+    *ssq_out = ssq;
+    return 0;
+}
+
+/* ---- Any model --------------------------------------------------------------------- */
+
+/* Scratch of one chunk's blocks: per residual of the block its loss-weighted value g
+ * and the scale s of its gradient row (J = s dF/dx; 0 below the horizon), and one
+ * channel's non-zero Jacobian columns gathered column by column. */
+typedef struct block_scratch {
+    double *vals, *grad; /* blk * C, blk * C * P */
+    double *g, *s;       /* blk * C */
+    double *jc;          /* (P + 1) * blk */
+    int *cols;           /* P */
+    unsigned char *used; /* P */
+} block_scratch;
+
+static inline __attribute__((always_inline)) double
+block_residuals(const normal_job *j, bf_residual form, const bf_geometry *gv, size_t ib, size_t cnt,
+                block_scratch *b, metric_buf *ms)
+{
+    const bf_objective *o = j->o;
+    const size_t C = (size_t)o->C;
+    double ssq = 0.0;
+    for (size_t q = 0; q < cnt; q++) {
+        const size_t i = ib + q;
+        if (!bf_geometry_valid(gv, q)) { /* residual 0, Jacobian row 0 */
+            for (size_t ch = 0; ch < C; ch++)
+                b->g[q * C + ch] = b->s[q * C + ch] = 0.0;
+            continue;
+        }
+        const double w = o->sw ? o->sw[i] : 1.0, cs = gv->lz[q];
+        for (size_t ch = 0; ch < C; ch++) {
+            const size_t li = q * C + ch;
+            double raw;
+            const double g = residual_at(j, form, i * C + ch, ch, b->vals[li], w, cs, &b->s[li], &raw);
+            ssq += g * g;
+            b->g[li] = g;
+            if (ms)
+                metric_value(j, form, ms, i, ch, b->vals[li], cs, raw);
+        }
+    }
+    return ssq;
+}
+
+/* J'g and J'J of one block, a channel at a time: a channel's rows touch only some
+ * columns (in a colour fit, its own colour parameters and the scalars), which are
+ * gathered into columns of cnt values, so each entry of the sums is one dot product. */
+static void block_normal(const normal_job *j, size_t cnt, block_scratch *b, double *jtr, double *jtj)
+{
+    const size_t C = (size_t)j->o->C, P = (size_t)j->P;
+    for (size_t ch = 0; ch < C; ch++) {
+        /* The columns some row of this channel uses (a bit mask in a register when the
+         * model has at most 64 entries, as every model of the registry on RGB data). */
+        uint64_t mask = 0;
+        if (P <= 64) {
+            for (size_t q = 0; q < cnt; q++) {
+                const size_t li = q * C + ch;
+                if (b->s[li] == 0.0)
+                    continue; /* below the horizon, or no effect on the cost */
+                const double *gr = b->grad + li * P;
+                for (size_t a = 0; a < P; a++)
+                    mask |= (uint64_t)(gr[a] != 0.0) << a;
+            }
+        } else {
+            memset(b->used, 0, P);
+            for (size_t q = 0; q < cnt; q++) {
+                const size_t li = q * C + ch;
+                if (b->s[li] == 0.0)
+                    continue;
+                const double *gr = b->grad + li * P;
+                for (size_t a = 0; a < P; a++)
+                    b->used[a] |= gr[a] != 0.0;
+            }
+        }
+        int m = 0;
+        for (size_t a = 0; a < P; a++)
+            if (P <= 64 ? (mask >> a) & 1u : b->used[a])
+                b->cols[m++] = (int)a;
+        for (int u = 0; u < m; u++) {
+            double *col = b->jc + (size_t)u * cnt;
+            for (size_t q = 0; q < cnt; q++) {
+                const size_t li = q * C + ch;
+                const double sv = b->s[li];
+                col[q] = sv != 0.0 ? sv * b->grad[li * P + (size_t)b->cols[u]] : 0.0;
+            }
+        }
+        /* g of this channel's rows, contiguous, after the columns. */
+        double *gc = b->jc + (size_t)m * cnt;
+        for (size_t q = 0; q < cnt; q++)
+            gc[q] = b->g[q * C + ch];
+        for (int u = 0; u < m; u++) {
+            const double *cu = b->jc + (size_t)u * cnt;
+            const size_t a = (size_t)b->cols[u];
+            jtr[a] += dot(cu, gc, cnt);
+            if (jtj)
+                for (int v = 0; v <= u; v++)
+                    jtj[a * P + (size_t)b->cols[v]] += dot(cu, b->jc + (size_t)v * cnt, cnt);
+        }
+    }
+}
+
+static int generic_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out, double *jtr, double *jtj,
+                         metric_buf *ms)
+{
+    const bf_objective *o = j->o;
+    const size_t C = (size_t)o->C, P = (size_t)j->P;
+    size_t blk = BLOCK_DOUBLES / (C * (j->want_jac ? P + 1 : 1));
+    blk = blk < 1 ? 1 : blk > BF_GEOMETRY_BLOCK ? BF_GEOMETRY_BLOCK : blk;
+    block_scratch b = {malloc(blk * C * sizeof(double)), j->want_jac ? malloc(blk * C * P * sizeof(double)) : NULL,
+                       malloc(blk * C * sizeof(double)), malloc(blk * C * sizeof(double)),
+                       malloc((P + 1) * blk * sizeof(double)), malloc(P * sizeof(int)), malloc(P)};
+    double ssq = 0.0;
+    int rc = -1;
+    if (!b.vals || !b.g || !b.s || !b.jc || !b.cols || !b.used || (j->want_jac && !b.grad))
+        goto done;
+    bf_geometry_block gb;
+    for (size_t ib = i0; ib < i1; ib += blk) {
+        const size_t cnt = i1 - ib < blk ? i1 - ib : blk;
+        const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
+        bf_model_eval_range(j->m, j->x, gv, 0, cnt, b.vals, b.grad);
+        switch (o->residual) {
+        case BF_RESIDUAL_LOG:
+            ssq += block_residuals(j, BF_RESIDUAL_LOG, gv, ib, cnt, &b, ms);
+            break;
+        default:
+            ssq += block_residuals(j, o->residual, gv, ib, cnt, &b, ms);
+            break;
+        }
+        if (j->want_jac)
+            block_normal(j, cnt, &b, jtr, jtj);
+    }
+    *ssq_out = ssq;
+    rc = 0;
+done:
+    free(b.vals);
+    free(b.grad);
+    free(b.g);
+    free(b.s);
+    free(b.jc);
+    free(b.cols);
+    free(b.used);
+    return rc;
+}
+
+/* ---- The pass ---------------------------------------------------------------------- */
+
+static void normal_chunk(void *ctx, size_t c)
+{
+    normal_job *j = ctx;
+    const size_t n = j->o->n, i0 = c * NORMAL_CHUNK, i1 = i0 + NORMAL_CHUNK < n ? i0 + NORMAL_CHUNK : n;
+    double *out = j->part + c * normal_part(j->P);
+    double *jtr = out + 1, *jtj = j->want_jtj ? out + 1 + j->P : NULL;
+    const size_t C = (size_t)j->o->C;
+    metric_buf mbuf = {i0, NULL, NULL, NULL}, *ms = NULL;
+    if (j->msum) {
+        mbuf.f = malloc((i1 - i0) * (2 * C + 1) * sizeof(double));
+        if (!mbuf.f) {
+            j->failed = 1;
+            return;
+        }
+        mbuf.dl = mbuf.f + (i1 - i0) * C;
+        mbuf.cs = mbuf.dl + (i1 - i0) * C;
+        memset(mbuf.cs, 0, (i1 - i0) * sizeof *mbuf.cs);
+        ms = &mbuf;
+    }
+    int rc = j->lobe_path ? lobe_chunk(j, i0, i1, out, jtr, jtj, ms) : generic_chunk(j, i0, i1, out, jtr, jtj, ms);
+    if (rc == 0 && ms)
+        bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
+                        j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
+                        j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C);
+    free(mbuf.f);
+    if (rc)
+        j->failed = 1; /* written only as 1, by any thread */
+}
+
+int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
+                    const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj)
+{
+    return bf_obj_normal_metrics(o, x, loss, threads, ncols, cols, colscale, ssq, jtr, jtj, 0, NULL);
+}
+
+int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
+                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj,
+                          int weighted, bf_metric_sums *metrics)
+{
+    const int *map;
+    const bf_model *m = bf_model_untied(o->model, &map);
+    const int P = bf_model_nfree(m);
+    const size_t nchunks = (o->n + NORMAL_CHUNK - 1) / NORMAL_CHUNK, ps = normal_part(P);
+    normal_job j = {.o = o, .m = m, .P = P, .loss = loss, .want_jac = jtr != NULL || jtj != NULL,
+                    .want_jtj = jtj != NULL};
+    j.lobe_path = bf_model_lobe_layout(m, &j.lay);
+    /* The untied vector: entry k of m is entry map[k] of the model's. */
+    double xs[256], *xu = (size_t)P <= 256 ? xs : malloc((size_t)P * sizeof *xu);
+    j.part = calloc(nchunks * ps + 1, sizeof(double));
+    double *sum = calloc(ps, sizeof *sum);
+    j.msum = metrics ? calloc(nchunks + 1, sizeof *j.msum) : NULL;
+    j.mweight = weighted ? o->samples->scene_weight : NULL;
+    int rc = -1;
+    if (!xu || !j.part || !sum || (metrics && !j.msum))
+        goto done;
+    for (int k = 0; k < P; k++)
+        xu[k] = x[map ? map[k] : k];
+    j.x = xu;
+    bf_parallel_for(nchunks, threads, normal_chunk, &j);
+    if (j.failed)
+        goto done;
+    for (size_t c = 0; c < nchunks; c++) {
+        const double *part = j.part + c * ps;
+        for (size_t e = 0; e < (j.want_jac ? ps : 1); e++)
+            sum[e] += part[e];
+    }
+    *ssq = sum[0];
+    if (metrics) {
+        memset(metrics, 0, sizeof *metrics);
+        for (size_t c = 0; c < nchunks; c++)
+            bf_metric_sums_add(metrics, &j.msum[c]);
+    }
+    /* Untied entries folded onto the model's, then the requested columns taken. */
+    const int PM = o->P;
+    double *ftr = j.want_jac ? calloc((size_t)PM, sizeof *ftr) : NULL;
+    double *ftj = jtj ? calloc((size_t)PM * (size_t)PM, sizeof *ftj) : NULL;
+    if ((j.want_jac && !ftr) || (jtj && !ftj)) {
+        free(ftr);
+        free(ftj);
+        goto done;
+    }
+    for (int a = 0; j.want_jac && a < P; a++) {
+        const int ka = map ? map[a] : a;
+        ftr[ka] += sum[1 + a];
+        for (int b = 0; jtj && b <= a; b++) {
+            const int kb = map ? map[b] : b;
+            const double v = sum[1 + P + (size_t)a * (size_t)P + (size_t)b];
+            ftj[(size_t)ka * (size_t)PM + (size_t)kb] += v;
+            if (a != b) /* the untied sums are symmetric: the upper half too */
+                ftj[(size_t)kb * (size_t)PM + (size_t)ka] += v;
+        }
+    }
+    for (int a = 0; jtr && a < ncols; a++)
+        jtr[a] = ftr[cols[a]] * colscale[a];
+    for (int a = 0; jtj && a < ncols; a++)
+        for (int b = 0; b < ncols; b++)
+            jtj[a * ncols + b] = ftj[(size_t)cols[a] * (size_t)PM + (size_t)cols[b]] * colscale[a] * colscale[b];
+    free(ftr);
+    free(ftj);
+    rc = 0;
+done:
+    if (xu != xs)
+        free(xu);
+    free(j.part);
+    free(j.msum);
+    free(sum);
+    return rc;
+}

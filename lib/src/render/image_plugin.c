@@ -1,0 +1,152 @@
+/* Finds and loads the image module (see image_plugin.h) the first time an image is
+ * written or read.
+ *
+ * Where the module (BRDFIT_PLUGIN_FILE, libbrdfit-oiio.so) is looked for, in order:
+ *  1. $BRDFIT_PLUGIN_DIR, if set and not empty: there and nowhere else, so that a wrong
+ *     setting fails loudly instead of quietly loading some other copy.
+ *  2. Relative to the running executable, as installed: <directory of /proc/self/exe>/
+ *     BRDFIT_PLUGIN_REL_DIR (the bin -> lib/brdfit step), so a relocated install (a
+ *     staged DESTDIR, an unpacked package) uses its own module.
+ *  3. The build tree (BRDFIT_PLUGIN_BUILD_DIR), so the commands and the tests run from
+ *     the build directory without installing.
+ *  4. The install directory (BRDFIT_PLUGIN_INSTALL_DIR, ${libdir}/brdfit).
+ * The first of 2-4 where the file exists is loaded; if it is there but does not load
+ * (a missing OpenImageIO library, a stale ABI) that is the error, rather than falling
+ * through to an older copy. The outcome, success or failure, is kept for the process. */
+#include "render/image_plugin.h"
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef BRDFIT_PLUGIN_FILE
+#define BRDFIT_PLUGIN_FILE "libbrdfit-oiio.so"
+#endif
+
+static pthread_once_t load_once = PTHREAD_ONCE_INIT;
+static bf_image_plugin plugin;
+static int plugin_ok;
+static char load_error[sizeof ((bf_error *)0)->msg];
+
+/* load_error = the fixed prefix + the reason (cut to fit, like every bf_error). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static void set_error(const char *fmt, ...)
+{
+    int n = snprintf(load_error, sizeof load_error, "image support (%s) could not be loaded: ",
+                     BRDFIT_PLUGIN_FILE);
+    if (n < 0 || (size_t)n >= sizeof load_error)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(load_error + n, sizeof load_error - (size_t)n, fmt, ap);
+    va_end(ap);
+}
+
+/* dir + "/" + the module's file name into buf; 0 when it does not fit. */
+static int module_path(char *buf, size_t size, const char *dir)
+{
+    int n = snprintf(buf, size, "%s/%s", dir, BRDFIT_PLUGIN_FILE);
+    return n > 0 && (size_t)n < size;
+}
+
+/* Loads path and takes its entry points; on failure sets load_error and returns 0. */
+static int load_from(const char *path)
+{
+    /* RTLD_LOCAL: OpenImageIO's symbols stay out of the global namespace. The handle is
+     * never closed: the module lives as long as the process. */
+    void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        const char *e = dlerror();
+        set_error("%s", e ? e : path);
+        return 0;
+    }
+    bf_oiio_abi_fn abi = (bf_oiio_abi_fn)dlsym(h, "bf_oiio_abi");
+    plugin.write_rgb = (bf_oiio_write_rgb_fn)dlsym(h, "bf_oiio_write_rgb");
+    plugin.read = (bf_oiio_read_fn)dlsym(h, "bf_oiio_read");
+    if (!abi || !plugin.write_rgb || !plugin.read) {
+        set_error("%s: missing entry points", path);
+        dlclose(h);
+        return 0;
+    }
+    int version = abi();
+    if (version != BF_IMAGE_PLUGIN_ABI) {
+        set_error("%s: interface version %d, want %d", path, version, BF_IMAGE_PLUGIN_ABI);
+        dlclose(h);
+        return 0;
+    }
+    return 1;
+}
+
+/* The directory of the running executable joined with BRDFIT_PLUGIN_REL_DIR; 0 if
+ * /proc is unavailable or the path does not fit. */
+static int exe_relative_dir(char *buf, size_t size)
+{
+#ifdef BRDFIT_PLUGIN_REL_DIR
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return 0;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return 0;
+    *slash = '\0';
+    int m = snprintf(buf, size, "%s/%s", exe, BRDFIT_PLUGIN_REL_DIR);
+    return m > 0 && (size_t)m < size;
+#else
+    (void)buf;
+    (void)size;
+    return 0;
+#endif
+}
+
+static void load(void)
+{
+    char path[PATH_MAX];
+    const char *env = getenv("BRDFIT_PLUGIN_DIR");
+    if (env && *env) {
+        if (!module_path(path, sizeof path, env))
+            set_error("BRDFIT_PLUGIN_DIR is too long");
+        else
+            plugin_ok = load_from(path);
+        return;
+    }
+
+    char dirs[3][PATH_MAX];
+    int ndirs = 0;
+    if (exe_relative_dir(dirs[ndirs], sizeof dirs[ndirs]))
+        ndirs++;
+#ifdef BRDFIT_PLUGIN_BUILD_DIR
+    snprintf(dirs[ndirs++], PATH_MAX, "%s", BRDFIT_PLUGIN_BUILD_DIR);
+#endif
+#ifdef BRDFIT_PLUGIN_INSTALL_DIR
+    snprintf(dirs[ndirs++], PATH_MAX, "%s", BRDFIT_PLUGIN_INSTALL_DIR);
+#endif
+    for (int i = 0; i < ndirs; i++) {
+        if (module_path(path, sizeof path, dirs[i]) && access(path, F_OK) == 0) {
+            plugin_ok = load_from(path);
+            return;
+        }
+    }
+    /* Nowhere: say where it was looked for. */
+    set_error("not found in %s%s%s%s%s (set BRDFIT_PLUGIN_DIR)", ndirs > 0 ? dirs[0] : "",
+              ndirs > 1 ? ", " : "", ndirs > 1 ? dirs[1] : "", ndirs > 2 ? ", " : "",
+              ndirs > 2 ? dirs[2] : "");
+}
+
+const bf_image_plugin *bf_image_plugin_get(bf_error *err)
+{
+    pthread_once(&load_once, load);
+    if (!plugin_ok) {
+        bf_fail(err, BF_ERR_IO, "%s", load_error);
+        return NULL;
+    }
+    return &plugin;
+}
