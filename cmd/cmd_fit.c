@@ -8,9 +8,8 @@
  *  - --residual defaults to log (ln(1 + f cos theta_i)): measured BRDFs span decades
  *    between the diffuse floor and the highlight, and the log form weighs both, while a
  *    linear fit serves the peak alone; the cosine inside also tames grazing samples.
- *  - --threads defaults to every online core; results are reproducible for one seed and
- *    thread count (the count is written to the result), so pass --threads 1 for results
- *    identical across machines.
+ *  - --threads defaults to every online core; results are the same for every thread
+ *    count (fixed chunks summed in a fixed order; the count is written to the result).
  *  - --seed seeds everything random: the data options' subsampling and the multistart.
  *  - -o with one model writes the result object (a parameter file for brdfit eval);
  *    with several, {"fits": [result, ...]}, which eval does not take. A failed fit is
@@ -71,9 +70,12 @@ static void summary(FILE *out, const bf_fit_result *r)
     const bf_model *m = r->model;
     const bf_solution *s = &r->solution;
     fprintf(out, "%s  %s\n", bf_model_spec(m), r->ok ? "ok" : "FAILED");
-    fprintf(out, "  rmse %.6g  log rmse %.6g  k %d  %s/%s  %d iterations  %.3f s  (%d start%s)\n", r->metrics.rmse,
+    fprintf(out, "  rmse %.6g  log rmse %.6g  k %d  %s/%s  %d iterations  %.3f s  (%d start%s", r->metrics.rmse,
             r->metrics.rmse_log, r->metrics.k, s->backend, s->algorithm, s->iterations, r->seconds, r->starts,
             r->starts == 1 ? "" : "s");
+    if (r->presolve.samples > 0)
+        fprintf(out, "; presolved on %zu samples in %d iterations", r->presolve.samples, r->presolve.iterations);
+    fputs(")\n", out);
     fprintf(out, "  termination: %s\n", s->termination);
     for (int i = 0; i < bf_model_nparams(m); i++) {
         int o = bf_model_param_offset(m, i);

@@ -8,6 +8,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
 const char fit_options_usage[] =
     "fitting:\n"
     "  --residual linear|cosine|log|cbrt|relative   residual form (default log)\n"
@@ -26,7 +29,9 @@ const char fit_options_usage[] =
     "  --max-iterations N         (default: ceres 100 iterations, nlopt 2000 evaluations)\n"
     "  --starts N                 the data-driven start and N-1 seeded random ones (default 1)\n"
     "  --seed K                   seeds the multistart and any subsampling (default 0)\n"
-    "  --threads N                (default: every core)\n";
+    "  --presolve N|off           solve the starts on a seeded stratified subsample of N samples\n"
+    "                             first (default: " STR(BF_FIT_PRESOLVE_SAMPLES) " for data of " STR(BF_FIT_PRESOLVE_MIN) " samples and more)\n"
+    "  --threads N                (default: every core; results do not depend on it)\n";
 
 /* --accuracy presets, chosen from brdfit tradeoff runs (the figures are in the README,
  * "Accuracy presets": a full synthetic MERL table, the Cornell car paint, NIST PTFE;
@@ -45,8 +50,6 @@ const char fit_options_usage[] =
 #define PRESET_FAST_SAMPLES 16000
 #define PRESET_BEST_STARTS 4
 #define PRESET_BEST_ITERATIONS 500
-#define STR_(x) #x
-#define STR(x) STR_(x)
 
 typedef struct preset {
     const char *name;
@@ -151,7 +154,7 @@ int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char 
     }
     static const char *const with_value[] = {"--residual", "--loss", "--fix", "--bound", "--backend",
                                              "--algorithm", "--local", "--max-iterations", "--starts",
-                                             "--threads"};
+                                             "--threads", "--presolve"};
     int known = 0;
     for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
         known |= !strcmp(a, with_value[k]);
@@ -204,6 +207,13 @@ int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char 
         o->fit.solver.algorithm = v;
     } else if (!strcmp(a, "--local")) {
         o->fit.solver.local_algorithm = v;
+    } else if (!strcmp(a, "--presolve") && !strcmp(v, "off")) {
+        o->fit.presolve = -1;
+    } else if (!strcmp(a, "--presolve") && (!parse_int(v, 64, 1000000000, &n))) {
+        fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
+        return -1;
+    } else if (!strcmp(a, "--presolve")) {
+        o->fit.presolve = n;
     } else if (!parse_int(v, 1, 100000000, &n)) {
         fprintf(stderr, "%s: %s needs a positive integer, got '%s'\n", cmd, a, v);
         return -1;

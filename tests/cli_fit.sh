@@ -128,4 +128,22 @@ expect_error "accuracy without value" 2 '--accuracy needs a value' "$W" -m walte
 "$BRDFIT" fit --help | grep -q -- '--accuracy fast|balanced|best' && ok || bad "fit --help lacks --accuracy"
 "$BRDFIT" fit --help | grep -q -- 'fast: --subsample [0-9]* --backend ceres --starts 1' && ok || bad "fit --help lacks the fast preset"
 
+# --presolve: the starts on a subsample, then all samples; the same optimum as without.
+"$SYNTH" --params "$tmp/truth.json" --pattern uniform --count 20000 --noise 0.05 --seed 7 -o "$tmp/noisy.csv" ||
+  bad "brdfit-synth (noisy)"
+"$BRDFIT" fit "$tmp/noisy.csv" -m walter --presolve 3000 -o "$tmp/pre.json" >"$tmp/out" 2>"$tmp/err" &&
+  jq -e '.optimizer.presolve.samples == 3000 and .optimizer.presolve.iterations > 0 and .samples == 20000' \
+    "$tmp/pre.json" >/dev/null && grep -q 'presolved on 3000 samples' "$tmp/out" && ok ||
+  bad "--presolve 3000: $(cat "$tmp/err") $(cat "$tmp/out")"
+"$BRDFIT" fit "$tmp/noisy.csv" -m walter --presolve off -o "$tmp/nopre.json" >/dev/null 2>"$tmp/err" &&
+  jq -e '(.optimizer | has("presolve") | not)' "$tmp/nopre.json" >/dev/null && ok || bad "--presolve off: $(cat "$tmp/err")"
+jq -n --slurpfile a "$tmp/pre.json" --slurpfile b "$tmp/nopre.json" \
+  '(($a[0].metrics.rmse_log - $b[0].metrics.rmse_log) | fabs) <= 1e-7 * $b[0].metrics.rmse_log and
+   (($a[0].params.alpha - $b[0].params.alpha) | fabs) <= 1e-4 * $b[0].params.alpha' -e >/dev/null && ok ||
+  bad "presolved and direct fits differ: $(jq -c '[.params.alpha, .metrics.rmse_log]' "$tmp/pre.json" "$tmp/nopre.json")"
+"$BRDFIT" fit "$tmp/big.csv" -m walter -o "$tmp/auto.json" >/dev/null 2>&1 &&
+  jq -e '(.optimizer | has("presolve") | not)' "$tmp/auto.json" >/dev/null && ok || bad "20000 samples should not presolve by default"
+expect_error "bad presolve" 2 "--presolve needs a sample count of at least 64 or 'off', got '10'" "$W" -m walter --presolve 10
+expect_error "presolve word" 2 "--presolve needs a sample count of at least 64 or 'off', got 'on'" "$W" -m walter --presolve on
+
 finish

@@ -1,5 +1,6 @@
-/* The objective's own passes (metrics, standard errors) give the same bits for any
- * thread count: fixed chunks, partial sums added in chunk order. */
+/* The objective's passes (the fused pass, metrics, standard errors) and whole fits
+ * (Ceres and NLopt, with and without a presolve) give the same bits for any thread
+ * count: fixed chunks, partial sums added in chunk order. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,6 +10,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/fit.h"
 #include "brdfit/metrics.h"
 #include "brdfit/objective.h"
 #include "support.h"
@@ -64,8 +66,51 @@ static void test_thread_count_independence(void **state)
     bf_model_free(m);
 }
 
+/* Whole fits: parameters, metrics, costs and counts to the bit for 1 to 4 threads. */
+static void check_fit_threads(bf_samples *s, const char *spec, bf_backend backend, long presolve)
+{
+    bf_fit_result ref, r;
+    for (int threads = 1; threads <= 4; threads++) {
+        bf_fit_options o;
+        ts_fit_defaults(&o);
+        o.solver.backend = backend;
+        o.solver.threads = threads;
+        o.presolve = presolve;
+        ts_fit_ok(s, spec, &o, threads == 1 ? &ref : &r);
+        if (threads == 1) {
+            assert_int_equal(ref.presolve.samples, presolve > 0 ? (size_t)presolve : 0);
+            continue;
+        }
+        const int P = bf_model_nfree(r.model);
+        assert_memory_equal(r.x, ref.x, (size_t)P * sizeof *r.x);
+        assert_memory_equal(r.stderr_, ref.stderr_, (size_t)P * sizeof *r.x);
+        assert_memory_equal(&r.metrics, &ref.metrics, sizeof r.metrics);
+        assert_memory_equal(&r.solution.final_cost, &ref.solution.final_cost, sizeof(double));
+        assert_int_equal(r.solution.iterations, ref.solution.iterations);
+        assert_int_equal(r.solution.evaluations, ref.solution.evaluations);
+        assert_int_equal(r.presolve.evaluations, ref.presolve.evaluations);
+        bf_fit_result_free(&r);
+    }
+    bf_fit_result_free(&ref);
+}
+
+static void test_fit_thread_independence(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("walter", 3);
+    double x[8] = {0.3, 0.4, 0.5, 0.6, 0.6, 0.6, 0.15, 0.04};
+    bf_samples *s = make_samples(m, x, 30000);
+    check_fit_threads(s, "walter", BF_BACKEND_CERES, -1);
+    check_fit_threads(s, "walter", BF_BACKEND_CERES, 6000);
+    check_fit_threads(s, "cook_torrance:mono=specular", BF_BACKEND_CERES, 6000);
+    check_fit_threads(s, "ashikhmin_shirley", BF_BACKEND_NLOPT, -1);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_thread_count_independence)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_thread_count_independence),
+                                       cmocka_unit_test(test_fit_thread_independence)};
     return cmocka_run_group_tests_name("fit_threads", tests, NULL, NULL);
 }

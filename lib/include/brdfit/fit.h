@@ -34,7 +34,7 @@ typedef struct bf_fit_options {
 } bf_fit_options;
 
 #define BF_FIT_PRESOLVE_SAMPLES 32768
-#define BF_FIT_PRESOLVE_MIN (4 * BF_FIT_PRESOLVE_SAMPLES)
+#define BF_FIT_PRESOLVE_MIN 131072 /* 4 x the presolve: below it a presolve saves too little */
 
 /* What the presolve did (samples 0: none ran). */
 typedef struct bf_presolve_info {
