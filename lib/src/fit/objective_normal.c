@@ -268,7 +268,7 @@ typedef struct block_scratch {
     double *g, *s;       /* blk * C */
     double *jc;          /* (P + 1) * blk */
     int *cols;           /* P */
-    unsigned char *used; /* P */
+    uint64_t *used;      /* P */
 } block_scratch;
 
 static inline __attribute__((always_inline)) double
@@ -306,45 +306,35 @@ static void block_normal(const normal_job *j, size_t cnt, block_scratch *b, doub
 {
     const size_t C = (size_t)j->o->C, P = (size_t)j->P;
     for (size_t ch = 0; ch < C; ch++) {
-        /* The columns some row of this channel uses (a bit mask in a register when the
-         * model has at most 64 entries, as every model of the registry on RGB data). */
-        uint64_t mask = 0;
-        if (P <= 64) {
-            for (size_t q = 0; q < cnt; q++) {
-                const size_t li = q * C + ch;
-                if (b->s[li] == 0.0)
-                    continue; /* below the horizon, or no effect on the cost */
-                const double *gr = b->grad + li * P;
-                for (size_t a = 0; a < P; a++)
-                    mask |= (uint64_t)(gr[a] != 0.0) << a;
-            }
-        } else {
-            memset(b->used, 0, P);
-            for (size_t q = 0; q < cnt; q++) {
-                const size_t li = q * C + ch;
-                if (b->s[li] == 0.0)
-                    continue;
-                const double *gr = b->grad + li * P;
-                for (size_t a = 0; a < P; a++)
-                    b->used[a] |= gr[a] != 0.0;
+        /* The columns some row of this channel uses: per column, the OR of its entries'
+         * bits without the sign (so -0 counts as 0, and NaN and Inf as non-zero), which
+         * needs no branch per entry. */
+        memset(b->used, 0, P * sizeof *b->used);
+        for (size_t q = 0; q < cnt; q++) {
+            const size_t li = q * C + ch;
+            if (b->s[li] == 0.0)
+                continue; /* below the horizon, or no effect on the cost */
+            const double *gr = b->grad + li * P;
+            for (size_t a = 0; a < P; a++) {
+                uint64_t bits;
+                memcpy(&bits, &gr[a], sizeof bits);
+                b->used[a] |= bits & 0x7fffffffffffffffull;
             }
         }
         int m = 0;
         for (size_t a = 0; a < P; a++)
-            if (P <= 64 ? (mask >> a) & 1u : b->used[a])
+            if (b->used[a])
                 b->cols[m++] = (int)a;
-        for (int u = 0; u < m; u++) {
-            double *col = b->jc + (size_t)u * cnt;
-            for (size_t q = 0; q < cnt; q++) {
-                const size_t li = q * C + ch;
-                const double sv = b->s[li];
-                col[q] = sv != 0.0 ? sv * b->grad[li * P + (size_t)b->cols[u]] : 0.0;
-            }
-        }
-        /* g of this channel's rows, contiguous, after the columns. */
+        /* The rows' used entries, scaled, into columns of cnt values (one sweep over the
+         * rows), then g of this channel's rows after them. */
         double *gc = b->jc + (size_t)m * cnt;
-        for (size_t q = 0; q < cnt; q++)
-            gc[q] = b->g[q * C + ch];
+        for (size_t q = 0; q < cnt; q++) {
+            const size_t li = q * C + ch;
+            const double sv = b->s[li], *gr = b->grad + li * P;
+            for (int u = 0; u < m; u++)
+                b->jc[(size_t)u * cnt + q] = sv != 0.0 ? sv * gr[b->cols[u]] : 0.0;
+            gc[q] = b->g[li];
+        }
         for (int u = 0; u < m; u++) {
             const double *cu = b->jc + (size_t)u * cnt;
             const size_t a = (size_t)b->cols[u];
@@ -365,7 +355,7 @@ static int generic_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_
     blk = blk < 1 ? 1 : blk > BF_GEOMETRY_BLOCK ? BF_GEOMETRY_BLOCK : blk;
     block_scratch b = {malloc(blk * C * sizeof(double)), j->want_jac ? malloc(blk * C * P * sizeof(double)) : NULL,
                        malloc(blk * C * sizeof(double)), malloc(blk * C * sizeof(double)),
-                       malloc((P + 1) * blk * sizeof(double)), malloc(P * sizeof(int)), malloc(P)};
+                       malloc((P + 1) * blk * sizeof(double)), malloc(P * sizeof(int)), malloc(P * sizeof(uint64_t))};
     double ssq = 0.0;
     int rc = -1;
     if (!b.vals || !b.g || !b.s || !b.jc || !b.cols || !b.used || (j->want_jac && !b.grad))
