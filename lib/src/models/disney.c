@@ -121,6 +121,12 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     const double da2_dgloss = 2.0 * cca * (0.001 - 0.1);
 
     const double spec08 = spec * 0.08;
+    const double iax = 1.0 / ax, iay = 1.0 / ay;
+    /* The entries of a gradient row (the same for every channel). */
+    const int oM = m->offset[P_METAL], oS = m->offset[P_SUBSURF], oSp = m->offset[P_SPEC];
+    const int oR = m->offset[P_ROUGH], oT = m->offset[P_STINT], oA = m->offset[P_ANISO];
+    const int oSh = m->offset[P_SHEEN], oShT = m->offset[P_SHTINT], oC = m->offset[P_CC];
+    const int oCG = m->offset[P_CCGLOSS];
 
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
@@ -150,7 +156,7 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
         const double dmix = Fd * (1.0 - subs) + ss * subs;
 
         /* Specular: anisotropic GTR2 (GGX) with separable Smith-GGX shadowing. */
-        const double hxa = HX / ax, hya = HY / ay;
+        const double hxa = HX * iax, hya = HY * iay;
         const double q = hxa * hxa + hya * hya + NH2; /* >= NH^2 > 0 */
         const double Ds = 1.0 / (M_PI * ax * ay * q * q);
         double gLx, gLy, gVx, gVy;
@@ -165,6 +171,17 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
         const double Fr = 0.04 * (1.0 - FH) + FH;
         const double Gr = smith_ggx(NL, 0.25) * smith_ggx(NV, 0.25);
         const double coat = 0.25 * cc * Gr * Fr * Dr;
+
+        /* The channel-independent parts of the gradient. Roughness enters Fd90, Fss90
+         * and (above .001) ax, ay; dlax, dlay: d log(Gs Ds) / d ax and / d ay. */
+        const double dFd = 2.0 * LH2 * (FL * mdV + FV * mdL);
+        const double dFss = LH2 * (FL * msV + FV * msL);
+        const double ddmix = (1.0 - subs) * dFd + subs * 1.25 * kss * dFss;
+        const double iq = 1.0 / q;
+        const double dlax = gLx + gVx - iax + 4.0 * hxa * hxa * iax * iq;
+        const double dlay = gLy + gVy - iay + 4.0 * hya * hya * iay * iq;
+        const double dcc = 0.25 * Gr * Fr * Dr;
+        const double dccg = gtr1_flat ? 0.0 : coat * (dl_a2 - NH2 / t1) * da2_dgloss;
 
         for (int c = 0; c < C; c++) {
             const double ct = tinted ? B[c] * inv_lum : 1.0;
@@ -188,27 +205,17 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
             row[oB + c] += (1.0 - metal) * dmix * (1.0 / M_PI) + GD1 * metal +
                            (tinted ? dct * inv_lum : 0.0);
 
-            row[m->offset[P_METAL]] = -front + GD1 * (B[c] - spec08 * tintmix);
-            row[m->offset[P_SUBSURF]] = (1.0 - metal) * (1.0 / M_PI) * (ss - Fd) * B[c];
-            row[m->offset[P_SPEC]] = GD1 * 0.08 * tintmix * (1.0 - metal);
-
-            /* Roughness enters Fd90, Fss90 and (above .001) ax, ay. */
-            const double dFd = 2.0 * LH2 * (FL * mdV + FV * mdL);
-            const double dFss = LH2 * (FL * msV + FV * msL);
-            const double ddmix = (1.0 - subs) * dFd + subs * 1.25 * kss * dFss;
-            /* d log(Gs Ds) / d ax and / d ay. */
-            const double dlax = gLx + gVx - 1.0 / ax + 4.0 * hxa * hxa / (ax * q);
-            const double dlay = gLy + gVy - 1.0 / ay + 4.0 * hya * hya / (ay * q);
+            row[oM] = -front + GD1 * (B[c] - spec08 * tintmix);
+            row[oS] = (1.0 - metal) * (1.0 / M_PI) * (ss - Fd) * B[c];
+            row[oSp] = GD1 * 0.08 * tintmix * (1.0 - metal);
             const double FGD = Fs * GD;
-            row[m->offset[P_ROUGH]] = (1.0 - metal) * (1.0 / M_PI) * ddmix * B[c] +
-                                      FGD * (dlax * dax_dr + dlay * day_dr);
-            row[m->offset[P_STINT]] = GD1 * spec08 * (ct - 1.0) * (1.0 - metal);
-            row[m->offset[P_ANISO]] = FGD * (dlax * dax_da + dlay * day_da);
-            row[m->offset[P_SHEEN]] = (1.0 - metal) * FH * csheen;
-            row[m->offset[P_SHTINT]] = (1.0 - metal) * FH * sheen * (ct - 1.0);
-            row[m->offset[P_CC]] = 0.25 * Gr * Fr * Dr;
-            row[m->offset[P_CCGLOSS]] =
-                gtr1_flat ? 0.0 : coat * (dl_a2 - NH2 / t1) * da2_dgloss;
+            row[oR] = (1.0 - metal) * (1.0 / M_PI) * ddmix * B[c] + FGD * (dlax * dax_dr + dlay * day_dr);
+            row[oT] = GD1 * spec08 * (ct - 1.0) * (1.0 - metal);
+            row[oA] = FGD * (dlax * dax_da + dlay * day_da);
+            row[oSh] = (1.0 - metal) * FH * csheen;
+            row[oShT] = (1.0 - metal) * FH * sheen * (ct - 1.0);
+            row[oC] = dcc;
+            row[oCG] = dccg;
         }
     }
 #undef LUM_W
