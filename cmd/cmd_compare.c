@@ -3,17 +3,25 @@
  * JSON and CSV tables and the HTML report.
  *
  * Decisions:
+ *  - --rank picks what the models are ranked by: bic (default), aic or aicc, from the
+ *    likelihood of the residuals each fit minimised (metrics.h), cv (the error of the
+ *    fitted objective on held-out samples, --folds K seeded stratified folds, K more fits
+ *    per model) or error (the --error metric). A robust loss minimises no likelihood, so
+ *    with --loss the ranking must be cv or error (refused otherwise, exit 2).
  *  - --error picks the error behind the Pareto fronts, the tolerance and the mean error:
  *    rmse_log (default; ln(1 + f cos) weighs the diffuse floor and the highlight alike,
- *    as the default log residual does), rmse, rmse_cos or rmse_rel. AIC and BIC are
- *    always computed from the linear residuals (metrics.h).
+ *    as the default log residual does), rmse, rmse_cos or rmse_rel; with --rank cv the
+ *    cross-validated error takes its place.
+ *  - Outputs are reproducible to the byte: nothing ranked, flagged or chosen depends on
+ *    wall time (the second Pareto front is of fitting work, in sample evaluations), and
+ *    wall times enter the JSON and CSV only with --timing.
  *  - --tolerance is relative: a model is within it when its error <= best * (1 + tol).
  *    The simplest model is the one with the fewest free parameters within tolerance
  *    (ties: lower error, then earlier in -m).
  *  - Only fits that succeeded are ranked; failed ones are listed and counted (exit 1).
  *  - --jobs N fits N models/materials at once, each fit with --threads / N threads (at
- *    least 1). Results do not depend on the order fits finish in: each has its slot.
- *    Fit times do depend on the load, so compare times from runs with the same --jobs.
+ *    least 1). Results depend neither on the thread counts nor on the order fits finish
+ *    in: each has its slot.
  *  - Every data file is read (and checked) before any fit starts: bad data costs no fit
  *    time and leaves no output. The samples stay in memory for the whole run.
  *  - SIGINT: no new fit starts, running fits finish, the outputs are written with what
@@ -44,6 +52,7 @@
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
+#include "rank_options.h"
 
 static const char cmd[] = "brdfit compare";
 
@@ -56,7 +65,7 @@ static void usage(FILE *out)
             "  -m, --model SPECS          models to compare (as brdfit fit; repeatable), or all: every\n"
             "                             registered model with its default options\n"
             "  --error rmse|rmse_log|rmse_cos|rmse_rel   error for the Pareto fronts and the tolerance\n"
-            "                             (default rmse_log)\n"
+            "                             (default rmse_log; with --rank cv the cross-validated error)\n"
             "  --tolerance T              relative: the simplest model with error <= best * (1 + T)\n"
             "                             is chosen (default 0.05)\n"
             "  --jobs N                   fits run at once (default 1); each gets --threads / N threads\n"
@@ -64,9 +73,10 @@ static void usage(FILE *out)
             "  --csv FILE                 one row per material x model\n"
             "  --html DIR                 a report to read in a browser: DIR/index.html and its images\n"
             "                             (an existing DIR is replaced only if it is a previous report)\n"
-            "  --quiet                    no progress on stderr\n"
-            "%s%s",
-            fit_options_usage, data_options_usage);
+            "  --quiet                    no progress on stderr\n");
+    rank_options_usage(out, BF_RANK_BIC);
+    fputs(fit_options_usage, out);
+    fputs(data_options_usage, out);
 }
 
 static volatile sig_atomic_t interrupted;
@@ -90,6 +100,8 @@ typedef struct run {
     bf_fit_result *results; /* nmaterials * nmodels; slot i * nmodels + j */
     unsigned char *have;    /* 1 where results[] holds a result to free */
     const bf_fit_options *fo;
+    int folds;              /* > 0: cross-validate every fit */
+    uint64_t seed;
     pthread_mutex_t lock;
     int next, total, done, running;
     int quiet, tty;
@@ -123,6 +135,8 @@ static void progress(run *r, int idx)
         else
             fprintf(stderr, ", %s %.4g, %.2f s", bf_compare_metric_name(r->cmp->metric),
                     bf_compare_metric_value(&f->metrics, r->cmp->metric), f->seconds);
+        if (r->folds > 0 && f->state == BF_CMP_OK)
+            fprintf(stderr, ", cv %.4g", f->cv_error);
         fputc('\n', stderr);
     }
     fflush(stderr);
@@ -144,7 +158,15 @@ static void *worker(void *arg)
 
         bf_error err;
         bf_fit_result *res = &r->results[idx];
+        const double t0 = now();
         int rc = bf_fit(r->samples[idx / nm], r->cmp->models[idx % nm], r->fo, res, &err);
+        bf_cv_result cv = {.error = NAN};
+        if (rc == BF_OK && r->folds > 0 && res->ok) {
+            rc = bf_fit_cv(r->samples[idx / nm], r->cmp->models[idx % nm], r->fo, r->folds, r->seed, &cv, &err);
+            if (rc != BF_OK)
+                bf_fit_result_free(res);
+        }
+        const double seconds = now() - t0;
 
         pthread_mutex_lock(&r->lock);
         bf_compare_fit *f = &r->cmp->materials[idx / nm].fits[idx % nm];
@@ -152,7 +174,9 @@ static void *worker(void *arg)
             r->have[idx] = 1;
             f->state = res->ok ? BF_CMP_OK : BF_CMP_FAILED;
             f->metrics = res->metrics;
-            f->seconds = res->seconds;
+            f->seconds = seconds;
+            f->work = bf_compare_work(res);
+            f->cv_error = cv.error;
             f->result = res;
         } else {
             f->state = BF_CMP_ERROR;
@@ -165,41 +189,57 @@ static void *worker(void *arg)
     }
 }
 
+static const char *error_name(const bf_compare *c)
+{
+    return c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric);
+}
+
 static void print_material(FILE *out, const bf_compare *c, const bf_compare_material *m)
 {
     fprintf(out, "%s  (%zu samples, %d channel%s)\n", m->data, m->samples, m->channels, m->channels == 1 ? "" : "s");
-    fprintf(out, "  %-4s %-4s %-28s %4s %12s %14s %14s %9s  %s\n", "BIC#", "AIC#", "model", "k",
-            bf_compare_metric_name(c->metric), "AIC", "BIC", "time s", "pareto");
-    /* Ranked fits by BIC rank (ties in model order), then the rest in model order. */
+    /* work M: millions of sample evaluations; wall time only when asked, so that the
+     * table, like the files, is the same from run to run. */
+    fprintf(out, "  %-5s %-28s %4s %12s %13s %13s %13s %11s%s  %s\n", "rank", "model", "k", error_name(c), "AIC",
+            "AICc", "BIC", "work M", c->timing ? "   time s" : "", "pareto");
+    /* Ranked fits by rank (ties in model order), then the rest in model order. */
     for (int rank = 1; rank <= c->nmodels; rank++)
         for (int j = 0; j < c->nmodels; j++) {
             const bf_compare_fit *f = &m->fits[j];
-            if (f->rank_bic != rank)
+            if (f->rank != rank)
                 continue;
-            fprintf(out, "  %-4d %-4d %-28s %4d %12.6g %14.6g %14.6g %9.3f  %s%s%s\n", f->rank_bic, f->rank_aic,
-                    c->models[j], f->metrics.k, f->error, f->metrics.aic, f->metrics.bic, f->seconds,
-                    f->pareto_k ? "k" : "-", f->pareto_time ? "t" : "-", m->simplest == j ? "  <- simplest" : "");
+            char secs[32] = "";
+            if (c->timing)
+                snprintf(secs, sizeof secs, " %8.3f", f->seconds);
+            fprintf(out, "  %-5d %-28s %4d %12.6g %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
+                    f->metrics.k, f->error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
+                    f->pareto_k ? "k" : "-", f->pareto_work ? "w" : "-", m->simplest == j ? "  <- simplest" : "");
         }
     for (int j = 0; j < c->nmodels; j++)
-        if (!m->fits[j].rank_bic)
-            fprintf(out, "  %-4s %-4s %-28s %s%s%s\n", "-", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
+        if (!m->fits[j].rank)
+            fprintf(out, "  %-5s %-28s %s%s%s\n", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
                     m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
     if (m->simplest >= 0)
-        fprintf(out, "  simplest within %g%% of the best %s (%s): %s\n", 100.0 * c->tolerance,
-                bf_compare_metric_name(c->metric), c->models[m->best], c->models[m->simplest]);
+        fprintf(out, "  ranked by %s; simplest within %g%% of the best %s (%s): %s\n", bf_compare_rank_name(c->rank_by),
+                100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);
     else
         fprintf(out, "  no model fitted\n");
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *r = m->fits[j].result;
+        for (int w = 0; r && (m->fits[j].state == BF_CMP_OK || m->fits[j].state == BF_CMP_FAILED) && w < r->nwarnings;
+             w++)
+            fprintf(out, "  warning: %s: %s\n", c->models[j], r->warnings[w]);
+    }
 }
 
 static void print_summary(FILE *out, const bf_compare *c)
 {
     fprintf(out, "summary over %d materials\n", c->nmaterials);
-    fprintf(out, "  %-28s %9s %13s %13s %14s %8s\n", "model", "materials", "mean BIC#", "mean AIC#", "mean error",
-            "simplest");
+    fprintf(out, "  %-28s %9s %13s %13s %13s %14s %8s\n", "model", "materials", "mean rank", "BIC rank", "AIC rank",
+            "mean error", "simplest");
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_summary *s = &c->summary[j];
-        fprintf(out, "  %-28s %9d %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank_bic,
-                s->mean_rank_aic, s->mean_error, s->chosen);
+        fprintf(out, "  %-28s %9d %13.3g %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank,
+                s->mean_rank_bic, s->mean_rank_aic, s->mean_error, s->chosen);
     }
 }
 
@@ -210,6 +250,8 @@ int cmd_compare(int argc, char **argv)
     fit_options fopt;
     fit_options_init(&fopt);
     int status = 2, nmodels = 0, ndata = 0, jobs = 1, quiet = 0, all = 0;
+    rank_options ro;
+    rank_options_init(&ro, BF_RANK_BIC);
     char *specs[MAX_MODELS] = {0};
     const char **data = calloc((size_t)argc, sizeof *data);
     const char *json_path = NULL, *csv_path = NULL, *html_dir = NULL;
@@ -236,6 +278,8 @@ int cmd_compare(int argc, char **argv)
         int d = data_options_parse(&dopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = rank_options_parse(&ro, argc, argv, &i, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
@@ -316,6 +360,8 @@ int cmd_compare(int argc, char **argv)
         status = err.code == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
+    if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
+        goto done;
     /* Model specs are checked before any data is read. */
     if (fit_options_check_models(specs, nmodels, cmd) < 0)
         goto done;
@@ -331,6 +377,9 @@ int cmd_compare(int argc, char **argv)
         goto done;
     }
     cmp.metric = metric;
+    cmp.rank_by = ro.rank_by;
+    cmp.folds = ro.rank_by == BF_RANK_CV ? ro.folds : 0;
+    cmp.timing = ro.timing;
     cmp.tolerance = tolerance;
     cmp.residual = bf_residual_name(fopt.fit.objective.residual);
     size_t total = (size_t)ndata * (size_t)nmodels;
@@ -354,7 +403,8 @@ int cmd_compare(int argc, char **argv)
     }
 
     run r = {.cmp = &cmp, .samples = samples, .results = results, .have = have, .fo = &fopt.fit,
-             .total = (int)total, .quiet = quiet, .tty = isatty(STDERR_FILENO), .t0 = now()};
+             .folds = cmp.folds, .seed = fopt.fit.seed, .total = (int)total, .quiet = quiet,
+             .tty = isatty(STDERR_FILENO), .t0 = now()};
     pthread_mutex_init(&r.lock, NULL);
     struct sigaction sa, old;
     memset(&sa, 0, sizeof sa);
@@ -380,7 +430,7 @@ int cmd_compare(int argc, char **argv)
 
     bf_compare_rank(&cmp);
     if (data_options_has_scene(&dopt))
-        printf("scene %s: errors, AIC and BIC over the scene's directions, weighted as it weighs them\n",
+        printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
                dopt.scene);
     for (int i = 0; i < ndata; i++)
         print_material(stdout, &cmp, &cmp.materials[i]);

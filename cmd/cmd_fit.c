@@ -81,6 +81,8 @@ static void summary(FILE *out, const bf_fit_result *r)
         int o = bf_model_param_offset(m, i);
         print_values(out, bf_model_param(m, i), r->x + o, r->stderr_ + o, bf_model_channels(m));
     }
+    for (int w = 0; w < r->nwarnings; w++)
+        fprintf(out, "  warning: %s\n", r->warnings[w]);
 }
 
 int cmd_fit(int argc, char **argv)

@@ -287,6 +287,8 @@ int cmd_regress(int argc, char **argv)
         } else if (!update) {
             printf("%s %s (%.2f s)\n", o->status == BF_REGRESS_PASS ? "PASS" : "FAIL", cs->name, o->seconds);
             print_lines(verbose ? o->checked : o->lines, verbose ? o->nchecked : o->nlines);
+            for (int w = 0; w < o->nwarnings; w++)
+                printf("  warning: %s\n", o->warnings[w]);
         } else {
             char **changes = NULL;
             int nchanges = 0;

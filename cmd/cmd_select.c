@@ -13,6 +13,13 @@
  *  - --abs-tolerance (default 1e-6) treats errors this close to the best as equal: on
  *    noiseless data every adequate model reaches ~1e-15, where a relative tolerance alone
  *    would pick whichever rounding was luckiest.
+ *  - --rank: error (default, the above), cv (the same with the cross-validated error of
+ *    the fitted objective, --folds K), or bic, aic, aicc (the lowest criterion; the
+ *    tolerances do not enter). select defaults to the error because it answers "the
+ *    smallest model good enough": on a million samples a criterion rewards any parameter
+ *    that lowers the error at all. A robust loss allows only error and cv.
+ *  - Nothing printed or written depends on wall time (the work column is in sample
+ *    evaluations); --timing adds the seconds to the table and the JSON.
  *  - -o writes the chosen model's fit result (a parameter file for brdfit eval).
  *  - Exit: 0 when a model was chosen; 1 for bad data or when no candidate could be
  *    fitted; 2 for bad usage. */
@@ -27,6 +34,7 @@
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
+#include "rank_options.h"
 
 static const char cmd[] = "brdfit select";
 
@@ -46,9 +54,11 @@ static void usage(FILE *out)
             "  --error rmse|rmse_log|rmse_cos|rmse_rel   the error compared (default rmse_log)\n"
             "  --json FILE                every candidate and the choice, machine-readable\n"
             "  -o FILE                    the chosen model's fit result (a parameter file)\n"
-            "  --quiet                    no progress on stderr\n"
-            "%s%s%s",
-            fit_accuracy_usage, fit_options_usage, data_options_usage);
+            "  --quiet                    no progress on stderr\n");
+    rank_options_usage(out, BF_RANK_ERROR);
+    fputs(fit_accuracy_usage, out);
+    fputs(fit_options_usage, out);
+    fputs(data_options_usage, out);
 }
 
 static void progress(void *ctx, const bf_select *s, int i)
@@ -63,30 +73,53 @@ static void progress(void *ctx, const bf_select *s, int i)
                 c->seconds, c->state == BF_CMP_OK ? "" : " (failed)");
 }
 
+static const char *error_name(const bf_select *s)
+{
+    return s->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(s->metric);
+}
+
 static void table(FILE *out, const bf_select *s)
 {
     int *order = malloc((size_t)s->n * sizeof *order);
     if (!order)
         return;
     bf_select_order(s, order);
-    fprintf(out, "%-3s %-40s %4s %-6s %5s %-8s %12s %8s\n", "", "model", "k", "aniso", "lobes", "specular",
-            bf_compare_metric_name(s->metric), "seconds");
+    const int criterion = s->rank_by != BF_RANK_ERROR && s->rank_by != BF_RANK_CV;
+    fprintf(out, "%-3s %-40s %4s %-6s %5s %-8s %12s %13s %5s %9s%s\n", "", "model", "k", "aniso", "lobes", "specular",
+            error_name(s), criterion ? bf_compare_rank_name(s->rank_by) : "", "rank", "work M",
+            s->timing ? "  seconds" : "");
     for (int j = 0; j < s->n; j++) {
         const bf_select_candidate *c = &s->c[order[j]];
         const char *mark = order[j] == s->chosen ? "=>" : c->within ? "ok" : "";
-        char err[32];
-        if (c->state == BF_CMP_OK)
+        char err[32], crit[32] = "", rank[16] = "-", secs[32] = "";
+        if (c->state == BF_CMP_OK && isfinite(c->error))
             snprintf(err, sizeof err, "%.6g", c->error);
         else
-            snprintf(err, sizeof err, "%s", bf_compare_state_name(c->state));
-        fprintf(out, "%-3s %-40s %4d %-6s %5d %-8s %12s %8.3f\n", mark, c->spec, c->k, c->anisotropic ? "yes" : "no",
-                c->lobes, c->coloured_specular ? "colour" : "mono", err, c->seconds);
+            snprintf(err, sizeof err, "%s", c->state == BF_CMP_OK ? "-" : bf_compare_state_name(c->state));
+        if (criterion && isfinite(c->criterion))
+            snprintf(crit, sizeof crit, "%.6g", c->criterion);
+        if (c->rank)
+            snprintf(rank, sizeof rank, "%d", c->rank);
+        if (s->timing)
+            snprintf(secs, sizeof secs, " %8.3f", c->seconds);
+        fprintf(out, "%-3s %-40s %4d %-6s %5d %-8s %12s %13s %5s %9.4g%s\n", mark, c->spec, c->k,
+                c->anisotropic ? "yes" : "no", c->lobes, c->coloured_specular ? "colour" : "mono", err, crit, rank,
+                c->work / 1e6, secs);
     }
     free(order);
     if (s->chosen >= 0) {
         const bf_select_candidate *b = &s->c[s->best], *c = &s->c[s->chosen];
-        fprintf(out, "chosen: %s (k %d, %s %.6g; best %s %.6g with k %d; tolerance %g + %g)\n", c->spec, c->k,
-                bf_compare_metric_name(s->metric), c->error, b->spec, b->error, b->k, s->tolerance, s->abs_tolerance);
+        if (criterion)
+            fprintf(out, "chosen: %s (k %d, lowest %s %.6g; %s %.6g; best %s %.6g with k %d)\n", c->spec, c->k,
+                    bf_compare_rank_name(s->rank_by), c->criterion, error_name(s), c->error, b->spec, b->error, b->k);
+        else
+            fprintf(out, "chosen: %s (k %d, %s %.6g; best %s %.6g with k %d; tolerance %g + %g)\n", c->spec, c->k,
+                    error_name(s), c->error, b->spec, b->error, b->k, s->tolerance, s->abs_tolerance);
+    }
+    for (int i = 0; i < s->n; i++) {
+        const bf_select_candidate *c = &s->c[i];
+        for (int w = 0; (c->state == BF_CMP_OK || c->state == BF_CMP_FAILED) && w < c->result.nwarnings; w++)
+            fprintf(out, "warning: %s: %s\n", c->spec, c->result.warnings[w]);
     }
 }
 
@@ -117,6 +150,8 @@ int cmd_select(int argc, char **argv)
     bf_select sel;
     memset(&sel, 0, sizeof sel);
     bf_error err;
+    rank_options ro;
+    rank_options_init(&ro, BF_RANK_ERROR);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -130,6 +165,8 @@ int cmd_select(int argc, char **argv)
             d = fit_options_parse(&fopt, argc, argv, &i, cmd);
         if (d == 0)
             d = fit_options_parse_accuracy(&fopt, argc, argv, &i, cmd);
+        if (d == 0)
+            d = rank_options_parse(&ro, argc, argv, &i, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
@@ -180,6 +217,8 @@ int cmd_select(int argc, char **argv)
         fprintf(stderr, "%s: --json and -o name the same file '%s'\n", cmd, json_path);
         goto done;
     }
+    if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
+        goto done;
     /* Model specs are checked before any data is read. */
     if (fit_options_check_models(specs, nmodels, cmd) < 0)
         goto done;
@@ -204,6 +243,9 @@ int cmd_select(int argc, char **argv)
         status = err.code == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
+    sel.rank_by = ro.rank_by;
+    sel.folds = ro.folds;
+    sel.timing = ro.timing;
     if (bf_select_run(&sel, s, &fopt.fit, quiet ? NULL : progress, NULL, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;

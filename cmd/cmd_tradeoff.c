@@ -1,4 +1,4 @@
-/* brdfit tradeoff DATA -m MODEL [options]: fitting time against accuracy on one data set,
+/* brdfit tradeoff DATA -m MODEL [options]: fitting cost against accuracy on one data set,
  * over training sample counts, optimizer methods, residual forms and multistart counts;
  * each setting is fitted on a seeded training set and judged on held-out test samples.
  *
@@ -11,8 +11,11 @@
  *  - The fit options are the base setting; the lists replace their part of it. Without
  *    --methods: the base method if --backend or --algorithm was given, else
  *    ceres,LD_LBFGS. Without --residuals / --starts-list: the base residual / starts.
- *  - Fits run one at a time (each with --threads), since they are timed; --repeats R
- *    refits each setting R times and keeps the least time.
+ *  - The cost is fitting work (--cost work, the default: sample evaluations, the same on
+ *    every machine), so the front, the recommendation and the files are reproducible to
+ *    the byte; --cost seconds uses wall time instead and --timing writes it (implied
+ *    by --cost seconds). Fits run one at a time (each with --threads), so that times
+ *    are comparable; --repeats R refits each setting R times and keeps the least time.
  *  - Every option, model, method and output path is checked before any data is read or
  *    fit run: bad usage costs no time and leaves no file (exit 2).
  *  - Exit: 0 when every setting fitted; 1 bad data, a failed fit (the tables are still
@@ -47,13 +50,16 @@ static void usage(FILE *out)
             "  --residuals R,...          residual forms (default: --residual, log)\n"
             "  --starts-list N,...        multistart counts (default: --starts, 1)\n"
             "  --test-fraction F          held-out share of the samples, seeded random (default 0.2)\n"
+            "  --cost work|seconds        what a setting costs: sample evaluations (default; the same on\n"
+            "                             every machine) or wall time (varies from run to run)\n"
+            "  --timing                   wall times in the table and the files too\n"
             "  --repeats N                fit each setting N times, keep the least time (default 1)\n"
             "  --error rmse|rmse_log|rmse_cos|rmse_rel   test error to judge by (default rmse_log)\n"
-            "  --tolerance T              recommend the fastest setting with test error <= best * (1 + T)\n"
+            "  --tolerance T              recommend the cheapest setting with test error <= best * (1 + T)\n"
             "                             (default 0.05)\n"
             "  --json FILE                the table, machine-readable (stable keys)\n"
             "  --csv FILE                 one row per setting\n"
-            "  --plot FILE.png|.exr       test error against fitting time, Pareto front in red\n"
+            "  --plot FILE.png|.exr       test error against the cost, Pareto front in red\n"
             "  --plot-size WxH            (default 640x400)\n"
             "  --quiet                    no progress on stderr\n"
             "%s%s",
@@ -149,8 +155,8 @@ static void print_table(FILE *out, const bf_tradeoff *t)
     fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total,
             t->train_n, t->test_n, t->channels, t->channels == 1 ? "" : "s");
     const char *en = bf_compare_metric_name(t->metric);
-    fprintf(out, "  %4s %8s %-14s %-9s %6s %9s %6s %12s %12s  %s\n", "#", "samples", "method", "residual", "starts",
-            "time s", "iters", "train", "test", "marks");
+    fprintf(out, "  %4s %8s %-14s %-9s %6s %9s%s %6s %12s %12s  %s\n", "#", "samples", "method", "residual", "starts",
+            "work M", t->timing ? "    time s" : "", "iters", "train", "test", "marks");
     for (int i = 0; i < t->nrows; i++) {
         const bf_tradeoff_row *r = &t->rows[i];
         char n[24];
@@ -163,13 +169,20 @@ static void print_table(FILE *out, const bf_tradeoff *t)
             fprintf(out, "error: %s\n", r->message);
             continue;
         }
-        fprintf(out, "%9.3f %6d %12.6g %12.6g  %s%s%s%s%s\n", r->seconds, r->iterations,
+        char secs[32] = "";
+        if (t->timing)
+            snprintf(secs, sizeof secs, " %9.3f", r->seconds);
+        fprintf(out, "%9.4g%s %6d %12.6g %12.6g  %s%s%s%s%s\n", r->work / 1e6, secs, r->iterations,
                 bf_compare_metric_value(&r->train, t->metric), bf_compare_metric_value(&r->test, t->metric),
                 r->ok ? "" : "FAILED ", r->on_front ? "front " : "", r->within_tolerance ? "tol " : "",
                 i == t->best ? "best " : "", i == t->recommended ? "<- recommended" : "");
     }
-    fprintf(out, "  (train/test: %s; front: Pareto front of time against test error; tol: within %g%% of the best)\n",
-            en, 100.0 * t->tolerance);
+    fprintf(out, "  (train/test: %s; work M: millions of sample evaluations; front: Pareto front of %s against "
+                 "test error; tol: within %g%% of the best)\n",
+            en, t->cost == BF_TRADEOFF_COST_SECONDS ? "time" : "work", 100.0 * t->tolerance);
+    for (int i = 0; i < t->nrows; i++)
+        for (int w = 0; w < t->rows[i].nwarnings; w++)
+            fprintf(out, "  warning: #%d: %s\n", i + 1, t->rows[i].warnings[w]);
 }
 
 int cmd_tradeoff(int argc, char **argv)
@@ -184,7 +197,8 @@ int cmd_tradeoff(int argc, char **argv)
     const char *samples_arg = "1000,4000,16000,64000,all", *methods_arg = NULL, *residuals_arg = NULL,
                *starts_arg = NULL;
     double test_fraction = 0.2, tolerance = 0.05;
-    int repeats = 1, plot_w = 640, plot_h = 400;
+    int repeats = 1, plot_w = 640, plot_h = 400, timing = 0;
+    bf_tradeoff_cost cost = BF_TRADEOFF_COST_WORK;
     bf_compare_metric metric = BF_CMP_RMSE_LOG;
     char *bufs[4] = {0};
     bf_samples *all = NULL, *train = NULL, *test = NULL;
@@ -220,13 +234,13 @@ int cmd_tradeoff(int argc, char **argv)
             data = a;
             continue;
         }
-        if (!strcmp(a, "--quiet")) {
-            quiet = 1;
+        if (!strcmp(a, "--quiet") || !strcmp(a, "--timing")) {
+            *(a[2] == 'q' ? &quiet : &timing) = 1;
             continue;
         }
         static const char *const valued[] = {"-m", "--model", "--samples", "--methods", "--residuals",
                                              "--starts-list", "--test-fraction", "--repeats", "--error",
-                                             "--tolerance", "--json", "--csv", "--plot", "--plot-size"};
+                                             "--tolerance", "--json", "--csv", "--plot", "--plot-size", "--cost"};
         const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
         if (!v)
             goto done;
@@ -243,6 +257,12 @@ int cmd_tradeoff(int argc, char **argv)
                 fprintf(stderr, "%s: -m takes one model, got '%s'\n", cmd, v);
                 goto done;
             }
+        } else if (!strcmp(a, "--cost")) {
+            if (strcmp(v, "work") && strcmp(v, "seconds")) {
+                fprintf(stderr, "%s: --cost needs work or seconds, got '%s'\n", cmd, v);
+                goto done;
+            }
+            cost = !strcmp(v, "work") ? BF_TRADEOFF_COST_WORK : BF_TRADEOFF_COST_SECONDS;
         } else if (!strcmp(a, "--samples")) {
             samples_arg = v;
         } else if (!strcmp(a, "--methods")) {
@@ -405,6 +425,8 @@ int cmd_tradeoff(int argc, char **argv)
     t.repeats = repeats;
     t.metric = metric;
     t.tolerance = tolerance;
+    t.cost = cost;
+    t.timing = timing || cost == BF_TRADEOFF_COST_SECONDS;
     bf_samples_free(all);
     all = NULL;
 
@@ -423,8 +445,9 @@ int cmd_tradeoff(int argc, char **argv)
             fprintf(stderr, "%s: %d/%d %zu%s %s %s starts %d: ", cmd, i + 1, t.nrows, r->samples,
                     r->all ? " (all)" : "", r->method, bf_residual_name(r->residual), r->starts);
             if (r->ran)
-                fprintf(stderr, "%s%s %.4g, %.3f s\n", r->ok ? "" : "FAILED, ", bf_compare_metric_name(metric),
-                        bf_compare_metric_value(&r->test, metric), r->seconds);
+                fprintf(stderr, "%s%s %.4g, %.4g M sample evaluations, %.3f s\n", r->ok ? "" : "FAILED, ",
+                        bf_compare_metric_name(metric), bf_compare_metric_value(&r->test, metric), r->work / 1e6,
+                        r->seconds);
             else
                 fprintf(stderr, "error: %s\n", r->message);
             fflush(stderr);
@@ -438,9 +461,17 @@ int cmd_tradeoff(int argc, char **argv)
         const bf_tradeoff_row *r = &t.rows[t.recommended], *b = &t.rows[t.best];
         char fa[256];
         fit_args(r, fa, sizeof fa);
-        fprintf(info, "recommended: #%d (%s %.4g in %.3f s; best #%d: %.4g in %.3f s): brdfit fit %s%s -m %s %s\n",
-               t.recommended + 1, bf_compare_metric_name(metric), r->error, r->seconds, t.best + 1, b->error,
-               b->seconds, data, data_args, t.model, fa);
+        char rc[48], bc[48];
+        if (cost == BF_TRADEOFF_COST_SECONDS) {
+            snprintf(rc, sizeof rc, "%.3f s", r->seconds);
+            snprintf(bc, sizeof bc, "%.3f s", b->seconds);
+        } else {
+            snprintf(rc, sizeof rc, "%.4g M sample evaluations", r->work / 1e6);
+            snprintf(bc, sizeof bc, "%.4g M", b->work / 1e6);
+        }
+        fprintf(info, "recommended: #%d (%s %.4g for %s; best #%d: %.4g for %s): brdfit fit %s%s -m %s %s\n",
+                t.recommended + 1, bf_compare_metric_name(metric), r->error, rc, t.best + 1, b->error, bc, data,
+                data_args, t.model, fa);
     } else {
         fprintf(info, "recommended: none (no setting fitted)\n");
     }
@@ -457,10 +488,11 @@ int cmd_tradeoff(int argc, char **argv)
     for (int i = 0; i < t.nrows; i++)
         log_y &= !(t.rows[i].error <= 0.0);
     if (plot_path)
-        fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting time (x, log10 s, %.3g to %.3g); "
+        fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting %s (x, log10 %s, %.3g to %.3g); "
                       "red: Pareto front\n",
-                plot_path, bf_compare_metric_name(metric), log_y ? "log10 " : "",
-                range.y_lo, range.y_hi, range.x_lo, range.x_hi);
+                plot_path, bf_compare_metric_name(metric), log_y ? "log10 " : "", range.y_lo, range.y_hi,
+                cost == BF_TRADEOFF_COST_SECONDS ? "time" : "work",
+                cost == BF_TRADEOFF_COST_SECONDS ? "s" : "sample evaluations", range.x_lo, range.x_hi);
     if (!all_ok)
         fprintf(stderr, "%s: %s\n", cmd, t.recommended >= 0 ? "some settings failed" : "every setting failed");
     status = all_ok ? 0 : 1;

@@ -26,13 +26,17 @@ if "$BRDFIT" compare "$tmp/lam.csv" "$tmp/wal.csv" -m $MODELS --threads 2 --json
   grep -q '^summary over 2 materials' "$tmp/out" && ok || bad "no cross-material summary"
   [ "$(grep -c ' ok, rmse_log ' "$tmp/err")" = 6 ] && ok || bad "progress lines (not a terminal): $(cat "$tmp/err")"
   jq -e --arg l "$tmp/lam.csv" --arg w "$tmp/wal.csv" '
-      .version == 1 and .error == "rmse_log" and .tolerance == 0.05 and .residual == "log"
+      .version == 2 and .rank_by == "bic" and .error == "rmse_log" and .tolerance == 0.05 and .residual == "log"
+      and .timing == false and .folds == null
       and .interrupted == false and .models == ["lambert", "walter", "cook_torrance"]
       and [.materials[].data] == [$l, $w] and all(.materials[]; .samples == 2000 and .channels == 3)
       and .materials[0].simplest == "lambert" and .materials[1].simplest != "lambert"
       and .materials[1].simplest == "walter"
       and [.materials[1].fits[].model] == ["lambert", "walter", "cook_torrance"]
-      and all(.materials[].fits[]; .ok and .status == "ok" and .n == 6000 and (.rank_bic | type) == "number")
+      and all(.materials[].fits[]; .ok and .status == "ok" and .n == 6000 and (.rank_bic | type) == "number"
+              and .rank == .rank_bic and .rank_cv == null and .cv == null and .work > 6000
+              and (.bic | type) == "number" and (.aicc | type) == "number" and (.loglik | type) == "number"
+              and (has("seconds") | not) and (.stderr | type) == "object" and (.warnings | type) == "array")
       and [.materials[].fits[].k] == [3, 8, 8, 3, 8, 8]
       and .materials[1].fits[1].rank_bic == 1 and .materials[1].fits[0].rank_bic == 3
       and .materials[1].fits[1].pareto_k and (.materials[1].fits[2].pareto_k | not)
@@ -59,16 +63,44 @@ else
   bad "compare failed: $(cat "$tmp/err")"
 fi
 
-# --- --jobs: the same results (times aside) in the same order, for the same threads per fit
-# (2 = 6 / 3); --quiet: silent stderr
+# --- --jobs and --threads: the same bytes (no wall time is written, none decides);
+# --quiet: silent stderr
 if "$BRDFIT" compare "$tmp/lam.csv" "$tmp/wal.csv" -m $MODELS --jobs 3 --threads 6 --quiet --json "$tmp/j.json" \
-     >/dev/null 2>"$tmp/err"; then
+     --csv "$tmp/j.csv" >"$tmp/jout" 2>"$tmp/err"; then
+  "$BRDFIT" compare "$tmp/lam.csv" "$tmp/wal.csv" -m $MODELS --threads 2 >"$tmp/rout" 2>/dev/null
+  cmp -s "$tmp/jout" "$tmp/rout" && ok || bad "--jobs 3 --threads 6 changed the printed table"
   [ -s "$tmp/err" ] && bad "--quiet wrote to stderr: $(cat "$tmp/err")" || ok
-  strip='del(.materials[].fits[].seconds, .materials[].fits[].pareto_time, .summary)'
-  [ "$(jq -cS "$strip" "$tmp/j.json")" = "$(jq -cS "$strip" "$tmp/r.json")" ] && ok ||
-    bad "--jobs 3 changed the results"
+  cmp -s "$tmp/j.json" "$tmp/r.json" && ok || bad "--jobs 3 --threads 6 changed the JSON bytes"
+  cmp -s "$tmp/j.csv" "$tmp/r.csv" && ok || bad "--jobs 3 --threads 6 changed the CSV bytes"
 else
   bad "compare --jobs 3 failed: $(cat "$tmp/err")"
+fi
+"$BRDFIT" compare "$tmp/lam.csv" "$tmp/wal.csv" -m $MODELS --jobs 1 --threads 1 --quiet --json "$tmp/j1.json" \
+  >/dev/null 2>&1 && cmp -s "$tmp/j1.json" "$tmp/r.json" && ok || bad "--jobs 1 --threads 1 changed the JSON bytes"
+
+# --- --timing: wall times in their own fields, nothing else changes -------------------------
+"$BRDFIT" compare "$tmp/lam.csv" "$tmp/wal.csv" -m $MODELS --timing --quiet --json "$tmp/tm.json" \
+  --csv "$tmp/tm.csv" >/dev/null 2>&1 &&
+  jq -e 'all(.materials[].fits[]; (.seconds | type) == "number" and .seconds >= 0) and .timing' "$tmp/tm.json" \
+    >/dev/null && head -1 "$tmp/tm.csv" | grep -q ',seconds,' &&
+  [ "$(jq -cS 'del(.materials[].fits[].seconds, .timing)' "$tmp/tm.json")" = "$(jq -cS 'del(.timing)' "$tmp/r.json")" ] \
+  && ok || bad "--timing"
+
+# --- --rank: AIC, AICc, the error, cross-validation ----------------------------------------
+for by in aic aicc error; do
+  "$BRDFIT" compare "$tmp/wal.csv" -m $MODELS --rank $by --quiet --json "$tmp/rk.json" >/dev/null 2>&1 &&
+    jq -e --arg by "$by" '.rank_by == $by and .materials[0].fits[1].rank == 1
+      and all(.materials[0].fits[]; .rank == (if $by == "error" then .rank else .["rank_" + $by] end))' \
+      "$tmp/rk.json" >/dev/null && ok || bad "--rank $by: $(jq -c '[.materials[0].fits[] | [.rank, .rank_aic]]' "$tmp/rk.json")"
+done
+if "$BRDFIT" compare "$tmp/wal.csv" -m lambert,walter --rank cv --folds 4 --quiet --json "$tmp/cv.json" \
+     >"$tmp/out" 2>"$tmp/err"; then
+  jq -e '.rank_by == "cv" and .folds == 4 and .error == "cv"
+    and all(.materials[0].fits[]; (.cv | type) == "number" and .cv > 0 and .rank == .rank_cv and .error == .cv)
+    and .materials[0].fits[1].rank == 1 and .materials[0].fits[0].cv > 10 * .materials[0].fits[1].cv
+    and .materials[0].simplest == "walter"' "$tmp/cv.json" >/dev/null && ok || bad "--rank cv: $(cat "$tmp/cv.json")"
+else
+  bad "--rank cv failed: $(cat "$tmp/err")"
 fi
 
 # --- other error metric and tolerance; -m all ----------------------------------------------
@@ -122,6 +154,10 @@ expect_fail 2 "bad --error" "$tmp/lam.csv" -m lambert --error mse
 expect_fail 2 "bad --tolerance" "$tmp/lam.csv" -m lambert --tolerance -1
 expect_fail 2 "bad --jobs" "$tmp/lam.csv" -m lambert --jobs 0
 expect_fail 2 "bad --residual" "$tmp/lam.csv" -m lambert --residual square
+expect_fail 2 "bad --rank" "$tmp/lam.csv" -m lambert --rank mdl
+expect_fail 2 "bad --folds" "$tmp/lam.csv" -m lambert --rank cv --folds 1
+expect_fail 2 "criteria with a robust loss" "$tmp/lam.csv" -m lambert --loss huber
+grep -q 'robust' "$tmp/err" && ok || bad "robust loss refusal not explained: $(cat "$tmp/err")"
 expect_fail 1 "missing data file" "$tmp/lam.csv" "$tmp/missing.csv" -m lambert
 grep -q 'missing.csv' "$tmp/err" && ok || bad "missing data file not named: $(cat "$tmp/err")"
 printf 'theta_i,phi_i,theta_o,phi_o,value\n10,0,oops,180,0.1\n' > "$tmp/broken.csv"

@@ -20,7 +20,7 @@ if "$BRDFIT" tradeoff "$W" -m walter --samples 2000,500,all,9999 --methods ceres
   ok
   # 3000 samples, 20% held out: 2400 train / 600 test; 500, 2000, all(2400) x 2 x 2 = 12 rows.
   jq -e --arg w "$W" '. as $t | $t.rows[$t.recommended] as $r | $t.rows[$t.best] as $b
-      | .version == 1 and .data == $w and .model == "walter" and .samples == 3000
+      | .version == 2 and .cost == "work" and .timing == false and .data == $w and .model == "walter" and .samples == 3000
       and .train_samples == 2400 and .test_samples == 600 and .channels == 3 and .seed == 3
       and .error == "rmse_log" and .tolerance == 0.05 and (.rows | length) == 12
       and [.rows[].samples] == [500,500,500,500,2000,2000,2000,2000,2400,2400,2400,2400]
@@ -29,17 +29,17 @@ if "$BRDFIT" tradeoff "$W" -m walter --samples 2000,500,all,9999 --methods ceres
                                "ceres","ceres","LD_LBFGS","LD_LBFGS"]
       and [.rows[].starts] == [1,2,1,2,1,2,1,2,1,2,1,2]
       and all(.rows[]; .ok and .status == "ok" and .residual == "log" and .test.n == 1800
-                       and .error == .test.rmse_log and .seconds >= 0)
+                       and .error == .test.rmse_log and .work > 0 and (has("seconds") | not))
       and [.rows[].train.n] == [1500,1500,1500,1500,6000,6000,6000,6000,7200,7200,7200,7200]
       and ([.rows[] | select(.recommended)] | length) == 1
       and ([.rows[] | select(.best)] | length) == 1
       and $r.recommended and $r.within_tolerance and $b.best
       and $r.error <= $b.error * 1.05
-      and ([.rows[] | select(.within_tolerance and .seconds < $r.seconds)] | length) == 0
+      and ([.rows[] | select(.within_tolerance and .work < $r.work)] | length) == 0
       and ([.rows[] | select(.error < $b.error)] | length) == 0
       and $b.on_front and $r.on_front
       and all(.rows[]; .test.rmse_log < 0.05)' "$tmp/t.json" >/dev/null \
-    && ok || bad "JSON: $(jq -c '[.rows[] | {samples, method, starts, error, seconds}]' "$tmp/t.json")"
+    && ok || bad "JSON: $(jq -c '[.rows[] | {samples, method, starts, error, work}]' "$tmp/t.json")"
   # CSV: a header and 12 rows, sample counts never decreasing.
   [ "$(wc -l < "$tmp/t.csv")" = 13 ] && ok || bad "CSV lines: $(wc -l < "$tmp/t.csv")"
   awk -F, 'NR == 1 { ok = $1 == "samples" && $3 == "method"; next }
@@ -51,24 +51,39 @@ if "$BRDFIT" tradeoff "$W" -m walter --samples 2000,500,all,9999 --methods ceres
   [ "$(grep -c '^ *[0-9][0-9]* *\(500\|2000\|all\) ' "$tmp/out")" = 12 ] && ok || bad "table: $(cat "$tmp/out")"
   grep -q '^recommended: #[0-9]* .*brdfit fit .* -m walter .*--residual log --starts [12]$' "$tmp/out" && ok \
     || bad "recommendation line: $(tail -1 "$tmp/out")"
-  grep -q "^plot $tmp/t.png: test rmse_log (y, log10 .*) against fitting time (x, log10 s, " "$tmp/out" && ok \
+  grep -q "^plot $tmp/t.png: test rmse_log (y, log10 .*) against fitting work (x, log10 sample evaluations, " "$tmp/out" && ok \
     || bad "plot caption: $(cat "$tmp/out")"
   [ "$(grep -c '^brdfit tradeoff: [0-9]*/12 ' "$tmp/err")" = 12 ] && ok || bad "progress: $(cat "$tmp/err")"
 else
   bad "tradeoff failed: $(cat "$tmp/err")"
 fi
 
-# Same seed, same errors (times differ); --quiet prints no progress.
-if "$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres --threads 1 --seed 3 --quiet \
-     --json "$tmp/a.json" 2>"$tmp/err" >/dev/null &&
-   "$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres --threads 1 --seed 3 --quiet \
-     --json "$tmp/b.json" 2>>"$tmp/err" >/dev/null; then
-  [ "$(jq -c '[.rows[] | .test]' "$tmp/a.json")" = "$(jq -c '[.rows[] | .test]' "$tmp/b.json")" ] && ok \
-    || bad "same seed, different errors"
+# Same seed, same bytes whatever the threads (no wall time is written); --quiet prints
+# no progress; --timing adds the seconds and changes nothing else; --cost seconds.
+if "$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres,LD_LBFGS --threads 1 --seed 3 --quiet \
+     --json "$tmp/a.json" --csv "$tmp/a.csv" 2>"$tmp/err" >"$tmp/a.out" &&
+   "$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres,LD_LBFGS --threads 2 --seed 3 --quiet \
+     --json "$tmp/b.json" --csv "$tmp/b.csv" 2>>"$tmp/err" >"$tmp/b.out"; then
+  # (the recommended command line repeats --threads as given)
+  cmp -s "$tmp/a.json" "$tmp/b.json" && cmp -s "$tmp/a.csv" "$tmp/b.csv" &&
+    [ "$(sed 's/--threads [12]//' "$tmp/a.out")" = "$(sed 's/--threads [12]//' "$tmp/b.out")" ] && ok \
+    || bad "same seed, different outputs for 1 and 2 threads"
   [ -s "$tmp/err" ] && bad "--quiet printed: $(cat "$tmp/err")" || ok
 else
   bad "seeded runs failed: $(cat "$tmp/err")"
 fi
+if "$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres,LD_LBFGS --threads 1 --seed 3 --quiet \
+     --timing --json "$tmp/c.json" --csv "$tmp/c.csv" >"$tmp/c.out" 2>&1; then
+  jq -e '.timing and all(.rows[]; .seconds >= 0)' "$tmp/c.json" >/dev/null &&
+    [ "$(jq -cS 'del(.timing, .rows[].seconds)' "$tmp/c.json")" = "$(jq -cS 'del(.timing)' "$tmp/a.json")" ] &&
+    head -1 "$tmp/c.csv" | grep -q ',seconds$' && grep -q 'time s' "$tmp/c.out" && ok || bad "--timing"
+else
+  bad "--timing run failed: $(cat "$tmp/c.out")"
+fi
+"$BRDFIT" tradeoff "$W" -m walter --samples 500,all --methods ceres --seed 3 --quiet --cost seconds \
+  --json "$tmp/d.json" >"$tmp/d.out" 2>&1 && jq -e '.cost == "seconds" and .timing and all(.rows[]; .seconds >= 0)' \
+  "$tmp/d.json" >/dev/null && grep -q '^recommended: #[0-9]* (rmse_log .* for [0-9.]* s;' "$tmp/d.out" && ok ||
+  bad "--cost seconds: $(cat "$tmp/d.out")"
 
 # Bad usage: exit 2, one line naming the problem, no output file.
 expect_error() {
@@ -85,6 +100,7 @@ expect_error() {
 expect_error "no model" 2 '-m MODEL is required' "$W"
 expect_error "two models" 2 '-m takes one model' "$W" -m walter,lambert
 expect_error "unknown model" 2 "unknown model 'nosuch'" "$W" -m nosuch
+expect_error "bad cost" 2 "--cost needs work or seconds" "$W" -m walter --cost time
 expect_error "bad samples" 2 "--samples: 'lots'" "$W" -m walter --samples 500,lots
 expect_error "zero samples" 2 "--samples: '0'" "$W" -m walter --samples 0
 expect_error "empty item" 2 '--samples: empty item' "$W" -m walter --samples 500,,all

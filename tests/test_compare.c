@@ -16,8 +16,9 @@
 #include "brdfit/compare.h"
 #include "support.h"
 
-/* A ranked-to-be fit: k parameters, rmse_log e, the given criteria and time. */
-static void set_fit(bf_compare_fit *f, int k, double e, double aic, double bic, double sec)
+/* A ranked-to-be fit: k parameters, rmse_log e, the given criteria (AICc = AIC here)
+ * and fitting work. */
+static void set_fit(bf_compare_fit *f, int k, double e, double aic, double bic, double work)
 {
     memset(f, 0, sizeof *f);
     f->state = BF_CMP_OK;
@@ -26,8 +27,11 @@ static void set_fit(bf_compare_fit *f, int k, double e, double aic, double bic, 
     f->metrics.rmse_log = e;
     f->metrics.rmse = 10 * e; /* a different metric, to see --error pick */
     f->metrics.aic = aic;
+    f->metrics.aicc = aic;
     f->metrics.bic = bic;
-    f->seconds = sec;
+    f->work = work;
+    f->cv_error = NAN;
+    f->seconds = 1.0 / (1.0 + work); /* wall time: must decide nothing */
 }
 
 static bf_compare make(int nmat, int nmod)
@@ -53,6 +57,9 @@ static void test_ranks_and_ties(void **state)
     set_fit(&f[4], 2, 0.01, -100, -100, 0.01);
     f[4].state = BF_CMP_FAILED; /* the best numbers, but a failed fit is not ranked */
     bf_compare_rank(&c);
+    for (int j = 0; j < 5; j++)
+        assert_int_equal(f[j].rank, f[j].rank_bic); /* BIC is the default */
+    assert_int_equal(f[0].rank_cv, 0);            /* no cross-validation ran */
     assert_int_equal(f[0].rank_bic, 4);
     assert_int_equal(f[1].rank_bic, 1);
     assert_int_equal(f[2].rank_bic, 3);
@@ -75,6 +82,55 @@ static void test_ranks_and_ties(void **state)
     bf_compare_rank(&c);
     assert_int_equal(c.materials[0].simplest, 2);
     assert_true(fabs(f[2].error - 1.0) < 1e-15);
+    /* ranked by AIC: the chosen rank follows it; by the error: ties at 0.10 share 1 */
+    c.rank_by = BF_RANK_AIC;
+    bf_compare_rank(&c);
+    assert_int_equal(f[3].rank, 1);
+    assert_int_equal(f[1].rank, 4);
+    c.rank_by = BF_RANK_ERROR;
+    bf_compare_rank(&c);
+    assert_int_equal(f[2].rank, 1);
+    assert_int_equal(f[3].rank, 1);
+    assert_int_equal(f[1].rank, 3);
+    assert_int_equal(f[0].rank, 4);
+    bf_compare_free(&c);
+}
+
+/* Ranked by cross-validation: cv_error orders the fits and is the error of the
+ * tolerance; a fit without one is not ranked. */
+static void test_rank_by_cv(void **state)
+{
+    (void)state;
+    bf_compare c = make(1, 3);
+    bf_compare_fit *f = c.materials[0].fits;
+    set_fit(&f[0], 1, 0.30, 5, 5, 10);
+    set_fit(&f[1], 4, 0.10, 1, 1, 20);
+    set_fit(&f[2], 9, 0.05, 0, 0, 30);
+    f[0].cv_error = 0.31;
+    f[1].cv_error = 0.12;
+    f[2].cv_error = 0.20; /* the best in-sample error, but it does not generalise */
+    c.rank_by = BF_RANK_CV;
+    bf_compare_rank(&c);
+    assert_int_equal(f[1].rank, 1);
+    assert_int_equal(f[2].rank, 2);
+    assert_int_equal(f[0].rank, 3);
+    assert_int_equal(f[1].rank_cv, 1);
+    assert_int_equal(c.materials[0].best, 1);
+    assert_int_equal(c.materials[0].simplest, 1);
+    assert_true(fabs(f[2].error - 0.20) < 1e-15);
+    f[1].cv_error = NAN;
+    bf_compare_rank(&c);
+    assert_int_equal(f[1].rank, 0);
+    assert_int_equal(c.materials[0].best, 2);
+    bf_error err;
+    bf_compare_rank_by by;
+    const char *names[] = {"bic", "aic", "aicc", "cv", "error"};
+    for (int i = 0; i < 5; i++) {
+        assert_int_equal(bf_compare_rank_parse(names[i], &by, &err), BF_OK);
+        assert_string_equal(bf_compare_rank_name(by), names[i]);
+    }
+    assert_int_equal(bf_compare_rank_parse("mdl", &by, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "'mdl'"));
     bf_compare_free(&c);
 }
 
@@ -103,19 +159,19 @@ static void test_pareto_marks_in_rank(void **state)
     (void)state;
     bf_compare c = make(1, 4);
     bf_compare_fit *f = c.materials[0].fits;
-    set_fit(&f[0], 3, 0.5, 0, 0, 0.01);  /* fewest k, fastest: on both fronts */
-    set_fit(&f[1], 4, 0.6, 0, 0, 0.50);  /* dominated by f[0] on both */
-    set_fit(&f[2], 8, 0.1, 0, 0, 1.00);  /* best error: on both */
-    set_fit(&f[3], 8, 0.2, 0, 0, 0.02);  /* k: dominated by f[2]; time: on the front */
+    set_fit(&f[0], 3, 0.5, 0, 0, 1e6);  /* fewest k, least work: on both fronts */
+    set_fit(&f[1], 4, 0.6, 0, 0, 5e7);  /* dominated by f[0] on both */
+    set_fit(&f[2], 8, 0.1, 0, 0, 1e8);  /* best error: on both */
+    set_fit(&f[3], 8, 0.2, 0, 0, 2e6);  /* k: dominated by f[2]; work: on the front */
     bf_compare_rank(&c);
     assert_int_equal(f[0].pareto_k, 1);
     assert_int_equal(f[1].pareto_k, 0);
     assert_int_equal(f[2].pareto_k, 1);
     assert_int_equal(f[3].pareto_k, 0);
-    assert_int_equal(f[0].pareto_time, 1);
-    assert_int_equal(f[1].pareto_time, 0);
-    assert_int_equal(f[2].pareto_time, 1);
-    assert_int_equal(f[3].pareto_time, 1);
+    assert_int_equal(f[0].pareto_work, 1);
+    assert_int_equal(f[1].pareto_work, 0);
+    assert_int_equal(f[2].pareto_work, 1);
+    assert_int_equal(f[3].pareto_work, 1);
     /* equal criteria: everyone ranks 1 */
     for (int j = 0; j < 4; j++)
         assert_int_equal(f[j].rank_bic, 1);
@@ -226,16 +282,20 @@ static void test_json_keys(void **state)
     char *text = slurp(path);
     cJSON *root = cJSON_Parse(text);
     assert_non_null(root);
-    const char *top[] = {"version", "error", "tolerance", "residual", "interrupted", "models", "materials", "summary"};
+    const char *top[] = {"version", "rank_by", "error", "folds", "tolerance", "residual", "work", "timing",
+                         "interrupted", "models", "materials", "summary"};
     for (size_t k = 0; k < sizeof top / sizeof top[0]; k++)
         assert_true(cJSON_HasObjectItem(root, top[k]));
     assert_string_equal(cJSON_GetObjectItem(root, "error")->valuestring, "rmse_log");
     cJSON *mats = cJSON_GetObjectItem(root, "materials");
     assert_int_equal(cJSON_GetArraySize(mats), 3);
     const char *fit_keys[] = {"model", "spec", "status", "ok", "message", "k", "n", "error", "rmse", "rmse_log",
-                              "rmse_cos", "rmse_rel", "max_err", "aic", "bic", "seconds", "rank_bic", "rank_aic",
-                              "pareto_k", "pareto_time", "within_tolerance", "params"};
+                              "rmse_cos", "rmse_rel", "max_err", "loglik", "aic", "aicc", "bic", "cv", "work",
+                              "rank", "rank_bic", "rank_aic", "rank_aicc", "rank_cv", "pareto_k", "pareto_work",
+                              "within_tolerance", "params", "stderr", "warnings"};
     cJSON *m;
+    /* no wall times unless asked */
+    assert_null(strstr(text, "seconds"));
     cJSON_ArrayForEach(m, mats)
     {
         const char *mk[] = {"data", "samples", "channels", "best", "simplest", "fits"};
@@ -257,6 +317,15 @@ static void test_json_keys(void **state)
     cJSON *s0 = cJSON_GetArrayItem(cJSON_GetObjectItem(root, "summary"), 0);
     assert_int_equal(cJSON_GetObjectItem(s0, "chosen_simplest")->valueint, 2);
     assert_true(fabs(cJSON_GetObjectItem(s0, "mean_rank_bic")->valuedouble - 2.0) < 1e-12);
+    cJSON_Delete(root);
+    free(text);
+    /* with timing: every fit carries seconds */
+    c.timing = 1;
+    assert_int_equal(bf_compare_write_json(&c, path, &err), BF_OK);
+    text = slurp(path);
+    root = cJSON_Parse(text);
+    cJSON *f0 = cJSON_GetArrayItem(cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "materials"), 0), "fits"), 0);
+    assert_true(cJSON_IsNumber(cJSON_GetObjectItem(f0, "seconds")));
     cJSON_Delete(root);
     free(text);
     unlink(path);
@@ -283,6 +352,12 @@ static void test_csv_rows(void **state)
     assert_non_null(strstr(text, "\n\"b,\"\"q\"\".csv\",lambert,ok,3,"));
     /* the failed fit: a status and empty ranks */
     assert_non_null(strstr(text, "\nc.csv,phong,failed,5,100,,"));
+    assert_null(strstr(text, "seconds"));
+    free(text);
+    c.timing = 1;
+    assert_int_equal(bf_compare_write_csv(&c, path, &err), BF_OK);
+    text = slurp(path);
+    assert_non_null(strstr(text, ",warnings,seconds\n"));
     free(text);
     unlink(path);
     /* an unwritable path: an error, nothing written */
@@ -311,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_pareto_marks_in_rank), cmocka_unit_test(test_simplest_within_tolerance),
         cmocka_unit_test(test_summary),              cmocka_unit_test(test_json_keys),
         cmocka_unit_test(test_csv_rows),             cmocka_unit_test(test_metric_names),
+        cmocka_unit_test(test_rank_by_cv),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -54,7 +54,7 @@ static void test_thread_count_independence(void **state)
         if (threads == 1) {
             ref = mt;
             memcpy(se_ref, se, sizeof se);
-            assert_true(ref.n == 90000 && ref.rmse > 0.0 && isfinite(ref.aic));
+            assert_true(ref.n == 90000 && ref.rmse > 0.0);
             for (int k = 0; k < 8; k++)
                 assert_true(se_ref[k] > 0.0 && isfinite(se_ref[k]));
             continue;

@@ -1,5 +1,5 @@
 /* Metrics on hand-built sample sets with values worked out here: RMSE family, max
- * error, AIC and BIC; samples below the horizon left out; the edge cases. */
+ * error; the information criteria's formulas; samples below the horizon left out; the edge cases. */
 #include <float.h>
 #include <math.h>
 #include <setjmp.h>
@@ -64,14 +64,52 @@ static void test_metrics_values(void **state)
     ts_assert_rel(mt.rmse_rel, sqrt(srel / 5), 1e-15, "rmse_rel");
     ts_assert_rel(mt.max_err, maxe, 1e-15, "max_err");
     ts_assert_rel(mt.max_err, 0.5 / M_PI + 0.01, 1e-15, "max_err by hand (sample 3, channel 0)");
-    ts_assert_rel(mt.aic, 6 * log(ssr / 6) + 4, 1e-15, "aic");
-    ts_assert_rel(mt.bic, 6 * log(ssr / 6) + 2 * log(6.0), 1e-15, "bic");
+    /* criteria belong to fits (bf_fit), not to metrics of a model on data */
+    assert_true(isnan(mt.aic) && isnan(mt.aicc) && isnan(mt.bic) && isnan(mt.loglik));
+    assert_int_equal(mt.crit_n, 0);
     bf_samples_free(s);
     bf_model_free(m);
 }
 
-/* A value with m c < -1 keeps rmse_log finite (1 + m c floored at 1e-12); an exact fit
- * gives finite AIC/BIC; all-zero measurements give rmse_rel NaN. */
+/* The criteria from N, k, WSSR and sum ln w, against the formulas written out: unit
+ * weights, weights (which shift the log-likelihood by half their log sum), an exact
+ * fit (floored, finite), too few residuals for AICc, and nothing to go on. */
+static void test_criteria_formulas(void **state)
+{
+    (void)state;
+    bf_metrics mt;
+    const double n = 50, k = 3, wssr = 0.8, two_pi = 2 * M_PI;
+    bf_metrics_criteria(&mt, 50, 3, wssr, 0.0);
+    const double ll = -n / 2 * (log(two_pi * wssr / n) + 1);
+    assert_int_equal(mt.crit_n, 50);
+    ts_assert_rel(mt.loglik, ll, 1e-15, "loglik");
+    ts_assert_rel(mt.aic, -2 * ll + 2 * (k + 1), 1e-15, "aic");
+    ts_assert_rel(mt.aicc, -2 * ll + 2 * (k + 1) + 2 * (k + 1) * (k + 2) / (n - k - 2), 1e-15, "aicc");
+    ts_assert_rel(mt.bic, -2 * ll + (k + 1) * log(n), 1e-15, "bic");
+    /* BIC penalises a parameter by ln N, AIC by 2: more parameters, same residuals */
+    bf_metrics m5;
+    bf_metrics_criteria(&m5, 50, 5, wssr, 0.0);
+    ts_assert_rel(m5.bic - mt.bic, 2 * log(n), 1e-12, "bic step");
+    ts_assert_rel(m5.aic - mt.aic, 4.0, 1e-12, "aic step");
+    /* weights: loglik + sum ln w / 2, the rest follows */
+    bf_metrics mw;
+    bf_metrics_criteria(&mw, 50, 3, wssr, 7.5);
+    ts_assert_rel(mw.loglik, ll + 3.75, 1e-15, "weighted loglik");
+    ts_assert_rel(mw.bic, mt.bic - 7.5, 1e-13, "weighted bic");
+    /* exact fit: floored at DBL_MIN, finite */
+    bf_metrics_criteria(&mt, 2, 1, 0.0, 0.0);
+    assert_true(isfinite(mt.aic) && isfinite(mt.bic));
+    ts_assert_rel(mt.loglik, -(log(two_pi * DBL_MIN) + 1), 1e-15, "exact fit");
+    assert_true(isnan(mt.aicc)); /* N = 2 <= k + 2 */
+    /* nothing to go on */
+    bf_metrics_criteria(&mt, 0, 1, 0.0, 0.0);
+    assert_true(isnan(mt.aic) && isnan(mt.bic) && isnan(mt.loglik));
+    bf_metrics_criteria(&mt, 10, 1, NAN, 0.0);
+    assert_true(isnan(mt.aic) && isnan(mt.bic));
+}
+
+/* A value with m c < -1 keeps rmse_log finite (1 + m c floored at 1e-12); all-zero
+ * measurements give rmse_rel NaN. */
 static void test_metrics_edges(void **state)
 {
     (void)state;
@@ -83,8 +121,6 @@ static void test_metrics_edges(void **state)
     bf_metrics mt;
     assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, NULL), BF_OK);
     assert_true(mt.rmse == 0.0 && mt.max_err == 0.0 && mt.rmse_rel == 0.0);
-    assert_true(isfinite(mt.aic) && isfinite(mt.bic));
-    ts_assert_rel(mt.aic, 2 * log(DBL_MIN) + 2, 1e-15, "aic of an exact fit");
 
     s->value[0] = -3.0; /* c = 1: 1 + m c = -2 */
     s->value[1] = 0.0;
@@ -118,6 +154,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_metrics_values),
+        cmocka_unit_test(test_criteria_formulas),
         cmocka_unit_test(test_metrics_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -134,11 +134,13 @@ static void test_split_disjoint(void **state)
     bf_samples_free(s);
 }
 
-/* Rows with hand-made times and test errors (rmse_log). */
+/* Rows with hand-made costs (work = seconds x 1e6, until a test sets them apart) and
+ * test errors (rmse_log). */
 static void set_row(bf_tradeoff_row *r, double seconds, double e, double rmse)
 {
     r->ran = r->ok = 1;
     r->seconds = seconds;
+    r->work = seconds * 1e6;
     r->test.rmse_log = e;
     r->test.rmse = rmse;
 }
@@ -171,10 +173,23 @@ static void test_rank_front_and_recommendation(void **state)
         assert_int_equal(t.rows[i].within_tolerance, tol[i]);
     }
     assert_true(isnan(t.rows[5].error));
-    /* The recommended row is within tolerance and no row within it is faster. */
+    /* The recommended row is within tolerance and no row within it is cheaper. */
     for (int i = 0; i < 6; i++)
         if (t.rows[i].within_tolerance)
-            assert_true(t.rows[i].seconds >= t.rows[t.recommended].seconds);
+            assert_true(t.rows[i].work >= t.rows[t.recommended].work);
+    /* Wall time decides nothing unless asked: row 1 measured slow changes no choice by
+     * work, and the choice by seconds goes to row 3 (2 s against 5 and 3). */
+    t.rows[1].seconds = 5.0;
+    bf_tradeoff_rank(&t);
+    assert_int_equal(t.recommended, 1);
+    assert_int_equal(t.rows[1].on_front, 1);
+    t.cost = BF_TRADEOFF_COST_SECONDS;
+    bf_tradeoff_rank(&t);
+    assert_int_equal(t.recommended, 3);
+    assert_int_equal(t.rows[1].on_front, 0);
+    assert_string_equal(bf_tradeoff_cost_name(t.cost), "seconds");
+    t.cost = BF_TRADEOFF_COST_WORK;
+    t.rows[1].seconds = 0.5;
     /* Zero tolerance: the best itself. Another metric: another ranking. */
     t.tolerance = 0.0;
     bf_tradeoff_rank(&t);
@@ -296,20 +311,22 @@ static void test_json_and_csv(void **state)
     cJSON *root = cJSON_Parse(text);
     assert_non_null(root);
     const char *top[] = {"version", "data", "model", "samples", "train_samples", "test_samples", "channels",
-                         "test_fraction", "seed", "repeats", "error", "tolerance", "best", "recommended", "rows"};
+                         "test_fraction", "seed", "repeats", "error", "tolerance", "cost", "work", "timing",
+                         "best", "recommended", "rows"};
     for (size_t k = 0; k < sizeof top / sizeof top[0]; k++)
         assert_non_null(cJSON_GetObjectItemCaseSensitive(root, top[k]));
     assert_int_equal(cJSON_GetObjectItem(root, "recommended")->valueint, 1);
     cJSON *rows = cJSON_GetObjectItem(root, "rows");
     assert_int_equal(cJSON_GetArraySize(rows), 4);
     const char *keys[] = {"index", "samples", "all", "method", "residual", "starts", "status", "ok", "message",
-                          "seconds", "iterations", "error", "train", "test", "on_front", "within_tolerance",
-                          "best", "recommended"};
+                          "work", "iterations", "error", "train", "test", "on_front", "within_tolerance",
+                          "best", "recommended", "warnings"};
     for (int i = 0; i < 4; i++) {
         cJSON *r = cJSON_GetArrayItem(rows, i);
         for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
             assert_non_null(cJSON_GetObjectItemCaseSensitive(r, keys[k]));
     }
+    assert_null(strstr(text, "seconds")); /* no wall time unless asked */
     cJSON *r3 = cJSON_GetArrayItem(rows, 3);
     assert_string_equal(cJSON_GetObjectItem(r3, "status")->valuestring, "error");
     assert_true(cJSON_IsNull(cJSON_GetObjectItem(r3, "test")));
@@ -325,10 +342,32 @@ static void test_json_and_csv(void **state)
     for (char *p = text; *p; p++)
         lines += *p == '\n';
     assert_int_equal(lines, 1 + 4);
-    assert_true(!strncmp(text, "samples,all,method,residual,starts,status,seconds", 49));
-    assert_non_null(strstr(text, "\n100,0,ceres,log,1,ok,0.1,"));
-    assert_non_null(strstr(text, "\n100,0,\"odd,\"\"name\"\"\",log,1,ok,0.2,"));
+    assert_true(!strncmp(text, "samples,all,method,residual,starts,status,work", 46));
+    assert_null(strstr(text, "seconds"));
+    assert_non_null(strstr(text, "\n100,0,ceres,log,1,ok,100000,"));
+    assert_non_null(strstr(text, "\n100,0,\"odd,\"\"name\"\"\",log,1,ok,200000,"));
     assert_non_null(strstr(text, "\n1000,1,\"odd,\"\"name\"\"\",log,1,error,,"));
+    free(text);
+    /* with timing: a seconds column last, and the warnings before it, one field */
+    t.timing = 1;
+    t.rows[0].nwarnings = 2;
+    t.rows[0].warnings = calloc(2, sizeof *t.rows[0].warnings);
+    assert_non_null(t.rows[0].warnings);
+    strcpy(t.rows[0].warnings[0], "alpha = 1 is at its upper bound 1");
+    strcpy(t.rows[0].warnings[1], "f0, \"x\"");
+    assert_int_equal(bf_tradeoff_write_csv(&t, path, &err), BF_OK);
+    text = slurp(path);
+    assert_non_null(strstr(text, ",recommended,warnings,seconds\n"));
+    assert_non_null(strstr(text, ",\"alpha = 1 is at its upper bound 1; f0, \"\"x\"\"\",0.1\n"));
+    free(text);
+    assert_int_equal(bf_tradeoff_write_json(&t, path, &err), BF_OK);
+    text = slurp(path);
+    root = cJSON_Parse(text);
+    cJSON *w0 = cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "rows"), 0), "warnings");
+    assert_int_equal(cJSON_GetArraySize(w0), 2);
+    assert_string_equal(cJSON_GetArrayItem(w0, 1)->valuestring, "f0, \"x\"");
+    assert_true(cJSON_IsNumber(cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "rows"), 0), "seconds")));
+    cJSON_Delete(root);
     free(text);
     unlink(path);
     bf_tradeoff_free(&t);

@@ -356,6 +356,21 @@ int bf_model_find_param(const bf_model *m, const char *name)
     return -1;
 }
 
+const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size)
+{
+    for (int i = m->nparam - 1; i >= 0; i--) {
+        if (k < m->offset[i])
+            continue;
+        if (m->param[i].colour && m->channels > 1)
+            snprintf(buf, size, "%s[%d]", m->param[i].name, k - m->offset[i]);
+        else
+            snprintf(buf, size, "%s", m->param[i].name);
+        return buf;
+    }
+    snprintf(buf, size, "entry %d", k);
+    return buf;
+}
+
 void bf_model_defaults(const bf_model *m, double *x)
 {
     for (int i = 0; i < m->nparam; i++) {

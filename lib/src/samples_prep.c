@@ -372,6 +372,19 @@ static void cell_strata(unsigned char table[BF_MERL_TH * BF_MERL_TD])
                 (unsigned char)stratum_of_half(bf_merl_centre_theta_h(i), bf_merl_centre_theta_d(j));
 }
 
+/* Every sample's stratum into st (n bytes) and each stratum's count. */
+static void strata(const bf_samples *s, unsigned char *st, size_t count[STRATA_H * STRATA_D])
+{
+    unsigned char rows[BF_MERL_TH * BF_MERL_TD];
+    if (!s->theta_i)
+        cell_strata(rows);
+    for (size_t i = 0; i < s->n; i++) {
+        st[i] = (unsigned char)(s->theta_i ? stratum_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i])
+                                           : rows[s->merl->cell[i] / BF_MERL_PD]);
+        count[st[i]]++;
+    }
+}
+
 /* splitmix64 (Steele, Lea and Flood 2014): one 64-bit state, every seed (0 included)
  * gives a full-period, well-mixed stream. */
 static uint64_t splitmix64(uint64_t *x)
@@ -404,14 +417,7 @@ int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsi
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for subsampling %zu samples", n);
     size_t count[K] = {0}, quota[K], seen[K] = {0};
     uint64_t rem[K];
-    unsigned char rows[BF_MERL_TH * BF_MERL_TD];
-    if (!s->theta_i)
-        cell_strata(rows);
-    for (size_t i = 0; i < n; i++) {
-        st[i] = (unsigned char)(s->theta_i ? stratum_of(s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i])
-                                           : rows[s->merl->cell[i] / BF_MERL_PD]);
-        count[st[i]]++;
-    }
+    strata(s, st, count);
     size_t nonempty = 0;
     for (int k = 0; k < K; k++)
         nonempty += count[k] > 0;
@@ -442,6 +448,43 @@ int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsi
         seen[k]++;
     }
     free(st);
+    return BF_OK;
+}
+
+int bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err)
+{
+    enum { NS = STRATA_H * STRATA_D, MAXK = 255 };
+    if (K < 2 || K > MAXK)
+        return bf_fail(err, BF_ERR_ARG, "folds: %d folds (2 to %d)", K, MAXK);
+    unsigned char *st = bf_big_malloc(s->n + 1);
+    unsigned char *perm = malloc((size_t)NS * MAXK);
+    if (!st || !perm) {
+        free(st);
+        free(perm);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the folds of %zu samples", s->n);
+    }
+    size_t count[NS] = {0}, dealt[NS] = {0};
+    strata(s, st, count);
+    uint64_t state = seed;
+    for (size_t i = 0; i < s->n; i++) {
+        const int k = st[i];
+        unsigned char *p = perm + (size_t)k * MAXK;
+        const size_t r = dealt[k]++ % (size_t)K;
+        if (r == 0) { /* a new round: a fresh random order of the folds (Fisher-Yates) */
+            for (int a = 0; a < K; a++)
+                p[a] = (unsigned char)a;
+            for (int a = K - 1; a > 0; a--) {
+                int b = (int)(uniform01(&state) * (double)(a + 1));
+                b = b > a ? a : b;
+                unsigned char t = p[a];
+                p[a] = p[b];
+                p[b] = t;
+            }
+        }
+        fold[i] = p[r];
+    }
+    free(st);
+    free(perm);
     return BF_OK;
 }
 

@@ -1,6 +1,14 @@
-/* Comparing models across materials: rankings by BIC and AIC, Pareto fronts of
- * parameter count and fitting time against error, the simplest model within a
- * tolerance of the best, a summary across materials, and the JSON and CSV outputs.
+/* Comparing models across materials: rankings by an information criterion of the
+ * fitted objective (BIC, AIC, AICc: metrics.h), by cross-validated error or by the
+ * error itself; Pareto fronts of parameter count and of fitting work against error; the
+ * simplest model within a tolerance of the best; a summary across materials; and the
+ * JSON and CSV outputs.
+ *
+ * Everything ranked, flagged or chosen is a function of the fits' results alone (no
+ * wall time enters), so the same inputs give the same outputs to the byte whatever the
+ * threads and the load: fitting work is counted in sample evaluations (passes over
+ * the samples times their number, the presolve's included), and wall times are written
+ * only when asked (bf_compare.timing).
  *
  * The caller runs the fits (how, and how many at once, is its business) and fills one
  * bf_compare_fit per material x model; bf_compare_rank derives everything else. A report
@@ -39,18 +47,43 @@ typedef enum bf_compare_state {
 
 const char *bf_compare_state_name(bf_compare_state s); /* "not_run", "ok", "failed", "error" */
 
+/* What the models are ranked by. BIC is the default; CV needs each fit's cv_error
+ * (bf_fit_cv), and then the Pareto fronts and the tolerance use it too. */
+typedef enum bf_compare_rank_by {
+    BF_RANK_BIC = 0,
+    BF_RANK_AIC,
+    BF_RANK_AICC,
+    BF_RANK_CV,
+    BF_RANK_ERROR, /* the error metric (bf_compare.metric) */
+} bf_compare_rank_by;
+
+int bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
+const char *bf_compare_rank_name(bf_compare_rank_by r); /* "bic", "aic", "aicc", "cv", "error" */
+
+/* Sample evaluations of a fit: passes over the samples times their number, presolve
+ * and final pass included. Deterministic, unlike its wall time. */
+double bf_compare_work(const bf_fit_result *r);
+
 typedef struct bf_compare_fit {
     /* Filled by the caller. */
     bf_compare_state state;
     bf_metrics metrics;
-    double seconds;
-    const bf_fit_result *result; /* NULL, or the fit (not owned): parameters for the JSON */
+    double seconds;              /* wall time: written only with bf_compare.timing */
+    double work;                 /* bf_compare_work */
+    double cv_error;             /* bf_fit_cv's error, or NaN when not cross-validated */
+    const bf_fit_result *result; /* NULL, or the fit (not owned): parameters, standard
+                                    errors and warnings for the outputs */
     char message[512];           /* BF_CMP_ERROR: why (a bf_error message) */
     /* Filled by bf_compare_rank (ranks 0 and marks 0 where the fit is not ranked). */
-    double error;                /* the chosen metric (NaN unless ranked) */
-    int rank_bic, rank_aic;      /* 1 = best; equal values share the lower rank (1, 2, 2, 4) */
-    int pareto_k, pareto_time;   /* 1: on the front (no other fit is at least as good in
-                                    both and better in one; duplicates both stay) */
+    double error;                /* the error the fronts and the tolerance use: cv_error
+                                    when ranked by CV, else the chosen metric (NaN unless
+                                    ranked) */
+    int rank;                    /* by bf_compare.rank_by; 1 = best; equal values share
+                                    the lower rank (1, 2, 2, 4) */
+    int rank_bic, rank_aic, rank_aicc, rank_cv; /* by each criterion (0: not defined) */
+    int pareto_k, pareto_work;   /* 1: on the front of k (of work) against error (no other
+                                    fit is at least as good in both and better in one;
+                                    duplicates both stay) */
     int within_tolerance;        /* error <= best error * (1 + tolerance) */
 } bf_compare_fit;
 
@@ -65,7 +98,7 @@ typedef struct bf_compare_material {
 /* Per model, over the materials where it was ranked (NaN means when none). */
 typedef struct bf_compare_summary {
     int ranked;
-    double mean_rank_bic, mean_rank_aic, mean_error;
+    double mean_rank, mean_rank_bic, mean_rank_aic, mean_error;
     int chosen;            /* materials where it is the simplest within tolerance */
 } bf_compare_summary;
 
@@ -75,8 +108,12 @@ typedef struct bf_compare {
     bf_compare_material *materials; /* nmaterials (owned) */
     bf_compare_summary *summary;    /* nmodels (owned), from bf_compare_rank */
     bf_compare_metric metric;
+    bf_compare_rank_by rank_by;
+    int folds;                      /* of the cross-validation (0: none ran) */
     double tolerance;               /* relative, >= 0 */
     int interrupted;                /* 1: some fits were never run */
+    int timing;                     /* 1: the outputs carry wall times (then they differ
+                                       from run to run) */
     const char *residual;           /* the fit objective's name, for the outputs (NULL: omitted) */
 } bf_compare;
 
@@ -86,8 +123,10 @@ int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int 
 void bf_compare_free(bf_compare *c);
 
 /* Ranks, Pareto fronts, tolerance, best and simplest per material, and the summary.
- * The simplest model is the one with the fewest free parameters among those within
- * tolerance; ties go to the lower error, then to the earlier model. */
+ * A fit is ranked when it succeeded and its error and chosen criterion are finite. The
+ * best is the lowest error; the simplest model is the one with the fewest free
+ * parameters among those within tolerance; ties go to the lower error, then to the
+ * earlier model. */
 void bf_compare_rank(bf_compare *c);
 
 /* Pareto front of points (x, y), both smaller-is-better: on[i] = 1 unless some other
@@ -96,7 +135,9 @@ void bf_compare_pareto(int n, const double *x, const double *y, int *on);
 
 /* Outputs through bf_outfile (no partial file on failure; path "-": stdout).
  * JSON: every key always present (null where not applicable); CSV: a header, then one
- * row per material x model in input order. */
+ * row per material x model in input order, with one column per fitted parameter and
+ * channel (the union over the models, "name" or "name[c]"; empty where a model has no
+ * such parameter) and the warnings joined by "; ". */
 int bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
 int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
 

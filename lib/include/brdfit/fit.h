@@ -36,6 +36,9 @@ typedef struct bf_fit_options {
 #define BF_FIT_PRESOLVE_SAMPLES 32768
 #define BF_FIT_PRESOLVE_MIN 131072 /* 4 x the presolve: below it a presolve saves too little */
 
+#define BF_FIT_MAX_WARNINGS 16
+#define BF_FIT_WARNING_LEN 192
+
 /* What the presolve did (samples 0: none ran). */
 typedef struct bf_presolve_info {
     size_t samples;
@@ -58,6 +61,13 @@ typedef struct bf_fit_result {
     double seconds;         /* whole fit: start, solves, metrics */
     bf_residual residual;
     int ok;                 /* 1: the best start's solution is usable */
+    /* What the fit should be doubted for, one line each naming the parameter and the
+     * number: a parameter on a bound, one the data do not determine (no or a huge
+     * standard error) or a pair correlated beyond 0.999, an albedo above 1, a lobe
+     * narrower than the data's sampling near the peak, a solve stopped on its limit,
+     * criteria left undefined by a robust loss. */
+    int nwarnings;
+    char warnings[BF_FIT_MAX_WARNINGS][BF_FIT_WARNING_LEN];
 } bf_fit_result;
 
 /* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s. Returns BF_OK when a fit
@@ -65,6 +75,31 @@ typedef struct bf_fit_result {
  * start, never NaN); errors for bad specs, options or data. */
 int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
 void bf_fit_result_free(bf_fit_result *r);
+
+/* K-fold cross-validation: the held-out error of the fitted objective. The samples are
+ * cut into `folds` seeded folds stratified over theta_h and theta_d
+ * (bf_samples_folds); each is held out in turn while the rest is fitted with o (its
+ * presolve, starts and seed included), and the fitted parameters' residuals, in the
+ * objective's form and weights and without a robust loss, are summed over it:
+ *   error = sqrt(sum w r^2 / sum w)   pooled over every held-out residual.
+ * A fold whose fit fails makes the error NaN (counted in failed). */
+#define BF_CV_MAX_FOLDS 20
+typedef struct bf_cv_result {
+    int folds;
+    double error;                       /* pooled; NaN when a fold failed */
+    double fold_error[BF_CV_MAX_FOLDS]; /* each fold's own */
+    int failed;                         /* folds whose fit failed */
+} bf_cv_result;
+
+int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
+              bf_error *err);
+
+/* The largest directional albedo of model m at x, integral of f cos theta_o over the
+ * outgoing hemisphere, over incidences 5 .. 85 degrees (and four azimuths for an
+ * anisotropic model) and channels: the value, where (degrees) and which channel. The
+ * integral runs over the half vector, dense near the mirror direction, so a narrow lobe
+ * is resolved. 0, or -1 when out of memory. */
+int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel);
 
 /* A data-driven start for any model: diffuse level from off-specular samples, lobe
  * weight and width from the samples near the specular peak, every other parameter at

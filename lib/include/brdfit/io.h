@@ -52,6 +52,10 @@ const char *bf_format_double(double v, char *buf, size_t size);
  * break (RFC 4180); a number as ",v" (bf_format_double), or "," alone when not finite. */
 void bf_csv_put_text(FILE *fp, const char *s);
 void bf_csv_put_number(FILE *fp, double v);
+/* n strings, each stride bytes apart from items on (a char [n][stride] array), as ",s"
+ * with s the strings joined by "; " (quoted as bf_csv_put_text): one field for a list
+ * such as a fit's warnings. */
+void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n);
 
 #ifdef __cplusplus
 }

@@ -49,6 +49,12 @@ int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_
  * N samples chosen (N < s->n), 0 for the others; s is not changed. */
 int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err);
 
+/* Seeded folds for K-fold cross-validation (2 <= K <= 255), stratified as the
+ * subsample is (theta_h x theta_d strata): each stratum's samples, in order, are dealt
+ * to the folds in rounds of K, each round in a fresh random order, so every fold holds
+ * a K-th of every stratum (give or take one). fold[i] in [0, K). */
+int bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err);
+
 /* ---- What a data set holds (brdfit info) --------------------------------------- */
 typedef struct bf_range { double lo, hi; } bf_range;
 

@@ -111,9 +111,12 @@ typedef struct bf_regress_outcome {
                        ERROR: the reason */
     int nchecked;
     char **checked; /* every compared value, passing or not (for --verbose) */
+    int nwarnings;
+    char **warnings; /* the fit's diagnostics (fit.h), whatever the status */
 } bf_regress_outcome;
 
-/* Compares r with case c's expectations: fills out (status PASS or FAIL, the lines).
+/* Compares r with case c's expectations: fills out (status PASS or FAIL, the lines,
+ * the fit's warnings).
  * Expected ok false passes when the fit failed (values unchecked) and fails when it
  * succeeded. Returns BF_OK unless memory runs out. */
 int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
@@ -135,8 +138,8 @@ int bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *e
 
 /* JUnit XML: <testsuites><testsuite name="brdfit regress" tests failures errors time>,
  * one <testcase name classname=(baseline path) time> per case not skipped, <failure>
- * holding the diff lines, <error> the reason a case could not run. Written through a
- * temporary file. */
+ * holding the diff lines, <error> the reason a case could not run, <system-out> the
+ * fit's warnings. Written through a temporary file. */
 int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
                            bf_error *err);
 

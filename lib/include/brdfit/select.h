@@ -1,10 +1,18 @@
 /* Choosing the smallest model that serves: fit candidates to one data set (restricted
- * to a scene's directions beforehand, if the user has one) and pick the one with the
- * fewest free parameters whose error is within a tolerance of the best candidate's.
+ * to a scene's directions beforehand, if the user has one) and pick one, by rank_by:
+ *  - error (the default): the candidate with the fewest free parameters whose error is
+ *    within a tolerance of the best candidate's;
+ *  - cv: the same with the cross-validated error (bf_fit_cv) in place of the error;
+ *  - bic, aic, aicc: the lowest criterion (which weighs error against parameters
+ *    itself; the tolerance does not enter).
+ * select answers "what is the smallest model good enough", so it defaults to the error
+ * with a tolerance: with a million samples a criterion rewards every parameter that
+ * lowers the error at all.
  *
- * Among candidates within tolerance the order of preference is: fewer free parameters,
- * then isotropic before anisotropic, one lobe before two, a monochrome (mono) highlight
- * before a coloured one, then the lower error, then the earlier candidate. */
+ * Among candidates within tolerance (or with equal criteria) the order of preference is:
+ * fewer free parameters, then isotropic before anisotropic, one lobe before two, a
+ * monochrome (mono) highlight before a coloured one, then the lower error, then the
+ * earlier candidate. Nothing depends on wall time. */
 #ifndef BRDFIT_SELECT_H
 #define BRDFIT_SELECT_H
 
@@ -27,20 +35,29 @@ typedef struct bf_select_candidate {
     /* The fit (bf_select_run). */
     bf_compare_state state;
     bf_fit_result result;    /* valid when state is OK or FAILED (free with bf_select_free) */
-    double error;            /* the chosen metric, NaN unless state is OK */
-    double seconds;
+    double cv_error;         /* rank_by cv: the held-out error (NaN otherwise or failed) */
+    double work;             /* sample evaluations (bf_compare_work) */
+    double seconds;          /* wall time: written only with bf_select.timing */
     char message[512];       /* ERROR: why */
     /* bf_select_choose. */
-    int within;              /* 1: error <= best (1 + tolerance) + abs_tolerance */
+    double error;            /* the chosen metric, or cv_error under rank_by cv; NaN
+                                unless state is OK */
+    double criterion;        /* what rank_by orders by (error, cv_error or a criterion) */
+    int rank;                /* by criterion, 1 = lowest, ties share; 0: not ranked */
+    int within;              /* 1: error <= best (1 + tolerance) + abs_tolerance; by a
+                                criterion: the lowest criterion */
 } bf_select_candidate;
 
 typedef struct bf_select {
     int n;
     bf_select_candidate *c;  /* n (owned) */
     bf_compare_metric metric;
+    bf_compare_rank_by rank_by; /* BF_RANK_ERROR from bf_select_init */
+    int folds;               /* of rank_by cv (bf_select_init: 5) */
+    int timing;              /* 1: the JSON carries wall times */
     double tolerance;        /* relative, >= 0 */
     double abs_tolerance;    /* absolute, >= 0: errors this close to the best are equal */
-    int best, chosen;        /* candidate indices; -1: none fitted */
+    int best, chosen;        /* candidate indices; -1: none fitted (best: lowest error) */
 } bf_select;
 
 /* The default candidates for C channels, in order of complexity: diffuse models, one
@@ -59,21 +76,24 @@ void bf_select_free(bf_select *s);
 typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i);
 
 /* Fits every candidate to data with the options (a candidate whose fit cannot run is
- * marked ERROR with the message; the others go on), then bf_select_choose. Returns
- * BF_OK when the candidates were run, whatever their outcome. */
+ * marked ERROR with the message; the others go on), cross-validates each with s->folds
+ * folds (seed o->seed) when ranked by cv, then bf_select_choose. Returns BF_OK when the
+ * candidates were run, whatever their outcome. */
 int bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
                   void *ctx, bf_error *err);
 
-/* From the candidates' states and errors: within, best (lowest error) and chosen (see
- * the order of preference above). Candidates not OK are never within nor chosen. */
+/* From the candidates' states, errors and criteria: error, criterion, rank, within,
+ * best (lowest error) and chosen (see the top). Candidates not OK, or whose criterion
+ * is not finite, are never ranked, within nor chosen. */
 void bf_select_choose(bf_select *s);
 
 /* Candidate indices in the order of preference (k, isotropy, lobes, mono, error,
  * index), whatever their state: for tables. order has s->n entries. */
 void bf_select_order(const bf_select *s, int *order);
 
-/* JSON: metric, tolerances, best, chosen, and per candidate (in input order) spec,
- * k, flags, state, error, metrics, seconds, within, and parameters when fitted. Through
+/* JSON: ranking, metric, tolerances, best, chosen, and per candidate (in input order)
+ * spec, k, flags, state, error, criterion, rank, work, within, metrics, parameters,
+ * standard errors and warnings when fitted (seconds only with s->timing). Through
  * bf_outfile (path "-": stdout). data names the data file in the output. */
 int bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err);
 

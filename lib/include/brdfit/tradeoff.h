@@ -1,7 +1,13 @@
-/* Fitting time against accuracy on one data set: a grid of training sample counts,
+/* Fitting cost against accuracy on one data set: a grid of training sample counts,
  * optimizer methods, residual forms and multistart counts, each fitted on a seeded
- * training set and judged on a disjoint held-out test set; the Pareto front of time
- * against test error and the fastest setting within a tolerance of the best.
+ * training set and judged on a disjoint held-out test set; the Pareto front of cost
+ * against test error and the cheapest setting within a tolerance of the best.
+ *
+ * The cost is fitting work by default: sample evaluations (passes over the samples,
+ * with or without derivatives, times their number: bf_compare_work), the same on every
+ * machine and load, so the outputs are reproducible to the byte. BF_TRADEOFF_COST_SECONDS
+ * uses the measured wall time instead (then the front and the recommendation vary from
+ * run to run, and the outputs say so).
  *
  * The caller builds the grid (bf_tradeoff_init), runs each row (bf_tradeoff_run_row, in
  * any order, one at a time, since rows are timed) and ranks (bf_tradeoff_rank); the
@@ -48,14 +54,22 @@ typedef struct bf_tradeoff_row {
     int ran;             /* 1: a fit ran (ok or not); 0: not run or an error (message) */
     int ok;
     double seconds;      /* bf_fit_result.seconds, minimum over the repeats */
+    double work;         /* sample evaluations of the fit (bf_compare_work) */
     int iterations;
+    int nwarnings;
+    char (*warnings)[BF_FIT_WARNING_LEN]; /* the fit's warnings (owned), or NULL */
     bf_metrics train, test;
     char message[512];   /* why the fit could not run (a bf_error message) */
     /* Filled by bf_tradeoff_rank (0 / NaN for rows not ok). */
     double error;        /* the chosen metric on the test set */
-    int on_front;        /* Pareto front of seconds against error */
+    int on_front;        /* Pareto front of cost against error */
     int within_tolerance;
 } bf_tradeoff_row;
+
+typedef enum bf_tradeoff_cost {
+    BF_TRADEOFF_COST_WORK = 0, /* sample evaluations: reproducible */
+    BF_TRADEOFF_COST_SECONDS,  /* wall time: varies with the machine and its load */
+} bf_tradeoff_cost;
 
 typedef struct bf_tradeoff {
     char *data, *model;  /* owned copies */
@@ -66,6 +80,8 @@ typedef struct bf_tradeoff {
     int repeats;
     bf_compare_metric metric;
     double tolerance;
+    bf_tradeoff_cost cost;
+    int timing;            /* 1: the outputs carry wall times (always with cost seconds) */
     int nrows;
     bf_tradeoff_row *rows; /* owned */
     int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */
@@ -92,19 +108,24 @@ void bf_tradeoff_free(bf_tradeoff *t);
 int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
                         bf_error *err);
 
-/* error from t->metric on the test set, the Pareto front of (seconds, error) over the ok
- * rows, best (lowest error; ties to the faster, then the earlier row), within tolerance
- * (error <= best * (1 + tolerance)) and recommended: the fastest row within tolerance
+/* error from t->metric on the test set, the Pareto front of (cost, error) over the ok
+ * rows, best (lowest error; ties to the cheaper, then the earlier row), within tolerance
+ * (error <= best * (1 + tolerance)) and recommended: the cheapest row within tolerance
  * (ties to the lower error, then the earlier row). */
 void bf_tradeoff_rank(bf_tradeoff *t);
 
+/* A row's cost under t->cost (NaN for a row that did not run). */
+double bf_tradeoff_row_cost(const bf_tradeoff *t, const bf_tradeoff_row *r);
+const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
+
 /* Outputs through bf_outfile (no partial file on failure; "-": stdout). JSON: every key
- * always present (null where not applicable); CSV: a header and one row per grid row. */
+ * always present (null where not applicable), seconds only with t->timing; CSV: a header
+ * and one row per grid row, a seconds column only with t->timing. */
 int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
 int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
 
-/* Test error (log axis unless some error is 0) against fitting time (log axis), the
- * Pareto front in red, as a width x height PNG (bf_render_scatter); range may be NULL. */
+/* Test error (log axis unless some error is 0) against the cost (log axis), the Pareto
+ * front in red, as a width x height PNG (bf_render_scatter); range may be NULL. */
 int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, int height,
                            bf_scatter_range *range, bf_error *err);
 

@@ -1,6 +1,8 @@
 /* The comparison as JSON. Keys are stable: every key is written for every fit, with
  * null where it does not apply (unranked fits, NaN metrics, no parameters), so that
- * scripts and the report can index without checking. */
+ * scripts and the report can index without checking. Wall times appear only when the
+ * comparison asks for them (bf_compare.timing); everything else is a function of the
+ * fits, so two runs give the same bytes. */
 #include "brdfit/compare.h"
 
 #include <cjson/cJSON.h>
@@ -8,7 +10,6 @@
 #include <stdlib.h>
 
 #include "io/json_out.h"
-
 
 static void add_rank(cJSON *o, const char *key, int r)
 {
@@ -18,7 +19,8 @@ static void add_rank(cJSON *o, const char *key, int r)
 static cJSON *fit_json(const bf_compare *c, int j, const bf_compare_fit *f)
 {
     cJSON *o = cJSON_CreateObject();
-    int ran = f->state == BF_CMP_OK || f->state == BF_CMP_FAILED;
+    const int ran = f->state == BF_CMP_OK || f->state == BF_CMP_FAILED;
+    const bf_fit_result *r = ran ? f->result : NULL;
     bf_json_add_string(o, "model", c->models[j]);
     bf_json_add_string(o, "spec", f->result && f->result->model ? bf_model_spec(f->result->model) : NULL);
     bf_json_add_string(o, "status", bf_compare_state_name(f->state));
@@ -32,25 +34,42 @@ static cJSON *fit_json(const bf_compare *c, int j, const bf_compare_fit *f)
     bf_json_add_number(o, "rmse_cos", ran ? f->metrics.rmse_cos : NAN);
     bf_json_add_number(o, "rmse_rel", ran ? f->metrics.rmse_rel : NAN);
     bf_json_add_number(o, "max_err", ran ? f->metrics.max_err : NAN);
+    bf_json_add_number(o, "loglik", ran ? f->metrics.loglik : NAN);
     bf_json_add_number(o, "aic", ran ? f->metrics.aic : NAN);
+    bf_json_add_number(o, "aicc", ran ? f->metrics.aicc : NAN);
     bf_json_add_number(o, "bic", ran ? f->metrics.bic : NAN);
-    bf_json_add_number(o, "seconds", ran ? f->seconds : NAN);
+    bf_json_add_number(o, "cv", ran ? f->cv_error : NAN);
+    bf_json_add_number(o, "work", ran ? f->work : NAN);
+    if (c->timing)
+        bf_json_add_number(o, "seconds", ran ? f->seconds : NAN);
+    add_rank(o, "rank", f->rank);
     add_rank(o, "rank_bic", f->rank_bic);
     add_rank(o, "rank_aic", f->rank_aic);
+    add_rank(o, "rank_aicc", f->rank_aicc);
+    add_rank(o, "rank_cv", f->rank_cv);
     cJSON_AddBoolToObject(o, "pareto_k", f->pareto_k);
-    cJSON_AddBoolToObject(o, "pareto_time", f->pareto_time);
+    cJSON_AddBoolToObject(o, "pareto_work", f->pareto_work);
     cJSON_AddBoolToObject(o, "within_tolerance", f->within_tolerance);
-    cJSON_AddItemToObject(o, "params", ran && f->result ? bf_json_params(f->result->model, f->result->x) : cJSON_CreateNull());
+    cJSON_AddItemToObject(o, "params", r ? bf_json_params(r->model, r->x) : cJSON_CreateNull());
+    cJSON_AddItemToObject(o, "stderr", r ? bf_json_params(r->model, r->stderr_) : cJSON_CreateNull());
+    cJSON *w = cJSON_AddArrayToObject(o, "warnings");
+    for (int k = 0; r && k < r->nwarnings; k++)
+        cJSON_AddItemToArray(w, cJSON_CreateString(r->warnings[k]));
     return o;
 }
 
 static cJSON *compare_json(const bf_compare *c)
 {
     cJSON *root = cJSON_CreateObject();
-    cJSON_AddNumberToObject(root, "version", 1);
-    bf_json_add_string(root, "error", bf_compare_metric_name(c->metric));
+    cJSON_AddNumberToObject(root, "version", 2);
+    bf_json_add_string(root, "rank_by", bf_compare_rank_name(c->rank_by));
+    /* The error of the fronts and the tolerance: cross-validated when ranked by it. */
+    bf_json_add_string(root, "error", c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric));
+    bf_json_add_number(root, "folds", c->folds > 0 ? c->folds : NAN);
     cJSON_AddNumberToObject(root, "tolerance", c->tolerance);
     bf_json_add_string(root, "residual", c->residual);
+    bf_json_add_string(root, "work", "sample evaluations: passes over the samples times their number");
+    cJSON_AddBoolToObject(root, "timing", c->timing);
     cJSON_AddBoolToObject(root, "interrupted", c->interrupted);
     cJSON *models = cJSON_AddArrayToObject(root, "models");
     for (int j = 0; j < c->nmodels; j++)
@@ -75,6 +94,7 @@ static cJSON *compare_json(const bf_compare *c)
         cJSON *so = cJSON_CreateObject();
         bf_json_add_string(so, "model", c->models[j]);
         cJSON_AddNumberToObject(so, "materials", s->ranked);
+        bf_json_add_number(so, "mean_rank", s->mean_rank);
         bf_json_add_number(so, "mean_rank_bic", s->mean_rank_bic);
         bf_json_add_number(so, "mean_rank_aic", s->mean_rank_aic);
         bf_json_add_number(so, "mean_error", s->mean_error);

@@ -1,5 +1,5 @@
-/* Ranking fits of several models to several materials: BIC/AIC ranks, Pareto fronts,
- * the simplest model within tolerance, and the summary across materials. */
+/* Ranking fits of several models to several materials: ranks by criterion, Pareto
+ * fronts, the simplest model within tolerance, and the summary across materials. */
 #include "brdfit/compare.h"
 
 #include <math.h>
@@ -35,6 +35,29 @@ double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which)
     return NAN;
 }
 
+static const char *const rank_names[] = {"bic", "aic", "aicc", "cv", "error"};
+
+int bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err)
+{
+    for (int i = 0; i < (int)(sizeof rank_names / sizeof rank_names[0]); i++)
+        if (text && !strcmp(text, rank_names[i])) {
+            *out = (bf_compare_rank_by)i;
+            return BF_OK;
+        }
+    return bf_fail(err, BF_ERR_ARG, "unknown ranking '%s' (bic, aic, aicc, cv, error)", text ? text : "");
+}
+
+const char *bf_compare_rank_name(bf_compare_rank_by r)
+{
+    return (unsigned)r < sizeof rank_names / sizeof rank_names[0] ? rank_names[r] : "?";
+}
+
+double bf_compare_work(const bf_fit_result *r)
+{
+    return (double)r->presolve.evaluations * (double)r->presolve.samples +
+           ((double)r->solution.evaluations + 1.0) * (double)r->samples;
+}
+
 const char *bf_compare_state_name(bf_compare_state s)
 {
     switch (s) {
@@ -51,6 +74,7 @@ int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int 
 {
     memset(c, 0, sizeof *c);
     c->metric = BF_CMP_RMSE_LOG;
+    c->rank_by = BF_RANK_BIC;
     c->tolerance = 0.05;
     if (nmaterials < 1 || nmodels < 1)
         return bf_fail(err, BF_ERR_ARG, "a comparison needs at least one material and one model");
@@ -118,9 +142,22 @@ static void rank_values(int n, const double *v, const int *use, int *rank)
     }
 }
 
+/* The criterion a fit is ranked by under rank_by (NaN where undefined). */
+static double criterion(const bf_compare *c, const bf_compare_fit *f, bf_compare_rank_by by)
+{
+    switch (by) {
+    case BF_RANK_BIC: return f->metrics.bic;
+    case BF_RANK_AIC: return f->metrics.aic;
+    case BF_RANK_AICC: return f->metrics.aicc;
+    case BF_RANK_CV: return f->cv_error;
+    case BF_RANK_ERROR: return bf_compare_metric_value(&f->metrics, c->metric);
+    }
+    return NAN;
+}
+
 static void rank_material(bf_compare *c, bf_compare_material *m)
 {
-    int n = c->nmodels;
+    const int n = c->nmodels;
     int *use = calloc((size_t)n * 4, sizeof *use);
     double *v = calloc((size_t)n * 4, sizeof *v);
     if (!use || !v) { /* nothing ranked rather than a crash; the outputs show nulls */
@@ -128,43 +165,49 @@ static void rank_material(bf_compare *c, bf_compare_material *m)
         free(v);
         return;
     }
-    int *r = use + n, *on_k = use + 2 * n, *on_t = use + 3 * n;
-    double *bic = v, *aic = v + n, *kk = v + 2 * n, *sec = v + 3 * n;
-    double *err = malloc((size_t)n * sizeof *err);
-    if (!err) {
-        free(use);
-        free(v);
-        return;
-    }
+    int *r = use + n, *on_k = use + 2 * n, *on_w = use + 3 * n;
+    double *val = v, *err = v + n, *kk = v + 2 * n, *work = v + 3 * n;
     m->best = m->simplest = -1;
     for (int j = 0; j < n; j++) {
         bf_compare_fit *f = &m->fits[j];
-        f->rank_bic = f->rank_aic = f->pareto_k = f->pareto_time = f->within_tolerance = 0;
+        f->rank = f->rank_bic = f->rank_aic = f->rank_aicc = f->rank_cv = 0;
+        f->pareto_k = f->pareto_work = f->within_tolerance = 0;
         f->error = NAN;
         /* A fit with a non-finite error or criterion cannot be placed: left unranked. */
-        double e = bf_compare_metric_value(&f->metrics, c->metric);
-        use[j] = f->state == BF_CMP_OK && isfinite(e) && isfinite(f->metrics.bic) && isfinite(f->metrics.aic);
+        double e = c->rank_by == BF_RANK_CV ? f->cv_error : bf_compare_metric_value(&f->metrics, c->metric);
+        use[j] = f->state == BF_CMP_OK && isfinite(e) && isfinite(criterion(c, f, c->rank_by));
         if (use[j])
             f->error = e;
         err[j] = f->error;
-        bic[j] = f->metrics.bic;
-        aic[j] = f->metrics.aic;
         kk[j] = use[j] ? f->metrics.k : NAN;
-        sec[j] = use[j] ? f->seconds : NAN;
+        work[j] = use[j] ? f->work : NAN;
         if (use[j] && (m->best < 0 || e < m->fits[m->best].error))
             m->best = j;
     }
-    rank_values(n, bic, use, r);
-    for (int j = 0; j < n; j++)
-        m->fits[j].rank_bic = r[j];
-    rank_values(n, aic, use, r);
-    for (int j = 0; j < n; j++)
-        m->fits[j].rank_aic = r[j];
+    /* The chosen criterion's rank, and each criterion's over the fits where it is
+     * defined (among the ranked ones). */
+    static const bf_compare_rank_by all[] = {BF_RANK_BIC, BF_RANK_AIC, BF_RANK_AICC, BF_RANK_CV};
+    int *avail = calloc((size_t)n, sizeof *avail);
+    for (int a = -1; avail && a < 4; a++) {
+        const bf_compare_rank_by by = a < 0 ? c->rank_by : all[a];
+        for (int j = 0; j < n; j++) {
+            val[j] = criterion(c, &m->fits[j], by);
+            avail[j] = use[j] && isfinite(val[j]);
+        }
+        rank_values(n, val, avail, r);
+        for (int j = 0; j < n; j++) {
+            bf_compare_fit *f = &m->fits[j];
+            int *dst = a < 0 ? &f->rank : by == BF_RANK_BIC ? &f->rank_bic : by == BF_RANK_AIC ? &f->rank_aic
+                                      : by == BF_RANK_AICC ? &f->rank_aicc : &f->rank_cv;
+            *dst = r[j];
+        }
+    }
+    free(avail);
     bf_compare_pareto(n, kk, err, on_k);
-    bf_compare_pareto(n, sec, err, on_t);
+    bf_compare_pareto(n, work, err, on_w);
     for (int j = 0; j < n; j++) {
         m->fits[j].pareto_k = on_k[j];
-        m->fits[j].pareto_time = on_t[j];
+        m->fits[j].pareto_work = on_w[j];
     }
     if (m->best >= 0) {
         double limit = m->fits[m->best].error * (1.0 + c->tolerance);
@@ -184,7 +227,6 @@ static void rank_material(bf_compare *c, bf_compare_material *m)
     }
     free(use);
     free(v);
-    free(err);
 }
 
 void bf_compare_rank(bf_compare *c)
@@ -193,21 +235,26 @@ void bf_compare_rank(bf_compare *c)
         rank_material(c, &c->materials[i]);
     for (int j = 0; j < c->nmodels; j++) {
         bf_compare_summary *s = &c->summary[j];
-        double rb = 0, ra = 0, e = 0;
+        double rk = 0, rb = 0, ra = 0, e = 0;
+        int nb = 0, na = 0;
         memset(s, 0, sizeof *s);
         for (int i = 0; i < c->nmaterials; i++) {
             const bf_compare_material *m = &c->materials[i];
             const bf_compare_fit *f = &m->fits[j];
-            if (!f->rank_bic)
+            if (!f->rank)
                 continue;
             s->ranked++;
-            rb += f->rank_bic;
-            ra += f->rank_aic;
+            rk += f->rank;
+            if (f->rank_bic)
+                rb += f->rank_bic, nb++;
+            if (f->rank_aic)
+                ra += f->rank_aic, na++;
             e += f->error;
             s->chosen += m->simplest == j;
         }
-        s->mean_rank_bic = s->ranked ? rb / s->ranked : NAN;
-        s->mean_rank_aic = s->ranked ? ra / s->ranked : NAN;
+        s->mean_rank = s->ranked ? rk / s->ranked : NAN;
+        s->mean_rank_bic = nb ? rb / nb : NAN;
+        s->mean_rank_aic = na ? ra / na : NAN;
         s->mean_error = s->ranked ? e / s->ranked : NAN;
     }
 }

@@ -83,21 +83,32 @@ static const bf_fit_result *fitted(const bf_compare_fit *f)
     return f->state == BF_CMP_OK && f->result && f->result->model ? f->result : NULL;
 }
 
+/* The error the fronts and the tolerance use, by name. */
+static const char *error_name(const bf_compare *c)
+{
+    return c->rank_by == BF_RANK_CV ? "cross-validated error" : bf_compare_metric_name(c->metric);
+}
+
 static void model_table(report *r, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
-    fprintf(fp, "<table>\n<tr><th>model</th><th>k</th><th>%s</th><th>RMSE</th><th>log RMSE</th><th>AIC</th>"
-                "<th>BIC</th><th>time s</th><th>BIC rank</th><th>AIC rank</th><th>Pareto k</th>"
-                "<th>Pareto time</th><th>simplest</th></tr>\n",
-            bf_compare_metric_name(c->metric));
+    fprintf(fp, "<table>\n<tr><th>rank (%s)</th><th>model</th><th>k</th><th>%s</th><th>RMSE</th><th>log RMSE</th>"
+                "<th>AIC</th><th>AICc</th><th>BIC</th><th>CV error</th><th>work (M sample evaluations)</th>"
+                "<th>Pareto k</th><th>Pareto work</th><th>simplest</th><th>parameters</th><th>warnings</th></tr>\n",
+            bf_compare_rank_name(c->rank_by), error_name(c));
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_fit *f = &m->fits[j];
-        fprintf(fp, "<tr%s><td class=\"spec\">", m->simplest == j ? " class=\"chosen\"" : "");
+        fprintf(fp, "<tr%s>", m->simplest == j ? " class=\"chosen\"" : "");
+        if (f->rank)
+            fprintf(fp, "<td>%d</td>", f->rank);
+        else
+            fputs("<td>&ndash;</td>", fp);
+        fputs("<td class=\"spec\">", fp);
         esc(fp, c->models[j]);
         fputs("</td>", fp);
-        if (!f->rank_bic) {
-            fprintf(fp, "<td colspan=\"12\">%s", bf_compare_state_name(f->state));
+        if (!f->rank) {
+            fprintf(fp, "<td colspan=\"14\">%s", bf_compare_state_name(f->state));
             if (f->state == BF_CMP_ERROR) {
                 fputs(": ", fp);
                 esc(fp, f->message);
@@ -110,27 +121,43 @@ static void model_table(report *r, const bf_compare_material *m)
         num(fp, f->metrics.rmse);
         num(fp, f->metrics.rmse_log);
         num(fp, f->metrics.aic);
+        num(fp, f->metrics.aicc);
         num(fp, f->metrics.bic);
-        fprintf(fp, "<td>%.3f</td><td>%d</td><td>%d</td><td>%s</td><td>%s</td><td>%s</td></tr>\n", f->seconds,
-                f->rank_bic, f->rank_aic, f->pareto_k ? "&#9679;" : "", f->pareto_time ? "&#9679;" : "",
+        num(fp, f->cv_error);
+        num(fp, f->work / 1e6);
+        fprintf(fp, "<td>%s</td><td>%s</td><td>%s</td>", f->pareto_k ? "&#9679;" : "", f->pareto_work ? "&#9679;" : "",
                 m->simplest == j ? "simplest" : (f->within_tolerance ? "within" : ""));
+        /* Every fitted entry, and what to doubt. */
+        const bf_fit_result *res = f->result;
+        fputs("<td class=\"params\">", fp);
+        for (int k = 0; res && k < bf_model_nfree(res->model); k++) {
+            char name[64];
+            esc(fp, bf_model_entry_name(res->model, k, name, sizeof name));
+            fprintf(fp, "&nbsp;%.6g%s", res->x[k], k + 1 < bf_model_nfree(res->model) ? "<br>" : "");
+        }
+        fputs("</td><td class=\"warn\">", fp);
+        for (int w = 0; res && w < res->nwarnings; w++) {
+            esc(fp, res->warnings[w]);
+            fputs(w + 1 < res->nwarnings ? "<br>" : "", fp);
+        }
+        fputs("</td></tr>\n", fp);
     }
     fputs("</table>\n", fp);
     if (m->simplest >= 0) {
-        fprintf(fp, "<p>Simplest model within %g%% of the best %s (", 100.0 * c->tolerance,
-                bf_compare_metric_name(c->metric));
+        fprintf(fp, "<p>Ranked by %s. Simplest model within %g%% of the best %s (", bf_compare_rank_name(c->rank_by),
+                100.0 * c->tolerance, error_name(c));
         esc(fp, c->models[m->best]);
         fputs("): <b>", fp);
         esc(fp, c->models[m->simplest]);
-        fputs("</b>. &#9679; marks the Pareto fronts (no other model is at least as good in both "
-              "and better in one).</p>\n",
+        fputs("</b>. &#9679; marks the Pareto fronts of k and of fitting work against that error (no other "
+              "model is at least as good in both and better in one).</p>\n",
               fp);
     } else {
         fputs("<p>No model fitted.</p>\n", fp);
     }
 }
 
-static int scatter(report *r, int i, const bf_compare_material *m, int by_time)
+static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
 {
     int n = r->c->nmodels;
     double *x = malloc(2 * (size_t)n * sizeof *x);
@@ -143,20 +170,19 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_time)
     double *y = x + n;
     for (int j = 0; j < n; j++) {
         const bf_compare_fit *f = &m->fits[j];
-        x[j] = f->rank_bic ? (by_time ? f->seconds : (double)f->metrics.k) : NAN;
-        y[j] = f->rank_bic ? f->error : NAN;
-        on[j] = by_time ? f->pareto_time : f->pareto_k;
+        x[j] = f->rank ? (by_work ? f->work : (double)f->metrics.k) : NAN;
+        y[j] = f->rank ? f->error : NAN;
+        on[j] = by_work ? f->pareto_work : f->pareto_k;
     }
     /* Errors span decades, so a log axis; linear when one is 0 (an exact fit). */
     int log_y = 1;
     for (int j = 0; j < n; j++)
         log_y &= !(y[j] <= 0.0);
-    bf_scatter_options o = {PLOT_W, PLOT_H, by_time, log_y};
+    bf_scatter_options o = {PLOT_W, PLOT_H, by_work, log_y};
     bf_scatter_range g;
     char name[64], alt[128];
-    snprintf(name, sizeof name, "m%d-%s.png", i + 1, by_time ? "time" : "k");
-    snprintf(alt, sizeof alt, "%s against %s", bf_compare_metric_name(r->c->metric),
-             by_time ? "fitting time" : "free parameters");
+    snprintf(name, sizeof name, "m%d-%s.png", i + 1, by_work ? "work" : "k");
+    snprintf(alt, sizeof alt, "%s against %s", error_name(r->c), by_work ? "fitting work" : "free parameters");
     int rc = bf_render_scatter(n, x, y, on, &o, r->buf, &g, r->err);
     free(x);
     free(on);
@@ -167,8 +193,9 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_time)
         return rc;
     fprintf(r->fp, "<figcaption>%s (y, %s%.3g to %.3g) against %s (x, %s%.3g to %.3g); red: Pareto front"
                    "</figcaption></figure>\n",
-            bf_compare_metric_name(r->c->metric), log_y ? "log10 " : "", g.y_lo, g.y_hi, by_time ? "fitting time" : "free parameters k",
-            by_time ? "log10 s, " : "", g.x_lo, g.x_hi);
+            error_name(r->c), log_y ? "log10 " : "", g.y_lo, g.y_hi,
+            by_work ? "fitting work (sample evaluations)" : "free parameters k", by_work ? "log10, " : "", g.x_lo,
+            g.x_hi);
     return BF_OK;
 }
 
@@ -311,14 +338,15 @@ static void summary(report *r)
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
     fprintf(fp, "<h2 id=\"summary\">Summary over %d materials</h2>\n<table class=\"summary\">\n<tr><th>model</th>"
-                "<th>materials ranked</th><th>mean BIC rank</th><th>mean AIC rank</th><th>mean %s</th>"
-                "<th>chosen simplest</th></tr>\n",
-            c->nmaterials, bf_compare_metric_name(c->metric));
+                "<th>materials ranked</th><th>mean rank (%s)</th><th>mean BIC rank</th><th>mean AIC rank</th>"
+                "<th>mean %s</th><th>chosen simplest</th></tr>\n",
+            c->nmaterials, bf_compare_rank_name(c->rank_by), error_name(c));
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_summary *s = &c->summary[j];
         fputs("<tr><td class=\"spec\">", fp);
         esc(fp, c->models[j]);
         fprintf(fp, "</td><td>%d</td>", s->ranked);
+        num(fp, s->mean_rank);
         num(fp, s->mean_rank_bic);
         num(fp, s->mean_rank_aic);
         num(fp, s->mean_error);
@@ -332,6 +360,8 @@ static const char css[] =
     "table{border-collapse:collapse;margin:.5em 0}"
     "th,td{border:1px solid #bbb;padding:.2em .5em;text-align:right;font-size:90%}"
     "th{background:#eee}td.spec{text-align:left;font-family:monospace}"
+    "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
+    "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
     "tr.chosen td{background:#e6f4e6;font-weight:bold}"
     ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
     "figcaption{font-size:80%;max-width:480px;font-family:monospace}"

@@ -22,7 +22,7 @@
 #include "brdfit/prep.h"
 
 #include "big_alloc.h"
-#include "objective_impl.h"
+#include "diagnostics.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -167,6 +167,7 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
     const int nz = bf_objective_nz(obj);
     bf_samples *ps = NULL;
     bf_objective *pobj = NULL;
+    double *corr = NULL;
     const bf_problem *prob = full; /* where the starts are solved */
     const int starts = o->starts > 1 ? o->starts : 1;
     double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
@@ -282,14 +283,19 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
     }
     for (int k = 0; k < P; k++)
         r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
-    if ((rc = bf_obj_final(obj, r->x, o->weighted_metrics, nz, &r->metrics, r->stderr_, err)) != BF_OK)
+    corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *corr);
+    if ((rc = bf_obj_final(obj, r->x, o->weighted_metrics, nz, &r->metrics, r->stderr_, corr, err)) != BF_OK)
         goto done;
+    if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
+        r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;
     r->samples = s->n;
     r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
     r->seed = o->seed;
     r->residual = o->objective.residual;
+    bf_fit_diagnose(obj, s, o, corr, r);
 
 done:
+    free(corr);
     free(x0);
     free(z0);
     free(z);

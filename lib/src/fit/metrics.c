@@ -3,10 +3,11 @@
  * Only samples above the horizon count (n = those samples times C): the model is 0 below
  * it by definition, so a measurement there says nothing about the fit. The log form
  * floors 1 + m c at 1e-12 as the objective does (a negative measurement stays finite).
- * rmse_rel is NaN when every measured value is 0 (no relative error is defined). AIC
- * and BIC use SSR / n floored at DBL_MIN, so an exact fit gives a very negative finite
- * value rather than -Inf. Weighted, every sum carries the sample's weight and is divided
- * by the sum of the weights instead of the count (metrics.h). The pass runs over fixed chunks on `threads` threads and
+ * rmse_rel is NaN when every measured value is 0 (no relative error is defined).
+ * Weighted, every sum carries the sample's weight and is divided by the sum of the
+ * weights instead of the count (metrics.h). The criteria are a fit's: NaN here,
+ * bf_metrics_criteria computes them for bf_fit; an exact fit's WSSR / N is floored at
+ * DBL_MIN, so it gives a very negative finite value rather than -Inf. The pass runs over fixed chunks on `threads` threads and
  * adds the chunks' sums in order: the result does not depend on the thread count. */
 #include <float.h>
 #include <stdlib.h>
@@ -134,10 +135,8 @@ int bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metri
     if (t->n == 0)
         return bf_fail(err, BF_ERR_ARG, "metrics: no samples above the horizon%s",
                        weighted ? " with a positive weight" : "");
-    /* Unweighted, wsum counts the values exactly (sums of 1.0), so dn is n. */
-    double dn = (double)t->n, wn = t->wsum, msr = t->ssr / wn;
-    if (msr < DBL_MIN)
-        msr = DBL_MIN;
+    /* Unweighted, wsum counts the values exactly (sums of 1.0), so the means are per value. */
+    double wn = t->wsum;
     out->n = t->n;
     out->k = k;
     out->weighted = weighted;
@@ -146,7 +145,22 @@ int bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metri
     out->rmse_log = sqrt(t->slog / wn);
     out->rmse_rel = t->nrel ? sqrt(t->srel / t->wrel) : NAN;
     out->max_err = t->maxe;
-    out->aic = dn * log(msr) + 2.0 * k;
-    out->bic = dn * log(msr) + k * log(dn);
+    out->loglik = out->aic = out->aicc = out->bic = NAN; /* a fit's (bf_metrics_criteria) */
     return BF_OK;
+}
+
+void bf_metrics_criteria(bf_metrics *m, size_t n, int k, double wssr, double sum_log_w)
+{
+    m->crit_n = n;
+    m->loglik = m->aic = m->aicc = m->bic = NAN;
+    if (n == 0 || !isfinite(wssr) || !isfinite(sum_log_w) || wssr < 0.0)
+        return;
+    const double N = (double)n, q = (double)k + 1.0; /* + sigma */
+    double msr = wssr / N;
+    if (msr < DBL_MIN)
+        msr = DBL_MIN;
+    m->loglik = -0.5 * N * (log(2.0 * M_PI * msr) + 1.0) + 0.5 * sum_log_w;
+    m->aic = -2.0 * m->loglik + 2.0 * q;
+    m->aicc = N - q - 1.0 > 0.0 ? m->aic + 2.0 * q * (q + 1.0) / (N - q - 1.0) : NAN;
+    m->bic = -2.0 * m->loglik + q * log(N);
 }

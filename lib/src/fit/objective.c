@@ -232,6 +232,9 @@ enum { SCAN_CHUNK = 16384 }; /* samples */
 typedef struct scan_job {
     bf_objective *o;
     size_t *nvalid; /* per chunk */
+    size_t *npos;   /* per chunk: valid samples with a positive weight */
+    double *logw;   /* per chunk: sum of ln w over them (one per sample; times C later) */
+    double *wsum;   /* per chunk: sum of w over them (likewise) */
     double *sum;    /* per chunk, C: sum |m| over valid samples */
 } scan_job;
 
@@ -241,7 +244,8 @@ static void scan_chunk(void *ctx, size_t chunk)
     bf_objective *o = j->o;
     const size_t C = (size_t)o->C;
     const double *value = o->samples->value;
-    size_t i1 = (chunk + 1) * SCAN_CHUNK < o->n ? (chunk + 1) * SCAN_CHUNK : o->n, nvalid = 0;
+    size_t i1 = (chunk + 1) * SCAN_CHUNK < o->n ? (chunk + 1) * SCAN_CHUNK : o->n, nvalid = 0, npos = 0;
+    double logw = 0.0, wsum = 0.0;
     double sum[64] = {0}, *sp = C <= 64 ? sum : j->sum + chunk * C; /* on the stack when it fits */
     bf_geometry_block gb;
     for (size_t ib = chunk * SCAN_CHUNK; ib < i1; ib += BF_GEOMETRY_BLOCK) {
@@ -257,9 +261,18 @@ static void scan_chunk(void *ctx, size_t chunk)
             nvalid++;
             for (size_t c = 0; c < C; c++)
                 sp[c] += fabs(v[c]);
+            const double sw = o->sw ? o->sw[ib + q] : 1.0; /* sqrt of the weight */
+            if (sw > 0.0) {
+                npos++;
+                logw += 2.0 * log(sw);
+                wsum += sw * sw;
+            }
         }
     }
     j->nvalid[chunk] = nvalid;
+    j->npos[chunk] = npos;
+    j->logw[chunk] = logw;
+    j->wsum[chunk] = wsum;
     if (sp == sum)
         memcpy(j->sum + chunk * C, sum, C * sizeof *sum);
 }
@@ -269,16 +282,24 @@ static int scan_samples(bf_objective *o)
     const size_t C = (size_t)o->C, nchunks = (o->n + SCAN_CHUNK - 1) / SCAN_CHUNK;
     if ((o->residual == BF_RESIDUAL_LOG || o->residual == BF_RESIDUAL_CBRT))
         o->meas_t = bf_big_malloc(o->n * C * sizeof *o->meas_t + 1); /* NULL: computed as needed */
-    scan_job j = {o, calloc(nchunks + 1, sizeof(size_t)), calloc(nchunks * C + 1, sizeof(double))};
+    scan_job j = {o, calloc(nchunks + 1, sizeof(size_t)), calloc(nchunks + 1, sizeof(size_t)),
+                  calloc(nchunks + 1, sizeof(double)), calloc(nchunks + 1, sizeof(double)),
+                  calloc(nchunks * C + 1, sizeof(double))};
     double *sum = calloc(C, sizeof *sum);
-    if (!j.nvalid || !j.sum || !sum) {
+    if (!j.nvalid || !j.npos || !j.logw || !j.wsum || !j.sum || !sum) {
         free(j.nvalid);
+        free(j.npos);
+        free(j.logw);
+        free(j.wsum);
         free(j.sum);
         free(sum);
         return -1;
     }
     bf_parallel_for(nchunks, o->threads, scan_chunk, &j);
     for (size_t k = 0; k < nchunks; k++) {
+        o->npos += j.npos[k] * C;
+        o->sum_log_w += j.logw[k] * (double)C;
+        o->wsum += j.wsum[k] * (double)C;
         o->nvalid += j.nvalid[k];
         for (size_t c = 0; c < C; c++)
             sum[c] += j.sum[k * C + c];
@@ -288,6 +309,9 @@ static int scan_samples(bf_objective *o)
         o->delta[c] = d > 0.0 && isfinite(d) ? d : 1e-3;
     }
     free(j.nvalid);
+    free(j.npos);
+    free(j.logw);
+    free(j.wsum);
     free(j.sum);
     free(sum);
     return 0;
@@ -355,6 +379,8 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
         goto fail;
     bf_obj_setup_scale(o);
 
+    if (setup_weights(o, opt, err))
+        goto fail;
     if (scan_samples(o)) {
         bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
@@ -363,8 +389,6 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
         bf_fail(err, BF_ERR_ARG, "no samples above the horizon to fit (%zu samples)", o->n);
         goto fail;
     }
-    if (setup_weights(o, opt, err))
-        goto fail;
 
     for (int i = 0; i < bf_model_nparams(m); i++)
         if (bf_model_param(m, i)->colour || bf_model_param(m, i)->mono) {

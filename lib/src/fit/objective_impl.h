@@ -36,6 +36,10 @@ struct bf_objective {
     double *delta;          /* C floors of the relative form */
     double *meas_t;         /* NULL, or n*C terms bf_obj_form_meas (log and cbrt forms) */
     size_t nvalid;          /* samples above the horizon */
+    size_t npos;            /* residuals above the horizon with a positive weight (the
+                               criteria's N, metrics.h) */
+    double sum_log_w;       /* sum of ln w over those residuals (0 unweighted) */
+    double wsum;            /* sum of w over them (npos unweighted) */
 
     /* Energy constraint: colour parameters summed per channel; channel c's entry is
      * colour_off + c * colour_step (step 0 for a mono parameter: one value for all). */
@@ -171,9 +175,11 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
                           int weighted, struct bf_metric_sums *metrics);
 
 /* ---- The end of a fit (objective_stderr.c) ---------------------------------------------
- * Standard errors (as bf_objective_stderr) and the metrics (as
- * bf_metrics_compute_weighted with k free parameters) at x, from one pass. */
+ * Standard errors (as bf_objective_stderr), the metrics (as bf_metrics_compute_weighted
+ * with k free parameters) and the criteria of the objective's residuals without a loss
+ * (bf_metrics_criteria) at x, from one pass; corr (NULL: not wanted; nz x nz over the free
+ * entries) the parameters' correlations, NaN where one of the pair is undetermined. */
 int bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics,
-                 double *se, bf_error *err);
+                 double *se, double *corr, bf_error *err);
 
 #endif

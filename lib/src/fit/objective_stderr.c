@@ -69,10 +69,13 @@ static void jacobi(double *a, double *v, int k)
     }
 }
 
-/* se[j] for the nz free entries from J^T J (nz x nz) and s^2. work: 2 nz^2 + nz
- * doubles; idx: nz ints. */
-static void covariance_diag(const double *jtj, int nz, double s2, double *se, double *work, int *idx)
+/* se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when corr is not
+ * NULL the correlations of each pair of determined entries (nz x nz; NaN where either is
+ * undetermined; 1 on the diagonal). work: 2 nz^2 + nz doubles; idx: nz ints. */
+static void covariance(const double *jtj, int nz, double s2, double *se, double *corr, double *work, int *idx)
 {
+    for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
+        corr[e] = NAN;
     double *d = work + 2 * (size_t)nz * nz;
     int k = 0;
     for (int j = 0; j < nz; j++) {
@@ -104,11 +107,29 @@ static void covariance_diag(const double *jtj, int nz, double s2, double *se, do
         if (nullshare <= NULL_SHARE && isfinite(var))
             se[idx[p]] = sqrt(s2 * var / d[idx[p]]);
     }
+    /* Correlations from the same pseudo-inverse (the scaling by d cancels). */
+    for (int p = 0; corr && p < k; p++)
+        for (int q = 0; q <= p; q++) {
+            if (isnan(se[idx[p]]) || isnan(se[idx[q]]))
+                continue;
+            double cpq = 0.0, cpp = 0.0, cqq = 0.0;
+            for (int e = 0; e < k; e++) {
+                double lam = a[e * k + e];
+                if (!(lam > NULL_EIGEN * lmax))
+                    continue;
+                cpq += v[p * k + e] * v[q * k + e] / lam;
+                cpp += v[p * k + e] * v[p * k + e] / lam;
+                cqq += v[q * k + e] * v[q * k + e] / lam;
+            }
+            double r = p == q ? 1.0 : cpq / sqrt(cpp * cqq);
+            corr[idx[p] * nz + idx[q]] = corr[idx[q] * nz + idx[p]] = r;
+        }
 }
 
 /* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
  * squared residuals. */
-static int stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, bf_error *err)
+static int stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, double *corr,
+                       bf_error *err)
 {
     const int nz = o->nz;
     size_t nz2 = (size_t)nz * nz;
@@ -124,8 +145,10 @@ static int stderr_from(const bf_objective *o, const double *jtj, double ssr, dou
     if (n <= (size_t)nz || !isfinite(ssr)) {
         for (int k = 0; k < nz; k++)
             sez[k] = NAN;
+        for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
+            corr[e] = NAN;
     } else {
-        covariance_diag(jtj, nz, ssr / (double)(n - (size_t)nz), sez, work, idx);
+        covariance(jtj, nz, ssr / (double)(n - (size_t)nz), sez, corr, work, idx);
     }
     for (int k = 0; k < nz; k++)
         se[o->kidx[k]] = sez[k];
@@ -139,7 +162,7 @@ done:
 /* The pass behind both: J'J of the plain residuals (no loss) with respect to the model
  * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
 static int final_pass(const bf_objective *o, const double *x, int weighted, bf_metric_sums *metrics, double *se,
-                      bf_error *err)
+                      double *corr, double *wssr, bf_error *err)
 {
     int rc = bf_model_check(o->model, x, err);
     if (rc)
@@ -149,6 +172,7 @@ static int final_pass(const bf_objective *o, const double *x, int weighted, bf_m
         se[k] = 0.0;
     if (nz == 0 && !metrics)
         return BF_OK;
+    *wssr = NAN;
     double *ones = calloc((size_t)nz + 1, sizeof *ones);
     double *jtj = calloc((size_t)nz * nz + 1, sizeof *jtj);
     double ssr = 0.0;
@@ -164,7 +188,8 @@ static int final_pass(const bf_objective *o, const double *x, int weighted, bf_m
         goto done;
     }
     if (nz > 0)
-        rc = stderr_from(o, jtj, ssr, se, err);
+        rc = stderr_from(o, jtj, ssr, se, corr, err);
+    *wssr = ssr;
 done:
     free(ones);
     free(jtj);
@@ -173,15 +198,19 @@ done:
 
 int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
-    return final_pass(o, x, 0, NULL, se, err);
+    double wssr;
+    return final_pass(o, x, 0, NULL, se, NULL, &wssr, err);
 }
 
 int bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
-                 bf_error *err)
+                 double *corr, bf_error *err)
 {
     bf_metric_sums sums;
-    int rc = final_pass(o, x, weighted, &sums, se, err);
+    double wssr = NAN;
+    int rc = final_pass(o, x, weighted, &sums, se, corr, &wssr, err);
     if (rc == BF_OK)
         rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
+    if (rc == BF_OK)
+        bf_metrics_criteria(metrics, o->npos, k, wssr, o->sum_log_w);
     return rc;
 }

@@ -87,6 +87,9 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path)
 
     cJSON_AddItemToObject(o, "stderr", bf_json_params(m, r->stderr_));
     cJSON_AddItemToObject(o, "fixed", fixed_names(r));
+    cJSON *warn = cJSON_AddArrayToObject(o, "warnings");
+    for (int w = 0; w < r->nwarnings; w++)
+        cJSON_AddItemToArray(warn, cJSON_CreateString(r->warnings[w]));
 
     const bf_solution *s = &r->solution;
     cJSON *op = cJSON_AddObjectToObject(o, "optimizer");

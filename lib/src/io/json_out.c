@@ -46,9 +46,13 @@ cJSON *bf_json_metrics(const bf_metrics *m)
     bf_json_add_number(o, "max_err", m->max_err);
     cJSON_AddNumberToObject(o, "n", (double)m->n);
     cJSON_AddNumberToObject(o, "k", m->k);
-    bf_json_add_number(o, "aic", m->aic);
-    bf_json_add_number(o, "bic", m->bic);
     cJSON_AddBoolToObject(o, "weighted", m->weighted);
+    /* The criteria of the fit's own likelihood (metrics.h); null where undefined. */
+    bf_json_add_number(o, "loglik", m->loglik);
+    bf_json_add_number(o, "aic", m->aic);
+    bf_json_add_number(o, "aicc", m->aicc);
+    bf_json_add_number(o, "bic", m->bic);
+    cJSON_AddNumberToObject(o, "criteria_n", (double)m->crit_n);
     return o;
 }
 

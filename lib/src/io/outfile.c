@@ -102,6 +102,28 @@ void bf_csv_put_text(FILE *fp, const char *s)
     fputc('"', fp);
 }
 
+void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n)
+{
+    /* Quoted as a whole when any item needs it, so the field reads back as one. */
+    int quote = 0;
+    for (int i = 0; i < n; i++)
+        quote |= strpbrk(items + (size_t)i * stride, ",\"\r\n") != NULL;
+    fputc(',', fp);
+    if (quote)
+        fputc('"', fp);
+    for (int i = 0; i < n; i++) {
+        if (i)
+            fputs("; ", fp);
+        for (const char *s = items + (size_t)i * stride; *s; s++) {
+            if (*s == '"' && quote)
+                fputc('"', fp);
+            fputc(*s, fp);
+        }
+    }
+    if (quote)
+        fputc('"', fp);
+}
+
 void bf_csv_put_number(FILE *fp, double v)
 {
     char buf[40];

@@ -16,14 +16,14 @@
 #include "io/read_text.h"
 #include "regress/regress_impl.h"
 
-const char *const bf_regress_metric_names[] = {"rmse", "rmse_cos", "rmse_log", "rmse_rel", "max_err",
-                                               "aic",  "bic",      "n",        "k"};
+const char *const bf_regress_metric_names[] = {"rmse", "rmse_cos", "rmse_log", "rmse_rel", "max_err", "aic",
+                                               "aicc", "bic",      "loglik",   "n",        "k"};
 const int bf_regress_nmetric_names = (int)(sizeof bf_regress_metric_names / sizeof bf_regress_metric_names[0]);
 
 int bf_regress_metric(const bf_metrics *m, const char *name, double *out)
 {
-    const double v[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel, m->max_err,
-                        m->aic,  m->bic,      (double)m->n, (double)m->k};
+    const double v[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel, m->max_err,   m->aic,
+                        m->aicc, m->bic,      m->loglik,   (double)m->n, (double)m->k};
     for (int i = 0; i < bf_regress_nmetric_names; i++)
         if (!strcmp(name, bf_regress_metric_names[i])) {
             *out = v[i];
@@ -328,7 +328,7 @@ static int read_values(parser *p, const cJSON *g, const char *path, int metrics,
     for (const cJSON *e = g->child; e; e = e->next) {
         snprintf(sub, sizeof sub, "%s/%s", path, e->string);
         if (metrics && !is_metric(e->string))
-            return FAIL(p, sub, "unknown metric \"%s\" (rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, bic, n, k)",
+            return FAIL(p, sub, "unknown metric \"%s\" (rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, aicc, bic, loglik, n, k)",
                         e->string);
         bf_regress_value *v = &(*out)[(*n)++];
         v->line = line_of_path(p->b->text, sub);

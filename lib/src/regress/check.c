@@ -103,6 +103,8 @@ int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r
     out->seconds = r->seconds;
     checker ck = {out, 0};
     const bf_regress_case *cs = &b->cases[c];
+    for (int w = 0; w < r->nwarnings; w++)
+        ADD(&ck, warnings, nwarnings, "%s", r->warnings[w]);
     if (!r->ok || !cs->expect_ok) {
         const char *got = r->ok ? "true" : "false", *exp = cs->expect_ok ? "true" : "false";
         if (r->ok != cs->expect_ok)
@@ -144,6 +146,9 @@ void bf_regress_outcome_free(bf_regress_outcome *out)
         free(out->lines[i]);
     for (int i = 0; i < out->nchecked; i++)
         free(out->checked[i]);
+    for (int i = 0; i < out->nwarnings; i++)
+        free(out->warnings[i]);
+    free(out->warnings);
     free(out->lines);
     free(out->checked);
     memset(out, 0, sizeof *out);

@@ -82,6 +82,16 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
             if (problem(w, "error", o->nlines ? o->lines[0] : "the case could not run", o) != 0)
                 return -1;
         }
+        if (o->nwarnings > 0) { /* what to doubt in the fit, pass or fail */
+            if (xmlTextWriterStartElement(w, X("system-out")) < 0)
+                return -1;
+            for (int k = 0; k < o->nwarnings; k++)
+                if (xmlTextWriterWriteString(w, X("warning: ")) < 0 || xmlTextWriterWriteString(w, X(o->warnings[k])) < 0 ||
+                    xmlTextWriterWriteString(w, X("\n")) < 0)
+                    return -1;
+            if (xmlTextWriterEndElement(w) < 0)
+                return -1;
+        }
         if (xmlTextWriterEndElement(w) < 0)
             return -1;
     }

@@ -89,6 +89,8 @@ int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, 
         return bf_fail(err, BF_ERR_NOMEM, "select: out of memory");
     s->n = n;
     s->metric = metric;
+    s->rank_by = BF_RANK_ERROR;
+    s->folds = 5;
     s->tolerance = tolerance;
     s->abs_tolerance = abs_tolerance;
     for (int i = 0; i < n; i++) {
@@ -107,7 +109,7 @@ int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, 
         c->anisotropic = family_anisotropic(bf_model_name(m));
         c->lobes = bf_model_lobes(m);
         c->coloured_specular = coloured_specular(m);
-        c->error = NAN;
+        c->error = c->criterion = c->cv_error = NAN;
         bf_model_free(m);
     }
     return BF_OK;
@@ -138,7 +140,17 @@ int bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_se
         } else {
             c->state = c->result.ok ? BF_CMP_OK : BF_CMP_FAILED;
             c->seconds = c->result.seconds;
+            c->work = bf_compare_work(&c->result);
             c->k = c->result.metrics.k; /* fixed parameters (--fix) do not count */
+        }
+        if (c->state == BF_CMP_OK && s->rank_by == BF_RANK_CV) {
+            bf_cv_result cv;
+            if (bf_fit_cv(data, c->spec, o, s->folds, o->seed, &cv, &e) != BF_OK) {
+                c->state = BF_CMP_ERROR;
+                snprintf(c->message, sizeof c->message, "cross-validation: %.400s", e.msg);
+            } else {
+                c->cv_error = cv.error;
+            }
         }
         if (progress)
             progress(ctx, s, i);
@@ -168,22 +180,51 @@ static int prefer(const bf_select *s, int a, int b)
     return a - b;
 }
 
+/* What rank_by orders the candidates by. */
+static double criterion(const bf_select *s, const bf_select_candidate *c)
+{
+    const bf_metrics *m = &c->result.metrics;
+    switch (s->rank_by) {
+    case BF_RANK_BIC: return m->bic;
+    case BF_RANK_AIC: return m->aic;
+    case BF_RANK_AICC: return m->aicc;
+    case BF_RANK_CV: return c->cv_error;
+    case BF_RANK_ERROR: return bf_compare_metric_value(m, s->metric);
+    }
+    return NAN;
+}
+
 void bf_select_choose(bf_select *s)
 {
+    const int by_error = s->rank_by == BF_RANK_ERROR || s->rank_by == BF_RANK_CV;
     s->best = s->chosen = -1;
     for (int i = 0; i < s->n; i++) {
         bf_select_candidate *c = &s->c[i];
-        c->within = 0;
-        c->error = c->state == BF_CMP_OK ? bf_compare_metric_value(&c->result.metrics, s->metric) : NAN;
-        if (!isnan(c->error) && (s->best < 0 || c->error < s->c[s->best].error))
+        c->within = c->rank = 0;
+        c->error = c->criterion = NAN;
+        if (c->state != BF_CMP_OK)
+            continue;
+        double e = s->rank_by == BF_RANK_CV ? c->cv_error : bf_compare_metric_value(&c->result.metrics, s->metric);
+        double v = criterion(s, c);
+        if (!isfinite(e) || !isfinite(v))
+            continue;
+        c->error = e;
+        c->criterion = v;
+        if (s->best < 0 || c->error < s->c[s->best].error)
             s->best = i;
     }
+    for (int i = 0; i < s->n; i++) /* competition ranks: ties share the lower */
+        if (isfinite(s->c[i].criterion)) {
+            s->c[i].rank = 1;
+            for (int j = 0; j < s->n; j++)
+                s->c[i].rank += isfinite(s->c[j].criterion) && s->c[j].criterion < s->c[i].criterion;
+        }
     if (s->best < 0)
         return;
     double limit = s->c[s->best].error * (1.0 + s->tolerance) + s->abs_tolerance;
     for (int i = 0; i < s->n; i++) {
         bf_select_candidate *c = &s->c[i];
-        c->within = !isnan(c->error) && c->error <= limit;
+        c->within = by_error ? c->error <= limit : c->rank == 1;
         if (c->within && (s->chosen < 0 || prefer(s, i, s->chosen) < 0))
             s->chosen = i;
     }
@@ -205,9 +246,13 @@ void bf_select_order(const bf_select *s, int *order)
 int bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
 {
     cJSON *root = cJSON_CreateObject();
-    cJSON_AddNumberToObject(root, "version", 1);
+    cJSON_AddNumberToObject(root, "version", 2);
     bf_json_add_string(root, "data", data);
-    bf_json_add_string(root, "error", bf_compare_metric_name(s->metric));
+    bf_json_add_string(root, "rank_by", bf_compare_rank_name(s->rank_by));
+    bf_json_add_number(root, "folds", s->rank_by == BF_RANK_CV ? s->folds : NAN);
+    bf_json_add_string(root, "error", s->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(s->metric));
+    bf_json_add_string(root, "work", "sample evaluations: passes over the samples times their number");
+    cJSON_AddBoolToObject(root, "timing", s->timing);
     cJSON_AddNumberToObject(root, "tolerance", s->tolerance);
     cJSON_AddNumberToObject(root, "abs_tolerance", s->abs_tolerance);
     bf_json_add_string(root, "best", s->best >= 0 ? s->c[s->best].spec : NULL);
@@ -226,11 +271,20 @@ int bf_select_write_json(const bf_select *s, const char *data, const char *path,
         bf_json_add_string(o, "status", bf_compare_state_name(c->state));
         bf_json_add_string(o, "message", c->state == BF_CMP_ERROR ? c->message : NULL);
         bf_json_add_number(o, "error", c->error);
+        bf_json_add_number(o, "criterion", c->criterion);
+        bf_json_add_number(o, "cv", c->cv_error);
+        cJSON_AddItemToObject(o, "rank", c->rank > 0 ? cJSON_CreateNumber(c->rank) : cJSON_CreateNull());
         cJSON_AddBoolToObject(o, "within_tolerance", c->within);
         cJSON_AddBoolToObject(o, "chosen", i == s->chosen);
-        bf_json_add_number(o, "seconds", ran ? c->seconds : NAN);
+        bf_json_add_number(o, "work", ran ? c->work : NAN);
+        if (s->timing)
+            bf_json_add_number(o, "seconds", ran ? c->seconds : NAN);
         cJSON_AddItemToObject(o, "metrics", ran ? bf_json_metrics(&c->result.metrics) : cJSON_CreateNull());
         cJSON_AddItemToObject(o, "params", ran ? bf_json_params(c->result.model, c->result.x) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "stderr", ran ? bf_json_params(c->result.model, c->result.stderr_) : cJSON_CreateNull());
+        cJSON *w = cJSON_AddArrayToObject(o, "warnings");
+        for (int k = 0; ran && k < c->result.nwarnings; k++)
+            cJSON_AddItemToArray(w, cJSON_CreateString(c->result.warnings[k]));
         cJSON_AddItemToArray(list, o);
     }
     return bf_json_write(root, path, "the selection", err);

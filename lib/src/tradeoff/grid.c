@@ -183,6 +183,8 @@ void bf_tradeoff_free(bf_tradeoff *t)
 {
     free(t->data);
     free(t->model);
+    for (int i = 0; t->rows && i < t->nrows; i++)
+        free(t->rows[i].warnings);
     free(t->rows);
     memset(t, 0, sizeof *t);
     t->best = t->recommended = -1;

@@ -1,12 +1,14 @@
-/* The tradeoff table as JSON and CSV, and the error-against-time plot.
+/* The tradeoff table as JSON and CSV, and the error-against-cost plot.
  * JSON keys are stable: every key is written for every row, null where it does not
- * apply (a row that did not run, NaN metrics). */
+ * apply (a row that did not run, NaN metrics); wall times only with t->timing, so that
+ * by default two runs write the same bytes. */
 #include "brdfit/tradeoff.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "brdfit/image.h"
 #include "brdfit/io.h"
@@ -25,7 +27,7 @@ static cJSON *metrics_json(const bf_metrics *m, int ran) { return ran ? bf_json_
 static cJSON *tradeoff_json(const bf_tradeoff *t)
 {
     cJSON *root = cJSON_CreateObject();
-    cJSON_AddNumberToObject(root, "version", 1);
+    cJSON_AddNumberToObject(root, "version", 2);
     cJSON_AddStringToObject(root, "data", t->data);
     cJSON_AddStringToObject(root, "model", t->model);
     cJSON_AddNumberToObject(root, "samples", (double)t->total);
@@ -37,6 +39,9 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
     cJSON_AddNumberToObject(root, "repeats", t->repeats);
     cJSON_AddStringToObject(root, "error", bf_compare_metric_name(t->metric));
     cJSON_AddNumberToObject(root, "tolerance", t->tolerance);
+    cJSON_AddStringToObject(root, "cost", bf_tradeoff_cost_name(t->cost));
+    cJSON_AddStringToObject(root, "work", "sample evaluations: passes over the samples times their number");
+    cJSON_AddBoolToObject(root, "timing", t->timing);
     cJSON_AddItemToObject(root, "best", t->best >= 0 ? cJSON_CreateNumber(t->best) : cJSON_CreateNull());
     cJSON_AddItemToObject(root, "recommended",
                           t->recommended >= 0 ? cJSON_CreateNumber(t->recommended) : cJSON_CreateNull());
@@ -53,7 +58,9 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
         cJSON_AddStringToObject(o, "status", row_status(r));
         cJSON_AddBoolToObject(o, "ok", r->ran && r->ok);
         cJSON_AddItemToObject(o, "message", r->message[0] ? cJSON_CreateString(r->message) : cJSON_CreateNull());
-        bf_json_add_number(o, "seconds", r->ran ? r->seconds : NAN);
+        if (t->timing)
+            bf_json_add_number(o, "seconds", r->ran ? r->seconds : NAN);
+        bf_json_add_number(o, "work", r->ran ? r->work : NAN);
         bf_json_add_number(o, "iterations", r->ran ? r->iterations : NAN);
         bf_json_add_number(o, "error", r->error);
         cJSON_AddItemToObject(o, "train", metrics_json(&r->train, r->ran));
@@ -62,6 +69,9 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
         cJSON_AddBoolToObject(o, "within_tolerance", r->within_tolerance);
         cJSON_AddBoolToObject(o, "best", i == t->best);
         cJSON_AddBoolToObject(o, "recommended", i == t->recommended);
+        cJSON *w = cJSON_AddArrayToObject(o, "warnings");
+        for (int k = 0; k < r->nwarnings; k++)
+            cJSON_AddItemToArray(w, cJSON_CreateString(r->warnings[k]));
         cJSON_AddItemToArray(rows, o);
     }
     return root;
@@ -89,21 +99,29 @@ int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
     if (rc != BF_OK)
         return rc;
     FILE *fp = f.fp;
-    fprintf(fp, "samples,all,method,residual,starts,status,seconds,iterations,error,"
+    fprintf(fp, "samples,all,method,residual,starts,status,work,iterations,error,"
                 "train_rmse,train_rmse_log,train_rmse_cos,train_rmse_rel,train_max_err,"
                 "test_rmse,test_rmse_log,test_rmse_cos,test_rmse_rel,test_max_err,"
-                "on_front,within_tolerance,best,recommended\n");
+                "on_front,within_tolerance,best,recommended,warnings%s\n",
+            t->timing ? ",seconds" : "");
     for (int i = 0; i < t->nrows; i++) {
         const bf_tradeoff_row *r = &t->rows[i];
         fprintf(fp, "%zu,%d,", r->samples, r->all);
         bf_csv_put_text(fp, r->method ? r->method : "");
         fprintf(fp, ",%s,%d,%s", bf_residual_name(r->residual), r->starts, row_status(r));
-        bf_csv_put_number(fp, r->ran ? r->seconds : NAN);
+        bf_csv_put_number(fp, r->ran ? r->work : NAN);
         bf_csv_put_number(fp, r->ran ? (double)r->iterations : NAN);
         bf_csv_put_number(fp, r->error);
         put_metrics(fp, &r->train, r->ran);
         put_metrics(fp, &r->test, r->ran);
-        fprintf(fp, ",%d,%d,%d,%d\n", r->on_front, r->within_tolerance, i == t->best, i == t->recommended);
+        fprintf(fp, ",%d,%d,%d,%d", r->on_front, r->within_tolerance, i == t->best, i == t->recommended);
+        if (r->warnings)
+            bf_csv_put_list(fp, r->warnings[0], sizeof r->warnings[0], r->nwarnings);
+        else
+            fputc(',', fp);
+        if (t->timing)
+            bf_csv_put_number(fp, r->ran ? r->seconds : NAN);
+        fputc('\n', fp);
     }
     if (ferror(fp)) {
         bf_outfile_abort(&f);
@@ -129,7 +147,7 @@ int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, in
         /* Errors span decades: a log axis, linear when one is 0 (an exact fit). */
         int log_y = 1;
         for (int i = 0; i < t->nrows; i++) {
-            x[i] = t->rows[i].error >= 0.0 ? t->rows[i].seconds : NAN;
+            x[i] = t->rows[i].error >= 0.0 ? bf_tradeoff_row_cost(t, &t->rows[i]) : NAN;
             y[i] = t->rows[i].error;
             on[i] = t->rows[i].on_front;
             log_y &= !(y[i] <= 0.0);

@@ -1,9 +1,21 @@
-/* Ranking the tradeoff rows: test error, the Pareto front of fitting time against it,
- * the best row and the recommendation (the fastest row within tolerance of the best). */
+/* Ranking the tradeoff rows: test error, the Pareto front of fitting cost against it,
+ * the best row and the recommendation (the cheapest row within tolerance of the best). */
 #include "brdfit/tradeoff.h"
 
 #include <math.h>
 #include <stdlib.h>
+
+const char *bf_tradeoff_cost_name(bf_tradeoff_cost c)
+{
+    return c == BF_TRADEOFF_COST_SECONDS ? "seconds" : "work";
+}
+
+double bf_tradeoff_row_cost(const bf_tradeoff *t, const bf_tradeoff_row *r)
+{
+    if (!r->ran)
+        return NAN;
+    return t->cost == BF_TRADEOFF_COST_SECONDS ? r->seconds : r->work;
+}
 
 void bf_tradeoff_rank(bf_tradeoff *t)
 {
@@ -16,15 +28,16 @@ void bf_tradeoff_rank(bf_tradeoff *t)
         bf_tradeoff_row *r = &t->rows[i];
         int ranked = r->ran && r->ok;
         r->error = ranked ? bf_compare_metric_value(&r->test, t->metric) : NAN;
-        if (!isfinite(r->error) || !isfinite(r->seconds))
+        const double cost = bf_tradeoff_row_cost(t, r);
+        if (!isfinite(r->error) || !isfinite(cost))
             r->error = NAN;
         r->on_front = r->within_tolerance = 0;
         if (!isnan(r->error) &&
             (t->best < 0 || r->error < t->rows[t->best].error ||
-             (r->error == t->rows[t->best].error && r->seconds < t->rows[t->best].seconds)))
+             (r->error == t->rows[t->best].error && cost < bf_tradeoff_row_cost(t, &t->rows[t->best]))))
             t->best = i;
         if (x) {
-            x[i] = isnan(r->error) ? NAN : r->seconds;
+            x[i] = isnan(r->error) ? NAN : cost;
             y[i] = r->error;
         }
     }
@@ -44,7 +57,8 @@ void bf_tradeoff_rank(bf_tradeoff *t)
             continue;
         r->within_tolerance = 1;
         const bf_tradeoff_row *c = t->recommended >= 0 ? &t->rows[t->recommended] : NULL;
-        if (!c || r->seconds < c->seconds || (r->seconds == c->seconds && r->error < c->error))
+        const double rc = bf_tradeoff_row_cost(t, r), cc = c ? bf_tradeoff_row_cost(t, c) : NAN;
+        if (!c || rc < cc || (rc == cc && r->error < c->error))
             t->recommended = i;
     }
 }

@@ -33,8 +33,11 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
         return bf_fail(err, BF_ERR_ARG, "tradeoff: no row %d", i);
     bf_tradeoff_row *row = &t->rows[i];
     row->ran = row->ok = 0;
-    row->seconds = NAN;
+    row->seconds = row->work = NAN;
     row->iterations = 0;
+    free(row->warnings);
+    row->warnings = NULL;
+    row->nwarnings = 0;
     row->message[0] = '\0';
     memset(&row->train, 0, sizeof row->train);
     memset(&row->test, 0, sizeof row->test);
@@ -80,7 +83,12 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
         row->ran = 1;
         row->ok = best.ok;
         row->iterations = best.solution.iterations;
+        row->work = bf_compare_work(&best);
         row->train = best.metrics;
+        if (best.nwarnings > 0 && (row->warnings = malloc((size_t)best.nwarnings * sizeof *row->warnings))) {
+            memcpy(row->warnings, best.warnings, (size_t)best.nwarnings * sizeof *row->warnings);
+            row->nwarnings = best.nwarnings;
+        }
         /* Weighted like the training metrics (a scene's weights), so both judge alike. */
         rc = bf_metrics_compute_weighted(best.model, best.x, test, best.metrics.k, o.solver.threads,
                                          o.weighted_metrics, &row->test, err);

@@ -1,0 +1,69 @@
+/* --rank, --folds and --timing (rank_options.h). */
+#include "rank_options.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+void rank_options_usage(FILE *out, bf_compare_rank_by default_rank)
+{
+    fprintf(out,
+            "  --rank bic|aic|aicc|cv|error   what to rank by (default %s): a criterion of each fit's\n"
+            "                             likelihood (docs/criteria.md), the cross-validated error of\n"
+            "                             the fitted objective, or the --error metric\n"
+            "  --folds K                  folds of --rank cv (default 5, 2 to 20; K more fits per model)\n"
+            "  --timing                   wall times in the outputs too (then runs differ)\n",
+            bf_compare_rank_name(default_rank));
+}
+
+void rank_options_init(rank_options *r, bf_compare_rank_by rank_by)
+{
+    r->rank_by = rank_by;
+    r->folds = 5;
+    r->timing = 0;
+}
+
+int rank_options_parse(rank_options *r, int argc, char **argv, int *i, const char *cmd)
+{
+    const char *a = argv[*i];
+    if (!strcmp(a, "--timing")) {
+        r->timing = 1;
+        return 1;
+    }
+    if (strcmp(a, "--rank") && strcmp(a, "--folds"))
+        return 0;
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
+        return -1;
+    }
+    const char *v = argv[++*i];
+    if (!strcmp(a, "--rank")) {
+        bf_error err;
+        if (bf_compare_rank_parse(v, &r->rank_by, &err) != BF_OK) {
+            fprintf(stderr, "%s: --rank: %s\n", cmd, err.msg);
+            return -1;
+        }
+        return 1;
+    }
+    char *end;
+    errno = 0;
+    long n = strtol(v, &end, 10);
+    if (!*v || *end || errno || n < 2 || n > BF_CV_MAX_FOLDS) {
+        fprintf(stderr, "%s: --folds needs an integer from 2 to %d, got '%s'\n", cmd, BF_CV_MAX_FOLDS, v);
+        return -1;
+    }
+    r->folds = (int)n;
+    return 1;
+}
+
+int rank_options_check(const rank_options *r, const bf_fit_options *fit, const char *cmd)
+{
+    if (fit->solver.loss.kind != BF_LOSS_NONE && r->rank_by != BF_RANK_CV && r->rank_by != BF_RANK_ERROR) {
+        fprintf(stderr,
+                "%s: --rank %s needs the likelihood of the residuals, and a robust loss (--loss) has none: "
+                "rank by cv or error\n",
+                cmd, bf_compare_rank_name(r->rank_by));
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,30 @@
+/* Command-line options for what fits are ranked by (brdfit compare, brdfit select):
+ * --rank, --folds (of --rank cv) and --timing (wall times in the outputs). */
+#ifndef BRDFIT_RANK_OPTIONS_H
+#define BRDFIT_RANK_OPTIONS_H
+
+#include <stdio.h>
+
+#include "brdfit/compare.h"
+#include "brdfit/fit.h"
+
+typedef struct rank_options {
+    bf_compare_rank_by rank_by;
+    int folds;  /* of --rank cv */
+    int timing; /* 1: wall times in the JSON and CSV (then runs differ) */
+} rank_options;
+
+/* Usage lines; the default ranking is the command's own (compare: bic, select: error). */
+void rank_options_usage(FILE *out, bf_compare_rank_by default_rank);
+
+void rank_options_init(rank_options *r, bf_compare_rank_by rank_by);
+
+/* If argv[*i] is one of the options, consumes it (and its value) and returns 1; 0 if it
+ * is not one; -1 after printing a one-line error (prefix: cmd). */
+int rank_options_parse(rank_options *r, int argc, char **argv, int *i, const char *cmd);
+
+/* After parsing: a criterion needs a likelihood, and a robust loss has none
+ * (metrics.h). Returns 0, or -1 after a one-line error saying so. */
+int rank_options_check(const rank_options *r, const bf_fit_options *fit, const char *cmd);
+
+#endif

@@ -1,0 +1,97 @@
+/* K-fold cross-validation of a fit (fit.h, bf_fit_cv): held-out error of the fitted
+ * objective. Each fold is held out in turn; the rest is fitted with the caller's
+ * options (so with their presolve, starts and seed); the fitted parameters are then
+ * put to an objective over the held-out samples with the same residual form and
+ * weights, whose sum of w r^2 (without a robust loss) and sum of w over its residuals
+ * are pooled over the folds: error = sqrt(sum w r^2 / sum w). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "big_alloc.h"
+#include "brdfit/fit.h"
+#include "brdfit/prep.h"
+#include "objective_impl.h"
+
+/* The held-out samples' sum of w r^2 and sum of w at the model vector x. */
+static int held_out(bf_samples *test, const bf_model *m, const double *x, const bf_fit_options *o, double *wssr,
+                    double *wsum, bf_error *err)
+{
+    bf_objective_options oo = o->objective;
+    if (oo.threads < 1)
+        oo.threads = o->solver.threads;
+    bf_objective *obj = bf_objective_new(m, test, &oo, err);
+    if (!obj)
+        return err ? err->code : BF_ERR_ARG;
+    const int nz = bf_objective_nz(obj);
+    double *z = malloc(((size_t)nz + 1) * sizeof *z);
+    int rc = BF_OK;
+    if (!z) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "cross-validation: out of memory");
+    } else {
+        bf_objective_to_internal(obj, x, z);
+        if (bf_problem_normal(bf_objective_problem(obj), z, NULL, oo.threads, wssr, NULL, NULL) != 0)
+            rc = bf_fail(err, BF_ERR_NOMEM, "cross-validation: out of memory");
+        *wsum = obj->wsum;
+    }
+    free(z);
+    bf_objective_free(obj);
+    return rc;
+}
+
+int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
+              bf_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->error = NAN;
+    if (!s || !o || !out)
+        return bf_fail(err, BF_ERR_ARG, "cross-validation: no samples or no options");
+    if (folds < 2 || folds > BF_CV_MAX_FOLDS)
+        return bf_fail(err, BF_ERR_ARG, "cross-validation: %d folds (2 to %d)", folds, BF_CV_MAX_FOLDS);
+    if (s->n < (size_t)folds)
+        return bf_fail(err, BF_ERR_ARG, "cross-validation: %zu samples for %d folds", s->n, folds);
+    out->folds = folds;
+    unsigned char *fold = bf_big_malloc(s->n + 1), *keep = bf_big_malloc(s->n + 1);
+    if (!fold || !keep) {
+        free(fold);
+        free(keep);
+        return bf_fail(err, BF_ERR_NOMEM, "cross-validation: out of memory for %zu samples", s->n);
+    }
+    int rc = bf_samples_folds(s, folds, seed, fold, err);
+    double wssr = 0.0, wsum = 0.0;
+    for (int k = 0; k < folds && rc == BF_OK; k++) {
+        out->fold_error[k] = NAN;
+        for (size_t i = 0; i < s->n; i++)
+            keep[i] = fold[i] != k;
+        bf_samples *train = bf_samples_copy(s, keep, err), *test = NULL;
+        for (size_t i = 0; i < s->n; i++)
+            keep[i] = !keep[i];
+        if (train)
+            test = bf_samples_copy(s, keep, err);
+        if (!train || !test) {
+            rc = err ? err->code : BF_ERR_NOMEM;
+            bf_samples_free(train);
+            break;
+        }
+        bf_fit_result r;
+        rc = bf_fit(train, spec, o, &r, err);
+        if (rc == BF_OK) {
+            double fw = NAN, fs = NAN;
+            if (!r.ok) {
+                out->failed++;
+            } else if ((rc = held_out(test, r.model, r.x, o, &fw, &fs, err)) == BF_OK) {
+                out->fold_error[k] = fs > 0.0 ? sqrt(fw / fs) : NAN;
+                wssr += fw;
+                wsum += fs;
+            }
+            bf_fit_result_free(&r);
+        }
+        bf_samples_free(train);
+        bf_samples_free(test);
+    }
+    free(fold);
+    free(keep);
+    if (rc == BF_OK && out->failed == 0 && wsum > 0.0)
+        out->error = sqrt(wssr / wsum);
+    return rc;
+}

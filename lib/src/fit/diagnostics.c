@@ -1,0 +1,342 @@
+/* What a fit should be doubted for (fit.h, bf_fit_result.warnings), each warning naming
+ * the parameter and the number:
+ *  - a free parameter on a bound (or within 1e-9 of its range of one);
+ *  - a parameter the data do not determine: standard error undefined, or at least half
+ *    of its range, or larger than the value itself; a pair of parameters correlated
+ *    beyond 0.999;
+ *  - directional albedo above 1 (the fitted BRDF reflects more than it receives), by the
+ *    quadrature of bf_fit_max_albedo;
+ *  - a lobe narrower than the data's sampling near the specular peak: fewer than
+ *    LOBE_MIN_SAMPLES samples within its half width at half maximum in theta_h;
+ *  - a solve that stopped on its iteration or time limit, or failed;
+ *  - criteria left undefined by a robust loss. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diagnostics.h"
+#include "models/lobes.h"
+
+#define AT_BOUND_REL 1e-9     /* of the parameter's range */
+#define CORRELATED 0.999
+#define ALBEDO_LIMIT 1.001    /* above 1 by more than the quadrature's error */
+#define LOBE_MIN_SAMPLES 10
+
+void bf_fit_warn(bf_fit_result *r, const char *fmt, ...)
+{
+    if (r->nwarnings >= BF_FIT_MAX_WARNINGS) {
+        /* The last slot says that more were left out. */
+        snprintf(r->warnings[BF_FIT_MAX_WARNINGS - 1], sizeof r->warnings[0], "%s",
+                 "more warnings than shown (the list is cut here)");
+        return;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->warnings[r->nwarnings++], sizeof r->warnings[0], fmt, ap);
+    va_end(ap);
+}
+
+/* What is wrong with one entry, if anything. */
+enum { ENTRY_OK = 0, ENTRY_AT_LOWER, ENTRY_AT_UPPER, ENTRY_NO_SE, ENTRY_HUGE_SE, ENTRY_KINDS };
+
+static int entry_kind(double x, double se, double lo, double hi)
+{
+    const double range = hi - lo;
+    if (x - lo <= AT_BOUND_REL * range)
+        return ENTRY_AT_LOWER;
+    if (hi - x <= AT_BOUND_REL * range)
+        return ENTRY_AT_UPPER; /* at a bound its standard error says little more */
+    if (isnan(se))
+        return ENTRY_NO_SE;
+    return se >= 0.5 * range || se > fabs(x) ? ENTRY_HUGE_SE : ENTRY_OK;
+}
+
+static void warn_entry(bf_fit_result *r, const char *name, int kind, double x, double se, double lo, double hi)
+{
+    switch (kind) {
+    case ENTRY_AT_LOWER: bf_fit_warn(r, "%s = %.6g is at its lower bound %.6g", name, x, lo); break;
+    case ENTRY_AT_UPPER: bf_fit_warn(r, "%s = %.6g is at its upper bound %.6g", name, x, hi); break;
+    case ENTRY_NO_SE: bf_fit_warn(r, "%s = %.6g is not determined by the data (no standard error)", name, x); break;
+    case ENTRY_HUGE_SE: bf_fit_warn(r, "%s = %.6g +- %.2g is not determined by the data", name, x, se); break;
+    default: break;
+    }
+}
+
+/* Bounds and standard errors per entry. A colour parameter of more than three channels
+ * (spectral data) gets one warning per kind of problem, naming how many channels and
+ * the first, so that 31 channels do not crowd out the rest. */
+static void check_entries(const bf_objective *o, bf_fit_result *r)
+{
+    const bf_model *m = r->model;
+    const int P = bf_model_nfree(m), C = bf_model_channels(m);
+    double *lo = malloc((size_t)P * sizeof *lo), *hi = malloc((size_t)P * sizeof *hi);
+    if (!lo || !hi) {
+        free(lo);
+        free(hi);
+        return;
+    }
+    bf_objective_bounds(o, lo, hi);
+    char name[64];
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        const int off = bf_model_param_offset(m, i), n = p->colour ? C : 1;
+        if (n <= 3) {
+            for (int k = off; k < off + n; k++)
+                if (!r->fixed[k])
+                    warn_entry(r, bf_model_entry_name(m, k, name, sizeof name),
+                               entry_kind(r->x[k], r->stderr_[k], lo[k], hi[k]), r->x[k], r->stderr_[k], lo[k], hi[k]);
+            continue;
+        }
+        int count[ENTRY_KINDS] = {0}, first[ENTRY_KINDS];
+        for (int k = off + n - 1; k >= off; k--)
+            if (!r->fixed[k]) {
+                const int kind = entry_kind(r->x[k], r->stderr_[k], lo[k], hi[k]);
+                count[kind]++;
+                first[kind] = k;
+            }
+        for (int kind = ENTRY_OK + 1; kind < ENTRY_KINDS; kind++) {
+            const int k = first[kind];
+            if (count[kind] == 1) {
+                warn_entry(r, bf_model_entry_name(m, k, name, sizeof name), kind, r->x[k], r->stderr_[k], lo[k],
+                           hi[k]);
+            } else if (count[kind] > 1) {
+                bf_model_entry_name(m, k, name, sizeof name);
+                if (kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER)
+                    bf_fit_warn(r, "%s is at its %s bound %.6g in %d of %d channels (the first %s)", p->name,
+                                kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k],
+                                count[kind], n, name);
+                else if (kind == ENTRY_NO_SE)
+                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (no standard error; "
+                                "%s = %.6g)", p->name, count[kind], n, name, r->x[k]);
+                else
+                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)",
+                                p->name, count[kind], n, name, r->x[k], r->stderr_[k]);
+            }
+        }
+    }
+    free(lo);
+    free(hi);
+}
+
+/* Pairs of free entries correlated beyond CORRELATED. */
+static void check_correlations(const bf_objective *o, const double *corr, bf_fit_result *r)
+{
+    char name[64], other[64];
+    for (int a = 0; corr && a < o->nz; a++)
+        for (int b = 0; b < a; b++) {
+            const double c = corr[a * o->nz + b];
+            if (!(fabs(c) > CORRELATED))
+                continue;
+            bf_model_entry_name(r->model, o->kidx[a], name, sizeof name);
+            bf_model_entry_name(r->model, o->kidx[b], other, sizeof other);
+            bf_fit_warn(r, "%s and %s are correlated (r = %.4f): the data hardly tell them apart", other, name, c);
+        }
+}
+
+/* ---- Albedo ---------------------------------------------------------------------------
+ * The directional albedo a(L) = integral of f(L, V) cos theta_o dV over the hemisphere,
+ * integrated over the half vector: V = reflect(L, H), dV = 4 (L.H) dH, with theta_h on
+ * the nodes of a Gauss-Legendre rule in u = sqrt(theta_h / (pi/2)) (dense near the mirror
+ * direction, where a narrow lobe lives, as MERL's table is) and phi_h uniform. Every V
+ * of the hemisphere comes from exactly one H with L.H > 0. */
+enum { ALB_NU = 96, ALB_NPHI = 128, ALB_NTHETA = 9, ALB_NPHI_I = 4 };
+
+/* Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial). */
+static void gauss_legendre(int n, double *x, double *w)
+{
+    for (int i = 0; i < n; i++) {
+        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; it++) {
+            double p0 = 1.0, p1 = z;
+            for (int k = 2; k <= n; k++) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (z * p1 - p0) / (z * z - 1.0);
+            double dz = p1 / dp;
+            z -= dz;
+            if (fabs(dz) < 1e-15)
+                break;
+        }
+        x[i] = 0.5 * (1.0 - z);
+        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
+    }
+}
+
+int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel)
+{
+    const int C = bf_model_channels(m);
+    /* An isotropic model's albedo does not depend on the azimuth of L. */
+    int aniso = 1;
+    for (int i = 0; i < bf_family_count(); i++)
+        if (!strcmp(bf_family_get(i)->name, bf_model_name(m)))
+            aniso = bf_family_get(i)->anisotropic;
+    const int nphi_i = aniso ? ALB_NPHI_I : 1;
+    const size_t nh = (size_t)ALB_NU * ALB_NPHI;
+    double u[ALB_NU], wu[ALB_NU];
+    gauss_legendre(ALB_NU, u, wu);
+    double *L = malloc(nh * 3 * sizeof *L), *V = malloc(nh * 3 * sizeof *V);
+    double *wt = malloc(nh * sizeof *wt), *f = malloc(nh * (size_t)C * sizeof *f);
+    if (!L || !V || !wt || !f) {
+        free(L), free(V), free(wt), free(f);
+        return -1;
+    }
+    *albedo = -INFINITY;
+    *theta_deg = 0.0;
+    *channel = 0;
+    int rc = 0;
+    for (int t = 0; t < ALB_NTHETA && rc == 0; t++) {
+        const double ti = (t + 0.5) / ALB_NTHETA * (M_PI / 2); /* 5 .. 85 degrees */
+        for (int pi_i = 0; pi_i < nphi_i && rc == 0; pi_i++) {
+            const double pli = pi_i * (M_PI / 2) / ALB_NPHI_I; /* azimuths for anisotropic lobes */
+            const double l[3] = {sin(ti) * cos(pli), sin(ti) * sin(pli), cos(ti)};
+            size_t n = 0;
+            for (int a = 0; a < ALB_NU; a++) {
+                const double th = u[a] * u[a] * (M_PI / 2), dth = 2.0 * u[a] * (M_PI / 2) * wu[a];
+                for (int b = 0; b < ALB_NPHI; b++) {
+                    const double ph = (b + 0.5) * (2.0 * M_PI / ALB_NPHI);
+                    const double h[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
+                    const double lh = l[0] * h[0] + l[1] * h[1] + l[2] * h[2];
+                    const double v[3] = {2.0 * lh * h[0] - l[0], 2.0 * lh * h[1] - l[1], 2.0 * lh * h[2] - l[2]};
+                    if (!(lh > 0.0) || !(v[2] > 1e-12))
+                        continue;
+                    memcpy(L + 3 * n, l, sizeof l);
+                    memcpy(V + 3 * n, v, sizeof v);
+                    /* f cos theta_o dV with dV = 4 (L.H) sin theta_h dtheta_h dphi_h. */
+                    wt[n] = v[2] * 4.0 * lh * sin(th) * dth * (2.0 * M_PI / ALB_NPHI);
+                    n++;
+                }
+            }
+            bf_error err;
+            bf_geometry *g = bf_geometry_from_vectors(n, L, V, &err);
+            if (!g) {
+                rc = -1;
+                break;
+            }
+            bf_model_eval(m, x, g, f, NULL);
+            bf_geometry_free(g);
+            for (int c = 0; c < C; c++) {
+                double a = 0.0;
+                for (size_t q = 0; q < n; q++)
+                    a += f[q * (size_t)C + (size_t)c] * wt[q];
+                if (a > *albedo) {
+                    *albedo = a;
+                    *theta_deg = ti * (180.0 / M_PI);
+                    *channel = c;
+                }
+            }
+        }
+    }
+    free(L), free(V), free(wt), free(f);
+    return rc;
+}
+
+/* ---- Lobe width against the data's sampling ------------------------------------------ */
+
+/* Half width at half maximum in theta_h (radians) of lobe k at theta_d = 10 degrees in
+ * the plane of incidence; 0 when it does not fall to half within 80 degrees (a broad
+ * lobe). */
+static double lobe_hwhm(const bf_model *m, const double *x, int k)
+{
+    enum { NT = 120 };
+    double th[NT], L[3 * NT], V[3 * NT], S[BF_LOBE_BLOCK];
+    const double td = 10.0 * (M_PI / 180.0);
+    for (int i = 0; i < NT; i++) {
+        th[i] = i == 0 ? 0.0 : 1e-5 * pow(80.0 * (M_PI / 180.0) / 1e-5, (double)(i - 1) / (NT - 2));
+        const double c = cos(th[i]), s = sin(th[i]);
+        const double d[3] = {sin(td), 0.0, cos(td)};
+        L[3 * i] = d[0] * c + d[2] * s, L[3 * i + 1] = 0.0, L[3 * i + 2] = d[2] * c - d[0] * s;
+        V[3 * i] = d[2] * s - d[0] * c, V[3 * i + 1] = 0.0, V[3 * i + 2] = d[2] * c + d[0] * s;
+    }
+    bf_error err;
+    bf_geometry *g = bf_geometry_from_vectors(NT, L, V, &err);
+    if (!g)
+        return 0.0;
+    bf_model_lobe_shape(m, x, k, g, 0, NT, S, NULL);
+    bf_geometry_free(g);
+    int p = 0;
+    for (int i = 1; i < NT; i++)
+        if (S[i] > S[p])
+            p = i;
+    if (!(S[p] > 0.0))
+        return 0.0;
+    for (int i = p + 1; i < NT; i++)
+        if (S[i] < 0.5 * S[p])
+            return th[i];
+    return 0.0;
+}
+
+/* Samples above the horizon with theta_h below w. */
+static size_t samples_within(bf_samples *s, double w)
+{
+    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    if (!g)
+        return (size_t)-1;
+    const double s2 = sin(w) * sin(w);
+    size_t n = 0;
+    bf_geometry_block gb;
+    for (size_t ib = 0; ib < s->n; ib += BF_GEOMETRY_BLOCK) {
+        size_t cnt = s->n - ib < BF_GEOMETRY_BLOCK ? s->n - ib : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(g, ib, cnt, &gb);
+        for (size_t q = 0; q < cnt; q++)
+            n += bf_geometry_valid(gv, q) && gv->sin2h[q] < s2;
+    }
+    return n;
+}
+
+static void check_lobes(bf_samples *s, bf_fit_result *r)
+{
+    const int *map;
+    const bf_model *um = bf_model_untied(r->model, &map);
+    bf_lobe_layout lay;
+    if (!bf_model_lobe_layout(um, &lay) || lay.lobes == 0)
+        return;
+    const int P = bf_model_nfree(um);
+    double *xu = malloc((size_t)P * sizeof *xu);
+    if (!xu)
+        return;
+    for (int k = 0; k < P; k++)
+        xu[k] = r->x[map ? map[k] : k];
+    for (int k = 0; k < lay.lobes; k++) {
+        const double w = lobe_hwhm(um, xu, k);
+        if (!(w > 0.0))
+            continue;
+        const size_t n = samples_within(s, w);
+        if (n < LOBE_MIN_SAMPLES)
+            bf_fit_warn(r, "lobe %d is %.3g deg wide (half width at half maximum in theta_h), and only %zu "
+                        "sample%s within it: the data do not resolve the highlight",
+                        k + 1, w * (180.0 / M_PI), n, n == 1 ? " lies" : "s lie");
+    }
+    free(xu);
+}
+
+/* ---- Everything ------------------------------------------------------------------------ */
+
+void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options *opt, const double *corr,
+                     bf_fit_result *r)
+{
+    const bf_solution *sol = &r->solution;
+    if (!r->ok)
+        bf_fit_warn(r, "the fit failed: %s", sol->termination);
+    else if (strstr(sol->termination, "NO_CONVERGENCE") || strstr(sol->termination, "MAXEVAL_REACHED") ||
+             strstr(sol->termination, "MAXTIME_REACHED"))
+        bf_fit_warn(r, "the solver stopped on its limit after %d iteration%s, before converging",
+                    sol->iterations, sol->iterations == 1 ? "" : "s");
+    if (opt->solver.loss.kind != BF_LOSS_NONE)
+        bf_fit_warn(r, "AIC, AICc and BIC are undefined: a robust loss minimises no Gaussian likelihood");
+    check_entries(o, r);
+    check_correlations(o, corr, r);
+    double a, t;
+    int c;
+    if (bf_fit_max_albedo(r->model, r->x, &a, &t, &c) == 0 && a > ALBEDO_LIMIT) {
+        char ch[40] = "";
+        if (bf_model_channels(r->model) > 1)
+            snprintf(ch, sizeof ch, " in channel %d", c);
+        bf_fit_warn(r, "the albedo reaches %.4g at theta_i = %.0f deg%s: the fitted BRDF reflects more light than it "
+                    "receives", a, t, ch);
+    }
+    check_lobes(s, r);
+}

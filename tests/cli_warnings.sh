@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Fit diagnostics where users see them: the Disney fit of the spectral Cornell garnet
+# paint (undetermined parameters, parameters at bounds, 31 channels in one warning),
+# ward_iso on a synthetic Walter MERL table (a diffuse colour pinned at 0), and the
+# same warnings in compare's text, JSON and CSV and in a clean fit's absence of them.
+set -u
+source "$(dirname "$0")/common_cli.sh" "$@"
+EX="$DATA/../../examples"
+
+if "$BRDFIT" fit "$EX/cornell/garnet_red.brdf" -m disney -o "$tmp/g.json" >"$tmp/out" 2>&1; then
+  jq -e '(.warnings | length) >= 6
+    and (.warnings | index("clearcoat = 0 is at its lower bound 0")) != null
+    and (.warnings | index("clearcoat_gloss = 1 is at its upper bound 1")) != null
+    and any(.warnings[]; startswith("base_color is not determined by the data in 31 of 31 channels"))
+    and any(.warnings[]; test("^sheen = [0-9.]+ is not determined by the data"))' "$tmp/g.json" >/dev/null \
+    && ok || bad "garnet disney warnings: $(jq -c .warnings "$tmp/g.json")"
+  [ "$(grep -c '^  warning: ' "$tmp/out")" = "$(jq '.warnings | length' "$tmp/g.json")" ] && ok ||
+    bad "garnet disney: text and JSON warnings differ: $(cat "$tmp/out")"
+else
+  bad "garnet disney fit: $(cat "$tmp/out")"
+fi
+
+"$SYNTH" --params "$EX/walter_rgb.json" --pattern merl --noise 0.02 -o "$tmp/w.binary" 2>/dev/null ||
+  bad "brdfit-synth merl"
+if "$BRDFIT" compare "$tmp/w.binary" -m ward_iso,walter --quiet --json "$tmp/c.json" --csv "$tmp/c.csv" \
+     >"$tmp/out" 2>&1; then
+  jq -e '.materials[0].fits[0].warnings as $w
+    | ($w | index("rho_d[1] = 0 is at its lower bound 0")) != null
+    and ($w | index("rho_d[2] = 0 is at its lower bound 0")) != null
+    and (.materials[0].fits[0].params.rho_d[0] - 0.23 | fabs) < 0.02
+    and ([.materials[0].fits[1].warnings[] | select(test("bound|determined|correlated"))] | length) == 0' \
+    "$tmp/c.json" >/dev/null && ok || bad "MERL ward_iso warnings: $(jq -c '[.materials[0].fits[].warnings]' "$tmp/c.json")"
+  grep -q '^  warning: ward_iso: rho_d\[1\] = 0 is at its lower bound 0$' "$tmp/out" && ok ||
+    bad "compare text warnings: $(cat "$tmp/out")"
+  # CSV: the warnings column, one field; parameter columns per channel
+  awk -F'"' 'NR > 1 && /^[^,]*,ward_iso,/ { found = index($0, "rho_d[1] = 0 is at its lower bound 0; rho_d[2] = 0") > 0 }
+             END { exit !found }' "$tmp/c.csv" && ok || bad "compare CSV warnings: $(cat "$tmp/c.csv")"
+  head -1 "$tmp/c.csv" | grep -q ',rho_d\[0\],rho_d\[1\],rho_d\[2\],' && head -1 "$tmp/c.csv" | grep -q ',alpha' && ok ||
+    bad "compare CSV parameter columns: $(head -1 "$tmp/c.csv")"
+else
+  bad "MERL compare: $(cat "$tmp/out")"
+fi
+
+finish
