@@ -1,7 +1,11 @@
 /* Command-line helpers every subcommand shares (see args.h). */
 #include "args.h"
 
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd)
@@ -19,4 +23,49 @@ const char *args_value(int argc, char **argv, int *i, const char *const *valued,
         return NULL;
     }
     return argv[++*i];
+}
+
+int args_int(const char *s, long lo, long hi, long *out)
+{
+    /* strtol alone accepts leading spaces and signs: digits only. */
+    if (!s || !isdigit((unsigned char)s[0]))
+        return 0;
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (*end || errno || v < lo || v > hi)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+int args_number(const char *s, double lo, double hi, double *out)
+{
+    if (!s || !*s || isspace((unsigned char)s[0]))
+        return 0;
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (*end || errno || !isfinite(v) || v < lo || v > hi)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+int args_size(const char *s, int lo, int hi, int *w, int *h)
+{
+    char buf[32];
+    const char *x = strchr(s, 'x');
+    long a, b;
+    if (!x)
+        return args_int(s, lo, hi, &a) ? (*w = *h = (int)a, 1) : 0;
+    if ((size_t)(x - s) >= sizeof buf)
+        return 0;
+    memcpy(buf, s, (size_t)(x - s));
+    buf[x - s] = '\0';
+    if (!args_int(buf, lo, hi, &a) || !args_int(x + 1, lo, hi, &b))
+        return 0;
+    *w = (int)a;
+    *h = (int)b;
+    return 1;
 }

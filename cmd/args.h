@@ -9,4 +9,12 @@
  * "CMD: unknown option 'X' (see CMD --help)" or "CMD: X needs a value" (bad usage). */
 const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd);
 
+/* Strict numbers for option values: the whole text, no sign or space before an integer,
+ * no leading space or trailing junk on a number; 1 and *out set when s is one in
+ * [lo, hi], else 0 (the caller prints the usage error). ' 5', '+5', '5x', '' are not. */
+int args_int(const char *s, long lo, long hi, long *out);
+int args_number(const char *s, double lo, double hi, double *out);
+/* An image size "N" (square) or "WxH", each side an integer in [lo, hi]. */
+int args_size(const char *s, int lo, int hi, int *w, int *h);
+
 #endif

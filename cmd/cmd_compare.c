@@ -297,7 +297,6 @@ int cmd_compare(int argc, char **argv)
         const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
         if (!v)
             goto done;
-        char *end;
         if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
             if (!strcmp(v, "all")) {
                 all = 1;
@@ -313,16 +312,13 @@ int cmd_compare(int argc, char **argv)
                 goto done;
             }
         } else if (!strcmp(a, "--tolerance")) {
-            errno = 0;
-            tolerance = strtod(v, &end);
-            if (!*v || *end || errno || !isfinite(tolerance) || tolerance < 0) {
+            if (!args_number(v, 0.0, HUGE_VAL, &tolerance)) {
                 fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
                 goto done;
             }
         } else if (!strcmp(a, "--jobs")) {
-            errno = 0;
-            long n = strtol(v, &end, 10);
-            if (!*v || *end || errno || n < 1 || n > 1024) {
+            long n;
+            if (!args_int(v, 1, 1024, &n)) {
                 fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
                 goto done;
             }
@@ -363,7 +359,7 @@ int cmd_compare(int argc, char **argv)
     if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
         goto done;
     /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
         goto done;
     fit_options_finish(&fopt, &dopt);
     /* The --threads budget is shared between the concurrent fits. */

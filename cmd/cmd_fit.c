@@ -142,7 +142,7 @@ int cmd_fit(int argc, char **argv)
         goto done;
     }
     /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
         goto done;
     fit_options_finish(&fopt, &dopt);
 

@@ -18,10 +18,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/render.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 
@@ -54,13 +56,7 @@ static void usage(FILE *out)
 
 static int parse_double(const char *s, double *out)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (!*s || *end || errno || !isfinite(v))
-        return 0;
-    *out = v;
-    return 1;
+    return args_number(s, -HUGE_VAL, HUGE_VAL, out);
 }
 
 /* "T,P" in degrees. */
@@ -78,21 +74,21 @@ static int parse_dir(const char *s, bf_dir *d)
 
 static int parse_size(const char *s, int *w, int *h)
 {
-    char *end;
-    errno = 0;
-    long a = strtol(s, &end, 10), b = a;
-    if (end == s || errno)
+    return args_size(s, 1, 16384, w, h);
+}
+
+/* The image is held whole (floats, then the encoder's copy): about 16 bytes a pixel.
+ * Refuse what the machine cannot hold rather than be killed for it. */
+static int image_fits(int width, int height)
+{
+    const double need = 16.0 * width * height;
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    const double have = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
+    if (have > 0.0 && need > 0.5 * have) {
+        fprintf(stderr, "%s: a %dx%d image needs about %.1f GB, more than half of this machine's %.1f GB\n", cmd,
+                width, height, need / 1e9, have / 1e9);
         return 0;
-    if (*end == 'x') {
-        const char *p = end + 1;
-        b = strtol(p, &end, 10);
-        if (end == p || errno)
-            return 0;
     }
-    if (*end || a < 1 || b < 1 || a > 16384 || b > 16384)
-        return 0;
-    *w = (int)a;
-    *h = (int)b;
     return 1;
 }
 
@@ -213,6 +209,8 @@ int cmd_render(int argc, char **argv)
     }
     if (nlights == 0)
         lights[nlights++] = (bf_dir){45.0, 0.0};
+    if (!image_fits(width, height))
+        return 2;
 
     bf_error err;
     bf_model *m = NULL;

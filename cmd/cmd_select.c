@@ -123,17 +123,6 @@ static void table(FILE *out, const bf_select *s)
     }
 }
 
-static int parse_nonneg(const char *v, double *out)
-{
-    char *end;
-    errno = 0;
-    double x = strtod(v, &end);
-    if (!*v || *end || errno || !isfinite(x) || x < 0)
-        return 0;
-    *out = x;
-    return 1;
-}
-
 int cmd_select(int argc, char **argv)
 {
     data_options dopt;
@@ -194,7 +183,7 @@ int cmd_select(int argc, char **argv)
                 goto done;
             nmodels = k;
         } else if (!strcmp(a, "--tolerance") || !strcmp(a, "--abs-tolerance")) {
-            if (!parse_nonneg(v, !strcmp(a, "--tolerance") ? &tolerance : &abs_tolerance)) {
+            if (!args_number(v, 0.0, HUGE_VAL, !strcmp(a, "--tolerance") ? &tolerance : &abs_tolerance)) {
                 fprintf(stderr, "%s: %s needs a number >= 0, got '%s'\n", cmd, a, v);
                 goto done;
             }
@@ -220,7 +209,7 @@ int cmd_select(int argc, char **argv)
     if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
         goto done;
     /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(specs, nmodels, cmd) < 0)
+    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
         goto done;
     /* With a scene, error is reported over the scene's directions; --accuracy fast's
      * subsample is drawn inside the scene. */

@@ -89,17 +89,20 @@ static int split_list(char *buf, char **items, const char *opt)
     }
 }
 
+/* A count, digits only, with an optional k (thousands) suffix. */
 static int parse_count(const char *s, long hi, long *out)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
+    char buf[32];
+    size_t len = strlen(s);
     long mul = 1;
-    if (*end == 'k' || *end == 'K') {
+    if (len > 1 && len < sizeof buf && (s[len - 1] == 'k' || s[len - 1] == 'K')) {
+        memcpy(buf, s, len - 1);
+        buf[len - 1] = '\0';
+        s = buf;
         mul = 1000;
-        end++;
     }
-    if (!*s || *end || errno || v < 1 || v > hi / mul)
+    long v;
+    if (!args_int(s, 1, hi / mul, &v))
         return 0;
     *out = v * mul;
     return 1;
@@ -244,7 +247,6 @@ int cmd_tradeoff(int argc, char **argv)
         const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
         if (!v)
             goto done;
-        char *end;
         long n;
         if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
             for (int k = 0; k < nspecs; k++)
@@ -272,9 +274,7 @@ int cmd_tradeoff(int argc, char **argv)
         } else if (!strcmp(a, "--starts-list")) {
             starts_arg = v;
         } else if (!strcmp(a, "--test-fraction")) {
-            errno = 0;
-            test_fraction = strtod(v, &end);
-            if (!*v || *end || errno || !(test_fraction > 0.0 && test_fraction < 1.0)) {
+            if (!args_number(v, 0.0, 1.0, &test_fraction) || !(test_fraction > 0.0 && test_fraction < 1.0)) {
                 fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", cmd,
                         v);
                 goto done;
@@ -291,24 +291,15 @@ int cmd_tradeoff(int argc, char **argv)
                 goto done;
             }
         } else if (!strcmp(a, "--tolerance")) {
-            errno = 0;
-            tolerance = strtod(v, &end);
-            if (!*v || *end || errno || !isfinite(tolerance) || tolerance < 0) {
+            if (!args_number(v, 0.0, HUGE_VAL, &tolerance)) {
                 fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
                 goto done;
             }
         } else if (!strcmp(a, "--plot-size")) {
-            long w, h;
-            char *x;
-            errno = 0;
-            w = strtol(v, &x, 10);
-            h = *x == 'x' ? strtol(x + 1, &end, 10) : 0;
-            if (*x != 'x' || *end || errno || w < 40 || h < 40 || w > 8192 || h > 8192) {
+            if (!strchr(v, 'x') || !args_size(v, 40, 8192, &plot_w, &plot_h)) {
                 fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", cmd, v);
                 goto done;
             }
-            plot_w = (int)w;
-            plot_h = (int)h;
         } else if (!strcmp(a, "--json")) {
             json_path = v;
         } else if (!strcmp(a, "--csv")) {
@@ -337,7 +328,7 @@ int cmd_tradeoff(int argc, char **argv)
         fprintf(stderr, "%s: --plot needs a file name\n", cmd);
         goto done;
     }
-    if (fit_options_check_models(specs, 1, cmd) < 0)
+    if (fit_options_check_models(&fopt, specs, 1, cmd) < 0)
         goto done;
     /* With a scene, errors are measured over the scene's directions, weighted by it. */
     fit_options_finish(&fopt, &dopt);

@@ -1,8 +1,11 @@
 /* Parsing of the shared data options, and reading + preprocessing in one call. */
 #include "data_options.h"
 
+#include "args.h"
+
 #include "brdfit/scene.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,17 +23,9 @@ const char data_options_usage[] =
     "  --rgb | --luminance              spectral to three bands / to one channel\n"
     "  --max-theta DEG                  drop samples with theta_i or theta_o above DEG\n"
     "  --negative keep|drop|clamp       negative values (default keep: they are data)\n"
-    "  --subsample N [--seed K]         seeded stratified subsample to N samples\n"
+    "  --subsample N|all [--seed K]     seeded stratified subsample to N samples (all: every one)\n"
     "  --scene FILE                     keep and weight the samples a scene's lights and views\n"
     "                                   use (JSON; README \"Scenes\"); error is reported over them\n";
-
-static int parse_number(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    *out = strtod(s, &end);
-    return *s && !*end && errno == 0;
-}
 
 int data_options_parse(data_options *o, int argc, char **argv, int *i, const char *cmd)
 {
@@ -92,7 +87,7 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
     } else if (!strcmp(a, "--channels")) {
         o->prep.channels = v;
     } else if (!strcmp(a, "--max-theta")) {
-        if (!parse_number(v, &d) || !(d > 0.0 && d <= 90.0)) {
+        if (!args_number(v, 0.0, 90.0, &d) || !(d > 0.0)) {
             fprintf(stderr, "%s: --max-theta needs degrees in (0, 90], got '%s'\n", cmd, v);
             return -1;
         }
@@ -108,20 +103,23 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
             fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
             return -1;
         }
-    } else { /* --subsample, --seed: non-negative integers */
+    } else if (!strcmp(a, "--seed")) { /* any unsigned 64-bit integer, digits only */
         char *end;
         errno = 0;
-        unsigned long long n = strtoull(v, &end, 10);
-        if (!*v || *end || errno || *v == '-') {
-            fprintf(stderr, "%s: %s needs a non-negative integer, got '%s'\n", cmd, a, v);
+        unsigned long long n = isdigit((unsigned char)*v) ? strtoull(v, &end, 10) : 0;
+        if (!isdigit((unsigned char)*v) || *end || errno) {
+            fprintf(stderr, "%s: --seed needs an integer from 0 to 18446744073709551615, got '%s'\n", cmd, v);
             return -1;
         }
-        if (!strcmp(a, "--seed"))
-            o->prep.seed = (uint64_t)n;
-        else {
-            o->prep.subsample = (size_t)n;
-            o->subsample_given = 1;
+        o->prep.seed = (uint64_t)n;
+    } else { /* --subsample: a count, or "all" (over a preset's); 0 is not a count */
+        long n = 0;
+        if (strcmp(v, "all") && !args_int(v, 1, 1000000000000L, &n)) {
+            fprintf(stderr, "%s: --subsample needs a sample count of at least 1 or 'all', got '%s'\n", cmd, v);
+            return -1;
         }
+        o->prep.subsample = (size_t)n; /* 0: every sample */
+        o->subsample_given = 1;
     }
     return 1;
 }

@@ -2,6 +2,8 @@
  * and the same messages as brdfit fit). */
 #include "fit_options.h"
 
+#include "args.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -125,15 +127,15 @@ void fit_options_finish(fit_options *o, data_options *d)
     o->fit.objective.noverrides = o->noverrides;
 }
 
-static int parse_int(const char *s, long lo, long hi, long *out)
+/* The most an integer option may ask for: beyond these a run would take days or a
+ * thread per core many times over, which is never what was meant. */
+static long int_limit(const char *opt)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (!*s || *end || errno || v < lo || v > hi)
-        return 0;
-    *out = v;
-    return 1;
+    if (!strcmp(opt, "--threads"))
+        return FIT_OPTIONS_MAX_THREADS;
+    if (!strcmp(opt, "--starts"))
+        return FIT_OPTIONS_MAX_STARTS;
+    return 10000000; /* --max-iterations */
 }
 
 int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd)
@@ -209,13 +211,13 @@ int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char 
         o->fit.solver.local_algorithm = v;
     } else if (!strcmp(a, "--presolve") && !strcmp(v, "off")) {
         o->fit.presolve = -1;
-    } else if (!strcmp(a, "--presolve") && (!parse_int(v, 64, 1000000000, &n))) {
+    } else if (!strcmp(a, "--presolve") && (!args_int(v, 64, 1000000000, &n))) {
         fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
         return -1;
     } else if (!strcmp(a, "--presolve")) {
         o->fit.presolve = n;
-    } else if (!parse_int(v, 1, 100000000, &n)) {
-        fprintf(stderr, "%s: %s needs a positive integer, got '%s'\n", cmd, a, v);
+    } else if (!args_int(v, 1, int_limit(a), &n)) {
+        fprintf(stderr, "%s: %s needs an integer from 1 to %ld, got '%s'\n", cmd, a, int_limit(a), v);
         return -1;
     } else if (!strcmp(a, "--max-iterations")) {
         o->fit.solver.max_iterations = (int)n;
@@ -274,7 +276,7 @@ int fit_options_split_models(const char *list, char **specs, int n, int max, con
     return n;
 }
 
-int fit_options_check_models(char *const *specs, int n, const char *cmd)
+int fit_options_check_models(const fit_options *o, char *const *specs, int n, const char *cmd)
 {
     for (int k = 0; k < n; k++) {
         bf_error err;
@@ -283,7 +285,13 @@ int fit_options_check_models(char *const *specs, int n, const char *cmd)
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             return -1;
         }
+        /* --fix and --bound against each model: bad usage before any data is read. */
+        int rc = bf_overrides_check(m, 0, o->overrides, o->noverrides, &err);
         bf_model_free(m);
+        if (rc != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            return -1;
+        }
     }
     return 0;
 }

@@ -7,6 +7,8 @@
 #include "data_options.h"
 
 #define FIT_OPTIONS_MAX_OVERRIDES 64
+#define FIT_OPTIONS_MAX_THREADS 1024 /* --threads */
+#define FIT_OPTIONS_MAX_STARTS 10000 /* --starts */
 
 /* brdfit fit --accuracy: option bundles measured with brdfit tradeoff (fit_options.c
  * says which figures chose them). A preset fills only what the user did not set. */
@@ -64,8 +66,8 @@ void fit_options_finish(fit_options *o, data_options *d);
  * count, or -1 after printing a one-line error. */
 int fit_options_split_models(const char *list, char **specs, int n, int max, const char *cmd);
 
-/* Checks that every spec names a model (before any data is read): 0, or -1 after
- * printing the first bad one's one-line error. */
-int fit_options_check_models(char *const *specs, int n, const char *cmd);
+/* Checks that every spec names a model and that --fix/--bound suit each (before any
+ * data is read): 0, or -1 after printing the first problem's one-line error. */
+int fit_options_check_models(const fit_options *o, char *const *specs, int n, const char *cmd);
 
 #endif

@@ -1,6 +1,8 @@
 /* --rank, --folds and --timing (rank_options.h). */
 #include "rank_options.h"
 
+#include "args.h"
+
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,10 +47,8 @@ int rank_options_parse(rank_options *r, int argc, char **argv, int *i, const cha
         }
         return 1;
     }
-    char *end;
-    errno = 0;
-    long n = strtol(v, &end, 10);
-    if (!*v || *end || errno || n < 2 || n > BF_CV_MAX_FOLDS) {
+    long n;
+    if (!args_int(v, 2, BF_CV_MAX_FOLDS, &n)) {
         fprintf(stderr, "%s: --folds needs an integer from 2 to %d, got '%s'\n", cmd, BF_CV_MAX_FOLDS, v);
         return -1;
     }

@@ -96,8 +96,8 @@ expect_error "unknown option" 2 "unknown option '--frobnicate'" "$W" -m walter -
 expect_error "bad residual" 2 '--residual' "$W" -m walter --residual square
 expect_error "bad loss" 2 '--loss' "$W" -m walter --loss nosuch:1
 expect_error "bad backend" 2 "--backend takes ceres or nlopt" "$W" -m walter --backend gsl
-expect_error "bad starts" 2 '--starts needs a positive integer' "$W" -m walter --starts 0
-expect_error "bad threads" 2 '--threads needs a positive integer' "$W" -m walter --threads two
+expect_error "bad starts" 2 '--starts needs an integer from 1 to' "$W" -m walter --starts 0
+expect_error "bad threads" 2 '--threads needs an integer from 1 to' "$W" -m walter --threads two
 expect_error "missing value" 2 '--fix needs a value' "$W" -m walter --fix
 expect_error "bad fix" 2 'fix' "$W" -m walter --fix f0=abc
 expect_error "unknown parameter" 2 'nosuch' "$W" -m walter --fix nosuch=1
@@ -122,7 +122,7 @@ acc() { # ARGS... -> "samples starts backend" of the result
 [ "$(acc)" = "20000 1 ceres" ] && ok || bad "no preset: $(acc)"
 [ "$(acc --subsample 5000 --accuracy fast --starts 2)" = "5000 2 ceres" ] && ok || bad "explicit before: $(acc --subsample 5000 --accuracy fast --starts 2)"
 [ "$(acc --accuracy best --starts 3 --backend nlopt)" = "20000 3 nlopt" ] && ok || bad "explicit after: $(acc --accuracy best --starts 3 --backend nlopt)"
-[ "$(acc --accuracy fast --subsample 0)" = "20000 1 ceres" ] && ok || bad "--subsample 0 keeps all: $(acc --accuracy fast --subsample 0)"
+[ "$(acc --accuracy fast --subsample all)" = "20000 1 ceres" ] && ok || bad "--subsample all keeps all: $(acc --accuracy fast --subsample all)"
 expect_error "bad accuracy" 2 "--accuracy takes fast, balanced or best, got 'quick'" "$W" -m walter --accuracy quick
 expect_error "accuracy without value" 2 '--accuracy needs a value' "$W" -m walter --accuracy
 "$BRDFIT" fit --help | grep -q -- '--accuracy fast|balanced|best' && ok || bad "fit --help lacks --accuracy"

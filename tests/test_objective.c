@@ -731,15 +731,23 @@ static void test_override_validation(void **state)
     expect_new_error("rho_s=0.1:2", 1, BF_ERR_RANGE, "only be narrowed");
     expect_new_error("rho_s[1]=0.1:inf", 1, BF_ERR_RANGE, "only be narrowed");
 
-    /* Applied: a channel fixed, the others free; a later override of the same entry
-     * replaces an earlier one; model lo kept where the bound equals it. */
+    /* Applied: a channel fixed, the others free; model lo kept where the bound equals
+     * it. Two overrides of one entry are refused (the later would silently win). */
     bf_model *m = ts_model("walter", 3);
     bf_samples *s = random_samples(5, 3, 1);
     bf_override ov[3];
     assert_int_equal(bf_override_parse_fix("rho_d[1]=0.3", &ov[0], NULL), BF_OK);
     assert_int_equal(bf_override_parse_fix("alpha=0.2", &ov[1], NULL), BF_OK);
     assert_int_equal(bf_override_parse_bound("alpha=1e-4:0.4", &ov[2], NULL), BF_OK);
-    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 3);
+    bf_objective_options dup = {.residual = BF_RESIDUAL_LINEAR, .overrides = ov, .noverrides = 3};
+    bf_error derr = {0};
+    assert_null(bf_objective_new(m, s, &dup, &derr));
+    assert_int_equal(derr.code, BF_ERR_ARG);
+    assert_non_null(strstr(derr.msg, "fix alpha and bound alpha both set alpha"));
+    assert_int_equal(bf_overrides_check(m, 0, ov, 3, &derr), BF_ERR_ARG);
+    assert_int_equal(bf_overrides_check(m, 0, ov, 2, &derr), BF_OK);
+    ov[1] = ov[2];
+    bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, ov, 2);
     assert_int_equal(bf_objective_nz(obj), 7);
     double lo[8], hi[8];
     bf_objective_bounds(obj, lo, hi);

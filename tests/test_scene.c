@@ -534,6 +534,65 @@ static void test_fit_weighted_metrics(void **state)
     bf_samples_free(s);
 }
 
+/* The kernel sum of one orientation by the formula itself, over every pair (the
+ * library indexes the pairs in a grid; this is the plain sum it must equal). */
+static double brute_orientation(const bf_scene *sc, double ti, double pi_, double to, double po)
+{
+    const double r = sc->radius * DEG, supp = 3.0 * r;
+    double acc = 0.0;
+    for (int a = 0; a < sc->nlights; a++)
+        for (int b = 0; b < sc->nviews; b++) {
+            const bf_scene_dir *l = &sc->lights[a], *v = &sc->views[b];
+            const double aL = fabs(ti - l->theta) * DEG;
+            /* views in the frame where the light has azimuth 0, azimuth folded */
+            const double ds = (po - pi_) * DEG, dp = (v->phi - l->phi) * DEG;
+            const double S[3] = {sin(to * DEG) * cos(ds), fabs(sin(to * DEG) * sin(ds)), cos(to * DEG)};
+            const double P[3] = {sin(v->theta * DEG) * cos(dp), fabs(sin(v->theta * DEG) * sin(dp)),
+                                 cos(v->theta * DEG)};
+            double dot = S[0] * P[0] + S[1] * P[1] + S[2] * P[2];
+            const double aV = acos(dot > 1.0 ? 1.0 : dot);
+            if (aL <= supp && aV <= supp)
+                acc += l->weight * v->weight * exp(-(aL * aL + aV * aV) / (2.0 * r * r));
+        }
+    return acc;
+}
+
+/* Many lights and views (the grid index at work, cells shared by many pairs): the
+ * weights equal the plain sum over every pair, for both orientations. */
+static void test_many_directions_match_plain_sum(void **state)
+{
+    (void)state;
+    ts_rng r = {4242};
+    char *text = malloc(200000), *p = text;
+    p += sprintf(p, "{\"radius\": 7, \"reciprocal\": true, \"lights\": [");
+    for (int k = 0; k < 60; k++)
+        p += sprintf(p, "%s{\"theta\": %.3f, \"phi\": %.3f, \"weight\": %.3f}", k ? "," : "",
+                     85 * ts_uniform(&r), 360 * ts_uniform(&r) - 180, 0.5 + ts_uniform(&r));
+    p += sprintf(p, "], \"views\": [");
+    for (int k = 0; k < 50; k++)
+        p += sprintf(p, "%s{\"theta\": %.3f, \"phi\": %.3f}", k ? "," : "", 85 * ts_uniform(&r),
+                     360 * ts_uniform(&r) - 180);
+    sprintf(p, "]}");
+    bf_scene *sc = parse_ok(text);
+    free(text);
+    bf_samples *s = random_samples(3000, 77);
+    double *w = malloc(s->n * sizeof *w);
+    bf_error err;
+    assert_int_equal(bf_scene_weights(sc, s, w, &err), BF_OK);
+    size_t nonzero = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        const double d = brute_orientation(sc, s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
+        const double sw = brute_orientation(sc, s->theta_o[i], s->phi_o[i], s->theta_i[i], s->phi_i[i]);
+        const double want = d > sw ? d : sw;
+        ts_assert_near(w[i], want, 1e-9, 1e-12, "scene weight against the plain sum");
+        nonzero += want > 0.0;
+    }
+    assert_true(nonzero > s->n / 4); /* the kernels reach a good share of the samples */
+    free(w);
+    bf_samples_free(s);
+    bf_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -547,6 +606,7 @@ int main(void)
         cmocka_unit_test(test_weighted_metrics_duplicates),
         cmocka_unit_test(test_own_weights_not_in_scene_metrics),
         cmocka_unit_test(test_fit_weighted_metrics),
+        cmocka_unit_test(test_many_directions_match_plain_sum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -46,6 +46,13 @@ typedef struct bf_override {
 int bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
 int bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
 
+/* Checks overrides against model m before any data is read (channels <= 0: the
+ * channel count is not known yet, channel indices unchecked): an unknown parameter, a
+ * channel index on a scalar, a value or bounds outside the model's bounds, lo >= hi,
+ * and two overrides of one entry (--fix alpha with --bound alpha, or two --fix
+ * rho_d[1]): BF_ERR_ARG or BF_ERR_RANGE with a one-line message. */
+int bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
+
 typedef struct bf_objective_options {
     bf_residual residual;
     int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:

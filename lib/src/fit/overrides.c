@@ -128,9 +128,75 @@ static void interval_text(const bf_param_info *p, char *buf, size_t size)
     snprintf(buf, size, "%c%g, %g%c", p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']');
 }
 
+/* The bounds override ov gives its parameter p (lo == hi for a fix), or an error. */
+static int override_interval(const bf_override *ov, const bf_param_info *p, double *lo, double *hi, bf_error *err)
+{
+    char tgt[80], range[96];
+    target_text(ov, tgt, sizeof tgt);
+    interval_text(p, range, sizeof range);
+    if (ov->fix) {
+        double x = ov->value;
+        if (!isfinite(x) || x < p->lo || x > p->hi || (p->lo_open && x == p->lo) || (p->hi_open && x == p->hi))
+            return bf_fail(err, BF_ERR_RANGE, "fix %s: value %g is outside the model's bounds %s", tgt, x, range);
+        *lo = *hi = x;
+        return BF_OK;
+    }
+    if (isnan(ov->lo) || isnan(ov->hi) || !(ov->lo < ov->hi))
+        return bf_fail(err, BF_ERR_ARG, "bound %s: lower bound %g is not below upper bound %g", tgt, ov->lo, ov->hi);
+    if (ov->lo < p->lo || ov->hi > p->hi)
+        return bf_fail(err, BF_ERR_RANGE,
+                       "bound %s: %g:%g is outside the model's bounds %s (bounds may only be narrowed)", tgt, ov->lo,
+                       ov->hi, range);
+    *lo = ov->lo == p->lo ? closed_lo(p) : ov->lo;
+    *hi = ov->hi == p->hi ? closed_hi(p) : ov->hi;
+    if (!(*lo < *hi))
+        return bf_fail(err, BF_ERR_RANGE, "bound %s: %g:%g leaves no room inside the model's bounds %s", tgt, ov->lo,
+                       ov->hi, range);
+    return BF_OK;
+}
+
+int bf_overrides_check(const bf_model *m, int channels, const bf_override *ovs, int nov, bf_error *err)
+{
+    for (int v = 0; v < nov; v++) {
+        const bf_override *ov = &ovs[v];
+        const char *what = ov->fix ? "fix" : "bound";
+        char tgt[80];
+        target_text(ov, tgt, sizeof tgt);
+        int i = bf_model_find_param(m, ov->name);
+        if (i < 0)
+            return bf_fail(err, BF_ERR_ARG, "%s %s: model %s has no parameter '%s'", what, tgt, bf_model_name(m),
+                           ov->name);
+        const bf_param_info *p = bf_model_param(m, i);
+        if (ov->channel >= 0 && !p->colour)
+            return bf_fail(err, BF_ERR_ARG, "%s %s: %s is one scalar for every channel, it takes no channel index",
+                           what, tgt, ov->name);
+        if (channels > 0 && ov->channel >= channels)
+            return bf_fail(err, BF_ERR_ARG, "%s %s: channel %d out of range (the data have %d channel%s)", what, tgt,
+                           ov->channel, channels, channels == 1 ? "" : "s");
+        double lo, hi;
+        int rc = override_interval(ov, p, &lo, &hi, err);
+        if (rc != BF_OK)
+            return rc;
+        /* Two overrides of one entry: the later would silently win. */
+        for (int u = 0; u < v; u++) {
+            const bf_override *w = &ovs[u];
+            if (strcmp(w->name, ov->name) || (w->channel >= 0 && ov->channel >= 0 && w->channel != ov->channel))
+                continue;
+            char prev[80];
+            target_text(w, prev, sizeof prev);
+            return bf_fail(err, BF_ERR_ARG, "%s %s and %s %s both set %s: give one", w->fix ? "fix" : "bound", prev,
+                           what, tgt, ov->channel >= 0 ? tgt : prev);
+        }
+    }
+    return BF_OK;
+}
+
 int bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int nov, bf_error *err)
 {
     const bf_model *m = o->model;
+    int rc = bf_overrides_check(m, o->C, ovs, nov, err);
+    if (rc != BF_OK)
+        return rc;
     int np = bf_model_nparams(m);
     for (int i = 0; i < np; i++) {
         const bf_param_info *p = bf_model_param(m, i);
@@ -144,44 +210,11 @@ int bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int nov, bf_
     }
     for (int v = 0; v < nov; v++) {
         const bf_override *ov = &ovs[v];
-        const char *what = ov->fix ? "fix" : "bound";
-        char tgt[80], range[96];
-        target_text(ov, tgt, sizeof tgt);
-        int i = bf_model_find_param(m, ov->name);
-        if (i < 0)
-            return bf_fail(err, BF_ERR_ARG, "%s %s: model %s has no parameter '%s'", what, tgt,
-                           bf_model_name(m), ov->name);
+        const int i = bf_model_find_param(m, ov->name);
         const bf_param_info *p = bf_model_param(m, i);
-        int off = bf_model_param_offset(m, i);
-        if (ov->channel >= 0 && !p->colour)
-            return bf_fail(err, BF_ERR_ARG, "%s %s: %s is one scalar for every channel, it takes no channel index",
-                           what, tgt, ov->name);
-        if (ov->channel >= o->C)
-            return bf_fail(err, BF_ERR_ARG, "%s %s: channel %d out of range (the data have %d channel%s)",
-                           what, tgt, ov->channel, o->C, o->C == 1 ? "" : "s");
-        interval_text(p, range, sizeof range);
+        const int off = bf_model_param_offset(m, i);
         double lo, hi;
-        if (ov->fix) {
-            double x = ov->value;
-            if (!isfinite(x) || x < p->lo || x > p->hi || (p->lo_open && x == p->lo) ||
-                (p->hi_open && x == p->hi))
-                return bf_fail(err, BF_ERR_RANGE, "fix %s: value %g is outside the model's bounds %s",
-                               tgt, x, range);
-            lo = hi = x;
-        } else {
-            if (isnan(ov->lo) || isnan(ov->hi) || !(ov->lo < ov->hi))
-                return bf_fail(err, BF_ERR_ARG, "bound %s: lower bound %g is not below upper bound %g",
-                               tgt, ov->lo, ov->hi);
-            if (ov->lo < p->lo || ov->hi > p->hi)
-                return bf_fail(err, BF_ERR_RANGE,
-                               "bound %s: %g:%g is outside the model's bounds %s (bounds may only be narrowed)",
-                               tgt, ov->lo, ov->hi, range);
-            lo = ov->lo == p->lo ? closed_lo(p) : ov->lo;
-            hi = ov->hi == p->hi ? closed_hi(p) : ov->hi;
-            if (!(lo < hi))
-                return bf_fail(err, BF_ERR_RANGE, "bound %s: %g:%g leaves no room inside the model's bounds %s",
-                               tgt, ov->lo, ov->hi, range);
-        }
+        override_interval(ov, p, &lo, &hi, NULL); /* checked above */
         int c0 = ov->channel >= 0 ? ov->channel : 0;
         int c1 = ov->channel >= 0 ? ov->channel + 1 : (p->colour ? o->C : 1);
         for (int c = c0; c < c1; c++) {

@@ -37,35 +37,43 @@ int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int 
 {
     if (check_size(width, height, phi_d, err) != BF_OK)
         return err ? err->code : BF_ERR_ARG;
-    const size_t n = (size_t)width * (size_t)height;
+    /* In bands of rows: memory O(width x BAND) whatever the size. */
+    enum { BAND = 64 };
+    const int rows = height < BAND ? height : BAND;
+    const size_t nb = (size_t)width * (size_t)rows;
     const int C = bf_model_channels(m);
-    double *L = malloc(n * 3 * sizeof *L), *V = malloc(n * 3 * sizeof *V);
-    double *f = malloc(n * (size_t)C * sizeof *f);
-    bf_geometry *g = NULL;
+    double *L = malloc(nb * 3 * sizeof *L), *V = malloc(nb * 3 * sizeof *V);
+    double *f = malloc(nb * (size_t)C * sizeof *f);
     int status = BF_OK;
     if (!L || !V || !f) {
         status = bf_fail(err, BF_ERR_NOMEM, "half/difference image: out of memory for %dx%d pixels", width, height);
         goto done;
     }
     const double pd = phi_d * (M_PI / 180.0);
-    for (int j = 0; j < height; j++)
-        for (int i = 0; i < width; i++) {
-            size_t q = (size_t)j * (size_t)width + (size_t)i;
-            bf_halfdiff_dirs(pixel_angle(i, width), pixel_angle(j, height), pd, L + 3 * q, V + 3 * q);
+    for (int j0 = 0; j0 < height; j0 += BAND) {
+        const int j1 = j0 + BAND < height ? j0 + BAND : height;
+        const size_t n = (size_t)(j1 - j0) * (size_t)width;
+        for (int j = j0; j < j1; j++)
+            for (int i = 0; i < width; i++) {
+                size_t q = (size_t)(j - j0) * (size_t)width + (size_t)i;
+                bf_halfdiff_dirs(pixel_angle(i, width), pixel_angle(j, height), pd, L + 3 * q, V + 3 * q);
+            }
+        bf_geometry *g = bf_geometry_from_vectors(n, L, V, err);
+        if (!g) {
+            status = err ? err->code : BF_ERR_NOMEM;
+            goto done;
         }
-    if (!(g = bf_geometry_from_vectors(n, L, V, err))) {
-        status = err ? err->code : BF_ERR_NOMEM;
-        goto done;
-    }
-    bf_model_eval(m, x, g, f, NULL);
-    for (size_t q = 0; q < n; q++) {
-        double c[3];
-        bf_channels_to_rgb(f + q * (size_t)C, C, c);
-        for (int k = 0; k < 3; k++)
-            rgb[3 * q + (size_t)k] = (float)c[k];
+        bf_model_eval(m, x, g, f, NULL);
+        bf_geometry_free(g);
+        float *out = rgb + (size_t)j0 * (size_t)width * 3;
+        for (size_t q = 0; q < n; q++) {
+            double c[3];
+            bf_channels_to_rgb(f + q * (size_t)C, C, c);
+            for (int k = 0; k < 3; k++)
+                out[3 * q + (size_t)k] = (float)c[k];
+        }
     }
 done:
-    bf_geometry_free(g);
     free(L);
     free(V);
     free(f);

@@ -83,36 +83,16 @@ static void eval_merl(const source *src, const bf_geometry *g, double *f)
     }
 }
 
-static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
+/* Rows of the image rendered at once: memory stays O(size x BAND) whatever the size. */
+enum { BAND = 64 };
+
+/* Pixels of rows j0 .. j1-1 inside the disc and their local frames (t, b, n) as rows;
+ * returns how many. */
+static size_t band_frames(int N, int j0, int j1, const double *u, const double *up, const double *w, size_t *index,
+                          double *frame)
 {
-    if (!o || o->size < 1 || o->nlights < 1 || !o->lights)
-        return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
-    const int N = o->size, C = src->C;
-    const size_t npx = (size_t)N * (size_t)N;
-    memset(rgb, 0, npx * 3 * sizeof *rgb);
-
-    double w[3], u[3], up[3];
-    dir_vec(o->view, w);
-    double t = o->view.theta * (M_PI / 180.0), p = o->view.phi * (M_PI / 180.0);
-    u[0] = cos(t) * cos(p); /* d w / d theta */
-    u[1] = cos(t) * sin(p);
-    u[2] = -sin(t);
-    normalise(u);
-    cross(w, u, up);
-
-    /* Pixels inside the disc and their local frames (t, b, n) as rows. */
     size_t n = 0;
-    size_t *index = malloc(npx * sizeof *index);
-    double *frame = malloc(npx * 9 * sizeof *frame);
-    double *L = malloc(npx * 3 * sizeof *L), *V = malloc(npx * 3 * sizeof *V);
-    double *f = malloc(npx * (size_t)C * sizeof *f);
-    double *acc = calloc(npx * 3, sizeof *acc);
-    int status = BF_OK;
-    if (!index || !frame || !L || !V || !f || !acc) {
-        status = bf_fail(err, BF_ERR_NOMEM, "sphere render: out of memory for %dx%d pixels", N, N);
-        goto done;
-    }
-    for (int j = 0; j < N; j++)
+    for (int j = j0; j < j1; j++)
         for (int i = 0; i < N; i++) {
             double sx = 2.0 * (i + 0.5) / N - 1.0, sy = 1.0 - 2.0 * (j + 0.5) / N;
             double r2 = sx * sx + sy * sy;
@@ -135,38 +115,72 @@ static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_
                 tn[k] = a[k] - an * nn[k];
             normalise(tn);
             cross(nn, tn, bn);
-            index[n++] = (size_t)j * (size_t)N + (size_t)i;
+            index[n++] = (size_t)(j - j0) * (size_t)N + (size_t)i;
         }
-    for (int l = 0; l < o->nlights; l++) {
-        double Lw[3];
-        dir_vec(o->lights[l], Lw);
-        for (size_t q = 0; q < n; q++) {
-            const double *F = frame + 9 * q;
-            for (int k = 0; k < 3; k++) {
-                L[3 * q + k] = dot(F + 3 * k, Lw);
-                V[3 * q + k] = dot(F + 3 * k, w);
-            }
-        }
-        if (n == 0)
-            break;
-        bf_geometry *g = bf_geometry_from_vectors(n, L, V, err);
-        if (!g) {
-            status = err ? err->code : BF_ERR_NOMEM;
-            goto done;
-        }
-        src->eval(src, g, f);
-        for (size_t q = 0; q < n; q++) {
-            if (!bf_geometry_valid(g, q))
-                continue; /* sources give 0 there; skip to keep the sum exact */
-            double c[3];
-            bf_channels_to_rgb(f + q * (size_t)C, C, c);
-            for (int k = 0; k < 3; k++)
-                acc[3 * index[q] + (size_t)k] += c[k] * g->lz[q];
-        }
-        bf_geometry_free(g);
+    return n;
+}
+
+static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
+{
+    if (!o || o->size < 1 || o->nlights < 1 || !o->lights)
+        return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
+    const int N = o->size, C = src->C;
+    const size_t npx = (size_t)N * (size_t)N, nb = (size_t)N * (size_t)(N < BAND ? N : BAND);
+    memset(rgb, 0, npx * 3 * sizeof *rgb);
+
+    double w[3], u[3], up[3];
+    dir_vec(o->view, w);
+    double t = o->view.theta * (M_PI / 180.0), p = o->view.phi * (M_PI / 180.0);
+    u[0] = cos(t) * cos(p); /* d w / d theta */
+    u[1] = cos(t) * sin(p);
+    u[2] = -sin(t);
+    normalise(u);
+    cross(w, u, up);
+
+    size_t *index = malloc(nb * sizeof *index);
+    double *frame = malloc(nb * 9 * sizeof *frame);
+    double *L = malloc(nb * 3 * sizeof *L), *V = malloc(nb * 3 * sizeof *V);
+    double *f = malloc(nb * (size_t)C * sizeof *f);
+    double *acc = malloc(nb * 3 * sizeof *acc);
+    int status = BF_OK;
+    if (!index || !frame || !L || !V || !f || !acc) {
+        status = bf_fail(err, BF_ERR_NOMEM, "sphere render: out of memory for %dx%d pixels", N, N);
+        goto done;
     }
-    for (size_t q = 0; q < npx * 3; q++)
-        rgb[q] = (float)acc[q];
+    for (int j0 = 0; j0 < N && status == BF_OK; j0 += BAND) {
+        const int j1 = j0 + BAND < N ? j0 + BAND : N;
+        const size_t n = band_frames(N, j0, j1, u, up, w, index, frame);
+        memset(acc, 0, nb * 3 * sizeof *acc);
+        for (int l = 0; l < o->nlights && n > 0; l++) {
+            double Lw[3];
+            dir_vec(o->lights[l], Lw);
+            for (size_t q = 0; q < n; q++) {
+                const double *F = frame + 9 * q;
+                for (int k = 0; k < 3; k++) {
+                    L[3 * q + k] = dot(F + 3 * k, Lw);
+                    V[3 * q + k] = dot(F + 3 * k, w);
+                }
+            }
+            bf_geometry *g = bf_geometry_from_vectors(n, L, V, err);
+            if (!g) {
+                status = err ? err->code : BF_ERR_NOMEM;
+                break;
+            }
+            src->eval(src, g, f);
+            for (size_t q = 0; q < n; q++) {
+                if (!bf_geometry_valid(g, q))
+                    continue; /* sources give 0 there; skip to keep the sum exact */
+                double c[3];
+                bf_channels_to_rgb(f + q * (size_t)C, C, c);
+                for (int k = 0; k < 3; k++)
+                    acc[3 * index[q] + (size_t)k] += c[k] * g->lz[q];
+            }
+            bf_geometry_free(g);
+        }
+        float *out = rgb + (size_t)j0 * (size_t)N * 3;
+        for (size_t q = 0; q < (size_t)(j1 - j0) * (size_t)N * 3; q++)
+            out[q] = (float)acc[q];
+    }
 done:
     free(index);
     free(frame);

@@ -8,13 +8,20 @@
  * summed over every (light, view) pair. With lights only (or views only) a direction's
  * azimuth means nothing for an isotropic material once the configuration is rotated, so
  * only its polar angle counts. The work runs over fixed chunks with stack scratch: no
- * allocation per sample, the trigonometry once per sample for both orientations, and
- * asin and exp only for configurations within a pair's light band. */
+ * allocation per sample, the trigonometry once per sample for both orientations.
+ *
+ * The pairs are indexed in a grid over (pair light polar angle, rotated view x, y) whose
+ * cells are as wide as the kernel's support, so a sample looks only at the pairs in the
+ * 3 x 3 x 3 cells around it instead of every pair. The sum runs in cell order (fixed
+ * by the scene alone), so the weights are the same on every run and thread count. */
 #include "brdfit/scene.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "parallel.h"
 
 enum { CHUNK = 256 };
 
@@ -29,6 +36,13 @@ typedef struct prepared {
     bf_range lr, vr;    /* degrees, as the samples hold their angles */
     pair *p;
     int np;
+    /* The grid: n1 x n2 x n3 cells of width h1 (polar angle) and h2 (view x and y);
+     * cell c holds pairs by_cell[start[c] .. start[c + 1]) (copies, in cell order, so a
+     * sample reads them contiguously). */
+    int n1, n2, n3;
+    double h1, h2;
+    int *start;
+    pair *by_cell;
     int lights, views;  /* which lists the scene has */
     double inv2r2;      /* 1 / (2 radius^2), radians */
     double amax2;       /* (3 radius)^2: the kernel's support */
@@ -36,6 +50,67 @@ typedef struct prepared {
 } prepared;
 
 static const double DEG = M_PI / 180.0;
+
+/* Cell coordinates, clamped into the grid. */
+static int cell_of(double v, double lo, double h, int n)
+{
+    double c = floor((v - lo) / h);
+    return c < 0.0 ? 0 : c >= n ? n - 1 : (int)c;
+}
+
+/* The grid over the pairs (see the top). Dimensions are capped so that a tiny radius
+ * cannot ask for more cells than pairs are worth; wider cells only cost more checks. */
+static int build_grid(prepared *q, bf_error *err)
+{
+    enum { MAX_DIM = 128 };
+    const int both = q->lights && q->views;
+    q->h1 = sqrt(q->amax2);
+    q->h2 = sqrt(q->cmax2);
+    double h1 = q->h1 > 0.5 * M_PI / MAX_DIM ? q->h1 : 0.5 * M_PI / MAX_DIM;
+    double h2 = q->h2 > 2.0 / MAX_DIM ? q->h2 : 2.0 / MAX_DIM;
+    q->h1 = h1;
+    q->h2 = h2;
+    q->n1 = (int)ceil(0.5 * M_PI / h1) + 1;
+    q->n2 = both ? (int)ceil(2.0 / h2) + 1 : 1;
+    q->n3 = both ? (int)ceil(1.0 / h2) + 1 : 1;
+    const size_t ncell = (size_t)q->n1 * (size_t)q->n2 * (size_t)q->n3;
+    q->start = calloc(ncell + 1, sizeof *q->start);
+    q->by_cell = malloc((size_t)q->np * sizeof *q->by_cell);
+    int *cell = malloc((size_t)q->np * sizeof *cell);
+    if (!q->start || !q->by_cell || !cell) {
+        free(cell);
+        return bf_fail(err, BF_ERR_NOMEM, "scene: out of memory for %d direction pairs", q->np);
+    }
+    for (int k = 0; k < q->np; k++) {
+        const pair *p = &q->p[k];
+        const double t = q->lights ? p->lt : p->vt;
+        int c = cell_of(t, 0.0, q->h1, q->n1);
+        if (both)
+            c = (c * q->n2 + cell_of(p->vx, -1.0, q->h2, q->n2)) * q->n3 + cell_of(p->vy, 0.0, q->h2, q->n3);
+        cell[k] = c;
+        q->start[c + 1]++;
+    }
+    for (size_t c = 0; c < ncell; c++)
+        q->start[c + 1] += q->start[c];
+    int *fill = malloc((ncell + 1) * sizeof *fill);
+    if (!fill) {
+        free(cell);
+        return bf_fail(err, BF_ERR_NOMEM, "scene: out of memory for %d direction pairs", q->np);
+    }
+    memcpy(fill, q->start, (ncell + 1) * sizeof *fill);
+    for (int k = 0; k < q->np; k++) /* ascending k within a cell */
+        q->by_cell[fill[cell[k]]++] = q->p[k];
+    free(fill);
+    free(cell);
+    return BF_OK;
+}
+
+static void release(prepared *q)
+{
+    free(q->p);
+    free(q->start);
+    free(q->by_cell);
+}
 
 static int prepare(const bf_scene *sc, prepared *q, bf_error *err)
 {
@@ -71,7 +146,7 @@ static int prepare(const bf_scene *sc, prepared *q, bf_error *err)
                 p->vz = cos(t);
             }
         }
-    return BF_OK;
+    return build_grid(q, err);
 }
 
 /* One chunk's configurations in one orientation: light polar angle tl and view polar
@@ -81,6 +156,26 @@ typedef struct oriented {
     const double *tl, *tv, *tlr, *tvr, *vx, *vy, *vz;
 } oriented;
 
+/* The kernel sum of pair k at configuration i of o (0 outside its support). */
+static inline double pair_kernel(const prepared *q, const pair *p, const oriented *o, size_t i)
+{
+    if (q->lights && q->views) {
+        double a = o->tlr[i] - p->lt, a2 = a * a;
+        if (a2 > q->amax2)
+            return 0.0;
+        double dx = o->vx[i] - p->vx, dy = o->vy[i] - p->vy, dz = o->vz[i] - p->vz;
+        /* Angle from the chord: accurate at small angles, unlike acos of a dot. */
+        double c2 = dx * dx + dy * dy + dz * dz;
+        if (c2 > q->cmax2)
+            return 0.0;
+        double c = 0.5 * sqrt(c2);
+        double b = 2.0 * asin(c < 1.0 ? c : 1.0), b2 = b * b;
+        return b2 <= q->amax2 ? p->w * exp(-(a2 + b2) * q->inv2r2) : 0.0;
+    }
+    double a = (q->lights ? o->tlr[i] - p->lt : o->tvr[i] - p->vt), a2 = a * a;
+    return a2 <= q->amax2 ? p->w * exp(-a2 * q->inv2r2) : 0.0;
+}
+
 static void orient(const prepared *q, size_t m, const oriented *o, double *out)
 {
     for (size_t i = 0; i < m; i++)
@@ -89,78 +184,88 @@ static void orient(const prepared *q, size_t m, const oriented *o, double *out)
                      : 0.0;
     if (q->np == 0)
         return;
-    double acc[CHUNK] = {0};
-    for (int k = 0; k < q->np; k++) {
-        const pair *p = &q->p[k];
-        if (q->lights && q->views) {
-            for (size_t i = 0; i < m; i++) {
-                double a = o->tlr[i] - p->lt, a2 = a * a;
-                /* Most configurations miss a pair's light band: no asin or exp for them. */
-                if (out[i] == 0.0 || a2 > q->amax2)
-                    continue;
-                double dx = o->vx[i] - p->vx, dy = o->vy[i] - p->vy, dz = o->vz[i] - p->vz;
-                /* Angle from the chord: accurate at small angles, unlike acos of a dot. */
-                double c2 = dx * dx + dy * dy + dz * dz;
-                if (c2 > q->cmax2)
-                    continue;
-                double c = 0.5 * sqrt(c2);
-                double b = 2.0 * asin(c < 1.0 ? c : 1.0), b2 = b * b;
-                if (b2 <= q->amax2)
-                    acc[i] += p->w * exp(-(a2 + b2) * q->inv2r2);
-            }
-        } else {
-            const double *t = q->lights ? o->tlr : o->tvr;
-            const double t0 = q->lights ? p->lt : p->vt;
-            for (size_t i = 0; i < m; i++) {
-                double a = t[i] - t0, a2 = a * a;
-                acc[i] += a2 <= q->amax2 ? p->w * exp(-a2 * q->inv2r2) : 0.0;
-            }
-        }
+    const int both = q->lights && q->views;
+    for (size_t i = 0; i < m; i++) {
+        if (out[i] == 0.0)
+            continue;
+        const double t = q->lights ? o->tlr[i] : o->tvr[i];
+        const int c1 = cell_of(t, 0.0, q->h1, q->n1);
+        const int c2 = both ? cell_of(o->vx[i], -1.0, q->h2, q->n2) : 0;
+        const int c3 = both ? cell_of(o->vy[i], 0.0, q->h2, q->n3) : 0;
+        /* The pairs of the neighbouring cells: every pair within the kernel's support
+         * lies in one of them (cells are as wide as the support). */
+        double acc = 0.0;
+        for (int a = c1 > 0 ? c1 - 1 : 0; a <= c1 + 1 && a < q->n1; a++)
+            for (int b = c2 > 0 ? c2 - 1 : 0; b <= c2 + 1 && b < q->n2; b++)
+                for (int c = c3 > 0 ? c3 - 1 : 0; c <= c3 + 1 && c < q->n3; c++) {
+                    const int cell = (a * q->n2 + b) * q->n3 + c;
+                    for (int k = q->start[cell]; k < q->start[cell + 1]; k++)
+                        acc += pair_kernel(q, &q->by_cell[k], o, i);
+                }
+        out[i] *= acc;
     }
+}
+
+typedef struct weights_job {
+    const bf_scene *sc;
+    const prepared *q;
+    bf_samples *s;
+    double *w;
+} weights_job;
+
+/* The weights of one chunk of samples (both orientations when reciprocal). */
+static void weights_chunk(void *ctx, size_t chunk)
+{
+    const weights_job *job = ctx;
+    const prepared *q = job->q;
+    bf_samples *s = job->s;
+    double *w = job->w;
+    const int rotate = q->lights && q->views;
+    double sw[CHUNK], tir[CHUNK], tor[CHUNK];
+    double dx[CHUNK], dy[CHUNK], dz[CHUNK], rx[CHUNK], ry[CHUNK], rz[CHUNK], abuf[4 * CHUNK];
+    const size_t i0 = chunk * CHUNK, m = s->n - i0 < CHUNK ? s->n - i0 : CHUNK;
+    const double *dir[4];
+    bf_samples_angle_block(s, i0, m, abuf, dir);
+    const double *ti = dir[0], *pi_ = dir[1], *to = dir[2], *po = dir[3];
+    for (size_t i = 0; i < m; i++) {
+        tir[i] = ti[i] * DEG;
+        tor[i] = to[i] * DEG;
+    }
+    if (rotate) /* V rotated by -phi_i, and L rotated by -phi_o for the swapped view */
+        for (size_t i = 0; i < m; i++) {
+            double d = (po[i] - pi_[i]) * DEG, cd = cos(d), sd = sin(d);
+            double so = sin(tor[i]), si = sin(tir[i]);
+            dx[i] = so * cd;
+            dy[i] = fabs(so * sd);
+            dz[i] = cos(tor[i]);
+            rx[i] = si * cd;
+            ry[i] = fabs(si * sd);
+            rz[i] = cos(tir[i]);
+        }
+    const oriented direct = {ti, to, tir, tor, dx, dy, dz};
+    orient(q, m, &direct, w + i0);
+    if (!job->sc->reciprocal)
+        return;
+    /* Light and view swapped: the same configuration seen the other way round. */
+    const oriented swapped = {to, ti, tor, tir, rx, ry, rz};
+    orient(q, m, &swapped, sw);
     for (size_t i = 0; i < m; i++)
-        out[i] *= acc[i];
+        w[i0 + i] = sw[i] > w[i0 + i] ? sw[i] : w[i0 + i];
 }
 
 int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err)
 {
     prepared q;
     int rc = prepare(sc, &q, err);
-    if (rc != BF_OK)
+    if (rc != BF_OK) {
+        release(&q);
         return rc;
-    const int rotate = q.lights && q.views;
-    double sw[CHUNK], tir[CHUNK], tor[CHUNK];
-    double dx[CHUNK], dy[CHUNK], dz[CHUNK], rx[CHUNK], ry[CHUNK], rz[CHUNK], abuf[4 * CHUNK];
-    for (size_t i0 = 0; i0 < s->n; i0 += CHUNK) {
-        const size_t m = s->n - i0 < CHUNK ? s->n - i0 : CHUNK;
-        const double *dir[4];
-        bf_samples_angle_block(s, i0, m, abuf, dir);
-        const double *ti = dir[0], *pi_ = dir[1], *to = dir[2], *po = dir[3];
-        for (size_t i = 0; i < m; i++) {
-            tir[i] = ti[i] * DEG;
-            tor[i] = to[i] * DEG;
-        }
-        if (rotate) /* V rotated by -phi_i, and L rotated by -phi_o for the swapped view */
-            for (size_t i = 0; i < m; i++) {
-                double d = (po[i] - pi_[i]) * DEG, cd = cos(d), sd = sin(d);
-                double so = sin(tor[i]), si = sin(tir[i]);
-                dx[i] = so * cd;
-                dy[i] = fabs(so * sd);
-                dz[i] = cos(tor[i]);
-                rx[i] = si * cd;
-                ry[i] = fabs(si * sd);
-                rz[i] = cos(tir[i]);
-            }
-        const oriented direct = {ti, to, tir, tor, dx, dy, dz};
-        orient(&q, m, &direct, w + i0);
-        if (!sc->reciprocal)
-            continue;
-        /* Light and view swapped: the same configuration seen the other way round. */
-        const oriented swapped = {to, ti, tor, tir, rx, ry, rz};
-        orient(&q, m, &swapped, sw);
-        for (size_t i = 0; i < m; i++)
-            w[i0 + i] = sw[i] > w[i0 + i] ? sw[i] : w[i0 + i];
     }
-    free(q.p);
+    /* Every sample's weight is its own: any thread count gives the same values. */
+    weights_job job = {sc, &q, s, w};
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    bf_parallel_for((s->n + CHUNK - 1) / CHUNK, cores > 0 ? (int)cores : 1, weights_chunk, &job);
+    release(&q);
     return BF_OK;
 }
 
