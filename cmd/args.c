@@ -20,3 +20,14 @@ const char *args_value(int argc, char **argv, int *i, const char *const *valued,
     }
     return argv[++*i];
 }
+
+int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
+                       int noutputs)
+{
+    bf_error err;
+    int rc = bf_outputs_check(inputs, ninputs, outputs, noutputs, &err);
+    if (rc == BF_OK)
+        return 0;
+    fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    return rc == BF_ERR_ARG ? 2 : 1;
+}

@@ -22,6 +22,7 @@
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/render.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 
@@ -213,6 +214,11 @@ int cmd_render(int argc, char **argv)
     }
     if (nlights == 0)
         lights[nlights++] = (bf_dir){45.0, 0.0};
+    const bf_path_use in[] = {{"--params file", params}, {"--data file", data}, {"--scene file", dopt.scene}},
+                      out[] = {{"-o", out_path}};
+    int bad = args_check_outputs(cmd, in, 3, out, 1);
+    if (bad)
+        return bad;
 
     bf_error err;
     bf_model *m = NULL;
