@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -186,6 +187,34 @@ static void test_full_device_fails_with_the_cause(void **state)
     assert_non_null(strstr(err.msg, strerror(ENOSPC)));
 }
 
+/* One fwrite larger than the stream's buffer goes straight to the failing write: the
+ * stream must stop at the error, not read past the caller's block. The block ends at a
+ * page with no access, so reading past it (glibc does when a stdio cookie reports an
+ * error as -1) crashes the test rather than going unseen. */
+static void big_write_fails(const char *path, int code)
+{
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), n = 1 << 20;
+    unsigned char *block = mmap(NULL, n + page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    assert_true(block != MAP_FAILED);
+    assert_int_equal(mprotect(block + n, page, PROT_NONE), 0);
+    bf_outfile o;
+    bf_error err;
+    int rc = bf_outfile_open(&o, path, &err);
+    if (rc == BF_OK) {
+        assert_true(fwrite(block, 1, n, o.fp) < n);
+        rc = bf_outfile_commit(&o, &err);
+    }
+    munmap(block, n + page);
+    assert_int_equal(rc, BF_ERR_IO);
+    assert_non_null(strstr(err.msg, strerror(code)));
+}
+
+static void test_big_write_to_full_device(void **state)
+{
+    (void)state;
+    big_write_fails("/dev/full", ENOSPC);
+}
+
 /* A real failed write on a regular file: past RLIMIT_FSIZE with SIGXFSZ ignored, write()
  * fails with EFBIG, as on a full disk with ENOSPC. The old file must stay whole. */
 static void test_failed_write_keeps_the_old_file(void **state)
@@ -213,6 +242,14 @@ static void test_failed_write_keeps_the_old_file(void **state)
     assert_int_equal(rc, BF_ERR_IO);
     assert_non_null(strstr(err.msg, "big.csv: write error: "));
     assert_non_null(strstr(err.msg, strerror(EFBIG)));
+    assert_string_equal(text_of(p), "the old, good file\n");
+    assert_int_equal(temporaries(d), 0);
+    /* The same with one big block. */
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &low), 0);
+    signal(SIGXFSZ, SIG_IGN);
+    big_write_fails(p, EFBIG);
+    setrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, was);
     assert_string_equal(text_of(p), "the old, good file\n");
     assert_int_equal(temporaries(d), 0);
 }
@@ -353,6 +390,7 @@ int main(void)
         cmocka_unit_test(test_symlink_is_followed),
         cmocka_unit_test(test_device_is_written_through),
         cmocka_unit_test(test_full_device_fails_with_the_cause),
+        cmocka_unit_test(test_big_write_to_full_device),
         cmocka_unit_test(test_failed_write_keeps_the_old_file),
         cmocka_unit_test(test_unusable_targets),
         cmocka_unit_test(test_same_file_by_inode),

@@ -573,8 +573,8 @@ int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const
         rc = bf_fail(err, BF_ERR_IO, "%s: appeared while the report was written and is not a brdfit report", target);
     char *aside = NULL;
     int aside_handle = -1;
-    if (rc == BF_OK)
-        rc = swap_in(tmp, target, had, &aside, &aside_handle, err);
+    if (rc == BF_OK && (rc = swap_in(tmp, target, had, &aside, &aside_handle, err)) == BF_OK)
+        out_sync_folder(target);
     if (rc != BF_OK || had == 1)
         remove_tree(tmp); /* the failed report, or the old one exchanged out */
     if (rc != BF_OK)

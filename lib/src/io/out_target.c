@@ -2,6 +2,7 @@
 #include "io/out_target.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +27,19 @@ char *out_dirname(const char *path)
         d[n] = '\0';
     }
     return d;
+}
+
+void out_sync_folder(const char *path)
+{
+    char *dir = out_dirname(path);
+    int fd = dir ? open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
+    if (fd >= 0) {
+        if (fsync(fd) != 0) {
+            /* ignored, see above */
+        }
+        close(fd);
+    }
+    free(dir);
 }
 
 /* A link in /proc (/proc/self/fd/N, which /dev/stdout and /dev/fd/N lead to) names an

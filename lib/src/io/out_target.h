@@ -34,6 +34,11 @@ void out_target_free(out_target *t);
  * path on failure. */
 int out_writable(const out_target *t, const char *path, bf_error *err);
 
+/* After a rename into place: the folder holding path is synced so that the new entry
+ * reaches the disk too (best effort: some file systems cannot sync a folder, and the
+ * file itself is synced already). */
+void out_sync_folder(const char *path);
+
 /* The folder part of path ("." when it has none) into a malloc'd string; NULL when out
  * of memory. */
 char *out_dirname(const char *path);

@@ -38,7 +38,9 @@ static ssize_t sink_write(void *cookie, const char *buf, size_t n)
         if (w <= 0) {
             if (!k->err)
                 k->err = w < 0 ? errno : EIO;
-            return -1; /* stdio marks the stream in error */
+            /* Short: stdio marks the stream in error. Never negative (fopencookie(3):
+             * glibc would take -1 as a huge count and read past the caller's buffer). */
+            return (ssize_t)done;
         }
         done += (size_t)w;
     }
@@ -133,21 +135,6 @@ int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
     return BF_OK;
 }
 
-/* After the rename: the folder's entry reaches the disk too (best effort: some file
- * systems cannot sync a folder, and the file itself is already safe). */
-static void sync_folder(const char *file)
-{
-    char *dir = out_dirname(file);
-    int fd = dir ? open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
-    if (fd >= 0) {
-        if (fsync(fd) != 0) {
-            /* ignored, see above */
-        }
-        close(fd);
-    }
-    free(dir);
-}
-
 int bf_outfile_commit(bf_outfile *o, bf_error *err)
 {
     if (!o->sink) {
@@ -175,7 +162,7 @@ int bf_outfile_commit(bf_outfile *o, bf_error *err)
         if (e)
             unlink(o->tmp);
         else
-            sync_folder(o->target);
+            out_sync_folder(o->target);
         bf_temp_forget(o->handle);
     }
     int rc = e ? bf_fail(err, BF_ERR_IO, "%s: %s: %s", o->path, what, strerror(e)) : BF_OK;
