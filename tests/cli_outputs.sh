@@ -101,6 +101,7 @@ nofolder="cannot write in the folder /nonexistent: No such file or directory"
 unwritable "fit -o missing folder" "$N.json: $nofolder" "$BRDFIT" fit s.csv -m lambert -o $N.json
 unwritable "select -o missing folder" "$N.json: $nofolder" "$BRDFIT" select s.csv -m lambert -o $N.json
 unwritable "compare --csv missing folder" "$N.csv: $nofolder" "$BRDFIT" compare s.csv -m lambert --csv $N.csv
+unwritable "compare --html missing folder" "$N: $nofolder" "$BRDFIT" compare s.csv -m lambert --html $N
 unwritable "tradeoff --plot missing folder" "$N.png: $nofolder" "$BRDFIT" tradeoff s.csv -m lambert --plot $N.png
 unwritable "regress --junit missing folder" "$N.xml: $nofolder" "$BRDFIT" regress base.json --junit $N.xml
 unwritable "render missing folder" "$N.png: $nofolder" "$BRDFIT" render --params P.json -o $N.png
@@ -122,6 +123,8 @@ unwritable "fit -o read-only folder" "ro/x.json: $denied" as_user "$BRDFIT" fit 
 unwritable "fit -o over a file in a read-only folder" "ro/old.json: $denied" as_user "$BRDFIT" fit s.csv -m lambert \
   -o ro/old.json
 unwritable "render -o read-only folder" "ro/x.png: $denied" as_user "$BRDFIT" render --params P.json -o ro/x.png
+unwritable "compare --html in a read-only folder" "ro/rep: $denied" as_user "$BRDFIT" compare s.csv -m lambert \
+  --html ro/rep
 unwritable "regress --update in a read-only folder" "ro/base.json: $denied" as_user "$BRDFIT" regress ro/base.json \
   --update
 [ "$(cat ro/old.json)" = old ] && [ "$(ls ro | tr '\n' ' ')" = "base.json old.json " ] && ok ||
@@ -212,6 +215,7 @@ no_temporaries && ok || bad "temporaries left: $(find "$tmp" -name '*.tmp.*')"
 # --- a full disk (ENOSPC) and a read-only file system, on a tmpfs -----------------------------
 mkdir -p probe
 if [ "$(id -u)" = 0 ] && unshare -m sh -c "mount -t tmpfs -o size=4k tmpfs probe" 2>/dev/null; then
+  "$SYNTH" --params P.json --pattern merl -o merl.binary || bad "brdfit-synth --pattern merl failed"
   if unshare -m bash "$HERE/outputs_full_disk.sh" "$BRDFIT" "$tmp" >full.out 2>&1; then
     ok
   else

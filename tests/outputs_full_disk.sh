@@ -2,10 +2,10 @@
 # Run by cli_outputs.sh inside a private mount namespace (unshare -m), as root: mounts a
 # 256 kB tmpfs on FOLDER/full, puts good outputs there, fills it, and checks that every
 # kind of output (result JSON, PNG and EXR images, CSV, a baseline on --update, JUnit
-# XML, an HTML report) fails with one line naming ENOSPC, exit 1, the old file whole and
+# XML, an HTML report, a MERL table) fails with one line naming ENOSPC, exit 1, the old file whole and
 # no temporary left; then remounts it read-only and checks EROFS is found before any
 # fit. Prints FAIL lines and "N passed, M failed"; exit 0 only when all passed.
-#   outputs_full_disk.sh BRDFIT FOLDER   (FOLDER holds s.csv, P.json, D.csv)
+#   outputs_full_disk.sh BRDFIT FOLDER   (FOLDER holds s.csv, P.json, D.csv, merl.binary)
 set -u
 BRDFIT=$1
 cd "$2" || exit 1
@@ -61,6 +61,7 @@ no_space "convert csv" c.csv "$BRDFIT" convert s.csv "$full/c.csv"
 no_space "eval -o" e.csv "$BRDFIT" eval --params P.json --dirs D.csv -o "$full/e.csv"
 no_space "regress --update" base.json "$BRDFIT" regress "$full/base.json" --update
 no_space "regress --junit" j.xml "$BRDFIT" regress "$full/base.json" --junit "$full/j.xml"
+no_space "convert merl" m.binary "$BRDFIT" convert merl.binary "$full/m.binary" --max-theta 30
 no_space "compare --html" rep "$BRDFIT" compare s.csv -m lambert,walter --quiet --html "$full/rep"
 
 # --- a read-only file system: found before the fit, nothing printed, exit 1 -------------
