@@ -69,3 +69,14 @@ int args_size(const char *s, int lo, int hi, int *w, int *h)
     *h = (int)b;
     return 1;
 }
+
+int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
+                       int noutputs)
+{
+    bf_error err;
+    int rc = bf_outputs_check(inputs, ninputs, outputs, noutputs, &err);
+    if (rc == BF_OK)
+        return 0;
+    fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    return rc == BF_ERR_ARG ? 2 : 1;
+}

@@ -4,6 +4,8 @@
 
 #include <stddef.h>
 
+#include "brdfit/io.h"
+
 /* argv[*i] is an option the shared parsers did not take: when it is one of the n names
  * in valued, returns its value and advances *i past it; otherwise NULL after printing
  * "CMD: unknown option 'X' (see CMD --help)" or "CMD: X needs a value" (bad usage). */
@@ -16,5 +18,12 @@ int args_int(const char *s, long lo, long hi, long *out);
 int args_number(const char *s, double lo, double hi, double *out);
 /* An image size "N" (square) or "WxH", each side an integer in [lo, hi]. */
 int args_size(const char *s, int lo, int hi, int *w, int *h);
+/* A command's outputs checked before any work (bf_outputs_check: empty names, an output
+ * that is an input or another output under any name, unwritable folders). NULL paths
+ * are skipped. Returns 0 when they pass; otherwise the exit status after printing
+ * "CMD: problem": 2 for bad usage (an empty name, an output that is the same file as an
+ * input or as another output), 1 for an output that cannot be written. */
+int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
+                       int noutputs);
 
 #endif

@@ -31,6 +31,9 @@
  *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
  *    any fit: an existing DIR that is neither empty nor a previous report is refused
  *    (exit 1) rather than replaced. The report is written after the summary is printed.
+ *  - --json and --csv are checked before any data is read (args_check_outputs): the same
+ *    file as a data file, the scene or each other, under any name, is refused (exit 2);
+ *    an unwritable one fails (exit 1) before any fit.
  *  - --scene FILE (a data option): every fit and every error in the ranking is over the
  *    scene's samples with their scene weights (fit.weighted_metrics), so the selection
  *    follows the directions the scene uses; the summary names the scene.
@@ -262,6 +265,7 @@ int cmd_compare(int argc, char **argv)
     bf_samples **samples = NULL;
     bf_fit_result *results = NULL;
     unsigned char *have = NULL;
+    bf_path_use *inputs = NULL;
     bf_error err;
     if (!data) {
         fprintf(stderr, "%s: out of memory\n", cmd);
@@ -346,10 +350,6 @@ int cmd_compare(int argc, char **argv)
                 ndata == 0 ? "at least one data file is required" : "-m MODEL,...|all is required");
         goto done;
     }
-    if (json_path && csv_path && !strcmp(json_path, csv_path)) {
-        fprintf(stderr, "%s: --json and --csv name the same file '%s'\n", cmd, json_path);
-        goto done;
-    }
     /* A folder the report may not replace is refused before any fit runs. */
     if (html_dir && bf_compare_html_check(html_dir, &err) != BF_OK) {
         fprintf(stderr, "%s: --html %s\n", cmd, err.msg);
@@ -366,6 +366,18 @@ int cmd_compare(int argc, char **argv)
     if (jobs > nmodels * ndata)
         jobs = nmodels * ndata;
     fopt.fit.solver.threads = fopt.fit.solver.threads / jobs > 1 ? fopt.fit.solver.threads / jobs : 1;
+    /* The outputs, before any data is read: never over an input, writable. */
+    if (!(inputs = calloc((size_t)ndata + 1, sizeof *inputs))) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        status = 1;
+        goto done;
+    }
+    for (int i = 0; i < ndata; i++)
+        inputs[i] = (bf_path_use){"data file", data[i]};
+    inputs[ndata] = (bf_path_use){"--scene file", dopt.scene};
+    const bf_path_use out[] = {{"--json", json_path}, {"--csv", csv_path}};
+    if ((status = args_check_outputs(cmd, inputs, ndata + 1, out, 2)) != 0)
+        goto done;
 
     status = 1;
     if (bf_compare_init(&cmp, ndata, data, nmodels, (const char *const *)specs, &err) != BF_OK) {
@@ -476,5 +488,6 @@ done:
     for (int k = 0; k < nmodels; k++)
         free(specs[k]);
     free(data);
+    free(inputs);
     return status;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "brdfit/samples.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 
@@ -56,6 +57,11 @@ int cmd_convert(int argc, char **argv)
         fprintf(stderr, "brdfit convert: %s: cannot tell the output format (use .csv, .binary or --to)\n", paths[1]);
         return 2;
     }
+    /* Never over the input (under any name), and a writable output before reading. */
+    const bf_path_use in[] = {{"input", paths[0]}, {"--scene file", opt.scene}}, out[] = {{"output", paths[1]}};
+    int bad = args_check_outputs("brdfit convert", in, 2, out, 1);
+    if (bad)
+        return bad;
     /* A MERL table written back keeps the bytes of the cells it does not change. */
     opt.read.keep_origin = to == BF_FORMAT_MERL;
     bf_prep_report rep;

@@ -7,6 +7,7 @@
 
 #include "brdfit/io.h"
 #include "brdfit/model.h"
+#include "args.h"
 #include "commands.h"
 
 static const char *const angle_cols[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
@@ -29,7 +30,7 @@ static void channel_name(int C, int c, char *buf, size_t size)
         snprintf(buf, size, "c%d", c);
 }
 
-static int write_table(FILE *fp, const bf_csv *t, const int *col, int C, const double *v)
+static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const double *v)
 {
     char buf[40];
     fprintf(fp, "theta_i,phi_i,theta_o,phi_o");
@@ -45,7 +46,6 @@ static int write_table(FILE *fp, const bf_csv *t, const int *col, int C, const d
             fprintf(fp, ",%s", bf_format_double(v[r * (size_t)C + (size_t)c], buf, sizeof buf));
         fputc('\n', fp);
     }
-    return ferror(fp) ? -1 : 0;
 }
 
 int cmd_eval(int argc, char **argv)
@@ -68,6 +68,10 @@ int cmd_eval(int argc, char **argv)
         fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
         return 2;
     }
+    const bf_path_use in[] = {{"--params file", params_path}, {"--dirs file", dirs_path}}, outs[] = {{"-o", out_path}};
+    int bad = args_check_outputs("brdfit eval", in, 2, outs, 1);
+    if (bad)
+        return bad;
 
     bf_error err;
     bf_model *m = NULL;
@@ -112,12 +116,8 @@ int cmd_eval(int argc, char **argv)
         fprintf(stderr, "brdfit eval: %s\n", err.msg);
         goto done;
     }
-    if (write_table(out.fp, t, col, C, values) != 0) {
-        bf_outfile_abort(&out);
-        fprintf(stderr, "brdfit eval: %s: write error\n", out_path ? out_path : "standard output");
-        goto done;
-    }
-    if (bf_outfile_commit(&out, &err) != BF_OK) {
+    write_table(out.fp, t, col, C, values);
+    if (bf_outfile_commit(&out, &err) != BF_OK) { /* checks every write */
         fprintf(stderr, "brdfit eval: %s\n", err.msg);
         goto done;
     }

@@ -17,6 +17,9 @@
  *  - --accuracy fast|balanced|best is a bundle of options (fit_options.c); options the
  *    user gives win whatever their order. The fast preset's subsample reaches the data
  *    options here, after parsing, and only when no --subsample was given.
+ *  - -o is checked before the data is read (args_check_outputs): the same file as the
+ *    data or the scene under any name is refused (exit 2), an unwritable one fails
+ *    (exit 1) before any fit.
  *  - Exit: 0 when every fit is ok; 1 for bad data, a failed fit or an unwritable output;
  *    2 for bad usage (options, model specs, parameter names in --fix/--bound). */
 #include <errno.h>
@@ -145,6 +148,10 @@ int cmd_fit(int argc, char **argv)
     if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
         goto done;
     fit_options_finish(&fopt, &dopt);
+    /* And the output, before the data is read and the fits run. */
+    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}}, out[] = {{"-o", out_path}};
+    if ((status = args_check_outputs(cmd, in, 2, out, 1)) != 0)
+        goto done;
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

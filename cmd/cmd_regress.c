@@ -25,6 +25,7 @@
 #include "brdfit/fit.h"
 #include "brdfit/regress.h"
 #include "brdfit/scene.h"
+#include "args.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -184,6 +185,33 @@ static int run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_result 
     return rc;
 }
 
+/* The outputs before any fit: the JUnit report never over the baseline or a case's data
+ * or scene (under any name), and both it and, for --update, the baseline writable.
+ * 0, or the exit status after a one-line error. */
+static int check_outputs(const bf_regress_baseline *b, const case_run *runs, const char *path, const char *junit,
+                         int update)
+{
+    bf_path_use *in = calloc(2 * (size_t)b->ncases + 1, sizeof *in);
+    if (!in) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 1;
+    }
+    int nin = 0;
+    in[nin++] = (bf_path_use){"baseline", path};
+    for (int c = 0; c < b->ncases; c++) {
+        in[nin++] = (bf_path_use){"data file", b->cases[c].data_path};
+        in[nin++] = (bf_path_use){"--scene file", runs[c].dopt.scene};
+    }
+    /* --update rewrites the baseline in place, as intended: it is an input, and checked
+     * for writing on its own. */
+    const bf_path_use out[] = {{"--junit", junit}, {"--update: the baseline", update ? path : NULL}};
+    int st = args_check_outputs(cmd, in, nin, out, 1);
+    if (st == 0)
+        st = args_check_outputs(cmd, NULL, 0, out + 1, 1);
+    free(in);
+    return st;
+}
+
 static void print_lines(char *const *lines, int n)
 {
     for (int i = 0; i < n; i++)
@@ -262,6 +290,8 @@ int cmd_regress(int argc, char **argv)
         if (prepare(b, c, &runs[c]) != 0)
             goto done;
     }
+    if ((status = check_outputs(b, runs, path, junit, update)) != 0)
+        goto done;
 
     status = 1;
     int passed = 0, failed = 0, errors = 0, changed = 0;

@@ -211,6 +211,11 @@ int cmd_render(int argc, char **argv)
         lights[nlights++] = (bf_dir){45.0, 0.0};
     if (!image_fits(width, height))
         return 2;
+    const bf_path_use in[] = {{"--params file", params}, {"--data file", data}, {"--scene file", dopt.scene}},
+                      out[] = {{"-o", out_path}};
+    int bad = args_check_outputs(cmd, in, 3, out, 1);
+    if (bad)
+        return bad;
 
     bf_error err;
     bf_model *m = NULL;

@@ -202,10 +202,6 @@ int cmd_select(int argc, char **argv)
         fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
         goto done;
     }
-    if (json_path && out_path && !strcmp(json_path, out_path)) {
-        fprintf(stderr, "%s: --json and -o name the same file '%s'\n", cmd, json_path);
-        goto done;
-    }
     if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
         goto done;
     /* Model specs are checked before any data is read. */
@@ -214,6 +210,10 @@ int cmd_select(int argc, char **argv)
     /* With a scene, error is reported over the scene's directions; --accuracy fast's
      * subsample is drawn inside the scene. */
     fit_options_finish(&fopt, &dopt);
+    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}},
+                      out[] = {{"--json", json_path}, {"-o", out_path}};
+    if ((status = args_check_outputs(cmd, in, 2, out, 2)) != 0)
+        goto done;
 
     status = 1;
     if (!(s = data_options_load(&dopt, data, NULL, cmd)))

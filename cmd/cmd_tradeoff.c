@@ -317,13 +317,6 @@ int cmd_tradeoff(int argc, char **argv)
         fprintf(stderr, "%s: --plot %s: the name must end in .png or .exr\n", cmd, plot_path);
         goto done;
     }
-    const char *outs[3] = {json_path, csv_path, plot_path};
-    for (int x = 0; x < 3; x++)
-        for (int y = x + 1; y < 3; y++)
-            if (outs[x] && outs[y] && !strcmp(outs[x], outs[y])) {
-                fprintf(stderr, "%s: two outputs name the same file '%s'\n", cmd, outs[x]);
-                goto done;
-            }
     if (plot_path && !strcmp(plot_path, "-")) {
         fprintf(stderr, "%s: --plot needs a file name\n", cmd);
         goto done;
@@ -395,6 +388,10 @@ int cmd_tradeoff(int argc, char **argv)
                 BF_TRADEOFF_MAX_ROWS);
         goto done;
     }
+    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}},
+                      out[] = {{"--json", json_path}, {"--csv", csv_path}, {"--plot", plot_path}};
+    if ((status = args_check_outputs(cmd, in, 2, out, 3)) != 0)
+        goto done;
     status = 1;
     if (!(all = data_options_load(&dopt, data, NULL, cmd)))
         goto done;

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "brdfit/io.h"
 #include "commands.h"
 
 static const struct {
@@ -30,6 +31,8 @@ static void usage(FILE *out)
 
 int main(int argc, char **argv)
 {
+    /* A run ended by a signal (Ctrl-C, kill, a file size limit) leaves no temporary. */
+    bf_remove_temporaries_on_signals();
     if (argc < 2) {
         usage(stderr);
         return 2;

@@ -229,6 +229,8 @@ int main(int argc, char **argv)
         {"--step", offsetof(cli, step)},
     };
     cli a = {0};
+    /* A run ended by a signal leaves no temporary. */
+    bf_remove_temporaries_on_signals();
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
@@ -265,6 +267,12 @@ int main(int argc, char **argv)
         return rc;
 
     bf_error err;
+    /* Never over the parameter file, and a writable output before any work. */
+    const bf_path_use in[] = {{"--params file", a.params}}, out[] = {{"-o", a.out}};
+    if (bf_outputs_check(in, 1, out, 1, &err) != BF_OK) {
+        fprintf(stderr, PROG ": %s\n", err.msg);
+        return err.code == BF_ERR_ARG ? 2 : 1;
+    }
     bf_model *m = NULL;
     double *x = NULL;
     bf_samples *s = NULL;

@@ -134,7 +134,7 @@ expect_error "malformed params" 1 "malformed.json:3: malformed JSON" "$O" --para
 printf '{"model":"lambert",\n"params":{"rho_d":1.5}}' > "$tmp/range.json"
 expect_error "params out of bounds" 1 "range.json:2: parameter rho_d = 1.5 is outside" "$O" --params "$tmp/range.json" --pattern uniform --count 5
 expect_error "merl from one channel" 1 "mono.json: pattern merl needs a 3-channel (RGB) model, the file gives 1" "$B" --params "$tmp/mono.json" --pattern merl
-expect_error "unwritable output" 1 "no/such/dir/o.csv: cannot create" "$tmp/no/such/dir/o.csv" --params "$P" --pattern uniform --count 5
+expect_error "unwritable output" 1 "no/such/dir/o.csv: cannot write in the folder" "$tmp/no/such/dir/o.csv" --params "$P" --pattern uniform --count 5
 "$SYNTH" --help | grep -q '^usage: brdfit-synth' && ok || bad "--help"
 
 finish

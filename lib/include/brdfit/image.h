@@ -28,8 +28,8 @@ int bf_image_format_of(const char *path);
  * - .exr: the values as they are (linear, scene-referred), 32-bit float.
  * - .png: the values are display-referred (tone-mapped by the caller, see render.h's
  *   bf_tonemap): clamped to [0, 1] (NaN -> 0), sRGB-encoded, rounded to 8 bits.
- * The file is written under a temporary name beside the target and renamed into place,
- * so a failed write leaves no file. Errors: BF_ERR_ARG (unknown extension, bad size),
+ * Encoded in memory, then written as bf_outfile writes (io.h): a temporary beside the
+ * target renamed into place, so a failed write leaves no file and the old one whole. Errors: BF_ERR_ARG (unknown extension, bad size),
  * BF_ERR_IO naming the file. */
 int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
 

@@ -34,16 +34,61 @@ int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
  * bf_model_nfree) belong to the caller. */
 int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 
-/* ---- Output written to a temporary file beside the target and renamed into place by
- * bf_outfile_commit, so a failed run leaves no partial file. path NULL or "-": stdout. */
+/* ---- Outputs that survive failures. bf_outfile_open resolves path: a regular file
+ * (symbolic links followed: the file a link points to is replaced, the link stays) is
+ * written to a new temporary "<file>.tmp.XXXXXX" beside it; bf_outfile_commit checks
+ * every write (the first error's cause is kept), fsyncs, closes and renames it into
+ * place, so the old file stays whole until the new one is complete, keeping its mode
+ * (and owner where allowed; a new file gets 0666 less the umask). Anything that is not
+ * a regular file (a device such as /dev/null, a FIFO, /dev/stdout) is opened and
+ * written through, never replaced; what a failed write-through wrote cannot be taken
+ * back. A folder, an empty name, a missing or unwritable folder or an existing file
+ * without write permission fail at open (BF_ERR_ARG for the empty name, else
+ * BF_ERR_IO, naming path). path NULL or "-": standard output. Temporaries are
+ * registered so that bf_remove_temporaries_on_signals can remove them. */
+struct bf_out_sink;
 typedef struct bf_outfile {
     FILE *fp;
-    char *path, *tmp; /* NULL for stdout */
+    char *path;               /* as given (messages); NULL for standard output */
+    char *target;             /* the file replaced, links followed; NULL: written through */
+    char *tmp;                /* the temporary beside target */
+    struct bf_out_sink *sink; /* the descriptor under fp and the first write error */
+    int handle;               /* the temporary's registration */
 } bf_outfile;
 
 int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
 int bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
 void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temporary */
+
+/* Whether bf_outfile_open(path) could write (nothing is created: access() on the
+ * folder and the file), so a command can fail before long work. */
+int bf_outfile_check(const char *path, bf_error *err);
+
+/* One file a command reads or writes, with the option or role that names it in
+ * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped). */
+typedef struct bf_path_use {
+    const char *what;
+    const char *path;
+} bf_path_use;
+
+/* The checks a command makes on its outputs before any work:
+ * - an empty name is refused (BF_ERR_ARG), and so is "-" (standard output) twice;
+ * - an output that is the same regular file as an input or as another output (same
+ *   device and inode, whatever the names: ./x, a hard link, a symbolic link; for files
+ *   not there yet, the same name in the same folder) is refused (BF_ERR_ARG, naming
+ *   both). Devices, FIFOs and terminals may be shared: /dev/null as two outputs, or as
+ *   input and output, destroys nothing;
+ * - every output must be writable (bf_outfile_check; BF_ERR_IO).
+ * The first problem found is returned, as one line in err. */
+int bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
+                     bf_error *err);
+
+/* Installs a handler for the signals that end a process by default (SIGHUP, SIGINT,
+ * SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM,
+ * SIGPROF) that removes every temporary file and report folder still being written,
+ * then ends the process by the signal's default action. Signals that are ignored or
+ * handled already are left alone. For a program's start, before any thread. */
+void bf_remove_temporaries_on_signals(void);
 
 /* Shortest decimal text that reads back as exactly v ("%.17g" at most). buf >= 32. */
 const char *bf_format_double(double v, char *buf, size_t size);

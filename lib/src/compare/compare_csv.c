@@ -131,9 +131,5 @@ int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err)
         }
     }
     free(cols);
-    if (ferror(fp)) {
-        bf_outfile_abort(&f);
-        return bf_fail(err, BF_ERR_IO, "%s: write failed", name);
-    }
-    return bf_outfile_commit(&f, err);
+    return bf_outfile_commit(&f, err); /* checks every write */
 }

@@ -2,8 +2,10 @@
  * links relative, so it opens from disk without a server.
  *
  * Decisions:
- *  - The folder is built under a temporary sibling (DIR.tmp-XXXXXX) and renamed into
- *    place at the end: a failed run leaves no report and no partial folder.
+ *  - The folder is built under a registered temporary sibling (DIR.tmp.XXXXXX, removed
+ *    by a fatal signal too), every file through bf_outfile (writes checked, synced),
+ *    and renamed into place at the end: a failed run leaves no report and no partial
+ *    folder, and an old report stays whole until the new one replaces it.
  *  - An existing DIR is replaced only when it holds BF_REPORT_MARKER (a previous report)
  *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
  *  - Pictures are small (spheres 160x160, slices 320x240, scatter plots 480x320) so a
@@ -14,12 +16,15 @@
  *    image: |log10(model / measured)|, mean over channels, black = equal, white = one
  *    decade or more, blue where the table has no valid value.
  *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
-#define _XOPEN_SOURCE 700
+#define _GNU_SOURCE /* renameat2 */
 #include "brdfit/compare.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <ftw.h>
 #include <math.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,7 +34,10 @@
 #include <dirent.h>
 
 #include "brdfit/image.h"
+#include "brdfit/io.h"
 #include "brdfit/render.h"
+#include "io/out_target.h"
+#include "io/temp_registry.h"
 
 enum { SPHERE = 160, SLICE_W = 320, SLICE_H = 240, PLOT_W = 480, PLOT_H = 320, HD = 160 };
 
@@ -442,7 +450,78 @@ int bf_compare_html_check(const char *dir, bf_error *err)
     if (replaceable(dir) == 0)
         return bf_fail(err, BF_ERR_IO, "%s: exists and is not a brdfit report (no %s): not replacing it", dir,
                        BF_REPORT_MARKER);
-    return BF_OK;
+    /* The report is built beside DIR and renamed there: the parent must take it. */
+    size_t len = strlen(dir);
+    while (len > 1 && dir[len - 1] == '/')
+        len--;
+    char *target = strndup(dir, len), *parent = target ? out_dirname(target) : NULL;
+    int rc = BF_OK;
+    if (!parent)
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", dir);
+    else if (access(parent, W_OK | X_OK) != 0)
+        rc = bf_fail(err, BF_ERR_IO, "%s: cannot write in the folder %s: %s", dir, parent, strerror(errno));
+    free(target);
+    free(parent);
+    return rc;
+}
+
+/* A report file (the marker, index.html) through bf_outfile: every write checked. */
+static int open_in(report *r, bf_outfile *o, const char *name)
+{
+    char path[4200];
+    if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
+        return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
+    return bf_outfile_open(o, path, r->err);
+}
+
+/* Puts the finished folder tmp at target. An old report there is exchanged with it in
+ * one step where the file system can (RENAME_EXCHANGE: the old one is then at tmp, still
+ * registered, and removed by the caller); otherwise it is moved aside to a registered
+ * temporary and the new one renamed in, with fatal signals held off between the two
+ * renames so that target is never left missing. *aside: where the old report went. */
+static int swap_in(const char *tmp, const char *target, int had, char **aside, int *aside_handle, bf_error *err)
+{
+    *aside = NULL;
+    if (had != 1)
+        return rename(tmp, target) == 0
+                   ? BF_OK
+                   : bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
+    if (renameat2(AT_FDCWD, tmp, AT_FDCWD, target, RENAME_EXCHANGE) == 0)
+        return BF_OK;
+    if (bf_temp_create(target, 1, 0700, aside, aside_handle) < 0)
+        return bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &old);
+    int rc = BF_OK;
+    if (rename(target, *aside) != 0)
+        rc = bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
+    else if (rename(tmp, target) != 0) {
+        rc = bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
+        if (rename(*aside, target) != 0) {
+            /* The old report stays at *aside; the message above stands. */
+        }
+    }
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (rc != BF_OK) {
+        rmdir(*aside);
+        bf_temp_forget(*aside_handle);
+        free(*aside);
+        *aside = NULL;
+    }
+    return rc;
+}
+
+/* A message about a file in the folder being built names it as the report will have it:
+ * "DIR/index.html", not "DIR.tmp.XXXXXX/index.html". */
+static void name_target(bf_error *err, const char *tmp, const char *target)
+{
+    char *at = err ? strstr(err->msg, tmp) : NULL;
+    if (!at)
+        return;
+    char rest[sizeof err->msg];
+    snprintf(rest, sizeof rest, "%s", at + strlen(tmp));
+    snprintf(at, sizeof err->msg - (size_t)(at - err->msg), "%s%s", target, rest);
 }
 
 int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
@@ -452,7 +531,7 @@ int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const
     int rc = bf_compare_html_check(dir, err);
     if (rc != BF_OK)
         return rc;
-    char target[4000], tmp[4096], old[4096];
+    char target[4000];
     size_t len = strlen(dir);
     while (len > 1 && dir[len - 1] == '/')
         len--;
@@ -460,62 +539,52 @@ int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const
         return bf_fail(err, BF_ERR_ARG, "%s: path too long", dir);
     memcpy(target, dir, len);
     target[len] = '\0';
-    snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", target);
-    if (!mkdtemp(tmp))
+    /* Registered, so a fatal signal removes it with whatever it holds. */
+    char *tmp = NULL;
+    int handle = -1;
+    if (bf_temp_create(target, 1, 0777, &tmp, &handle) < 0)
         return bf_fail(err, BF_ERR_IO, "%s: cannot create the report folder: %s", target, strerror(errno));
-    chmod(tmp, 0755); /* mkdtemp makes it private; a report is meant to be shared */
 
     report r = {c, samples, tmp, NULL, NULL, NULL, err};
     size_t big = 3 * (size_t)PLOT_W * PLOT_H; /* the largest picture; >= 2 half-diff images */
     r.buf = malloc(big * sizeof *r.buf);
     r.buf2 = malloc(3 * (size_t)HD * HD * sizeof *r.buf2);
-    char path[4200];
     if (!r.buf || !r.buf2)
         rc = bf_fail(err, BF_ERR_NOMEM, "report: out of memory");
-    if (rc == BF_OK) {
-        snprintf(path, sizeof path, "%s/%s", tmp, BF_REPORT_MARKER);
-        FILE *mk = fopen(path, "w");
-        if (!mk || fputs("brdfit compare report: this folder is replaced by the next report written here\n", mk) < 0)
-            rc = bf_fail(err, BF_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-        if (mk && fclose(mk) != 0 && rc == BF_OK)
-            rc = bf_fail(err, BF_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+    bf_outfile mk, index;
+    if (rc == BF_OK && (rc = open_in(&r, &mk, BF_REPORT_MARKER)) == BF_OK) {
+        fputs("brdfit compare report: this folder is replaced by the next report written here\n", mk.fp);
+        rc = bf_outfile_commit(&mk, err);
     }
-    if (rc == BF_OK) {
-        snprintf(path, sizeof path, "%s/index.html", tmp);
-        if (!(r.fp = fopen(path, "w")))
-            rc = bf_fail(err, BF_ERR_IO, "%s/index.html: cannot write: %s", target, strerror(errno));
-    }
-    if (rc == BF_OK)
+    if (rc == BF_OK && (rc = open_in(&r, &index, "index.html")) == BF_OK) {
+        r.fp = index.fp;
         rc = page(&r);
-    if (r.fp) {
-        int bad = ferror(r.fp);
-        if ((fclose(r.fp) != 0 || bad) && rc == BF_OK)
-            rc = bf_fail(err, BF_ERR_IO, "%s/index.html: cannot write", target);
+        if (rc == BF_OK)
+            rc = bf_outfile_commit(&index, err);
+        else
+            bf_outfile_abort(&index);
     }
     free(r.buf);
     free(r.buf2);
 
-    /* Into place: an old report is moved aside first and removed only once the new one is in. */
+    /* Into place; an old report is removed only once the new one is in. */
     int had = rc == BF_OK ? replaceable(target) : -1;
     if (rc == BF_OK && had == 0)
         rc = bf_fail(err, BF_ERR_IO, "%s: appeared while the report was written and is not a brdfit report", target);
-    if (rc == BF_OK && had == 1) {
-        snprintf(old, sizeof old, "%s.old-XXXXXX", target);
-        if (!mkdtemp(old) || rename(target, old) != 0) {
-            rc = bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
-            rmdir(old);
-        }
+    char *aside = NULL;
+    int aside_handle = -1;
+    if (rc == BF_OK && (rc = swap_in(tmp, target, had, &aside, &aside_handle, err)) == BF_OK)
+        out_sync_folder(target);
+    if (rc != BF_OK || had == 1)
+        remove_tree(tmp); /* the failed report, or the old one exchanged out */
+    if (rc != BF_OK)
+        name_target(err, tmp, target);
+    bf_temp_forget(handle);
+    free(tmp);
+    if (aside) {
+        remove_tree(aside);
+        bf_temp_forget(aside_handle);
+        free(aside);
     }
-    if (rc == BF_OK && rename(tmp, target) != 0) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
-        if (had == 1)
-            rename(old, target);
-    }
-    if (rc != BF_OK) {
-        remove_tree(tmp);
-        return rc;
-    }
-    if (had == 1)
-        remove_tree(old);
-    return BF_OK;
+    return rc;
 }

@@ -66,12 +66,9 @@ int bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err
     bf_outfile f;
     int rc = bf_outfile_open(&f, path, err);
     if (rc == BF_OK) {
-        if (fputs(text, f.fp) < 0 || fputc('\n', f.fp) == EOF) {
-            bf_outfile_abort(&f);
-            rc = bf_fail(err, BF_ERR_IO, "%s: write failed", name);
-        } else {
-            rc = bf_outfile_commit(&f, err);
-        }
+        fputs(text, f.fp);
+        fputc('\n', f.fp);
+        rc = bf_outfile_commit(&f, err); /* checks every write */
     }
     cJSON_free(text);
     return rc;

@@ -151,9 +151,5 @@ int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
             fprintf(o.fp, ",%s", bf_format_double(s->weight[i], buf, sizeof buf));
         fputc('\n', o.fp);
     }
-    if (ferror(o.fp)) {
-        bf_outfile_abort(&o);
-        return bf_fail(err, BF_ERR_IO, "%s: write error", path);
-    }
-    return bf_outfile_commit(&o, err);
+    return bf_outfile_commit(&o, err); /* checks every write */
 }

@@ -1,9 +1,11 @@
 /* image.h: what needs no OpenImageIO is done here, in C (the format from the name, the
  * argument checks, the sRGB encoding of PNG pixels), so that bad arguments fail without
- * loading anything; the file itself is written or read by the image module, loaded on
- * first use (image_plugin.c). */
+ * loading anything. The image module (loaded on first use, image_plugin.c) encodes
+ * images into memory and reads files; the library writes the bytes (bf_outfile), so a
+ * failed write is always seen and never replaces a good file. */
 #include "brdfit/image.h"
 
+#include "brdfit/io.h"
 #include "render/image_plugin.h"
 
 #include <math.h>
@@ -39,6 +41,18 @@ float bf_srgb_encode(float v)
     return v <= 0.0031308f ? 12.92f * v : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
 }
 
+/* The encoded bytes into path through bf_outfile: a temporary renamed into place with
+ * every write checked, or written through to a device. */
+static int write_bytes(const char *path, const unsigned char *data, size_t size, bf_error *err)
+{
+    bf_outfile o;
+    int rc = bf_outfile_open(&o, path, err);
+    if (rc != BF_OK)
+        return rc;
+    fwrite(data, 1, size, o.fp);
+    return bf_outfile_commit(&o, err); /* checks every write */
+}
+
 int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err)
 {
     int fmt = bf_image_format_of(path);
@@ -49,17 +63,23 @@ int bf_image_write_rgb(const char *path, int width, int height, const float *rgb
     const bf_image_plugin *plugin = bf_image_plugin_get(err);
     if (!plugin)
         return BF_ERR_IO;
-    if (fmt == 2)
-        return plugin->write_rgb(path, fmt, width, height, rgb, err);
-
-    size_t n = (size_t)width * (size_t)height * 3;
-    unsigned char *px = malloc(n);
-    if (!px)
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu pixels", path, n / 3);
-    for (size_t i = 0; i < n; i++)
-        px[i] = (unsigned char)lroundf(bf_srgb_encode(rgb[i]) * 255.0f);
-    int rc = plugin->write_rgb(path, fmt, width, height, px, err);
-    free(px);
+    unsigned char *px = NULL, *data = NULL;
+    size_t size = 0;
+    int rc;
+    if (fmt == 2) {
+        rc = plugin->encode_rgb(path, fmt, width, height, rgb, &data, &size, err);
+    } else {
+        size_t n = (size_t)width * (size_t)height * 3;
+        if (!(px = malloc(n)))
+            return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu pixels", path, n / 3);
+        for (size_t i = 0; i < n; i++)
+            px[i] = (unsigned char)lroundf(bf_srgb_encode(rgb[i]) * 255.0f);
+        rc = plugin->encode_rgb(path, fmt, width, height, px, &data, &size, err);
+        free(px);
+    }
+    if (rc == BF_OK)
+        rc = write_bytes(path, data, size, err);
+    free(data);
     return rc;
 }
 

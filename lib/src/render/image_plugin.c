@@ -68,9 +68,9 @@ static int load_from(const char *path)
         return 0;
     }
     bf_oiio_abi_fn abi = (bf_oiio_abi_fn)dlsym(h, "bf_oiio_abi");
-    plugin.write_rgb = (bf_oiio_write_rgb_fn)dlsym(h, "bf_oiio_write_rgb");
+    plugin.encode_rgb = (bf_oiio_encode_rgb_fn)dlsym(h, "bf_oiio_encode_rgb");
     plugin.read = (bf_oiio_read_fn)dlsym(h, "bf_oiio_read");
-    if (!abi || !plugin.write_rgb || !plugin.read) {
+    if (!abi || !plugin.encode_rgb || !plugin.read) {
         set_error("%s: missing entry points", path);
         dlclose(h);
         return 0;

@@ -8,6 +8,8 @@
 #ifndef BRDFIT_IMAGE_PLUGIN_H
 #define BRDFIT_IMAGE_PLUGIN_H
 
+#include <stddef.h>
+
 #include "brdfit/error.h"
 #include "brdfit/image.h"
 
@@ -16,19 +18,22 @@ extern "C" {
 #endif
 
 /* Bumped whenever an entry point's meaning or signature changes, so a stale installed
- * module is refused instead of called wrongly. */
-#define BF_IMAGE_PLUGIN_ABI 1
+ * module is refused instead of called wrongly. 2: images are encoded into memory and
+ * written by the library (bf_outfile), not by the module. */
+#define BF_IMAGE_PLUGIN_ABI 2
 
 /* "bf_oiio_abi": returns BF_IMAGE_PLUGIN_ABI as the module was built. */
 typedef int (*bf_oiio_abi_fn)(void);
 
-/* "bf_oiio_write_rgb": writes width*height RGB pixels to path, whose format fmt
- * (bf_image_format_of) the caller has checked along with the size:
- * - fmt 1 (.png): pixels are unsigned char codes, already sRGB-encoded;
- * - fmt 2 (.exr): pixels are linear floats, written as they are.
- * Through a temporary file beside path, renamed into place (no file on failure). */
-typedef int (*bf_oiio_write_rgb_fn)(const char *path, int fmt, int width, int height,
-                                    const void *pixels, bf_error *err);
+/* "bf_oiio_encode_rgb": encodes width*height RGB pixels as the file format fmt
+ * (bf_image_format_of) names, which the caller has checked along with the size:
+ * - fmt 1 (PNG): pixels are unsigned char codes, already sRGB-encoded;
+ * - fmt 2 (EXR): pixels are linear floats, written as they are.
+ * The file's bytes go to *data (malloc'd, the caller frees) and *size; no file is
+ * touched, so that the library alone writes files, with every write checked. name is
+ * for messages. */
+typedef int (*bf_oiio_encode_rgb_fn)(const char *name, int fmt, int width, int height, const void *pixels,
+                                     unsigned char **data, size_t *size, bf_error *err);
 
 /* "bf_oiio_read": bf_image_read's contract (img->pixels from malloc). */
 typedef int (*bf_oiio_read_fn)(const char *path, bf_image *img, bf_error *err);
@@ -36,7 +41,7 @@ typedef int (*bf_oiio_read_fn)(const char *path, bf_image *img, bf_error *err);
 /* The loaded module's entry points, or NULL with err set (BF_ERR_IO, one line) when it
  * cannot be loaded. Thread-safe; the first call loads, later calls reuse the outcome. */
 typedef struct bf_image_plugin {
-    bf_oiio_write_rgb_fn write_rgb;
+    bf_oiio_encode_rgb_fn encode_rgb;
     bf_oiio_read_fn read;
 } bf_image_plugin;
 

@@ -5,17 +5,16 @@
 // symbol (it is linked with --no-undefined): errors are written into the bf_error here.
 #include "render/image_plugin.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include <cerrno>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
-#include <unistd.h>
+#include <vector>
 
 #define BF_OIIO_EXPORT extern "C" __attribute__((visibility("default")))
 
@@ -57,56 +56,47 @@ BF_OIIO_EXPORT int bf_oiio_abi(void)
     return BF_IMAGE_PLUGIN_ABI;
 }
 
-BF_OIIO_EXPORT int bf_oiio_write_rgb(const char *path, int fmt, int width, int height, const void *pixels,
-                                     bf_error *err)
+BF_OIIO_EXPORT int bf_oiio_encode_rgb(const char *name, int fmt, int width, int height, const void *pixels,
+                                      unsigned char **data, size_t *size, bf_error *err)
 {
     // The library has checked the name and size and sRGB-encoded PNG pixels (image.c).
-    if (!path || (fmt != 1 && fmt != 2) || width <= 0 || height <= 0 || !pixels)
-        return fail(err, BF_ERR_ARG, "%s: bad image arguments", path ? path : "(null)");
-    std::string tmp;
+    *data = nullptr;
+    *size = 0;
+    if (!name || (fmt != 1 && fmt != 2) || width <= 0 || height <= 0 || !pixels)
+        return fail(err, BF_ERR_ARG, "%s: bad image arguments", name ? name : "(null)");
     try {
-        // The plugin is chosen from the target's extension; the pixels go to a temporary
-        // file beside it (same file system, so the rename is atomic).
-        auto out = ImageOutput::create(path);
+        // Encoded into memory through an IOProxy: OpenImageIO's PNG writer does not report
+        // a failed write (a full disk gave a truncated file and success), so the library
+        // writes the bytes itself, checking each write.
+        auto out = ImageOutput::create(fmt == 1 ? "png" : "exr");
         if (!out)
-            return fail(err, BF_ERR_IO, "%s: %s", path, one_line(OIIO::geterror()).c_str());
-        tmp = std::string(path) + ".tmpXXXXXX";
-        int fd = mkstemp(&tmp[0]);
-        if (fd < 0)
-            return fail(err, BF_ERR_IO, "%s: cannot create a temporary file beside it: %s", path,
-                        std::strerror(errno));
-        // mkstemp makes the file 0600; the image gets the mode a plain create would.
-        mode_t mask = umask(0);
-        umask(mask);
-        fchmod(fd, 0666 & ~mask);
-        close(fd);
-        bool ok;
+            return fail(err, BF_ERR_IO, "%s: %s", name, one_line(OIIO::geterror()).c_str());
+        if (!out->supports("ioproxy"))
+            return fail(err, BF_ERR_IO, "%s: this OpenImageIO cannot encode %s into memory", name,
+                        fmt == 1 ? "PNG" : "EXR");
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput vec(bytes);
+        void *proxy = &vec;
+        const TypeDesc type = fmt == 1 ? TypeDesc::UINT8 : TypeDesc::FLOAT;
+        ImageSpec spec(width, height, 3, type);
+        spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
         if (fmt == 1) {
-            ImageSpec spec(width, height, 3, TypeDesc::UINT8);
             spec.attribute("oiio:ColorSpace", "sRGB");
-            ok = out->open(tmp, spec) && out->write_image(TypeDesc::UINT8, pixels) && out->close();
         } else {
-            ImageSpec spec(width, height, 3, TypeDesc::FLOAT);
             spec.attribute("oiio:ColorSpace", "Linear");
             spec.attribute("compression", "zip");
-            ok = out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, pixels) && out->close();
         }
-        if (!ok) {
-            std::string msg = one_line(out->geterror());
-            out.reset();
-            std::remove(tmp.c_str());
-            return fail(err, BF_ERR_IO, "%s: %s", path, msg.c_str());
-        }
-        out.reset();
-        if (std::rename(tmp.c_str(), path) != 0) {
-            int e = errno;
-            std::remove(tmp.c_str());
-            return fail(err, BF_ERR_IO, "%s: cannot rename into place: %s", path, std::strerror(e));
-        }
+        if (!(out->open(name, spec) && out->write_image(type, pixels) && out->close()))
+            return fail(err, BF_ERR_IO, "%s: %s", name, one_line(out->geterror()).c_str());
+        // malloc, not new: the library frees it, with the same C library.
+        unsigned char *copy = static_cast<unsigned char *>(std::malloc(bytes.size() ? bytes.size() : 1));
+        if (!copy)
+            return fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu bytes", name, bytes.size());
+        std::memcpy(copy, bytes.data(), bytes.size());
+        *data = copy;
+        *size = bytes.size();
     } catch (const std::exception &e) {
-        if (!tmp.empty())
-            std::remove(tmp.c_str());
-        return fail(err, BF_ERR_NOMEM, "%s: %s", path, e.what());
+        return fail(err, BF_ERR_NOMEM, "%s: %s", name, e.what());
     }
     return BF_OK;
 }

@@ -93,7 +93,6 @@ static void put_metrics(FILE *fp, const bf_metrics *m, int ran)
 
 int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
 {
-    const char *name = path ? path : "-";
     bf_outfile f;
     int rc = bf_outfile_open(&f, path, err);
     if (rc != BF_OK)
@@ -123,11 +122,7 @@ int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
             bf_csv_put_number(fp, r->ran ? r->seconds : NAN);
         fputc('\n', fp);
     }
-    if (ferror(fp)) {
-        bf_outfile_abort(&f);
-        return bf_fail(err, BF_ERR_IO, "%s: write failed", name);
-    }
-    return bf_outfile_commit(&f, err);
+    return bf_outfile_commit(&f, err); /* checks every write */
 }
 
 int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, int height, bf_scatter_range *range,
