@@ -23,6 +23,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -295,9 +296,9 @@ static int header_line(header *h, const char *path, size_t lineno, const char *l
                                    path, lineno, val);
             if (h->in < 0)
                 return bf_fail(err, BF_ERR_PARSE,
-                               "%s:%zu: unknown #PARAM_IN '%s' (known: COS_TH, COS_TH_TD, RUSIN_TH_TD, "
-                               "RUSIN_TH_TD_PD, RUSIN_TH_PH_TD_PD, RUSIN_VH, ISOTROPIC_TV_TL_DPHI, "
-                               "ISOTROPIC_TL_TV_PROJ_DPHI, SPHERICAL_TL_PL_TV_PV, CARTESIAN)",
+                               "%s:%zu: unknown #PARAM_IN '%s' (known: COS_TH[_TD], RUSIN_TH_TD[_PD], "
+                               "RUSIN_TH_PH_TD_PD, RUSIN_VH, ISOTROPIC_TV_TL_DPHI, ISOTROPIC_TL_TV_PROJ_DPHI, "
+                               "SPHERICAL_TL_PL_TV_PV, CARTESIAN)",
                                path, lineno, val);
             h->in_line = lineno;
         } else {

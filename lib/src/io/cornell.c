@@ -164,14 +164,13 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
     if (body % record_len) {
         if (misaligned_line)
             rc = bf_fail(err, BF_ERR_PARSE,
-                         "%s:%zu: records are theta_i phi_i theta_s phi_s and %zu values (%zu numbers), one per "
-                         "line until here, where a record starts mid-line: the record before has a number too "
-                         "many or too few (the file ends %zu numbers into a record)",
-                         path, misaligned_line, nwl, record_len, body % record_len);
+                         "%s:%zu: a record starts mid-line: the one before has a number too many or too few "
+                         "(records are theta_i phi_i theta_s phi_s and %zu values)",
+                         path, misaligned_line, nwl);
         else
             rc = bf_fail(err, BF_ERR_PARSE,
                          "%s:%zu: incomplete record %zu: records are theta_i phi_i theta_s phi_s and %zu values "
-                         "(%zu numbers), the last has %zu; the file is truncated or a record is malformed",
+                         "(%zu numbers), the last has %zu (truncated or malformed)",
                          path, record_line, n + 1, nwl, record_len, body % record_len);
         goto done;
     }
