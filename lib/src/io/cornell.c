@@ -102,11 +102,11 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
                                  lineno, tlen, tok);
                     goto done;
                 }
-                if (x != floor(x) || x < 1.0 || x > 10000.0) {
+                if (x != floor(x) || x < 1.0 || x > BF_MAX_CHANNELS) {
                     rc = bf_fail(err, BF_ERR_PARSE,
                                  "%s:%zu: the file must start with the wavelength count (an integer from 1 "
-                                 "to 10000), found %.*s",
-                                 path, lineno, tlen > 40 ? 40 : tlen, tok);
+                                 "to %d), found %.*s",
+                                 path, lineno, BF_MAX_CHANNELS, tlen > 40 ? 40 : tlen, tok);
                     goto done;
                 }
                 nwl = (size_t)x;
@@ -140,6 +140,11 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
                                  tlen, tok);
                     goto done;
                 }
+                /* Within the slack, on the bound: a theta of 3.141593 (pi rounded up) is pi,
+                 * so the samples hold no angle the other readers refuse (CSV, when
+                 * converted: theta in [0, 180] degrees). */
+                if (pos == 0 || pos == 2)
+                    x = x < 0.0 ? 0.0 : x > M_PI ? M_PI : x;
             }
             if (!push(&num, x)) {
                 rc = bf_fail(err, BF_ERR_NOMEM, "%s:%zu: out of memory", path, lineno);
