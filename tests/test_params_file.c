@@ -10,6 +10,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/fit.h"
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "support.h"
@@ -90,11 +91,49 @@ static void test_model_spec(void **state)
                  BF_ERR_PARSE, ":2: \"channels\" given twice");
 }
 
+/* Found by fuzz/fuzz_params.c: a result file lost the last bit of alpha =
+ * 0.88888888888888884, as of about one value in five, since cJSON prints 15 digits
+ * when they read back within a relative DBL_EPSILON. Values now read back exactly. */
+static void test_result_file_exact(void **state)
+{
+    (void)state;
+    enum { C = 1000 };
+    bf_fit_result r;
+    memset(&r, 0, sizeof r);
+    r.model = ts_model("lambert", C);
+    double x[C], stderr_[C];
+    unsigned char fixed[C] = {0};
+    ts_rng rng = {42};
+    for (int c = 0; c < C; c++) {
+        x[c] = ts_uniform(&rng);
+        stderr_[c] = 1e-3 * ts_uniform(&rng);
+    }
+    x[0] = 0.88888888888888884;
+    r.x = x;
+    r.stderr_ = stderr_;
+    r.fixed = fixed;
+    r.ok = 1;
+    bf_error err;
+    const char *path = ts_tmp_path("result.json");
+    assert_int_equal(bf_fit_write_json(&r, "data.csv", path, &err), BF_OK);
+    bf_model *m = NULL;
+    double *back = NULL;
+    if (bf_params_read(path, &m, &back, &err) != BF_OK)
+        fail_msg("%s", err.msg);
+    for (int c = 0; c < C; c++)
+        if (back[c] != x[c])
+            fail_msg("rho_d[%d] = %.17g read back as %.17g", c, x[c], back[c]);
+    bf_model_free(m);
+    free(back);
+    bf_model_free(r.model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_channel_counts),
         cmocka_unit_test(test_model_spec),
+        cmocka_unit_test(test_result_file_exact),
     };
     return cmocka_run_group_tests_name("params_file", tests, NULL, NULL);
 }
