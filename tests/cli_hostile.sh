@@ -80,4 +80,14 @@ printf '{"brdfit_baseline": 1, "cases": [\n{"name": "b", "data": "d.csv", "model
   ! LC_ALL=C grep -q $'\033' "$tmp/j2.xml" && { ! command -v xmllint >/dev/null || xmllint --noout "$tmp/j2.xml"; } && ok ||
   bad "control characters in the JUnit classname: $(cat -v "$tmp/out" "$tmp/j2.xml")"
 
+# --- the HTML report: a material whose file name holds ESC and invalid UTF-8 -------------------
+m=$tmp/$'m\033[2J\377.csv'
+cp "$tmp/d.csv" "$m"
+if "$BRDFIT" compare "$m" -m lambert --quiet --html "$tmp/report" >/dev/null 2>"$tmp/err"; then
+  grep -qF 'm\x1b[2J\xff.csv' "$tmp/report/index.html" && ! LC_ALL=C grep -q $'\033\|\377' "$tmp/report/index.html" &&
+    ok || bad "HTML report: control characters not escaped"
+else
+  bad "compare --html: $(cat -v "$tmp/err")"
+fi
+
 finish
