@@ -74,7 +74,7 @@ static void test_whole_message_capped(void **state)
     bf_printable(ctl, 0, 50, err.msg, sizeof err.msg);
     assert_string_equal(err.msg, "\\x01\\x01\\x01\\x01\\x01\\x01\\x01\\x01\\x01\\x01\\x01...");
     /* Wide characters: the byte size is the limit before the character count. */
-    char wide[3 * 400 + 1] = "";
+    char wide[4 * 400 + 1] = "";
     for (int i = 0; i < 400; i++)
         strcat(wide, "\xe2\x82\xac "); /* a euro sign and a blank */
     char small[40];
