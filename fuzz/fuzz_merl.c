@@ -33,10 +33,13 @@ static void full_table(const uint8_t *data, size_t size)
     if (!file)
         fuzz_fail("out of memory");
     memcpy(file, data, HEADER);
-    const uint8_t *body = data + HEADER;
-    const size_t nbody = size - HEADER;
-    for (size_t k = 0; k < TABLE_BYTES; k++)
-        file[HEADER + k] = body[k % nbody];
+    /* The pattern, then the filled part copied onto the rest, doubling. */
+    size_t filled = size - HEADER < TABLE_BYTES ? size - HEADER : TABLE_BYTES;
+    memcpy(file + HEADER, data + HEADER, filled);
+    for (size_t n; filled < TABLE_BYTES; filled += n) {
+        n = filled < TABLE_BYTES - filled ? filled : TABLE_BYTES - filled;
+        memcpy(file + HEADER + filled, file + HEADER, n);
+    }
     const char *in = fuzz_write("in.binary", file, HEADER + TABLE_BYTES);
     bf_error err;
     bf_samples *raw = NULL, *plain = NULL;
