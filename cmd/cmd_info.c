@@ -87,7 +87,8 @@ static void print_json(const char *path, const bf_samples *s, const data_options
     cJSON_Delete(root);
 }
 
-/* Channel names, shortened to the first three and the last when there are many. */
+/* Channel names, shortened to the first three and the last when there are many; each
+ * as a terminal can show it (the header of a CSV may hold anything). */
 static void print_channel_names(const bf_samples *s)
 {
     const int C = s->channels;
@@ -97,7 +98,8 @@ static void print_channel_names(const bf_samples *s)
             c = C - 2;
             continue;
         }
-        printf("%s%s", c ? ", " : "", s->channel_names[c]);
+        char shown[4 * BF_ERROR_TOKEN_CHARS];
+        printf("%s%s", c ? ", " : "", bf_printable(s->channel_names[c], BF_ERROR_TOKEN_CHARS, 0, shown, sizeof shown));
     }
 }
 
@@ -138,9 +140,12 @@ static void print_text(const char *path, const bf_samples *s, const data_options
 
     printf("values (samples used): %zu with a zero, %zu with a negative value\n", info->zero, info->negative);
     printf("  %-12s %13s %13s %13s\n", "channel", "min", "max", "mean");
-    for (int c = 0; c < s->channels; c++)
-        printf("  %-12s %13.6g %13.6g %13.6g\n", s->channel_names[c], info->value[c].lo, info->value[c].hi,
-               info->mean[c]);
+    for (int c = 0; c < s->channels; c++) {
+        char shown[4 * BF_ERROR_TOKEN_CHARS];
+        printf("  %-12s %13.6g %13.6g %13.6g\n",
+               bf_printable(s->channel_names[c], BF_ERROR_TOKEN_CHARS, 0, shown, sizeof shown), info->value[c].lo,
+               info->value[c].hi, info->mean[c]);
+    }
 }
 
 static void usage(FILE *out)

@@ -293,6 +293,17 @@ void ts_write_file(const char *path, const char *text, size_t len)
     fclose(fp);
 }
 
+const char *ts_read_file(const char *path)
+{
+    static char buf[1 << 16];
+    FILE *fp = fopen(path, "rb");
+    assert_non_null(fp);
+    size_t n = fread(buf, 1, sizeof buf - 1, fp);
+    fclose(fp);
+    buf[n] = '\0';
+    return buf;
+}
+
 void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
                           const char *fragment)
 {

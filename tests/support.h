@@ -71,6 +71,8 @@ const char *ts_tmpdir(void);
 const char *ts_tmp_path(const char *name);
 /* Writes len bytes of text to path (fails the test if it cannot). */
 void ts_write_file(const char *path, const char *text, size_t len);
+/* The file's first 64 kB as a string (a static buffer, overwritten by the next call). */
+const char *ts_read_file(const char *path);
 
 /* Writes text to ts_tmp_path(name), reads it with `reader`, and fails the test unless
  * the read fails with `code`, leaves *out NULL, and gives a one-line message that

@@ -221,8 +221,8 @@ static void test_bad_input(void **state)
                  ":4: incomplete record 2: records are theta_i phi_i theta_s phi_s and 2 values (6 numbers), "
                  "the last has 5");
     expect_error("dropped.brdf", "1\n500\n0.1 0 0.2 0 1\n0.1 0 0.2 1\n0.1 0 0.2 0 1\n0.1 0 0.2 0 1\n", P,
-                 ":5: records are theta_i phi_i theta_s phi_s and 1 values (5 numbers), one per line until here, "
-                 "where a record starts mid-line: the record before has a number too many or too few");
+                 ":5: a record starts mid-line: the one before has a number too many or too few (records are "
+                 "theta_i phi_i theta_s phi_s and 1 values)");
     expect_error("theta.brdf", "1\n500\n0.1 0 0.2 0 1\n3.2 0 0.2 0 1\n", R,
                  ":4: record 2: theta_i = 3.2 rad is outside [0, pi]");
     expect_error("negtheta.brdf", "1\n500\n0.1 0\n-0.1 0 1\n", R,

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+#include <libxml/parser.h>
 
 #include "brdfit/regress.h"
 #include "support.h"
@@ -320,6 +321,73 @@ static void test_junit(void **state)
     bf_regress_free(b);
 }
 
+/* Found by fuzz/fuzz_regress.c: a key given twice. cJSON keeps both, the check read
+ * both and the update replaced only the first, so a case failed right after --update. */
+static void test_repeated_keys(void **state)
+{
+    (void)state;
+    expect_parse_error("{\"brdfit_baseline\": 1,\"cases\":[{\"name\": \"a\",\"data\": \".\",\"model\":\"walter\","
+                       "\"expected\":{\"params\":{ \"rho_s\":[3],\n \"rho_s\":3}}}]}",
+                       "base.json:1:", "key \"rho_s\" appears twice in the same object");
+    expect_parse_error("{\"brdfit_baseline\": 1,\n\"brdfit_baseline\": 1, \"cases\": []}", "base.json:1:",
+                       "key \"brdfit_baseline\" appears twice");
+    expect_parse_error("{\"brdfit_baseline\": 1, \"tolerance\": {\"metrics\": {\"rel\": 1,\n\"rel\": 2}},\n"
+                       "\"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}",
+                       "base.json:1:", "key \"rel\" appears twice");
+}
+
+/* Names, paths and keys are printed and reported as they are: control characters and
+ * invalid UTF-8 are refused (comments may hold anything); text from elsewhere (the
+ * fit, the command line) reaches the JUnit XML escaped, which libxml2 reads. */
+static void test_control_characters(void **state)
+{
+    (void)state;
+    expect_parse_error("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                       " {\"name\": \"a\\u001b[31m\", \"data\": \"x\", \"model\": \"lambert\"}]}",
+                       "base.json:2:", "'a\\x1b[31m' holds control characters or invalid UTF-8");
+    expect_parse_error("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                       " {\"name\": \"\xff\", \"data\": \"x\", \"model\": \"lambert\"}]}",
+                       "base.json:2:", "'\\xff' holds");
+    expect_parse_error("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                       " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\",\n"
+                       "  \"expected\": {\"params\": {\"rho_d\\u009b\": 1}}}]}",
+                       "base.json:3:", "'rho_d\\u009b' holds");
+    expect_parse_error("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                       " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\", \"options\": [\"--rgb\",\n"
+                       "  \"\\t\"]}]}",
+                       "base.json:3:", "'\\x09' holds");
+    bf_regress_baseline *comment = parse_ok("{\"brdfit_baseline\": 1, \"comment\": \"line\\nnext\\u001b\", \"cases\": [\n"
+                                            " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
+    bf_regress_free(comment);
+    bf_regress_baseline *b = parse_ok("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                                      " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
+    bf_regress_outcome o;
+    memset(&o, 0, sizeof o);
+    o.status = BF_REGRESS_FAIL;
+    o.lines = calloc(1, sizeof *o.lines);
+    o.lines[0] = strdup("  params.\x1b[2J\x01\xff: not a parameter of lambert");
+    o.nlines = 1;
+    o.warnings = calloc(1, sizeof *o.warnings);
+    o.warnings[0] = strdup("rho_d\x0c at a bound");
+    o.nwarnings = 1;
+    char dir[] = "/tmp/test_regress_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[128];
+    snprintf(path, sizeof path, "%s/j.xml", dir);
+    bf_error err;
+    assert_int_equal(bf_regress_write_junit(b, &o, path, &err), BF_OK);
+    xmlDocPtr doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    assert_non_null(doc);
+    xmlFreeDoc(doc);
+    const char *xml = slurp(path);
+    assert_non_null(strstr(xml, "params.\\x1b[2J\\x01\\xff: not a parameter of lambert</failure>"));
+    assert_non_null(strstr(xml, "warning: rho_d\\x0c at a bound"));
+    unlink(path);
+    rmdir(dir);
+    bf_regress_outcome_free(&o);
+    bf_regress_free(b);
+}
+
 static void test_update(void **state)
 {
     (void)state;
@@ -414,6 +482,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parse_errors), cmocka_unit_test(test_parse_fields), cmocka_unit_test(test_tolerance),
         cmocka_unit_test(test_diff_lines),   cmocka_unit_test(test_junit),        cmocka_unit_test(test_update),
+        cmocka_unit_test(test_repeated_keys), cmocka_unit_test(test_control_characters),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -14,17 +14,6 @@
 #include "brdfit/samples.h"
 #include "support.h"
 
-static char *read_file(const char *path)
-{
-    FILE *fp = fopen(path, "rb");
-    assert_non_null(fp);
-    static char buf[1 << 16];
-    size_t n = fread(buf, 1, sizeof buf - 1, fp);
-    buf[n] = '\0';
-    fclose(fp);
-    return buf;
-}
-
 static void test_round_trip_is_byte_exact(void **state)
 {
     (void)state;
@@ -44,7 +33,7 @@ static void test_round_trip_is_byte_exact(void **state)
     assert_true(s->value[1 * 3 + 0] == -0.001); /* negative values are data */
     assert_true(s->phi_i[1] == -25.81760513);
     assert_int_equal(bf_samples_write_csv(s, ts_tmp_path("b.csv"), &err), BF_OK);
-    assert_string_equal(read_file(ts_tmp_path("b.csv")), text);
+    assert_string_equal(ts_read_file(ts_tmp_path("b.csv")), text);
     bf_samples_free(s);
 }
 
@@ -154,6 +143,39 @@ static void test_bad_input(void **state)
     expect_error("values.csv", buf, &map, "no column 'nope'");
     bf_csv_map wmap = {{NULL, NULL, NULL, NULL}, 0, NULL, "w"};
     expect_error("wcol.csv", buf, &wmap, "no weight column 'w'");
+    expect_error("numbers.csv", "400,410\n1,2\n", NULL, ":1: header expected, found a row of numbers ('400', ...)");
+    expect_error("quote.csv", "theta_i,phi_i,theta_o,phi_o,\"v\n", NULL,
+                 ":1: header column 5: a quoted name must end with its quote");
+    expect_error("quote2.csv", "theta_i,phi_i,theta_o,phi_o,\"v\"x\n", NULL, ":1: header column 5: a quoted name");
+    snprintf(buf, sizeof buf, "%s1,\"2,3,4,5\n", H);
+    expect_error("quoterow.csv", buf, NULL, ":2: field 2: a quoted field must end with its quote");
+}
+
+/* Hostile files get a message that is safe to print and still names file, line and
+ * problem: a header of binary junk, a 9 kB number, a header of 70,000 columns. */
+static void test_hostile_messages(void **state)
+{
+    (void)state;
+    const char junk[] = "theta_i,phi_i,theta_o,phi_o,\x1b[2J\xff\xfe\x9b,\x1b[2J\xff\xfe\x9b\n";
+    expect_error("junk.csv", junk, NULL, ":1: column '\\x1b[2J\\xff\\xfe\\x9b' appears twice");
+    size_t n = 9000;
+    char *big = malloc(n + 64);
+    int k = snprintf(big, n + 64, "theta_i,phi_i,theta_o,phi_o,v\n0,0,0,0,");
+    memset(big + k, '7', n);
+    strcpy(big + k + n, "x\n");
+    expect_error("big.csv", big, NULL, ":2: column v: '777777777777777777777777777777...");
+    bf_samples *s = NULL;
+    bf_error err;
+    assert_int_not_equal(bf_samples_read_csv(ts_tmp_path("big.csv"), NULL, &s, &err), BF_OK);
+    assert_non_null(strstr(err.msg, "777x' is not a number"));
+    assert_true(strlen(err.msg) <= BF_ERROR_MAX_CHARS);
+    free(big);
+    char *wide = malloc(2 * 70000 + 2);
+    for (int c = 0; c < 70000; c++)
+        memcpy(wide + 2 * c, "a,", 2);
+    strcpy(wide + 2 * 70000 - 1, "\n");
+    expect_error("wide.csv", wide, NULL, ":1: the header has more than 65536 columns");
+    free(wide);
 }
 
 /* A writer that fails leaves no file behind. */
@@ -178,6 +200,7 @@ int main(void)
         cmocka_unit_test(test_default_channels),
         cmocka_unit_test(test_ptfe),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_hostile_messages),
         cmocka_unit_test(test_no_partial_output),
     };
     return cmocka_run_group_tests_name("samples_csv", tests, NULL, NULL);

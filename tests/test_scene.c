@@ -103,6 +103,12 @@ static void test_parse_errors(void **state)
         {"{\n  \"views\": [{\"theta\": 30, \"phi\": null}]\n}", 2, BF_ERR_PARSE, "views[0].phi must be a number"},
         {"{\n  \"radius\": 0\n}", 2, BF_ERR_RANGE, "\"radius\" = 0 degrees must be in (0, 180]"},
         {"{\n  \"light\": {},\n  \"radius\": -3\n}", 3, BF_ERR_RANGE, "\"radius\" = -3"},
+        /* A key twice: the reader used the first, a rewrite would keep both. */
+        {"{\n  \"radius\": 5,\n  \"radius\": 10\n}", 2, BF_ERR_PARSE, "\"radius\" given twice"},
+        {"{\"lights\": [{\"theta\": 30},\n {\"theta\": 40, \"theta\": 50}]}", 2, BF_ERR_PARSE,
+         "lights[1]: \"theta\" given twice"},
+        /* Content quoted in messages is escaped and shortened. */
+        {"{\n  \"\x1b[2J\": 1\n}", 2, BF_ERR_PARSE, "unknown key \"\\x1b[2J\""},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         bf_scene *sc = (bf_scene *)1;

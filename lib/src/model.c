@@ -210,8 +210,8 @@ bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
         bf_fail(err, BF_ERR_ARG, "empty model name");
         return NULL;
     }
-    if (channels < 1) {
-        bf_fail(err, BF_ERR_ARG, "channel count must be at least 1, got %d", channels);
+    if (channels < 1 || channels > BF_MAX_CHANNELS) {
+        bf_fail(err, BF_ERR_ARG, "channel count must be from 1 to %d, got %d", BF_MAX_CHANNELS, channels);
         return NULL;
     }
     const char *colon = strchr(spec, ':');

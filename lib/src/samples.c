@@ -2,6 +2,7 @@
 #include "brdfit/samples.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,8 +24,13 @@ static const char *default_name(int C, int c, char *buf, size_t size)
 /* The parts every sample set has: channel names and values. */
 static bf_samples *new_common(size_t n, int channels, bf_error *err)
 {
-    if (channels < 1) {
-        bf_fail(err, BF_ERR_ARG, "a sample set needs at least one channel");
+    if (channels < 1 || channels > BF_MAX_CHANNELS) {
+        bf_fail(err, BF_ERR_ARG, "a sample set has 1 to %d channels, not %d", BF_MAX_CHANNELS, channels);
+        return NULL;
+    }
+    /* The sizes below (n * C values, 4 n angles) must not wrap around. */
+    if (n > SIZE_MAX / sizeof(double) / ((size_t)channels + 4)) {
+        bf_fail(err, BF_ERR_NOMEM, "%zu samples of %d channels are too many", n, channels);
         return NULL;
     }
     bf_samples *s = calloc(1, sizeof *s);

@@ -14,7 +14,10 @@ extern "C" {
 #endif
 
 /* ---- CSV: a header row, then numeric rows; '#' comment lines and blank lines are
- * skipped. Errors name the file, the line and the column. */
+ * skipped. Fields may be quoted (RFC 4180: "a,b", "say ""hi"""), within one line;
+ * header names are any text, numbers too ("400" nm), unless the whole row is numbers
+ * (a file without a header); at most BF_CSV_MAX_COLUMNS. Errors name the file, the
+ * line and the column. */
 typedef struct bf_csv {
     size_t nrows, ncols;
     char **names;   /* ncols header names */

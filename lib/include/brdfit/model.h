@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include "brdfit/error.h"
 #include "brdfit/geometry.h"
+#include "brdfit/limits.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -50,7 +51,7 @@ const bf_family_info *bf_family_get(int i);
 
 typedef struct bf_model bf_model;
 
-/* channels >= 1. Returns NULL and fills err on unknown model, option or value.
+/* 1 <= channels <= BF_MAX_CHANNELS. Returns NULL and fills err on unknown model, option or value.
  *
  * Besides the family's options and lobes=K, every spec accepts mono=WHAT, which ties
  * colour parameters across channels (one value for all of them: a white highlight

@@ -8,6 +8,7 @@
 
 #include "brdfit/error.h"
 #include "brdfit/geometry.h"
+#include "brdfit/limits.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -51,9 +51,13 @@ typedef struct report {
     bf_error *err;
 } report;
 
-static void esc(FILE *fp, const char *s)
+/* Text from the data and the command line as HTML: markup escaped, and control
+ * characters and invalid UTF-8, which HTML cannot show, as a terminal shows them
+ * (bf_printable_dup; out of memory: dropped). */
+static void esc(FILE *fp, const char *text)
 {
-    for (; *s; s++)
+    char *safe = bf_printable_dup(text);
+    for (const char *s = safe ? safe : ""; *s; s++)
         switch (*s) {
         case '&': fputs("&amp;", fp); break;
         case '<': fputs("&lt;", fp); break;
@@ -62,6 +66,7 @@ static void esc(FILE *fp, const char *s)
         case '\'': fputs("&#39;", fp); break;
         default: fputc(*s, fp);
         }
+    free(safe);
 }
 
 static void num(FILE *fp, double v)

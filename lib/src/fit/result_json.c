@@ -1,8 +1,8 @@
 /* The fit result file: a parameter file (model, options, channels, params: what
  * bf_params_read reads) plus data, residual, metrics, standard errors, fixed
  * parameters, the optimizer summary and timing. Colour parameters are arrays of one
- * value per channel (also for one channel), scalars plain numbers. Numbers round-trip:
- * cJSON prints %1.15g and falls back to %1.17g when that does not read back exactly.
+ * value per channel (also for one channel), scalars plain numbers. Numbers round-trip
+ * (bf_json_number: the shortest text that reads back exactly).
  * NaN and Inf (an undetermined standard error, metrics of a failed fit) are null. */
 #include "brdfit/fit.h"
 #include "brdfit/io.h"

@@ -23,6 +23,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,7 +92,10 @@ typedef struct rows {
 static double *row_slot(rows *r)
 {
     if (r->n == r->cap) {
-        size_t cap = r->cap ? 2 * r->cap : 1024;
+        /* A first block of about 64 kB whatever the width, then doubling. */
+        size_t cap = r->cap ? 2 * r->cap : 8192 / r->width + 1;
+        if (cap > SIZE_MAX / sizeof(double) / r->width)
+            return NULL;
         double *v = realloc(r->v, cap * r->width * sizeof *v);
         if (!v)
             return NULL;
@@ -271,10 +275,11 @@ static int header_line(header *h, const char *path, size_t lineno, const char *l
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: #DIM given twice (first on line %zu)", path, lineno,
                            h->dim_line);
         if (!word(&p, a, sizeof a) || !word(&p, b, sizeof b) || word(&p, extra, sizeof extra) ||
-            !integer(a, 6, &h->nin) || !integer(b, 100000, &h->nout) || h->nin < 1 || h->nout < 1)
+            !integer(a, 6, &h->nin) || !integer(b, BF_MAX_CHANNELS, &h->nout) || h->nin < 1 || h->nout < 1)
             return bf_fail(err, BF_ERR_PARSE,
-                           "%s:%zu: #DIM needs two positive integers, the input (at most 6) and output counts",
-                           path, lineno);
+                           "%s:%zu: #DIM needs two positive integers, the input (at most 6) and output (at most "
+                           "%d) counts",
+                           path, lineno, BF_MAX_CHANNELS);
         h->dim_line = lineno;
     } else if (!strcmp(key, "PARAM_IN") || !strcmp(key, "PARAM_OUT")) {
         const int in = key[6] == 'I';
@@ -295,9 +300,9 @@ static int header_line(header *h, const char *path, size_t lineno, const char *l
                                    path, lineno, val);
             if (h->in < 0)
                 return bf_fail(err, BF_ERR_PARSE,
-                               "%s:%zu: unknown #PARAM_IN '%s' (known: COS_TH, COS_TH_TD, RUSIN_TH_TD, "
-                               "RUSIN_TH_TD_PD, RUSIN_TH_PH_TD_PD, RUSIN_VH, ISOTROPIC_TV_TL_DPHI, "
-                               "ISOTROPIC_TL_TV_PROJ_DPHI, SPHERICAL_TL_PL_TV_PV, CARTESIAN)",
+                               "%s:%zu: unknown #PARAM_IN '%s' (known: COS_TH[_TD], RUSIN_TH_TD[_PD], "
+                               "RUSIN_TH_PH_TD_PD, RUSIN_VH, ISOTROPIC_TV_TL_DPHI, ISOTROPIC_TL_TV_PROJ_DPHI, "
+                               "SPHERICAL_TL_PL_TV_PV, CARTESIAN)",
                                path, lineno, val);
             h->in_line = lineno;
         } else {

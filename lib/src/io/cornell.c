@@ -102,11 +102,11 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
                                  lineno, tlen, tok);
                     goto done;
                 }
-                if (x != floor(x) || x < 1.0 || x > 10000.0) {
+                if (x != floor(x) || x < 1.0 || x > BF_MAX_CHANNELS) {
                     rc = bf_fail(err, BF_ERR_PARSE,
                                  "%s:%zu: the file must start with the wavelength count (an integer from 1 "
-                                 "to 10000), found %.*s",
-                                 path, lineno, tlen > 40 ? 40 : tlen, tok);
+                                 "to %d), found %.*s",
+                                 path, lineno, BF_MAX_CHANNELS, tlen > 40 ? 40 : tlen, tok);
                     goto done;
                 }
                 nwl = (size_t)x;
@@ -140,6 +140,11 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
                                  tlen, tok);
                     goto done;
                 }
+                /* Within the slack, on the bound: a theta of 3.141593 (pi rounded up) is pi,
+                 * so the samples hold no angle the other readers refuse (CSV, when
+                 * converted: theta in [0, 180] degrees). */
+                if (pos == 0 || pos == 2)
+                    x = x < 0.0 ? 0.0 : x > M_PI ? M_PI : x;
             }
             if (!push(&num, x)) {
                 rc = bf_fail(err, BF_ERR_NOMEM, "%s:%zu: out of memory", path, lineno);
@@ -164,14 +169,13 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
     if (body % record_len) {
         if (misaligned_line)
             rc = bf_fail(err, BF_ERR_PARSE,
-                         "%s:%zu: records are theta_i phi_i theta_s phi_s and %zu values (%zu numbers), one per "
-                         "line until here, where a record starts mid-line: the record before has a number too "
-                         "many or too few (the file ends %zu numbers into a record)",
-                         path, misaligned_line, nwl, record_len, body % record_len);
+                         "%s:%zu: a record starts mid-line: the one before has a number too many or too few "
+                         "(records are theta_i phi_i theta_s phi_s and %zu values)",
+                         path, misaligned_line, nwl);
         else
             rc = bf_fail(err, BF_ERR_PARSE,
                          "%s:%zu: incomplete record %zu: records are theta_i phi_i theta_s phi_s and %zu values "
-                         "(%zu numbers), the last has %zu; the file is truncated or a record is malformed",
+                         "(%zu numbers), the last has %zu (truncated or malformed)",
                          path, record_line, n + 1, nwl, record_len, body % record_len);
         goto done;
     }

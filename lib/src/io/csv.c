@@ -2,42 +2,89 @@
  * brdfit table (directions, samples) is numeric, and checking each cell here lets the
  * error name the line and column. */
 #include "brdfit/io.h"
+#include "brdfit/limits.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-static char *trim(char *s)
+/* The field starting at p, in place: blanks around it dropped; a field that starts
+ * with '"' is quoted (RFC 4180: "" inside is one quote, commas are text), which is how
+ * the writers keep names with commas, quotes or outer blanks. *out is the text, *quoted
+ * whether it was quoted, *next where the following field starts. Returns 1 when a
+ * comma follows, 0 at the end of the line, -1 for a quoted field without its closing
+ * quote or with text after it. */
+static int field(char *p, char **out, int *quoted, char **next)
 {
-    while (isspace((unsigned char)*s))
-        s++;
-    char *e = s + strlen(s);
-    while (e > s && isspace((unsigned char)e[-1]))
-        *--e = '\0';
-    if (e - s >= 2 && *s == '"' && e[-1] == '"') { /* a quoted header name */
-        e[-1] = '\0';
-        s++;
+    while (isspace((unsigned char)*p))
+        p++;
+    *out = p;
+    *quoted = *p == '"';
+    char *end, *e;
+    if (*quoted) {
+        char *r = p + 1;
+        e = p; /* unescaped text is written from the field's start: it is never longer */
+        for (;; r++) {
+            if (!*r)
+                return -1;
+            if (*r == '"' && *++r != '"')
+                break;
+            *e++ = *r;
+        }
+        while (isspace((unsigned char)*r))
+            r++;
+        if (*r && *r != ',')
+            return -1;
+        end = r;
+    } else {
+        end = strchr(p, ',');
+        if (!end)
+            end = p + strlen(p);
+        e = end;
+        while (e > p && isspace((unsigned char)e[-1]))
+            e--;
     }
-    return s;
+    int more = *end == ',';
+    *next = end + more;
+    *e = '\0'; /* e <= end: may overwrite the comma, already noted */
+    return more;
 }
 
-/* Splits line at commas in place; returns the field count (fields beyond max dropped). */
-static size_t split(char *line, char **fields, size_t max)
+/* Splits line into fields in place; returns the field count (fields beyond max are
+ * counted, not kept), or 0 with *bad set to the 1-based column of a broken quote.
+ * quoted (may be NULL) gets whether each kept field was quoted. */
+static size_t split(char *line, char **fields, unsigned char *quoted, size_t max, size_t *bad)
 {
     size_t n = 0;
     for (char *p = line;;) {
-        char *comma = strchr(p, ',');
-        if (comma)
-            *comma = '\0';
-        if (n < max)
-            fields[n] = trim(p);
+        char *text;
+        int q, more = field(p, &text, &q, &p);
+        if (more < 0) {
+            *bad = n + 1;
+            return 0;
+        }
+        if (n < max) {
+            fields[n] = text;
+            if (quoted)
+                quoted[n] = (unsigned char)q;
+        }
         n++;
-        if (!comma)
+        if (!more)
             return n;
-        p = comma + 1;
     }
+}
+
+/* A field that reads whole as a number (not quoted: "400" in quotes is a name). */
+static int is_number(const char *text, int quoted)
+{
+    char *end;
+    if (quoted || !*text)
+        return 0;
+    strtod(text, &end);
+    return *end == '\0';
 }
 
 static int is_skippable(const char *line)
@@ -69,7 +116,10 @@ int bf_csv_column(const bf_csv *t, const char *name)
 
 static int grow(bf_csv *t, size_t *cap)
 {
-    size_t ncap = *cap ? 2 * *cap : 1024;
+    /* A first block of about 64 kB whatever the width, then doubling. */
+    size_t ncap = *cap ? 2 * *cap : 8192 / t->ncols + 1;
+    if (ncap > SIZE_MAX / sizeof(double) / t->ncols)
+        return 0;
     double *d = realloc(t->data, ncap * t->ncols * sizeof *d);
     if (!d)
         return 0;
@@ -80,6 +130,76 @@ static int grow(bf_csv *t, size_t *cap)
     t->line = l;
     *cap = ncap;
     return 1;
+}
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The header row: names (quoted or not), none empty, none twice, not a row of numbers
+ * (a file without a header), which spectral names such as "400" alone are not. Sets
+ * t->names, t->ncols and *fields (room for a row's fields). */
+static int read_header(bf_csv *t, const char *path, size_t lineno, char *line, char ***fields, bf_error *err)
+{
+    size_t n = 1, bad = 0; /* an upper bound first: commas inside quotes are text */
+    for (const char *q = line; *q; q++)
+        n += *q == ',';
+    if (n > BF_CSV_MAX_COLUMNS) /* counted by commas, quoted ones included */
+        return bf_fail(err, BF_ERR_RANGE, "%s:%zu: the header has more than %d columns", path, lineno,
+                       BF_CSV_MAX_COLUMNS);
+    char **f = calloc(n, sizeof *f), **sorted = NULL;
+    unsigned char *quoted = malloc(n);
+    int rc = BF_OK;
+    *fields = f;
+    if (!f || !quoted) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+        goto done;
+    }
+    if (!(n = split(line, f, quoted, n, &bad))) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header column %zu: a quoted name must end with its quote", path,
+                     lineno, bad);
+        goto done;
+    }
+    size_t numbers = 0;
+    for (size_t c = 0; c < n; c++) {
+        if (!*f[c]) {
+            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header column %zu has no name", path, lineno, c + 1);
+            goto done;
+        }
+        numbers += is_number(f[c], quoted[c]);
+    }
+    if (numbers == n) {
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header expected, found a row of numbers ('%s'%s)", path, lineno,
+                     f[0], n > 1 ? ", ..." : "");
+        goto done;
+    }
+    /* Sorted, so that wide headers are checked for repeats in n log n. */
+    if (!(sorted = malloc(n * sizeof *sorted))) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+        goto done;
+    }
+    memcpy(sorted, f, n * sizeof *sorted);
+    qsort(sorted, n, sizeof *sorted, by_name);
+    for (size_t c = 1; c < n; c++)
+        if (!strcmp(sorted[c - 1], sorted[c])) {
+            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: column '%s' appears twice", path, lineno, sorted[c]);
+            goto done;
+        }
+    if (!(t->names = calloc(n, sizeof *t->names))) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+        goto done;
+    }
+    t->ncols = n;
+    for (size_t c = 0; c < n; c++)
+        if (!(t->names[c] = strdup(f[c]))) {
+            rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+            goto done;
+        }
+done:
+    free(quoted);
+    free(sorted);
+    return rc;
 }
 
 int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
@@ -106,39 +226,16 @@ int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
         if (is_skippable(line))
             continue;
         if (!t->names) { /* header */
-            size_t n = 1;
-            for (const char *q = line; *q; q++)
-                n += *q == ',';
-            t->names = calloc(n, sizeof *t->names);
-            fields = calloc(n, sizeof *fields);
-            if (!t->names || !fields) {
-                rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
+            if ((rc = read_header(t, path, lineno, line, &fields, err)) != BF_OK)
                 goto done;
-            }
-            t->ncols = n;
-            split(line, fields, n);
-            for (size_t c = 0; c < n; c++) {
-                if (!*fields[c]) {
-                    rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header column %zu has no name", path, lineno, c + 1);
-                    goto done;
-                }
-                char *end;
-                strtod(fields[c], &end);
-                if (*end == '\0') {
-                    rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header expected, found a number ('%s')",
-                                 path, lineno, fields[c]);
-                    goto done;
-                }
-                for (size_t d = 0; d < c; d++)
-                    if (strcmp(t->names[d], fields[c]) == 0) {
-                        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: column '%s' appears twice", path, lineno, fields[c]);
-                        goto done;
-                    }
-                t->names[c] = strdup(fields[c]);
-            }
             continue;
         }
-        size_t n = split(line, fields, t->ncols);
+        size_t bad = 0, n = split(line, fields, NULL, t->ncols, &bad);
+        if (bad) {
+            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: field %zu: a quoted field must end with its quote", path,
+                         lineno, bad);
+            goto done;
+        }
         if (n != t->ncols) {
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: expected %zu fields, found %zu", path, lineno, t->ncols, n);
             goto done;

@@ -6,7 +6,14 @@
 
 #include "brdfit/io.h"
 
-cJSON *bf_json_number(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
+/* The text itself (bf_format_double, which reads back exactly): cJSON prints %1.15g
+ * whenever that reads back within a relative DBL_EPSILON, which loses the last bit of
+ * about one double in five (found by fuzz/fuzz_params.c: a result file read back). */
+cJSON *bf_json_number(double v)
+{
+    char buf[40];
+    return isfinite(v) ? cJSON_CreateRaw(bf_format_double(v, buf, sizeof buf)) : cJSON_CreateNull();
+}
 
 void bf_json_add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, bf_json_number(v)); }
 

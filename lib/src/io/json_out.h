@@ -10,7 +10,8 @@
 #include "brdfit/metrics.h"
 #include "brdfit/model.h"
 
-/* v, or null when v is NaN or infinite (JSON has no such numbers). */
+/* v, or null when v is NaN or infinite (JSON has no such numbers). Written with the
+ * digits that read back exactly (a raw item: build output with it, do not read it). */
 cJSON *bf_json_number(double v);
 void bf_json_add_number(cJSON *o, const char *key, double v);
 /* s, or null. */

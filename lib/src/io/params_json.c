@@ -1,5 +1,6 @@
 /* Parameter files (JSON, via cJSON): model, options, channels and named values. */
 #include "brdfit/io.h"
+#include "json_keys.h"
 #include "read_text.h"
 
 #include <cjson/cJSON.h>
@@ -27,14 +28,19 @@ static size_t line_of_key(const char *text, const char *key)
     return p ? line_at(text, p) : 1;
 }
 
-/* Builds "model:k=v,..." from the model string and the options object. */
+/* Builds "model:k=v,..." from the model string and the options object; every piece is
+ * measured before it is copied. */
 static int build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options,
                       char *spec, size_t size, bf_error *err)
 {
     if (!cJSON_IsString(model) || !*model->valuestring)
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"model\" must be a non-empty string", path,
                        model ? line_of_key(text, "model") : 1);
-    int n = snprintf(spec, size, "%s", model->valuestring);
+    size_t n = strlen(model->valuestring);
+    if (n >= size)
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"model\" is too long (%zu characters, at most %zu)", path,
+                       line_of_key(text, "model"), n, size - 1);
+    memcpy(spec, model->valuestring, n + 1);
     if (!options)
         return BF_OK;
     if (!cJSON_IsObject(options))
@@ -43,18 +49,26 @@ static int build_spec(const char *path, const char *text, const cJSON *model, co
     const cJSON *o;
     cJSON_ArrayForEach(o, options)
     {
-        char val[64];
+        char num[32];
+        const char *val = num;
+        /* An integer only after a range check: converting 1e30 to int is undefined. */
         if (cJSON_IsString(o))
-            snprintf(val, sizeof val, "%s", o->valuestring);
-        else if (cJSON_IsNumber(o) && o->valuedouble == (int)o->valuedouble)
-            snprintf(val, sizeof val, "%d", (int)o->valuedouble);
+            val = o->valuestring;
+        else if (cJSON_IsNumber(o) && fabs(o->valuedouble) <= 1e9 && o->valuedouble == floor(o->valuedouble))
+            snprintf(num, sizeof num, "%d", (int)o->valuedouble);
         else
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: option \"%s\" must be a string or an integer", path,
                            line_of_key(text, o->string), o->string);
-        n += snprintf(spec + n, size - (size_t)n, "%c%s=%s", first ? ':' : ',', o->string, val);
+        /* A comma or '=' would smuggle in another option ("fresnel": "schlick,mono=all"). */
+        if (!*o->string || strpbrk(o->string, ",=") || strchr(val, ','))
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: option \"%s\": names and values cannot be empty or hold ','"
+                           " (names not '=' either)", path, line_of_key(text, o->string), o->string);
+        int k = snprintf(spec + n, size - n, "%c%s=%s", first ? ':' : ',', o->string, val);
+        if (k < 0 || (size_t)k >= size - n)
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: model and options too long (at most %zu characters)", path,
+                           line_of_key(text, o->string), size - 1);
+        n += (size_t)k;
         first = 0;
-        if ((size_t)n >= size)
-            return bf_fail(err, BF_ERR_PARSE, "%s: model options too long", path);
     }
     return BF_OK;
 }
@@ -65,9 +79,11 @@ static int channel_count(const char *path, const char *text, const cJSON *root, 
 {
     const cJSON *ch = cJSON_GetObjectItemCaseSensitive(root, "channels");
     if (ch) {
-        if (!cJSON_IsNumber(ch) || ch->valuedouble != (int)ch->valuedouble || ch->valuedouble < 1)
-            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"channels\" must be a positive integer", path,
-                           line_of_key(text, "channels"));
+        /* Range first, then the conversion (1e30 has no int). */
+        if (!cJSON_IsNumber(ch) || !(ch->valuedouble >= 1.0 && ch->valuedouble <= BF_MAX_CHANNELS) ||
+            ch->valuedouble != floor(ch->valuedouble))
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"channels\" must be an integer from 1 to %d", path,
+                           line_of_key(text, "channels"), BF_MAX_CHANNELS);
         *C = (int)ch->valuedouble;
         return BF_OK;
     }
@@ -80,8 +96,9 @@ static int channel_count(const char *path, const char *text, const cJSON *root, 
             break;
         }
     }
-    if (*C < 1)
-        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: empty array", path, line_of_key(text, p->string));
+    if (*C < 1 || *C > BF_MAX_CHANNELS)
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: %s array: a parameter has 1 to %d values, one per channel", path,
+                       line_of_key(text, p->string), *C < 1 ? "empty" : "too long", BF_MAX_CHANNELS);
     return BF_OK;
 }
 
@@ -166,6 +183,13 @@ int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err
     }
     if (!cJSON_IsObject(root)) {
         rc = bf_fail(err, BF_ERR_PARSE, "%s:1: expected a JSON object", path);
+        goto done;
+    }
+    const char *key;
+    int repeated = bf_json_repeated_key(root, &key);
+    if (repeated) {
+        rc = repeated < 0 ? bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path)
+                          : bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"%s\" given twice", path, line_of_key(text, key), key);
         goto done;
     }
     const cJSON *params = cJSON_GetObjectItemCaseSensitive(root, "params");

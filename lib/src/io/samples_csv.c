@@ -3,11 +3,22 @@
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 
+#include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static const char *const default_angles[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
+
+/* The column named by the len bytes at name, or -1. */
+static int column_of(const bf_csv *t, const char *name, size_t len)
+{
+    for (size_t c = 0; c < t->ncols; c++)
+        if (strlen(t->names[c]) == len && !memcmp(t->names[c], name, len))
+            return (int)c;
+    return -1;
+}
 
 /* Column indices of the comma-separated names in list; returns the count or -1. */
 static int find_columns(const bf_csv *t, const char *path, const char *list, int *idx, int max,
@@ -17,11 +28,9 @@ static int find_columns(const bf_csv *t, const char *path, const char *list, int
     for (const char *p = list; *p;) {
         const char *comma = strchr(p, ',');
         size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        char name[128];
-        snprintf(name, sizeof name, "%.*s", (int)len, p);
-        int c = bf_csv_column(t, name);
+        int c = column_of(t, p, len);
         if (c < 0) {
-            bf_fail(err, BF_ERR_PARSE, "%s: no column '%s' for a channel", path, name);
+            bf_fail(err, BF_ERR_PARSE, "%s: no column '%.*s' for a channel", path, (int)len, p);
             return -1;
         }
         if (n == max) {
@@ -83,6 +92,11 @@ int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **ou
         rc = bf_fail(err, BF_ERR_PARSE, "%s: no value columns besides the angles", path);
         goto done;
     }
+    if (C > BF_MAX_CHANNELS) {
+        rc = bf_fail(err, BF_ERR_RANGE, "%s: %d value columns; brdfit reads at most %d channels", path, C,
+                     BF_MAX_CHANNELS);
+        goto done;
+    }
     if (!(s = bf_samples_new(t->nrows, C, err))) {
         rc = err ? err->code : BF_ERR_NOMEM;
         goto done;
@@ -126,17 +140,82 @@ done:
     return BF_OK;
 }
 
+/* Whether channel c may be written under name: not an angle or weight column's name
+ * (a CSV read with --angles or --weight may have a value column called so), nor a name
+ * an earlier channel is written under or a later one has. */
+static int name_free(const bf_samples *s, char *const *names, int c, const char *name)
+{
+    if (!*name)
+        return 0;
+    for (int k = 0; k < 4; k++)
+        if (!strcmp(name, default_angles[k]))
+            return 0;
+    if (!strcmp(name, "weight"))
+        return 0;
+    for (int d = 0; d < s->channels; d++)
+        if (d != c && !strcmp(name, d < c ? names[d] : s->channel_names[d]))
+            return 0;
+    return 1;
+}
+
+static void free_names(char **names, int n)
+{
+    for (int c = 0; c < n; c++)
+        free(names[c]);
+    free(names);
+}
+
+/* The header's channel names: each channel's own, or where that would make the file
+ * unreadable or read back otherwise, the first free of NAME_2, NAME_3 ... (malloc'd
+ * array of malloc'd names, NULL out of memory). */
+static char **header_names(const bf_samples *s)
+{
+    char **names = calloc((size_t)s->channels, sizeof *names);
+    for (int c = 0; names && c < s->channels; c++) {
+        const char *own = s->channel_names[c];
+        size_t size = strlen(own) + 24;
+        if (!(names[c] = malloc(size))) {
+            free_names(names, c);
+            return NULL;
+        }
+        snprintf(names[c], size, "%s", own);
+        for (unsigned long k = 2; !name_free(s, names, c, names[c]); k++)
+            snprintf(names[c], size, "%s_%lu", own, k);
+    }
+    return names;
+}
+
+/* A header name as the reader reads it back: quoted when it holds a comma, a quote or
+ * a line break (bf_csv_put_text), or starts or ends with a blank (which the reader
+ * would trim). */
+static void put_name(FILE *fp, const char *name)
+{
+    size_t len = strlen(name);
+    fputc(',', fp);
+    if (len && (isspace((unsigned char)name[0]) || isspace((unsigned char)name[len - 1])) &&
+        !strpbrk(name, ",\"\r\n"))
+        fprintf(fp, "\"%s\"", name);
+    else
+        bf_csv_put_text(fp, name);
+}
+
 int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
 {
+    char **names = header_names(s);
+    if (!names)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
     bf_outfile o;
     int rc = bf_outfile_open(&o, path, err);
-    if (rc != BF_OK)
+    if (rc != BF_OK) {
+        free_names(names, s->channels);
         return rc;
+    }
     const size_t C = (size_t)s->channels;
     char buf[40];
     fputs("theta_i,phi_i,theta_o,phi_o", o.fp);
     for (size_t c = 0; c < C; c++)
-        fprintf(o.fp, ",%s", s->channel_names[c]);
+        put_name(o.fp, names[c]);
+    free_names(names, s->channels);
     if (s->weight)
         fputs(",weight", o.fp);
     fputc('\n', o.fp);

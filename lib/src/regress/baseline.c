@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/json_keys.h"
 #include "io/read_text.h"
 #include "regress/regress_impl.h"
 
@@ -221,9 +222,25 @@ typedef struct parser {
     bf_fail((P)->err, BF_ERR_PARSE, "%s:%d: %s", (P)->b->path, line_of_path((P)->b->text, PATH), \
             (snprintf(msg, sizeof msg, __VA_ARGS__), msg))
 
+/* No key of object o twice (cJSON keeps both; lookups and rewrites disagree on them). */
+static int no_repeats(parser *p, const cJSON *o, const char *path)
+{
+    char msg[400], sub[600];
+    const char *key;
+    int rc = bf_json_repeated_key(o, &key);
+    if (rc < 0)
+        return bf_fail(p->err, BF_ERR_NOMEM, "%s: out of memory", p->b->path);
+    if (rc == 0)
+        return BF_OK;
+    snprintf(sub, sizeof sub, "%s%s%s", path, *path ? "/" : "", key);
+    return FAIL(p, sub, "key \"%s\" appears twice in the same object", key);
+}
+
 static int only_keys(parser *p, const cJSON *o, const char *path, const char *const *keys, const char *what)
 {
     char msg[400], sub[600];
+    if (no_repeats(p, o, path) != BF_OK)
+        return p->err->code;
     for (const cJSON *it = o->child; it; it = it->next) {
         int known = 0;
         for (const char *const *k = keys; *k; k++)
@@ -283,6 +300,8 @@ static int check_tolerance(parser *p, const cJSON *t, const char *path, char *co
         snprintf(sub, sizeof sub, "%s/%s", path, g->string);
         if (!cJSON_IsObject(g))
             return FAIL(p, sub, "\"tolerance\".\"%s\" must be an object", g->string);
+        if (no_repeats(p, g, sub) != BF_OK)
+            return p->err->code;
         int params = !strcmp(g->string, "params");
         for (const cJSON *e = g->child; e; e = e->next) {
             char epath[700];
@@ -321,6 +340,8 @@ static int read_values(parser *p, const cJSON *g, const char *path, int metrics,
     char msg[400], sub[600];
     if (!cJSON_IsObject(g))
         return FAIL(p, path, "\"%s\" must be an object of named values", metrics ? "metrics" : "params");
+    if (no_repeats(p, g, path) != BF_OK)
+        return p->err->code;
     int count = cJSON_GetArraySize(g);
     *out = calloc((size_t)(count > 0 ? count : 1), sizeof **out);
     if (!*out)
@@ -445,6 +466,48 @@ static int read_case(parser *p, const cJSON *o, int i, bf_regress_case *c)
     return BF_OK;
 }
 
+/* 1 when s prints as it is (bf_printable changes nothing), 0 if not, -1 out of memory. */
+static int printable(const char *s)
+{
+    char *shown = bf_printable_dup(s);
+    int same = shown ? !strcmp(shown, s) : -1;
+    free(shown);
+    return same;
+}
+
+static int unprintable(parser *p, const char *path, const char *text)
+{
+    char msg[400];
+    return FAIL(p, path, "'%s' holds control characters or invalid UTF-8", text);
+}
+
+/* Names, paths, models, options and keys reach terminals, logs and JUnit as they are:
+ * none may hold control characters or invalid UTF-8. Comments are never shown. */
+static int check_text(parser *p, const cJSON *x, const char *path)
+{
+    char sub[600];
+    int k = 0;
+    for (const cJSON *e = x->child; e; e = e->next, k++) {
+        if (e->string && !strcmp(e->string, "comment"))
+            continue;
+        if (e->string)
+            snprintf(sub, sizeof sub, "%s%s%s", path, *path ? "/" : "", e->string);
+        else
+            snprintf(sub, sizeof sub, "%s%s%d", path, *path ? "/" : "", k);
+        const char *texts[2] = {e->string, cJSON_IsString(e) ? e->valuestring : NULL};
+        for (int t = 0; t < 2; t++) {
+            int rc = texts[t] ? printable(texts[t]) : 1;
+            if (rc < 0)
+                return bf_fail(p->err, BF_ERR_NOMEM, "%s: out of memory", p->b->path);
+            if (rc == 0)
+                return unprintable(p, sub, texts[t]);
+        }
+        if ((cJSON_IsObject(e) || cJSON_IsArray(e)) && check_text(p, e, sub) != BF_OK)
+            return p->err->code;
+    }
+    return BF_OK;
+}
+
 static int parse_doc(parser *p)
 {
     char msg[400];
@@ -462,6 +525,8 @@ static int parse_doc(parser *p)
     }
     if (!cJSON_IsObject(b->doc))
         return FAIL(p, "", "a baseline is a JSON object with \"brdfit_baseline\": 1 and \"cases\"");
+    if (check_text(p, b->doc, "") != BF_OK)
+        return p->err->code;
     static const char *const keys[] = {"brdfit_baseline", "tolerance", "cases", "comment", NULL};
     if (only_keys(p, b->doc, "", keys, "the baseline (brdfit_baseline, tolerance, cases, comment)") != BF_OK)
         return p->err->code;

@@ -12,9 +12,23 @@
 
 static const xmlChar *X(const char *s) { return (const xmlChar *)s; }
 
+/* Names, paths and messages from the baseline as XML 1.0 can hold them: control
+ * characters and invalid UTF-8, which no escaping makes well-formed, written as a
+ * terminal shows them (bf_printable_dup); libxml2 escapes the markup. */
 static int attr(xmlTextWriterPtr w, const char *name, const char *value)
 {
-    return xmlTextWriterWriteAttribute(w, X(name), X(value)) < 0 ? -1 : 0;
+    char *v = bf_printable_dup(value);
+    int rc = v && xmlTextWriterWriteAttribute(w, X(name), X(v)) >= 0 ? 0 : -1;
+    free(v);
+    return rc;
+}
+
+static int text(xmlTextWriterPtr w, const char *s)
+{
+    char *t = bf_printable_dup(s);
+    int rc = t && xmlTextWriterWriteString(w, X(t)) >= 0 ? 0 : -1;
+    free(t);
+    return rc;
 }
 
 static int attr_int(xmlTextWriterPtr w, const char *name, int v)
@@ -38,7 +52,7 @@ static int problem(xmlTextWriterPtr w, const char *element, const char *message,
         return -1;
     for (int i = 0; i < o->nlines; i++) {
         const char *line = o->lines[i] + strspn(o->lines[i], " ");
-        if ((i > 0 && xmlTextWriterWriteString(w, X("\n")) < 0) || xmlTextWriterWriteString(w, X(line)) < 0)
+        if ((i > 0 && xmlTextWriterWriteString(w, X("\n")) < 0) || text(w, line) != 0)
             return -1;
     }
     return xmlTextWriterEndElement(w) < 0 ? -1 : 0;
@@ -86,7 +100,7 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
             if (xmlTextWriterStartElement(w, X("system-out")) < 0)
                 return -1;
             for (int k = 0; k < o->nwarnings; k++)
-                if (xmlTextWriterWriteString(w, X("warning: ")) < 0 || xmlTextWriterWriteString(w, X(o->warnings[k])) < 0 ||
+                if (xmlTextWriterWriteString(w, X("warning: ")) < 0 || text(w, o->warnings[k]) != 0 ||
                     xmlTextWriterWriteString(w, X("\n")) < 0)
                     return -1;
             if (xmlTextWriterEndElement(w) < 0)
@@ -111,7 +125,7 @@ int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcom
     xmlFreeTextWriter(w); /* flushes into buf */
     if (bad) {
         xmlBufferFree(buf);
-        return bf_fail(err, BF_ERR_ARG, "%s: cannot write the JUnit XML (a name or message is not UTF-8?)", path);
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the JUnit XML", path);
     }
     bf_outfile f;
     int rc = bf_outfile_open(&f, path, err);

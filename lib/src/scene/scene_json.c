@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/json_keys.h"
 #include "io/read_text.h"
 
 /* ---- Positions in the text ------------------------------------------------------ */
@@ -133,6 +134,12 @@ static int check_keys(const ctx *c, const cJSON *obj, const char *at, const char
             return fail_at(c, member_at(at, m->string, 1), BF_ERR_PARSE, "%sunknown key \"%s\" (expected %s)",
                            where, m->string, list);
     }
+    const char *key;
+    int rc = bf_json_repeated_key(obj, &key);
+    if (rc < 0)
+        return bf_fail(c->err, BF_ERR_NOMEM, "%s: out of memory", c->path);
+    if (rc > 0)
+        return fail_at(c, member_at(at, key, 1), BF_ERR_PARSE, "%s\"%s\" given twice", where, key);
     return BF_OK;
 }
 
