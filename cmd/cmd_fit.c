@@ -51,19 +51,20 @@ static void usage(FILE *out)
             fit_accuracy_usage, fit_options_usage, data_options_usage);
 }
 
-static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se, int C)
+static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se,
+                         const unsigned char *fixed, int C)
 {
     char buf[40];
     int n = pi->colour ? C : 1;
     fprintf(out, "    %-16s", pi->name);
     for (int c = 0; c < n; c++) {
         fprintf(out, " %.6g", v[c]);
-        if (isnan(se[c]))
-            fprintf(out, " (+- ?)");
-        else if (se[c] > 0.0)
-            fprintf(out, " (+- %s)", (snprintf(buf, sizeof buf, "%.2g", se[c]), buf));
-        else
+        if (fixed[c])
             fprintf(out, " (fixed)");
+        else if (isnan(se[c]))
+            fprintf(out, " (+- ?)");
+        else /* 0 on data the model reproduces exactly */
+            fprintf(out, " (+- %s)", (snprintf(buf, sizeof buf, "%.2g", se[c]), buf));
     }
     fputc('\n', out);
 }
@@ -82,7 +83,7 @@ static void summary(FILE *out, const bf_fit_result *r)
     fprintf(out, "  termination: %s\n", s->termination);
     for (int i = 0; i < bf_model_nparams(m); i++) {
         int o = bf_model_param_offset(m, i);
-        print_values(out, bf_model_param(m, i), r->x + o, r->stderr_ + o, bf_model_channels(m));
+        print_values(out, bf_model_param(m, i), r->x + o, r->stderr_ + o, r->fixed + o, bf_model_channels(m));
     }
     for (int w = 0; w < r->nwarnings; w++)
         fprintf(out, "  warning: %s\n", r->warnings[w]);

@@ -15,6 +15,7 @@
  *  - Exit 2 for bad usage, 1 for bad data or an unwritable image; no partial file. */
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +23,7 @@
 
 #include "brdfit/image.h"
 #include "brdfit/io.h"
+#include "brdfit/limits.h"
 #include "brdfit/render.h"
 #include "args.h"
 #include "commands.h"
@@ -82,11 +84,10 @@ static int parse_size(const char *s, int *w, int *h)
 static int image_fits(int width, int height)
 {
     const double need = 16.0 * width * height;
-    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    const double have = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
-    if (have > 0.0 && need > 0.5 * have) {
-        fprintf(stderr, "%s: a %dx%d image needs about %.1f GB, more than half of this machine's %.1f GB\n", cmd,
-                width, height, need / 1e9, have / 1e9);
+    const size_t have = bf_memory_available();
+    if (have != SIZE_MAX && need > (double)have) {
+        fprintf(stderr, "%s: a %dx%d image needs about %.3g MiB, %.3g MiB available%s\n", cmd, width, height,
+                need / 1048576.0, (double)have / 1048576.0, getenv("BRDFIT_MEMORY") ? " (BRDFIT_MEMORY)" : "");
         return 0;
     }
     return 1;
@@ -210,7 +211,7 @@ int cmd_render(int argc, char **argv)
     if (nlights == 0)
         lights[nlights++] = (bf_dir){45.0, 0.0};
     if (!image_fits(width, height))
-        return 2;
+        return 1; /* the request is well formed; this machine cannot hold it */
     const bf_path_use in[] = {{"--params file", params}, {"--data file", data}, {"--scene file", dopt.scene}},
                       out[] = {{"-o", out_path}};
     int bad = args_check_outputs(cmd, in, 3, out, 1);

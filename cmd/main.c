@@ -1,8 +1,10 @@
 /* brdfit: fit parametric BRDF models to measured reflectance. Dispatches subcommands. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/limits.h"
 #include "commands.h"
 
 static const struct {
@@ -27,12 +29,19 @@ static void usage(FILE *out)
     fprintf(out, "usage: brdfit COMMAND [options]\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(out, "  brdfit %s\n", commands[i].usage);
+    fprintf(out, "environment: BRDFIT_MEMORY=BYTES[K|M|G|T]   the most memory large arrays may take\n");
 }
 
 int main(int argc, char **argv)
 {
     /* A run ended by a signal (Ctrl-C, kill, a file size limit) leaves no temporary. */
     bf_remove_temporaries_on_signals();
+    const char *memory = getenv("BRDFIT_MEMORY");
+    size_t bytes;
+    if (memory && *memory && !bf_parse_bytes(memory, &bytes)) {
+        fprintf(stderr, "brdfit: BRDFIT_MEMORY='%.40s' is not a byte count (such as 4G, 512M or 1000000)\n", memory);
+        return 2;
+    }
     if (argc < 2) {
         usage(stderr);
         return 2;

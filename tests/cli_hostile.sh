@@ -90,4 +90,26 @@ else
   bad "compare --html: $(cat -v "$tmp/err")"
 fi
 
+# --- memory: input that outgrows the memory available gets an error, not the OOM killer --------
+# BRDFIT_MEMORY lowers the limit the machine, control group and ulimit -v set, so a file
+# of 12 MB stands for a 10 GB CSV on a small machine.
+awk 'BEGIN { print "theta_i,phi_i,theta_o,phi_o,r,g,b"; for (i = 0; i < 300000; i++)
+  printf "%.3f,0,%.3f,180,0.1,0.2,0.3\n", (i * 7) % 80, (i * 13) % 80 }' > "$tmp/huge.csv"
+BRDFIT_MEMORY=8M expect_clean "CSV past BRDFIT_MEMORY" 'huge.csv:[0-9]*: not enough memory: [0-9.]* MiB needed, 8 MiB available (BRDFIT_MEMORY)' \
+  "$tmp/huge.json" "$BRDFIT" fit "$tmp/huge.csv" -m lambert -o "$tmp/huge.json"
+BRDFIT_MEMORY=20M expect_clean "samples past BRDFIT_MEMORY" 'out of memory for the geometry of 300000 samples' \
+  "$tmp/huge.json" "$BRDFIT" fit "$tmp/huge.csv" -m lambert -o "$tmp/huge.json"
+BRDFIT_MEMORY=1G "$BRDFIT" fit "$tmp/huge.csv" -m lambert -o "$tmp/huge.json" >/dev/null 2>"$tmp/err" && [ -s "$tmp/huge.json" ] &&
+  ok || bad "fit within BRDFIT_MEMORY=1G: $(cat "$tmp/err")"
+"$SYNTH" --params "$DATA/lambert_rgb.json" --pattern merl -o "$tmp/m.binary" >/dev/null
+BRDFIT_MEMORY=8M expect_clean "MERL table past BRDFIT_MEMORY" 'm.binary: not enough memory: [0-9.]* MiB needed, 8 MiB available' \
+  "$tmp/m.json" "$BRDFIT" fit "$tmp/m.binary" -m lambert -o "$tmp/m.json"
+BRDFIT_MEMORY=100M "$BRDFIT" render --params "$DATA/lambert_rgb.json" --size 4096 -o "$tmp/r.png" >/dev/null 2>"$tmp/err"
+[ $? = 1 ] && [ ! -e "$tmp/r.png" ] && grep -q 'a 4096x4096 image needs about 256 MiB, 100 MiB available (BRDFIT_MEMORY)' "$tmp/err" &&
+  ok || bad "render past BRDFIT_MEMORY: $(cat "$tmp/err")"
+for v in -3 4X ' 4G' 99999999999999999999T; do
+  BRDFIT_MEMORY=$v "$BRDFIT" models >/dev/null 2>"$tmp/err"
+  [ $? = 2 ] && grep -q 'BRDFIT_MEMORY=.* is not a byte count' "$tmp/err" && ok || bad "BRDFIT_MEMORY='$v' accepted"
+done
+
 finish

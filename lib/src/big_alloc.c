@@ -1,6 +1,7 @@
 /* Large arrays on transparent huge pages (big_alloc.h). */
 #include "big_alloc.h"
 
+#include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,10 @@ void *bf_big_malloc(size_t bytes)
 {
     if (bytes < BIG_ENOUGH)
         return malloc(bytes ? bytes : 1);
+    if (!bf_memory_allows(bytes)) {
+        errno = ENOMEM;
+        return NULL;
+    }
     /* Whole huge pages, so that the last one is the allocation's too. */
     if (bytes > SIZE_MAX - HUGE_PAGE)
         return NULL;

@@ -10,9 +10,22 @@
 #ifndef BF_BIG_ALLOC_H
 #define BF_BIG_ALLOC_H
 
+#include "brdfit/error.h"
+
 #include <stddef.h>
 
-/* bytes (> 0) uninitialised, or NULL. */
+/* Requests below this are not checked against the memory available (memory.c). */
+#define BF_MEMORY_UNCHECKED ((size_t)1 << 20)
+
+/* 1 when `bytes` more may be allocated: under BF_MEMORY_UNCHECKED, or at most
+ * bf_memory_available(). */
+int bf_memory_allows(size_t bytes);
+
+/* The error for an array of `bytes` refused or not obtained while reading path (at line,
+ * when not 0): "PATH:LINE: not enough memory: 9.6 GB needed, 4.2 GB available". */
+int bf_fail_memory(bf_error *err, const char *path, size_t line, size_t bytes);
+
+/* bytes (> 0) uninitialised, or NULL (also when bf_memory_allows refuses them). */
 void *bf_big_malloc(size_t bytes);
 /* n * size bytes zeroed (n * size checked for overflow), or NULL. */
 void *bf_big_calloc(size_t n, size_t size);

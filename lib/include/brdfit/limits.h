@@ -13,4 +13,18 @@
 /* Columns of a CSV table (channels plus angles, weights and ignored columns). */
 #define BF_CSV_MAX_COLUMNS 65536
 
+/* Memory: bytes this process may still allocate: the least of what the machine has
+ * available, what its control group (container, batch job) still allows, its
+ * address-space limit (ulimit -v) and the environment variable BRDFIT_MEMORY (bytes, or
+ * with a K, M, G or T suffix: powers of 1024). SIZE_MAX when nothing is known. Arrays of
+ * 1 MiB or more that grow with the input (samples, tables, images) are refused beyond it,
+ * with a message saying so, rather than taken from memory the kernel would then kill the
+ * process for touching. */
+#include <stddef.h>
+size_t bf_memory_available(void);
+
+/* "123", "512M", "4G": a byte count as BRDFIT_MEMORY takes it, into *out. 0 when s is
+ * not one (NULL, empty, signs, spaces, other suffixes, overflow). */
+int bf_parse_bytes(const char *s, size_t *out);
+
 #endif

@@ -19,6 +19,7 @@
  * DESIGN.md (L is the difference vector rotated by theta_h about Y, V mirrors L about
  * H). For reciprocal data the two name the same pair of directions, swapped. */
 #include "brdfit/samples.h"
+#include "../big_alloc.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -94,8 +95,8 @@ static double *row_slot(rows *r)
     if (r->n == r->cap) {
         /* A first block of about 64 kB whatever the width, then doubling. */
         size_t cap = r->cap ? 2 * r->cap : 8192 / r->width + 1;
-        if (cap > SIZE_MAX / sizeof(double) / r->width)
-            return NULL;
+        if (cap > SIZE_MAX / sizeof(double) / r->width || !bf_memory_allows(r->cap * r->width * sizeof(double)))
+            return NULL; /* doubling: the new half must be available */
         double *v = realloc(r->v, cap * r->width * sizeof *v);
         if (!v)
             return NULL;
@@ -443,7 +444,7 @@ int bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
         }
         double *row = row_slot(&r);
         if (!row) {
-            rc = bf_fail(err, BF_ERR_NOMEM, "%s:%zu: out of memory", path, lineno);
+            rc = bf_fail_memory(err, path, lineno, 2 * r.cap * r.width * sizeof(double));
             goto done;
         }
         char msg[160];

@@ -10,10 +10,12 @@
  * One channel per wavelength, named by it ("400"). */
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
+#include "../big_alloc.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +33,8 @@ static int push(numbers *a, double x)
 {
     if (a->n == a->cap) {
         size_t cap = a->cap ? 2 * a->cap : 4096;
+        if (cap > SIZE_MAX / sizeof(double) || !bf_memory_allows(a->cap * sizeof(double)))
+            return 0; /* doubling: the new half must be available */
         double *v = realloc(a->v, cap * sizeof *v);
         if (!v)
             return 0;
@@ -147,7 +151,7 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
                     x = x < 0.0 ? 0.0 : x > M_PI ? M_PI : x;
             }
             if (!push(&num, x)) {
-                rc = bf_fail(err, BF_ERR_NOMEM, "%s:%zu: out of memory", path, lineno);
+                rc = bf_fail_memory(err, path, lineno, 2 * num.cap * sizeof(double));
                 goto done;
             }
         }

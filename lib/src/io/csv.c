@@ -2,6 +2,7 @@
  * brdfit table (directions, samples) is numeric, and checking each cell here lets the
  * error name the line and column. */
 #include "brdfit/io.h"
+#include "../big_alloc.h"
 #include "brdfit/limits.h"
 
 #include <ctype.h>
@@ -114,11 +115,16 @@ int bf_csv_column(const bf_csv *t, const char *name)
     return -1;
 }
 
-static int grow(bf_csv *t, size_t *cap)
+/* Room for more rows, or 0 with *need the bytes the table would take. */
+static int grow(bf_csv *t, size_t *cap, size_t *need)
 {
     /* A first block of about 64 kB whatever the width, then doubling. */
     size_t ncap = *cap ? 2 * *cap : 8192 / t->ncols + 1;
-    if (ncap > SIZE_MAX / sizeof(double) / t->ncols)
+    *need = SIZE_MAX;
+    if (ncap > SIZE_MAX / (sizeof(double) * t->ncols + sizeof(size_t)))
+        return 0;
+    *need = ncap * (t->ncols * sizeof(double) + sizeof(size_t));
+    if (!bf_memory_allows(*need / 2)) /* the half already held is counted as used */
         return 0;
     double *d = realloc(t->data, ncap * t->ncols * sizeof *d);
     if (!d)
@@ -240,8 +246,9 @@ int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: expected %zu fields, found %zu", path, lineno, t->ncols, n);
             goto done;
         }
-        if (t->nrows == cap && !grow(t, &cap)) {
-            rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory at line %zu", path, lineno);
+        size_t need;
+        if (t->nrows == cap && !grow(t, &cap, &need)) {
+            rc = bf_fail_memory(err, path, lineno, need);
             goto done;
         }
         double *row = t->data + t->nrows * t->ncols;

@@ -167,7 +167,7 @@ static int table_samples(const char *path, double *table, int interleaved, bf_sa
         if (!interleaved)
             free(vals);
         bf_samples_free(s);
-        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL samples", path);
+        return bf_fail_memory(err, path, 0, (size_t)BF_MERL_CELLS * sizeof *cell + TABLE_DOUBLES * sizeof *vals);
     }
     size_t n = 0;
     for (size_t c = 0; c < (size_t)BF_MERL_CELLS; c++) {
@@ -203,7 +203,7 @@ int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_er
     double *table = NULL;
     int rc = read_header(fp, path, err);
     if (rc == BF_OK && !(table = bf_big_malloc(TABLE_DOUBLES * sizeof *table)))
-        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the MERL table", path);
+        rc = bf_fail_memory(err, path, 0, TABLE_DOUBLES * sizeof *table);
     if (rc == BF_OK)
         rc = read_planes(fp, path, table, !keep_raw, err);
     fclose(fp);
