@@ -52,6 +52,7 @@
 #include "brdfit/compare.h"
 #include "brdfit/fit.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -61,26 +62,31 @@ static const char cmd[] = "brdfit compare";
 
 #define MAX_MODELS 128
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit compare DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv]\n"
-            "  -m, --model SPECS          models to compare (as brdfit fit; repeatable), or all: every\n"
-            "                             registered model with its default options\n"
-            "  --error rmse|rmse_log|rmse_cos|rmse_rel   error for the Pareto fronts and the tolerance\n"
-            "                             (default rmse_log; with --rank cv the cross-validated error)\n"
-            "  --tolerance T              relative: the simplest model with error <= best * (1 + T)\n"
-            "                             is chosen (default 0.05)\n"
-            "  --jobs N                   fits run at once (default 1); each gets --threads / N threads\n"
-            "  --json FILE                everything, machine-readable (stable keys)\n"
-            "  --csv FILE                 one row per material x model\n"
-            "  --html DIR                 a report to read in a browser: DIR/index.html and its images\n"
-            "                             (an existing DIR is replaced only if it is a previous report)\n"
-            "  --quiet                    no progress on stderr\n");
-    rank_options_usage(out, BF_RANK_BIC);
-    fputs(fit_options_usage, out);
-    fputs(data_options_usage, out);
-}
+static const cli_option own[] = {
+    {"--model", 'm', "SPECS", "models to compare (as brdfit fit; repeatable), or all: every\n"
+                              "registered model with its default options", "model"},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "error for the Pareto fronts and the tolerance\n"
+                                                       "(default rmse_log; with --rank cv the cross-validated error)",
+     NULL},
+    {"--tolerance", 0, "T", "relative: the simplest model with error <= best * (1 + T)\nis chosen (default 0.05)",
+     NULL},
+    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL},
+    {"--json", 0, "FILE", "everything, machine-readable (stable keys; - for standard output)", "file"},
+    {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file"},
+    {"--html", 0, "DIR", "a report to read in a browser: DIR/index.html and its images\n"
+                         "(an existing DIR is replaced only if it is a previous report)", "dir"},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_compare = {
+    "brdfit", "compare", "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
+    "fit many models to many materials and rank them",
+    "Fits every model to every data file, ranks the models per material and across materials (by an information "
+    "criterion, cross-validated error or plain error), marks the Pareto fronts of error against free parameters and "
+    "fitting work, and writes the tables and a report. Ctrl-C stops starting new fits and writes what finished "
+    "(exit 130).",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 static volatile sig_atomic_t interrupted;
 static void on_sigint(int sig)
@@ -252,7 +258,7 @@ int cmd_compare(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     fit_options fopt;
     fit_options_init(&fopt);
-    int status = 2, nmodels = 0, ndata = 0, jobs = 1, quiet = 0, all = 0;
+    int status = 2, nmodels = 0, ndata = 0, jobs = 1, all = 0;
     rank_options ro;
     rank_options_init(&ro, BF_RANK_BIC);
     char *specs[MAX_MODELS] = {0};
@@ -272,36 +278,28 @@ int cmd_compare(int argc, char **argv)
         return 1;
     }
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            status = 0;
-            goto done;
+    cli_args args;
+    int p = cli_parse(&cli_compare, argc, argv, &args);
+    if (p != CLI_OK) {
+        free(data);
+        return p == CLI_EXIT ? 0 : 2;
+    }
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a) {
+            data[ndata++] = v;
+            continue;
         }
-        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        int d = data_options_parse(&dopt, a, v, cmd);
         if (d == 0)
-            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+            d = fit_options_parse(&fopt, a, v, cmd);
         if (d == 0)
-            d = rank_options_parse(&ro, argc, argv, &i, cmd);
+            d = rank_options_parse(&ro, a, v, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
             continue;
-        if (a[0] != '-' || !a[1]) {
-            data[ndata++] = a;
-            continue;
-        }
-        if (!strcmp(a, "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        static const char *const valued[] = {"-m", "--model", "--error", "--tolerance", "--jobs", "--json",
-                                             "--csv", "--html"};
-        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
-        if (!v)
-            goto done;
-        if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
+        if (!strcmp(a, "--model")) {
             if (!strcmp(v, "all")) {
                 all = 1;
                 continue;
@@ -411,7 +409,7 @@ int cmd_compare(int argc, char **argv)
     }
 
     run r = {.cmp = &cmp, .samples = samples, .results = results, .have = have, .fo = &fopt.fit,
-             .folds = cmp.folds, .seed = fopt.fit.seed, .total = (int)total, .quiet = quiet,
+             .folds = cmp.folds, .seed = fopt.fit.seed, .total = (int)total, .quiet = cli_quiet(),
              .tty = isatty(STDERR_FILENO), .t0 = now()};
     pthread_mutex_init(&r.lock, NULL);
     struct sigaction sa, old;
@@ -433,7 +431,7 @@ int cmd_compare(int argc, char **argv)
     sigaction(SIGINT, &old, NULL);
     pthread_mutex_destroy(&r.lock);
     cmp.interrupted = r.done < r.total;
-    if (cmp.interrupted && !quiet && r.tty)
+    if (cmp.interrupted && !cli_quiet() && r.tty)
         fputc('\n', stderr);
 
     bf_compare_rank(&cmp);
@@ -474,6 +472,7 @@ int cmd_compare(int argc, char **argv)
         status = 0;
     }
 done:
+    cli_args_free(&args);
     if (results)
         for (size_t k = 0; k < (size_t)ndata * (size_t)nmodels; k++)
             if (have[k])

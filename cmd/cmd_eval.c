@@ -8,16 +8,25 @@
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 
 static const char *const angle_cols[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
 
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: brdfit eval --params P.json --dirs D.csv [-o OUT.csv]\n"
-                 "  D.csv has columns theta_i,phi_i,theta_o,phi_o in degrees; the output repeats\n"
-                 "  them and adds one column per channel (value, or r,g,b, or c0..cN-1).\n");
-}
+static const cli_option own[] = {
+    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
+    {"--dirs", 0, "FILE", "CSV of direction pairs: theta_i,phi_i,theta_o,phi_o in degrees (- for standard input)",
+     "file"},
+    {"--output", 'o', "FILE", "the values as CSV (default and -: standard output)", "file"},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group};
+const cli_command cli_eval = {
+    "brdfit", "eval", "--params P.json --dirs D.csv [-o OUT.csv]", "evaluate a model at direction pairs",
+    "The output repeats the direction columns of D.csv and adds one column per channel (value, or r,g,b, or "
+    "c0..cN-1).",
+    NULL, groups, sizeof groups / sizeof groups[0],
+};
 
 static void channel_name(int C, int c, char *buf, size_t size)
 {
@@ -51,19 +60,21 @@ static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const 
 int cmd_eval(int argc, char **argv)
 {
     const char *params_path = NULL, *dirs_path = NULL, *out_path = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return 0;
-        }
-        if (i + 1 >= argc || (strcmp(a, "--params") && strcmp(a, "--dirs") && strcmp(a, "-o"))) {
-            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", a);
+    cli_args args;
+    int p = cli_parse(&cli_eval, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name;
+        if (!a) {
+            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", args.v[i].value);
+            cli_args_free(&args);
             return 2;
         }
         const char **dst = !strcmp(a, "--params") ? &params_path : !strcmp(a, "--dirs") ? &dirs_path : &out_path;
-        *dst = argv[++i];
+        *dst = args.v[i].value;
     }
+    cli_args_free(&args);
     if (!params_path || !dirs_path) {
         fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
         return 2;

@@ -40,16 +40,23 @@ static const char cmd[] = "brdfit fit";
 
 #define MAX_MODELS 64
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit fit DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]\n"
-            "  -m, --model SPECS          models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
-            "                             (a comma starts a new model where a model name follows; repeatable)\n"
-            "  -o FILE                    result JSON (one model: a parameter file; several: {\"fits\": [...]})\n"
-            "%s%s%s",
-            fit_accuracy_usage, fit_options_usage, data_options_usage);
-}
+static const cli_option own[] = {
+    {"--model", 'm', "SPECS",
+     "models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
+     "(a comma starts a new model where a model name follows; repeatable)",
+     "model"},
+    {"--output", 'o', "FILE", "result JSON (one model: a parameter file; several: {\"fits\": [...]});\n- for standard output",
+     "file"},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_fit = {
+    "brdfit", "fit", "DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]",
+    "fit models to measured or synthetic reflectance",
+    "Fits each model to the data file (CSV, MERL .binary, Cornell, ALTA; - for standard input), prints a short "
+    "summary per model and writes the result file, which brdfit eval and brdfit render take as a parameter file.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se,
                          const unsigned char *fixed, int C)
@@ -103,37 +110,32 @@ int cmd_fit(int argc, char **argv)
     bf_fit_result results[MAX_MODELS];
     int nres = 0;
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            status = 0;
-            goto done;
+    cli_args args;
+    int p = cli_parse(&cli_fit, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a) {
+            if (data) {
+                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
+                goto done;
+            }
+            data = v;
+            continue;
         }
-        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        int d = data_options_parse(&dopt, a, v, cmd);
         if (d == 0)
-            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+            d = fit_options_parse(&fopt, a, v, cmd);
         if (d == 0)
-            d = fit_options_parse_accuracy(&fopt, argc, argv, &i, cmd);
+            d = fit_options_parse_accuracy(&fopt, a, v, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
             continue;
-        if (a[0] != '-' || !a[1]) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, a);
-                goto done;
-            }
-            data = a;
-            continue;
-        }
-        static const char *const valued[] = {"-m", "--model", "-o"};
-        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
-        if (!v)
-            goto done;
-        if (!strcmp(a, "-o")) {
+        if (!strcmp(a, "--output")) {
             out_path = v;
-        } else {
+        } else { /* --model */
             int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
             if (k < 0)
                 goto done;
@@ -161,13 +163,15 @@ int cmd_fit(int argc, char **argv)
     FILE *info = out_path && !strcmp(out_path, "-") ? stderr : stdout;
     int all_ok = 1;
     for (int k = 0; k < nmodels; k++) {
+        cli_note(cmd, "fitting %s", specs[k]);
         int rc = bf_fit(s, specs[k], &fopt.fit, &results[nres], &err);
         if (rc != BF_OK) {
             fprintf(stderr, "%s: %s: %s\n", cmd, specs[k], err.msg);
             status = rc == BF_ERR_ARG ? 2 : 1;
             goto done;
         }
-        summary(info, &results[nres]);
+        if (!cli_quiet())
+            summary(info, &results[nres]);
         all_ok &= results[nres].ok;
         nres++;
     }
@@ -187,6 +191,7 @@ int cmd_fit(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", cmd, nres == 1 ? "the fit failed" : "a fit failed");
     status = all_ok ? 0 : 1;
 done:
+    cli_args_free(&args);
     for (int k = 0; k < nres; k++)
         bf_fit_result_free(&results[k]);
     for (int k = 0; k < nmodels; k++)

@@ -148,10 +148,17 @@ static void print_text(const char *path, const bf_samples *s, const data_options
     }
 }
 
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: brdfit info DATA [data options] [--json]\n%s", data_options_usage);
-}
+static const cli_option own[] = {
+    {"--json", 0, NULL, "the same as JSON", NULL},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_info = {
+    "brdfit", "info", "DATA [data options] [--json]", "describe what a data file holds",
+    "Format, samples, channels, angle ranges, values and weights of DATA (- for standard input) after the data "
+    "options: what a fit of it would see.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 int cmd_info(int argc, char **argv)
 {
@@ -159,27 +166,30 @@ int cmd_info(int argc, char **argv)
     memset(&o, 0, sizeof o);
     const char *path = NULL;
     int json = 0;
-    for (int i = 1; i < argc; i++) {
-        int used = data_options_parse(&o, argc, argv, &i, cmd);
-        if (used < 0)
+    cli_args args;
+    int p = cli_parse(&cli_info, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        int used = a ? data_options_parse(&o, a, v, cmd) : 0;
+        if (used < 0) {
+            cli_args_free(&args);
             return 2;
+        }
         if (used)
             continue;
-        if (!strcmp(argv[i], "--json")) {
+        if (a) { /* --json */
             json = 1;
-        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
-            return 0;
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            fprintf(stderr, "%s: unknown option '%s' (try brdfit info --help)\n", cmd, argv[i]);
-            return 2;
         } else if (path) {
-            fprintf(stderr, "%s: one data file at a time ('%s' and '%s')\n", cmd, path, argv[i]);
+            fprintf(stderr, "%s: one data file at a time ('%s' and '%s')\n", cmd, path, v);
+            cli_args_free(&args);
             return 2;
         } else {
-            path = argv[i];
+            path = v;
         }
     }
+    cli_args_free(&args);
     if (!path) {
         fprintf(stderr, "%s: no data file (usage: brdfit info DATA [data options] [--json])\n", cmd);
         return 2;

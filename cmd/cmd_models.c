@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "brdfit/model.h"
+#include "cli.h"
 #include "commands.h"
 
 static const char *scale_name(bf_scale s)
@@ -101,16 +102,43 @@ static void print_text(const bf_family_info *fi)
     bf_model_free(m3);
 }
 
+static const cli_option own[] = {
+    {"--json", 0, NULL, "the same as JSON: parameters with bounds, defaults, scales; options", NULL},
+    {"--names", 0, NULL, "the model names alone, one a line (for scripts and completion)", NULL},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group};
+const cli_command cli_models = {
+    "brdfit", "models", "[--json|--names]", "list the models, their parameters, bounds and options",
+    "Every model family brdfit fits, with its parameters (colour or scalar, bounds, default, the scale the "
+    "optimizer works in) and its options (MODEL:option=value). docs/models.md gives the formulas.",
+    NULL, groups, sizeof groups / sizeof groups[0],
+};
+
 int cmd_models(int argc, char **argv)
 {
-    int json = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0) {
-            json = 1;
-        } else {
-            fprintf(stderr, "brdfit models: unknown argument '%s' (usage: brdfit models [--json])\n", argv[i]);
+    cli_args args;
+    int p = cli_parse(&cli_models, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    int json = 0, names = 0;
+    for (int i = 0; i < args.n; i++) {
+        if (!args.v[i].name) {
+            fprintf(stderr, "brdfit models: unexpected argument '%s' (see brdfit models --help)\n", args.v[i].value);
+            cli_args_free(&args);
             return 2;
         }
+        *(strcmp(args.v[i].name, "--json") ? &names : &json) = 1;
+    }
+    cli_args_free(&args);
+    if (json && names) {
+        fprintf(stderr, "brdfit models: --json and --names exclude each other\n");
+        return 2;
+    }
+    if (names) {
+        for (int f = 0; f < bf_family_count(); f++)
+            puts(bf_family_get(f)->name);
+        return 0;
     }
     if (!json) {
         for (int f = 0; f < bf_family_count(); f++)

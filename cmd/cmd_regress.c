@@ -26,6 +26,7 @@
 #include "brdfit/regress.h"
 #include "brdfit/scene.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -34,20 +35,31 @@ static const char cmd[] = "brdfit regress";
 
 #define MAX_SELECTED 256
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit regress BASELINE.json [--update] [--junit OUT.xml] [--case NAME]... [--verbose]\n"
-            "  --update         run every case and rewrite the baseline with the values obtained\n"
-            "                   (names, data, options and tolerances kept; nothing written if a case\n"
-            "                   cannot run)\n"
-            "  --junit FILE     JUnit XML report for CI systems\n"
-            "  --case NAME      run only this case (repeatable)\n"
-            "  --verbose        print every compared value, not only those that moved\n"
-            "A case's \"options\" are brdfit fit's data and fit options (see brdfit fit --help);\n"
-            "--threads defaults to 1. Exit 0 all pass, 1 a case failed or could not run, 2 bad\n"
-            "usage or a bad baseline.\n");
-}
+static const cli_option own[] = {
+    {"--update", 0, NULL, "run every case and rewrite the baseline with the values obtained\n"
+                          "(names, data, options and tolerances kept; nothing written if a case\n"
+                          "cannot run)", NULL},
+    {"--junit", 0, "FILE", "JUnit XML report for CI systems (- for standard output)", "file"},
+    {"--case", 0, "NAME", "run only this case (repeatable)", NULL},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group};
+const cli_command cli_regress = {
+    "brdfit", "regress", "BASELINE.json [--update] [--junit OUT.xml] [--case NAME]... [--verbose]",
+    "re-run fits and compare them with a baseline",
+    "Each case of the baseline names a data file (relative to the baseline's folder), a model, brdfit fit's data "
+    "and fit options (--threads defaults to 1) and the expected parameters and metrics with their tolerances. "
+    "--verbose prints every compared value, not only those that moved.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
+
+/* The options a case may hold: brdfit fit's data and fit options. */
+static const cli_group *const case_groups[] = {
+    &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading,
+    &data_options_preprocessing,
+};
+static const cli_command case_options = {"brdfit", "fit", "", "", NULL, NULL, case_groups,
+                                         sizeof case_groups / sizeof case_groups[0]};
 
 /* One case's parsed options. The argv holds the baseline's strings, except --scene
  * values, resolved against the baseline's folder (owned). */
@@ -94,22 +106,38 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
         /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
         char prefix[1024];
         snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->option_lines[i], cs->name);
-        const char *a = r->argv[i];
-        int d = data_options_parse(&r->dopt, r->argc, r->argv, &i, prefix);
-        if (d == 0)
-            d = fit_options_parse(&r->fopt, r->argc, r->argv, &i, prefix);
-        if (d == 0)
-            d = fit_options_parse_accuracy(&r->fopt, r->argc, r->argv, &i, prefix);
-        if (d < 0)
+        /* The grammar of the command line: --name value or --name=value. */
+        const char *a = r->argv[i], *eq = strchr(a, '='), *v = NULL;
+        const size_t len = eq ? (size_t)(eq - a) : strlen(a);
+        const cli_option *o = !strncmp(a, "--", 2) && len < 64 ? cli_find(&case_options, a, len) : NULL;
+        if (!o || o->short_name == 'h' || o->short_name == 'q' || o->short_name == 'v') {
+            if (!strcmp(a, "-m") || !strncmp(a, "--model", 7) || !strcmp(a, "-o") || !strncmp(a, "--output", 8))
+                fprintf(stderr, "%s: option '%s' has no place in a baseline (the case's \"model\" names the model)\n",
+                        prefix, a);
+            else
+                fprintf(stderr, "%s: unknown option '%s' (brdfit fit's data and fit options only)\n", prefix, a);
             return 2;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "-m") || !strcmp(a, "--model") || !strcmp(a, "-o"))
-            fprintf(stderr, "%s: option '%s' has no place in a baseline (the case's \"model\" names the model)\n",
-                    prefix, a);
-        else
-            fprintf(stderr, "%s: unknown option '%s' (brdfit fit's data and fit options only)\n", prefix, a);
-        return 2;
+        }
+        if (!o->arg && eq) {
+            fprintf(stderr, "%s: %s takes no value\n", prefix, o->name);
+            return 2;
+        }
+        if (o->arg && !eq) {
+            if (i + 1 >= r->argc) {
+                fprintf(stderr, "%s: %s needs a value\n", prefix, o->name);
+                return 2;
+            }
+            v = r->argv[++i];
+        } else if (eq) {
+            v = eq + 1;
+        }
+        int d = data_options_parse(&r->dopt, o->name, v, prefix);
+        if (d == 0)
+            d = fit_options_parse(&r->fopt, o->name, v, prefix);
+        if (d == 0)
+            d = fit_options_parse_accuracy(&r->fopt, o->name, v, prefix);
+        if (d <= 0)
+            return 2;
     }
     /* As brdfit fit does: the preset's subsample unless --subsample was given, and with a
      * scene the metrics over its directions. */
@@ -222,39 +250,33 @@ int cmd_regress(int argc, char **argv)
 {
     const char *path = NULL, *junit = NULL;
     const char *selected[MAX_SELECTED];
-    int nselected = 0, update = 0, verbose = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--update")) {
-            update = 1;
-        } else if (!strcmp(a, "--verbose") || !strcmp(a, "-v")) {
-            verbose = 1;
-        } else if (!strcmp(a, "--junit") || !strcmp(a, "--case")) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-                return 2;
-            }
-            if (a[2] == 'j')
-                junit = argv[++i];
-            else if (nselected >= MAX_SELECTED) {
-                fprintf(stderr, "%s: more than %d --case options\n", cmd, MAX_SELECTED);
-                return 2;
-            } else
-                selected[nselected++] = argv[++i];
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit regress --help)\n", cmd, a);
+    int nselected = 0, update = 0;
+    cli_args args;
+    int p = cli_parse(&cli_regress, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a && path) {
+            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, path, v);
+            cli_args_free(&args);
             return 2;
-        } else if (path) {
-            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, path, a);
+        } else if (!a) {
+            path = v;
+        } else if (!strcmp(a, "--update")) {
+            update = 1;
+        } else if (!strcmp(a, "--junit")) {
+            junit = v;
+        } else if (nselected >= MAX_SELECTED) {
+            fprintf(stderr, "%s: more than %d --case options\n", cmd, MAX_SELECTED);
+            cli_args_free(&args);
             return 2;
         } else {
-            path = a;
+            selected[nselected++] = v;
         }
     }
+    cli_args_free(&args);
+    const int verbose = cli_verbose();
     if (!path) {
         fprintf(stderr, "%s: a baseline file is required (see brdfit regress --help)\n", cmd);
         return 2;

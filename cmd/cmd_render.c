@@ -26,6 +26,7 @@
 #include "brdfit/limits.h"
 #include "brdfit/render.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 #include "data_options.h"
 
@@ -33,28 +34,35 @@ static const char cmd[] = "brdfit render";
 
 #define MAX_LIGHTS 16
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit render --params P.json [mode] [options] -o OUT.png|OUT.exr\n"
-            "modes:\n"
-            "  (default)                  a lit sphere of the model\n"
-            "  --slice                    in-plane slices: log10 f against theta_o (-90..90, + on the mirror side)\n"
-            "  --half-diff                theta_h (x, 0..90) by theta_d (y, 0..90 downwards) at a fixed phi_d\n"
-            "options:\n"
-            "  --light THETA,PHI          a directional light, degrees (repeatable; default 45,0)\n"
-            "  --view THETA,PHI           towards the camera, degrees (default 0,0: looking down +z)\n"
-            "  --size N|WxH               image size (default 256; slices 640x480)\n"
-            "  --exposure E               multiplies values before the PNG mapping (default 1)\n"
-            "  --tonemap clamp|reinhard|log   PNG mapping (default: clamp; log for --half-diff)\n"
-            "  --decades D                range of the log mapping (default 4)\n"
-            "  --incidence A,B,...        slice incidence angles (default 0,30,60)\n"
-            "  --data FILE                slices: measured samples to overlay; half-diff: a MERL table\n"
-            "  --plane-tol D              slices: overlay samples within D degrees of the plane (default 2)\n"
-            "  --phi-d D                  half-diff: phi_d in degrees (default 90)\n"
-            "%s",
-            data_options_usage);
-}
+static const cli_option modes[] = {
+    {"--slice", 0, NULL, "in-plane slices: log10 f against theta_o (-90..90, + on the mirror side)", NULL},
+    {"--half-diff", 0, NULL, "theta_h (x, 0..90) by theta_d (y, 0..90 downwards) at a fixed phi_d", NULL},
+};
+static const cli_option own[] = {
+    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
+    {"--output", 'o', "FILE", "the image: .png or .exr (- for standard output, with --to)", "file"},
+    {"--to", 0, "png|exr", "image format (default: by the output's extension)", NULL},
+    {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL},
+    {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL},
+    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480)", NULL},
+    {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL},
+    {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL},
+    {"--decades", 0, "D", "range of the log mapping (default 4)", NULL},
+    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60)", NULL},
+    {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file"},
+    {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL},
+    {"--phi-d", 0, "D", "half-diff: phi_d in degrees (default 90)", NULL},
+};
+static const cli_group mode_group = CLI_GROUP("modes (default: a lit sphere of the model)", modes);
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&mode_group, &own_group, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_render = {
+    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|OUT.exr",
+    "render pictures of a model or a MERL table",
+    "A lit sphere, in-plane slices with measured samples overlaid, or a half-diff image, as PNG (tone mapped) or "
+    "EXR (linear values).",
+    NULL, groups, sizeof groups / sizeof groups[0],
+};
 
 static int parse_double(const char *s, double *out)
 {
@@ -104,11 +112,16 @@ int cmd_render(int argc, char **argv)
     double incidence[BF_SLICE_MAX_INCIDENCE] = {0.0, 30.0, 60.0};
     int nincidence = 3;
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return 0;
+    int to = 0;
+    cli_args args;
+    int p = cli_parse(&cli_render, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a) {
+            fprintf(stderr, "%s: unexpected argument '%s' (see brdfit render --help)\n", cmd, v);
+            goto usage;
         }
         if (!strcmp(a, "--slice")) {
             slice = 1;
@@ -118,27 +131,24 @@ int cmd_render(int argc, char **argv)
             halfdiff = 1;
             continue;
         }
-        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        int d = data_options_parse(&dopt, a, v, cmd);
         if (d < 0)
-            return 2;
+            goto usage;
         if (d > 0)
             continue;
-        if (i + 1 >= argc || a[0] != '-') {
-            fprintf(stderr, "%s: unexpected argument '%s' (see brdfit render --help)\n", cmd, a);
-            return 2;
-        }
-        const char *v = argv[++i];
         int ok = 1;
         if (!strcmp(a, "--params"))
             params = v;
         else if (!strcmp(a, "--data"))
             data = v;
-        else if (!strcmp(a, "-o"))
+        else if (!strcmp(a, "--output"))
             out_path = v;
+        else if (!strcmp(a, "--to"))
+            ok = (to = !strcmp(v, "png") ? BF_IMAGE_PNG : !strcmp(v, "exr") ? BF_IMAGE_EXR : 0) != 0;
         else if (!strcmp(a, "--light")) {
             if (nlights >= MAX_LIGHTS) {
                 fprintf(stderr, "%s: at most %d lights\n", cmd, MAX_LIGHTS);
-                return 2;
+                goto usage;
             }
             ok = parse_dir(v, &lights[nlights++]);
         } else if (!strcmp(a, "--view"))
@@ -168,15 +178,13 @@ int cmd_render(int argc, char **argv)
                     incidence[nincidence++] = x;
             }
             ok = ok && nincidence > 0;
-        } else {
-            fprintf(stderr, "%s: unknown option '%s' (see brdfit render --help)\n", cmd, a);
-            return 2;
         }
         if (!ok) {
             fprintf(stderr, "%s: bad value '%s' for %s\n", cmd, v, a);
-            return 2;
+            goto usage;
         }
     }
+    cli_args_free(&args);
     if (slice && halfdiff) {
         fprintf(stderr, "%s: --slice and --half-diff exclude each other\n", cmd);
         return 2;
@@ -185,9 +193,9 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "%s: -o OUT.png|OUT.exr is required\n", cmd);
         return 2;
     }
-    int fmt = bf_image_format_of(out_path);
+    int fmt = to ? to : bf_image_format_of(out_path);
     if (!fmt) {
-        fprintf(stderr, "%s: %s: unknown image format (use .png or .exr)\n", cmd, out_path);
+        fprintf(stderr, "%s: %s: unknown image format (use .png or .exr, or --to)\n", cmd, out_path);
         return 2;
     }
     if (halfdiff ? (!params == !data) : !params) {
@@ -260,9 +268,9 @@ int cmd_render(int argc, char **argv)
         status = rc == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
-    if (fmt == 1 && !slice)
+    if (fmt == BF_IMAGE_PNG && !slice)
         bf_tonemap(rgb, n, tonemap < 0 ? BF_TONEMAP_CLAMP : (bf_tonemap_mode)tonemap, exposure, decades);
-    if (bf_image_write_rgb(out_path, width, height, rgb, &err) != BF_OK) {
+    if (bf_image_write_rgb_as(out_path, fmt, width, height, rgb, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;
     }
@@ -273,4 +281,7 @@ done:
     bf_model_free(m);
     free(x);
     return status;
+usage:
+    cli_args_free(&args);
+    return 2;
 }

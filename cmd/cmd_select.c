@@ -31,6 +31,7 @@
 
 #include "brdfit/select.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -40,26 +41,29 @@ static const char cmd[] = "brdfit select";
 
 #define MAX_MODELS 128
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit select DATA [--models MODEL,...] [--tolerance T] [--scene SCENE.json] [options]\n"
-            "  -m, --models SPECS         candidates (as brdfit fit; repeatable); default: diffuse models,\n"
-            "                             one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
-            "                             data each with mono=specular (a white highlight)\n"
-            "  --tolerance T              relative: candidates with error <= best * (1 + T) + A qualify\n"
-            "                             (default 0.05); the one with the fewest free parameters is chosen,\n"
-            "                             then isotropic, one lobe, monochrome highlight, lower error\n"
-            "  --abs-tolerance A          absolute part of the tolerance (default 1e-6)\n"
-            "  --error rmse|rmse_log|rmse_cos|rmse_rel   the error compared (default rmse_log)\n"
-            "  --json FILE                every candidate and the choice, machine-readable\n"
-            "  -o FILE                    the chosen model's fit result (a parameter file)\n"
-            "  --quiet                    no progress on stderr\n");
-    rank_options_usage(out, BF_RANK_ERROR);
-    fputs(fit_accuracy_usage, out);
-    fputs(fit_options_usage, out);
-    fputs(data_options_usage, out);
-}
+static const cli_option own[] = {
+    {"--models", 'm', "SPECS", "candidates (as brdfit fit; repeatable); default: diffuse models,\n"
+                               "one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
+                               "data each with mono=specular (a white highlight)", "model"},
+    {"--model", 0, "SPECS", "the same as --models", "model"},
+    {"--tolerance", 0, "T", "relative: candidates with error <= best * (1 + T) + A qualify\n"
+                            "(default 0.05); the one with the fewest free parameters is chosen,\n"
+                            "then isotropic, one lobe, monochrome highlight, lower error", NULL},
+    {"--abs-tolerance", 0, "A", "absolute part of the tolerance (default 1e-6)", NULL},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "the error compared (default rmse_log)", NULL},
+    {"--json", 0, "FILE", "every candidate and the choice, machine-readable (- for standard output)", "file"},
+    {"--output", 'o', "FILE", "the chosen model's fit result (a parameter file; - for standard output)", "file"},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &rank_options_error, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_select = {
+    "brdfit", "select", "DATA [-m MODEL,...] [--tolerance T] [--scene SCENE.json] [options]",
+    "choose the smallest model that serves",
+    "Fits every candidate to DATA (- for standard input) and chooses the one with the fewest free parameters "
+    "whose error is within the tolerance of the best; with --scene, error is measured over the directions the "
+    "scene uses.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 static void progress(void *ctx, const bf_select *s, int i)
 {
@@ -130,7 +134,7 @@ int cmd_select(int argc, char **argv)
     fit_options fopt;
     fit_options_init(&fopt);
     char *specs[MAX_MODELS] = {0};
-    int nmodels = 0, status = 2, quiet = 0;
+    int nmodels = 0, status = 2;
     double tolerance = 0.05, abs_tolerance = 1e-6;
     bf_compare_metric metric = BF_CMP_RMSE_LOG;
     const char *data = NULL, *json_path = NULL, *out_path = NULL;
@@ -142,42 +146,32 @@ int cmd_select(int argc, char **argv)
     rank_options ro;
     rank_options_init(&ro, BF_RANK_ERROR);
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            status = 0;
-            goto done;
+    cli_args args;
+    int p = cli_parse(&cli_select, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a) {
+            if (data) {
+                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
+                goto done;
+            }
+            data = v;
+            continue;
         }
-        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
+        int d = data_options_parse(&dopt, a, v, cmd);
         if (d == 0)
-            d = fit_options_parse(&fopt, argc, argv, &i, cmd);
+            d = fit_options_parse(&fopt, a, v, cmd);
         if (d == 0)
-            d = fit_options_parse_accuracy(&fopt, argc, argv, &i, cmd);
+            d = fit_options_parse_accuracy(&fopt, a, v, cmd);
         if (d == 0)
-            d = rank_options_parse(&ro, argc, argv, &i, cmd);
+            d = rank_options_parse(&ro, a, v, cmd);
         if (d < 0)
             goto done;
         if (d > 0)
             continue;
-        if (!strcmp(a, "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        if (a[0] != '-' || !a[1]) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, a);
-                goto done;
-            }
-            data = a;
-            continue;
-        }
-        static const char *const valued[] = {"-m", "--model", "--models", "--tolerance", "--abs-tolerance", "--error",
-                                             "--json", "-o"};
-        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
-        if (!v)
-            goto done;
-        if (!strcmp(a, "-m") || !strcmp(a, "--model") || !strcmp(a, "--models")) {
+        if (!strcmp(a, "--model") || !strcmp(a, "--models")) {
             int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
             if (k < 0)
                 goto done;
@@ -194,7 +188,7 @@ int cmd_select(int argc, char **argv)
             }
         } else if (!strcmp(a, "--json")) {
             json_path = v;
-        } else {
+        } else { /* --output */
             out_path = v;
         }
     }
@@ -235,7 +229,7 @@ int cmd_select(int argc, char **argv)
     sel.rank_by = ro.rank_by;
     sel.folds = ro.folds;
     sel.timing = ro.timing;
-    if (bf_select_run(&sel, s, &fopt.fit, quiet ? NULL : progress, NULL, &err) != BF_OK) {
+    if (bf_select_run(&sel, s, &fopt.fit, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;
     }
@@ -255,6 +249,7 @@ int cmd_select(int argc, char **argv)
     }
     status = 0;
 done:
+    cli_args_free(&args);
     bf_select_free(&sel);
     free(defaults);
     for (int k = 0; k < nmodels; k++)

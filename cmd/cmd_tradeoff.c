@@ -29,6 +29,7 @@
 #include "brdfit/image.h"
 #include "brdfit/tradeoff.h"
 #include "args.h"
+#include "cli.h"
 #include "commands.h"
 #include "data_options.h"
 #include "fit_options.h"
@@ -37,34 +38,38 @@ static const char cmd[] = "brdfit tradeoff";
 
 #define MAX_LIST 64
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: brdfit tradeoff DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png]\n"
-            "  -m, --model SPEC           the model to fit (one)\n"
-            "  --samples N,...|all        training sample counts (default 1000,4000,16000,64000,all;\n"
-            "                             'k' suffix: thousands); counts >= the training set are 'all'\n"
-            "  --methods M,...            ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
-            "                             (LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
-            "                             --algorithm setting if given, else ceres,LD_LBFGS\n"
-            "  --residuals R,...          residual forms (default: --residual, log)\n"
-            "  --starts-list N,...        multistart counts (default: --starts, 1)\n"
-            "  --test-fraction F          held-out share of the samples, seeded random (default 0.2)\n"
-            "  --cost work|seconds        what a setting costs: sample evaluations (default; the same on\n"
-            "                             every machine) or wall time (varies from run to run)\n"
-            "  --timing                   wall times in the table and the files too\n"
-            "  --repeats N                fit each setting N times, keep the least time (default 1)\n"
-            "  --error rmse|rmse_log|rmse_cos|rmse_rel   test error to judge by (default rmse_log)\n"
-            "  --tolerance T              recommend the cheapest setting with test error <= best * (1 + T)\n"
-            "                             (default 0.05)\n"
-            "  --json FILE                the table, machine-readable (stable keys)\n"
-            "  --csv FILE                 one row per setting\n"
-            "  --plot FILE.png|.exr       test error against the cost, Pareto front in red\n"
-            "  --plot-size WxH            (default 640x400)\n"
-            "  --quiet                    no progress on stderr\n"
-            "%s%s",
-            fit_options_usage, data_options_usage);
-}
+static const cli_option own[] = {
+    {"--model", 'm', "SPEC", "the model to fit (one)", "model"},
+    {"--samples", 0, "N,...|all", "training sample counts (default 1000,4000,16000,64000,all;\n"
+                                  "'k' suffix: thousands); counts >= the training set are 'all'", NULL},
+    {"--methods", 0, "M,...", "ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
+                              "(LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
+                              "--algorithm setting if given, else ceres,LD_LBFGS", NULL},
+    {"--residuals", 0, "R,...", "residual forms (default: --residual, log)", NULL},
+    {"--starts-list", 0, "N,...", "multistart counts (default: --starts, 1)", NULL},
+    {"--test-fraction", 0, "F", "held-out share of the samples, seeded random (default 0.2)", NULL},
+    {"--cost", 0, "work|seconds", "what a setting costs: sample evaluations (default; the same on\n"
+                                  "every machine) or wall time (varies from run to run)", NULL},
+    {"--timing", 0, NULL, "wall times in the table and the files too", NULL},
+    {"--repeats", 0, "N", "fit each setting N times, keep the least time (default 1)", NULL},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "test error to judge by (default rmse_log)", NULL},
+    {"--tolerance", 0, "T", "recommend the cheapest setting with test error <= best * (1 + T)\n(default 0.05)",
+     NULL},
+    {"--json", 0, "FILE", "the table, machine-readable (stable keys; - for standard output)", "file"},
+    {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file"},
+    {"--plot", 0, "FILE.png|.exr", "test error against the cost, Pareto front in red", "file"},
+    {"--plot-size", 0, "WxH", "(default 640x400)", NULL},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_tradeoff = {
+    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png]",
+    "measure fitting cost against accuracy",
+    "Fits one model to a training share of DATA under every combination of sample count, method, residual and "
+    "start count, measures each fit's error on the held-out samples, and recommends the cheapest setting within "
+    "the tolerance of the best.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 /* Splits a comma list into at most MAX_LIST items (pointers into buf). */
 static int split_list(char *buf, char **items, const char *opt)
@@ -194,7 +199,7 @@ int cmd_tradeoff(int argc, char **argv)
     memset(&dopt, 0, sizeof dopt);
     fit_options fopt;
     fit_options_init(&fopt);
-    int status = 2, quiet = 0, nspecs = 0;
+    int status = 2, nspecs = 0;
     char *specs[2] = {0};
     const char *data = NULL, *json_path = NULL, *csv_path = NULL, *plot_path = NULL;
     const char *samples_arg = "1000,4000,16000,64000,all", *methods_arg = NULL, *residuals_arg = NULL,
@@ -210,45 +215,40 @@ int cmd_tradeoff(int argc, char **argv)
     bf_error err;
     char data_args[2048] = ""; /* data and base fit options, for the recommended command */
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            status = 0;
-            goto done;
+    cli_args args;
+    int p = cli_parse(&cli_tradeoff, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *a = args.v[i].name, *v = args.v[i].value;
+        if (!a) {
+            if (data) {
+                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
+                goto done;
+            }
+            data = v;
+            continue;
         }
-        int i0 = i;
-        int d = data_options_parse(&dopt, argc, argv, &i, cmd);
-        if (d > 0) /* repeated in the recommended command line */
-            for (int j = i0; j <= i; j++)
-                append_arg(data_args, sizeof data_args, argv[j]);
-        if (d == 0 && (d = fit_options_parse(&fopt, argc, argv, &i, cmd)) > 0 && !row_sets(argv[i0]))
-            for (int j = i0; j <= i; j++) /* the base setting, also repeated */
-                append_arg(data_args, sizeof data_args, argv[j]);
+        int d = data_options_parse(&dopt, a, v, cmd);
+        /* Data options and the base fit setting are repeated in the recommended command. */
+        int repeat = d > 0;
+        if (d == 0 && (d = fit_options_parse(&fopt, a, v, cmd)) > 0 && !row_sets(a))
+            repeat = 1;
+        if (repeat) {
+            append_arg(data_args, sizeof data_args, a);
+            if (v)
+                append_arg(data_args, sizeof data_args, v);
+        }
         if (d < 0)
             goto done;
         if (d > 0)
             continue;
-        if (a[0] != '-' || !a[1]) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, a);
-                goto done;
-            }
-            data = a;
+        if (!strcmp(a, "--timing")) {
+            timing = 1;
             continue;
         }
-        if (!strcmp(a, "--quiet") || !strcmp(a, "--timing")) {
-            *(a[2] == 'q' ? &quiet : &timing) = 1;
-            continue;
-        }
-        static const char *const valued[] = {"-m", "--model", "--samples", "--methods", "--residuals",
-                                             "--starts-list", "--test-fraction", "--repeats", "--error",
-                                             "--tolerance", "--json", "--csv", "--plot", "--plot-size", "--cost"};
-        const char *v = args_value(argc, argv, &i, valued, sizeof valued / sizeof valued[0], cmd);
-        if (!v)
-            goto done;
         long n;
-        if (!strcmp(a, "-m") || !strcmp(a, "--model")) {
+        if (!strcmp(a, "--model")) {
             for (int k = 0; k < nspecs; k++)
                 free(specs[k]);
             if ((nspecs = fit_options_split_models(v, specs, 0, 2, cmd)) < 0) {
@@ -333,13 +333,13 @@ int cmd_tradeoff(int argc, char **argv)
                           : "ceres,LD_LBFGS";
     char starts_default[16], *items[4][MAX_LIST];
     snprintf(starts_default, sizeof starts_default, "%d", fopt.fit.starts);
-    const char *args[4] = {samples_arg, methods_arg,
+    const char *lists[4] = {samples_arg, methods_arg,
                            residuals_arg ? residuals_arg : bf_residual_name(fopt.fit.objective.residual),
                            starts_arg ? starts_arg : starts_default};
     static const char *const names[4] = {"--samples", "--methods", "--residuals", "--starts-list"};
     int counts_n[4];
     for (int l = 0; l < 4; l++) {
-        if (!(bufs[l] = strdup(args[l]))) {
+        if (!(bufs[l] = strdup(lists[l]))) {
             fprintf(stderr, "%s: out of memory\n", cmd);
             goto done;
         }
@@ -429,7 +429,7 @@ int cmd_tradeoff(int argc, char **argv)
             goto done;
         }
         all_ok &= r->ran && r->ok;
-        if (!quiet) {
+        if (!cli_quiet()) {
             fprintf(stderr, "%s: %d/%d %zu%s %s %s starts %d: ", cmd, i + 1, t.nrows, r->samples,
                     r->all ? " (all)" : "", r->method, bf_residual_name(r->residual), r->starts);
             if (r->ran)
@@ -485,6 +485,7 @@ int cmd_tradeoff(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", cmd, t.recommended >= 0 ? "some settings failed" : "every setting failed");
     status = all_ok ? 0 : 1;
 done:
+    cli_args_free(&args);
     bf_tradeoff_free(&t);
     bf_samples_free(all);
     bf_samples_free(train);

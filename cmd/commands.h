@@ -1,6 +1,12 @@
-/* Subcommands of the brdfit command. Each returns the process exit status. */
+/* Subcommands of the brdfit command: each declares its options (cli.h) and runs,
+ * returning the process exit status. */
 #ifndef BRDFIT_COMMANDS_H
 #define BRDFIT_COMMANDS_H
+
+#include "cli.h"
+
+extern const cli_command cli_models, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
+    cli_select, cli_regress;
 
 int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
@@ -12,5 +18,13 @@ int cmd_render(int argc, char **argv);
 int cmd_tradeoff(int argc, char **argv);
 int cmd_select(int argc, char **argv);
 int cmd_regress(int argc, char **argv);
+
+/* The subcommands in the order brdfit --help lists them (command_list.c). */
+typedef struct command {
+    const cli_command *cli;
+    int (*run)(int argc, char **argv);
+} command;
+extern const command commands[];
+extern const int ncommands;
 
 #endif

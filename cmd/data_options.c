@@ -11,31 +11,31 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char data_options_usage[] =
-    "reading:\n"
-    "  --format csv|merl|cornell|alta   file format (default: by extension, then content)\n"
-    "  --angles TI,PI,TO,PO             CSV angle column names (default theta_i,phi_i,theta_o,phi_o)\n"
-    "  --radians                        CSV angles are in radians (default degrees)\n"
-    "  --values COL,...                 CSV value columns (default: all but angles and weight)\n"
-    "  --weight COL                     CSV weight column (default: 'weight' if present)\n"
-    "preprocessing:\n"
-    "  --channels NAME|INDEX,...        keep these channels, in this order\n"
-    "  --rgb | --luminance              spectral to three bands / to one channel\n"
-    "  --max-theta DEG                  drop samples with theta_i or theta_o above DEG\n"
-    "  --negative keep|drop|clamp       negative values (default keep: they are data)\n"
-    "  --subsample N|all [--seed K]     seeded stratified subsample to N samples (all: every one)\n"
-    "  --scene FILE                     keep and weight the samples a scene's lights and views\n"
-    "                                   use (JSON; README \"Scenes\"); error is reported over them\n";
+static const cli_option reading[] = {
+    {"--format", 0, "csv|merl|cornell|alta", "file format (default: by extension, then content)", NULL},
+    {"--angles", 0, "TI,PI,TO,PO", "CSV angle column names (default theta_i,phi_i,theta_o,phi_o)", NULL},
+    {"--radians", 0, NULL, "CSV angles are in radians (default degrees)", NULL},
+    {"--values", 0, "COL,...", "CSV value columns (default: all but angles and weight)", NULL},
+    {"--weight", 0, "COL", "CSV weight column (default: 'weight' if present)", NULL},
+};
+static const cli_option preprocessing[] = {
+    {"--channels", 0, "NAME|INDEX,...", "keep these channels, in this order", NULL},
+    {"--rgb", 0, NULL, "spectral data to three bands", NULL},
+    {"--luminance", 0, NULL, "spectral or RGB data to one channel", NULL},
+    {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL},
+    {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL},
+    {"--subsample", 0, "N|all", "seeded stratified subsample to N samples (all: every one)", NULL},
+    {"--seed", 0, "K", "seeds the subsample, the multistart and anything else random (default 0)", NULL},
+    {"--scene", 0, "FILE", "keep and weight the samples a scene's lights and views use\n"
+                           "(JSON; README \"Scenes\"); error is reported over them", "file"},
+};
+const cli_group data_options_reading = CLI_GROUP("reading", reading);
+const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
 
-int data_options_parse(data_options *o, int argc, char **argv, int *i, const char *cmd)
+int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd)
 {
-    const char *a = argv[*i];
-    static const char *const with_value[] = {"--format", "--angles", "--values", "--weight", "--channels",
-                                             "--max-theta", "--negative", "--subsample", "--seed",
-                                             "--scene"};
-    int needs = 0;
-    for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-        needs |= strcmp(a, with_value[k]) == 0;
+    if (!cli_group_has(&data_options_reading, a) && !cli_group_has(&data_options_preprocessing, a))
+        return 0;
     if (!strcmp(a, "--radians")) {
         o->read.csv.radians = 1;
         return 1;
@@ -48,13 +48,6 @@ int data_options_parse(data_options *o, int argc, char **argv, int *i, const cha
         }
         return 1;
     }
-    if (!needs)
-        return 0;
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-        return -1;
-    }
-    const char *v = argv[++*i];
     double d;
     if (!strcmp(a, "--format")) {
         int f = bf_format_from_name(v);
@@ -180,6 +173,7 @@ bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return NULL;
     }
+    cli_note(cmd, "read %s: %zu samples x %d channels", path, s->n, s->channels);
     bf_prep p = o->prep;
     if (o->scene)
         p.subsample = 0;
@@ -194,5 +188,7 @@ bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_
     }
     if (scene)
         *scene = sr;
+    if (report->kept != report->read)
+        cli_note(cmd, "%s: %zu samples after preprocessing%s", path, report->kept, o->scene ? " and the scene" : "");
     return s;
 }

@@ -5,6 +5,7 @@
 
 #include "brdfit/prep.h"
 #include "brdfit/samples.h"
+#include "cli.h"
 
 typedef struct data_options {
     bf_read_options read;
@@ -21,12 +22,13 @@ typedef struct data_scene_report {
     size_t in, kept;
 } data_scene_report;
 
-/* Usage lines for the options below, for a command's --help. */
-extern const char data_options_usage[];
+/* The options, for a command's tables (cli.h): how to read, what to do to the samples. */
+extern const cli_group data_options_reading, data_options_preprocessing;
 
-/* If argv[*i] is one of the data options, consumes it (and its value) and returns 1;
- * returns 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
-int data_options_parse(data_options *o, int argc, char **argv, int *i, const char *cmd);
+/* If option a (its long form, "--format") is one of the data options, takes it and its
+ * value v and returns 1; returns 0 if it is not one; -1 after printing a one-line error
+ * (prefix: cmd). */
+int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd);
 
 /* Reads path and applies the preprocessing, then the scene (drops and weights; before
  * any subsampling, so --subsample N gives N samples inside the scene); prints a one-line

@@ -13,27 +13,34 @@
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-const char fit_options_usage[] =
-    "fitting:\n"
-    "  --residual linear|cosine|log|cbrt|relative   residual form (default log)\n"
-    "  --loss none|huber|cauchy|soft_l1|arctan[:SCALE]   robust loss (default none)\n"
-    "  --fix NAME=VALUE           hold a parameter (NAME or NAME[c]) at VALUE (repeatable)\n"
-    "  --bound NAME=LO:HI         narrow a parameter's bounds (repeatable)\n"
-    "  --solid-angle              weight MERL cells by their solid angle\n"
-    "  --no-weights               ignore the samples' own weights\n"
-    "  --constrain-energy         energy conservation as a constraint (NLopt LD_SLSQP, LD_MMA, GN_ISRES)\n"
-    "optimizer:\n"
-    "  --backend ceres|nlopt      (default ceres)\n"
-    "  --algorithm NAME           ceres: lm (default), dogleg; nlopt: LD_LBFGS (default), LD_SLSQP,\n"
-    "                             LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM,\n"
-    "                             GN_ISRES, G_MLSL_LDS\n"
-    "  --local NAME               local method of G_MLSL_LDS (default LD_LBFGS)\n"
-    "  --max-iterations N         (default: ceres 100 iterations, nlopt 2000 evaluations)\n"
-    "  --starts N                 the data-driven start and N-1 seeded random ones (default 1)\n"
-    "  --seed K                   seeds the multistart and any subsampling (default 0)\n"
-    "  --presolve N|off           solve the starts on a seeded stratified subsample of N samples\n"
-    "                             first (default: " STR(BF_FIT_PRESOLVE_SAMPLES) " for data of " STR(BF_FIT_PRESOLVE_MIN) " samples and more)\n"
-    "  --threads N                (default: every core; results do not depend on it)\n";
+static const cli_option fitting[] = {
+    {"--residual", 0, "linear|cosine|log|cbrt|relative", "residual form (default log)", NULL},
+    {"--loss", 0, "none|huber|cauchy|soft_l1|arctan[:SCALE]", "robust loss (default none)",
+     "none|huber|cauchy|soft_l1|arctan"},
+    {"--fix", 0, "NAME=VALUE", "hold a parameter (NAME or NAME[c]) at VALUE (repeatable)", NULL},
+    {"--bound", 0, "NAME=LO:HI", "narrow a parameter's bounds (repeatable)", NULL},
+    {"--solid-angle", 0, NULL, "weight MERL cells by their solid angle", NULL},
+    {"--no-weights", 0, NULL, "ignore the samples' own weights", NULL},
+    {"--constrain-energy", 0, NULL, "energy conservation as a constraint (NLopt LD_SLSQP, LD_MMA, GN_ISRES)", NULL},
+};
+static const cli_option optimizer[] = {
+    {"--backend", 0, "ceres|nlopt", "(default ceres)", NULL},
+    {"--algorithm", 0, "NAME",
+     "ceres: lm (default), dogleg; nlopt: LD_LBFGS (default), LD_SLSQP,\n"
+     "LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM,\nGN_ISRES, G_MLSL_LDS",
+     "lm|dogleg|LD_LBFGS|LD_SLSQP|LD_MMA|LN_BOBYQA|LN_NELDERMEAD|LN_SBPLX|GN_DIRECT_L|GN_CRS2_LM|GN_ISRES|"
+     "G_MLSL_LDS"},
+    {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "LD_LBFGS|LD_SLSQP|LD_MMA|LN_BOBYQA"},
+    {"--max-iterations", 0, "N", "(default: ceres 100 iterations, nlopt 2000 evaluations)", NULL},
+    {"--starts", 0, "N", "the data-driven start and N-1 seeded random ones (default 1)", NULL},
+    {"--presolve", 0, "N|off",
+     "solve the starts on a seeded stratified subsample of N samples\nfirst (default: " STR(
+         BF_FIT_PRESOLVE_SAMPLES) " for data of " STR(BF_FIT_PRESOLVE_MIN) " samples and more)",
+     "off"},
+    {"--threads", 0, "N", "(default: every core; results do not depend on it)", NULL},
+};
+const cli_group fit_options_fitting = CLI_GROUP("fitting", fitting);
+const cli_group fit_options_optimizer = CLI_GROUP("optimizer", optimizer);
 
 /* --accuracy presets, chosen from brdfit tradeoff runs (the figures are in the README,
  * "Accuracy presets": a full synthetic MERL table, the Cornell car paint, NIST PTFE;
@@ -69,22 +76,21 @@ static const preset presets[] = {
     [FIT_ACCURACY_BEST] = {"best", 0, BF_BACKEND_CERES, NULL, PRESET_BEST_STARTS, PRESET_BEST_ITERATIONS},
 };
 
-const char fit_accuracy_usage[] =
-    "  --accuracy fast|balanced|best   option bundles (explicit options win, in any order):\n"
-    "                             fast: --subsample " STR(PRESET_FAST_SAMPLES) " --backend ceres --starts 1\n"
-    "                             balanced: the defaults (all samples, --backend ceres, --starts 1)\n"
-    "                             best: all samples, --backend ceres --starts " STR(PRESET_BEST_STARTS)
-    " --max-iterations " STR(PRESET_BEST_ITERATIONS) "\n";
+static const cli_option accuracy[] = {
+    {"--accuracy", 0, "fast|balanced|best",
+     "option bundles (explicit options win, in any order):\n"
+     "fast: --subsample " STR(PRESET_FAST_SAMPLES) " --backend ceres --starts 1\n"
+     "balanced: the defaults (all samples, --backend ceres, --starts 1)\n"
+     "best: all samples, --backend ceres --starts " STR(PRESET_BEST_STARTS) " --max-iterations " STR(
+         PRESET_BEST_ITERATIONS),
+     NULL},
+};
+const cli_group fit_options_accuracy = CLI_GROUP("accuracy", accuracy);
 
-int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, const char *cmd)
+int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd)
 {
-    if (strcmp(argv[*i], "--accuracy"))
+    if (strcmp(a, "--accuracy"))
         return 0;
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "%s: --accuracy needs a value\n", cmd);
-        return -1;
-    }
-    const char *v = argv[++*i];
     for (int k = FIT_ACCURACY_FAST; k <= FIT_ACCURACY_BEST; k++)
         if (!strcmp(v, presets[k].name)) {
             o->accuracy = (fit_accuracy)k;
@@ -138,10 +144,11 @@ static long int_limit(const char *opt)
     return 10000000; /* --max-iterations */
 }
 
-int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd)
+int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd)
 {
-    const char *a = argv[*i];
     bf_error err;
+    if (!cli_group_has(&fit_options_fitting, a) && !cli_group_has(&fit_options_optimizer, a))
+        return 0;
     if (!strcmp(a, "--solid-angle")) {
         o->fit.objective.solid_angle = 1;
         return 1;
@@ -154,19 +161,6 @@ int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char 
         o->fit.solver.use_constraint = 1;
         return 1;
     }
-    static const char *const with_value[] = {"--residual", "--loss", "--fix", "--bound", "--backend",
-                                             "--algorithm", "--local", "--max-iterations", "--starts",
-                                             "--threads", "--presolve"};
-    int known = 0;
-    for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-        known |= !strcmp(a, with_value[k]);
-    if (!known)
-        return 0;
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-        return -1;
-    }
-    const char *v = argv[++*i];
     long n;
     o->given |= !strcmp(a, "--residual")         ? FIT_GIVEN_RESIDUAL
                 : !strcmp(a, "--backend")        ? FIT_GIVEN_BACKEND

@@ -36,23 +36,22 @@ typedef struct fit_options {
     unsigned given; /* FIT_GIVEN_* */
 } fit_options;
 
-/* Usage lines for --accuracy (brdfit fit and brdfit select). */
-extern const char fit_accuracy_usage[];
+/* The options, for a command's tables (cli.h): --accuracy (fit, select, regress), the
+ * objective and the optimizer (every command that fits). */
+extern const cli_group fit_options_accuracy, fit_options_fitting, fit_options_optimizer;
 
-/* If argv[*i] is --accuracy, consumes it and its value and returns 1; 0 if it is not;
- * -1 after printing a one-line error. brdfit fit, select and regress take it (kept out
- * of fit_options_parse: compare and tradeoff do not; fit_options_finish applies it). */
-int fit_options_parse_accuracy(fit_options *o, int argc, char **argv, int *i, const char *cmd);
-
-/* Usage lines for the options below, for a command's --help. */
-extern const char fit_options_usage[];
+/* If option a (long form) is --accuracy, takes its value v and returns 1; 0 if it is
+ * not; -1 after printing a one-line error. Kept out of fit_options_parse: compare and
+ * tradeoff do not take it (fit_options_finish applies it). */
+int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd);
 
 /* brdfit fit's defaults: log residual, sample weights on, Ceres, one start, every core. */
 void fit_options_init(fit_options *o);
 
-/* If argv[*i] is one of the options, consumes it (and its value) and returns 1; returns
- * 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
-int fit_options_parse(fit_options *o, int argc, char **argv, int *i, const char *cmd);
+/* If option a (long form, "--residual") is one of the fitting or optimizer options,
+ * takes it and its value v and returns 1; returns 0 if it is not one; -1 after printing a
+ * one-line error (prefix: cmd). */
+int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd);
 
 /* After parsing (so order on the line is moot): points the fit options at the
  * overrides, takes the data options' seed, fills in the --accuracy preset where the user

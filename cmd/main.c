@@ -1,4 +1,5 @@
-/* brdfit: fit parametric BRDF models to measured reflectance. Dispatches subcommands. */
+/* brdfit: fit parametric BRDF models to measured reflectance. Dispatches subcommands;
+ * `brdfit help [COMMAND]` and `brdfit --version`. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,29 +8,40 @@
 #include "brdfit/limits.h"
 #include "commands.h"
 
-static const struct {
-    const char *name;
-    int (*run)(int, char **);
-    const char *usage;
-} commands[] = {
-    {"models", cmd_models, "models [--json]                  list models, parameters, bounds, options"},
-    {"eval", cmd_eval, "eval --params P.json --dirs D.csv [-o OUT.csv]   evaluate a model"},
-    {"info", cmd_info, "info DATA [data options] [--json]      what a data file holds"},
-    {"convert", cmd_convert, "convert IN OUT [data options] [--to csv|merl]   between formats"},
-    {"fit", cmd_fit, "fit DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]   fit models to data"},
-    {"compare", cmd_compare, "compare DATA... -m MODEL,...|all [options] [--json R.json] [--csv R.csv] [--html DIR]   rank models"},
-    {"render", cmd_render, "render --params P.json [--slice|--half-diff] [options] -o OUT.png|OUT.exr   pictures"},
-    {"tradeoff", cmd_tradeoff, "tradeoff DATA -m MODEL [options] [--json T.json] [--csv T.csv] [--plot T.png]   fitting time against accuracy"},
-    {"select", cmd_select, "select DATA [--models ...] [--tolerance T] [--scene SCENE.json]   the smallest model that serves"},
-    {"regress", cmd_regress, "regress BASELINE.json [--update] [--junit OUT.xml]   re-run fits and compare with a baseline"},
-};
-
 static void usage(FILE *out)
 {
-    fprintf(out, "usage: brdfit COMMAND [options]\n");
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        fprintf(out, "  brdfit %s\n", commands[i].usage);
-    fprintf(out, "environment: BRDFIT_MEMORY=BYTES[K|M|G|T]   the most memory large arrays may take\n");
+    fprintf(out, "usage: brdfit COMMAND [options]   (brdfit help COMMAND, or brdfit COMMAND --help)\n");
+    for (int i = 0; i < ncommands; i++)
+        fprintf(out, "  %-10s %s\n", commands[i].cli->name, commands[i].cli->summary);
+    fprintf(out, "  %-10s %s\n", "help", "this list, or a command's options");
+    fprintf(out, "options: --version, --help\n"
+                 "environment: BRDFIT_MEMORY=BYTES[K|M|G|T]   the most memory large arrays may take\n"
+                 "docs: man brdfit-COMMAND, docs/ in the source\n");
+}
+
+static const command *find(const char *name)
+{
+    for (int i = 0; i < ncommands; i++)
+        if (!strcmp(name, commands[i].cli->name))
+            return &commands[i];
+    return NULL;
+}
+
+/* brdfit help [COMMAND] */
+static int help(int argc, char **argv)
+{
+    if (argc == 1) {
+        usage(stdout);
+        return 0;
+    }
+    const command *c = argc == 2 ? find(argv[1]) : NULL;
+    if (!c) {
+        fprintf(stderr, "brdfit help: %s (one of the commands brdfit help lists)\n",
+                argc == 2 ? "unknown command" : "one command at most");
+        return 2;
+    }
+    cli_help(c->cli, stdout);
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -46,13 +58,19 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
         usage(stdout);
         return 0;
     }
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "brdfit: unknown command '%s' (try brdfit --help)\n", argv[1]);
+    if (!strcmp(argv[1], "--version")) {
+        printf("brdfit %s\n", BRDFIT_VERSION_STRING);
+        return 0;
+    }
+    if (!strcmp(argv[1], "help"))
+        return help(argc - 1, argv + 1);
+    const command *c = find(argv[1]);
+    if (c)
+        return c->run(argc - 1, argv + 1);
+    fprintf(stderr, "brdfit: unknown command '%.64s' (try brdfit --help)\n", argv[1]);
     return 2;
 }

@@ -7,16 +7,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-void rank_options_usage(FILE *out, bf_compare_rank_by default_rank)
-{
-    fprintf(out,
-            "  --rank bic|aic|aicc|cv|error   what to rank by (default %s): a criterion of each fit's\n"
-            "                             likelihood (docs/criteria.md), the cross-validated error of\n"
-            "                             the fitted objective, or the --error metric\n"
-            "  --folds K                  folds of --rank cv (default 5, 2 to 20; K more fits per model)\n"
-            "  --timing                   wall times in the outputs too (then runs differ)\n",
-            bf_compare_rank_name(default_rank));
-}
+/* The default ranking differs (compare: bic, select: error), hence two tables. */
+#define RANK_HELP(def)                                                                                        \
+    "what to rank by (default " def "): a criterion of each fit's\n"                                          \
+    "likelihood (docs/criteria.md), the cross-validated error of\n"                                           \
+    "the fitted objective, or the --error metric"
+#define RANK_TABLE(def)                                                                                       \
+    {                                                                                                         \
+        {"--rank", 0, "bic|aic|aicc|cv|error", RANK_HELP(def), NULL},                                         \
+            {"--folds", 0, "K", "folds of --rank cv (default 5, 2 to 20; K more fits per model)", NULL},     \
+            {"--timing", 0, NULL, "wall times in the outputs too (then runs differ)", NULL},                 \
+    }
+static const cli_option rank_bic[] = RANK_TABLE("bic"), rank_error[] = RANK_TABLE("error");
+const cli_group rank_options_bic = CLI_GROUP("ranking", rank_bic);
+const cli_group rank_options_error = CLI_GROUP("ranking", rank_error);
 
 void rank_options_init(rank_options *r, bf_compare_rank_by rank_by)
 {
@@ -25,20 +29,14 @@ void rank_options_init(rank_options *r, bf_compare_rank_by rank_by)
     r->timing = 0;
 }
 
-int rank_options_parse(rank_options *r, int argc, char **argv, int *i, const char *cmd)
+int rank_options_parse(rank_options *r, const char *a, const char *v, const char *cmd)
 {
-    const char *a = argv[*i];
     if (!strcmp(a, "--timing")) {
         r->timing = 1;
         return 1;
     }
     if (strcmp(a, "--rank") && strcmp(a, "--folds"))
         return 0;
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-        return -1;
-    }
-    const char *v = argv[++*i];
     if (!strcmp(a, "--rank")) {
         bf_error err;
         if (bf_compare_rank_parse(v, &r->rank_by, &err) != BF_OK) {

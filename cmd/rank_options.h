@@ -7,6 +7,7 @@
 
 #include "brdfit/compare.h"
 #include "brdfit/fit.h"
+#include "cli.h"
 
 typedef struct rank_options {
     bf_compare_rank_by rank_by;
@@ -14,14 +15,15 @@ typedef struct rank_options {
     int timing; /* 1: wall times in the JSON and CSV (then runs differ) */
 } rank_options;
 
-/* Usage lines; the default ranking is the command's own (compare: bic, select: error). */
-void rank_options_usage(FILE *out, bf_compare_rank_by default_rank);
+/* The options, for a command's tables (cli.h), with the command's default ranking in
+ * the help (compare: bic, select: error). */
+extern const cli_group rank_options_bic, rank_options_error;
 
 void rank_options_init(rank_options *r, bf_compare_rank_by rank_by);
 
-/* If argv[*i] is one of the options, consumes it (and its value) and returns 1; 0 if it
- * is not one; -1 after printing a one-line error (prefix: cmd). */
-int rank_options_parse(rank_options *r, int argc, char **argv, int *i, const char *cmd);
+/* If option a (long form) is one of the options, takes it and its value v and returns 1;
+ * 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
+int rank_options_parse(rank_options *r, const char *a, const char *v, const char *cmd);
 
 /* After parsing: a criterion needs a likelihood, and a robust loss has none
  * (metrics.h). Returns 0, or -1 after a one-line error saying so. */

@@ -14,38 +14,10 @@
 #include "brdfit/model.h"
 #include "brdfit/samples.h"
 #include "synth.h"
+#include "synth_cli.h"
 
 #define PROG "brdfit-synth"
 #define MAX_INCIDENCE 256
-
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: " PROG " --params P.json --pattern PATTERN [--count N] [options] -o OUT.csv|OUT.binary\n"
-            "  P.json is a parameter file as for brdfit eval (a fit result works too).\n"
-            "patterns (--count N for the first four):\n"
-            "  uniform     N pairs, each direction uniform in solid angle\n"
-            "  cosine      N pairs, each direction cosine-weighted\n"
-            "  stratified  N pairs, one per stratum of a jittered (cos theta, phi) grid per direction;\n"
-            "              N = m^4 gives m strata in each of the four dimensions\n"
-            "  random      N pairs, theta uniform in [0, 90) and phi in [0, 360) degrees, as a\n"
-            "              goniometer stepping at random (denser near the normal than uniform)\n"
-            "  gonio       in-plane sweep and out-of-plane ring (theta_o = theta_i) per incidence:\n"
-            "              --incidence LIST  degrees, comma-separated (default 0,30,60)\n"
-            "              --step S          degrees between detector positions (default 5)\n"
-            "  merl        every MERL cell centre above the horizon; needs a 3-channel model and\n"
-            "              OUT.binary (other cells are written invalid)\n"
-            "noise (applied in this order: model, outliers, clamping):\n"
-            "  --noise S               noise level (relative model unless --noise-model says otherwise)\n"
-            "  --noise-model M         relative: v (1 + S N(0,1)); additive: v + S N(0,1);\n"
-            "                          photon: Poisson(k v) / k with k = 1/S^2 (relative noise S at v = 1)\n"
-            "  --counts K              photon model: k counts per unit value (instead of --noise)\n"
-            "  --outliers F[,FACTOR]   replace a fraction F of the samples by v * FACTOR, or by a\n"
-            "                          random value in [0, channel maximum) without FACTOR\n"
-            "  --clamp                 set negative values to zero (always on for merl)\n"
-            "  --seed K                generator seed, an unsigned 64-bit integer (default 0);\n"
-            "                          the same seed gives the same file\n");
-}
 
 static int usage_error(const char *fmt, ...)
 #if defined(__GNUC__)
@@ -107,14 +79,14 @@ static int parse_list(const char *s, double *v, int max)
     }
 }
 
-typedef struct cli {
+typedef struct synth_args {
     const char *params, *out, *pattern, *count, *noise, *noise_model, *counts, *outliers,
         *seed, *incidence, *step;
     int clamp;
-} cli;
+} synth_args;
 
 /* Fills o from the parsed strings; returns 0, or 2 after a usage message. */
-static int build_options(const cli *a, bf_synth_options *o, double *incidence)
+static int build_options(const synth_args *a, bf_synth_options *o, double *incidence)
 {
     int p = bf_synth_pattern_from_name(a->pattern);
     if (p < 0)
@@ -205,7 +177,7 @@ static int build_options(const cli *a, bf_synth_options *o, double *incidence)
     }
     nz->clamp = a->clamp;
 
-    bf_format f = bf_format_for_writing(a->out);
+    bf_format f = strcmp(a->out, "-") ? bf_format_for_writing(a->out) : BF_FORMAT_CSV;
     if (f == BF_FORMAT_AUTO)
         return usage_error("-o %s: the output must end in .csv or .binary", a->out);
     if (o->pattern == BF_SYNTH_MERL && f != BF_FORMAT_MERL)
@@ -221,38 +193,46 @@ int main(int argc, char **argv)
         const char *name;
         size_t off;
     } valued[] = {
-        {"--params", offsetof(cli, params)},     {"-o", offsetof(cli, out)},
-        {"--pattern", offsetof(cli, pattern)},   {"--count", offsetof(cli, count)},
-        {"--noise", offsetof(cli, noise)},       {"--noise-model", offsetof(cli, noise_model)},
-        {"--counts", offsetof(cli, counts)},     {"--outliers", offsetof(cli, outliers)},
-        {"--seed", offsetof(cli, seed)},         {"--incidence", offsetof(cli, incidence)},
-        {"--step", offsetof(cli, step)},
+        {"--params", offsetof(synth_args, params)},     {"--output", offsetof(synth_args, out)},
+        {"--pattern", offsetof(synth_args, pattern)},   {"--count", offsetof(synth_args, count)},
+        {"--noise", offsetof(synth_args, noise)},       {"--noise-model", offsetof(synth_args, noise_model)},
+        {"--counts", offsetof(synth_args, counts)},     {"--outliers", offsetof(synth_args, outliers)},
+        {"--seed", offsetof(synth_args, seed)},         {"--incidence", offsetof(synth_args, incidence)},
+        {"--step", offsetof(synth_args, step)},
     };
-    cli a = {0};
+    synth_args a = {0};
     /* A run ended by a signal leaves no temporary. */
     bf_remove_temporaries_on_signals();
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
-            usage(stdout);
-            return 0;
+    if (argc == 2 && !strcmp(argv[1], "--version")) {
+        printf(PROG " %s\n", BRDFIT_VERSION_STRING);
+        return 0;
+    }
+    cli_args args;
+    int p = cli_parse(&cli_synth, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < args.n; i++) {
+        const char *arg = args.v[i].name;
+        if (!arg) {
+            int rc = usage_error("unexpected argument '%s'", args.v[i].value);
+            cli_args_free(&args);
+            return rc;
         }
         if (!strcmp(arg, "--clamp")) {
             a.clamp = 1;
             continue;
         }
         size_t k = 0;
-        while (k < sizeof valued / sizeof valued[0] && strcmp(arg, valued[k].name))
+        while (strcmp(arg, valued[k].name))
             k++;
-        if (k == sizeof valued / sizeof valued[0])
-            return usage_error("unexpected argument '%s'", arg);
-        if (i + 1 >= argc)
-            return usage_error("%s needs a value", arg);
         const char **dst = (const char **)((char *)&a + valued[k].off);
-        if (*dst)
+        if (*dst) {
+            cli_args_free(&args);
             return usage_error("%s given twice", arg);
-        *dst = argv[++i];
+        }
+        *dst = args.v[i].value;
     }
+    cli_args_free(&args);
     if (!a.params)
         return usage_error("--params P.json is required");
     if (!a.pattern)
@@ -287,7 +267,7 @@ int main(int argc, char **argv)
         goto done;
     }
     if (bf_synth_generate(m, x, &o, &s, &err) != BF_OK ||
-        bf_samples_write(s, a.out, BF_FORMAT_AUTO, &err) != BF_OK) {
+        bf_samples_write(s, a.out, strcmp(a.out, "-") ? BF_FORMAT_AUTO : BF_FORMAT_CSV, &err) != BF_OK) {
         fprintf(stderr, PROG ": %s\n", err.msg);
         goto done;
     }

@@ -7,11 +7,11 @@
 # report; the input that caused it is left in build-fuzz/findings/TARGET/.
 #
 #   scripts/fuzz.sh [TARGET|all] [SECONDS]     (default: all, 10 seconds each)
-#   targets: csv csv_map merl cornell alta params scene regress
+#   targets: csv csv_map merl merl_file cornell alta params scene regress
 #   FUZZ_RUNS=N runs each target for N executions instead of SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(csv csv_map merl cornell alta params scene regress)
+all=(csv csv_map merl merl_file cornell alta params scene regress)
 target=${1:-all}
 seconds=${2:-10}
 if [ "$target" = all ]; then
@@ -73,7 +73,7 @@ for t in "${targets[@]}"; do
     echo "fuzz $t: ${FUZZ_RUNS:+$FUZZ_RUNS runs}${FUZZ_RUNS:-$seconds s} ..."
     start=$(date +%s)
     if "$build/fuzz/fuzz_$t" "${limit[@]}" -max_len=$max_len -timeout=$timeout -rss_limit_mb=4096 \
-        -use_value_profile=1 -print_final_stats=1 -dict=fuzz/dict/"${t%_map}".dict -artifact_prefix="$findings/" \
+        -use_value_profile=1 -print_final_stats=1 -dict=fuzz/dict/"${t%_*}".dict -artifact_prefix="$findings/" \
         "$corpus" "$seeds" >"$log" 2>&1; then
         result="no findings"
     else

@@ -119,7 +119,7 @@ expect_error "bad outliers" 2 "--outliers '1.5'" "$O" --params "$W" --pattern un
 expect_error "bad outlier factor" 2 "--outliers '0.1,-3'" "$O" --params "$W" --pattern uniform --count 5 --outliers 0.1,-3
 expect_error "bad seed" 2 "--seed '-1'" "$O" --params "$W" --pattern uniform --count 5 --seed -1
 expect_error "huge seed" 2 "--seed '18446744073709551616'" "$O" --params "$W" --pattern uniform --count 5 --seed 18446744073709551616
-expect_error "unknown option" 2 "unexpected argument '--frobnicate'" "$O" --params "$W" --pattern uniform --count 5 --frobnicate
+expect_error "unknown option" 2 "unknown option '--frobnicate'" "$O" --params "$W" --pattern uniform --count 5 --frobnicate
 expect_error "option twice" 2 "--seed given twice" "$O" --params "$W" --pattern uniform --count 5 --seed 1 --seed 2
 expect_error "merl to csv" 2 "-o must end in .binary" "$O" --params "$P" --pattern merl
 expect_error "binary from uniform" 2 "needs --pattern merl" "$B" --params "$P" --pattern uniform --count 5

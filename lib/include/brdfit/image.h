@@ -21,7 +21,8 @@ typedef struct bf_image {
     float *pixels;
 } bf_image;
 
-/* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise. */
+/* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise (BF_IMAGE_*). */
+enum { BF_IMAGE_BY_NAME = 0, BF_IMAGE_PNG = 1, BF_IMAGE_EXR = 2 };
 int bf_image_format_of(const char *path);
 
 /* Writes an RGB float image (width*height*3 values).
@@ -32,6 +33,9 @@ int bf_image_format_of(const char *path);
  * target renamed into place, so a failed write leaves no file and the old one whole. Errors: BF_ERR_ARG (unknown extension, bad size),
  * BF_ERR_IO naming the file. */
 int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
+/* The same in a given format (BF_IMAGE_PNG, BF_IMAGE_EXR; BF_IMAGE_BY_NAME: by the
+ * extension), for names without one such as "-" (standard output). */
+int bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err);
 
 /* Reads any image OpenImageIO reads, every channel as float: EXR values as stored, PNG
  * values as stored codes / 255 (still sRGB-encoded: no colour conversion). On success

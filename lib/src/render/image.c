@@ -55,7 +55,12 @@ static int write_bytes(const char *path, const unsigned char *data, size_t size,
 
 int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err)
 {
-    int fmt = bf_image_format_of(path);
+    return bf_image_write_rgb_as(path, BF_IMAGE_BY_NAME, width, height, rgb, err);
+}
+
+int bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err)
+{
+    int fmt = format == BF_IMAGE_PNG || format == BF_IMAGE_EXR ? format : bf_image_format_of(path);
     if (!fmt)
         return bf_fail(err, BF_ERR_ARG, "%s: unknown image format (use .png or .exr)", path ? path : "(null)");
     if (width <= 0 || height <= 0 || !rgb)

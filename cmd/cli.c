@@ -1,0 +1,472 @@
+/* The command-line grammar and the texts made from the option tables (cli.h). */
+#include "cli.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Options every command takes, listed last in --help. */
+static const cli_option common[] = {
+    {"--help", 'h', NULL, "this help, then exit", NULL},
+    {"--quiet", 'q', NULL, "no progress or summaries on the terminal (errors still)", NULL},
+    {"--verbose", 'v', NULL, "say what is read and done, on stderr", NULL},
+};
+static const cli_group common_group = CLI_GROUP("common", common);
+
+static int verbosity = 1;
+
+int cli_verbose(void)
+{
+    return verbosity > 1;
+}
+
+int cli_quiet(void)
+{
+    return verbosity < 1;
+}
+
+void cli_note(const char *cmd, const char *fmt, ...)
+{
+    if (verbosity < 2)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: ", cmd);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+const char *cli_title(const cli_command *c, char *buf, size_t len)
+{
+    if (c->name)
+        snprintf(buf, len, "%s %s", c->tool, c->name);
+    else
+        snprintf(buf, len, "%s", c->tool);
+    return buf;
+}
+
+int cli_group_has(const cli_group *g, const char *name)
+{
+    for (int k = 0; k < g->n; k++)
+        if (!strcmp(g->options[k].name, name))
+            return 1;
+    return 0;
+}
+
+/* The option with this long name (with its dashes, up to len) or short letter. */
+static const cli_option *find(const cli_command *c, const char *name, size_t len, char letter)
+{
+    for (int g = -1; g < c->ngroups; g++) {
+        const cli_group *grp = g < 0 ? &common_group : c->groups[g];
+        for (int k = 0; k < grp->n; k++) {
+            const cli_option *o = &grp->options[k];
+            if (name ? strlen(o->name) == len && !strncmp(o->name, name, len) : o->short_name == letter)
+                return o;
+        }
+    }
+    return NULL;
+}
+
+const cli_option *cli_find(const cli_command *c, const char *name, size_t len)
+{
+    return find(c, name, len, 0);
+}
+
+static int push(cli_args *a, const char *name, const char *value)
+{
+    cli_arg *v = realloc(a->v, (size_t)(a->n + 1) * sizeof *v);
+    if (!v)
+        return 0;
+    a->v = v;
+    a->v[a->n].name = name;
+    a->v[a->n].value = value;
+    a->n++;
+    return 1;
+}
+
+/* Applies an option the parser owns (help, quiet, verbose); 1 when it was one. */
+static int common_option(const cli_option *o, int *help)
+{
+    if (o == &common[0])
+        *help = 1;
+    else if (o == &common[1])
+        verbosity = 0;
+    else if (o == &common[2])
+        verbosity = 2;
+    else
+        return 0;
+    return 1;
+}
+
+int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
+{
+    char title[64];
+    cli_title(c, title, sizeof title);
+    memset(a, 0, sizeof *a);
+    int help = 0, options = 1;
+    for (int i = 1; i < argc; i++) {
+        const char *s = argv[i];
+        if (!options || s[0] != '-' || !s[1]) { /* an operand, "-" included */
+            if (!push(a, NULL, s))
+                goto nomem;
+            continue;
+        }
+        if (!strcmp(s, "--")) {
+            options = 0;
+            continue;
+        }
+        if (s[1] == '-') { /* --name, --name=value, --name value */
+            const char *eq = strchr(s, '=');
+            size_t len = eq ? (size_t)(eq - s) : strlen(s);
+            const cli_option *o = find(c, s, len, 0);
+            if (!o) {
+                fprintf(stderr, "%s: unknown option '%.*s' (see %s --help)\n", title, (int)(len > 64 ? 64 : len), s,
+                        title);
+                goto usage;
+            }
+            if (!o->arg && eq) {
+                fprintf(stderr, "%s: %s takes no value\n", title, o->name);
+                goto usage;
+            }
+            const char *value = eq ? eq + 1 : NULL;
+            if (o->arg && !eq) {
+                if (i + 1 >= argc) {
+                    fprintf(stderr, "%s: %s needs a value (%s)\n", title, o->name, o->arg);
+                    goto usage;
+                }
+                value = argv[++i];
+            }
+            if (!common_option(o, &help) && !push(a, o->name, value))
+                goto nomem;
+            continue;
+        }
+        /* -x, -xVALUE, -x VALUE, and flags bundled: -qv */
+        for (const char *p = s + 1; *p; p++) {
+            const cli_option *o = find(c, NULL, 0, *p);
+            if (!o) {
+                if (p == s + 1)
+                    fprintf(stderr, "%s: unknown option '-%c' (see %s --help)\n", title, *p, title);
+                else
+                    fprintf(stderr, "%s: unknown option '-%c' in '%.64s' (see %s --help)\n", title, *p, s, title);
+                goto usage;
+            }
+            const char *value = NULL;
+            if (o->arg) {
+                if (p[1])
+                    value = p + 1;
+                else if (i + 1 < argc)
+                    value = argv[++i];
+                else {
+                    fprintf(stderr, "%s: -%c needs a value (%s)\n", title, *p, o->arg);
+                    goto usage;
+                }
+            }
+            if (!common_option(o, &help) && !push(a, o->name, value))
+                goto nomem;
+            if (o->arg)
+                break;
+        }
+    }
+    if (help) {
+        cli_help(c, stdout);
+        cli_args_free(a);
+        return CLI_EXIT;
+    }
+    return CLI_OK;
+nomem:
+    fprintf(stderr, "%s: out of memory\n", title);
+usage:
+    cli_args_free(a);
+    return CLI_USAGE;
+}
+
+void cli_args_free(cli_args *a)
+{
+    free(a->v);
+    a->v = NULL;
+    a->n = 0;
+}
+
+/* ---- --help ---------------------------------------------------------------------- */
+
+#define HELP_COLUMN 29
+
+static void help_option(const cli_option *o, FILE *out)
+{
+    char left[160];
+    int n = o->short_name ? snprintf(left, sizeof left, "  -%c, %s", o->short_name, o->name)
+                          : snprintf(left, sizeof left, "  %s", o->name);
+    if (o->arg && n < (int)sizeof left)
+        snprintf(left + n, sizeof left - (size_t)n, " %s", o->arg);
+    fputs(left, out);
+    int width = (int)strlen(left);
+    if (width < HELP_COLUMN - 1)
+        fprintf(out, "%*s", HELP_COLUMN - width, "");
+    else
+        fputs("   ", out);
+    for (const char *h = o->help; *h; h++) {
+        fputc(*h, out);
+        if (*h == '\n')
+            fprintf(out, "%*s", HELP_COLUMN, "");
+    }
+    fputc('\n', out);
+}
+
+static void help_group(const cli_group *g, FILE *out)
+{
+    fprintf(out, "%s:\n", g->title ? g->title : "options");
+    for (int k = 0; k < g->n; k++)
+        help_option(&g->options[k], out);
+}
+
+/* Paragraphs filled to width columns (words never split). */
+static void wrap(const char *text, int width, FILE *out)
+{
+    int col = 0;
+    for (const char *p = text; *p;) {
+        if (*p == '\n') { /* a paragraph break or a forced line */
+            fputc('\n', out);
+            col = 0;
+            p++;
+            continue;
+        }
+        if (*p == ' ') {
+            p++;
+            continue;
+        }
+        size_t len = strcspn(p, " \n");
+        if (col > 0 && col + 1 + (int)len > width) {
+            fputc('\n', out);
+            col = 0;
+        } else if (col > 0) {
+            fputc(' ', out);
+            col++;
+        }
+        fwrite(p, 1, len, out);
+        col += (int)len;
+        p += len;
+    }
+    if (col > 0)
+        fputc('\n', out);
+}
+
+void cli_help(const cli_command *c, FILE *out)
+{
+    char title[64];
+    fprintf(out, "usage: %s %s\n", cli_title(c, title, sizeof title), c->synopsis);
+    fprintf(out, "%c%s.\n", c->summary[0] >= 'a' && c->summary[0] <= 'z' ? c->summary[0] - 'a' + 'A' : c->summary[0],
+            c->summary + 1);
+    if (c->description) {
+        fputc('\n', out);
+        wrap(c->description, 88, out);
+    }
+    fputc('\n', out);
+    for (int g = 0; g < c->ngroups; g++)
+        help_group(c->groups[g], out);
+    help_group(&common_group, out);
+    fputs("exit status: 0 done, 1 failure (data, fit, output), 2 bad usage\n", out);
+}
+
+/* ---- man pages --------------------------------------------------------------------- */
+
+/* Text for roff: backslashes and dashes escaped, no line starting with '.' or '\''. */
+static void roff(const char *s, FILE *out, int line_start)
+{
+    for (; *s; s++) {
+        if (line_start && (*s == '.' || *s == '\''))
+            fputs("\\&", out);
+        line_start = *s == '\n';
+        if (*s == '\\')
+            fputs("\\e", out);
+        else if (*s == '-')
+            fputs("\\-", out);
+        else
+            fputc(*s, out);
+    }
+}
+
+static void upper(const char *s, FILE *out)
+{
+    for (; *s; s++)
+        fputc(*s >= 'a' && *s <= 'z' ? *s - 'a' + 'A' : *s, out);
+}
+
+void cli_man(const cli_command *c, const char *version, const char *see_also, FILE *out)
+{
+    char page[64];
+    if (c->name)
+        snprintf(page, sizeof page, "%s-%s", c->tool, c->name);
+    else
+        snprintf(page, sizeof page, "%s", c->tool);
+    /* No date: the page is generated at build time and must not change between builds. */
+    fputs(".TH ", out);
+    upper(page, out);
+    fprintf(out, " 1 \"\" \"brdfit %s\" \"brdfit manual\"\n.SH NAME\n", version);
+    roff(page, out, 0);
+    fputs(" \\- ", out);
+    roff(c->summary, out, 0);
+    fputs("\n.SH SYNOPSIS\n.B ", out);
+    char title[64];
+    roff(cli_title(c, title, sizeof title), out, 0);
+    fputc('\n', out);
+    roff(c->synopsis, out, 1);
+    fputs("\n.SH DESCRIPTION\n", out);
+    char first[512];
+    snprintf(first, sizeof first, "%c%s.", c->summary[0] >= 'a' && c->summary[0] <= 'z' ? c->summary[0] - 'a' + 'A'
+                                                                                        : c->summary[0],
+             c->summary + 1);
+    roff(first, out, 1);
+    fputc('\n', out);
+    if (c->description) { /* paragraphs: a blank line becomes .PP */
+        const char *p = c->description;
+        while (*p) {
+            const char *end = strstr(p, "\n\n");
+            size_t len = end ? (size_t)(end - p) : strlen(p);
+            char *para = strndup(p, len);
+            if (para) {
+                fputs(".PP\n", out);
+                roff(para, out, 1);
+                fputc('\n', out);
+                free(para);
+            }
+            p += len;
+            while (*p == '\n')
+                p++;
+        }
+    }
+    fputs(".SH OPTIONS\n", out);
+    for (int g = 0; g <= c->ngroups; g++) {
+        const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
+        fputs(".SS ", out);
+        roff(grp->title ? grp->title : "options", out, 0);
+        fputc('\n', out);
+        for (int k = 0; k < grp->n; k++) {
+            const cli_option *o = &grp->options[k];
+            fputs(".TP\n", out);
+            if (o->short_name)
+                fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
+            fputs("\\fB", out);
+            roff(o->name, out, 0);
+            fputs("\\fR", out);
+            if (o->arg) {
+                fputs(" \\fI", out);
+                roff(o->arg, out, 0);
+                fputs("\\fR", out);
+            }
+            fputc('\n', out);
+            /* Continuation lines are one sentence in the man page. */
+            char *h = strdup(o->help);
+            if (h) {
+                for (char *q = h; *q; q++)
+                    if (*q == '\n')
+                        *q = ' ';
+                roff(h, out, 1);
+                free(h);
+            }
+            fputc('\n', out);
+        }
+    }
+    fputs(".SH EXIT STATUS\n0: done; 1: a failure (bad data, a failed fit, an output that cannot be "
+          "written); 2: bad usage (options, model names, parameters).\n",
+          out);
+    if (see_also && *see_also) {
+        fputs(".SH SEE ALSO\n", out);
+        roff(see_also, out, 1);
+        fputc('\n', out);
+    }
+}
+
+/* ---- bash completion --------------------------------------------------------------- */
+
+/* What completes an option's value: its declared kind, or the choices its value name
+ * lists ("keep|drop|clamp"; not "N|all", which holds a placeholder). */
+static const char *value_kind(const cli_option *o)
+{
+    if (o->complete)
+        return o->complete;
+    if (!o->arg || !strchr(o->arg, '|'))
+        return NULL;
+    for (const char *p = o->arg; *p; p++)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') || *p == '_' || *p == '|'))
+            return NULL;
+    return o->arg;
+}
+
+static void words(const char *choices, FILE *out)
+{
+    for (const char *p = choices; *p; p++)
+        fputc(*p == '|' ? ' ' : *p, out);
+}
+
+/* The case arms of one command: values after an option, then options or operands. */
+static void completion_arms(const cli_command *c, const char *models, const char *indent, FILE *out)
+{
+    fprintf(out, "%scase $prev in\n", indent);
+    for (int g = 0; g <= c->ngroups; g++) {
+        const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
+        for (int k = 0; k < grp->n; k++) {
+            const cli_option *o = &grp->options[k];
+            if (!o->arg)
+                continue;
+            const char *kind = value_kind(o);
+            fprintf(out, "%s%s", indent, o->name);
+            if (o->short_name)
+                fprintf(out, "|-%c", o->short_name);
+            if (!kind)
+                fputs(") return ;;\n", out);
+            else if (!strcmp(kind, "file"))
+                fputs(") COMPREPLY=($(compgen -f -- \"$cur\")); return ;;\n", out);
+            else if (!strcmp(kind, "dir"))
+                fputs(") COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n", out);
+            else {
+                fputs(") COMPREPLY=($(compgen -W \"", out);
+                words(!strcmp(kind, "model") ? models : kind, out);
+                fputs("\" -- \"$cur\")); return ;;\n", out);
+            }
+        }
+    }
+    fprintf(out, "%sesac\n%sif [[ $cur == -* ]]; then\n%s    COMPREPLY=($(compgen -W \"", indent, indent, indent);
+    for (int g = 0; g <= c->ngroups; g++) {
+        const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
+        for (int k = 0; k < grp->n; k++) {
+            fprintf(out, "%s%s", g || k ? " " : "", grp->options[k].name);
+            if (grp->options[k].short_name)
+                fprintf(out, " -%c", grp->options[k].short_name);
+        }
+    }
+    fprintf(out, "\" -- \"$cur\"))\n%selse\n%s    COMPREPLY=($(compgen %s -- \"$cur\"))\n%sfi\n", indent, indent,
+            c->operands && !strcmp(c->operands, "dir") ? "-d" : c->operands ? "-f" : "-W ''", indent);
+}
+
+void cli_completion(const cli_command *const *cmds, int n, const char *models, FILE *out)
+{
+    const char *tool = cmds[0]->tool;
+    char fn[64];
+    snprintf(fn, sizeof fn, "_%s", tool);
+    for (char *p = fn; *p; p++)
+        if (*p == '-')
+            *p = '_';
+    fprintf(out, "# bash completion for %s, generated from its option tables. -*- shell-script -*-\n", tool);
+    fprintf(out, "%s()\n{\n    local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]}\n", fn);
+    fputs("    COMPREPLY=()\n", out);
+    if (!cmds[0]->name) {
+        completion_arms(cmds[0], models, "    ", out);
+    } else {
+        fputs("    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"", out);
+        for (int i = 0; i < n; i++)
+            fprintf(out, "%s ", cmds[i]->name);
+        fputs("help --help --version\" -- \"$cur\"))\n        return\n    fi\n", out);
+        fputs("    case ${COMP_WORDS[1]} in\n", out);
+        for (int i = 0; i < n; i++) {
+            fprintf(out, "    %s)\n", cmds[i]->name);
+            completion_arms(cmds[i], models, "        ", out);
+            fputs("        ;;\n", out);
+        }
+        fputs("    help)\n        [ \"$COMP_CWORD\" -eq 2 ] && COMPREPLY=($(compgen -W \"", out);
+        for (int i = 0; i < n; i++)
+            fprintf(out, "%s%s", i ? " " : "", cmds[i]->name);
+        fputs("\" -- \"$cur\"))\n        ;;\n    esac\n", out);
+    }
+    fprintf(out, "}\ncomplete -o filenames -F %s %s\n", fn, tool);
+}

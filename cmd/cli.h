@@ -1,0 +1,90 @@
+/* One command-line grammar for every command (brdfit's subcommands and brdfit-synth).
+ * Each command declares its options once, in tables of cli_option grouped under titles;
+ * parsing, --help, the man pages and bash completion all come from those tables.
+ *
+ * Grammar: long options take "--name value" or "--name=value", short ones "-m value" or
+ * "-mvalue"; short flags bundle ("-qv"); "--" ends the options; a lone "-" is an operand
+ * (standard input or output). Every command also takes -h/--help (exit 0), -q/--quiet and
+ * -v/--verbose. A bad option gets one line and exit 2. */
+#ifndef BRDFIT_CLI_H
+#define BRDFIT_CLI_H
+
+#include <stdio.h>
+
+typedef struct cli_option {
+    const char *name; /* long form with its dashes: "--model" */
+    char short_name;  /* 'm', or 0 */
+    const char *arg;  /* the value's name in help ("FILE", "N|all"); NULL for a flag */
+    const char *help; /* help text; '\n' starts a continuation line */
+    /* What a shell completes for the value: NULL nothing, "file", "dir", "model", or
+     * choices "a|b|c" (the default, when NULL, is taken from arg if it lists choices). */
+    const char *complete;
+} cli_option;
+
+typedef struct cli_group {
+    const char *title; /* "reading", "fitting", ...; NULL: the command's own */
+    const cli_option *options;
+    int n;
+} cli_group;
+
+#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0])}
+
+typedef struct cli_command {
+    const char *tool;     /* "brdfit" or "brdfit-synth" */
+    const char *name;     /* "fit"; NULL for a tool without subcommands */
+    const char *synopsis; /* after the command name: "DATA -m MODEL[,MODEL...] [options]" */
+    const char *summary;  /* one line, lower case, for lists and the man page's NAME */
+    /* Paragraphs for --help and the man page (blank line between paragraphs), or NULL. */
+    const char *description;
+    const char *operands;             /* completion of operands: "file", "dir" or NULL */
+    const cli_group *const *groups;   /* the command's options, by group */
+    int ngroups;
+} cli_command;
+
+/* One option or operand of a parsed command line, in order. */
+typedef struct cli_arg {
+    const char *name;  /* the option's long form ("--model"), or NULL for an operand */
+    const char *value; /* the option's value (NULL for a flag), or the operand */
+} cli_arg;
+
+typedef struct cli_args {
+    cli_arg *v;
+    int n;
+    int verbosity; /* 0 with --quiet, 1 by default, 2 with --verbose */
+} cli_args;
+
+enum { CLI_OK = 0, CLI_EXIT = 1, CLI_USAGE = 2 };
+
+/* Parses argv[1..argc-1] (argv[0] is the command's name) against c's tables into a
+ * (freed with cli_args_free). CLI_OK; CLI_EXIT after printing --help to stdout (exit
+ * 0); CLI_USAGE after printing one line to stderr (exit 2). */
+int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a);
+void cli_args_free(cli_args *a);
+
+/* The option of c (or a common one) whose long form is name[0..len-1], or NULL. */
+const cli_option *cli_find(const cli_command *c, const char *name, size_t len);
+
+/* 1 when the group declares the option of this long name ("--format"). */
+int cli_group_has(const cli_group *g, const char *name);
+
+/* The command's full name for messages: "brdfit fit", "brdfit-synth". */
+const char *cli_title(const cli_command *c, char *buf, size_t len);
+
+/* --help text: usage line, description, the options by group. */
+void cli_help(const cli_command *c, FILE *out);
+/* A man page (roff) for c, section 1. `see_also` is a comma-separated list of pages. */
+void cli_man(const cli_command *c, const char *version, const char *see_also, FILE *out);
+
+/* A bash completion script for a tool: its subcommands cmds[0..n-1], or cmds[0] alone
+ * for a tool without subcommands (name NULL). Values of kind "model" complete to the
+ * space-separated names in models. */
+void cli_completion(const cli_command *const *cmds, int n, const char *models, FILE *out);
+
+/* What the last cli_parse saw of --quiet and --verbose (for the whole process). */
+int cli_verbose(void);
+int cli_quiet(void);
+
+/* Prints "CMD: message" on stderr when --verbose was given. */
+void cli_note(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif
