@@ -45,7 +45,7 @@ void ts_random_dirs(ts_rng *r, size_t n, double *ti, double *pi_, double *to, do
  * outgoing direction within 5 degrees of the mirror of the incident one. */
 void ts_random_pair_deg(ts_rng *r, int near_mirror, double *ti, double *pi_, double *to, double *po);
 
-/* L and V as MODELS.md defines them, from angles in degrees. */
+/* L and V as docs/models.md defines them, from angles in degrees. */
 void ts_dirs_deg(double ti, double pi_, double to, double po, double L[3], double V[3]);
 
 /* Evaluates values only, over a geometry, into a malloc'd array (n*C). */

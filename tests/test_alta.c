@@ -139,7 +139,7 @@ static bf_samples *read_rusin(void)
 }
 
 /* RUSIN_TH_TD_PD gives back its angles, with the difference vector being L (the MERL
- * convention of DESIGN.md), not V as ALTA labels it. */
+ * convention of docs/formats.md), not V as ALTA labels it. */
 static void test_rusin_convention(void **state)
 {
     (void)state;

@@ -1,4 +1,4 @@
-/* MERL .binary tables: cell-centre geometry against DESIGN.md and MERL's own lookup,
+/* MERL .binary tables: cell-centre geometry against docs/formats.md and MERL's own lookup,
  * reading (scales, invalid cells), byte-exact write-back, writing without an origin,
  * and every malformed-file error. Tables are generated here and written byte by byte
  * (little-endian), independently of the library's writer. */
@@ -130,7 +130,7 @@ static void expect_msg(const bf_error *err, const char *frag)
         fail_msg("message \"%s\" lacks \"%s\"", err->msg, frag);
 }
 
-/* ---- Plain geometry, as DESIGN.md and MERL's BRDFRead.cpp state it ------------------- */
+/* ---- Plain geometry, as docs/formats.md and MERL's BRDFRead.cpp state it ------------- */
 
 static void centre_angles(size_t c, double *th, double *td, double *pd)
 {
@@ -185,8 +185,8 @@ static long merl_lookup_index(double ti, double pi_, double to, double po)
 
 /* ---- Geometry tests -------------------------------------------------------------------- */
 
-/* Directions from bf_merl_cell_directions against the DESIGN.md centre recomputed with
- * MERL's rotation: L = Ry(theta_h) D, V = L mirrored about H. */
+/* Directions from bf_merl_cell_directions against the centre of docs/formats.md,
+ * recomputed with MERL's rotation: L = Ry(theta_h) D, V = L mirrored about H. */
 static void test_centre_directions(void **state)
 {
     (void)state;

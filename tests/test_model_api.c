@@ -167,7 +167,7 @@ static void test_defaults_in_bounds(void **state)
     ts_free_specs(specs, n);
 }
 
-/* Every model of MODELS.md is registered under its name. */
+/* Every model of docs/models.md is registered under its name. */
 static void test_registry_names(void **state)
 {
     (void)state;

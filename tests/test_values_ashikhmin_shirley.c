@@ -1,5 +1,5 @@
 /* Values of ashikhmin_shirley and ashikhmin_shirley_iso against hand-computed cases and
- * a plain re-implementation of the MODELS.md formula from the angles. */
+ * a plain re-implementation of the docs/models.md formula from the angles. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,7 +19,7 @@ static double diffuse_ref(double rd, double rs, double nl, double nv)
            (1.0 - p5(1.0 - nv / 2.0));
 }
 
-/* MODELS.md from the angles (degrees). The exponent is written as in the paper,
+/* docs/models.md's formula from the angles (degrees). The exponent is written as in the paper,
  * e = nu cos^2(phi_h) + nv sin^2(phi_h), and NH^e with pow: an independent route. */
 static double as_ref(double rd, double rs, double nu, double nv, double ti, double pi_,
                      double to, double po)

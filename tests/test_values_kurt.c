@@ -1,5 +1,5 @@
 /* Values of the kurt model against closed forms at special geometry and against a plain
- * re-implementation of the MODELS.md formula from the angles. */
+ * re-implementation of the docs/models.md formula from the angles. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,6 +1,6 @@
 /* Values of lafortune and lafortune_aniso: the Phong special case, the normalisation by
  * max|c|^n, hand-worked angles, the conventions at cmax = 0 and n = 0, multiple lobes,
- * and a plain re-implementation of the MODELS.md formula from the angles. */
+ * and a plain re-implementation of the docs/models.md formula from the angles. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,7 +15,7 @@
 /* Relative tolerance plus a tiny absolute one, for values that may be ~0. */
 #define assert_close(got, want, tol, what) ts_assert_near((got), (want), (tol), 1e-15, (what))
 
-/* MODELS.md written out plainly: lobes K, per lobe (rho_s, cx, cy, cz, n). For the
+/* docs/models.md written out plainly: lobes K, per lobe (rho_s, cx, cy, cz, n). For the
  * isotropic model cx = cy = cxy. Only for n small enough that cmax^n stays normal. */
 typedef struct lobe_p { double rs, cx, cy, cz, n; } lobe_p;
 

@@ -1,6 +1,6 @@
 /* Values of the microfacet family (microfacet, cook_torrance, walter) and walter_aniso:
  * closed forms at normal incidence, the dielectric Fresnel against the Fresnel
- * equations, an independent plain re-implementation of the MODELS.md formulas from the
+ * equations, an independent plain re-implementation of the docs/models.md formulas from the
  * angles for every D x G x F combination, presets against the equivalent microfacet
  * options, finiteness at cos = 2e-15, and the energy-conservation flags (with the
  * albedo > 1 that makes the unflagged ones so). */
@@ -362,7 +362,7 @@ static void test_microfacet_reference(void **state)
     assert_true(compared > ND * NG * NF * 2 * 40); /* most references are nonzero */
 }
 
-/* walter_aniso against MODELS.md's form with tan(theta_h) and phi_h, and the projected
+/* walter_aniso against docs/models.md's form with tan(theta_h) and phi_h, and the projected
  * roughness alpha_w^2 = cos^2(phi_w) ax^2 + sin^2(phi_w) ay^2 of each direction. */
 static void test_walter_aniso_reference(void **state)
 {

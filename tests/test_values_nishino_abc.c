@@ -1,5 +1,5 @@
 /* Values of the nishino and abc models against closed forms at special geometry and
- * against plain re-implementations of the MODELS.md formulas from the angles, for every
+ * against plain re-implementations of the docs/models.md formulas from the angles, for every
  * fresnel option. */
 #include <math.h>
 #include <setjmp.h>

@@ -1,5 +1,5 @@
 /* Values of oren_nayar: sigma = 0 is Lambert, hand-computed geometries, and a plain
- * re-implementation of the MODELS.md formula from the angles (alpha, beta, phi). */
+ * re-implementation of the docs/models.md formula from the angles (alpha, beta, phi). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -10,7 +10,7 @@
 
 #include "support.h"
 
-/* MODELS.md literally, from the angles in degrees. */
+/* docs/models.md literally, from the angles in degrees. */
 static double on_ref(double rd, double sigma, double ti, double pi_, double to, double po)
 {
     double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;

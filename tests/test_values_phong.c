@@ -1,6 +1,6 @@
 /* Values of phong, blinn_phong, gaussian and heidrich_seidel against closed forms at
  * special geometry (normal incidence, mirror direction, hand-worked angles) and against
- * plain re-implementations of the MODELS.md formulas from the angles. */
+ * plain re-implementations of the docs/models.md formulas from the angles. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,5 +1,5 @@
 /* Values of ward and ward_iso against closed forms at the specular peak and against a
- * plain re-implementation of the MODELS.md formula from the angles. */
+ * plain re-implementation of the docs/models.md formula from the angles. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,7 +11,7 @@
 
 #include "support.h"
 
-/* MODELS.md, written out from the angles (degrees), nothing shared with the library. */
+/* docs/models.md, written out from the angles (degrees), nothing shared with the library. */
 static double ward_ref(double rd, double rs, double ax, double ay, double ti, double pi_,
                        double to, double po)
 {

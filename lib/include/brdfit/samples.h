@@ -96,7 +96,7 @@ typedef enum bf_format {
     BF_FORMAT_ALTA,     /* ALTA text data (#DIM / #PARAM_IN / #PARAM_OUT header) */
 } bf_format;
 
-/* How a CSV maps onto samples. Zeroed = the defaults of DESIGN.md. */
+/* How a CSV maps onto samples. Zeroed = the defaults (docs/formats.md, CSV). */
 typedef struct bf_csv_map {
     const char *angle_cols[4]; /* theta_i, phi_i, theta_o, phi_o column names (NULL: those names) */
     int radians;               /* angles in radians instead of degrees */

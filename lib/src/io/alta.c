@@ -16,7 +16,7 @@
  * Where ALTA and this library differ: ALTA's CARTESIAN packs the view vector first
  * ([V, L], params.h), kept here; for half/difference angles ALTA calls the rotated
  * difference vector V, while this library uses the Rusinkiewicz and MERL convention of
- * DESIGN.md (L is the difference vector rotated by theta_h about Y, V mirrors L about
+ * docs/formats.md (L is the difference vector rotated by theta_h about Y, V mirrors L about
  * H). For reciprocal data the two name the same pair of directions, swapped. */
 #include "brdfit/samples.h"
 #include "../big_alloc.h"

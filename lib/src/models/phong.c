@@ -12,8 +12,8 @@
  * incidence, where the lobe integrates to exactly 1 (Lewis 1994). Blinn-Phong's exact
  * normalisation likewise makes the albedo exactly 1 at normal incidence, and (checked
  * by quadrature for n from 0 to 1000, theta_i up to 89.99 degrees) it only decreases
- * towards grazing (MODELS.md names Blinn-Phong as an example of a model that is not
- * energy conserving at grazing; for this formula the quadrature says otherwise). */
+ * towards grazing (Blinn-Phong is often named as a model that is not energy conserving
+ * at grazing; for this formula the quadrature says otherwise: docs/models.md). */
 #include "family.h"
 #include "terms.h"
 

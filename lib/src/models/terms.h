@@ -1,6 +1,7 @@
-/* Shared BRDF terms from MODELS.md, each with its derivative with respect to its own
- * parameter. Geometry arguments come from bf_geometry; everything here assumes a valid
- * sample (N.L > 0, N.V > 0). Inline so the model loops can vectorise. */
+/* Shared BRDF terms (docs/models.md, "Shared terms"), each with its derivative with
+ * respect to its own parameter. Geometry arguments come from bf_geometry; everything
+ * here assumes a valid sample (N.L > 0, N.V > 0). Inline so the model loops can
+ * vectorise. */
 #ifndef BF_TERMS_H
 #define BF_TERMS_H
 

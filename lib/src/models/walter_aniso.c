@@ -3,7 +3,7 @@
  *   f = rho_d/pi + rho_s D G1(L) G1(V) F_s(VH; f0) / (4 NL NV)
  *   D = 1 / (pi ax ay (hz^2 + hx^2/ax^2 + hy^2/ay^2)^2)
  *   G1(w) = 2 / (1 + sqrt(1 + (wx^2 ax^2 + wy^2 ay^2) / wz^2))   (projected roughness)
- * D is MODELS.md's 1/(pi ax ay NH^4 (1 + tan^2(theta_h)(cos^2 phi_h/ax^2 + ...))^2)
+ * D is docs/models.md's 1/(pi ax ay NH^4 (1 + tan^2(theta_h)(cos^2 phi_h/ax^2 + ...))^2)
  * multiplied out, which needs neither tan(theta_h) nor 1 - NH^2. Energy conserving: D is
  * normalised and G1 is its exact Smith masking. */
 #include "family.h"
