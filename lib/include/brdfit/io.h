@@ -105,6 +105,11 @@ void bf_csv_put_number(FILE *fp, double v);
  * such as a fit's warnings. */
 void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n);
 
+/* Opens an input for reading: a file, or standard input for "-" (read whole on the first
+ * open and kept, so that it can be opened again: every reader takes "-"). NULL with errno
+ * set when it cannot. */
+FILE *bf_input_open(const char *path);
+
 #ifdef __cplusplus
 }
 #endif

@@ -18,6 +18,7 @@
  * difference vector V, while this library uses the Rusinkiewicz and MERL convention of
  * docs/formats.md (L is the difference vector rotated by theta_h about Y, V mirrors L about
  * H). For reciprocal data the two name the same pair of directions, swapped. */
+#include "brdfit/io.h"
 #include "brdfit/samples.h"
 #include "../big_alloc.h"
 
@@ -359,7 +360,7 @@ static int header_complete(const header *h, const char *path, size_t lineno, bf_
 int bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "rb");
+    FILE *fp = bf_input_open(path);
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     header h = {0, 0, 0, -1, -1, 0, 0, 0};

@@ -51,7 +51,7 @@ enum { IN_COUNT, IN_WAVELENGTHS, IN_RECORDS };
 int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "rb");
+    FILE *fp = bf_input_open(path);
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     numbers num = {NULL, 0, 0};

@@ -211,7 +211,7 @@ done:
 int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "r");
+    FILE *fp = bf_input_open(path);
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     bf_csv *t = calloc(1, sizeof *t);

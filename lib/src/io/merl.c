@@ -197,7 +197,7 @@ static int table_samples(const char *path, double *table, int interleaved, bf_sa
 int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "rb");
+    FILE *fp = bf_input_open(path);
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     double *table = NULL;

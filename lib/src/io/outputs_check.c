@@ -56,7 +56,14 @@ static file_id output_id(const out_target *t)
 int bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
                      bf_error *err)
 {
-    /* Usage first: names that can never be written. */
+    /* Usage first: standard input read twice, names that can never be written. */
+    for (int i = 0, from_stdin = -1; i < ninputs; i++)
+        if (inputs[i].path && !strcmp(inputs[i].path, "-")) {
+            if (from_stdin >= 0)
+                return bf_fail(err, BF_ERR_ARG, "%s - and %s - both read standard input", inputs[from_stdin].what,
+                               inputs[i].what);
+            from_stdin = i;
+        }
     int to_stdout = -1;
     for (int o = 0; o < noutputs; o++) {
         const char *p = outputs[o].path;

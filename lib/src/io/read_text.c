@@ -1,4 +1,5 @@
 /* Whole-file reading for the JSON readers (see read_text.h). */
+#include "brdfit/io.h"
 #include "read_text.h"
 
 #include <errno.h>
@@ -17,7 +18,7 @@ static size_t line_of(const char *text, size_t off)
 
 char *bf_read_text(const char *path, size_t *len, bf_error *err)
 {
-    FILE *fp = fopen(path, "rb");
+    FILE *fp = bf_input_open(path);
     if (!fp) {
         bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
         return NULL;

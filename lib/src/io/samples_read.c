@@ -1,5 +1,6 @@
 /* Which reader or writer a file gets: by the --format option, else by extension, else
  * by content. */
+#include "brdfit/io.h"
 #include "formats.h"
 
 #include <ctype.h>
@@ -8,15 +9,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Text formats by their first meaningful line: ALTA starts with '#' header keys
+/* MERL by its dimensions; text formats by their first meaningful line: ALTA starts with '#' header keys
  * (#DIM ...), Cornell with a lone wavelength count, CSV with a header row. */
 static bf_format by_content(const char *path, bf_error *err)
 {
-    FILE *fp = fopen(path, "rb");
+    FILE *fp = bf_input_open(path);
     if (!fp) {
         bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
         return BF_FORMAT_AUTO;
     }
+    /* MERL tables open with their dimensions, three int32: 90 90 180. */
+    unsigned char head[12];
+    static const unsigned char merl_dims[12] = {90, 0, 0, 0, 90, 0, 0, 0, 180, 0, 0, 0};
+    if (fread(head, 1, sizeof head, fp) == sizeof head && !memcmp(head, merl_dims, sizeof head)) {
+        fclose(fp);
+        return BF_FORMAT_MERL;
+    }
+    rewind(fp);
     char line[512];
     bf_format f = BF_FORMAT_CSV;
     while (fgets(line, sizeof line, fp)) {
