@@ -13,6 +13,7 @@
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "brdfit/samples.h"
+#include "brdfit/version.h"
 #include "synth.h"
 
 #define PROG "brdfit-synth"
@@ -44,7 +45,8 @@ static void usage(FILE *out)
             "                          random value in [0, channel maximum) without FACTOR\n"
             "  --clamp                 set negative values to zero (always on for merl)\n"
             "  --seed K                generator seed, an unsigned 64-bit integer (default 0);\n"
-            "                          the same seed gives the same file\n");
+            "                          the same seed gives the same file\n"
+            "  --version               print the version and exit\n");
 }
 
 static int usage_error(const char *fmt, ...)
@@ -235,6 +237,10 @@ int main(int argc, char **argv)
         const char *arg = argv[i];
         if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
             usage(stdout);
+            return 0;
+        }
+        if (!strcmp(arg, "--version")) {
+            printf(PROG " %s\n", bf_version());
             return 0;
         }
         if (!strcmp(arg, "--clamp")) {
