@@ -6,6 +6,7 @@
 
 #include "brdfit/io.h"
 #include "brdfit/limits.h"
+#include "brdfit/version.h"
 #include "commands.h"
 
 static void usage(FILE *out)
@@ -63,7 +64,7 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(argv[1], "--version")) {
-        printf("brdfit %s\n", BRDFIT_VERSION_STRING);
+        printf("brdfit %s\n", bf_version());
         return 0;
     }
     if (!strcmp(argv[1], "help"))

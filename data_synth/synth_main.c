@@ -13,6 +13,7 @@
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "brdfit/samples.h"
+#include "brdfit/version.h"
 #include "synth.h"
 #include "synth_cli.h"
 
@@ -204,7 +205,7 @@ int main(int argc, char **argv)
     /* A run ended by a signal leaves no temporary. */
     bf_remove_temporaries_on_signals();
     if (argc == 2 && !strcmp(argv[1], "--version")) {
-        printf(PROG " %s\n", BRDFIT_VERSION_STRING);
+        printf(PROG " %s\n", bf_version());
         return 0;
     }
     cli_args args;

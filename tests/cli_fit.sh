@@ -18,6 +18,7 @@ if "$BRDFIT" fit "$tmp/w.csv" -m walter --threads 2 -o "$tmp/r.json" >"$tmp/out"
   grep -q '^walter:fresnel=schlick,lobes=1  ok' "$tmp/out" && ok || bad "summary: $(cat "$tmp/out")"
   grep -q 'rmse' "$tmp/out" && grep -q 'alpha' "$tmp/out" && ok || bad "summary lacks rmse or parameters"
   jq -e '.model == "walter" and .options.fresnel == "schlick" and .options.lobes == 1 and .channels == 3
+         and (.brdfit_version | startswith("0."))
          and .ok == true and .samples == 3000 and .residual == "log" and .metrics.n == 9000 and .metrics.k == 8
          and (.params.alpha - 0.12 | fabs) < 1e-8 and (.params.rho_d[0] - 0.6 | fabs) < 1e-8
          and .optimizer.backend == "ceres" and .optimizer.threads == 2 and .optimizer.starts == 1
@@ -54,7 +55,8 @@ fi
 if "$BRDFIT" fit "$tmp/w.csv" -m lambert,microfacet:D=beckmann,G=smith_beckmann -m phong -o "$tmp/many.json" \
      >"$tmp/out" 2>"$tmp/err"; then
   jq -e '[.fits[].model] == ["lambert", "microfacet", "phong"] and .fits[1].options.D == "beckmann"
-         and .fits[1].options.G == "smith_beckmann" and all(.fits[]; .ok)' "$tmp/many.json" >/dev/null \
+         and .fits[1].options.G == "smith_beckmann" and all(.fits[]; .ok)
+         and (.brdfit_version | startswith("0.")) and all(.fits[]; has("brdfit_version") | not)' "$tmp/many.json" >/dev/null \
     && ok || bad "several models: $(jq -c '[.fits[] | {model, options}]' "$tmp/many.json")"
   [ "$(grep -c '  ok$' "$tmp/out")" = 3 ] && ok || bad "three summaries expected: $(cat "$tmp/out")"
 else

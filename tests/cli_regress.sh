@@ -27,6 +27,7 @@ if (cd "$tmp" && "$BRDFIT" regress "$EXAMPLE" --junit "$tmp/j.xml") >"$tmp/out" 
   [ -s "$tmp/err" ] && bad "stderr: $(cat "$tmp/err")" || ok
   junit_counts "$tmp/j.xml" "$ncases" 0 0 && ok || bad "JUnit: $(cat "$tmp/j.xml")"
   grep -q "classname=\"$EXAMPLE\"" "$tmp/j.xml" && ok || bad "JUnit classname"
+  grep -q '<property name="brdfit_version" value="0\.' "$tmp/j.xml" && ok || bad "JUnit: no brdfit_version property"
   ls "$tmp" | grep -q '\.tmp\.' && bad "temporary file left behind" || ok
 else
   bad "example baseline failed: $(cat "$tmp/out" "$tmp/err")"
@@ -57,8 +58,11 @@ junit_counts "$tmp/p.xml" "$ncases" 1 0 && grep -q '<failure message=.*params\.a
 "$BRDFIT" regress "$tmp/pert.json" --update >"$tmp/out" 2>"$tmp/err" && ok || bad "--update: $(cat "$tmp/err")"
 grep -q '^  params\.alpha: .* -> ' "$tmp/out" && grep -qx "UPDATED cayman-walter.*" "$tmp/out" && ok ||
   bad "--update output: $(cat "$tmp/out")"
-[ "$(jq -cS . "$tmp/pert.json")" = "$(jq -cS . "$tmp/base.json")" ] && ok ||
+[ "$(jq -cS 'del(.brdfit_version)' "$tmp/pert.json")" = "$(jq -cS . "$tmp/base.json")" ] && ok ||
   bad "--update did not give back the original baseline"
+# ... and names the build that wrote it, second (after what the file is); readers skip it.
+sed -n 3p "$tmp/pert.json" | grep -q '^  "brdfit_version": "0\.[0-9.]*\( (git [^)]*)\)\?",$' && ok ||
+  bad "--update wrote no brdfit_version: $(head -n 3 "$tmp/pert.json")"
 "$BRDFIT" regress "$tmp/pert.json" >/dev/null 2>&1 && ok || bad "updated baseline does not pass"
 
 # --- a case that cannot run: exit 1, JUnit <error>, --update writes nothing --------------

@@ -62,6 +62,7 @@ static cJSON *compare_json(const bf_compare *c)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "version", 2);
+    bf_json_add_version(root);
     bf_json_add_string(root, "rank_by", bf_compare_rank_name(c->rank_by));
     /* The error of the fronts and the tolerance: cross-validated when ranked by it. */
     bf_json_add_string(root, "error", c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric));

@@ -36,6 +36,7 @@
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/render.h"
+#include "brdfit/version.h"
 #include "io/out_target.h"
 #include "io/temp_registry.h"
 
@@ -408,7 +409,9 @@ static int page(report *r)
         if ((rc = pictures(r, i, m)) != BF_OK)
             return rc;
     }
-    fputs("</body>\n</html>\n", fp);
+    fputs("<footer><p>Written by brdfit ", fp);
+    esc(fp, bf_version());
+    fputs(".</p></footer>\n</body>\n</html>\n", fp);
     return BF_OK;
 }
 

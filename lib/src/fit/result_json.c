@@ -66,12 +66,15 @@ static cJSON *fixed_names(const bf_fit_result *r)
     return a;
 }
 
-static cJSON *result_json(const bf_fit_result *r, const char *data_path)
+/* top: the whole document (a single result), which names the version first. */
+static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top)
 {
     const bf_model *m = r->model;
     cJSON *o = cJSON_CreateObject();
     if (!o)
         return NULL;
+    if (top)
+        bf_json_add_version(o);
     cJSON_AddStringToObject(o, "model", bf_model_name(m));
     cJSON_AddItemToObject(o, "options", options_json(m));
     cJSON_AddNumberToObject(o, "channels", bf_model_channels(m));
@@ -127,20 +130,22 @@ int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char 
 {
     if (!r || !r->model || !r->x)
         return bf_fail(err, BF_ERR_ARG, "no fit result to write");
-    return bf_json_write(result_json(r, data_path), out_path, "the result", err);
+    return bf_json_write(result_json(r, data_path, 1), out_path, "the result", err);
 }
 
 int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
                            bf_error *err)
 {
     cJSON *root = cJSON_CreateObject();
+    if (root)
+        bf_json_add_version(root);
     cJSON *fits = root ? cJSON_AddArrayToObject(root, "fits") : NULL;
     for (int i = 0; fits && i < n; i++) {
         if (!r[i] || !r[i]->model || !r[i]->x) {
             cJSON_Delete(root);
             return bf_fail(err, BF_ERR_ARG, "no fit result to write");
         }
-        cJSON_AddItemToArray(fits, result_json(r[i], data_path));
+        cJSON_AddItemToArray(fits, result_json(r[i], data_path, 0));
     }
     return bf_json_write(root, out_path, "the results", err);
 }

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "brdfit/io.h"
+#include "brdfit/version.h"
 
 /* The text itself (bf_format_double, which reads back exactly): cJSON prints %1.15g
  * whenever that reads back within a relative DBL_EPSILON, which loses the last bit of
@@ -21,6 +22,8 @@ void bf_json_add_string(cJSON *o, const char *key, const char *s)
 {
     cJSON_AddItemToObject(o, key, s ? cJSON_CreateString(s) : cJSON_CreateNull());
 }
+
+void bf_json_add_version(cJSON *o) { bf_json_add_string(o, "brdfit_version", bf_version()); }
 
 cJSON *bf_json_params(const bf_model *m, const double *x)
 {

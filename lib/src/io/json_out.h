@@ -16,6 +16,9 @@ cJSON *bf_json_number(double v);
 void bf_json_add_number(cJSON *o, const char *key, double v);
 /* s, or null. */
 void bf_json_add_string(cJSON *o, const char *key, const char *s);
+/* "brdfit_version": bf_version(), the build that wrote the document (every document the
+ * library writes names it; readers ignore it). */
+void bf_json_add_version(cJSON *o);
 /* {name: value or [per channel]} from a model vector x; null when m or x is NULL. */
 cJSON *bf_json_params(const bf_model *m, const double *x);
 /* {rmse, rmse_cos, rmse_log, rmse_rel, max_err, n, k, aic, bic}, as in a result file. */

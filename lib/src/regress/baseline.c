@@ -527,8 +527,10 @@ static int parse_doc(parser *p)
         return FAIL(p, "", "a baseline is a JSON object with \"brdfit_baseline\": 1 and \"cases\"");
     if (check_text(p, b->doc, "") != BF_OK)
         return p->err->code;
-    static const char *const keys[] = {"brdfit_baseline", "tolerance", "cases", "comment", NULL};
-    if (only_keys(p, b->doc, "", keys, "the baseline (brdfit_baseline, tolerance, cases, comment)") != BF_OK)
+    /* brdfit_version: the build that last wrote the file (--update); not checked. */
+    static const char *const keys[] = {"brdfit_baseline", "brdfit_version", "tolerance", "cases", "comment", NULL};
+    if (only_keys(p, b->doc, "", keys, "the baseline (brdfit_baseline, brdfit_version, tolerance, cases, comment)") !=
+        BF_OK)
         return p->err->code;
     const cJSON *version = cJSON_GetObjectItemCaseSensitive(b->doc, "brdfit_baseline");
     if (!version)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/version.h"
 
 static const xmlChar *X(const char *s) { return (const xmlChar *)s; }
 
@@ -79,6 +80,11 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
             attr_int(w, "failures", failures) != 0 || attr_int(w, "errors", errors) != 0 || attr_time(w, seconds) != 0)
             return -1;
     }
+    /* The build that ran the cases, as a property of the suite (JUnit's place for it). */
+    if (xmlTextWriterStartElement(w, X("properties")) < 0 || xmlTextWriterStartElement(w, X("property")) < 0 ||
+        attr(w, "name", "brdfit_version") != 0 || attr(w, "value", bf_version()) != 0 ||
+        xmlTextWriterEndElement(w) < 0 || xmlTextWriterEndElement(w) < 0)
+        return -1;
     for (int i = 0; i < b->ncases; i++) {
         const bf_regress_outcome *o = &outs[i];
         if (o->status == BF_REGRESS_SKIPPED)

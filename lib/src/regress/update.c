@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/version.h"
 #include "regress/regress_impl.h"
 
 typedef struct updater {
@@ -208,8 +209,35 @@ static int put(FILE *f, const cJSON *x, int indent)
     return 0;
 }
 
+/* Sets "brdfit_version" to this build, in place or else right after "brdfit_baseline"
+ * (the file's first lines say what it is and what wrote it); -1 out of memory. */
+static int stamp_version(cJSON *doc)
+{
+    cJSON *v = cJSON_CreateString(bf_version());
+    if (!v)
+        return -1;
+    if (cJSON_GetObjectItemCaseSensitive(doc, "brdfit_version"))
+        return cJSON_ReplaceItemInObjectCaseSensitive(doc, "brdfit_version", v) ? 0 : (cJSON_Delete(v), -1);
+    if (!cJSON_AddItemToObject(doc, "brdfit_version", v)) {
+        cJSON_Delete(v);
+        return -1;
+    }
+    /* Added last: the members after "brdfit_baseline" move behind it, in their order
+     * (re-appending keeps their keys; cJSON 1.7.15 refuses to insert into an object). */
+    cJSON *e = doc->child;
+    while (e && e->string && strcmp(e->string, "brdfit_baseline"))
+        e = e->next;
+    for (cJSON *next = e ? e->next : NULL; (e = next) && e != v;) {
+        next = e->next;
+        cJSON_AddItemToArray(doc, cJSON_DetachItemViaPointer(doc, e));
+    }
+    return 0;
+}
+
 int bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err)
 {
+    if (stamp_version(b->doc) != 0)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the baseline", path);
     bf_outfile f;
     int rc = bf_outfile_open(&f, path, err);
     if (rc != BF_OK)

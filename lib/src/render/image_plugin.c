@@ -4,15 +4,20 @@
  * Where the module (BRDFIT_PLUGIN_FILE, libbrdfit-oiio.so) is looked for, in order:
  *  1. $BRDFIT_PLUGIN_DIR, if set and not empty: there and nowhere else, so that a wrong
  *     setting fails loudly instead of quietly loading some other copy.
- *  2. Relative to the running executable, as installed: <directory of /proc/self/exe>/
+ *  2. Relative to the shared library libbrdfit.so, when this code runs in it (found with
+ *     dladdr): <its directory>/BRDFIT_PLUGIN_LIB_REL_DIR (lib -> lib/brdfit), so any
+ *     program linked to an installed (or relocated) library uses that install's module.
+ *  3. Relative to the running executable, as installed: <directory of /proc/self/exe>/
  *     BRDFIT_PLUGIN_REL_DIR (the bin -> lib/brdfit step), so a relocated install (a
  *     staged DESTDIR, an unpacked package) uses its own module.
- *  3. The build tree (BRDFIT_PLUGIN_BUILD_DIR), so the commands and the tests run from
+ *  4. The build tree (BRDFIT_PLUGIN_BUILD_DIR), so the commands and the tests run from
  *     the build directory without installing.
- *  4. The install directory (BRDFIT_PLUGIN_INSTALL_DIR, ${libdir}/brdfit).
- * The first of 2-4 where the file exists is loaded; if it is there but does not load
+ *  5. The install directory (BRDFIT_PLUGIN_INSTALL_DIR, ${libdir}/brdfit).
+ * The first of 2-5 where the file exists is loaded; if it is there but does not load
  * (a missing OpenImageIO library, a stale ABI) that is the error, rather than falling
  * through to an older copy. The outcome, success or failure, is kept for the process. */
+/* dladdr is a GNU extension. */
+#define _GNU_SOURCE
 #include "render/image_plugin.h"
 
 #include <dlfcn.h>
@@ -84,6 +89,16 @@ static int load_from(const char *path)
     return 1;
 }
 
+/* The directory of file joined with rel; 0 if the path does not fit. */
+static int sibling_dir(char *buf, size_t size, const char *file, const char *rel)
+{
+    const char *slash = strrchr(file, '/');
+    if (!slash)
+        return 0;
+    int m = snprintf(buf, size, "%.*s/%s", (int)(slash - file), file, rel);
+    return m > 0 && (size_t)m < size;
+}
+
 /* The directory of the running executable joined with BRDFIT_PLUGIN_REL_DIR; 0 if
  * /proc is unavailable or the path does not fit. */
 static int exe_relative_dir(char *buf, size_t size)
@@ -94,12 +109,27 @@ static int exe_relative_dir(char *buf, size_t size)
     if (n <= 0)
         return 0;
     exe[n] = '\0';
-    char *slash = strrchr(exe, '/');
-    if (!slash)
+    return sibling_dir(buf, size, exe, BRDFIT_PLUGIN_REL_DIR);
+#else
+    (void)buf;
+    (void)size;
+    return 0;
+#endif
+}
+
+/* The directory of the shared library holding this code joined with
+ * BRDFIT_PLUGIN_LIB_REL_DIR; 0 in a static link, where the object dladdr names is the
+ * executable itself (step 3 covers that), or when the path is unknown. */
+static int lib_relative_dir(char *buf, size_t size)
+{
+#ifdef BRDFIT_PLUGIN_LIB_REL_DIR
+    Dl_info info;
+    char exe[PATH_MAX], lib[PATH_MAX];
+    if (!dladdr((void *)bf_image_plugin_get, &info) || !info.dli_fname || info.dli_fname[0] != '/')
         return 0;
-    *slash = '\0';
-    int m = snprintf(buf, size, "%s/%s", exe, BRDFIT_PLUGIN_REL_DIR);
-    return m > 0 && (size_t)m < size;
+    if (!realpath(info.dli_fname, lib) || !realpath("/proc/self/exe", exe) || !strcmp(lib, exe))
+        return 0;
+    return sibling_dir(buf, size, lib, BRDFIT_PLUGIN_LIB_REL_DIR);
 #else
     (void)buf;
     (void)size;
@@ -119,8 +149,10 @@ static void load(void)
         return;
     }
 
-    char dirs[3][PATH_MAX];
+    char dirs[4][PATH_MAX];
     int ndirs = 0;
+    if (lib_relative_dir(dirs[ndirs], sizeof dirs[ndirs]))
+        ndirs++;
     if (exe_relative_dir(dirs[ndirs], sizeof dirs[ndirs]))
         ndirs++;
 #ifdef BRDFIT_PLUGIN_BUILD_DIR
@@ -136,9 +168,12 @@ static void load(void)
         }
     }
     /* Nowhere: say where it was looked for. */
-    set_error("not found in %s%s%s%s%s (set BRDFIT_PLUGIN_DIR)", ndirs > 0 ? dirs[0] : "",
-              ndirs > 1 ? ", " : "", ndirs > 1 ? dirs[1] : "", ndirs > 2 ? ", " : "",
-              ndirs > 2 ? dirs[2] : "");
+    char list[sizeof load_error] = "";
+    for (int i = 0; i < ndirs; i++) {
+        size_t used = strlen(list);
+        snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", dirs[i]);
+    }
+    set_error("not found in %s (set BRDFIT_PLUGIN_DIR)", list);
 }
 
 const bf_image_plugin *bf_image_plugin_get(bf_error *err)

@@ -247,6 +247,7 @@ int bf_select_write_json(const bf_select *s, const char *data, const char *path,
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "version", 2);
+    bf_json_add_version(root);
     bf_json_add_string(root, "data", data);
     bf_json_add_string(root, "rank_by", bf_compare_rank_name(s->rank_by));
     bf_json_add_number(root, "folds", s->rank_by == BF_RANK_CV ? s->folds : NAN);

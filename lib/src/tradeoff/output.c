@@ -28,6 +28,7 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "version", 2);
+    bf_json_add_version(root);
     cJSON_AddStringToObject(root, "data", t->data);
     cJSON_AddStringToObject(root, "model", t->model);
     cJSON_AddNumberToObject(root, "samples", (double)t->total);

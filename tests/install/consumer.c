@@ -1,0 +1,65 @@
+/* A program built against an installed brdfit (tests/cli_install.sh): C only, the public
+ * headers only. Fits Lambert to samples of rho_d = 0.3 made here, prints the fitted
+ * albedo and the library's version, and writes a small PNG when given a path (which
+ * loads the image module the way any program linked to the library does). */
+#include <brdfit/error.h>
+#include <brdfit/fit.h>
+#include <brdfit/image.h>
+#include <brdfit/model.h>
+#include <brdfit/samples.h>
+#include <brdfit/version.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define RHO 0.3
+#define PI 3.14159265358979323846
+
+int main(int argc, char **argv)
+{
+    bf_error err;
+    /* An 8 x 8 grid of incident and outgoing elevations in the plane, value rho/pi. */
+    bf_samples *s = bf_samples_new(64, 1, &err);
+    if (!s) {
+        fprintf(stderr, "consumer: %s\n", err.msg);
+        return 1;
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        s->theta_i[i] = 5.0 + 10.0 * (double)(i / 8);
+        s->theta_o[i] = 5.0 + 10.0 * (double)(i % 8);
+        s->phi_o[i] = 180.0;
+        s->value[i] = RHO / PI;
+    }
+    bf_fit_options o;
+    memset(&o, 0, sizeof o);
+    o.objective.residual = BF_RESIDUAL_LINEAR;
+    o.solver.backend = BF_BACKEND_CERES;
+    o.starts = 1;
+    bf_fit_result r;
+    if (bf_fit(s, "lambert", &o, &r, &err) != BF_OK || !r.ok) {
+        fprintf(stderr, "consumer: the fit failed: %s\n", r.ok ? err.msg : r.solution.termination);
+        return 1;
+    }
+    int k = bf_model_find_param(r.model, "rho_d");
+    double rho = k < 0 ? NAN : r.x[bf_model_param_offset(r.model, k)];
+    printf("rho_d %.6f\n", rho);
+    printf("version %s (headers %s, %d.%d.%d)\n", bf_version(), BRDFIT_VERSION, BRDFIT_VERSION_MAJOR,
+           BRDFIT_VERSION_MINOR, BRDFIT_VERSION_PATCH);
+    bf_fit_result_free(&r);
+    bf_samples_free(s);
+    if (!(fabs(rho - RHO) < 1e-6) || strncmp(bf_version(), BRDFIT_VERSION, strlen(BRDFIT_VERSION)) != 0)
+        return 1;
+
+    if (argc > 1) {
+        float rgb[4 * 4 * 3];
+        for (size_t i = 0; i < sizeof rgb / sizeof rgb[0]; i++)
+            rgb[i] = (float)RHO;
+        if (bf_image_write_rgb(argv[1], 4, 4, rgb, &err) != BF_OK) {
+            fprintf(stderr, "consumer: %s\n", err.msg);
+            return 1;
+        }
+        printf("wrote %s\n", argv[1]);
+    }
+    return 0;
+}
