@@ -122,4 +122,18 @@ m=$(module_loaded "$prefix/bin/brdfit" render --params "$src/examples/walter_rgb
 [ "$m" = "$prefix/bin/../lib/brdfit/libbrdfit-oiio.so" ] || [ "$(realpath "$m")" = "$(realpath "$libdir/brdfit/libbrdfit-oiio.so")" ] && ok ||
   bad "installed brdfit loaded the image module from '$m'"
 
+# Man pages render, and the completion lists subcommands and a command's options.
+for page in brdfit brdfit-fit brdfit-compare brdfit-synth; do
+  f=$prefix/share/man/man1/$page.1
+  [ -f "$f" ] && MANWIDTH=80 man -l "$f" 2>"$tmp/man.err" | grep -q "^NAME" && [ ! -s "$tmp/man.err" ] && ok ||
+    bad "man -l $page.1: $(head -n 3 "$tmp/man.err")"
+done
+comp=$prefix/share/bash-completion/completions/brdfit
+# shellcheck disable=SC1090
+words=$(bash -c 'source "$1"; COMP_WORDS=(brdfit co); COMP_CWORD=1; _brdfit; echo "${COMPREPLY[*]}"' _ "$comp")
+[ "$words" = "convert compare" ] && ok || bad "completion of 'brdfit co': '$words'"
+words=$(bash -c 'source "$1"; COMP_WORDS=(brdfit fit --res); COMP_CWORD=2; _brdfit; echo "${COMPREPLY[*]}"' _ "$comp")
+[ "$words" = "--residual" ] && ok || bad "completion of 'brdfit fit --res': '$words'"
+[ -f "$prefix/share/bash-completion/completions/brdfit-synth" ] && ok || bad "no brdfit-synth completion"
+
 [ "$fails" = 0 ] && echo "install: all checks passed" || { echo "install: $fails failed"; exit 1; }
