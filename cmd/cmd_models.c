@@ -24,6 +24,7 @@ static cJSON *param_json(const bf_param_info *p)
     cJSON_AddBoolToObject(o, "upper_open", p->hi_open);
     cJSON_AddNumberToObject(o, "default", p->def);
     cJSON_AddStringToObject(o, "scale", scale_name(p->scale));
+    cJSON_AddStringToObject(o, "role", bf_param_role_name(p->role));
     return o;
 }
 
@@ -88,8 +89,8 @@ static void print_text(const bf_family_info *fi)
            fi->lobes ? ", lobes=K" : "", bf_model_nfree(m1), bf_model_nfree(m3));
     for (int i = 0; i < bf_model_nparams(m1); i++) {
         const bf_param_info *p = bf_model_param(m1, i);
-        printf("  %-16s %-6s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",
-               p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']', p->def,
+        printf("  %-16s %-6s %-20s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",
+               bf_param_role_name(p->role), p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']', p->def,
                p->scale == BF_SCALE_LINEAR ? "" : p->scale == BF_SCALE_LOG ? " (log scale)" : " (log1p scale)");
     }
     for (int k = 0; fi->options && fi->options[k].name; k++) {

@@ -121,7 +121,7 @@ static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
     int all = !strcmp(m->mono, "all"), spec = !strcmp(m->mono, "specular");
     if (all || spec) {
         for (int i = 0; i < m->nparam; i++)
-            tie[i] = m->param[i].colour && (all || i != first);
+            tie[i] = m->param[i].colour && (all || m->param[i].role != BF_ROLE_DIFFUSE);
     } else {
         for (const char *p = m->mono; *p;) {
             size_t len = strcspn(p, "+");
@@ -143,7 +143,7 @@ static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
     int ntie = 0, is_spec = 1;
     for (int i = 0; i < m->nparam; i++) {
         ntie += tie[i];
-        if (m->param[i].colour && tie[i] != (i != first))
+        if (m->param[i].colour && tie[i] != (m->param[i].role != BF_ROLE_DIFFUSE))
             is_spec = 0;
     }
     if (ntie == 0)
@@ -262,9 +262,8 @@ void bf_model_free(bf_model *m)
     free(m);
 }
 
-int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open,
-                            double hi, int hi_open, double def, bf_scale scale, int lobe,
-                            bf_error *err)
+int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+                            int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {
     if (m->nparam >= BF_MAX_PARAMS)
         return bf_fail(err, BF_ERR_ARG, "model %s: too many parameters", m->family->info.name);
@@ -283,6 +282,7 @@ int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo
     p->def = def;
     p->scale = scale;
     p->lobe = lobe;
+    p->role = role;
     m->offset[i] = m->nfree;
     m->nfree += colour ? m->channels : 1;
     if (lobe > 0 && lobe <= BF_MAX_LOBES) {
@@ -294,10 +294,30 @@ int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo
     return BF_OK;
 }
 
-int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi,
-                       double def, bf_scale scale, int lobe, bf_error *err)
+int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
+                       int lobe, bf_param_role role, bf_error *err)
 {
-    return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, err);
+    return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, role, err);
+}
+
+const char *bf_param_role_name(bf_param_role role)
+{
+    static const char *const names[] = {
+        [BF_ROLE_NONE] = "none",
+        [BF_ROLE_DIFFUSE] = "diffuse",
+        [BF_ROLE_DIFFUSE_SHAPE] = "diffuse_shape",
+        [BF_ROLE_WEIGHT] = "weight",
+        [BF_ROLE_ROUGHNESS] = "roughness",
+        [BF_ROLE_PERCEPTUAL_ROUGHNESS] = "perceptual_roughness",
+        [BF_ROLE_EXPONENT] = "exponent",
+        [BF_ROLE_FALLOFF] = "falloff",
+        [BF_ROLE_SLOPE_SPREAD] = "slope_spread",
+        [BF_ROLE_F0] = "f0",
+        [BF_ROLE_IOR] = "ior",
+        [BF_ROLE_ORIENTATION] = "orientation",
+        [BF_ROLE_SHAPE] = "shape",
+    };
+    return (unsigned)role < sizeof names / sizeof names[0] ? names[role] : "none";
 }
 
 int bf_model_opt(const bf_model *m, const char *key)

@@ -56,35 +56,20 @@
 
 typedef enum width_kind { W_NONE = 0, W_ROUGH, W_EXPONENT, W_ABC_B, W_BETA, W_DISNEY } width_kind;
 
-/* The name without the lobe suffix "_k" (the registry appends it when lobes > 1). */
-static const char *base_name(const bf_param_info *p, char *base)
+/* How a lobe width h (radians) becomes this parameter's start, by its role. Kurt's
+ * alpha is an exponent on NL NV, declared a shape: no width. */
+static width_kind width_of(const bf_param_info *p)
 {
-    snprintf(base, 64, "%s", p->name);
-    char *us = strrchr(base, '_');
-    if (us && us > base && us[1] >= '1' && us[1] <= '9' && !strchr(us + 1, '_') &&
-        strspn(us + 1, "0123456789") == strlen(us + 1) && p->lobe >= 1)
-        *us = '\0';
-    return base;
-}
-
-static width_kind width_of(const bf_param_info *p, char *base)
-{
-    base_name(p, base);
     if (p->colour)
         return W_NONE;
-    if ((!strcmp(base, "alpha") || !strcmp(base, "alpha_x") || !strcmp(base, "alpha_y") || !strcmp(base, "m")) &&
-        p->scale == BF_SCALE_LOG)
-        return W_ROUGH; /* kurt's linear-scale alpha is an exponent on NL NV, not a width */
-    if ((!strcmp(base, "n") || !strcmp(base, "nu") || !strcmp(base, "nv") || !strcmp(base, "s") ||
-         !strcmp(base, "gamma")) && p->scale != BF_SCALE_LINEAR)
-        return W_EXPONENT;
-    if (!strcmp(base, "b") && p->scale != BF_SCALE_LINEAR)
-        return W_ABC_B;
-    if (!strcmp(base, "beta"))
-        return W_BETA;
-    if (!strcmp(base, "roughness"))
-        return W_DISNEY;
-    return W_NONE;
+    switch (p->role) {
+    case BF_ROLE_ROUGHNESS: return W_ROUGH;
+    case BF_ROLE_EXPONENT: return W_EXPONENT;
+    case BF_ROLE_FALLOFF: return W_ABC_B;
+    case BF_ROLE_SLOPE_SPREAD: return W_BETA;
+    case BF_ROLE_PERCEPTUAL_ROUGHNESS: return W_DISNEY;
+    default: return W_NONE;
+    }
 }
 
 static double clamp_param(const bf_param_info *p, double v)
@@ -169,10 +154,9 @@ static int bin_of(double th)
 /* Sets every lobe's width parameters from h (lobe k: h 2^(k-1)). */
 static void set_widths(const bf_model *m, double *x, double h)
 {
-    char base[64];
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        width_kind w = width_of(p, base);
+        width_kind w = width_of(p);
         if (w == W_NONE)
             continue;
         int k = p->lobe > 1 ? p->lobe : 1;
@@ -366,10 +350,9 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
                 put_channel(m, i, x, c, diffuse[c]);
     }
     int has_weight = 0, has_width = 0;
-    char base[64];
     for (int i = 0; i < np; i++) {
         has_weight |= is_weight(bf_model_param(m, i));
-        has_width |= width_of(bf_model_param(m, i), base) != W_NONE;
+        has_width |= width_of(bf_model_param(m, i)) != W_NONE;
     }
     if (!has_weight && !has_width)
         goto clamp;
@@ -494,12 +477,12 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
         double over, ssr0 = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
         int has_f0 = 0;
         for (int i = 0; i < np; i++)
-            has_f0 |= !bf_model_param(m, i)->colour && !strcmp(base_name(bf_model_param(m, i), base), "f0");
+            has_f0 |= bf_model_param(m, i)->role == BF_ROLE_F0;
         for (int pass = 0; pass < 4 && over > 1.0 && has_f0; pass++) {
             memcpy(xk, x, (size_t)P * sizeof *xk);
             for (int i = 0; i < np; i++) {
                 const bf_param_info *p = bf_model_param(m, i);
-                if (!p->colour && !strcmp(base_name(p, base), "f0")) {
+                if (p->role == BF_ROLE_F0) {
                     double *v = x + bf_model_param_offset(m, i);
                     *v = clamp_param(p, *v * over);
                 }

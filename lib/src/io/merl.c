@@ -202,6 +202,20 @@ int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_er
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     double *table = NULL;
     int rc = read_header(fp, path, err);
+    /* A short file is refused before the 35 MB table is allocated (where its size can be
+     * known: a regular file or standard input kept in memory; a pipe reads to its end). */
+    long size = -1;
+    struct stat st;
+    if (fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode))
+        size = (long)st.st_size;
+    else if (fileno(fp) < 0 && fseek(fp, 0, SEEK_END) == 0) {
+        size = ftell(fp);
+        if (fseek(fp, HEADER_BYTES, SEEK_SET) != 0)
+            size = -1;
+    }
+    if (rc == BF_OK && size >= 0 && (size_t)size < (size_t)FILE_BYTES)
+        rc = bf_fail(err, BF_ERR_PARSE, "%s: truncated: %zu bytes, a %d x %d x %d MERL table is %zu bytes", path,
+                     (size_t)size, BF_MERL_TH, BF_MERL_TD, BF_MERL_PD, (size_t)FILE_BYTES);
     if (rc == BF_OK && !(table = bf_big_malloc(TABLE_DOUBLES * sizeof *table)))
         rc = bf_fail_memory(err, path, 0, TABLE_DOUBLES * sizeof *table);
     if (rc == BF_OK)

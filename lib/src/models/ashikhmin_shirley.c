@@ -102,10 +102,10 @@ static int configure_aniso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "nu", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, err)) ||
-        (rc = bf_model_add_param(m, "nv", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "nu", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, BF_ROLE_EXPONENT, err)) ||
+        (rc = bf_model_add_param(m, "nv", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, BF_ROLE_EXPONENT, err)))
         return rc;
     return BF_OK;
 }
@@ -114,9 +114,9 @@ static int configure_iso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "n", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "n", 0, 1.0, 1e6, 50.0, BF_SCALE_LOG, 0, BF_ROLE_EXPONENT, err)))
         return rc;
     return BF_OK;
 }

@@ -18,12 +18,12 @@
 static int configure(bf_model *m, bf_error *err)
 {
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, BRADY_RHO_S_MAX, 0.5, BF_SCALE_LOG1P, 1, err)) ||
-        (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param_open(m, "a", 0, 0.0, 1, 3.0, 0, 1.0, BF_SCALE_LOG1P, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, BRADY_RHO_S_MAX, 0.5, BF_SCALE_LOG1P, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, 1, BF_ROLE_F0, err)) ||
+        (rc = bf_model_add_param_open(m, "a", 0, 0.0, 1, 3.0, 0, 1.0, BF_SCALE_LOG1P, 1, BF_ROLE_SHAPE, err)))
         return rc;
-    return bf_model_add_param_open(m, "beta", 0, 0.0, 1, 10.0, 0, 0.5, BF_SCALE_LOG1P, 1, err);
+    return bf_model_add_param_open(m, "beta", 0, 0.0, 1, 10.0, 0, 0.5, BF_SCALE_LOG1P, 1, BF_ROLE_SLOPE_SPREAD, err);
 }
 
 /* Scalars in table order: f0, a, beta. */

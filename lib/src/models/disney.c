@@ -25,15 +25,23 @@ enum { P_BASE, P_METAL, P_SUBSURF, P_SPEC, P_ROUGH, P_STINT, P_ANISO, P_SHEEN, P
 
 static int configure(bf_model *m, bf_error *err)
 {
-    static const struct { const char *name; double def; } tab[P_COUNT] = {
-        {"base_color", 0.5},     {"metallic", 0.0},    {"subsurface", 0.0},
-        {"specular", 0.5},       {"roughness", 0.5},   {"specular_tint", 0.0},
-        {"anisotropic", 0.0},    {"sheen", 0.0},       {"sheen_tint", 0.5},
-        {"clearcoat", 0.0},      {"clearcoat_gloss", 1.0},
+    /* Disney's artist parameters mostly shape one term each; only the base colour, the
+     * roughness and the sheen and clearcoat weights have a role the start can use. */
+    static const struct {
+        const char *name;
+        double def;
+        bf_param_role role;
+    } tab[P_COUNT] = {
+        {"base_color", 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0.0, BF_ROLE_SHAPE},
+        {"subsurface", 0.0, BF_ROLE_DIFFUSE_SHAPE}, {"specular", 0.5, BF_ROLE_SHAPE},
+        {"roughness", 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"specular_tint", 0.0, BF_ROLE_SHAPE},
+        {"anisotropic", 0.0, BF_ROLE_SHAPE},    {"sheen", 0.0, BF_ROLE_WEIGHT},
+        {"sheen_tint", 0.5, BF_ROLE_SHAPE},     {"clearcoat", 0.0, BF_ROLE_WEIGHT},
+        {"clearcoat_gloss", 1.0, BF_ROLE_SHAPE},
     };
     for (int k = 0; k < P_COUNT; k++) {
-        int rc = bf_model_add_param(m, tab[k].name, k == P_BASE, 0.0, 1.0, tab[k].def,
-                                    BF_SCALE_LINEAR, 0, err);
+        int rc = bf_model_add_param(m, tab[k].name, k == P_BASE, 0.0, 1.0, tab[k].def, BF_SCALE_LINEAR, 0,
+                                    tab[k].role, err);
         if (rc != BF_OK)
             return rc;
     }

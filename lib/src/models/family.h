@@ -61,13 +61,13 @@ struct bf_family {
     bf_lobe_fn lobe; /* only for bf_eval_diffuse_lobes */
 };
 
-/* Appends a parameter; name gets "_k" appended for lobe k when m->lobes > 1. */
-int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi,
-                       double def, bf_scale scale, int lobe, bf_error *err);
+/* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when
+ * m->lobes > 1. */
+int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
+                       int lobe, bf_param_role role, bf_error *err);
 /* Same, with open bounds. */
-int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open,
-                            double hi, int hi_open, double def, bf_scale scale, int lobe,
-                            bf_error *err);
+int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+                            int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
  * schlick, ior [1, 3] for dielectric, none for none. */

@@ -71,13 +71,13 @@ static int configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo grows like sqrt(s) */
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param(m, "s", 0, 0.0, 1e6, 50.0, BF_SCALE_LOG1P, 1, err)) ||
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "s", 0, 0.0, 1e6, 50.0, BF_SCALE_LOG1P, 1, BF_ROLE_EXPONENT, err)) ||
         /* phi_t is pi-periodic (T and -T give the same lobe): start mid-range so a fit
          * is never more than pi/2 away from any thread direction. */
         (rc = bf_model_add_param_open(m, "phi_t", 0, 0.0, 0, M_PI, 1, 0.5 * M_PI,
-                                      BF_SCALE_LINEAR, 1, err)))
+                                      BF_SCALE_LINEAR, 1, BF_ROLE_ORIENTATION, err)))
         return rc;
     return BF_OK;
 }

@@ -18,12 +18,12 @@ static const double m_default[BF_MAX_LOBES] = {0.2, 0.4, 0.8, 0.1, 0.05, 0.6, 0.
 
 static int configure(bf_model *m, bf_error *err)
 {
-    int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err);
+    int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
     for (int k = 1; rc == BF_OK && k <= m->lobes; k++) {
-        if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, err)) ||
-            (rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, m_default[k - 1], BF_SCALE_LOG, k, err)) ||
-            (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, k, err)) ||
-            (rc = bf_model_add_param(m, "alpha", 0, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, err)))
+        if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_WEIGHT, err)) ||
+            (rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, m_default[k - 1], BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err)) ||
+            (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, k, BF_ROLE_F0, err)) ||
+            (rc = bf_model_add_param(m, "alpha", 0, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)))
             break;
     }
     return rc;

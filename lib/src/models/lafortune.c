@@ -153,21 +153,21 @@ static int configure_common(bf_model *m, int aniso, bf_error *err)
 {
     m->energy_conserving = 1; /* albedo <= rho_d + sum rho_s (see above) */
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)))
         return rc;
     for (int k = 1; k <= m->lobes; k++) {
-        if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, err)))
+        if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_WEIGHT, err)))
             return rc;
         if (aniso) {
-            if ((rc = bf_model_add_param(m, "cx", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, err)) ||
-                (rc = bf_model_add_param(m, "cy", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, err)))
+            if ((rc = bf_model_add_param(m, "cx", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)) ||
+                (rc = bf_model_add_param(m, "cy", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)))
                 return rc;
         } else {
-            if ((rc = bf_model_add_param(m, "cxy", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, err)))
+            if ((rc = bf_model_add_param(m, "cxy", 0, -1.0, 1.0, -1.0, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)))
                 return rc;
         }
-        if ((rc = bf_model_add_param(m, "cz", 0, -1.0, 1.0, 1.0, BF_SCALE_LINEAR, k, err)) ||
-            (rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, default_n(k), BF_SCALE_LOG1P, k, err)))
+        if ((rc = bf_model_add_param(m, "cz", 0, -1.0, 1.0, 1.0, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)) ||
+            (rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, default_n(k), BF_SCALE_LOG1P, k, BF_ROLE_EXPONENT, err)))
             return rc;
     }
     return BF_OK;

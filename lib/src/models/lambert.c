@@ -4,7 +4,7 @@
 static int configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
-    return bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err);
+    return bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
 }
 
 const bf_family bf_family_lambert = {

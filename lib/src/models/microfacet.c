@@ -203,21 +203,21 @@ static double default_roughness(int d, int k)
 static int configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
 {
     m->energy_conserving = conserving(c);
-    int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err);
+    int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
     for (int k = 1; rc == BF_OK && k <= m->lobes; k++) {
         double r0 = default_roughness(c.d, k);
-        rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, err);
+        rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_WEIGHT, err);
         if (rc != BF_OK)
             break;
         switch (c.d) {
         case D_GGX:
-            rc = bf_model_add_param(m, "alpha", 0, 1e-4, 1.0, r0, BF_SCALE_LOG, k, err);
+            rc = bf_model_add_param(m, "alpha", 0, 1e-4, 1.0, r0, BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err);
             break;
         case D_BLINN:
-            rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, r0, BF_SCALE_LOG1P, k, err);
+            rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, r0, BF_SCALE_LOG1P, k, BF_ROLE_EXPONENT, err);
             break;
         default: /* beckmann, gaussian */
-            rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, r0, BF_SCALE_LOG, k, err);
+            rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, r0, BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err);
             break;
         }
         if (rc == BF_OK)

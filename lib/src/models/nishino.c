@@ -21,10 +21,10 @@ static const bf_option_info options[] = {{"fresnel", bf_fresnel_values}, {NULL, 
 static int configure(bf_model *m, bf_error *err)
 {
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, NISHINO_RHO_S_MAX, 0.5, BF_SCALE_LOG1P, 1, err)) ||
-        (rc = bf_model_add_param(m, "kappa", 0, 1e-3, 1e3, 1.0, BF_SCALE_LOG, 1, err)) ||
-        (rc = bf_model_add_param(m, "gamma", 0, 1e-3, 1e4, 50.0, BF_SCALE_LOG, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, NISHINO_RHO_S_MAX, 0.5, BF_SCALE_LOG1P, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "kappa", 0, 1e-3, 1e3, 1.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "gamma", 0, 1e-3, 1e4, 50.0, BF_SCALE_LOG, 1, BF_ROLE_EXPONENT, err)))
         return rc;
     return bf_model_add_fresnel_param(m, bf_model_opt(m, "fresnel"), 1, err);
 }

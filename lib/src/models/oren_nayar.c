@@ -53,8 +53,8 @@ static int configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* see above: albedo up to about 1.015 rho_d */
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "sigma", 0, 0.0, M_PI / 2.0, 0.3, BF_SCALE_LINEAR, 0, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "sigma", 0, 0.0, M_PI / 2.0, 0.3, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE_SHAPE, err)))
         return rc;
     return BF_OK;
 }

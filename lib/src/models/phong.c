@@ -93,9 +93,9 @@ static void lobe_blinn(const bf_model *m, int lobe, const double *s, const bf_ge
 static int add_params(bf_model *m, bf_error *err)
 {
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, 50.0, BF_SCALE_LOG1P, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, 50.0, BF_SCALE_LOG1P, 1, BF_ROLE_EXPONENT, err)))
         return rc;
     return BF_OK;
 }

@@ -72,11 +72,11 @@ static int configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param(m, "alpha_x", 0, 1e-4, 1.0, 0.2, BF_SCALE_LOG, 1, err)) ||
-        (rc = bf_model_add_param(m, "alpha_y", 0, 1e-4, 1.0, 0.2, BF_SCALE_LOG, 1, err)) ||
-        (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "alpha_x", 0, 1e-4, 1.0, 0.2, BF_SCALE_LOG, 1, BF_ROLE_ROUGHNESS, err)) ||
+        (rc = bf_model_add_param(m, "alpha_y", 0, 1e-4, 1.0, 0.2, BF_SCALE_LOG, 1, BF_ROLE_ROUGHNESS, err)) ||
+        (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, 1, BF_ROLE_F0, err)))
         return rc;
     return BF_OK;
 }

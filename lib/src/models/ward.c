@@ -74,10 +74,10 @@ static int configure_aniso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo exceeds 1 at grazing incidence */
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param(m, "alpha_x", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, err)) ||
-        (rc = bf_model_add_param(m, "alpha_y", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "alpha_x", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, BF_ROLE_ROUGHNESS, err)) ||
+        (rc = bf_model_add_param(m, "alpha_y", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, BF_ROLE_ROUGHNESS, err)))
         return rc;
     return BF_OK;
 }
@@ -86,9 +86,9 @@ static int configure_iso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo exceeds 1 at grazing incidence */
     int rc;
-    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, err)) ||
-        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, err)) ||
-        (rc = bf_model_add_param(m, "alpha", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, err)))
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "alpha", 0, 1e-3, 1.0, 0.15, BF_SCALE_LOG, 1, BF_ROLE_ROUGHNESS, err)))
         return rc;
     return BF_OK;
 }
