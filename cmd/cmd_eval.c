@@ -57,6 +57,84 @@ static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const 
     }
 }
 
+/* Takes the parsed command line: 0, or 2 after a one-line error. */
+static int take_args(const cli_args *args, const char **params_path, const char **dirs_path, const char **out_path)
+{
+    for (int i = 0; i < args->n; i++) {
+        const char *a = args->v[i].name;
+        if (!a) {
+            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", args->v[i].value);
+            return 2;
+        }
+        const char **dst = !strcmp(a, "--params") ? params_path : !strcmp(a, "--dirs") ? dirs_path : out_path;
+        *dst = args->v[i].value;
+    }
+    if (!*params_path || !*dirs_path) {
+        fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
+        return 2;
+    }
+    return 0;
+}
+
+/* The four angle columns of the direction table, and at least one row: 0, or -1 after a
+ * one-line error. */
+static int find_columns(const bf_csv *t, const char *dirs_path, int *col)
+{
+    for (int k = 0; k < 4; k++)
+        if ((col[k] = bf_csv_column(t, angle_cols[k])) < 0) {
+            fprintf(stderr, "brdfit eval: %s: missing column %s (need theta_i,phi_i,theta_o,phi_o)\n", dirs_path,
+                    angle_cols[k]);
+            return -1;
+        }
+    if (t->nrows == 0) {
+        fprintf(stderr, "brdfit eval: %s: no direction rows\n", dirs_path);
+        return -1;
+    }
+    return 0;
+}
+
+/* The model's values at every row of t (row-major, channels last) into values: 0, or -1
+ * after a one-line error. */
+static int evaluate(const bf_model *m, const double *x, const bf_csv *t, const int *col, double *values)
+{
+    bf_error err;
+    size_t n = t->nrows;
+    double *ang = malloc(4 * n * sizeof *ang);
+    if (!ang) {
+        fprintf(stderr, "brdfit eval: out of memory for %zu directions\n", n);
+        return -1;
+    }
+    for (size_t r = 0; r < n; r++)
+        for (int k = 0; k < 4; k++)
+            ang[(size_t)k * n + r] = t->data[r * t->ncols + (size_t)col[k]] * (M_PI / 180.0);
+    bf_geometry *g = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &err);
+    free(ang);
+    if (!g) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        return -1;
+    }
+    bf_model_eval(m, x, g, values, NULL);
+    bf_geometry_free(g);
+    return 0;
+}
+
+/* The table to out_path (standard output when NULL or -): 0, or -1 after the error. */
+static int write_output(const char *out_path, const bf_csv *t, const int *col, int C, const double *values)
+{
+    bf_error err;
+    bf_outfile out;
+    if (bf_outfile_open(&out, out_path, &err) != BF_OK) {
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        return -1;
+    }
+    write_table(out.fp, t, col, C, values);
+    if (bf_outfile_commit(&out, &err) != BF_OK) { /* checks every write */
+        fprintf(stderr, "brdfit eval: %s\n", err.msg);
+        return -1;
+    }
+    return 0;
+}
+
 int cmd_eval(int argc, char **argv)
 {
     const char *params_path = NULL, *dirs_path = NULL, *out_path = NULL;
@@ -64,81 +142,36 @@ int cmd_eval(int argc, char **argv)
     int p = cli_parse(&cli_eval, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name;
-        if (!a) {
-            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", args.v[i].value);
-            cli_args_free(&args);
-            return 2;
-        }
-        const char **dst = !strcmp(a, "--params") ? &params_path : !strcmp(a, "--dirs") ? &dirs_path : &out_path;
-        *dst = args.v[i].value;
-    }
+    int bad = take_args(&args, &params_path, &dirs_path, &out_path);
     cli_args_free(&args);
-    if (!params_path || !dirs_path) {
-        fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
-        return 2;
-    }
-    const bf_path_use in[] = {{"--params file", params_path}, {"--dirs file", dirs_path}}, outs[] = {{"-o", out_path}};
-    int bad = args_check_outputs("brdfit eval", in, 2, outs, 1);
     if (bad)
+        return bad;
+    const bf_path_use in[] = {{"--params file", params_path}, {"--dirs file", dirs_path}}, outs[] = {{"-o", out_path}};
+    if ((bad = args_check_outputs("brdfit eval", in, 2, outs, 1)) != 0)
         return bad;
 
     bf_error err;
     bf_model *m = NULL;
-    double *x = NULL, *values = NULL, *ang = NULL;
+    double *x = NULL, *values = NULL;
     bf_csv *t = NULL;
-    bf_geometry *g = NULL;
-    int status = 1;
+    int status = 1, col[4];
     if (bf_params_read(params_path, &m, &x, &err) != BF_OK || bf_csv_read(dirs_path, &t, &err) != BF_OK) {
         fprintf(stderr, "brdfit eval: %s\n", err.msg);
         goto done;
     }
-    int col[4];
-    for (int k = 0; k < 4; k++)
-        if ((col[k] = bf_csv_column(t, angle_cols[k])) < 0) {
-            fprintf(stderr, "brdfit eval: %s: missing column %s (need theta_i,phi_i,theta_o,phi_o)\n",
-                    dirs_path, angle_cols[k]);
-            goto done;
-        }
-    if (t->nrows == 0) {
-        fprintf(stderr, "brdfit eval: %s: no direction rows\n", dirs_path);
+    if (find_columns(t, dirs_path, col) < 0)
         goto done;
-    }
-    size_t n = t->nrows;
     int C = bf_model_channels(m);
-    ang = malloc(4 * n * sizeof *ang);
-    values = malloc(n * (size_t)C * sizeof *values);
-    if (!ang || !values) {
-        fprintf(stderr, "brdfit eval: out of memory for %zu directions\n", n);
+    if (!(values = malloc(t->nrows * (size_t)C * sizeof *values))) {
+        fprintf(stderr, "brdfit eval: out of memory for %zu directions\n", t->nrows);
         goto done;
     }
-    for (size_t r = 0; r < n; r++)
-        for (int k = 0; k < 4; k++)
-            ang[(size_t)k * n + r] = t->data[r * t->ncols + (size_t)col[k]] * (M_PI / 180.0);
-    if (!(g = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &err))) {
-        fprintf(stderr, "brdfit eval: %s\n", err.msg);
-        goto done;
-    }
-    bf_model_eval(m, x, g, values, NULL);
-
-    bf_outfile out;
-    if (bf_outfile_open(&out, out_path, &err) != BF_OK) {
-        fprintf(stderr, "brdfit eval: %s\n", err.msg);
-        goto done;
-    }
-    write_table(out.fp, t, col, C, values);
-    if (bf_outfile_commit(&out, &err) != BF_OK) { /* checks every write */
-        fprintf(stderr, "brdfit eval: %s\n", err.msg);
-        goto done;
-    }
-    status = 0;
+    if (evaluate(m, x, t, col, values) == 0 && write_output(out_path, t, col, C, values) == 0)
+        status = 0;
 done:
-    bf_geometry_free(g);
     bf_csv_free(t);
     bf_model_free(m);
     free(x);
-    free(ang);
     free(values);
     return status;
 }

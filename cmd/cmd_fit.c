@@ -14,7 +14,8 @@
  *  - -o with one model writes the result object (a parameter file for brdfit eval);
  *    with several, {"fits": [result, ...]}, which eval does not take. A failed fit is
  *    still written (ok: false, the start as parameters) and the exit status is 1.
- *  - --accuracy fast|balanced|best is a bundle of options (fit_options.c); options the
+ *  - --accuracy fast|balanced|best is a bundle of options (brdfit/fit.h,
+ *    bf_fit_options_apply_accuracy); options the
  *    user gives win whatever their order. The fast preset's subsample reaches the data
  *    options here, after parsing, and only when no --subsample was given.
  *  - -o is checked before the data is read (args_check_outputs): the same file as the
@@ -96,106 +97,141 @@ static void summary(FILE *out, const bf_fit_result *r)
         fprintf(out, "  warning: %s\n", r->warnings[w]);
 }
 
+/* What the command line asked for, and what the run holds (freed by run_free). */
+typedef struct fit_run {
+    data_options dopt;
+    fit_options fopt;
+    char *specs[MAX_MODELS];
+    int nmodels;
+    const char *data, *out_path;
+    bf_samples *s;
+    bf_fit_result results[MAX_MODELS];
+    int nres;
+} fit_run;
+
+/* Takes the parsed command line into f: 0, or -1 after a one-line error. */
+static int take_args(fit_run *f, const cli_args *args)
+{
+    for (int i = 0; i < args->n; i++) {
+        const char *a = args->v[i].name, *v = args->v[i].value;
+        if (!a) {
+            if (data_options_take_file(&f->data, v, cmd) < 0)
+                return -1;
+            continue;
+        }
+        int d = fit_options_parse_with_data(&f->fopt, &f->dopt, a, v, cmd);
+        if (d < 0)
+            return -1;
+        if (d > 0)
+            continue;
+        if (!strcmp(a, "--output")) {
+            f->out_path = v;
+        } else { /* --model */
+            int k = fit_options_split_models(v, f->specs, f->nmodels, MAX_MODELS, cmd);
+            if (k < 0)
+                return -1;
+            f->nmodels = k;
+        }
+    }
+    return 0;
+}
+
+/* Bad usage is found before any data is read: what is missing, the model specs, the
+ * output. Returns 0, or the exit status after a one-line error. */
+static int check_usage(fit_run *f)
+{
+    if (!f->data || f->nmodels == 0) {
+        fprintf(stderr, "%s: %s (see brdfit fit --help)\n", cmd,
+                !f->data ? "a data file is required" : "-m MODEL is required");
+        return 2;
+    }
+    if (fit_options_check_models(&f->fopt, f->specs, f->nmodels, cmd) < 0)
+        return 2;
+    /* After the models: the preset's subsample must reach the data options. */
+    fit_options_finish(&f->fopt, &f->dopt);
+    const bf_path_use in[] = {{"data file", f->data}, {"--scene file", f->dopt.scene}}, out[] = {{"-o", f->out_path}};
+    return args_check_outputs(cmd, in, 2, out, 1);
+}
+
+/* Fits every model in turn, printing each summary to info; *all_ok becomes 0 when a fit
+ * failed. Returns 0, or the exit status of an error that stops the run. */
+static int fit_models(fit_run *f, FILE *info, int *all_ok)
+{
+    bf_error err;
+    for (int k = 0; k < f->nmodels; k++) {
+        cli_note(cmd, "fitting %s", f->specs[k]);
+        bf_fit_result *r = &f->results[f->nres];
+        int rc = bf_fit(f->s, f->specs[k], &f->fopt.fit, r, &err);
+        if (rc != BF_OK) {
+            fprintf(stderr, "%s: %s: %s\n", cmd, f->specs[k], err.msg);
+            return rc == BF_ERR_ARG ? 2 : 1;
+        }
+        f->nres++;
+        if (!cli_quiet())
+            summary(info, r);
+        *all_ok &= r->ok;
+    }
+    fflush(info);
+    return 0;
+}
+
+/* -o: one result object, or {"fits": [...]} for several. 0, or -1 after the error. */
+static int write_results(const fit_run *f)
+{
+    if (!f->out_path)
+        return 0;
+    bf_error err;
+    const bf_fit_result *list[MAX_MODELS];
+    for (int k = 0; k < f->nres; k++)
+        list[k] = &f->results[k];
+    int rc = f->nres == 1 ? bf_fit_write_json(&f->results[0], f->data, f->out_path, &err)
+                          : bf_fit_write_json_list(list, f->nres, f->data, f->out_path, &err);
+    if (rc != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads the data, fits, writes: the exit status. */
+static int run(fit_run *f)
+{
+    if (!(f->s = data_options_load(&f->dopt, f->data, NULL, cmd)))
+        return 1;
+    /* The summary goes to stdout unless the result does. */
+    FILE *info = f->out_path && !strcmp(f->out_path, "-") ? stderr : stdout;
+    int all_ok = 1, status = fit_models(f, info, &all_ok);
+    if (status != 0)
+        return status;
+    if (write_results(f) < 0)
+        return 1;
+    if (!all_ok)
+        fprintf(stderr, "%s: %s\n", cmd, f->nres == 1 ? "the fit failed" : "a fit failed");
+    return all_ok ? 0 : 1;
+}
+
+static void run_free(fit_run *f)
+{
+    for (int k = 0; k < f->nres; k++)
+        bf_fit_result_free(&f->results[k]);
+    for (int k = 0; k < f->nmodels; k++)
+        free(f->specs[k]);
+    bf_samples_free(f->s);
+}
+
 int cmd_fit(int argc, char **argv)
 {
-    data_options dopt;
-    memset(&dopt, 0, sizeof dopt);
-    fit_options fopt;
-    fit_options_init(&fopt);
-    int nmodels = 0, status = 2;
-    char *specs[MAX_MODELS] = {0};
-    const char *data = NULL, *out_path = NULL;
-    bf_error err;
-    bf_samples *s = NULL;
-    bf_fit_result results[MAX_MODELS];
-    int nres = 0;
-
+    fit_run f;
+    memset(&f, 0, sizeof f);
+    fit_options_init(&f.fopt);
     cli_args args;
     int p = cli_parse(&cli_fit, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        if (!a) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
-                goto done;
-            }
-            data = v;
-            continue;
-        }
-        int d = data_options_parse(&dopt, a, v, cmd);
-        if (d == 0)
-            d = fit_options_parse(&fopt, a, v, cmd);
-        if (d == 0)
-            d = fit_options_parse_accuracy(&fopt, a, v, cmd);
-        if (d < 0)
-            goto done;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--output")) {
-            out_path = v;
-        } else { /* --model */
-            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
-            if (k < 0)
-                goto done;
-            nmodels = k;
-        }
-    }
-    if (!data || nmodels == 0) {
-        fprintf(stderr, "%s: %s (see brdfit fit --help)\n", cmd,
-                !data ? "a data file is required" : "-m MODEL is required");
-        goto done;
-    }
-    /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
-        goto done;
-    fit_options_finish(&fopt, &dopt);
-    /* And the output, before the data is read and the fits run. */
-    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}}, out[] = {{"-o", out_path}};
-    if ((status = args_check_outputs(cmd, in, 2, out, 1)) != 0)
-        goto done;
-
-    status = 1;
-    if (!(s = data_options_load(&dopt, data, NULL, cmd)))
-        goto done;
-    /* The summary goes to stdout unless the result does. */
-    FILE *info = out_path && !strcmp(out_path, "-") ? stderr : stdout;
-    int all_ok = 1;
-    for (int k = 0; k < nmodels; k++) {
-        cli_note(cmd, "fitting %s", specs[k]);
-        int rc = bf_fit(s, specs[k], &fopt.fit, &results[nres], &err);
-        if (rc != BF_OK) {
-            fprintf(stderr, "%s: %s: %s\n", cmd, specs[k], err.msg);
-            status = rc == BF_ERR_ARG ? 2 : 1;
-            goto done;
-        }
-        if (!cli_quiet())
-            summary(info, &results[nres]);
-        all_ok &= results[nres].ok;
-        nres++;
-    }
-    fflush(info);
-    if (out_path) {
-        const bf_fit_result *list[MAX_MODELS];
-        for (int k = 0; k < nres; k++)
-            list[k] = &results[k];
-        int rc = nres == 1 ? bf_fit_write_json(&results[0], data, out_path, &err)
-                           : bf_fit_write_json_list(list, nres, data, out_path, &err);
-        if (rc != BF_OK) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            goto done;
-        }
-    }
-    if (!all_ok)
-        fprintf(stderr, "%s: %s\n", cmd, nres == 1 ? "the fit failed" : "a fit failed");
-    status = all_ok ? 0 : 1;
-done:
+    int status = take_args(&f, &args) < 0 ? 2 : check_usage(&f);
+    if (status == 0)
+        status = run(&f);
     cli_args_free(&args);
-    for (int k = 0; k < nres; k++)
-        bf_fit_result_free(&results[k]);
-    for (int k = 0; k < nmodels; k++)
-        free(specs[k]);
-    bf_samples_free(s);
+    run_free(&f);
     return status;
 }

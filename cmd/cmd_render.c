@@ -101,176 +101,226 @@ static int image_fits(int width, int height)
     return 1;
 }
 
-int cmd_render(int argc, char **argv)
-{
+/* What the command line asked for. */
+typedef struct render_args {
     data_options dopt;
-    memset(&dopt, 0, sizeof dopt);
-    const char *params = NULL, *data = NULL, *out_path = NULL;
-    bf_dir lights[MAX_LIGHTS], view = {0.0, 0.0};
-    int nlights = 0, slice = 0, halfdiff = 0, width = 0, height = 0, tonemap = -1;
-    double exposure = 1.0, decades = 4.0, plane_tol = 2.0, phi_d = 90.0;
-    double incidence[BF_SLICE_MAX_INCIDENCE] = {0.0, 30.0, 60.0};
-    int nincidence = 3;
+    const char *params, *data, *out_path;
+    bf_dir lights[MAX_LIGHTS], view;
+    int nlights, slice, halfdiff, width, height;
+    int tonemap; /* bf_tonemap_mode, or -1: the mode's default */
+    int to;      /* --to: a bf_image_format, or 0 */
+    double exposure, decades, plane_tol, phi_d;
+    double incidence[BF_SLICE_MAX_INCIDENCE];
+    int nincidence;
+} render_args;
 
-    int to = 0;
-    cli_args args;
-    int p = cli_parse(&cli_render, argc, argv, &args);
-    if (p != CLI_OK)
-        return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
+/* --incidence A,B,...: at most BF_SLICE_MAX_INCIDENCE angles in [0, 90). */
+static int parse_incidence(const char *v, render_args *r)
+{
+    char buf[512], *save = NULL;
+    int ok = 1;
+    snprintf(buf, sizeof buf, "%s", v);
+    r->nincidence = 0;
+    for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save)) {
+        double x;
+        ok = r->nincidence < BF_SLICE_MAX_INCIDENCE && parse_double(t, &x) && x >= 0.0 && x < 90.0;
+        if (ok)
+            r->incidence[r->nincidence++] = x;
+    }
+    return ok && r->nincidence > 0;
+}
+
+/* --tonemap: a bf_tonemap_mode, or -2 for an unknown name. */
+static int parse_tonemap(const char *v)
+{
+    return !strcmp(v, "clamp") ? BF_TONEMAP_CLAMP : !strcmp(v, "reinhard") ? BF_TONEMAP_REINHARD
+           : !strcmp(v, "log") ? BF_TONEMAP_LOG : -2;
+}
+
+/* One of render's own valued options: 1 when the value is good, 0 when it is not (the
+ * caller says so), -1 after an error of its own. */
+static int take_value(render_args *r, const char *a, const char *v)
+{
+    if (!strcmp(a, "--params"))
+        r->params = v;
+    else if (!strcmp(a, "--data"))
+        r->data = v;
+    else if (!strcmp(a, "--output"))
+        r->out_path = v;
+    else if (!strcmp(a, "--to"))
+        return (r->to = !strcmp(v, "png") ? BF_IMAGE_PNG : !strcmp(v, "exr") ? BF_IMAGE_EXR : 0) != 0;
+    else if (!strcmp(a, "--light")) {
+        if (r->nlights >= MAX_LIGHTS) {
+            fprintf(stderr, "%s: at most %d lights\n", cmd, MAX_LIGHTS);
+            return -1;
+        }
+        return parse_dir(v, &r->lights[r->nlights++]);
+    } else if (!strcmp(a, "--view"))
+        return parse_dir(v, &r->view);
+    else if (!strcmp(a, "--size"))
+        return parse_size(v, &r->width, &r->height);
+    else if (!strcmp(a, "--exposure"))
+        return parse_double(v, &r->exposure) && r->exposure > 0.0;
+    else if (!strcmp(a, "--decades"))
+        return parse_double(v, &r->decades) && r->decades > 0.0;
+    else if (!strcmp(a, "--plane-tol"))
+        return parse_double(v, &r->plane_tol) && r->plane_tol >= 0.0;
+    else if (!strcmp(a, "--phi-d"))
+        return parse_double(v, &r->phi_d);
+    else if (!strcmp(a, "--tonemap"))
+        return (r->tonemap = parse_tonemap(v)) != -2;
+    else if (!strcmp(a, "--incidence"))
+        return parse_incidence(v, r);
+    return 1;
+}
+
+/* Takes the parsed command line into r: 0, or -1 after a one-line error. */
+static int take_args(render_args *r, const cli_args *args)
+{
+    for (int i = 0; i < args->n; i++) {
+        const char *a = args->v[i].name, *v = args->v[i].value;
         if (!a) {
             fprintf(stderr, "%s: unexpected argument '%s' (see brdfit render --help)\n", cmd, v);
-            goto usage;
+            return -1;
         }
         if (!strcmp(a, "--slice")) {
-            slice = 1;
+            r->slice = 1;
             continue;
         }
         if (!strcmp(a, "--half-diff")) {
-            halfdiff = 1;
+            r->halfdiff = 1;
             continue;
         }
-        int d = data_options_parse(&dopt, a, v, cmd);
+        int d = data_options_parse(&r->dopt, a, v, cmd);
         if (d < 0)
-            goto usage;
+            return -1;
         if (d > 0)
             continue;
-        int ok = 1;
-        if (!strcmp(a, "--params"))
-            params = v;
-        else if (!strcmp(a, "--data"))
-            data = v;
-        else if (!strcmp(a, "--output"))
-            out_path = v;
-        else if (!strcmp(a, "--to"))
-            ok = (to = !strcmp(v, "png") ? BF_IMAGE_PNG : !strcmp(v, "exr") ? BF_IMAGE_EXR : 0) != 0;
-        else if (!strcmp(a, "--light")) {
-            if (nlights >= MAX_LIGHTS) {
-                fprintf(stderr, "%s: at most %d lights\n", cmd, MAX_LIGHTS);
-                goto usage;
-            }
-            ok = parse_dir(v, &lights[nlights++]);
-        } else if (!strcmp(a, "--view"))
-            ok = parse_dir(v, &view);
-        else if (!strcmp(a, "--size"))
-            ok = parse_size(v, &width, &height);
-        else if (!strcmp(a, "--exposure"))
-            ok = parse_double(v, &exposure) && exposure > 0.0;
-        else if (!strcmp(a, "--decades"))
-            ok = parse_double(v, &decades) && decades > 0.0;
-        else if (!strcmp(a, "--plane-tol"))
-            ok = parse_double(v, &plane_tol) && plane_tol >= 0.0;
-        else if (!strcmp(a, "--phi-d"))
-            ok = parse_double(v, &phi_d);
-        else if (!strcmp(a, "--tonemap")) {
-            tonemap = !strcmp(v, "clamp") ? BF_TONEMAP_CLAMP : !strcmp(v, "reinhard") ? BF_TONEMAP_REINHARD
-                      : !strcmp(v, "log")  ? BF_TONEMAP_LOG : -2;
-            ok = tonemap != -2;
-        } else if (!strcmp(a, "--incidence")) {
-            char buf[512], *save = NULL;
-            snprintf(buf, sizeof buf, "%s", v);
-            nincidence = 0;
-            for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save)) {
-                double x;
-                ok = nincidence < BF_SLICE_MAX_INCIDENCE && parse_double(t, &x) && x >= 0.0 && x < 90.0;
-                if (ok)
-                    incidence[nincidence++] = x;
-            }
-            ok = ok && nincidence > 0;
-        }
+        int ok = take_value(r, a, v);
+        if (ok < 0)
+            return -1;
         if (!ok) {
             fprintf(stderr, "%s: bad value '%s' for %s\n", cmd, v, a);
-            goto usage;
+            return -1;
         }
     }
-    cli_args_free(&args);
-    if (slice && halfdiff) {
+    return 0;
+}
+
+/* Which inputs the mode needs, and the image's format: 0, or 2 after a one-line error
+ * (sets *fmt). */
+static int check_mode(const render_args *r, int *fmt)
+{
+    if (r->slice && r->halfdiff) {
         fprintf(stderr, "%s: --slice and --half-diff exclude each other\n", cmd);
         return 2;
     }
-    if (!out_path) {
+    if (!r->out_path) {
         fprintf(stderr, "%s: -o OUT.png|OUT.exr is required\n", cmd);
         return 2;
     }
-    int fmt = to ? to : bf_image_format_of(out_path);
-    if (!fmt) {
-        fprintf(stderr, "%s: %s: unknown image format (use .png or .exr, or --to)\n", cmd, out_path);
+    if (!(*fmt = r->to ? r->to : bf_image_format_of(r->out_path))) {
+        fprintf(stderr, "%s: %s: unknown image format (use .png or .exr, or --to)\n", cmd, r->out_path);
         return 2;
     }
-    if (halfdiff ? (!params == !data) : !params) {
+    if (r->halfdiff ? (!r->params == !r->data) : !r->params) {
         fprintf(stderr, "%s: %s\n", cmd,
-                halfdiff ? "--half-diff takes --params P.json or --data T.binary (one of them)"
-                         : "--params P.json is required");
+                r->halfdiff ? "--half-diff takes --params P.json or --data T.binary (one of them)"
+                            : "--params P.json is required");
         return 2;
     }
-    if (data && !slice && !halfdiff) {
+    if (r->data && !r->slice && !r->halfdiff) {
         fprintf(stderr, "%s: --data is for --slice or --half-diff\n", cmd);
         return 2;
     }
-    if (width == 0) {
-        width = slice ? 640 : 256;
-        height = slice ? 480 : 256;
+    return 0;
+}
+
+/* The mode's defaults for what was not given (size, light), then the checks that need
+ * them: 0, or the exit status after a one-line error. */
+static int settle(render_args *r)
+{
+    if (r->width == 0) {
+        r->width = r->slice ? 640 : 256;
+        r->height = r->slice ? 480 : 256;
     }
-    if (!slice && !halfdiff && width != height) {
+    if (!r->slice && !r->halfdiff && r->width != r->height) {
         fprintf(stderr, "%s: the sphere image is square: --size N\n", cmd);
         return 2;
     }
-    if (nlights == 0)
-        lights[nlights++] = (bf_dir){45.0, 0.0};
-    if (!image_fits(width, height))
+    if (r->nlights == 0)
+        r->lights[r->nlights++] = (bf_dir){45.0, 0.0};
+    if (!image_fits(r->width, r->height))
         return 1; /* the request is well formed; this machine cannot hold it */
-    const bf_path_use in[] = {{"--params file", params}, {"--data file", data}, {"--scene file", dopt.scene}},
-                      out[] = {{"-o", out_path}};
-    int bad = args_check_outputs(cmd, in, 3, out, 1);
-    if (bad)
-        return bad;
+    const bf_path_use in[] = {{"--params file", r->params}, {"--data file", r->data}, {"--scene file", r->dopt.scene}},
+                      out[] = {{"-o", r->out_path}};
+    return args_check_outputs(cmd, in, 3, out, 1);
+}
 
+/* The parameter file and the data, as the mode takes them: 0, or -1 after the error. */
+static int load_inputs(const render_args *r, bf_model **m, double **x, bf_samples **s)
+{
+    bf_error err;
+    if (r->params && bf_params_read(r->params, m, x, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    if (!r->data)
+        return 0;
+    if (!r->halfdiff)
+        return (*s = data_options_load(&r->dopt, r->data, NULL, cmd)) ? 0 : -1;
+    /* Cells as read: preprocessing would reshape the table. */
+    if (bf_samples_read_merl(r->data, 0, s, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* Draws the mode's picture into rgb (width x height x 3, linear), and tone maps it for
+ * a PNG (slice plots are drawn for display already). Returns a BF_ status. */
+static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
+{
+    int rc;
+    if (r->slice) {
+        bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol};
+        rc = bf_render_slice(m, x, &so, rgb, NULL, err);
+    } else if (r->halfdiff) {
+        rc = m ? bf_render_halfdiff_model(m, x, r->width, r->height, r->phi_d, rgb, err)
+               : bf_render_halfdiff_merl(s, r->width, r->height, r->phi_d, rgb, err);
+        if (r->tonemap < 0)
+            r->tonemap = BF_TONEMAP_LOG;
+    } else {
+        bf_sphere_options so = {r->width, r->view, r->lights, r->nlights};
+        rc = bf_render_sphere(m, x, &so, rgb, err);
+    }
+    if (rc == BF_OK && fmt == BF_IMAGE_PNG && !r->slice)
+        bf_tonemap(rgb, (size_t)r->width * (size_t)r->height * 3,
+                   r->tonemap < 0 ? BF_TONEMAP_CLAMP : (bf_tonemap_mode)r->tonemap, r->exposure, r->decades);
+    return rc;
+}
+
+/* Loads, draws and writes the image: the exit status. */
+static int render(render_args *r, int fmt)
+{
     bf_error err;
     bf_model *m = NULL;
     double *x = NULL;
     bf_samples *s = NULL;
     float *rgb = NULL;
-    int status = 1, rc = BF_OK;
-    if (params && bf_params_read(params, &m, &x, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    int status = 1, rc;
+    if (load_inputs(r, &m, &x, &s) < 0)
+        goto done;
+    if (!(rgb = malloc((size_t)r->width * (size_t)r->height * 3 * sizeof *rgb))) {
+        fprintf(stderr, "%s: out of memory for a %dx%d image\n", cmd, r->width, r->height);
         goto done;
     }
-    if (data) {
-        if (halfdiff) {
-            /* Cells as read: preprocessing would reshape the table. */
-            if (bf_samples_read_merl(data, 0, &s, &err) != BF_OK) {
-                fprintf(stderr, "%s: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!(s = data_options_load(&dopt, data, NULL, cmd)))
-            goto done;
-    }
-    size_t n = (size_t)width * (size_t)height * 3;
-    if (!(rgb = malloc(n * sizeof *rgb))) {
-        fprintf(stderr, "%s: out of memory for a %dx%d image\n", cmd, width, height);
-        goto done;
-    }
-    if (slice) {
-        bf_slice_options so = {width, height, incidence, nincidence, s, plane_tol};
-        rc = bf_render_slice(m, x, &so, rgb, NULL, &err);
-    } else if (halfdiff) {
-        rc = m ? bf_render_halfdiff_model(m, x, width, height, phi_d, rgb, &err)
-               : bf_render_halfdiff_merl(s, width, height, phi_d, rgb, &err);
-        if (tonemap < 0)
-            tonemap = BF_TONEMAP_LOG;
-    } else {
-        bf_sphere_options so = {width, view, lights, nlights};
-        rc = bf_render_sphere(m, x, &so, rgb, &err);
-    }
-    if (rc != BF_OK) {
+    if ((rc = draw(r, fmt, m, x, s, rgb, &err)) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         status = rc == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
-    if (fmt == BF_IMAGE_PNG && !slice)
-        bf_tonemap(rgb, n, tonemap < 0 ? BF_TONEMAP_CLAMP : (bf_tonemap_mode)tonemap, exposure, decades);
-    if (bf_image_write_rgb_as(out_path, fmt, width, height, rgb, &err) != BF_OK) {
+    if (bf_image_write_rgb_as(r->out_path, fmt, r->width, r->height, rgb, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;
     }
@@ -281,7 +331,34 @@ done:
     bf_model_free(m);
     free(x);
     return status;
-usage:
+}
+
+/* The defaults that do not depend on the mode (settle fills in the others). */
+static void render_args_init(render_args *r)
+{
+    static const double incidence[] = {0.0, 30.0, 60.0};
+    memset(r, 0, sizeof *r);
+    r->tonemap = -1;
+    r->exposure = 1.0;
+    r->decades = 4.0;
+    r->plane_tol = 2.0;
+    r->phi_d = 90.0;
+    memcpy(r->incidence, incidence, sizeof incidence);
+    r->nincidence = 3;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args r;
+    render_args_init(&r);
+    cli_args args;
+    int p = cli_parse(&cli_render, argc, argv, &args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    int bad = take_args(&r, &args) < 0 ? 2 : 0;
     cli_args_free(&args);
-    return 2;
+    int fmt = 0;
+    if (bad || (bad = check_mode(&r, &fmt)) != 0 || (bad = settle(&r)) != 0)
+        return bad;
+    return render(&r, fmt);
 }

@@ -127,133 +127,163 @@ static void table(FILE *out, const bf_select *s)
     }
 }
 
+/* What the command line asked for, and what the run holds (freed by run_free). */
+typedef struct select_run {
+    data_options dopt;
+    fit_options fopt;
+    rank_options ro;
+    char *specs[MAX_MODELS];
+    int nmodels;
+    double tolerance, abs_tolerance;
+    bf_compare_metric metric;
+    const char *data, *json_path, *out_path;
+    const char **defaults;
+    bf_samples *s;
+    bf_select sel;
+} select_run;
+
+/* One of select's own options: 0, or -1 after a one-line error. */
+static int take_own(select_run *r, const char *a, const char *v)
+{
+    bf_error err;
+    if (!strcmp(a, "--model") || !strcmp(a, "--models")) {
+        int k = fit_options_split_models(v, r->specs, r->nmodels, MAX_MODELS, cmd);
+        if (k < 0)
+            return -1;
+        r->nmodels = k;
+    } else if (!strcmp(a, "--tolerance") || !strcmp(a, "--abs-tolerance")) {
+        if (!args_number(v, 0.0, HUGE_VAL, !strcmp(a, "--tolerance") ? &r->tolerance : &r->abs_tolerance)) {
+            fprintf(stderr, "%s: %s needs a number >= 0, got '%s'\n", cmd, a, v);
+            return -1;
+        }
+    } else if (!strcmp(a, "--error")) {
+        if (bf_compare_metric_parse(v, &r->metric, &err) != BF_OK) {
+            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+            return -1;
+        }
+    } else if (!strcmp(a, "--json")) {
+        r->json_path = v;
+    } else { /* --output */
+        r->out_path = v;
+    }
+    return 0;
+}
+
+/* Takes the parsed command line into r: 0, or -1 after a one-line error. */
+static int take_args(select_run *r, const cli_args *args)
+{
+    for (int i = 0; i < args->n; i++) {
+        const char *a = args->v[i].name, *v = args->v[i].value;
+        if (!a) {
+            if (data_options_take_file(&r->data, v, cmd) < 0)
+                return -1;
+            continue;
+        }
+        int d = fit_options_parse_with_data(&r->fopt, &r->dopt, a, v, cmd);
+        if (d == 0)
+            d = rank_options_parse(&r->ro, a, v, cmd);
+        if (d < 0 || (d == 0 && take_own(r, a, v) < 0))
+            return -1;
+    }
+    return 0;
+}
+
+/* Bad usage is found before any data is read. Returns 0, or the exit status after a
+ * one-line error. */
+static int check_usage(select_run *r)
+{
+    if (!r->data) {
+        fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
+        return 2;
+    }
+    if (rank_options_check(&r->ro, &r->fopt.fit, cmd) < 0)
+        return 2;
+    if (fit_options_check_models(&r->fopt, r->specs, r->nmodels, cmd) < 0)
+        return 2;
+    /* With a scene, error is reported over the scene's directions; --accuracy fast's
+     * subsample is drawn inside the scene. */
+    fit_options_finish(&r->fopt, &r->dopt);
+    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", r->dopt.scene}},
+                      out[] = {{"--json", r->json_path}, {"-o", r->out_path}};
+    return args_check_outputs(cmd, in, 2, out, 2);
+}
+
+/* Sets up the candidates (-m, or the defaults for the data's channel count) and fits
+ * them. Returns 0, or the exit status after a one-line error. */
+static int fit_candidates(select_run *r)
+{
+    bf_error err;
+    const char *const *list = (const char *const *)r->specs;
+    int n = r->nmodels;
+    if (n == 0) {
+        if ((n = bf_select_default_candidates(r->s->channels, &r->defaults)) < 0) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            return 1;
+        }
+        list = r->defaults;
+    }
+    if (bf_select_init(&r->sel, n, list, r->s->channels, r->metric, r->tolerance, r->abs_tolerance, &err) !=
+        BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return err.code == BF_ERR_ARG ? 2 : 1;
+    }
+    r->sel.rank_by = r->ro.rank_by;
+    r->sel.folds = r->ro.folds;
+    r->sel.timing = r->ro.timing;
+    if (bf_select_run(&r->sel, r->s, &r->fopt.fit, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+/* The table, then --json and -o. Returns the exit status. */
+static int report(select_run *r)
+{
+    bf_error err;
+    const bf_select *sel = &r->sel;
+    int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->out_path && !strcmp(r->out_path, "-"));
+    table(stdout_taken ? stderr : stdout, sel);
+    if (sel->chosen < 0) {
+        fprintf(stderr, "%s: no candidate could be fitted to %s\n", cmd, r->data);
+        return 1;
+    }
+    if ((r->json_path && bf_select_write_json(sel, r->data, r->json_path, &err) != BF_OK) ||
+        (r->out_path && bf_fit_write_json(&sel->c[sel->chosen].result, r->data, r->out_path, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+static void run_free(select_run *r)
+{
+    bf_select_free(&r->sel);
+    free(r->defaults);
+    for (int k = 0; k < r->nmodels; k++)
+        free(r->specs[k]);
+    bf_samples_free(r->s);
+}
+
 int cmd_select(int argc, char **argv)
 {
-    data_options dopt;
-    memset(&dopt, 0, sizeof dopt);
-    fit_options fopt;
-    fit_options_init(&fopt);
-    char *specs[MAX_MODELS] = {0};
-    int nmodels = 0, status = 2;
-    double tolerance = 0.05, abs_tolerance = 1e-6;
-    bf_compare_metric metric = BF_CMP_RMSE_LOG;
-    const char *data = NULL, *json_path = NULL, *out_path = NULL;
-    const char **defaults = NULL;
-    bf_samples *s = NULL;
-    bf_select sel;
-    memset(&sel, 0, sizeof sel);
-    bf_error err;
-    rank_options ro;
-    rank_options_init(&ro, BF_RANK_ERROR);
-
+    select_run r;
+    memset(&r, 0, sizeof r);
+    fit_options_init(&r.fopt);
+    rank_options_init(&r.ro, BF_RANK_ERROR);
+    r.tolerance = 0.05;
+    r.abs_tolerance = 1e-6;
+    r.metric = BF_CMP_RMSE_LOG;
     cli_args args;
     int p = cli_parse(&cli_select, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        if (!a) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
-                goto done;
-            }
-            data = v;
-            continue;
-        }
-        int d = data_options_parse(&dopt, a, v, cmd);
-        if (d == 0)
-            d = fit_options_parse(&fopt, a, v, cmd);
-        if (d == 0)
-            d = fit_options_parse_accuracy(&fopt, a, v, cmd);
-        if (d == 0)
-            d = rank_options_parse(&ro, a, v, cmd);
-        if (d < 0)
-            goto done;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--model") || !strcmp(a, "--models")) {
-            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
-            if (k < 0)
-                goto done;
-            nmodels = k;
-        } else if (!strcmp(a, "--tolerance") || !strcmp(a, "--abs-tolerance")) {
-            if (!args_number(v, 0.0, HUGE_VAL, !strcmp(a, "--tolerance") ? &tolerance : &abs_tolerance)) {
-                fprintf(stderr, "%s: %s needs a number >= 0, got '%s'\n", cmd, a, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--error")) {
-            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
-                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!strcmp(a, "--json")) {
-            json_path = v;
-        } else { /* --output */
-            out_path = v;
-        }
-    }
-    if (!data) {
-        fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
-        goto done;
-    }
-    if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
-        goto done;
-    /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
-        goto done;
-    /* With a scene, error is reported over the scene's directions; --accuracy fast's
-     * subsample is drawn inside the scene. */
-    fit_options_finish(&fopt, &dopt);
-    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}},
-                      out[] = {{"--json", json_path}, {"-o", out_path}};
-    if ((status = args_check_outputs(cmd, in, 2, out, 2)) != 0)
-        goto done;
-
-    status = 1;
-    if (!(s = data_options_load(&dopt, data, NULL, cmd)))
-        goto done;
-    const char *const *list = (const char *const *)specs;
-    int n = nmodels;
-    if (n == 0) {
-        if ((n = bf_select_default_candidates(s->channels, &defaults)) < 0) {
-            fprintf(stderr, "%s: out of memory\n", cmd);
-            goto done;
-        }
-        list = defaults;
-    }
-    if (bf_select_init(&sel, n, list, s->channels, metric, tolerance, abs_tolerance, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        status = err.code == BF_ERR_ARG ? 2 : 1;
-        goto done;
-    }
-    sel.rank_by = ro.rank_by;
-    sel.folds = ro.folds;
-    sel.timing = ro.timing;
-    if (bf_select_run(&sel, s, &fopt.fit, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    FILE *info = (json_path && !strcmp(json_path, "-")) || (out_path && !strcmp(out_path, "-")) ? stderr : stdout;
-    table(info, &sel);
-    if (sel.chosen < 0) {
-        fprintf(stderr, "%s: no candidate could be fitted to %s\n", cmd, data);
-        goto done;
-    }
-    if (json_path && bf_select_write_json(&sel, data, json_path, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    if (out_path && bf_fit_write_json(&sel.c[sel.chosen].result, data, out_path, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    status = 0;
-done:
+    int status = take_args(&r, &args) < 0 ? 2 : check_usage(&r);
+    if (status == 0)
+        status = !(r.s = data_options_load(&r.dopt, r.data, NULL, cmd)) ? 1 : fit_candidates(&r);
+    if (status == 0)
+        status = report(&r);
     cli_args_free(&args);
-    bf_select_free(&sel);
-    free(defaults);
-    for (int k = 0; k < nmodels; k++)
-        free(specs[k]);
-    bf_samples_free(s);
+    run_free(&r);
     return status;
 }

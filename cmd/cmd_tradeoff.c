@@ -193,306 +193,415 @@ static void print_table(FILE *out, const bf_tradeoff *t)
             fprintf(out, "  warning: #%d: %s\n", i + 1, t->rows[i].warnings[w]);
 }
 
+/* The four lists, in this order everywhere: their options, and what they hold. */
+enum { L_SAMPLES, L_METHODS, L_RESIDUALS, L_STARTS, NLISTS };
+static const char *const list_names[NLISTS] = {"--samples", "--methods", "--residuals", "--starts-list"};
+
+/* What the command line asked for, and what the run holds (freed by run_free). */
+typedef struct tradeoff_run {
+    data_options dopt;
+    fit_options fopt;
+    char *specs[2];
+    int nspecs;
+    const char *data, *json_path, *csv_path, *plot_path;
+    const char *lists[NLISTS]; /* as given; NULL: the default (split_lists) */
+    double test_fraction, tolerance;
+    int repeats, plot_w, plot_h, timing;
+    bf_tradeoff_cost cost;
+    bf_compare_metric metric;
+    char data_args[2048]; /* data and base fit options, for the recommended command */
+    /* The lists, split (pointers into bufs) and parsed. */
+    char *bufs[NLISTS], *items[NLISTS][MAX_LIST];
+    int nitems[NLISTS];
+    size_t sample_counts[MAX_LIST];
+    bf_residual residuals[MAX_LIST];
+    int starts[MAX_LIST];
+    bf_samples *train, *test;
+    bf_tradeoff t;
+} tradeoff_run;
+
+static void run_init(tradeoff_run *r)
+{
+    memset(r, 0, sizeof *r);
+    fit_options_init(&r->fopt);
+    r->lists[L_SAMPLES] = "1000,4000,16000,64000,all";
+    r->test_fraction = 0.2;
+    r->tolerance = 0.05;
+    r->repeats = 1;
+    r->plot_w = 640;
+    r->plot_h = 400;
+    r->cost = BF_TRADEOFF_COST_WORK;
+    r->metric = BF_CMP_RMSE_LOG;
+}
+
+/* -m: exactly one model (a later -m replaces an earlier one). */
+static int take_model(tradeoff_run *r, const char *v)
+{
+    for (int k = 0; k < r->nspecs; k++)
+        free(r->specs[k]);
+    if ((r->nspecs = fit_options_split_models(v, r->specs, 0, 2, cmd)) < 0) {
+        r->nspecs = 0;
+        return -1;
+    }
+    if (r->nspecs != 1) {
+        fprintf(stderr, "%s: -m takes one model, got '%s'\n", cmd, v);
+        return -1;
+    }
+    return 0;
+}
+
+/* One of tradeoff's own valued options: 0, or -1 after a one-line error. */
+static int take_own(tradeoff_run *r, const char *a, const char *v)
+{
+    bf_error err;
+    long n;
+    for (int l = 0; l < NLISTS; l++)
+        if (!strcmp(a, list_names[l])) {
+            r->lists[l] = v; /* split and checked once every option is in */
+            return 0;
+        }
+    if (!strcmp(a, "--model"))
+        return take_model(r, v);
+    if (!strcmp(a, "--cost")) {
+        if (strcmp(v, "work") && strcmp(v, "seconds")) {
+            fprintf(stderr, "%s: --cost needs work or seconds, got '%s'\n", cmd, v);
+            return -1;
+        }
+        r->cost = !strcmp(v, "work") ? BF_TRADEOFF_COST_WORK : BF_TRADEOFF_COST_SECONDS;
+    } else if (!strcmp(a, "--test-fraction")) {
+        if (!args_number(v, 0.0, 1.0, &r->test_fraction) || !(r->test_fraction > 0.0 && r->test_fraction < 1.0)) {
+            fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else if (!strcmp(a, "--repeats")) {
+        if (!parse_count(v, 1000, &n)) {
+            fprintf(stderr, "%s: --repeats needs an integer from 1 to 1000, got '%s'\n", cmd, v);
+            return -1;
+        }
+        r->repeats = (int)n;
+    } else if (!strcmp(a, "--error")) {
+        if (bf_compare_metric_parse(v, &r->metric, &err) != BF_OK) {
+            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+            return -1;
+        }
+    } else if (!strcmp(a, "--tolerance")) {
+        if (!args_number(v, 0.0, HUGE_VAL, &r->tolerance)) {
+            fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else if (!strcmp(a, "--plot-size")) {
+        if (!strchr(v, 'x') || !args_size(v, 40, 8192, &r->plot_w, &r->plot_h)) {
+            fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else if (!strcmp(a, "--json")) {
+        r->json_path = v;
+    } else if (!strcmp(a, "--csv")) {
+        r->csv_path = v;
+    } else { /* --plot */
+        r->plot_path = v;
+    }
+    return 0;
+}
+
+/* Takes the parsed command line into r: 0, or -1 after a one-line error. */
+static int take_args(tradeoff_run *r, const cli_args *args)
+{
+    for (int i = 0; i < args->n; i++) {
+        const char *a = args->v[i].name, *v = args->v[i].value;
+        if (!a) {
+            if (data_options_take_file(&r->data, v, cmd) < 0)
+                return -1;
+            continue;
+        }
+        int d = data_options_parse(&r->dopt, a, v, cmd);
+        /* Data options and the base fit setting are repeated in the recommended command. */
+        int repeat = d > 0;
+        if (d == 0 && (d = fit_options_parse(&r->fopt, a, v, cmd)) > 0 && !row_sets(a))
+            repeat = 1;
+        if (repeat) {
+            append_arg(r->data_args, sizeof r->data_args, a);
+            if (v)
+                append_arg(r->data_args, sizeof r->data_args, v);
+        }
+        if (d < 0)
+            return -1;
+        if (d > 0)
+            continue;
+        if (!strcmp(a, "--timing"))
+            r->timing = 1;
+        else if (take_own(r, a, v) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* What must be there, the plot's name and the model: 0, or -1 after a one-line error. */
+static int check_args(tradeoff_run *r)
+{
+    if (!r->data || r->nspecs == 0) {
+        fprintf(stderr, "%s: %s (see brdfit tradeoff --help)\n", cmd,
+                !r->data ? "a data file is required" : "-m MODEL is required");
+        return -1;
+    }
+    if (r->plot_path && !bf_image_format_of(r->plot_path)) {
+        fprintf(stderr, "%s: --plot %s: the name must end in .png or .exr\n", cmd, r->plot_path);
+        return -1;
+    }
+    if (r->plot_path && !strcmp(r->plot_path, "-")) {
+        fprintf(stderr, "%s: --plot needs a file name\n", cmd);
+        return -1;
+    }
+    return fit_options_check_models(&r->fopt, r->specs, 1, cmd);
+}
+
+/* Each list as given or by default, split into items: 0, or -1 after the error. The
+ * defaults follow the base setting, so they are taken after fit_options_finish. */
+static int split_lists(tradeoff_run *r)
+{
+    const bf_fit_options *fo = &r->fopt.fit;
+    char starts_default[16];
+    snprintf(starts_default, sizeof starts_default, "%d", fo->starts);
+    const char *lists[NLISTS];
+    memcpy(lists, r->lists, sizeof lists);
+    if (!lists[L_METHODS])
+        lists[L_METHODS] = fo->solver.backend != BF_BACKEND_CERES || fo->solver.algorithm ? method_of(&fo->solver)
+                                                                                           : "ceres,LD_LBFGS";
+    if (!lists[L_RESIDUALS])
+        lists[L_RESIDUALS] = bf_residual_name(fo->objective.residual);
+    if (!lists[L_STARTS])
+        lists[L_STARTS] = starts_default;
+    for (int l = 0; l < NLISTS; l++) {
+        if (!(r->bufs[l] = strdup(lists[l]))) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            return -1;
+        }
+        if ((r->nitems[l] = split_list(r->bufs[l], r->items[l], list_names[l])) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* The items as counts, methods, residual forms and start counts: 0, or -1 after a
+ * one-line error naming the list and the item. */
+static int parse_lists(tradeoff_run *r)
+{
+    bf_error err;
+    long n;
+    for (int k = 0; k < r->nitems[L_SAMPLES]; k++) {
+        const char *item = r->items[L_SAMPLES][k];
+        if (!strcmp(item, "all"))
+            r->sample_counts[k] = 0;
+        else if (parse_count(item, 1000000000L, &n))
+            r->sample_counts[k] = (size_t)n;
+        else {
+            fprintf(stderr, "%s: --samples: '%s' is not a positive count or 'all'\n", cmd, item);
+            return -1;
+        }
+    }
+    for (int k = 0; k < r->nitems[L_METHODS]; k++) {
+        bf_solver_options so = r->fopt.fit.solver;
+        if (bf_tradeoff_method_apply(r->items[L_METHODS][k], &so, &err) != BF_OK) {
+            fprintf(stderr, "%s: --methods: %s\n", cmd, err.msg);
+            return -1;
+        }
+    }
+    for (int k = 0; k < r->nitems[L_RESIDUALS]; k++)
+        if (bf_residual_parse(r->items[L_RESIDUALS][k], &r->residuals[k], &err) != BF_OK) {
+            fprintf(stderr, "%s: --residuals: %s\n", cmd, err.msg);
+            return -1;
+        }
+    for (int k = 0; k < r->nitems[L_STARTS]; k++) {
+        if (!parse_count(r->items[L_STARTS][k], 100000, &n)) {
+            fprintf(stderr, "%s: --starts-list: '%s' is not a positive integer\n", cmd, r->items[L_STARTS][k]);
+            return -1;
+        }
+        r->starts[k] = (int)n;
+    }
+    /* The sample counts may still merge later; the product is the most there can be. */
+    double settings = (double)r->nitems[0] * r->nitems[1] * r->nitems[2] * r->nitems[3];
+    if (settings > BF_TRADEOFF_MAX_ROWS) {
+        fprintf(stderr, "%s: %.0f settings is too many (at most %d): shorten the lists\n", cmd, settings,
+                BF_TRADEOFF_MAX_ROWS);
+        return -1;
+    }
+    return 0;
+}
+
+/* Every check before any data is read: bad usage costs no time and leaves no file.
+ * Returns 0, or the exit status after a one-line error. */
+static int check_usage(tradeoff_run *r)
+{
+    if (check_args(r) < 0)
+        return 2;
+    /* With a scene, errors are measured over the scene's directions, weighted by it. */
+    fit_options_finish(&r->fopt, &r->dopt);
+    if (split_lists(r) < 0 || parse_lists(r) < 0)
+        return 2;
+    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", r->dopt.scene}},
+                      out[] = {{"--json", r->json_path}, {"--csv", r->csv_path}, {"--plot", r->plot_path}};
+    return args_check_outputs(cmd, in, 2, out, 3);
+}
+
+/* Reads the data, holds out the test share and sets up the rows: 0, or the exit
+ * status after a one-line error. */
+static int load(tradeoff_run *r)
+{
+    bf_error err;
+    bf_tradeoff *t = &r->t;
+    bf_samples *all = data_options_load(&r->dopt, r->data, NULL, cmd);
+    if (!all)
+        return 1;
+    if (bf_tradeoff_split(all, r->test_fraction, r->dopt.prep.seed, &r->train, &r->test, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, r->data, err.msg);
+        bf_samples_free(all);
+        return 1;
+    }
+    if (bf_tradeoff_init(t, r->data, r->specs[0], r->train->n, r->nitems[L_SAMPLES], r->sample_counts,
+                         r->nitems[L_METHODS], (const char *const *)r->items[L_METHODS], r->nitems[L_RESIDUALS],
+                         r->residuals, r->nitems[L_STARTS], r->starts, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        bf_samples_free(all);
+        return err.code == BF_ERR_ARG ? 2 : 1;
+    }
+    t->total = all->n;
+    t->test_n = r->test->n;
+    t->channels = all->channels;
+    t->test_fraction = r->test_fraction;
+    t->seed = r->dopt.prep.seed;
+    t->repeats = r->repeats;
+    t->metric = r->metric;
+    t->tolerance = r->tolerance;
+    t->cost = r->cost;
+    t->timing = r->timing || r->cost == BF_TRADEOFF_COST_SECONDS;
+    bf_samples_free(all);
+    return 0;
+}
+
+/* A row's outcome on stderr, as it finishes. */
+static void print_progress(const bf_tradeoff *t, int i)
+{
+    const bf_tradeoff_row *r = &t->rows[i];
+    fprintf(stderr, "%s: %d/%d %zu%s %s %s starts %d: ", cmd, i + 1, t->nrows, r->samples, r->all ? " (all)" : "",
+            r->method, bf_residual_name(r->residual), r->starts);
+    if (r->ran)
+        fprintf(stderr, "%s%s %.4g, %.4g M sample evaluations, %.3f s\n", r->ok ? "" : "FAILED, ",
+                bf_compare_metric_name(t->metric), bf_compare_metric_value(&r->test, t->metric), r->work / 1e6,
+                r->seconds);
+    else
+        fprintf(stderr, "error: %s\n", r->message);
+    fflush(stderr);
+}
+
+/* Fits every row in turn (one at a time, so that times compare); *all_ok becomes 0 when
+ * a row failed. Returns 0, or -1 after an error that stops the run. */
+static int run_rows(tradeoff_run *r, int *all_ok)
+{
+    bf_error err;
+    for (int i = 0; i < r->t.nrows; i++) {
+        if (bf_tradeoff_run_row(&r->t, i, r->train, r->test, &r->fopt.fit, &err) == BF_ERR_NOMEM) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            return -1;
+        }
+        *all_ok &= r->t.rows[i].ran && r->t.rows[i].ok;
+        if (!cli_quiet())
+            print_progress(&r->t, i);
+    }
+    return 0;
+}
+
+/* The recommended setting as a brdfit fit command line (or that none fitted). */
+static void print_recommendation(FILE *info, const tradeoff_run *run)
+{
+    const bf_tradeoff *t = &run->t;
+    if (t->recommended < 0) {
+        fprintf(info, "recommended: none (no setting fitted)\n");
+        return;
+    }
+    const bf_tradeoff_row *r = &t->rows[t->recommended], *b = &t->rows[t->best];
+    char fa[256], rc[48], bc[48];
+    fit_args(r, fa, sizeof fa);
+    if (t->cost == BF_TRADEOFF_COST_SECONDS) {
+        snprintf(rc, sizeof rc, "%.3f s", r->seconds);
+        snprintf(bc, sizeof bc, "%.3f s", b->seconds);
+    } else {
+        snprintf(rc, sizeof rc, "%.4g M sample evaluations", r->work / 1e6);
+        snprintf(bc, sizeof bc, "%.4g M", b->work / 1e6);
+    }
+    fprintf(info, "recommended: #%d (%s %.4g for %s; best #%d: %.4g for %s): brdfit fit %s%s -m %s %s\n",
+            t->recommended + 1, bf_compare_metric_name(t->metric), r->error, rc, t->best + 1, b->error, bc,
+            run->data, run->data_args, t->model, fa);
+}
+
+/* The image has no text: its axes are said here. */
+static void print_plot_axes(FILE *info, const bf_tradeoff *t, const char *plot_path, const bf_scatter_range *range)
+{
+    int log_y = 1; /* as bf_tradeoff_write_plot decides */
+    for (int i = 0; i < t->nrows; i++)
+        log_y &= !(t->rows[i].error <= 0.0);
+    int seconds = t->cost == BF_TRADEOFF_COST_SECONDS;
+    fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting %s (x, log10 %s, %.3g to %.3g); "
+                  "red: Pareto front\n",
+            plot_path, bf_compare_metric_name(t->metric), log_y ? "log10 " : "", range->y_lo, range->y_hi,
+            seconds ? "time" : "work", seconds ? "s" : "sample evaluations", range->x_lo, range->x_hi);
+}
+
+/* The table and the recommendation (to stdout unless a machine-readable output goes
+ * there), then the files. 0, or -1 after an error writing one. */
+static int report(tradeoff_run *r)
+{
+    bf_error err;
+    bf_scatter_range range;
+    memset(&range, 0, sizeof range);
+    int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->csv_path && !strcmp(r->csv_path, "-"));
+    FILE *info = stdout_taken ? stderr : stdout;
+    print_table(info, &r->t);
+    print_recommendation(info, r);
+    fflush(info);
+    if ((r->json_path && bf_tradeoff_write_json(&r->t, r->json_path, &err) != BF_OK) ||
+        (r->csv_path && bf_tradeoff_write_csv(&r->t, r->csv_path, &err) != BF_OK) ||
+        (r->plot_path && bf_tradeoff_write_plot(&r->t, r->plot_path, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    if (r->plot_path)
+        print_plot_axes(info, &r->t, r->plot_path, &range);
+    return 0;
+}
+
+static void run_free(tradeoff_run *r)
+{
+    bf_tradeoff_free(&r->t);
+    bf_samples_free(r->train);
+    bf_samples_free(r->test);
+    for (int k = 0; k < r->nspecs; k++)
+        free(r->specs[k]);
+    for (int l = 0; l < NLISTS; l++)
+        free(r->bufs[l]);
+}
+
 int cmd_tradeoff(int argc, char **argv)
 {
-    data_options dopt;
-    memset(&dopt, 0, sizeof dopt);
-    fit_options fopt;
-    fit_options_init(&fopt);
-    int status = 2, nspecs = 0;
-    char *specs[2] = {0};
-    const char *data = NULL, *json_path = NULL, *csv_path = NULL, *plot_path = NULL;
-    const char *samples_arg = "1000,4000,16000,64000,all", *methods_arg = NULL, *residuals_arg = NULL,
-               *starts_arg = NULL;
-    double test_fraction = 0.2, tolerance = 0.05;
-    int repeats = 1, plot_w = 640, plot_h = 400, timing = 0;
-    bf_tradeoff_cost cost = BF_TRADEOFF_COST_WORK;
-    bf_compare_metric metric = BF_CMP_RMSE_LOG;
-    char *bufs[4] = {0};
-    bf_samples *all = NULL, *train = NULL, *test = NULL;
-    bf_tradeoff t;
-    memset(&t, 0, sizeof t);
-    bf_error err;
-    char data_args[2048] = ""; /* data and base fit options, for the recommended command */
-
+    tradeoff_run r;
+    run_init(&r);
     cli_args args;
     int p = cli_parse(&cli_tradeoff, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        if (!a) {
-            if (data) {
-                fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, data, v);
-                goto done;
-            }
-            data = v;
-            continue;
-        }
-        int d = data_options_parse(&dopt, a, v, cmd);
-        /* Data options and the base fit setting are repeated in the recommended command. */
-        int repeat = d > 0;
-        if (d == 0 && (d = fit_options_parse(&fopt, a, v, cmd)) > 0 && !row_sets(a))
-            repeat = 1;
-        if (repeat) {
-            append_arg(data_args, sizeof data_args, a);
-            if (v)
-                append_arg(data_args, sizeof data_args, v);
-        }
-        if (d < 0)
-            goto done;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--timing")) {
-            timing = 1;
-            continue;
-        }
-        long n;
-        if (!strcmp(a, "--model")) {
-            for (int k = 0; k < nspecs; k++)
-                free(specs[k]);
-            if ((nspecs = fit_options_split_models(v, specs, 0, 2, cmd)) < 0) {
-                nspecs = 0;
-                goto done;
-            }
-            if (nspecs != 1) {
-                fprintf(stderr, "%s: -m takes one model, got '%s'\n", cmd, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--cost")) {
-            if (strcmp(v, "work") && strcmp(v, "seconds")) {
-                fprintf(stderr, "%s: --cost needs work or seconds, got '%s'\n", cmd, v);
-                goto done;
-            }
-            cost = !strcmp(v, "work") ? BF_TRADEOFF_COST_WORK : BF_TRADEOFF_COST_SECONDS;
-        } else if (!strcmp(a, "--samples")) {
-            samples_arg = v;
-        } else if (!strcmp(a, "--methods")) {
-            methods_arg = v;
-        } else if (!strcmp(a, "--residuals")) {
-            residuals_arg = v;
-        } else if (!strcmp(a, "--starts-list")) {
-            starts_arg = v;
-        } else if (!strcmp(a, "--test-fraction")) {
-            if (!args_number(v, 0.0, 1.0, &test_fraction) || !(test_fraction > 0.0 && test_fraction < 1.0)) {
-                fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", cmd,
-                        v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--repeats")) {
-            if (!parse_count(v, 1000, &n)) {
-                fprintf(stderr, "%s: --repeats needs an integer from 1 to 1000, got '%s'\n", cmd, v);
-                goto done;
-            }
-            repeats = (int)n;
-        } else if (!strcmp(a, "--error")) {
-            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
-                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!strcmp(a, "--tolerance")) {
-            if (!args_number(v, 0.0, HUGE_VAL, &tolerance)) {
-                fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--plot-size")) {
-            if (!strchr(v, 'x') || !args_size(v, 40, 8192, &plot_w, &plot_h)) {
-                fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", cmd, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--json")) {
-            json_path = v;
-        } else if (!strcmp(a, "--csv")) {
-            csv_path = v;
-        } else { /* --plot */
-            plot_path = v;
-        }
+    int all_ok = 1, status = take_args(&r, &args) < 0 ? 2 : check_usage(&r);
+    if (status == 0)
+        status = load(&r);
+    if (status == 0)
+        status = run_rows(&r, &all_ok) < 0 ? 1 : 0;
+    if (status == 0) {
+        bf_tradeoff_rank(&r.t);
+        status = report(&r) < 0 ? 1 : 0;
     }
-    if (!data || nspecs == 0) {
-        fprintf(stderr, "%s: %s (see brdfit tradeoff --help)\n", cmd,
-                !data ? "a data file is required" : "-m MODEL is required");
-        goto done;
-    }
-    if (plot_path && !bf_image_format_of(plot_path)) {
-        fprintf(stderr, "%s: --plot %s: the name must end in .png or .exr\n", cmd, plot_path);
-        goto done;
-    }
-    if (plot_path && !strcmp(plot_path, "-")) {
-        fprintf(stderr, "%s: --plot needs a file name\n", cmd);
-        goto done;
-    }
-    if (fit_options_check_models(&fopt, specs, 1, cmd) < 0)
-        goto done;
-    /* With a scene, errors are measured over the scene's directions, weighted by it. */
-    fit_options_finish(&fopt, &dopt);
-
-    /* The lists. */
-    if (!methods_arg)
-        methods_arg = fopt.fit.solver.backend != BF_BACKEND_CERES || fopt.fit.solver.algorithm
-                          ? method_of(&fopt.fit.solver)
-                          : "ceres,LD_LBFGS";
-    char starts_default[16], *items[4][MAX_LIST];
-    snprintf(starts_default, sizeof starts_default, "%d", fopt.fit.starts);
-    const char *lists[4] = {samples_arg, methods_arg,
-                           residuals_arg ? residuals_arg : bf_residual_name(fopt.fit.objective.residual),
-                           starts_arg ? starts_arg : starts_default};
-    static const char *const names[4] = {"--samples", "--methods", "--residuals", "--starts-list"};
-    int counts_n[4];
-    for (int l = 0; l < 4; l++) {
-        if (!(bufs[l] = strdup(lists[l]))) {
-            fprintf(stderr, "%s: out of memory\n", cmd);
-            goto done;
-        }
-        if ((counts_n[l] = split_list(bufs[l], items[l], names[l])) < 0)
-            goto done;
-    }
-    size_t sample_counts[MAX_LIST];
-    bf_residual residuals[MAX_LIST];
-    int starts[MAX_LIST];
-    for (int k = 0; k < counts_n[0]; k++) {
-        long n;
-        if (!strcmp(items[0][k], "all"))
-            sample_counts[k] = 0;
-        else if (parse_count(items[0][k], 1000000000L, &n))
-            sample_counts[k] = (size_t)n;
-        else {
-            fprintf(stderr, "%s: --samples: '%s' is not a positive count or 'all'\n", cmd, items[0][k]);
-            goto done;
-        }
-    }
-    for (int k = 0; k < counts_n[1]; k++) {
-        bf_solver_options so = fopt.fit.solver;
-        if (bf_tradeoff_method_apply(items[1][k], &so, &err) != BF_OK) {
-            fprintf(stderr, "%s: --methods: %s\n", cmd, err.msg);
-            goto done;
-        }
-    }
-    for (int k = 0; k < counts_n[2]; k++)
-        if (bf_residual_parse(items[2][k], &residuals[k], &err) != BF_OK) {
-            fprintf(stderr, "%s: --residuals: %s\n", cmd, err.msg);
-            goto done;
-        }
-    for (int k = 0; k < counts_n[3]; k++) {
-        long n;
-        if (!parse_count(items[3][k], 100000, &n)) {
-            fprintf(stderr, "%s: --starts-list: '%s' is not a positive integer\n", cmd, items[3][k]);
-            goto done;
-        }
-        starts[k] = (int)n;
-    }
-
-    /* Bad usage before any data is read (the sample counts may still merge later). */
-    double settings = (double)counts_n[0] * counts_n[1] * counts_n[2] * counts_n[3];
-    if (settings > BF_TRADEOFF_MAX_ROWS) {
-        fprintf(stderr, "%s: %.0f settings is too many (at most %d): shorten the lists\n", cmd, settings,
-                BF_TRADEOFF_MAX_ROWS);
-        goto done;
-    }
-    const bf_path_use in[] = {{"data file", data}, {"--scene file", dopt.scene}},
-                      out[] = {{"--json", json_path}, {"--csv", csv_path}, {"--plot", plot_path}};
-    if ((status = args_check_outputs(cmd, in, 2, out, 3)) != 0)
-        goto done;
-    status = 1;
-    if (!(all = data_options_load(&dopt, data, NULL, cmd)))
-        goto done;
-    if (bf_tradeoff_split(all, test_fraction, dopt.prep.seed, &train, &test, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s: %s\n", cmd, data, err.msg);
-        goto done;
-    }
-    if (bf_tradeoff_init(&t, data, specs[0], train->n, counts_n[0], sample_counts, counts_n[1],
-                         (const char *const *)items[1], counts_n[2], residuals, counts_n[3], starts, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        status = err.code == BF_ERR_ARG ? 2 : 1;
-        goto done;
-    }
-    t.total = all->n;
-    t.test_n = test->n;
-    t.channels = all->channels;
-    t.test_fraction = test_fraction;
-    t.seed = dopt.prep.seed;
-    t.repeats = repeats;
-    t.metric = metric;
-    t.tolerance = tolerance;
-    t.cost = cost;
-    t.timing = timing || cost == BF_TRADEOFF_COST_SECONDS;
-    bf_samples_free(all);
-    all = NULL;
-
-    int all_ok = 1;
-    bf_scatter_range range;
-    memset(&range, 0, sizeof range);
-    for (int i = 0; i < t.nrows; i++) {
-        const bf_tradeoff_row *r = &t.rows[i];
-        int rc = bf_tradeoff_run_row(&t, i, train, test, &fopt.fit, &err);
-        if (rc == BF_ERR_NOMEM) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            goto done;
-        }
-        all_ok &= r->ran && r->ok;
-        if (!cli_quiet()) {
-            fprintf(stderr, "%s: %d/%d %zu%s %s %s starts %d: ", cmd, i + 1, t.nrows, r->samples,
-                    r->all ? " (all)" : "", r->method, bf_residual_name(r->residual), r->starts);
-            if (r->ran)
-                fprintf(stderr, "%s%s %.4g, %.4g M sample evaluations, %.3f s\n", r->ok ? "" : "FAILED, ",
-                        bf_compare_metric_name(metric), bf_compare_metric_value(&r->test, metric), r->work / 1e6,
-                        r->seconds);
-            else
-                fprintf(stderr, "error: %s\n", r->message);
-            fflush(stderr);
-        }
-    }
-    bf_tradeoff_rank(&t);
-    /* The table goes to stdout unless a machine-readable output does. */
-    FILE *info = (json_path && !strcmp(json_path, "-")) || (csv_path && !strcmp(csv_path, "-")) ? stderr : stdout;
-    print_table(info, &t);
-    if (t.recommended >= 0) {
-        const bf_tradeoff_row *r = &t.rows[t.recommended], *b = &t.rows[t.best];
-        char fa[256];
-        fit_args(r, fa, sizeof fa);
-        char rc[48], bc[48];
-        if (cost == BF_TRADEOFF_COST_SECONDS) {
-            snprintf(rc, sizeof rc, "%.3f s", r->seconds);
-            snprintf(bc, sizeof bc, "%.3f s", b->seconds);
-        } else {
-            snprintf(rc, sizeof rc, "%.4g M sample evaluations", r->work / 1e6);
-            snprintf(bc, sizeof bc, "%.4g M", b->work / 1e6);
-        }
-        fprintf(info, "recommended: #%d (%s %.4g for %s; best #%d: %.4g for %s): brdfit fit %s%s -m %s %s\n",
-                t.recommended + 1, bf_compare_metric_name(metric), r->error, rc, t.best + 1, b->error, bc, data,
-                data_args, t.model, fa);
-    } else {
-        fprintf(info, "recommended: none (no setting fitted)\n");
-    }
-    fflush(info);
-
-    if ((json_path && bf_tradeoff_write_json(&t, json_path, &err) != BF_OK) ||
-        (csv_path && bf_tradeoff_write_csv(&t, csv_path, &err) != BF_OK) ||
-        (plot_path && bf_tradeoff_write_plot(&t, plot_path, plot_w, plot_h, &range, &err) != BF_OK)) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    /* The image has no text: its axes are said here. */
-    int log_y = 1; /* as bf_tradeoff_write_plot decides */
-    for (int i = 0; i < t.nrows; i++)
-        log_y &= !(t.rows[i].error <= 0.0);
-    if (plot_path)
-        fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting %s (x, log10 %s, %.3g to %.3g); "
-                      "red: Pareto front\n",
-                plot_path, bf_compare_metric_name(metric), log_y ? "log10 " : "", range.y_lo, range.y_hi,
-                cost == BF_TRADEOFF_COST_SECONDS ? "time" : "work",
-                cost == BF_TRADEOFF_COST_SECONDS ? "s" : "sample evaluations", range.x_lo, range.x_hi);
-    if (!all_ok)
-        fprintf(stderr, "%s: %s\n", cmd, t.recommended >= 0 ? "some settings failed" : "every setting failed");
-    status = all_ok ? 0 : 1;
-done:
+    if (status == 0 && !all_ok)
+        fprintf(stderr, "%s: %s\n", cmd, r.t.recommended >= 0 ? "some settings failed" : "every setting failed");
+    if (status == 0)
+        status = all_ok ? 0 : 1;
     cli_args_free(&args);
-    bf_tradeoff_free(&t);
-    bf_samples_free(all);
-    bf_samples_free(train);
-    bf_samples_free(test);
-    for (int k = 0; k < nspecs; k++)
-        free(specs[k]);
-    for (int l = 0; l < 4; l++)
-        free(bufs[l]);
+    run_free(&r);
     return status;
 }

@@ -32,22 +32,73 @@ static const cli_option preprocessing[] = {
 const cli_group data_options_reading = CLI_GROUP("reading", reading);
 const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
 
-int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd)
+/* The flags: 1 when a was one of them, -1 after an error, 0 when it is not a flag. */
+static int parse_flag(data_options *o, const char *a, const char *cmd)
 {
-    if (!cli_group_has(&data_options_reading, a) && !cli_group_has(&data_options_preprocessing, a))
-        return 0;
     if (!strcmp(a, "--radians")) {
         o->read.csv.radians = 1;
         return 1;
     }
-    if (!strcmp(a, "--rgb") || !strcmp(a, "--luminance")) {
-        *(a[2] == 'r' ? &o->prep.to_rgb : &o->prep.to_luminance) = 1;
-        if (o->prep.to_rgb && o->prep.to_luminance) {
-            fprintf(stderr, "%s: --rgb and --luminance exclude each other\n", cmd);
+    if (strcmp(a, "--rgb") && strcmp(a, "--luminance"))
+        return 0;
+    *(a[2] == 'r' ? &o->prep.to_rgb : &o->prep.to_luminance) = 1;
+    if (o->prep.to_rgb && o->prep.to_luminance) {
+        fprintf(stderr, "%s: --rgb and --luminance exclude each other\n", cmd);
+        return -1;
+    }
+    return 1;
+}
+
+/* --angles TI,PI,TO,PO: four names, kept in o->angles_buf. */
+static int parse_angles(data_options *o, const char *v, const char *cmd)
+{
+    snprintf(o->angles_buf, sizeof o->angles_buf, "%s", v);
+    char *p = o->angles_buf;
+    for (int k = 0; k < 4; k++) {
+        char *comma = strchr(p, ',');
+        if ((k < 3) != (comma != NULL) || p == comma || !*p) {
+            fprintf(stderr, "%s: --angles needs four comma-separated column names, got '%s'\n", cmd, v);
             return -1;
         }
-        return 1;
+        o->read.csv.angle_cols[k] = p;
+        if (comma) {
+            *comma = '\0';
+            p = comma + 1;
+        }
     }
+    return 1;
+}
+
+/* --seed: any unsigned 64-bit integer, digits only. */
+static int parse_seed(data_options *o, const char *v, const char *cmd)
+{
+    char *end;
+    errno = 0;
+    unsigned long long n = isdigit((unsigned char)*v) ? strtoull(v, &end, 10) : 0;
+    if (!isdigit((unsigned char)*v) || *end || errno) {
+        fprintf(stderr, "%s: --seed needs an integer from 0 to 18446744073709551615, got '%s'\n", cmd, v);
+        return -1;
+    }
+    o->prep.seed = (uint64_t)n;
+    return 1;
+}
+
+/* --subsample: a count, or "all" (over a preset's); 0 is not a count. */
+static int parse_subsample(data_options *o, const char *v, const char *cmd)
+{
+    long n = 0;
+    if (strcmp(v, "all") && !args_int(v, 1, 1000000000000L, &n)) {
+        fprintf(stderr, "%s: --subsample needs a sample count of at least 1 or 'all', got '%s'\n", cmd, v);
+        return -1;
+    }
+    o->prep.subsample = (size_t)n; /* 0: every sample */
+    o->subsample_given = 1;
+    return 1;
+}
+
+/* --format, --max-theta and --negative: a value from a fixed set or range. */
+static int parse_choice(data_options *o, const char *a, const char *v, const char *cmd)
+{
     double d;
     if (!strcmp(a, "--format")) {
         int f = bf_format_from_name(v);
@@ -56,65 +107,61 @@ int data_options_parse(data_options *o, const char *a, const char *v, const char
             return -1;
         }
         o->read.format = (bf_format)f;
-    } else if (!strcmp(a, "--angles")) {
-        snprintf(o->angles_buf, sizeof o->angles_buf, "%s", v);
-        char *p = o->angles_buf;
-        for (int k = 0; k < 4; k++) {
-            char *comma = strchr(p, ',');
-            if ((k < 3) != (comma != NULL) || p == comma || !*p) {
-                fprintf(stderr, "%s: --angles needs four comma-separated column names, got '%s'\n", cmd, v);
-                return -1;
-            }
-            o->read.csv.angle_cols[k] = p;
-            if (comma) {
-                *comma = '\0';
-                p = comma + 1;
-            }
-        }
-    } else if (!strcmp(a, "--values")) {
-        o->read.csv.channels = v;
-    } else if (!strcmp(a, "--weight")) {
-        o->read.csv.weight_col = v;
-    } else if (!strcmp(a, "--scene")) {
-        o->scene = v;
-    } else if (!strcmp(a, "--channels")) {
-        o->prep.channels = v;
     } else if (!strcmp(a, "--max-theta")) {
         if (!args_number(v, 0.0, 90.0, &d) || !(d > 0.0)) {
             fprintf(stderr, "%s: --max-theta needs degrees in (0, 90], got '%s'\n", cmd, v);
             return -1;
         }
         o->prep.max_theta = d;
-    } else if (!strcmp(a, "--negative")) {
-        if (!strcmp(v, "keep"))
-            o->prep.negative = BF_NEGATIVE_KEEP;
-        else if (!strcmp(v, "drop"))
-            o->prep.negative = BF_NEGATIVE_DROP;
-        else if (!strcmp(v, "clamp"))
-            o->prep.negative = BF_NEGATIVE_CLAMP;
-        else {
-            fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--seed")) { /* any unsigned 64-bit integer, digits only */
-        char *end;
-        errno = 0;
-        unsigned long long n = isdigit((unsigned char)*v) ? strtoull(v, &end, 10) : 0;
-        if (!isdigit((unsigned char)*v) || *end || errno) {
-            fprintf(stderr, "%s: --seed needs an integer from 0 to 18446744073709551615, got '%s'\n", cmd, v);
-            return -1;
-        }
-        o->prep.seed = (uint64_t)n;
-    } else { /* --subsample: a count, or "all" (over a preset's); 0 is not a count */
-        long n = 0;
-        if (strcmp(v, "all") && !args_int(v, 1, 1000000000000L, &n)) {
-            fprintf(stderr, "%s: --subsample needs a sample count of at least 1 or 'all', got '%s'\n", cmd, v);
-            return -1;
-        }
-        o->prep.subsample = (size_t)n; /* 0: every sample */
-        o->subsample_given = 1;
+    } else { /* --negative */
+        static const char *const names[] = {"keep", "drop", "clamp"};
+        static const bf_negative modes[] = {BF_NEGATIVE_KEEP, BF_NEGATIVE_DROP, BF_NEGATIVE_CLAMP};
+        for (int k = 0; k < 3; k++)
+            if (!strcmp(v, names[k])) {
+                o->prep.negative = modes[k];
+                return 1;
+            }
+        fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
+        return -1;
     }
     return 1;
+}
+
+int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd)
+{
+    if (!cli_group_has(&data_options_reading, a) && !cli_group_has(&data_options_preprocessing, a))
+        return 0;
+    int f = parse_flag(o, a, cmd);
+    if (f != 0)
+        return f;
+    if (!strcmp(a, "--angles"))
+        return parse_angles(o, v, cmd);
+    if (!strcmp(a, "--seed"))
+        return parse_seed(o, v, cmd);
+    if (!strcmp(a, "--subsample"))
+        return parse_subsample(o, v, cmd);
+    /* The names: kept as given, checked when the data is read. */
+    if (!strcmp(a, "--values"))
+        o->read.csv.channels = v;
+    else if (!strcmp(a, "--weight"))
+        o->read.csv.weight_col = v;
+    else if (!strcmp(a, "--scene"))
+        o->scene = v;
+    else if (!strcmp(a, "--channels"))
+        o->prep.channels = v;
+    else
+        return parse_choice(o, a, v, cmd);
+    return 1;
+}
+
+int data_options_take_file(const char **data, const char *v, const char *cmd)
+{
+    if (*data) {
+        fprintf(stderr, "%s: one data file only, got '%s' and '%s'\n", cmd, *data, v);
+        return -1;
+    }
+    *data = v;
+    return 0;
 }
 
 int data_options_has_scene(const data_options *o)

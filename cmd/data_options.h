@@ -30,6 +30,10 @@ extern const cli_group data_options_reading, data_options_preprocessing;
  * (prefix: cmd). */
 int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd);
 
+/* The data file operand v: taken into *data when it is the first; a second is bad
+ * usage (returns -1 after printing the one-line error, prefix cmd); 0 otherwise. */
+int data_options_take_file(const char **data, const char *v, const char *cmd);
+
 /* Reads path and applies the preprocessing, then the scene (drops and weights; before
  * any subsampling, so --subsample N gives N samples inside the scene); prints a one-line
  * error on failure ("cmd: FILE:LINE: problem" for a bad scene file). report->kept and

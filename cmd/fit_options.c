@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #define STR_(x) #x
 #define STR(x) STR_(x)
@@ -42,47 +41,14 @@ static const cli_option optimizer[] = {
 const cli_group fit_options_fitting = CLI_GROUP("fitting", fitting);
 const cli_group fit_options_optimizer = CLI_GROUP("optimizer", optimizer);
 
-/* --accuracy presets, chosen from brdfit tradeoff runs (the figures are in the README,
- * "Accuracy presets": a full synthetic MERL table, the Cornell car paint, NIST PTFE;
- * walter, cook_torrance, cook_torrance:lobes=2):
- *  - fast: a stratified subsample of PRESET_FAST_SAMPLES samples, Ceres, one start. On
- *    the MERL table it stayed within 0.2% of the full fit's held-out log RMSE at 14-32x
- *    less time; smaller counts were within tolerance there too, but on the car paint a
- *    500-sample subsample lost the highlight (3x the error), so the count keeps a wide
- *    margin (about 125 samples per stratum). Data sets at or below it are fitted whole.
- *  - balanced: brdfit fit's defaults (all samples, Ceres, one start): the best or within
- *    0.2% of the best held-out error on every data set and model measured.
- *  - best: all samples, Ceres, PRESET_BEST_STARTS starts and up to
- *    PRESET_BEST_ITERATIONS Ceres iterations: two-lobe fits stopped at the default 100
- *    iterations before converging; the extra starts guard against a stalled data-driven
- *    start (none of the measured sets needed them) at 2-17x the time. */
-#define PRESET_FAST_SAMPLES 16000
-#define PRESET_BEST_STARTS 4
-#define PRESET_BEST_ITERATIONS 500
-
-typedef struct preset {
-    const char *name;
-    size_t subsample;
-    bf_backend backend;
-    const char *algorithm;
-    int starts;
-    int ceres_iterations; /* 0: the default; NLopt counts evaluations, so left alone */
-} preset;
-
-static const preset presets[] = {
-    [FIT_ACCURACY_NONE] = {"", 0, BF_BACKEND_CERES, NULL, 1, 0},
-    [FIT_ACCURACY_FAST] = {"fast", PRESET_FAST_SAMPLES, BF_BACKEND_CERES, NULL, 1, 0},
-    [FIT_ACCURACY_BALANCED] = {"balanced", 0, BF_BACKEND_CERES, NULL, 1, 0},
-    [FIT_ACCURACY_BEST] = {"best", 0, BF_BACKEND_CERES, NULL, PRESET_BEST_STARTS, PRESET_BEST_ITERATIONS},
-};
-
+/* The numbers are the library's (brdfit/fit.h), which says why they were chosen. */
 static const cli_option accuracy[] = {
     {"--accuracy", 0, "fast|balanced|best",
      "option bundles (explicit options win, in any order):\n"
-     "fast: --subsample " STR(PRESET_FAST_SAMPLES) " --backend ceres --starts 1\n"
+     "fast: --subsample " STR(BF_ACCURACY_FAST_SUBSAMPLE) " --backend ceres --starts 1\n"
      "balanced: the defaults (all samples, --backend ceres, --starts 1)\n"
-     "best: all samples, --backend ceres --starts " STR(PRESET_BEST_STARTS) " --max-iterations " STR(
-         PRESET_BEST_ITERATIONS),
+     "best: all samples, --backend ceres --starts " STR(BF_ACCURACY_BEST_STARTS) " --max-iterations " STR(
+         BF_ACCURACY_BEST_ITERATIONS),
      NULL},
 };
 const cli_group fit_options_accuracy = CLI_GROUP("accuracy", accuracy);
@@ -91,44 +57,25 @@ int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, con
 {
     if (strcmp(a, "--accuracy"))
         return 0;
-    for (int k = FIT_ACCURACY_FAST; k <= FIT_ACCURACY_BEST; k++)
-        if (!strcmp(v, presets[k].name)) {
-            o->accuracy = (fit_accuracy)k;
-            return 1;
-        }
-    fprintf(stderr, "%s: --accuracy takes fast, balanced or best, got '%s'\n", cmd, v);
-    return -1;
+    if (bf_fit_accuracy_parse(v, &o->accuracy, NULL) != BF_OK) {
+        fprintf(stderr, "%s: --accuracy takes fast, balanced or best, got '%s'\n", cmd, v);
+        return -1;
+    }
+    return 1;
 }
 
 void fit_options_init(fit_options *o)
 {
     memset(o, 0, sizeof *o);
-    o->fit.objective.residual = BF_RESIDUAL_LOG;
-    o->fit.objective.use_weights = 1;
-    o->fit.solver.backend = BF_BACKEND_CERES;
-    o->fit.starts = 1;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    o->fit.solver.threads = cores > 0 ? (int)cores : 1;
+    bf_fit_options_init(&o->fit);
 }
 
 void fit_options_finish(fit_options *o, data_options *d)
 {
     o->fit.seed = d->prep.seed;
     o->fit.weighted_metrics = data_options_has_scene(d);
-    const preset *p = &presets[o->accuracy];
-    if (!d->subsample_given && p->subsample > 0)
-        d->prep.subsample = p->subsample;
-    if (o->accuracy != FIT_ACCURACY_NONE) {
-        /* A back end and its algorithm go together: either given keeps both. */
-        if (!(o->given & (FIT_GIVEN_BACKEND | FIT_GIVEN_ALGORITHM))) {
-            o->fit.solver.backend = p->backend;
-            o->fit.solver.algorithm = p->algorithm;
-        }
-        if (!(o->given & FIT_GIVEN_STARTS))
-            o->fit.starts = p->starts;
-        if (!(o->given & FIT_GIVEN_MAX_ITERATIONS) && o->fit.solver.backend == BF_BACKEND_CERES)
-            o->fit.solver.max_iterations = p->ceres_iterations;
-    }
+    unsigned given = o->given | (d->subsample_given ? BF_FIT_GIVEN_SUBSAMPLE : 0u);
+    bf_fit_options_apply_accuracy(&o->fit, o->accuracy, given, &d->prep.subsample);
     o->fit.objective.overrides = o->overrides;
     o->fit.objective.noverrides = o->noverrides;
 }
@@ -144,30 +91,86 @@ static long int_limit(const char *opt)
     return 10000000; /* --max-iterations */
 }
 
+/* The flags: 1 when a was one of them (and is now set). */
+static int parse_flag(fit_options *o, const char *a)
+{
+    if (!strcmp(a, "--solid-angle"))
+        o->fit.objective.solid_angle = 1;
+    else if (!strcmp(a, "--no-weights"))
+        o->fit.objective.use_weights = 0;
+    else if (!strcmp(a, "--constrain-energy"))
+        o->fit.solver.use_constraint = 1;
+    else
+        return 0;
+    return 1;
+}
+
+/* The options an --accuracy preset gives way to (bf_fit_options_apply_accuracy). */
+static unsigned given_bit(const char *a)
+{
+    return !strcmp(a, "--residual")         ? BF_FIT_GIVEN_RESIDUAL
+           : !strcmp(a, "--backend")        ? BF_FIT_GIVEN_BACKEND
+           : !strcmp(a, "--algorithm")      ? BF_FIT_GIVEN_ALGORITHM
+           : !strcmp(a, "--starts")         ? BF_FIT_GIVEN_STARTS
+           : !strcmp(a, "--max-iterations") ? BF_FIT_GIVEN_MAX_ITERATIONS
+                                            : 0u;
+}
+
+/* --fix NAME=VALUE or --bound NAME=LO:HI: one more override. */
+static int parse_override(fit_options *o, const char *a, const char *v, const char *cmd)
+{
+    bf_error err;
+    if (o->noverrides >= FIT_OPTIONS_MAX_OVERRIDES) {
+        fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, FIT_OPTIONS_MAX_OVERRIDES);
+        return -1;
+    }
+    bf_override *ov = &o->overrides[o->noverrides];
+    int rc = a[2] == 'f' ? bf_override_parse_fix(v, ov, &err) : bf_override_parse_bound(v, ov, &err);
+    if (rc != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, a, err.msg);
+        return -1;
+    }
+    o->noverrides++;
+    return 1;
+}
+
+/* The counts: --presolve N|off, --max-iterations, --starts, --threads. */
+static int parse_integer(fit_options *o, const char *a, const char *v, const char *cmd)
+{
+    long n;
+    if (!strcmp(a, "--presolve")) {
+        if (!strcmp(v, "off")) {
+            o->fit.presolve = -1;
+            return 1;
+        }
+        if (!args_int(v, 64, 1000000000, &n)) {
+            fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
+            return -1;
+        }
+        o->fit.presolve = n;
+        return 1;
+    }
+    if (!args_int(v, 1, int_limit(a), &n)) {
+        fprintf(stderr, "%s: %s needs an integer from 1 to %ld, got '%s'\n", cmd, a, int_limit(a), v);
+        return -1;
+    }
+    if (!strcmp(a, "--max-iterations"))
+        o->fit.solver.max_iterations = (int)n;
+    else if (!strcmp(a, "--starts"))
+        o->fit.starts = (int)n;
+    else /* --threads */
+        o->fit.solver.threads = (int)n;
+    return 1;
+}
+
 int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd)
 {
     bf_error err;
     if (!cli_group_has(&fit_options_fitting, a) && !cli_group_has(&fit_options_optimizer, a))
         return 0;
-    if (!strcmp(a, "--solid-angle")) {
-        o->fit.objective.solid_angle = 1;
+    if (parse_flag(o, a))
         return 1;
-    }
-    if (!strcmp(a, "--no-weights")) {
-        o->fit.objective.use_weights = 0;
-        return 1;
-    }
-    if (!strcmp(a, "--constrain-energy")) {
-        o->fit.solver.use_constraint = 1;
-        return 1;
-    }
-    long n;
-    o->given |= !strcmp(a, "--residual")         ? FIT_GIVEN_RESIDUAL
-                : !strcmp(a, "--backend")        ? FIT_GIVEN_BACKEND
-                : !strcmp(a, "--algorithm")      ? FIT_GIVEN_ALGORITHM
-                : !strcmp(a, "--starts")         ? FIT_GIVEN_STARTS
-                : !strcmp(a, "--max-iterations") ? FIT_GIVEN_MAX_ITERATIONS
-                                                 : 0u;
+    o->given |= given_bit(a);
     if (!strcmp(a, "--residual")) {
         if (bf_residual_parse(v, &o->fit.objective.residual, &err) != BF_OK) {
             fprintf(stderr, "%s: --residual: %s\n", cmd, err.msg);
@@ -179,48 +182,31 @@ int fit_options_parse(fit_options *o, const char *a, const char *v, const char *
             return -1;
         }
     } else if (!strcmp(a, "--fix") || !strcmp(a, "--bound")) {
-        if (o->noverrides >= FIT_OPTIONS_MAX_OVERRIDES) {
-            fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, FIT_OPTIONS_MAX_OVERRIDES);
-            return -1;
-        }
-        bf_override *ov = &o->overrides[o->noverrides];
-        int rc = a[2] == 'f' ? bf_override_parse_fix(v, ov, &err) : bf_override_parse_bound(v, ov, &err);
-        if (rc != BF_OK) {
-            fprintf(stderr, "%s: %s: %s\n", cmd, a, err.msg);
-            return -1;
-        }
-        o->noverrides++;
+        return parse_override(o, a, v, cmd);
     } else if (!strcmp(a, "--backend")) {
-        if (!strcmp(v, "ceres"))
-            o->fit.solver.backend = BF_BACKEND_CERES;
-        else if (!strcmp(v, "nlopt"))
-            o->fit.solver.backend = BF_BACKEND_NLOPT;
-        else {
+        if (strcmp(v, "ceres") && strcmp(v, "nlopt")) {
             fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
             return -1;
         }
+        o->fit.solver.backend = !strcmp(v, "ceres") ? BF_BACKEND_CERES : BF_BACKEND_NLOPT;
     } else if (!strcmp(a, "--algorithm")) {
         o->fit.solver.algorithm = v;
     } else if (!strcmp(a, "--local")) {
         o->fit.solver.local_algorithm = v;
-    } else if (!strcmp(a, "--presolve") && !strcmp(v, "off")) {
-        o->fit.presolve = -1;
-    } else if (!strcmp(a, "--presolve") && (!args_int(v, 64, 1000000000, &n))) {
-        fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
-        return -1;
-    } else if (!strcmp(a, "--presolve")) {
-        o->fit.presolve = n;
-    } else if (!args_int(v, 1, int_limit(a), &n)) {
-        fprintf(stderr, "%s: %s needs an integer from 1 to %ld, got '%s'\n", cmd, a, int_limit(a), v);
-        return -1;
-    } else if (!strcmp(a, "--max-iterations")) {
-        o->fit.solver.max_iterations = (int)n;
-    } else if (!strcmp(a, "--starts")) {
-        o->fit.starts = (int)n;
-    } else { /* --threads */
-        o->fit.solver.threads = (int)n;
+    } else {
+        return parse_integer(o, a, v, cmd);
     }
     return 1;
+}
+
+int fit_options_parse_with_data(fit_options *o, data_options *d, const char *a, const char *v, const char *cmd)
+{
+    int r = data_options_parse(d, a, v, cmd);
+    if (r == 0)
+        r = fit_options_parse(o, a, v, cmd);
+    if (r == 0)
+        r = fit_options_parse_accuracy(o, a, v, cmd);
+    return r;
 }
 
 static int starts_model(const char *tok, size_t len)

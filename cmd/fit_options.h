@@ -10,30 +10,12 @@
 #define FIT_OPTIONS_MAX_THREADS 1024 /* --threads */
 #define FIT_OPTIONS_MAX_STARTS 10000 /* --starts */
 
-/* brdfit fit --accuracy: option bundles measured with brdfit tradeoff (fit_options.c
- * says which figures chose them). A preset fills only what the user did not set. */
-typedef enum fit_accuracy {
-    FIT_ACCURACY_NONE = 0, /* not given: brdfit fit's defaults */
-    FIT_ACCURACY_FAST,
-    FIT_ACCURACY_BALANCED,
-    FIT_ACCURACY_BEST,
-} fit_accuracy;
-
-/* Bits of fit_options.given: the options the user set explicitly. */
-enum {
-    FIT_GIVEN_BACKEND = 1u << 0,
-    FIT_GIVEN_ALGORITHM = 1u << 1,
-    FIT_GIVEN_STARTS = 1u << 2,
-    FIT_GIVEN_RESIDUAL = 1u << 3,
-    FIT_GIVEN_MAX_ITERATIONS = 1u << 4,
-};
-
 typedef struct fit_options {
     bf_fit_options fit;
     bf_override overrides[FIT_OPTIONS_MAX_OVERRIDES];
     int noverrides;
-    fit_accuracy accuracy;
-    unsigned given; /* FIT_GIVEN_* */
+    bf_fit_accuracy accuracy; /* --accuracy (brdfit/fit.h); BF_ACCURACY_NONE: not given */
+    unsigned given;           /* BF_FIT_GIVEN_*: the options the user set explicitly */
 } fit_options;
 
 /* The options, for a command's tables (cli.h): --accuracy (fit, select, regress), the
@@ -45,7 +27,7 @@ extern const cli_group fit_options_accuracy, fit_options_fitting, fit_options_op
  * tradeoff do not take it (fit_options_finish applies it). */
 int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd);
 
-/* brdfit fit's defaults: log residual, sample weights on, Ceres, one start, every core. */
+/* brdfit fit's defaults (bf_fit_options_init), no overrides, no preset. */
 void fit_options_init(fit_options *o);
 
 /* If option a (long form, "--residual") is one of the fitting or optimizer options,
@@ -53,10 +35,16 @@ void fit_options_init(fit_options *o);
  * one-line error (prefix: cmd). */
 int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd);
 
+/* The data options, then the fitting and optimizer options, then --accuracy (for
+ * commands that take all three: fit, select): 1 when one took a, 0 when none did, -1
+ * after its one-line error. */
+int fit_options_parse_with_data(fit_options *o, data_options *d, const char *a, const char *v, const char *cmd);
+
 /* After parsing (so order on the line is moot): points the fit options at the
  * overrides, takes the data options' seed, fills in the --accuracy preset where the user
- * set nothing (its subsample goes to d unless --subsample was given), and with a scene
- * asks for metrics over the scene's directions (weighted as the scene weighs them). */
+ * set nothing (bf_fit_options_apply_accuracy; its subsample goes to d unless
+ * --subsample was given), and with a scene asks for metrics over the scene's directions
+ * (weighted as the scene weighs them). */
 void fit_options_finish(fit_options *o, data_options *d);
 
 /* Splits a -m list into model specs appended to specs[n..max-1]: a comma starts a new

@@ -86,15 +86,11 @@ typedef struct synth_args {
     int clamp;
 } synth_args;
 
-/* Fills o from the parsed strings; returns 0, or 2 after a usage message. */
-static int build_options(const synth_args *a, bf_synth_options *o, double *incidence)
+/* Where the samples go: --count for the patterns that take one, --incidence and --step
+ * for gonio. Returns 0, or 2 after a usage message. */
+static int build_directions(const synth_args *a, bf_synth_options *o, double *incidence)
 {
-    int p = bf_synth_pattern_from_name(a->pattern);
-    if (p < 0)
-        return usage_error("unknown pattern '%s' (uniform, cosine, stratified, random, gonio, merl)", a->pattern);
-    o->pattern = (bf_synth_pattern)p;
     const char *pname = bf_synth_pattern_name(o->pattern);
-
     if (bf_synth_pattern_fixed_count(o->pattern)) {
         if (a->count)
             return usage_error("--count does not apply to pattern %s, whose settings fix the count", pname);
@@ -106,33 +102,44 @@ static int build_options(const synth_args *a, bf_synth_options *o, double *incid
             return usage_error("--count '%s' is not a positive integer in range", a->count);
         o->count = (size_t)n;
     }
-
     if (o->pattern != BF_SYNTH_GONIO && (a->incidence || a->step))
         return usage_error("--incidence and --step apply to pattern gonio only, not %s", pname);
-    if (o->pattern == BF_SYNTH_GONIO) {
-        int ni = parse_list(a->incidence ? a->incidence : "0,30,60", incidence, MAX_INCIDENCE);
-        if (ni < 0)
-            return usage_error("--incidence '%s' is not a comma-separated list of angles in degrees", a->incidence);
-        for (int k = 0; k < ni; k++)
-            if (!(incidence[k] >= 0.0 && incidence[k] < 90.0))
-                return usage_error("--incidence '%s': every angle must be in [0, 90) degrees", a->incidence);
-        double step = 5.0;
-        if (a->step && (parse_double(a->step, &step) != 0 || !(step >= 1e-3 && step <= 90.0)))
-            return usage_error("--step '%s' must be a number of degrees in [0.001, 90]", a->step);
-        o->gonio.incidence = incidence;
-        o->gonio.n_incidence = ni;
-        o->gonio.step = step;
-    }
+    if (o->pattern != BF_SYNTH_GONIO)
+        return 0;
+    int ni = parse_list(a->incidence ? a->incidence : "0,30,60", incidence, MAX_INCIDENCE);
+    if (ni < 0)
+        return usage_error("--incidence '%s' is not a comma-separated list of angles in degrees", a->incidence);
+    for (int k = 0; k < ni; k++)
+        if (!(incidence[k] >= 0.0 && incidence[k] < 90.0))
+            return usage_error("--incidence '%s': every angle must be in [0, 90) degrees", a->incidence);
+    double step = 5.0;
+    if (a->step && (parse_double(a->step, &step) != 0 || !(step >= 1e-3 && step <= 90.0)))
+        return usage_error("--step '%s' must be a number of degrees in [0.001, 90]", a->step);
+    o->gonio.incidence = incidence;
+    o->gonio.n_incidence = ni;
+    o->gonio.step = step;
+    return 0;
+}
 
-    if (a->seed) {
-        unsigned long long seed;
-        if (parse_u64(a->seed, &seed) != 0)
-            return usage_error("--seed '%s' is not an unsigned 64-bit integer", a->seed);
-        o->seed = (uint64_t)seed;
-    }
+/* --outliers FRACTION[,FACTOR]. Returns 0, or 2 after a usage message. */
+static int build_outliers(const char *s, bf_synth_noise *nz)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%s", s);
+    char *comma = strchr(buf, ',');
+    if (comma)
+        *comma = '\0';
+    if (strlen(s) >= sizeof buf || parse_double(buf, &nz->outlier_fraction) != 0 ||
+        !(nz->outlier_fraction >= 0.0 && nz->outlier_fraction <= 1.0) ||
+        (comma && (parse_double(comma + 1, &nz->outlier_factor) != 0 || !(nz->outlier_factor > 0.0))))
+        return usage_error("--outliers '%s' must be FRACTION in [0, 1], optionally ,FACTOR > 0", s);
+    return 0;
+}
 
-    /* Noise: --noise alone means relative noise. */
-    bf_synth_noise *nz = &o->noise;
+/* The noise: --noise alone means relative noise, --counts alone photon noise. Returns
+ * 0, or 2 after a usage message. */
+static int build_noise(const synth_args *a, bf_synth_noise *nz)
+{
     int model = a->noise_model ? bf_synth_noise_model_from_name(a->noise_model)
                                : a->noise ? BF_NOISE_RELATIVE : a->counts ? BF_NOISE_PHOTON : BF_NOISE_NONE;
     if (model < 0)
@@ -159,25 +166,35 @@ static int build_options(const synth_args *a, bf_synth_options *o, double *incid
             return usage_error("--noise-model photon needs either --noise S or --counts K");
         if (a->counts && (parse_double(a->counts, &nz->counts) != 0 || !(nz->counts > 0.0)))
             return usage_error("--counts '%s' must be a number > 0", a->counts);
-        if (a->noise) {
-            if (!(level > 0.0) || !isfinite(nz->counts = 1.0 / level / level))
-                return usage_error("--noise '%s' must be > 0 for the photon model", a->noise);
-        }
+        if (a->noise && (!(level > 0.0) || !isfinite(nz->counts = 1.0 / level / level)))
+            return usage_error("--noise '%s' must be > 0 for the photon model", a->noise);
         break;
     }
-    if (a->outliers) {
-        char buf[64];
-        snprintf(buf, sizeof buf, "%s", a->outliers);
-        char *comma = strchr(buf, ',');
-        if (comma)
-            *comma = '\0';
-        if (strlen(a->outliers) >= sizeof buf || parse_double(buf, &nz->outlier_fraction) != 0 ||
-            !(nz->outlier_fraction >= 0.0 && nz->outlier_fraction <= 1.0) ||
-            (comma && (parse_double(comma + 1, &nz->outlier_factor) != 0 || !(nz->outlier_factor > 0.0))))
-            return usage_error("--outliers '%s' must be FRACTION in [0, 1], optionally ,FACTOR > 0", a->outliers);
-    }
+    if (a->outliers && build_outliers(a->outliers, nz) != 0)
+        return 2;
     nz->clamp = a->clamp;
+    return 0;
+}
 
+/* Fills o from the parsed strings; returns 0, or 2 after a usage message. */
+static int build_options(const synth_args *a, bf_synth_options *o, double *incidence)
+{
+    int p = bf_synth_pattern_from_name(a->pattern);
+    if (p < 0)
+        return usage_error("unknown pattern '%s' (uniform, cosine, stratified, random, gonio, merl)", a->pattern);
+    o->pattern = (bf_synth_pattern)p;
+    if (build_directions(a, o, incidence) != 0)
+        return 2;
+    if (a->seed) {
+        unsigned long long seed;
+        if (parse_u64(a->seed, &seed) != 0)
+            return usage_error("--seed '%s' is not an unsigned 64-bit integer", a->seed);
+        o->seed = (uint64_t)seed;
+    }
+    if (build_noise(a, &o->noise) != 0)
+        return 2;
+    /* The output's format must suit the pattern: only merl has a cell grid. */
+    const char *pname = bf_synth_pattern_name(o->pattern);
     bf_format f = strcmp(a->out, "-") ? bf_format_for_writing(a->out) : BF_FORMAT_CSV;
     if (f == BF_FORMAT_AUTO)
         return usage_error("-o %s: the output must end in .csv or .binary", a->out);
@@ -188,7 +205,9 @@ static int build_options(const synth_args *a, bf_synth_options *o, double *incid
     return 0;
 }
 
-int main(int argc, char **argv)
+/* Takes the parsed command line into a (each valued option once) and checks that the
+ * required ones are there. Returns 0, or 2 after a usage message. */
+static int take_args(const cli_args *args, synth_args *a)
 {
     static const struct {
         const char *name;
@@ -201,6 +220,63 @@ int main(int argc, char **argv)
         {"--seed", offsetof(synth_args, seed)},         {"--incidence", offsetof(synth_args, incidence)},
         {"--step", offsetof(synth_args, step)},
     };
+    for (int i = 0; i < args->n; i++) {
+        const char *arg = args->v[i].name;
+        if (!arg)
+            return usage_error("unexpected argument '%s'", args->v[i].value);
+        if (!strcmp(arg, "--clamp")) {
+            a->clamp = 1;
+            continue;
+        }
+        size_t k = 0;
+        while (strcmp(arg, valued[k].name)) /* cli_parse let through only the table's options */
+            k++;
+        const char **dst = (const char **)((char *)a + valued[k].off);
+        if (*dst)
+            return usage_error("%s given twice", arg);
+        *dst = args->v[i].value;
+    }
+    if (!a->params)
+        return usage_error("--params P.json is required");
+    if (!a->pattern)
+        return usage_error("--pattern is required");
+    if (!a->out)
+        return usage_error("-o OUT.csv|OUT.binary is required");
+    return 0;
+}
+
+/* Reads the parameter file, generates, writes: the exit status (0 or 1). */
+static int generate(const synth_args *a, const bf_synth_options *o)
+{
+    bf_error err;
+    bf_model *m = NULL;
+    double *x = NULL;
+    bf_samples *s = NULL;
+    int status = 1;
+    if (bf_params_read(a->params, &m, &x, &err) != BF_OK) {
+        fprintf(stderr, PROG ": %s\n", err.msg);
+        goto done;
+    }
+    if (o->pattern == BF_SYNTH_MERL && bf_model_channels(m) != 3) {
+        fprintf(stderr, PROG ": %s: pattern merl needs a 3-channel (RGB) model, the file gives %d\n", a->params,
+                bf_model_channels(m));
+        goto done;
+    }
+    if (bf_synth_generate(m, x, o, &s, &err) != BF_OK ||
+        bf_samples_write(s, a->out, strcmp(a->out, "-") ? BF_FORMAT_AUTO : BF_FORMAT_CSV, &err) != BF_OK) {
+        fprintf(stderr, PROG ": %s\n", err.msg);
+        goto done;
+    }
+    status = 0;
+done:
+    bf_samples_free(s);
+    bf_model_free(m);
+    free(x);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
     synth_args a = {0};
     /* A run ended by a signal leaves no temporary. */
     bf_remove_temporaries_on_signals();
@@ -212,41 +288,15 @@ int main(int argc, char **argv)
     int p = cli_parse(&cli_synth, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *arg = args.v[i].name;
-        if (!arg) {
-            int rc = usage_error("unexpected argument '%s'", args.v[i].value);
-            cli_args_free(&args);
-            return rc;
-        }
-        if (!strcmp(arg, "--clamp")) {
-            a.clamp = 1;
-            continue;
-        }
-        size_t k = 0;
-        while (strcmp(arg, valued[k].name))
-            k++;
-        const char **dst = (const char **)((char *)&a + valued[k].off);
-        if (*dst) {
-            cli_args_free(&args);
-            return usage_error("%s given twice", arg);
-        }
-        *dst = args.v[i].value;
-    }
+    int rc = take_args(&args, &a);
     cli_args_free(&args);
-    if (!a.params)
-        return usage_error("--params P.json is required");
-    if (!a.pattern)
-        return usage_error("--pattern is required");
-    if (!a.out)
-        return usage_error("-o OUT.csv|OUT.binary is required");
-
-    bf_synth_options o = {0};
-    double incidence[MAX_INCIDENCE];
-    int rc = build_options(&a, &o, incidence);
     if (rc != 0)
         return rc;
 
+    bf_synth_options o = {0};
+    double incidence[MAX_INCIDENCE];
+    if ((rc = build_options(&a, &o, incidence)) != 0)
+        return rc;
     bf_error err;
     /* Never over the parameter file, and a writable output before any work. */
     const bf_path_use in[] = {{"--params file", a.params}}, out[] = {{"-o", a.out}};
@@ -254,28 +304,5 @@ int main(int argc, char **argv)
         fprintf(stderr, PROG ": %s\n", err.msg);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
-    bf_model *m = NULL;
-    double *x = NULL;
-    bf_samples *s = NULL;
-    int status = 1;
-    if (bf_params_read(a.params, &m, &x, &err) != BF_OK) {
-        fprintf(stderr, PROG ": %s\n", err.msg);
-        goto done;
-    }
-    if (o.pattern == BF_SYNTH_MERL && bf_model_channels(m) != 3) {
-        fprintf(stderr, PROG ": %s: pattern merl needs a 3-channel (RGB) model, the file gives %d\n",
-                a.params, bf_model_channels(m));
-        goto done;
-    }
-    if (bf_synth_generate(m, x, &o, &s, &err) != BF_OK ||
-        bf_samples_write(s, a.out, strcmp(a.out, "-") ? BF_FORMAT_AUTO : BF_FORMAT_CSV, &err) != BF_OK) {
-        fprintf(stderr, PROG ": %s\n", err.msg);
-        goto done;
-    }
-    status = 0;
-done:
-    bf_samples_free(s);
-    bf_model_free(m);
-    free(x);
-    return status;
+    return generate(&a, &o);
 }

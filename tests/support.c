@@ -323,11 +323,10 @@ void ts_expect_read_error(ts_reader reader, const char *name, const char *text, 
 
 void ts_fit_defaults(bf_fit_options *o)
 {
-    memset(o, 0, sizeof *o);
+    bf_fit_options_init(o);
+    /* The tests' own choices over the library's defaults. */
     o->objective.residual = BF_RESIDUAL_LINEAR;
-    o->objective.use_weights = 1;
-    o->solver.backend = BF_BACKEND_CERES;
-    o->starts = 1;
+    o->solver.threads = 0;
 }
 
 void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)

@@ -81,8 +81,8 @@ typedef int (*ts_reader)(const char *path, bf_samples **out, bf_error *err);
 void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
                           const char *fragment);
 
-/* Fit options the fitting tests start from: linear residual, sample weights, Ceres,
- * one start. */
+/* Fit options the fitting tests start from: the library's (bf_fit_options_init) with a
+ * linear residual and one solver thread. */
 void ts_fit_defaults(bf_fit_options *o);
 /* bf_fit that fails the test on an error or an unusable fit. */
 void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r);

@@ -3,6 +3,7 @@
 #ifndef BRDFIT_FIT_H
 #define BRDFIT_FIT_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "brdfit/error.h"
@@ -35,6 +36,49 @@ typedef struct bf_fit_options {
 
 #define BF_FIT_PRESOLVE_SAMPLES 32768
 #define BF_FIT_PRESOLVE_MIN 131072 /* 4 x the presolve: below it a presolve saves too little */
+
+/* The defaults every fitting command starts from (brdfit fit's): log residual, the
+ * samples' own weights, Ceres, one start, automatic presolve, seed 0, and a solver
+ * thread per online core (results do not depend on the thread count). */
+void bf_fit_options_init(bf_fit_options *o);
+
+/* Accuracy presets (brdfit fit --accuracy): bundles of options measured with brdfit
+ * tradeoff (lib/src/fit/options.c says which figures chose them). A preset fills only
+ * what the caller did not set explicitly (the BF_FIT_GIVEN_* bits). */
+typedef enum bf_fit_accuracy {
+    BF_ACCURACY_NONE = 0, /* no preset: the options as they are */
+    BF_ACCURACY_FAST,     /* a stratified subsample of BF_ACCURACY_FAST_SUBSAMPLE, Ceres, one start */
+    BF_ACCURACY_BALANCED, /* the defaults: all samples, Ceres, one start */
+    BF_ACCURACY_BEST,     /* all samples, Ceres, BF_ACCURACY_BEST_STARTS starts and up to
+                             BF_ACCURACY_BEST_ITERATIONS Ceres iterations */
+} bf_fit_accuracy;
+
+#define BF_ACCURACY_FAST_SUBSAMPLE 16000
+#define BF_ACCURACY_BEST_STARTS 4
+#define BF_ACCURACY_BEST_ITERATIONS 500
+
+/* What the caller set explicitly, for bf_fit_options_apply_accuracy: bits to OR. */
+enum {
+    BF_FIT_GIVEN_BACKEND = 1u << 0,
+    BF_FIT_GIVEN_ALGORITHM = 1u << 1,
+    BF_FIT_GIVEN_STARTS = 1u << 2,
+    BF_FIT_GIVEN_RESIDUAL = 1u << 3,
+    BF_FIT_GIVEN_MAX_ITERATIONS = 1u << 4,
+    BF_FIT_GIVEN_SUBSAMPLE = 1u << 5, /* the data's subsample count (bf_prep.subsample) */
+};
+
+/* "fast", "balanced", "best" -> *out (BF_ERR_ARG for any other name, NULL included). */
+int bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err);
+/* The preset's name; "" for BF_ACCURACY_NONE, "unknown" out of range. */
+const char *bf_fit_accuracy_name(bf_fit_accuracy acc);
+
+/* Applies preset acc to o where `given` (BF_FIT_GIVEN_*) has no bit for the setting: a
+ * back end and its algorithm go together (either given keeps both); the iteration limit
+ * applies to Ceres only (NLopt counts evaluations). The preset's sample count goes to
+ * *subsample (the data preprocessing's bf_prep.subsample, before the data is read) when
+ * subsample is not NULL, the preset has one and BF_FIT_GIVEN_SUBSAMPLE is not set.
+ * BF_ACCURACY_NONE changes nothing. */
+void bf_fit_options_apply_accuracy(bf_fit_options *o, bf_fit_accuracy acc, unsigned given, size_t *subsample);
 
 #define BF_FIT_MAX_WARNINGS 16
 #define BF_FIT_WARNING_LEN 192
