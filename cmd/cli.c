@@ -292,6 +292,43 @@ static void upper(const char *s, FILE *out)
         fputc(*s >= 'a' && *s <= 'z' ? *s - 'a' + 'A' : *s, out);
 }
 
+/* The OPTIONS section: a subsection per group, an indented paragraph per option. */
+static void man_options(const cli_command *c, FILE *out)
+{
+    fputs(".SH OPTIONS\n", out);
+    for (int g = 0; g <= c->ngroups; g++) {
+        const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
+        fputs(".SS ", out);
+        roff(grp->title ? grp->title : "options", out, 0);
+        fputc('\n', out);
+        for (int k = 0; k < grp->n; k++) {
+            const cli_option *o = &grp->options[k];
+            fputs(".TP\n", out);
+            if (o->short_name)
+                fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
+            fputs("\\fB", out);
+            roff(o->name, out, 0);
+            fputs("\\fR", out);
+            if (o->arg) {
+                fputs(" \\fI", out);
+                roff(o->arg, out, 0);
+                fputs("\\fR", out);
+            }
+            fputc('\n', out);
+            /* Continuation lines are one sentence in the man page. */
+            char *h = strdup(o->help);
+            if (h) {
+                for (char *q = h; *q; q++)
+                    if (*q == '\n')
+                        *q = ' ';
+                roff(h, out, 1);
+                free(h);
+            }
+            fputc('\n', out);
+        }
+    }
+}
+
 void cli_man(const cli_command *c, const char *version, const char *see_also, FILE *out)
 {
     char page[64];
@@ -335,38 +372,7 @@ void cli_man(const cli_command *c, const char *version, const char *see_also, FI
                 p++;
         }
     }
-    fputs(".SH OPTIONS\n", out);
-    for (int g = 0; g <= c->ngroups; g++) {
-        const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
-        fputs(".SS ", out);
-        roff(grp->title ? grp->title : "options", out, 0);
-        fputc('\n', out);
-        for (int k = 0; k < grp->n; k++) {
-            const cli_option *o = &grp->options[k];
-            fputs(".TP\n", out);
-            if (o->short_name)
-                fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
-            fputs("\\fB", out);
-            roff(o->name, out, 0);
-            fputs("\\fR", out);
-            if (o->arg) {
-                fputs(" \\fI", out);
-                roff(o->arg, out, 0);
-                fputs("\\fR", out);
-            }
-            fputc('\n', out);
-            /* Continuation lines are one sentence in the man page. */
-            char *h = strdup(o->help);
-            if (h) {
-                for (char *q = h; *q; q++)
-                    if (*q == '\n')
-                        *q = ' ';
-                roff(h, out, 1);
-                free(h);
-            }
-            fputc('\n', out);
-        }
-    }
+    man_options(c, out);
     fputs(".SH EXIT STATUS\n0: done; 1: a failure (bad data, a failed fit, an output that cannot be "
           "written); 2: bad usage (options, model names, parameters).\n",
           out);

@@ -14,6 +14,7 @@
 #define HEADER 12
 #define TABLE_BYTES ((size_t)3 * BF_MERL_CELLS * sizeof(double))
 
+#ifndef MERL_FILE_ONLY
 static unsigned char *slurp(const char *path, size_t *n)
 {
     FILE *fp = fopen(path, "rb");
@@ -77,6 +78,8 @@ static void full_table(const uint8_t *data, size_t size)
     bf_samples_free(plain);
     free(file);
 }
+
+#endif
 
 #ifdef MERL_FILE_ONLY
 /* The merl_file target: every input is the file itself, read with and without the raw
