@@ -406,7 +406,8 @@ static void words(const char *choices, FILE *out)
 }
 
 /* The case arms of one command: values after an option, then options or operands. */
-static void completion_arms(const cli_command *c, const char *models, const char *indent, FILE *out)
+static void completion_arms(const cli_command *c, const char *(*words_of)(const char *kind), const char *indent,
+                            FILE *out)
 {
     fprintf(out, "%scase $prev in\n", indent);
     for (int g = 0; g <= c->ngroups; g++) {
@@ -426,8 +427,9 @@ static void completion_arms(const cli_command *c, const char *models, const char
             else if (!strcmp(kind, "dir"))
                 fputs(") COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n", out);
             else {
+                const char *named = words_of ? words_of(kind) : NULL; /* "model", "method": from a registry */
                 fputs(") COMPREPLY=($(compgen -W \"", out);
-                words(!strcmp(kind, "model") ? models : kind, out);
+                words(named ? named : kind, out);
                 fputs("\" -- \"$cur\")); return ;;\n", out);
             }
         }
@@ -445,7 +447,7 @@ static void completion_arms(const cli_command *c, const char *models, const char
             c->operands && !strcmp(c->operands, "dir") ? "-d" : c->operands ? "-f" : "-W ''", indent);
 }
 
-void cli_completion(const cli_command *const *cmds, int n, const char *models, FILE *out)
+void cli_completion(const cli_command *const *cmds, int n, const char *(*words_of)(const char *kind), FILE *out)
 {
     const char *tool = cmds[0]->tool;
     char fn[64];
@@ -457,7 +459,7 @@ void cli_completion(const cli_command *const *cmds, int n, const char *models, F
     fprintf(out, "%s()\n{\n    local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]}\n", fn);
     fputs("    COMPREPLY=()\n", out);
     if (!cmds[0]->name) {
-        completion_arms(cmds[0], models, "    ", out);
+        completion_arms(cmds[0], words_of, "    ", out);
     } else {
         fputs("    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"", out);
         for (int i = 0; i < n; i++)
@@ -466,7 +468,7 @@ void cli_completion(const cli_command *const *cmds, int n, const char *models, F
         fputs("    case ${COMP_WORDS[1]} in\n", out);
         for (int i = 0; i < n; i++) {
             fprintf(out, "    %s)\n", cmds[i]->name);
-            completion_arms(cmds[i], models, "        ", out);
+            completion_arms(cmds[i], words_of, "        ", out);
             fputs("        ;;\n", out);
         }
         fputs("    help)\n        [ \"$COMP_CWORD\" -eq 2 ] && COMPREPLY=($(compgen -W \"", out);

@@ -16,8 +16,9 @@ typedef struct cli_option {
     char short_name;  /* 'm', or 0 */
     const char *arg;  /* the value's name in help ("FILE", "N|all"); NULL for a flag */
     const char *help; /* help text; '\n' starts a continuation line */
-    /* What a shell completes for the value: NULL nothing, "file", "dir", "model", or
-     * choices "a|b|c" (the default, when NULL, is taken from arg if it lists choices). */
+    /* What a shell completes for the value: NULL nothing, "file", "dir", a kind the
+     * generator names from a registry ("model", "method", "local_method"), or choices
+     * "a|b|c" (when NULL, taken from arg if it lists choices). */
     const char *complete;
 } cli_option;
 
@@ -76,9 +77,9 @@ void cli_help(const cli_command *c, FILE *out);
 void cli_man(const cli_command *c, const char *version, const char *see_also, FILE *out);
 
 /* A bash completion script for a tool: its subcommands cmds[0..n-1], or cmds[0] alone
- * for a tool without subcommands (name NULL). Values of kind "model" complete to the
- * space-separated names in models. */
-void cli_completion(const cli_command *const *cmds, int n, const char *models, FILE *out);
+ * for a tool without subcommands (name NULL). Values of a named kind ("model",
+ * "method") complete to the '|'-separated words words_of(kind) returns (NULL: none). */
+void cli_completion(const cli_command *const *cmds, int n, const char *(*words_of)(const char *kind), FILE *out);
 
 /* What the last cli_parse saw of --quiet and --verbose (for the whole process). */
 int cli_verbose(void);

@@ -113,31 +113,33 @@ static int parse_count(const char *s, long hi, long *out)
     return 1;
 }
 
-static const char *method_of(const bf_solver_options *so)
+/* The base setting as a --methods item: "ceres" for its default, "ceres:dogleg", or the
+ * NLopt method's name. */
+static const char *method_of(const bf_solver_options *so, char *buf, size_t size)
 {
+    const bf_method_info *m = bf_method_find(so->backend, so->algorithm);
+    if (!m) /* checked before; the default keeps the message to the checker */
+        m = bf_method_default(so->backend);
     if (so->backend == BF_BACKEND_CERES)
-        return so->algorithm && !strcmp(so->algorithm, "dogleg") ? "ceres:dogleg" : "ceres";
-    return so->algorithm ? so->algorithm : "LD_LBFGS";
+        snprintf(buf, size, "ceres%s%s", m->caps & BF_METHOD_DEFAULT ? "" : ":", m->caps & BF_METHOD_DEFAULT ? "" : m->name);
+    else
+        snprintf(buf, size, "%s", m->name);
+    return buf;
 }
 
 /* The setting as brdfit fit options. */
 static void fit_args(const bf_tradeoff_row *r, char *buf, size_t size)
 {
-    char sub[48] = "";
+    char sub[48] = "", mbuf[128];
     if (!r->all)
         snprintf(sub, sizeof sub, "--subsample %zu ", r->samples);
-    const char *m = r->method;
-    if (!strcmp(m, "ceres") || !strcmp(m, "lm") || !strcmp(m, "ceres:lm"))
-        m = "--backend ceres";
-    else if (!strcmp(m, "ceres:dogleg") || !strcmp(m, "dogleg"))
-        m = "--backend ceres --algorithm dogleg";
-    char mbuf[128];
-    if (m == r->method) {
-        const char *alg = !strncmp(r->method, "nlopt:", 6) ? r->method + 6 : r->method;
-        snprintf(mbuf, sizeof mbuf, "--backend nlopt --algorithm %s", strcmp(alg, "nlopt") ? alg : "LD_LBFGS");
-        m = mbuf;
-    }
-    snprintf(buf, size, "%s%s --residual %s --starts %d", sub, m, bf_residual_name(r->residual), r->starts);
+    bf_backend b = BF_BACKEND_CERES;
+    const bf_method_info *m = NULL;
+    if (bf_method_parse(r->method, &b, &m, NULL) != BF_OK || (b == BF_BACKEND_CERES && (m->caps & BF_METHOD_DEFAULT)))
+        snprintf(mbuf, sizeof mbuf, "--backend %s", bf_backend_name(b));
+    else
+        snprintf(mbuf, sizeof mbuf, "--backend %s --algorithm %s", bf_backend_name(b), m->name);
+    snprintf(buf, size, "%s%s --residual %s --starts %d", sub, mbuf, bf_residual_name(r->residual), r->starts);
 }
 
 /* Appends " ARG" to buf, in single quotes when the shell would split or expand it. */
@@ -360,12 +362,12 @@ static int check_args(tradeoff_run *r)
 static int split_lists(tradeoff_run *r)
 {
     const bf_fit_options *fo = &r->fopt.fit;
-    char starts_default[16];
+    char starts_default[16], method[64];
     snprintf(starts_default, sizeof starts_default, "%d", fo->starts);
     const char *lists[NLISTS];
     memcpy(lists, r->lists, sizeof lists);
     if (!lists[L_METHODS])
-        lists[L_METHODS] = fo->solver.backend != BF_BACKEND_CERES || fo->solver.algorithm ? method_of(&fo->solver)
+        lists[L_METHODS] = fo->solver.backend != BF_BACKEND_CERES || fo->solver.algorithm ? method_of(&fo->solver, method, sizeof method)
                                                                                            : "ceres,LD_LBFGS";
     if (!lists[L_RESIDUALS])
         lists[L_RESIDUALS] = bf_residual_name(fo->objective.residual);

@@ -5,10 +5,11 @@
 
 #include "cli.h"
 
-extern const cli_command cli_models, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
+extern const cli_command cli_models, cli_methods, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
     cli_select, cli_regress;
 
 int cmd_models(int argc, char **argv);
+int cmd_methods(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_convert(int argc, char **argv);

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "brdfit/model.h"
+#include "brdfit/solve.h"
 #include "commands.h"
 #include "synth_cli.h"
 
@@ -64,6 +65,30 @@ static void overview(const char *version, FILE *out)
           out);
 }
 
+/* Completion words from the registries: model names (and "all" for compare), the
+ * optimizer methods, the methods that can be G_MLSL_LDS's local one. */
+static const char *registry_words(const char *kind)
+{
+    static char buf[4096];
+    buf[0] = '\0';
+    size_t used = 0;
+    if (!strcmp(kind, "model")) {
+        used = (size_t)snprintf(buf, sizeof buf, "all");
+        for (int f = 0; f < bf_family_count() && used < sizeof buf; f++)
+            used += (size_t)snprintf(buf + used, sizeof buf - used, "|%s", bf_family_get(f)->name);
+        return buf;
+    }
+    if (!strcmp(kind, "method") || !strcmp(kind, "local_method")) {
+        for (int i = 0; i < bf_method_count() && used < sizeof buf; i++) {
+            const bf_method_info *m = bf_method_get(i);
+            if (!strcmp(kind, "method") || (m->caps & BF_METHOD_LOCAL))
+                used += (size_t)snprintf(buf + used, sizeof buf - used, "%s%s", used ? "|" : "", m->name);
+        }
+        return buf;
+    }
+    return NULL;
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 3) {
@@ -91,18 +116,12 @@ int main(int argc, char **argv)
     cli_man(&cli_synth, version, "brdfit(1), brdfit-eval(1)", fp);
     close_out(fp);
 
-    /* Model names for -m, from the registry. */
-    char models[4096] = "all";
-    for (int f = 0; f < bf_family_count(); f++) {
-        size_t used = strlen(models);
-        snprintf(models + used, sizeof models - used, "|%s", bf_family_get(f)->name);
-    }
     fp = open_out(dir, "completions", "brdfit");
-    cli_completion(cmds, ncommands, models, fp);
+    cli_completion(cmds, ncommands, registry_words, fp);
     close_out(fp);
     const cli_command *synth[] = {&cli_synth};
     fp = open_out(dir, "completions", "brdfit-synth");
-    cli_completion(synth, 1, models, fp);
+    cli_completion(synth, 1, registry_words, fp);
     close_out(fp);
     return 0;
 }

@@ -20,16 +20,13 @@ static const cli_option fitting[] = {
     {"--bound", 0, "NAME=LO:HI", "narrow a parameter's bounds (repeatable)", NULL},
     {"--solid-angle", 0, NULL, "weight MERL cells by their solid angle", NULL},
     {"--no-weights", 0, NULL, "ignore the samples' own weights", NULL},
-    {"--constrain-energy", 0, NULL, "energy conservation as a constraint (NLopt LD_SLSQP, LD_MMA, GN_ISRES)", NULL},
+    {"--constrain-energy", 0, NULL, "energy conservation as a constraint (the methods that take one:\nbrdfit methods)", NULL},
 };
 static const cli_option optimizer[] = {
     {"--backend", 0, "ceres|nlopt", "(default ceres)", NULL},
-    {"--algorithm", 0, "NAME",
-     "ceres: lm (default), dogleg; nlopt: LD_LBFGS (default), LD_SLSQP,\n"
-     "LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM,\nGN_ISRES, G_MLSL_LDS",
-     "lm|dogleg|LD_LBFGS|LD_SLSQP|LD_MMA|LN_BOBYQA|LN_NELDERMEAD|LN_SBPLX|GN_DIRECT_L|GN_CRS2_LM|GN_ISRES|"
-     "G_MLSL_LDS"},
-    {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "LD_LBFGS|LD_SLSQP|LD_MMA|LN_BOBYQA"},
+    {"--algorithm", 0, "NAME", "a method of the back end (default: the back end's own);\n"
+                               "brdfit methods lists them with what each can do", "method"},
+    {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "local_method"},
     {"--max-iterations", 0, "N", "(default: ceres 100 iterations, nlopt 2000 evaluations)", NULL},
     {"--starts", 0, "N", "the data-driven start and N-1 seeded random ones (default 1)", NULL},
     {"--presolve", 0, "N|off",
@@ -184,11 +181,10 @@ int fit_options_parse(fit_options *o, const char *a, const char *v, const char *
     } else if (!strcmp(a, "--fix") || !strcmp(a, "--bound")) {
         return parse_override(o, a, v, cmd);
     } else if (!strcmp(a, "--backend")) {
-        if (strcmp(v, "ceres") && strcmp(v, "nlopt")) {
+        if (bf_backend_parse(v, &o->fit.solver.backend, NULL) != BF_OK) {
             fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
             return -1;
         }
-        o->fit.solver.backend = !strcmp(v, "ceres") ? BF_BACKEND_CERES : BF_BACKEND_NLOPT;
     } else if (!strcmp(a, "--algorithm")) {
         o->fit.solver.algorithm = v;
     } else if (!strcmp(a, "--local")) {
@@ -272,6 +268,12 @@ int fit_options_check_models(const fit_options *o, char *const *specs, int n, co
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             return -1;
         }
+    }
+    /* The method, its local method and the constraint against the method registry. */
+    bf_error err;
+    if (bf_solver_options_check(&o->fit.solver, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
     }
     return 0;
 }

@@ -104,7 +104,7 @@ expect_error "bad cost" 2 "--cost needs work or seconds" "$W" -m walter --cost t
 expect_error "bad samples" 2 "--samples: 'lots'" "$W" -m walter --samples 500,lots
 expect_error "zero samples" 2 "--samples: '0'" "$W" -m walter --samples 0
 expect_error "empty item" 2 '--samples: empty item' "$W" -m walter --samples 500,,all
-expect_error "bad method" 2 '--methods: method "LD_NOPE"' "$W" -m walter --methods ceres,LD_NOPE
+expect_error "bad method" 2 '--methods: unknown method "LD_NOPE"' "$W" -m walter --methods ceres,LD_NOPE
 expect_error "bad residual" 2 '--residuals' "$W" -m walter --residuals log,square
 expect_error "bad starts" 2 "--starts-list: 'x'" "$W" -m walter --starts-list 1,x
 expect_error "bad fraction" 2 '--test-fraction' "$W" -m walter --test-fraction 1

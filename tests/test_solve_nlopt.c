@@ -421,7 +421,7 @@ static void test_errors(void **state)
     expect_error(&p, &o, BF_ERR_ARG, "LN_BOBYQA does not take constraints", "LD_SLSQP");
 
     o = nlopt_opts("LD_FOO");
-    expect_error(&p, &o, BF_ERR_ARG, "unknown NLopt algorithm \"LD_FOO\"", "G_MLSL_LDS");
+    expect_error(&p, &o, BF_ERR_ARG, "unknown nlopt method \"LD_FOO\"", "G_MLSL_LDS");
     o = nlopt_opts("G_MLSL_LDS");
     o.local_algorithm = "GN_DIRECT_L";
     expect_error(&p, &o, BF_ERR_ARG, "not a local NLopt method", "LN_SBPLX");

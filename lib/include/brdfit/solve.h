@@ -90,6 +90,42 @@ int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss,
 
 typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
 
+/* ---- The method registry: one table of every back end's methods ------------------- */
+
+/* What a method can do (bf_method_info.caps). */
+enum {
+    BF_METHOD_GRADIENT = 1u << 0,    /* uses the analytic gradient */
+    BF_METHOD_BOUNDS = 1u << 1,      /* keeps parameters inside their bounds */
+    BF_METHOD_CONSTRAINTS = 1u << 2, /* takes the inequality constraint (--constrain-energy) */
+    BF_METHOD_GLOBAL = 1u << 3,      /* global search: needs finite bounds, many evaluations */
+    BF_METHOD_LOSSES = 1u << 4,      /* minimises a robust loss (--loss) */
+    BF_METHOD_LOCAL = 1u << 5,       /* can be G_MLSL_LDS's local method */
+    BF_METHOD_DEFAULT = 1u << 6,     /* its back end's default */
+};
+
+typedef struct bf_method_info {
+    const char *name; /* "lm", "dogleg", "LD_LBFGS" ... */
+    bf_backend backend;
+    unsigned caps;    /* BF_METHOD_* */
+    const char *summary;
+} bf_method_info;
+
+int bf_method_count(void);
+const bf_method_info *bf_method_get(int i);
+const char *bf_backend_name(bf_backend b); /* "ceres", "nlopt" */
+int bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
+/* The back end's default method. */
+const bf_method_info *bf_method_default(bf_backend backend);
+/* A back end's method by name (NULL or "": its default; NLopt names in any case, Ceres'
+ * "levenberg_marquardt" for lm); NULL when it has none of that name. */
+const bf_method_info *bf_method_find(bf_backend backend, const char *name);
+/* "ceres", "ceres:dogleg", "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA": the back end
+ * and the method (a back end alone: its default). */
+int bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err);
+/* "A, B, C": a back end's methods whose caps hold every bit of need and none of avoid,
+ * into buf; returns the length written. */
+size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *buf, size_t size);
+
 typedef struct bf_solver_options {
     bf_backend backend;
     /* Ceres: "lm" (Levenberg-Marquardt, default) or "dogleg". NLopt: LD_LBFGS, LD_SLSQP,
@@ -110,6 +146,10 @@ typedef struct bf_solver_options {
     const unsigned char *constant; /* NULL, or npar flags: hold these parameters at their start */
     int use_constraint;          /* apply problem->constraint where the method supports it */
 } bf_solver_options;
+
+/* The method, the local method and the constraint of o against the registry, before any
+ * work: BF_OK, or BF_ERR_ARG with a message listing what would do. */
+int bf_solver_options_check(const bf_solver_options *o, bf_error *err);
 
 typedef struct bf_solution {
     double initial_cost, final_cost; /* 1/2 sum rho(r^2) */

@@ -29,11 +29,10 @@
 extern "C" {
 #endif
 
-/* A method as the command line names it: "ceres" (Levenberg-Marquardt), "ceres:dogleg"
- * (or "dogleg", "lm"), "nlopt" (LD_LBFGS) or an NLopt algorithm name ("LD_LBFGS",
- * "LN_BOBYQA" ...). Sets backend and algorithm in so (algorithm points into text).
- * Unknown names are BF_ERR_ARG, checked by the back end itself on a one-parameter
- * problem, so the list of names lives in one place (the solvers). */
+/* A method as the command line names it (bf_method_parse: "ceres", "ceres:dogleg",
+ * "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA" ...), checked against the method
+ * registry with so's other settings (bf_solver_options_check). Sets backend and
+ * algorithm in so (the registry's name). Unknown names are BF_ERR_ARG. */
 int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err);
 
 /* Splits s into a training and a test set, disjoint, together every sample: the test set

@@ -171,9 +171,9 @@ struct NamedAlgorithm {
     ceres::TrustRegionStrategyType type;
     const char *as_run;
 };
+// Ceres' strategy for each Ceres method of the registry (methods.c).
 const NamedAlgorithm kAlgorithms[] = {
     {"lm", ceres::LEVENBERG_MARQUARDT, "levenberg_marquardt"},
-    {"levenberg_marquardt", ceres::LEVENBERG_MARQUARDT, "levenberg_marquardt"},
     {"dogleg", ceres::DOGLEG, "dogleg"},
 };
 
@@ -336,18 +336,16 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
     const int np = p->npar;
     const double inf = std::numeric_limits<double>::infinity();
 
-    // Options first, so a bad name fails before any work.
+    // Options first, so a bad name fails before any work (the registry, methods.c).
+    bf_solver_options chk = *o;
+    chk.backend = BF_BACKEND_CERES;
+    if (bf_solver_options_check(&chk, err) != BF_OK)
+        return BF_ERR_ARG;
+    const bf_method_info *method = bf_method_find(BF_BACKEND_CERES, o->algorithm);
     const NamedAlgorithm *alg = &kAlgorithms[0];
-    if (o->algorithm && *o->algorithm) {
-        alg = nullptr;
-        for (const NamedAlgorithm &a : kAlgorithms)
-            if (std::strcmp(o->algorithm, a.name) == 0)
-                alg = &a;
-        if (!alg)
-            return bf_fail(err, BF_ERR_ARG,
-                           "unknown Ceres algorithm '%s' (known: lm, levenberg_marquardt, dogleg)",
-                           o->algorithm);
-    }
+    for (const NamedAlgorithm &a : kAlgorithms)
+        if (std::strcmp(method->name, a.name) == 0)
+            alg = &a;
     const NamedSolver *lin = &kLinearSolvers[0];
     if (o->linear_solver && *o->linear_solver) {
         lin = nullptr;

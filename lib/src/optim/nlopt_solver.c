@@ -25,48 +25,24 @@
 #include <strings.h>
 #include <time.h>
 
-enum { ALG_GLOBAL = 1, ALG_CONSTRAINTS = 2, ALG_GRADIENT = 4 };
-
-static const struct nl_alg {
+/* NLopt's constant for each NLopt method of the registry (methods.c), which says what
+ * each can do. */
+static const struct {
     const char *name;
     nlopt_algorithm alg;
-    int flags;
 } nl_algs[] = {
-    {"LD_LBFGS", NLOPT_LD_LBFGS, ALG_GRADIENT},
-    {"LD_SLSQP", NLOPT_LD_SLSQP, ALG_GRADIENT | ALG_CONSTRAINTS},
-    {"LD_MMA", NLOPT_LD_MMA, ALG_GRADIENT | ALG_CONSTRAINTS},
-    {"LN_BOBYQA", NLOPT_LN_BOBYQA, 0},
-    {"LN_COBYLA", NLOPT_LN_COBYLA, ALG_CONSTRAINTS},
-    {"LN_NELDERMEAD", NLOPT_LN_NELDERMEAD, 0},
-    {"LN_SBPLX", NLOPT_LN_SBPLX, 0},
-    {"GN_DIRECT_L", NLOPT_GN_DIRECT_L, ALG_GLOBAL},
-    {"GN_CRS2_LM", NLOPT_GN_CRS2_LM, ALG_GLOBAL},
-    {"GN_ISRES", NLOPT_GN_ISRES, ALG_GLOBAL | ALG_CONSTRAINTS},
-    {"G_MLSL_LDS", NLOPT_G_MLSL_LDS, ALG_GLOBAL},
+    {"LD_LBFGS", NLOPT_LD_LBFGS},       {"LD_SLSQP", NLOPT_LD_SLSQP},       {"LD_MMA", NLOPT_LD_MMA},
+    {"LN_BOBYQA", NLOPT_LN_BOBYQA},     {"LN_COBYLA", NLOPT_LN_COBYLA},     {"LN_NELDERMEAD", NLOPT_LN_NELDERMEAD},
+    {"LN_SBPLX", NLOPT_LN_SBPLX},       {"GN_DIRECT_L", NLOPT_GN_DIRECT_L}, {"GN_CRS2_LM", NLOPT_GN_CRS2_LM},
+    {"GN_ISRES", NLOPT_GN_ISRES},       {"G_MLSL_LDS", NLOPT_G_MLSL_LDS},
 };
-#define NL_NALGS (sizeof nl_algs / sizeof nl_algs[0])
 
-static const struct nl_alg *find_alg(const char *name)
+static nlopt_algorithm nl_of(const bf_method_info *m)
 {
-    for (size_t i = 0; i < NL_NALGS; i++)
-        if (strcasecmp(name, nl_algs[i].name) == 0)
-            return &nl_algs[i];
-    return NULL;
-}
-
-/* "A, B, C" of the methods whose flags include `need` and exclude `avoid`. */
-static void alg_list(char *buf, size_t size, int need, int avoid)
-{
-    size_t used = 0;
-    buf[0] = '\0';
-    for (size_t i = 0; i < NL_NALGS; i++) {
-        if ((nl_algs[i].flags & need) != need || (nl_algs[i].flags & avoid))
-            continue;
-        int w = snprintf(buf + used, size - used, "%s%s", used ? ", " : "", nl_algs[i].name);
-        if (w < 0 || (size_t)w >= size - used)
-            break;
-        used += (size_t)w;
-    }
+    for (size_t i = 0; i < sizeof nl_algs / sizeof nl_algs[0]; i++)
+        if (!strcmp(m->name, nl_algs[i].name))
+            return nl_algs[i].alg;
+    return NLOPT_NUM_ALGORITHMS; /* a registry entry without a constant: caught by a test */
 }
 
 typedef struct nl_state {
@@ -221,35 +197,22 @@ int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, b
     if (!p || !p->eval || !x || p->npar < 1 || p->nres < 1)
         return bf_fail(err, BF_ERR_ARG, "NLopt: empty problem or no start vector");
 
-    char list[256];
-    const char *name = o->algorithm ? o->algorithm : "LD_LBFGS";
-    const struct nl_alg *alg = find_alg(name);
-    if (!alg) {
-        alg_list(list, sizeof list, 0, 0);
-        return bf_fail(err, BF_ERR_ARG, "unknown NLopt algorithm \"%s\" (known: %s)", name, list);
-    }
+    bf_solver_options chk = *o;
+    chk.backend = BF_BACKEND_NLOPT;
+    if (bf_solver_options_check(&chk, err) != BF_OK)
+        return BF_ERR_ARG;
+    const bf_method_info *alg = bf_method_find(BF_BACKEND_NLOPT, o->algorithm), *local = NULL;
     snprintf(s->algorithm, sizeof s->algorithm, "%s", alg->name);
-    const struct nl_alg *local = NULL;
-    if (alg->alg == NLOPT_G_MLSL_LDS) {
-        const char *lname = o->local_algorithm ? o->local_algorithm : "LD_LBFGS";
-        local = find_alg(lname);
-        if (!local || (local->flags & ALG_GLOBAL)) {
-            alg_list(list, sizeof list, 0, ALG_GLOBAL);
-            return bf_fail(err, BF_ERR_ARG,
-                           "G_MLSL_LDS: \"%s\" is not a local NLopt method (known: %s)", lname, list);
-        }
+    if (nl_of(alg) == NLOPT_G_MLSL_LDS) {
+        local = bf_method_find(BF_BACKEND_NLOPT, o->local_algorithm && *o->local_algorithm ? o->local_algorithm
+                                                                                             : "LD_LBFGS");
         snprintf(s->algorithm, sizeof s->algorithm, "%s+%s", alg->name, local->name);
-    }
-    if (o->use_constraint && !(alg->flags & ALG_CONSTRAINTS)) {
-        alg_list(list, sizeof list, ALG_CONSTRAINTS, 0);
-        return bf_fail(err, BF_ERR_ARG, "NLopt method %s does not take constraints (those that do: %s)",
-                       alg->name, list);
     }
     const int constrained = o->use_constraint && p->constraint;
     for (int k = 0; k < p->npar; k++) {
         const int fixed = o->constant && o->constant[k];
         const double lo = p->lo ? p->lo[k] : -INFINITY, hi = p->hi ? p->hi[k] : INFINITY;
-        if ((alg->flags & ALG_GLOBAL) && !fixed && !(isfinite(lo) && isfinite(hi)))
+        if ((alg->caps & BF_METHOD_GLOBAL) && !fixed && !(isfinite(lo) && isfinite(hi)))
             return bf_fail(err, BF_ERR_ARG,
                            "NLopt global method %s needs finite bounds; parameter %d has [%g, %g]",
                            alg->name, k, lo, hi);
@@ -292,13 +255,13 @@ int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, b
         goto done;
     }
 
-    nlopt_opt opt = nlopt_create(alg->alg, (unsigned)nfree);
+    nlopt_opt opt = nlopt_create(nl_of(alg), (unsigned)nfree);
     nlopt_opt lopt = NULL;
     if (!opt) {
         rc = bf_fail(err, BF_ERR_NOMEM, "NLopt: cannot create %s", alg->name);
         goto done;
     }
-    const int maxeval = o->max_iterations > 0 ? o->max_iterations : (alg->flags & ALG_GLOBAL) ? 20000 : 2000;
+    const int maxeval = o->max_iterations > 0 ? o->max_iterations : (alg->caps & BF_METHOD_GLOBAL) ? 20000 : 2000;
     int setup = nlopt_set_min_objective(opt, nl_objective, &st) > 0 &&
                 nlopt_set_lower_bounds(opt, zlo) > 0 && nlopt_set_upper_bounds(opt, zhi) > 0 &&
                 set_tolerances(opt, o) && nlopt_set_maxeval(opt, maxeval) > 0 &&
@@ -306,7 +269,7 @@ int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, b
     if (setup && constrained)
         setup = nlopt_add_inequality_constraint(opt, nl_constraint, &st, 1e-12) > 0;
     if (setup && local) {
-        lopt = nlopt_create(local->alg, (unsigned)nfree);
+        lopt = nlopt_create(nl_of(local), (unsigned)nfree);
         setup = lopt && set_tolerances(lopt, o) && nlopt_set_local_optimizer(opt, lopt) > 0;
     }
     if (!setup) {

@@ -16,50 +16,17 @@
 
 /* ---- Methods ------------------------------------------------------------------- */
 
-static int one_residual(void *ctx, const double *x, size_t r0, size_t r1, double *res, double *jac)
-{
-    (void)ctx;
-    for (size_t r = r0; r < r1; r++) {
-        res[r - r0] = x[0] - 1.0;
-        if (jac)
-            jac[r - r0] = 1.0;
-    }
-    return 0;
-}
-
 int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
 {
-    if (!text || !*text)
-        return bf_fail(err, BF_ERR_ARG, "empty method name");
+    bf_backend backend;
+    const bf_method_info *m;
+    if (bf_method_parse(text, &backend, &m, err) != BF_OK)
+        return BF_ERR_ARG;
     bf_solver_options o = *so;
-    o.local_algorithm = so->local_algorithm;
-    if (!strcmp(text, "ceres") || !strcmp(text, "ceres:lm") || !strcmp(text, "lm")) {
-        o.backend = BF_BACKEND_CERES;
-        o.algorithm = "lm";
-    } else if (!strcmp(text, "ceres:dogleg") || !strcmp(text, "dogleg")) {
-        o.backend = BF_BACKEND_CERES;
-        o.algorithm = "dogleg";
-    } else if (!strcmp(text, "nlopt")) {
-        o.backend = BF_BACKEND_NLOPT;
-        o.algorithm = "LD_LBFGS";
-    } else {
-        o.backend = BF_BACKEND_NLOPT;
-        o.algorithm = !strncmp(text, "nlopt:", 6) ? text + 6 : text;
-    }
-    /* Let the back end judge the name on a trivial problem: one parameter, one residual. */
-    double lo = -10.0, hi = 10.0, x = 0.0;
-    bf_problem p = {.nres = 1, .npar = 1, .lo = &lo, .hi = &hi, .eval = one_residual};
-    bf_solver_options probe = o;
-    probe.threads = 1;
-    probe.max_iterations = 5;
-    probe.max_seconds = 0.0;
-    probe.constant = NULL;
-    probe.use_constraint = 0;
-    probe.loss.kind = BF_LOSS_NONE;
-    bf_solution sol;
-    bf_error e;
-    if (bf_solve(&p, &probe, &x, &sol, &e) != BF_OK && e.code == BF_ERR_ARG)
-        return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, e.msg);
+    o.backend = backend;
+    o.algorithm = m->name;
+    if (bf_solver_options_check(&o, err) != BF_OK)
+        return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, err ? err->msg : "");
     *so = o;
     return BF_OK;
 }
