@@ -1,6 +1,7 @@
 /* Parameter files (JSON, via cJSON): model, options, channels and named values. */
 #include "brdfit/io.h"
 #include "json_keys.h"
+#include "json_pos.h"
 #include "read_text.h"
 
 #include <cjson/cJSON.h>
@@ -10,14 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static size_t line_at(const char *text, const char *pos)
-{
-    size_t line = 1;
-    for (const char *p = text; p < pos && *p; p++)
-        line += *p == '\n';
-    return line;
-}
-
 /* Line of the first occurrence of "key" in the text: good enough to point a user at
  * the offending entry, since cJSON keeps no positions. */
 static size_t line_of_key(const char *text, const char *key)
@@ -25,7 +18,7 @@ static size_t line_of_key(const char *text, const char *key)
     char pat[96];
     snprintf(pat, sizeof pat, "\"%s\"", key);
     const char *p = strstr(text, pat);
-    return p ? line_at(text, p) : 1;
+    return p ? (size_t)bf_json_line(text, p) : 1;
 }
 
 /* Builds "model:k=v,..." from the model string and the options object; every piece is
@@ -178,7 +171,7 @@ int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1) /* length counts the NUL */;
     if (!root) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON", path, line_at(text, end ? end : text));
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON", path, (size_t)bf_json_line(text, end ? end : text));
         goto done;
     }
     if (!cJSON_IsObject(root)) {

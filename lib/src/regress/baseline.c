@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "io/json_keys.h"
+#include "io/json_pos.h"
 #include "io/read_text.h"
 #include "regress/regress_impl.h"
 
@@ -55,105 +56,6 @@ int bf_regress_addf(char ***lines, int *n, const char *fmt, ...)
 
 /* ---- positions in the text ---------------------------------------------------------- */
 
-static const char *skip_ws(const char *p)
-{
-    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
-        p++;
-    return p;
-}
-
-static const char *skip_string(const char *p) /* at '"'; returns past the closing quote */
-{
-    for (p++; *p && *p != '"'; p++)
-        if (*p == '\\' && p[1])
-            p++;
-    return *p ? p + 1 : p;
-}
-
-static const char *skip_value(const char *p)
-{
-    p = skip_ws(p);
-    if (*p == '"')
-        return skip_string(p);
-    if (*p == '{' || *p == '[') {
-        int depth = 0;
-        while (*p) {
-            if (*p == '"') {
-                p = skip_string(p);
-                continue;
-            }
-            if (*p == '{' || *p == '[')
-                depth++;
-            else if ((*p == '}' || *p == ']') && --depth == 0)
-                return p + 1;
-            p++;
-        }
-        return p;
-    }
-    while (*p && !strchr(",]} \t\r\n", *p))
-        p++;
-    return p;
-}
-
-/* The start of the member seg (object) or element seg (array) of the value at p. */
-static const char *child(const char *p, const char *seg, size_t n)
-{
-    p = skip_ws(p);
-    if (*p == '{') {
-        for (p = skip_ws(p + 1); *p == '"';) {
-            const char *key = p + 1, *end = skip_string(p);
-            p = skip_ws(end);
-            if (*p != ':')
-                return NULL;
-            p = skip_ws(p + 1);
-            if ((size_t)(end - 1 - key) == n && !memcmp(key, seg, n))
-                return p;
-            p = skip_ws(skip_value(p));
-            if (*p != ',')
-                return NULL;
-            p = skip_ws(p + 1);
-        }
-        return NULL;
-    }
-    if (*p == '[') {
-        long idx = strtol(seg, NULL, 10);
-        p = skip_ws(p + 1);
-        for (long i = 0; i < idx; i++) {
-            p = skip_ws(skip_value(p));
-            if (*p != ',')
-                return NULL;
-            p = skip_ws(p + 1);
-        }
-        return *p && *p != ']' ? p : NULL;
-    }
-    return NULL;
-}
-
-static int line_at(const char *text, const char *pos)
-{
-    int line = 1;
-    for (const char *p = text; p < pos; p++)
-        line += *p == '\n';
-    return line;
-}
-
-static int line_of_path(const char *text, const char *path)
-{
-    if (!text)
-        return 1;
-    const char *at = skip_ws(text), *seg = path;
-    while (*seg) {
-        size_t n = strcspn(seg, "/");
-        const char *next = child(at, seg, n);
-        if (!next)
-            break;
-        at = next;
-        seg += n;
-        seg += *seg == '/';
-    }
-    return line_at(text, at);
-}
-
 int bf_regress_line(const bf_regress_baseline *b, const char *fmt, ...)
 {
     char path[512];
@@ -161,7 +63,7 @@ int bf_regress_line(const bf_regress_baseline *b, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(path, sizeof path, fmt, ap);
     va_end(ap);
-    return line_of_path(b->text, path);
+    return bf_json_line_of_path(b->text, path);
 }
 
 /* ---- paths and tolerances --------------------------------------------------------------- */
@@ -219,7 +121,7 @@ typedef struct parser {
 } parser;
 
 #define FAIL(P, PATH, ...)                                                                               \
-    bf_fail((P)->err, BF_ERR_PARSE, "%s:%d: %s", (P)->b->path, line_of_path((P)->b->text, PATH), \
+    bf_fail((P)->err, BF_ERR_PARSE, "%s:%d: %s", (P)->b->path, bf_json_line_of_path((P)->b->text, PATH), \
             (snprintf(msg, sizeof msg, __VA_ARGS__), msg))
 
 /* No key of object o twice (cJSON keeps both; lookups and rewrites disagree on them). */
@@ -352,7 +254,7 @@ static int read_values(parser *p, const cJSON *g, const char *path, int metrics,
             return FAIL(p, sub, "unknown metric \"%s\" (rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, aicc, bic, loglik, n, k)",
                         e->string);
         bf_regress_value *v = &(*out)[(*n)++];
-        v->line = line_of_path(p->b->text, sub);
+        v->line = bf_json_line_of_path(p->b->text, sub);
         if (!(v->name = dup_or_fail(p, e->string)))
             return p->err->code;
         v->array = cJSON_IsArray(e);
@@ -377,7 +279,7 @@ static int read_case(parser *p, const cJSON *o, int i, bf_regress_case *c)
     char msg[400], path[64], sub[128];
     static const char *const keys[] = {"name", "data", "model", "options", "tolerance", "expected", "comment", NULL};
     snprintf(path, sizeof path, "cases/%d", i);
-    c->line = line_of_path(p->b->text, path);
+    c->line = bf_json_line_of_path(p->b->text, path);
     c->expect_ok = 1;
     if (!cJSON_IsObject(o))
         return FAIL(p, path, "case %d must be an object", i + 1);
@@ -413,7 +315,7 @@ static int read_case(parser *p, const cJSON *o, int i, bf_regress_case *c)
 
     const cJSON *opts = cJSON_GetObjectItemCaseSensitive(o, "options");
     snprintf(sub, sizeof sub, "%s/options", path);
-    c->options_line = line_of_path(p->b->text, sub);
+    c->options_line = bf_json_line_of_path(p->b->text, sub);
     if (opts) {
         if (!cJSON_IsArray(opts))
             return FAIL(p, sub, "\"options\" must be an array of strings (brdfit fit's options)");
@@ -430,7 +332,7 @@ static int read_case(parser *p, const cJSON *o, int i, bf_regress_case *c)
                 return FAIL(p, opath, "option %d must be a string", k + 1);
             if (!(c->options[k] = dup_or_fail(p, s->valuestring)))
                 return p->err->code;
-            c->option_lines[k] = line_of_path(p->b->text, opath);
+            c->option_lines[k] = bf_json_line_of_path(p->b->text, opath);
             c->noptions++;
         }
     }
@@ -519,8 +421,8 @@ static int parse_doc(parser *p)
             return bf_fail(p->err, BF_ERR_NOMEM, "%s: out of memory", b->path);
         if (!*end)
             return bf_fail(p->err, BF_ERR_PARSE, "%s:%d: malformed JSON: the text ends inside a value", b->path,
-                           line_at(b->text, end));
-        return bf_fail(p->err, BF_ERR_PARSE, "%s:%d: malformed JSON near '%.*s'", b->path, line_at(b->text, end),
+                           bf_json_line(b->text, end));
+        return bf_fail(p->err, BF_ERR_PARSE, "%s:%d: malformed JSON near '%.*s'", b->path, bf_json_line(b->text, end),
                        (int)(strcspn(end, "\r\n") < 20 ? strcspn(end, "\r\n") : 20), end);
     }
     if (!cJSON_IsObject(b->doc))

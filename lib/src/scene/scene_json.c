@@ -15,89 +15,23 @@
 #include <string.h>
 
 #include "io/json_keys.h"
+#include "io/json_pos.h"
 #include "io/read_text.h"
 
-/* ---- Positions in the text ------------------------------------------------------ */
+/* ---- Positions in the text (io/json_pos.h) ---------------------------------------- */
 
-static const char *skip_ws(const char *p)
-{
-    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
-        p++;
-    return p;
-}
-
-/* Past the string starting at p (at its opening quote). */
-static const char *skip_string(const char *p)
-{
-    for (p++; *p && *p != '"'; p++)
-        if (*p == '\\' && p[1])
-            p++;
-    return *p ? p + 1 : p;
-}
-
-/* Past the value starting at p (the text is valid JSON: cJSON parsed it). */
-static const char *skip_value(const char *p)
-{
-    if (*p == '"')
-        return skip_string(p);
-    if (*p != '{' && *p != '[') {
-        while (*p && *p != ',' && *p != '}' && *p != ']' && *p != ' ' && *p != '\t' && *p != '\n' && *p != '\r')
-            p++;
-        return p;
-    }
-    int depth = 0;
-    while (*p) {
-        if (*p == '"') {
-            p = skip_string(p);
-            continue;
-        }
-        if (*p == '{' || *p == '[')
-            depth++;
-        else if ((*p == '}' || *p == ']') && --depth == 0)
-            return p + 1;
-        p++;
-    }
-    return p;
-}
-
-/* Start of the value of member `key` of the object at p, or of the key itself with
- * want_key; p when not found (so the error still points somewhere sensible). */
+/* The value (or the key, with want_key) of member key of the object at p; p itself when
+ * absent, so that an error still points somewhere sensible. */
 static const char *member_at(const char *p, const char *key, int want_key)
 {
-    if (!p || *p != '{')
-        return p;
-    const size_t klen = strlen(key);
-    const char *q = skip_ws(p + 1);
-    while (*q == '"') {
-        const char *name = q + 1, *end = skip_string(q);
-        const char *v = skip_ws(end);
-        v = skip_ws(v + (*v == ':'));
-        if ((size_t)(end - 1 - name) == klen && strncmp(name, key, klen) == 0)
-            return want_key ? q : v;
-        q = skip_ws(skip_value(v));
-        q = skip_ws(q + (*q == ','));
-    }
-    return p;
+    const char *v = bf_json_member(p, key, strlen(key), want_key);
+    return v ? v : p;
 }
 
 static const char *element_at(const char *p, int k)
 {
-    if (!p || *p != '[')
-        return p;
-    const char *q = skip_ws(p + 1);
-    for (int i = 0; i < k && *q && *q != ']'; i++) {
-        q = skip_ws(skip_value(q));
-        q = skip_ws(q + (*q == ','));
-    }
-    return q;
-}
-
-static size_t line_at(const char *text, const char *pos)
-{
-    size_t line = 1;
-    for (const char *p = text; pos && p < pos && *p; p++)
-        line += *p == '\n';
-    return line;
+    const char *v = bf_json_element(p, k);
+    return v ? v : p;
 }
 
 /* ---- Parsing -------------------------------------------------------------------- */
@@ -117,7 +51,7 @@ static int fail_at(const ctx *c, const char *pos, bf_status code, const char *fm
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return bf_fail(c->err, code, "%s:%zu: %s", c->path, line_at(c->text, pos), msg);
+    return bf_fail(c->err, code, "%s:%zu: %s", c->path, (size_t)bf_json_line(c->text, pos), msg);
 }
 
 /* Every member of obj must be one of names (a NULL-terminated list). */
@@ -246,7 +180,7 @@ static int parse_root(const ctx *c, const cJSON *root, bf_scene *sc)
 {
     static const char *const keys[] = {"description", "light", "view", "lights", "views", "radius", "reciprocal",
                                        NULL};
-    const char *at = skip_ws(c->text);
+    const char *at = bf_json_skip_ws(c->text);
     if (!cJSON_IsObject(root))
         return fail_at(c, at, BF_ERR_PARSE, "a scene must be a JSON object");
     int rc = check_keys(c, root, at, "", keys, "description, light, view, lights, views, radius, reciprocal");
@@ -306,7 +240,7 @@ int bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error 
             k++;
         memcpy(near, b, k);
         near[k] = '\0';
-        size_t line = line_at(text, pos);
+        size_t line = (size_t)bf_json_line(text, pos);
         if (!k && !*pos)
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON: unexpected end of file", path, line);
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON in or just before '%s'", path, line,
