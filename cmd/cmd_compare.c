@@ -332,11 +332,17 @@ static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int
     fflush(stderr);
 }
 
+/* The cancel flag of bf_compare_run: set here, read by the fitting threads (stored
+ * atomically where the compiler can, as the library loads it). */
 static volatile sig_atomic_t interrupted;
 static void on_sigint(int sig)
 {
     (void)sig;
+#if defined(__GNUC__)
+    __atomic_store_n(&interrupted, 1, __ATOMIC_RELAXED);
+#else
     interrupted = 1;
+#endif
 }
 
 /* The fits, in the library, with progress on stderr and SIGINT as a cancel. 0, or 1

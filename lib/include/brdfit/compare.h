@@ -141,7 +141,10 @@ typedef struct bf_compare_run_options {
     bf_compare_progress progress;    /* NULL: none */
     void *ctx;                       /* progress's first argument */
     const volatile sig_atomic_t *cancel; /* NULL, or a flag (a SIGINT handler's): once it
-                                        is non-zero no new fit starts; running fits finish */
+                                        is non-zero no new fit starts; running fits finish.
+                                        Read from the fitting threads (an atomic load with
+                                        GCC and Clang: a handler should set it with
+                                        __atomic_store_n there) */
 } bf_compare_run_options;
 
 /* Fits every model (c->models) to every material (samples[i] for c->materials[i]) with

@@ -40,11 +40,23 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The cancel flag, read by every fitting thread while a signal handler may set it: an
+ * atomic load where the compiler has one (the handler should store it atomically too:
+ * see cmd/cmd_compare.c), else the volatile read. */
+static int cancelled(const volatile sig_atomic_t *flag)
+{
+#if defined(__GNUC__)
+    return flag && __atomic_load_n(flag, __ATOMIC_RELAXED);
+#else
+    return flag && *flag;
+#endif
+}
+
 /* Fits slot idx (and cross-validates it when asked); fills it and reports under the lock. */
 static void fit_one(void *arg, size_t chunk)
 {
     run *r = arg;
-    if (r->ro->cancel && *r->ro->cancel)
+    if (cancelled(r->ro->cancel))
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
