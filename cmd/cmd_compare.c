@@ -21,12 +21,14 @@
  *  - Only fits that succeeded are ranked; failed ones are listed and counted (exit 1).
  *  - --jobs N fits N models/materials at once, each fit with --threads / N threads (at
  *    least 1). Results depend neither on the thread counts nor on the order fits finish
- *    in: each has its slot.
+ *    in: each has its slot. The fits run in the library (bf_compare_run); this command
+ *    parses, checks, shows the progress it reports, and prints and writes the results.
  *  - Every data file is read (and checked) before any fit starts: bad data costs no fit
  *    time and leaves no output. The samples stay in memory for the whole run.
  *  - SIGINT: no new fit starts, running fits finish, the outputs are written with what
  *    finished ("interrupted": true; fits never run are "not_run") and the exit status is
- *    130. A second SIGINT ends the process at once (default action).
+ *    130. A second SIGINT ends the process at once (default action). The handler only
+ *    sets the flag bf_compare_run reads before each fit.
  *  - `all` is every registered family with its default options.
  *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
  *    any fit: an existing DIR that is neither empty nor a previous report is refused
@@ -39,9 +41,7 @@
  *    follows the directions the scene uses; the summary names the scene.
  *  - Exit: 0 all fits ok; 1 bad data, a failed fit or an unwritable output; 2 bad usage;
  *    130 interrupted. */
-#include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,12 +88,205 @@ const cli_command cli_compare = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-static volatile sig_atomic_t interrupted;
-static void on_sigint(int sig)
+/* The command line, parsed. data points into args (kept until the end). */
+typedef struct compare_args {
+    cli_args args;
+    data_options dopt;
+    fit_options fopt;
+    rank_options ro;
+    char *specs[MAX_MODELS];
+    const char **data;
+    int nmodels, ndata, jobs, all;
+    const char *json_path, *csv_path, *html_dir;
+    bf_compare_metric metric;
+    double tolerance;
+} compare_args;
+
+static void compare_args_free(compare_args *a)
 {
-    (void)sig;
-    interrupted = 1;
+    cli_args_free(&a->args);
+    for (int k = 0; k < a->nmodels; k++)
+        free(a->specs[k]);
+    free(a->data);
 }
+
+/* One of this command's own options; 0, or -1 after a one-line error. */
+static int parse_own(compare_args *a, const char *name, const char *v)
+{
+    bf_error err;
+    if (!strcmp(name, "--model")) {
+        if (!strcmp(v, "all")) {
+            a->all = 1;
+            return 0;
+        }
+        int k = fit_options_split_models(v, a->specs, a->nmodels, MAX_MODELS, cmd);
+        if (k < 0)
+            return -1;
+        a->nmodels = k;
+    } else if (!strcmp(name, "--error")) {
+        if (bf_compare_metric_parse(v, &a->metric, &err) != BF_OK) {
+            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+            return -1;
+        }
+    } else if (!strcmp(name, "--tolerance")) {
+        if (!args_number(v, 0.0, HUGE_VAL, &a->tolerance)) {
+            fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
+            return -1;
+        }
+    } else if (!strcmp(name, "--jobs")) {
+        long n;
+        if (!args_int(v, 1, 1024, &n)) {
+            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
+            return -1;
+        }
+        a->jobs = (int)n;
+    } else if (!strcmp(name, "--json")) {
+        a->json_path = v;
+    } else if (!strcmp(name, "--html")) {
+        a->html_dir = v;
+    } else { /* --csv */
+        a->csv_path = v;
+    }
+    return 0;
+}
+
+/* -m all: every registered family, after the models named. 0, or -1 after an error. */
+static int add_all_models(compare_args *a)
+{
+    for (int f = 0; a->all && f < bf_family_count(); f++) {
+        if (a->nmodels >= MAX_MODELS) {
+            fprintf(stderr, "%s: more than %d models\n", cmd, MAX_MODELS);
+            return -1;
+        }
+        if (!(a->specs[a->nmodels] = strdup(bf_family_get(f)->name))) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            return -1;
+        }
+        a->nmodels++;
+    }
+    return 0;
+}
+
+/* Parses the command line into a (initialised here; compare_args_free it whatever the
+ * outcome). Returns -1 to go on, else the exit status (0 after --help). */
+static int parse(compare_args *a, int argc, char **argv)
+{
+    memset(a, 0, sizeof *a);
+    fit_options_init(&a->fopt);
+    rank_options_init(&a->ro, BF_RANK_BIC);
+    a->jobs = 1;
+    a->metric = BF_CMP_RMSE_LOG;
+    a->tolerance = 0.05;
+    if (!(a->data = calloc((size_t)argc, sizeof *a->data))) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 1;
+    }
+    int p = cli_parse(&cli_compare, argc, argv, &a->args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < a->args.n; i++) {
+        const char *name = a->args.v[i].name, *v = a->args.v[i].value;
+        if (!name) {
+            a->data[a->ndata++] = v;
+            continue;
+        }
+        int d = data_options_parse(&a->dopt, name, v, cmd);
+        if (d == 0)
+            d = fit_options_parse(&a->fopt, name, v, cmd);
+        if (d == 0)
+            d = rank_options_parse(&a->ro, name, v, cmd);
+        if (d < 0 || (d == 0 && parse_own(a, name, v) < 0))
+            return 2;
+    }
+    return add_all_models(a) < 0 ? 2 : -1;
+}
+
+/* Everything checked before any data is read: operands, the report folder, the ranking,
+ * the model specs and the outputs. 0, or the exit status after a one-line error. */
+static int check(compare_args *a)
+{
+    bf_error err;
+    if (a->ndata == 0 || a->nmodels == 0) {
+        fprintf(stderr, "%s: %s (see brdfit compare --help)\n", cmd,
+                a->ndata == 0 ? "at least one data file is required" : "-m MODEL,...|all is required");
+        return 2;
+    }
+    /* A folder the report may not replace is refused before any fit runs. */
+    if (a->html_dir && bf_compare_html_check(a->html_dir, &err) != BF_OK) {
+        fprintf(stderr, "%s: --html %s\n", cmd, err.msg);
+        return err.code == BF_ERR_ARG ? 2 : 1;
+    }
+    if (rank_options_check(&a->ro, &a->fopt.fit, cmd) < 0 ||
+        fit_options_check_models(&a->fopt, a->specs, a->nmodels, cmd) < 0)
+        return 2;
+    fit_options_finish(&a->fopt, &a->dopt);
+    /* The outputs: never over an input, writable. */
+    bf_path_use *inputs = calloc((size_t)a->ndata + 1, sizeof *inputs);
+    if (!inputs) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 1;
+    }
+    for (int i = 0; i < a->ndata; i++)
+        inputs[i] = (bf_path_use){"data file", a->data[i]};
+    inputs[a->ndata] = (bf_path_use){"--scene file", a->dopt.scene};
+    const bf_path_use out[] = {{"--json", a->json_path}, {"--csv", a->csv_path}};
+    int status = args_check_outputs(cmd, inputs, a->ndata + 1, out, 2);
+    free(inputs);
+    return status;
+}
+
+/* The comparison's table, set up from the options. 0, or 1 after an error. */
+static int setup(const compare_args *a, bf_compare *c)
+{
+    bf_error err;
+    if (bf_compare_init(c, a->ndata, a->data, a->nmodels, (const char *const *)a->specs, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    c->metric = a->metric;
+    c->rank_by = a->ro.rank_by;
+    c->folds = a->ro.rank_by == BF_RANK_CV ? a->ro.folds : 0;
+    c->timing = a->ro.timing;
+    c->tolerance = a->tolerance;
+    c->residual = bf_residual_name(a->fopt.fit.objective.residual);
+    return 0;
+}
+
+static void free_samples(bf_samples **samples, int n)
+{
+    for (int i = 0; samples && i < n; i++)
+        bf_samples_free(samples[i]);
+    free(samples);
+}
+
+/* Every data file, read and checked before any fit (the geometry computed too, so bad
+ * data costs no fit time); NULL after a one-line error. Free with free_samples. */
+static bf_samples **load(const compare_args *a)
+{
+    bf_samples **samples = calloc((size_t)a->ndata, sizeof *samples);
+    if (!samples) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return NULL;
+    }
+    for (int i = 0; i < a->ndata; i++) {
+        bf_error err;
+        if (!(samples[i] = data_options_load(&a->dopt, a->data[i], NULL, cmd)) ||
+            !bf_samples_geometry(samples[i], &err)) {
+            if (samples[i])
+                fprintf(stderr, "%s: %s: %s\n", cmd, a->data[i], err.msg);
+            free_samples(samples, a->ndata);
+            return NULL;
+        }
+    }
+    return samples;
+}
+
+/* ---- Progress: a bar on a terminal, else one line per fit ---------------------------- */
+
+typedef struct progress_state {
+    int tty;
+    double t0;
+} progress_state;
 
 static double now(void)
 {
@@ -102,100 +295,80 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The shared state of the fitting workers. */
-typedef struct run {
-    bf_compare *cmp;
-    bf_samples **samples;
-    bf_fit_result *results; /* nmaterials * nmodels; slot i * nmodels + j */
-    unsigned char *have;    /* 1 where results[] holds a result to free */
-    const bf_fit_options *fo;
-    int folds;              /* > 0: cross-validate every fit */
-    uint64_t seed;
-    pthread_mutex_t lock;
-    int next, total, done, running;
-    int quiet, tty;
-    double t0;
-} run;
-
-/* Called with the lock held. */
-static void progress(run *r, int idx)
+static void progress_bar(const progress_state *ps, int done, int total)
 {
-    if (r->quiet)
-        return;
-    if (r->tty) {
-        char bar[31];
-        int w = (int)(30.0 * r->done / r->total);
-        for (int k = 0; k < 30; k++)
-            bar[k] = k < w ? '#' : '.';
-        bar[30] = '\0';
-        double el = now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
-        fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, r->done, r->total);
-        if (isfinite(eta))
-            fprintf(stderr, ", ETA %.0f s   ", eta);
-        if (r->done == r->total)
-            fputc('\n', stderr);
+    char bar[31];
+    int w = (int)(30.0 * done / total);
+    for (int k = 0; k < 30; k++)
+        bar[k] = k < w ? '#' : '.';
+    bar[30] = '\0';
+    double el = now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
+    fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, done, total);
+    if (isfinite(eta))
+        fprintf(stderr, ", ETA %.0f s   ", eta);
+    if (done == total)
+        fputc('\n', stderr);
+}
+
+/* bf_compare_progress: called once per finished fit, one call at a time. */
+static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int total)
+{
+    const progress_state *ps = ctx;
+    if (ps->tty) {
+        progress_bar(ps, done, total);
     } else {
-        int nm = r->cmp->nmodels;
-        const bf_compare_fit *f = &r->cmp->materials[idx / nm].fits[idx % nm];
-        fprintf(stderr, "%s: %d/%d %s on %s: %s", cmd, r->done, r->total, r->cmp->models[idx % nm],
-                r->cmp->materials[idx / nm].data, bf_compare_state_name(f->state));
+        const bf_compare_fit *f = &c->materials[i].fits[j];
+        fprintf(stderr, "%s: %d/%d %s on %s: %s", cmd, done, total, c->models[j], c->materials[i].data,
+                bf_compare_state_name(f->state));
         if (f->state == BF_CMP_ERROR)
             fprintf(stderr, " (%s)", f->message);
         else
-            fprintf(stderr, ", %s %.4g, %.2f s", bf_compare_metric_name(r->cmp->metric),
-                    bf_compare_metric_value(&f->metrics, r->cmp->metric), f->seconds);
-        if (r->folds > 0 && f->state == BF_CMP_OK)
+            fprintf(stderr, ", %s %.4g, %.2f s", bf_compare_metric_name(c->metric),
+                    bf_compare_metric_value(&f->metrics, c->metric), f->seconds);
+        if (c->folds > 0 && f->state == BF_CMP_OK)
             fprintf(stderr, ", cv %.4g", f->cv_error);
         fputc('\n', stderr);
     }
     fflush(stderr);
 }
 
-static void *worker(void *arg)
+/* The cancel flag of bf_compare_run: set here, read by the fitting threads (stored
+ * atomically where the compiler can, as the library loads it). */
+static volatile sig_atomic_t interrupted;
+static void on_sigint(int sig)
 {
-    run *r = arg;
-    int nm = r->cmp->nmodels;
-    for (;;) {
-        pthread_mutex_lock(&r->lock);
-        if (interrupted || r->next >= r->total) {
-            pthread_mutex_unlock(&r->lock);
-            return NULL;
-        }
-        int idx = r->next++;
-        r->running++;
-        pthread_mutex_unlock(&r->lock);
+    (void)sig;
+#if defined(__GNUC__)
+    __atomic_store_n(&interrupted, 1, __ATOMIC_RELAXED);
+#else
+    interrupted = 1;
+#endif
+}
 
-        bf_error err;
-        bf_fit_result *res = &r->results[idx];
-        const double t0 = now();
-        int rc = bf_fit(r->samples[idx / nm], r->cmp->models[idx % nm], r->fo, res, &err);
-        bf_cv_result cv = {.error = NAN};
-        if (rc == BF_OK && r->folds > 0 && res->ok) {
-            rc = bf_fit_cv(r->samples[idx / nm], r->cmp->models[idx % nm], r->fo, r->folds, r->seed, &cv, &err);
-            if (rc != BF_OK)
-                bf_fit_result_free(res);
-        }
-        const double seconds = now() - t0;
-
-        pthread_mutex_lock(&r->lock);
-        bf_compare_fit *f = &r->cmp->materials[idx / nm].fits[idx % nm];
-        if (rc == BF_OK) {
-            r->have[idx] = 1;
-            f->state = res->ok ? BF_CMP_OK : BF_CMP_FAILED;
-            f->metrics = res->metrics;
-            f->seconds = seconds;
-            f->work = bf_compare_work(res);
-            f->cv_error = cv.error;
-            f->result = res;
-        } else {
-            f->state = BF_CMP_ERROR;
-            snprintf(f->message, sizeof f->message, "%s", err.msg);
-        }
-        r->running--;
-        r->done++;
-        progress(r, idx);
-        pthread_mutex_unlock(&r->lock);
+/* The fits, in the library, with progress on stderr and SIGINT as a cancel. 0, or 1
+ * after an error. */
+static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *samples)
+{
+    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = now()};
+    bf_compare_run_options ro = {.jobs = a->jobs, .progress = cli_quiet() ? NULL : progress, .ctx = &ps,
+                                 .cancel = &interrupted};
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
+    sigemptyset(&sa.sa_mask);
+    interrupted = 0;
+    sigaction(SIGINT, &sa, &old);
+    bf_error err;
+    int rc = bf_compare_run(c, samples, &a->fopt.fit, &ro, &err);
+    sigaction(SIGINT, &old, NULL);
+    if (rc != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
     }
+    if (c->interrupted && !cli_quiet() && ps.tty)
+        fputc('\n', stderr);
+    return 0;
 }
 
 static const char *error_name(const bf_compare *c)
@@ -252,241 +425,79 @@ static void print_summary(FILE *out, const bf_compare *c)
     }
 }
 
-int cmd_compare(int argc, char **argv)
+/* The tables on stdout: per material, then across them. */
+static void print_results(const compare_args *a, const bf_compare *c)
 {
-    data_options dopt;
-    memset(&dopt, 0, sizeof dopt);
-    fit_options fopt;
-    fit_options_init(&fopt);
-    int status = 2, nmodels = 0, ndata = 0, jobs = 1, all = 0;
-    rank_options ro;
-    rank_options_init(&ro, BF_RANK_BIC);
-    char *specs[MAX_MODELS] = {0};
-    const char **data = calloc((size_t)argc, sizeof *data);
-    const char *json_path = NULL, *csv_path = NULL, *html_dir = NULL;
-    bf_compare_metric metric = BF_CMP_RMSE_LOG;
-    double tolerance = 0.05;
+    if (data_options_has_scene(&a->dopt))
+        printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
+               a->dopt.scene);
+    for (int i = 0; i < c->nmaterials; i++)
+        print_material(stdout, c, &c->materials[i]);
+    if (c->nmaterials > 1)
+        print_summary(stdout, c);
+    fflush(stdout);
+}
+
+/* The report, the JSON and the CSV; 0, or 1 after a one-line error. */
+static int write_outputs(const compare_args *a, const bf_compare *c, bf_samples *const *samples)
+{
+    bf_error err;
+    /* The HTML report: the ranked table, each fit's result and the samples. */
+    if ((a->html_dir && bf_compare_write_html(c, samples, a->html_dir, &err) != BF_OK) ||
+        (a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
+        (a->csv_path && bf_compare_write_csv(c, a->csv_path, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+/* 130 interrupted, 1 some fit failed, else 0; a line on stderr but for 0. */
+static int outcome(const bf_compare *c)
+{
+    const int total = c->nmaterials * c->nmodels, not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
+    const int bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+    if (c->interrupted) {
+        fprintf(stderr, "%s: interrupted after %d of %d fits; the outputs hold the finished ones\n", cmd,
+                total - not_run, total);
+        return 130;
+    }
+    if (bad) {
+        fprintf(stderr, "%s: %d of %d fits failed\n", cmd, bad, total);
+        return 1;
+    }
+    return 0;
+}
+
+/* After parsing: checks, loads, fits, prints and writes; the exit status. */
+static int compare(const compare_args *a)
+{
     bf_compare cmp;
     memset(&cmp, 0, sizeof cmp);
     bf_samples **samples = NULL;
-    bf_fit_result *results = NULL;
-    unsigned char *have = NULL;
-    bf_path_use *inputs = NULL;
-    bf_error err;
-    if (!data) {
-        fprintf(stderr, "%s: out of memory\n", cmd);
-        return 1;
-    }
-
-    cli_args args;
-    int p = cli_parse(&cli_compare, argc, argv, &args);
-    if (p != CLI_OK) {
-        free(data);
-        return p == CLI_EXIT ? 0 : 2;
-    }
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        if (!a) {
-            data[ndata++] = v;
-            continue;
-        }
-        int d = data_options_parse(&dopt, a, v, cmd);
-        if (d == 0)
-            d = fit_options_parse(&fopt, a, v, cmd);
-        if (d == 0)
-            d = rank_options_parse(&ro, a, v, cmd);
-        if (d < 0)
-            goto done;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--model")) {
-            if (!strcmp(v, "all")) {
-                all = 1;
-                continue;
-            }
-            int k = fit_options_split_models(v, specs, nmodels, MAX_MODELS, cmd);
-            if (k < 0)
-                goto done;
-            nmodels = k;
-        } else if (!strcmp(a, "--error")) {
-            if (bf_compare_metric_parse(v, &metric, &err) != BF_OK) {
-                fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-                goto done;
-            }
-        } else if (!strcmp(a, "--tolerance")) {
-            if (!args_number(v, 0.0, HUGE_VAL, &tolerance)) {
-                fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
-                goto done;
-            }
-        } else if (!strcmp(a, "--jobs")) {
-            long n;
-            if (!args_int(v, 1, 1024, &n)) {
-                fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
-                goto done;
-            }
-            jobs = (int)n;
-        } else if (!strcmp(a, "--json")) {
-            json_path = v;
-        } else if (!strcmp(a, "--html")) {
-            html_dir = v;
-        } else { /* --csv */
-            csv_path = v;
-        }
-    }
-    if (all)
-        for (int f = 0; f < bf_family_count(); f++) {
-            if (nmodels >= MAX_MODELS) {
-                fprintf(stderr, "%s: more than %d models\n", cmd, MAX_MODELS);
-                goto done;
-            }
-            if (!(specs[nmodels] = strdup(bf_family_get(f)->name)))
-                goto done;
-            nmodels++;
-        }
-    if (ndata == 0 || nmodels == 0) {
-        fprintf(stderr, "%s: %s (see brdfit compare --help)\n", cmd,
-                ndata == 0 ? "at least one data file is required" : "-m MODEL,...|all is required");
-        goto done;
-    }
-    /* A folder the report may not replace is refused before any fit runs. */
-    if (html_dir && bf_compare_html_check(html_dir, &err) != BF_OK) {
-        fprintf(stderr, "%s: --html %s\n", cmd, err.msg);
-        status = err.code == BF_ERR_ARG ? 2 : 1;
-        goto done;
-    }
-    if (rank_options_check(&ro, &fopt.fit, cmd) < 0)
-        goto done;
-    /* Model specs are checked before any data is read. */
-    if (fit_options_check_models(&fopt, specs, nmodels, cmd) < 0)
-        goto done;
-    fit_options_finish(&fopt, &dopt);
-    /* The --threads budget is shared between the concurrent fits. */
-    if (jobs > nmodels * ndata)
-        jobs = nmodels * ndata;
-    fopt.fit.solver.threads = fopt.fit.solver.threads / jobs > 1 ? fopt.fit.solver.threads / jobs : 1;
-    /* The outputs, before any data is read: never over an input, writable. */
-    if (!(inputs = calloc((size_t)ndata + 1, sizeof *inputs))) {
-        fprintf(stderr, "%s: out of memory\n", cmd);
+    int status = setup(a, &cmp);
+    if (status == 0 && !(samples = load(a)))
         status = 1;
-        goto done;
+    if (status == 0)
+        status = run_fits(a, &cmp, samples);
+    if (status == 0) {
+        bf_compare_rank(&cmp);
+        print_results(a, &cmp);
+        status = write_outputs(a, &cmp, samples);
     }
-    for (int i = 0; i < ndata; i++)
-        inputs[i] = (bf_path_use){"data file", data[i]};
-    inputs[ndata] = (bf_path_use){"--scene file", dopt.scene};
-    const bf_path_use out[] = {{"--json", json_path}, {"--csv", csv_path}};
-    if ((status = args_check_outputs(cmd, inputs, ndata + 1, out, 2)) != 0)
-        goto done;
-
-    status = 1;
-    if (bf_compare_init(&cmp, ndata, data, nmodels, (const char *const *)specs, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    cmp.metric = metric;
-    cmp.rank_by = ro.rank_by;
-    cmp.folds = ro.rank_by == BF_RANK_CV ? ro.folds : 0;
-    cmp.timing = ro.timing;
-    cmp.tolerance = tolerance;
-    cmp.residual = bf_residual_name(fopt.fit.objective.residual);
-    size_t total = (size_t)ndata * (size_t)nmodels;
-    samples = calloc((size_t)ndata, sizeof *samples);
-    results = calloc(total, sizeof *results);
-    have = calloc(total, 1);
-    if (!samples || !results || !have) {
-        fprintf(stderr, "%s: out of memory\n", cmd);
-        goto done;
-    }
-    for (int i = 0; i < ndata; i++) {
-        if (!(samples[i] = data_options_load(&dopt, data[i], NULL, cmd)))
-            goto done;
-        /* The geometry is computed on first use: compute it here, before threads share it. */
-        if (!bf_samples_geometry(samples[i], &err)) {
-            fprintf(stderr, "%s: %s: %s\n", cmd, data[i], err.msg);
-            goto done;
-        }
-        cmp.materials[i].samples = samples[i]->n;
-        cmp.materials[i].channels = samples[i]->channels;
-    }
-
-    run r = {.cmp = &cmp, .samples = samples, .results = results, .have = have, .fo = &fopt.fit,
-             .folds = cmp.folds, .seed = fopt.fit.seed, .total = (int)total, .quiet = cli_quiet(),
-             .tty = isatty(STDERR_FILENO), .t0 = now()};
-    pthread_mutex_init(&r.lock, NULL);
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
-    sigemptyset(&sa.sa_mask);
-    interrupted = 0;
-    sigaction(SIGINT, &sa, &old);
-    pthread_t tid[1024];
-    int started = 0;
-    for (; started < jobs; started++)
-        if (pthread_create(&tid[started], NULL, worker, &r) != 0)
-            break;
-    if (started == 0)
-        worker(&r); /* no thread to be had: fit on this one */
-    for (int t = 0; t < started; t++)
-        pthread_join(tid[t], NULL);
-    sigaction(SIGINT, &old, NULL);
-    pthread_mutex_destroy(&r.lock);
-    cmp.interrupted = r.done < r.total;
-    if (cmp.interrupted && !cli_quiet() && r.tty)
-        fputc('\n', stderr);
-
-    bf_compare_rank(&cmp);
-    if (data_options_has_scene(&dopt))
-        printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
-               dopt.scene);
-    for (int i = 0; i < ndata; i++)
-        print_material(stdout, &cmp, &cmp.materials[i]);
-    if (ndata > 1)
-        print_summary(stdout, &cmp);
-    fflush(stdout);
-
-    /* The HTML report: the ranked table, each fit's result and the samples. */
-    if (html_dir && bf_compare_write_html(&cmp, samples, html_dir, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    if (json_path && bf_compare_write_json(&cmp, json_path, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    if (csv_path && bf_compare_write_csv(&cmp, csv_path, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        goto done;
-    }
-    int bad = 0;
-    for (int i = 0; i < ndata; i++)
-        for (int j = 0; j < nmodels; j++)
-            bad += cmp.materials[i].fits[j].state == BF_CMP_FAILED || cmp.materials[i].fits[j].state == BF_CMP_ERROR;
-    if (cmp.interrupted) {
-        fprintf(stderr, "%s: interrupted after %d of %d fits; the outputs hold the finished ones\n", cmd, r.done,
-                r.total);
-        status = 130;
-    } else if (bad) {
-        fprintf(stderr, "%s: %d of %d fits failed\n", cmd, bad, r.total);
-        status = 1;
-    } else {
-        status = 0;
-    }
-done:
-    cli_args_free(&args);
-    if (results)
-        for (size_t k = 0; k < (size_t)ndata * (size_t)nmodels; k++)
-            if (have[k])
-                bf_fit_result_free(&results[k]);
-    if (samples)
-        for (int i = 0; i < ndata; i++)
-            bf_samples_free(samples[i]);
-    free(samples);
-    free(results);
-    free(have);
+    if (status == 0)
+        status = outcome(&cmp);
+    free_samples(samples, a->ndata);
     bf_compare_free(&cmp);
-    for (int k = 0; k < nmodels; k++)
-        free(specs[k]);
-    free(data);
-    free(inputs);
+    return status;
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    compare_args a;
+    int status = parse(&a, argc, argv);
+    if (status < 0 && (status = check(&a)) == 0) /* parse: -1 to go on */
+        status = compare(&a);
+    compare_args_free(&a);
     return status;
 }

@@ -246,147 +246,202 @@ static void print_lines(char *const *lines, int n)
         printf("%s\n", lines[i]);
 }
 
-int cmd_regress(int argc, char **argv)
-{
-    const char *path = NULL, *junit = NULL;
+/* The command line, parsed (the strings point into argv). */
+typedef struct regress_args {
+    const char *path, *junit;
     const char *selected[MAX_SELECTED];
-    int nselected = 0, update = 0;
+    int nselected, update;
+} regress_args;
+
+/* Returns -1 to go on, else the exit status (0 after --help). */
+static int parse(regress_args *a, int argc, char **argv)
+{
+    memset(a, 0, sizeof *a);
     cli_args args;
     int p = cli_parse(&cli_regress, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        if (!a && path) {
-            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, path, v);
-            cli_args_free(&args);
-            return 2;
-        } else if (!a) {
-            path = v;
-        } else if (!strcmp(a, "--update")) {
-            update = 1;
-        } else if (!strcmp(a, "--junit")) {
-            junit = v;
-        } else if (nselected >= MAX_SELECTED) {
+    int status = -1;
+    for (int i = 0; status < 0 && i < args.n; i++) {
+        const char *name = args.v[i].name, *v = args.v[i].value;
+        if (!name && a->path) {
+            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, a->path, v);
+            status = 2;
+        } else if (!name) {
+            a->path = v;
+        } else if (!strcmp(name, "--update")) {
+            a->update = 1;
+        } else if (!strcmp(name, "--junit")) {
+            a->junit = v;
+        } else if (a->nselected >= MAX_SELECTED) {
             fprintf(stderr, "%s: more than %d --case options\n", cmd, MAX_SELECTED);
-            cli_args_free(&args);
-            return 2;
+            status = 2;
         } else {
-            selected[nselected++] = v;
+            a->selected[a->nselected++] = v;
         }
     }
     cli_args_free(&args);
-    const int verbose = cli_verbose();
-    if (!path) {
+    if (status < 0 && !a->path) {
         fprintf(stderr, "%s: a baseline file is required (see brdfit regress --help)\n", cmd);
-        return 2;
+        status = 2;
     }
+    return status;
+}
 
+/* Marks the cases to run (all without --case) and parses every case's options (the
+ * whole baseline is checked, whatever is selected). 0, or 2 after a one-line error. */
+static int prepare_cases(const regress_args *a, const bf_regress_baseline *b, case_run *runs,
+                         unsigned char *run_it)
+{
+    for (int k = 0; k < a->nselected; k++) {
+        int found = 0;
+        for (int c = 0; c < b->ncases; c++)
+            if (!strcmp(b->cases[c].name, a->selected[k]))
+                found = run_it[c] = 1;
+        if (!found) {
+            fprintf(stderr, "%s: %s: no case named '%s'\n", cmd, a->path, a->selected[k]);
+            return 2;
+        }
+    }
+    for (int c = 0; c < b->ncases; c++) {
+        run_it[c] |= a->nselected == 0;
+        if (prepare(b, c, &runs[c]) != 0)
+            return 2;
+    }
+    return 0;
+}
+
+/* What the cases came to. */
+typedef struct tally {
+    int passed, failed, errors, changed;
+} tally;
+
+/* --update: case c's expectations set to r, and the changes printed. 0, or 1 after an
+ * error. */
+static int update_case(bf_regress_baseline *b, int c, const bf_fit_result *r, const bf_regress_outcome *o,
+                       tally *t)
+{
+    char **changes = NULL;
+    int nchanges = 0;
+    bf_error err;
+    int rc = bf_regress_update(b, c, r, &changes, &nchanges, &err);
+    if (rc == BF_OK) {
+        printf("%s %s (%.2f s)\n", nchanges ? "UPDATED" : "UNCHANGED", b->cases[c].name, o->seconds);
+        print_lines(changes, nchanges);
+        t->changed += nchanges > 0;
+    } else {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    }
+    for (int k = 0; k < nchanges; k++)
+        free(changes[k]);
+    free(changes);
+    return rc == BF_OK ? 0 : 1;
+}
+
+/* Runs case c, prints its outcome (or, with --update, its changes) and counts it. 0, or
+ * 1 after an error that stops the run. */
+static int run_case(bf_regress_baseline *b, int c, case_run *cr, int update, bf_regress_outcome *o, tally *t)
+{
+    const bf_regress_case *cs = &b->cases[c];
+    bf_fit_result r;
+    memset(&r, 0, sizeof r);
+    bf_error err;
+    int status = 0;
+    if (run(b, c, cr, &r, o, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        bf_fit_result_free(&r);
+        return 1;
+    }
+    t->passed += o->status == BF_REGRESS_PASS;
+    t->failed += o->status == BF_REGRESS_FAIL;
+    t->errors += o->status == BF_REGRESS_ERROR;
+    if (o->status == BF_REGRESS_ERROR) {
+        printf("ERROR %s (could not run)\n  %s\n", cs->name, o->lines[0]);
+    } else if (!update) {
+        const int verbose = cli_verbose();
+        printf("%s %s (%.2f s)\n", o->status == BF_REGRESS_PASS ? "PASS" : "FAIL", cs->name, o->seconds);
+        print_lines(verbose ? o->checked : o->lines, verbose ? o->nchecked : o->nlines);
+        for (int w = 0; w < o->nwarnings; w++)
+            printf("  warning: %s\n", o->warnings[w]);
+    } else {
+        status = update_case(b, c, &r, o, t);
+    }
+    fflush(stdout);
+    bf_fit_result_free(&r);
+    return status;
+}
+
+/* The JUnit report, the rewritten baseline (--update) and the summary line; the exit
+ * status. */
+static int finish(const regress_args *a, const bf_regress_baseline *b, const bf_regress_outcome *outs,
+                  const tally *t)
+{
+    bf_error err;
+    int write_failed = 0;
+    if (a->junit && bf_regress_write_junit(b, outs, a->junit, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        write_failed = 1;
+    }
+    if (!a->update) {
+        printf("regress: %d passed, %d failed", t->passed, t->failed);
+        if (t->errors)
+            printf(", %d could not run", t->errors);
+        printf("\n");
+        return t->failed || t->errors || write_failed ? 1 : 0;
+    }
+    const int ran = t->passed + t->failed;
+    if (t->errors) {
+        printf("regress: %s not updated: %d case%s could not run\n", a->path, t->errors, t->errors == 1 ? "" : "s");
+    } else if (bf_regress_write(b, a->path, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        write_failed = 1;
+    } else {
+        printf("regress: wrote %s (%d case%s run, %d changed)\n", a->path, ran, ran == 1 ? "" : "s", t->changed);
+    }
+    return t->errors || write_failed ? 1 : 0;
+}
+
+/* Checks the whole baseline and the outputs, then runs the selected cases in order. */
+static int run_baseline(const regress_args *a, bf_regress_baseline *b, case_run *runs, bf_regress_outcome *outs,
+                        unsigned char *run_it)
+{
+    int status = prepare_cases(a, b, runs, run_it);
+    if (status == 0)
+        status = check_outputs(b, runs, a->path, a->junit, a->update);
+    if (status != 0)
+        return status;
+    tally t = {0};
+    for (int c = 0; c < b->ncases; c++) {
+        if (!run_it[c])
+            outs[c].status = BF_REGRESS_SKIPPED;
+        else if (run_case(b, c, &runs[c], a->update, &outs[c], &t) != 0)
+            return 1;
+    }
+    return finish(a, b, outs, &t);
+}
+
+int cmd_regress(int argc, char **argv)
+{
+    regress_args a;
+    int status = parse(&a, argc, argv);
+    if (status >= 0)
+        return status;
     bf_error err;
     bf_regress_baseline *b = NULL;
-    if (bf_regress_load(path, &b, &err) != BF_OK) {
+    if (bf_regress_load(a.path, &b, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return err.code == BF_ERR_NOMEM ? 1 : 2;
     }
-    int status = 2, n = b->ncases;
+    const int n = b->ncases;
     case_run *runs = calloc((size_t)n, sizeof *runs);
     bf_regress_outcome *outs = calloc((size_t)n, sizeof *outs);
     unsigned char *run_it = calloc((size_t)n, 1);
     if (!runs || !outs || !run_it) {
         fprintf(stderr, "%s: out of memory\n", cmd);
         status = 1;
-        goto done;
-    }
-    for (int k = 0; k < nselected; k++) {
-        int found = 0;
-        for (int c = 0; c < n; c++)
-            if (!strcmp(b->cases[c].name, selected[k]))
-                found = run_it[c] = 1;
-        if (!found) {
-            fprintf(stderr, "%s: %s: no case named '%s'\n", cmd, path, selected[k]);
-            goto done;
-        }
-    }
-    for (int c = 0; c < n; c++) {
-        run_it[c] |= nselected == 0;
-        if (prepare(b, c, &runs[c]) != 0)
-            goto done;
-    }
-    if ((status = check_outputs(b, runs, path, junit, update)) != 0)
-        goto done;
-
-    status = 1;
-    int passed = 0, failed = 0, errors = 0, changed = 0;
-    for (int c = 0; c < n; c++) {
-        const bf_regress_case *cs = &b->cases[c];
-        if (!run_it[c]) {
-            outs[c].status = BF_REGRESS_SKIPPED;
-            continue;
-        }
-        bf_fit_result r;
-        memset(&r, 0, sizeof r);
-        if (run(b, c, &runs[c], &r, &outs[c], &err) != BF_OK) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            bf_fit_result_free(&r);
-            goto done;
-        }
-        const bf_regress_outcome *o = &outs[c];
-        passed += o->status == BF_REGRESS_PASS;
-        failed += o->status == BF_REGRESS_FAIL;
-        errors += o->status == BF_REGRESS_ERROR;
-        if (o->status == BF_REGRESS_ERROR) {
-            printf("ERROR %s (could not run)\n  %s\n", cs->name, o->lines[0]);
-        } else if (!update) {
-            printf("%s %s (%.2f s)\n", o->status == BF_REGRESS_PASS ? "PASS" : "FAIL", cs->name, o->seconds);
-            print_lines(verbose ? o->checked : o->lines, verbose ? o->nchecked : o->nlines);
-            for (int w = 0; w < o->nwarnings; w++)
-                printf("  warning: %s\n", o->warnings[w]);
-        } else {
-            char **changes = NULL;
-            int nchanges = 0;
-            int rc = bf_regress_update(b, c, &r, &changes, &nchanges, &err);
-            if (rc == BF_OK) {
-                printf("%s %s (%.2f s)\n", nchanges ? "UPDATED" : "UNCHANGED", cs->name, o->seconds);
-                print_lines(changes, nchanges);
-                changed += nchanges > 0;
-            }
-            for (int k = 0; k < nchanges; k++)
-                free(changes[k]);
-            free(changes);
-            if (rc != BF_OK) {
-                fprintf(stderr, "%s: %s\n", cmd, err.msg);
-                bf_fit_result_free(&r);
-                goto done;
-            }
-        }
-        fflush(stdout);
-        bf_fit_result_free(&r);
-    }
-
-    int write_failed = 0;
-    if (junit && bf_regress_write_junit(b, outs, junit, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        write_failed = 1;
-    }
-    if (update) {
-        if (errors) {
-            printf("regress: %s not updated: %d case%s could not run\n", path, errors, errors == 1 ? "" : "s");
-        } else if (bf_regress_write(b, path, &err) != BF_OK) {
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
-            write_failed = 1;
-        } else {
-            printf("regress: wrote %s (%d case%s run, %d changed)\n", path, passed + failed,
-                   passed + failed == 1 ? "" : "s", changed);
-        }
-        status = errors || write_failed ? 1 : 0;
     } else {
-        printf("regress: %d passed, %d failed", passed, failed);
-        if (errors)
-            printf(", %d could not run", errors);
-        printf("\n");
-        status = failed || errors || write_failed ? 1 : 0;
+        status = run_baseline(&a, b, runs, outs, run_it);
     }
-done:
     for (int c = 0; runs && c < n; c++)
         case_run_free(&runs[c]);
     for (int c = 0; outs && c < n; c++)

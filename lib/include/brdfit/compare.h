@@ -10,12 +10,14 @@
  * the samples times their number, the presolve's included), and wall times are written
  * only when asked (bf_compare.timing).
  *
- * The caller runs the fits (how, and how many at once, is its business) and fills one
- * bf_compare_fit per material x model; bf_compare_rank derives everything else. A report
+ * bf_compare_run runs the fits (several at once, cancellable, with a progress callback)
+ * and fills one bf_compare_fit per material x model; a caller may instead run the fits
+ * its own way and fill them itself. bf_compare_rank derives everything else. A report
  * writer (HTML, pictures) reads the same filled structure. */
 #ifndef BRDFIT_COMPARE_H
 #define BRDFIT_COMPARE_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "brdfit/error.h"
@@ -115,12 +117,55 @@ typedef struct bf_compare {
     int timing;                     /* 1: the outputs carry wall times (then they differ
                                        from run to run) */
     const char *residual;           /* the fit objective's name, for the outputs (NULL: omitted) */
+    bf_fit_result *results;         /* nmaterials * nmodels, slot i * nmodels + j (owned):
+                                       the fits bf_compare_run made (NULL before) */
 } bf_compare;
 
 /* Allocates the tables (fits zeroed, state NOT_RUN) and copies the names. */
 int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                     const char *const *models, bf_error *err);
+/* Frees the tables, and the fit results bf_compare_run made. */
 void bf_compare_free(bf_compare *c);
+
+/* Called once per fit, when it is done (whatever its state; never for a fit not run):
+ * material and model index its slot, done counts the fits done so far (this one
+ * included) of total. Calls come from the fitting threads, one at a time (under a
+ * lock): the callback may print, and read the filled slots, without locking. */
+typedef void (*bf_compare_progress)(void *ctx, const bf_compare *c, int material, int model, int done,
+                                    int total);
+
+typedef struct bf_compare_run_options {
+    int jobs;                        /* fits at once (< 1: 1; capped at the number of fits);
+                                        each fit gets fo->solver.threads / jobs solver
+                                        threads (at least 1); at most 64 run at once */
+    bf_compare_progress progress;    /* NULL: none */
+    void *ctx;                       /* progress's first argument */
+    const volatile sig_atomic_t *cancel; /* NULL, or a flag (a SIGINT handler's): once it
+                                        is non-zero no new fit starts; running fits finish.
+                                        Read from the fitting threads (an atomic load with
+                                        GCC and Clang: a handler should set it with
+                                        __atomic_store_n there) */
+} bf_compare_run_options;
+
+/* Fits every model (c->models) to every material (samples[i] for c->materials[i]) with
+ * the options fo, jobs fits at once, and fills each bf_compare_fit (state, metrics,
+ * seconds, work, result, message) and each material's samples and channels. With
+ * c->folds > 0 every successful fit is also cross-validated (bf_fit_cv, c->folds folds,
+ * seed fo->seed) and cv_error filled; a cross-validation that cannot run makes the fit
+ * an ERROR. A fit that cannot run is an ERROR with its message; the others go on. After
+ * a cancel, fits never started stay NOT_RUN and c->interrupted is 1.
+ * The results depend neither on jobs, nor on the thread count, nor on the order the
+ * fits finish in: each fit has its slot. The results are owned by c (bf_compare_free).
+ * Nothing is printed and no signal handler installed: the caller does both, through
+ * progress and cancel. Each sample set's geometry is computed before the threads start.
+ * Returns BF_OK when the fits were run (whatever their outcome, interrupted or not);
+ * BF_ERR_ARG (bad arguments, or c already run) or BF_ERR_NOMEM before any fit. Call
+ * bf_compare_rank after. */
+int bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
+                   const bf_compare_run_options *ro, bf_error *err);
+
+/* How many fits of c are in state s. */
+int bf_compare_count(const bf_compare *c, bf_compare_state s);
 
 /* Ranks, Pareto fronts, tolerance, best and simplest per material, and the summary.
  * A fit is ranked when it succeeded and its error and chosen criterion are finite. The

@@ -100,6 +100,10 @@ int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int 
 
 void bf_compare_free(bf_compare *c)
 {
+    if (c->results)
+        for (size_t k = 0; k < (size_t)c->nmaterials * (size_t)c->nmodels; k++)
+            bf_fit_result_free(&c->results[k]);
+    free(c->results);
     if (c->models)
         for (int j = 0; j < c->nmodels; j++)
             free(c->models[j]);
