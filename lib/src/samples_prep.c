@@ -34,6 +34,7 @@
 
 #include "big_alloc.h"
 #include "merl_cells.h"
+#include "rng.h"
 
 /* ---- Channels ---------------------------------------------------------------- */
 
@@ -385,18 +386,6 @@ static void strata(const bf_samples *s, unsigned char *st, size_t count[STRATA_H
     }
 }
 
-/* splitmix64 (Steele, Lea and Flood 2014): one 64-bit state, every seed (0 included)
- * gives a full-period, well-mixed stream. */
-static uint64_t splitmix64(uint64_t *x)
-{
-    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-static double uniform01(uint64_t *x) { return (double)(splitmix64(x) >> 11) * 0x1.0p-53; }
-
 /* Quotas summing to N exactly: when N allows, every non-empty stratum first gets one
  * sample (a highlight held by a handful of samples must not vanish from a small
  * subsample), then the rest goes in proportion to the samples each stratum has left
@@ -443,7 +432,7 @@ int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsi
     for (size_t i = 0; i < n; i++) {
         int k = st[i];
         size_t need = quota[k], to_see = count[k] - seen[k];
-        keep[i] = need > 0 && uniform01(&state) * (double)to_see < (double)need;
+        keep[i] = need > 0 && bf_uniform01(&state) * (double)to_see < (double)need;
         quota[k] -= keep[i];
         seen[k]++;
     }
@@ -474,7 +463,7 @@ int bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *f
             for (int a = 0; a < K; a++)
                 p[a] = (unsigned char)a;
             for (int a = K - 1; a > 0; a--) {
-                int b = (int)(uniform01(&state) * (double)(a + 1));
+                int b = (int)(bf_uniform01(&state) * (double)(a + 1));
                 b = b > a ? a : b;
                 unsigned char t = p[a];
                 p[a] = p[b];

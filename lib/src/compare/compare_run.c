@@ -19,10 +19,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "brdfit/compare.h"
 #include "parallel.h"
+#include "../rng.h"
 
 typedef struct run {
     bf_compare *c;
@@ -32,13 +32,6 @@ typedef struct run {
     pthread_mutex_t lock;
     int done, total;
 } run;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The cancel flag, read by every fitting thread while a signal handler may set it: an
  * atomic load where the compiler has one (the handler should store it atomically too:
@@ -62,7 +55,7 @@ static void fit_one(void *arg, size_t chunk)
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
     bf_fit_result *res = &c->results[idx];
     bf_error err;
-    const double t0 = now();
+    const double t0 = bf_now_seconds();
     int rc = bf_fit(r->samples[i], c->models[j], &r->fo, res, &err);
     bf_cv_result cv = {.error = NAN};
     if (rc == BF_OK && c->folds > 0 && res->ok) {
@@ -70,7 +63,7 @@ static void fit_one(void *arg, size_t chunk)
         if (rc != BF_OK)
             bf_fit_result_free(res);
     }
-    const double seconds = now() - t0;
+    const double seconds = bf_now_seconds() - t0;
 
     pthread_mutex_lock(&r->lock);
     bf_compare_fit *f = &c->materials[i].fits[j];

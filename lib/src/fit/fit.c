@@ -5,7 +5,7 @@
  * drawn uniformly within the objective's bounds in its internal space (so uniformly in
  * log for log-scale parameters), from splitmix64 (Steele, Lea & Flood 2014) seeded with
  * the fit's seed, drawing the internal coordinates in order, start after start. Start k
- * gives stochastic back-end methods the seed splitmix64(seed + k + 1)'s first output.
+ * gives stochastic back-end methods the seed bf_splitmix64(seed + k + 1)'s first output.
  * Starts run one after another, each solve using the requested threads, so the result
  * is a function of the seed and the thread count alone. The best usable final cost wins;
  * ties go to the earlier start.
@@ -23,29 +23,12 @@
 
 #include "big_alloc.h"
 #include "diagnostics.h"
+#include "../rng.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static uint64_t splitmix64(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-static double uniform01(uint64_t *state) { return (double)(splitmix64(state) >> 11) * 0x1.0p-53; }
 
 /* One random start: uniform in [lo, hi] per internal coordinate; an unbounded side
  * (not expected from the model tables, but allowed by bf_problem) spans 1 unit (or
@@ -56,7 +39,7 @@ static void random_start(const bf_problem *p, const double *z0, uint64_t *state,
         double span = fabs(z0[k]) > 1.0 ? fabs(z0[k]) : 1.0;
         double lo = isfinite(p->lo[k]) ? p->lo[k] : z0[k] - span;
         double hi = isfinite(p->hi[k]) ? p->hi[k] : z0[k] + span;
-        z[k] = lo + uniform01(state) * (hi - lo);
+        z[k] = lo + bf_uniform01(state) * (hi - lo);
         if (z[k] > hi) /* rounding */
             z[k] = hi;
     }
@@ -139,7 +122,7 @@ static int presolve_objective(bf_samples *s, size_t pn, const bf_fit_options *o,
 
 int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
-    double t0 = now_seconds();
+    double t0 = bf_now_seconds();
     memset(r, 0, sizeof *r);
     if (!s || !o)
         return bf_fail(err, BF_ERR_ARG, "fit: no samples or no options");
@@ -216,7 +199,7 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
         else
             random_start(prob, z0, &draw, z);
         uint64_t sseed = o->seed + (uint64_t)k + 1;
-        so.seed = splitmix64(&sseed);
+        so.seed = bf_splitmix64(&sseed);
         if (nz == 0)
             rc = fixed_only(prob, z, &sol, err);
         else
@@ -309,7 +292,7 @@ done:
         bf_fit_result_free(r);
         return rc;
     }
-    r->seconds = now_seconds() - t0;
+    r->seconds = bf_now_seconds() - t0;
     return BF_OK;
 }
 

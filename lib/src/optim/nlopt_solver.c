@@ -16,6 +16,7 @@
  * NLopt's global state (per thread when NLopt is built with thread-local storage, else
  * per process): concurrent solves in one process must not rely on each other's seeds. */
 #include "brdfit/solve.h"
+#include "../rng.h"
 
 #include <math.h>
 #include <nlopt.h>
@@ -23,7 +24,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <time.h>
 
 /* NLopt's constant for each NLopt method of the registry (methods.c), which says what
  * each can do. */
@@ -165,13 +165,6 @@ static const char *result_text(nlopt_result r)
     }
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Applies the stopping criteria shared by the main and the local optimizer. */
 static int set_tolerances(nlopt_opt opt, const bf_solver_options *o)
 {
@@ -183,7 +176,7 @@ static int set_tolerances(nlopt_opt opt, const bf_solver_options *o)
 int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
                    bf_error *err)
 {
-    const double t0 = now_seconds();
+    const double t0 = bf_now_seconds();
     bf_solver_options defaults;
     bf_solution scratch;
     if (!s)
@@ -319,7 +312,7 @@ int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, b
 
 done:
     s->evaluations = st.evals;
-    s->seconds = now_seconds() - t0;
+    s->seconds = bf_now_seconds() - t0;
     free(z);
     state_free(&st);
     return rc;

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "brdfit/prep.h"
+#include "../rng.h"
 
 /* ---- Methods ------------------------------------------------------------------- */
 
@@ -32,14 +33,6 @@ int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *
 }
 
 /* ---- Train / test split -------------------------------------------------------- */
-
-static uint64_t splitmix64(uint64_t *x)
-{
-    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
                       bf_samples **test, bf_error *err)
@@ -61,7 +54,7 @@ int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_sa
     uint64_t state = seed ^ 0x5465737453706c74ull;
     size_t need = k;
     for (size_t i = 0; i < n; i++) {
-        double u = (double)(splitmix64(&state) >> 11) * 0x1.0p-53;
+        double u = (double)(bf_splitmix64(&state) >> 11) * 0x1.0p-53;
         mask[i] = (double)(n - i) * u < (double)need;
         need -= mask[i];
     }

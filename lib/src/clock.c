@@ -1,0 +1,11 @@
+/* The library's clock (rng.h). */
+#include "rng.h"
+
+#include <time.h>
+
+double bf_now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
