@@ -16,6 +16,7 @@
 #include <cmocka.h>
 
 #include "brdfit/solve.h"
+#include "optim/backends.h"
 #include "support.h"
 
 #define A_TRUE 2.5

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "brdfit/solve.h"
+#include "optim/backends.h"
 #include "support.h"
 
 /* y_i = A exp(-k t_i) (+ outlier), parameters (A, k) or, with `line`, y = a + b t. */

@@ -67,7 +67,7 @@ typedef struct bf_regress_baseline {
     char *dir;    /* folder that relative paths in the file start from */
     int ncases;
     bf_regress_case *cases;
-    struct cJSON *doc; /* the parsed file: tolerances and order survive an update */
+    void *doc; /* internal (the parsed file, a cJSON tree): tolerances and order survive an update */
     char *text;        /* the file's text (line numbers of later messages) */
 } bf_regress_baseline;
 

@@ -170,10 +170,6 @@ typedef struct bf_solution {
  * nothing. */
 int bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 
-/* The back ends bf_solve dispatches to. */
-int bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
-int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
-
 #ifdef __cplusplus
 }
 #endif

@@ -42,6 +42,7 @@
 #include <glog/logging.h>
 
 #include "brdfit/solve.h"
+#include "backends.h"
 
 namespace {
 

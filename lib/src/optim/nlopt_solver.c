@@ -16,6 +16,7 @@
  * NLopt's global state (per thread when NLopt is built with thread-local storage, else
  * per process): concurrent solves in one process must not rely on each other's seeds. */
 #include "brdfit/solve.h"
+#include "backends.h"
 #include "../rng.h"
 
 #include <math.h>

@@ -1,6 +1,7 @@
 /* The optimizer front door: robust losses (shared by every back end) and bf_solve, which
  * validates a problem, clamps the start into the bounds and dispatches to a back end. */
 #include "brdfit/solve.h"
+#include "backends.h"
 
 #include <float.h>
 #include <math.h>
