@@ -1,4 +1,5 @@
-/* brdfit render: pictures of a model (or a MERL table) as PNG or EXR.
+/* brdfit render: pictures of a model (or a MERL table) as PNG or EXR; slice plots as
+ * PNG, SVG or PDF.
  *   sphere (default)  --params P.json [--light T,P ...] [--view T,P]
  *   --slice           --params P.json [--incidence A,B,...] [--data FILE [data options]] [--plane-tol D]
  *   --half-diff       --params P.json | --data T.binary  [--phi-d D]
@@ -8,7 +9,8 @@
  *    --tonemap clamp (exposure * v, clipped; the sphere's default), reinhard
  *    (e/(1+e)), or log (--decades decades below the maximum; the half/difference
  *    image's default, as BRDF papers show it), then sRGB-encoded to 8 bits. Slice plots
- *    are drawn for display and written as they are.
+ *    are figures (render.h: axes, ticks, legend) drawn with Cairo as PNG, SVG or PDF;
+ *    EXR is for linear images only, and SVG/PDF for plots only.
  *  - The default light is at theta 45, phi 0 (the highlight off-centre, shading visible);
  *    the default view is straight down +z. Angles in degrees; render.h defines frames.
  *  - --size N or WxH (default 256; slice plots 640x480).
@@ -35,16 +37,18 @@ static const char cmd[] = "brdfit render";
 #define MAX_LIGHTS 16
 
 static const cli_option modes[] = {
-    {"--slice", 0, NULL, "in-plane slices: log10 f against theta_o (-90..90, + on the mirror side)", NULL},
+    {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL},
     {"--half-diff", 0, NULL, "theta_h (x, 0..90) by theta_d (y, 0..90 downwards) at a fixed phi_d", NULL},
 };
 static const cli_option own[] = {
     {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
-    {"--output", 'o', "FILE", "the image: .png or .exr (- for standard output, with --to)", "file"},
-    {"--to", 0, "png|exr", "image format (default: by the output's extension)", NULL},
+    {"--output", 'o', "FILE", "the image: .png or .exr; slices .png, .svg or .pdf (- for standard\n"
+                              "output, with --to)", "file"},
+    {"--to", 0, "png|exr|svg|pdf", "format (default: by the output's extension; svg and pdf for\n"
+                                   "--slice, exr for images)", NULL},
     {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL},
     {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL},
-    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480)", NULL},
+    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, points for SVG and PDF)", NULL},
     {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL},
     {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL},
     {"--decades", 0, "D", "range of the log mapping (default 4)", NULL},
@@ -57,10 +61,10 @@ static const cli_group mode_group = CLI_GROUP("modes (default: a lit sphere of t
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&mode_group, &own_group, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_render = {
-    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|OUT.exr",
+    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|.exr|.svg|.pdf",
     "render pictures of a model or a MERL table",
-    "A lit sphere, in-plane slices with measured samples overlaid, or a half-diff image, as PNG (tone mapped) or "
-    "EXR (linear values).",
+    "A lit sphere or a half-diff image as PNG (tone mapped) or EXR (linear values), or in-plane slices with "
+    "measured samples overlaid as a plot (PNG, SVG or PDF).",
     NULL, groups, sizeof groups / sizeof groups[0],
 };
 
@@ -101,6 +105,16 @@ static int image_fits(int width, int height)
     return 1;
 }
 
+/* --to and the extensions: images are PNG or EXR, plots PNG, SVG or PDF. */
+enum to_format { TO_PNG = 1, TO_EXR, TO_SVG, TO_PDF };
+
+static int to_of(const char *path)
+{
+    int p = bf_plot_format_of(path);
+    return bf_image_format_of(path) == BF_IMAGE_EXR ? TO_EXR : p == BF_PLOT_PNG ? TO_PNG : p == BF_PLOT_SVG ? TO_SVG
+           : p == BF_PLOT_PDF ? TO_PDF : 0;
+}
+
 /* What the command line asked for. */
 typedef struct render_args {
     data_options dopt;
@@ -108,7 +122,7 @@ typedef struct render_args {
     bf_dir lights[MAX_LIGHTS], view;
     int nlights, slice, halfdiff, width, height;
     int tonemap; /* bf_tonemap_mode, or -1: the mode's default */
-    int to;      /* --to: a bf_image_format, or 0 */
+    int to;      /* --to: a to_format, or 0 */
     double exposure, decades, plane_tol, phi_d;
     double incidence[BF_SLICE_MAX_INCIDENCE];
     int nincidence;
@@ -148,7 +162,8 @@ static int take_value(render_args *r, const char *a, const char *v)
     else if (!strcmp(a, "--output"))
         r->out_path = v;
     else if (!strcmp(a, "--to"))
-        return (r->to = !strcmp(v, "png") ? BF_IMAGE_PNG : !strcmp(v, "exr") ? BF_IMAGE_EXR : 0) != 0;
+        return (r->to = !strcmp(v, "png") ? TO_PNG : !strcmp(v, "exr") ? TO_EXR : !strcmp(v, "svg") ? TO_SVG
+                        : !strcmp(v, "pdf") ? TO_PDF : 0) != 0;
     else if (!strcmp(a, "--light")) {
         if (r->nlights >= MAX_LIGHTS) {
             fprintf(stderr, "%s: at most %d lights\n", cmd, MAX_LIGHTS);
@@ -216,11 +231,20 @@ static int check_mode(const render_args *r, int *fmt)
         return 2;
     }
     if (!r->out_path) {
-        fprintf(stderr, "%s: -o OUT.png|OUT.exr is required\n", cmd);
+        fprintf(stderr, "%s: -o OUT.png|OUT.exr (slices: .png|.svg|.pdf) is required\n", cmd);
         return 2;
     }
-    if (!(*fmt = r->to ? r->to : bf_image_format_of(r->out_path))) {
-        fprintf(stderr, "%s: %s: unknown image format (use .png or .exr, or --to)\n", cmd, r->out_path);
+    if (!(*fmt = r->to ? r->to : to_of(r->out_path))) {
+        fprintf(stderr, "%s: %s: unknown format (use .png or .exr%s, or --to)\n", cmd, r->out_path,
+                r->slice ? "; .svg or .pdf for --slice" : "");
+        return 2;
+    }
+    if (r->slice && *fmt == TO_EXR) {
+        fprintf(stderr, "%s: %s: slices are a plot: PNG, SVG or PDF, not EXR\n", cmd, r->out_path);
+        return 2;
+    }
+    if (!r->slice && (*fmt == TO_SVG || *fmt == TO_PDF)) {
+        fprintf(stderr, "%s: %s: SVG and PDF are for --slice plots; images are PNG or EXR\n", cmd, r->out_path);
         return 2;
     }
     if (r->halfdiff ? (!r->params == !r->data) : !r->params) {
@@ -278,14 +302,11 @@ static int load_inputs(const render_args *r, bf_model **m, double **x, bf_sample
 }
 
 /* Draws the mode's picture into rgb (width x height x 3, linear), and tone maps it for
- * a PNG (slice plots are drawn for display already). Returns a BF_ status. */
+ * a PNG. Returns a BF_ status. */
 static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
 {
     int rc;
-    if (r->slice) {
-        bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol};
-        rc = bf_render_slice(m, x, &so, rgb, NULL, err);
-    } else if (r->halfdiff) {
+    if (r->halfdiff) {
         rc = m ? bf_render_halfdiff_model(m, x, r->width, r->height, r->phi_d, rgb, err)
                : bf_render_halfdiff_merl(s, r->width, r->height, r->phi_d, rgb, err);
         if (r->tonemap < 0)
@@ -294,10 +315,18 @@ static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_
         bf_sphere_options so = {r->width, r->view, r->lights, r->nlights};
         rc = bf_render_sphere(m, x, &so, rgb, err);
     }
-    if (rc == BF_OK && fmt == BF_IMAGE_PNG && !r->slice)
+    if (rc == BF_OK && fmt == TO_PNG)
         bf_tonemap(rgb, (size_t)r->width * (size_t)r->height * 3,
                    r->tonemap < 0 ? BF_TONEMAP_CLAMP : (bf_tonemap_mode)r->tonemap, r->exposure, r->decades);
     return rc;
+}
+
+/* The slice plot, written: a BF_ status. */
+static int slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
+{
+    bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol, NULL, 0.0, 0.0};
+    int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;
+    return bf_render_slice(m, x, &so, r->out_path, pf, NULL, err);
 }
 
 /* Loads, draws and writes the image: the exit status. */
@@ -311,6 +340,14 @@ static int render(render_args *r, int fmt)
     int status = 1, rc;
     if (load_inputs(r, &m, &x, &s) < 0)
         goto done;
+    if (r->slice) {
+        if ((rc = slice_plot(r, fmt, m, x, s, &err)) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            status = rc == BF_ERR_ARG ? 2 : 1;
+        } else
+            status = 0;
+        goto done;
+    }
     if (!(rgb = malloc((size_t)r->width * (size_t)r->height * 3 * sizeof *rgb))) {
         fprintf(stderr, "%s: out of memory for a %dx%d image\n", cmd, r->width, r->height);
         goto done;
@@ -320,7 +357,8 @@ static int render(render_args *r, int fmt)
         status = rc == BF_ERR_ARG ? 2 : 1;
         goto done;
     }
-    if (bf_image_write_rgb_as(r->out_path, fmt, r->width, r->height, rgb, &err) != BF_OK) {
+    if (bf_image_write_rgb_as(r->out_path, fmt == TO_EXR ? BF_IMAGE_EXR : BF_IMAGE_PNG, r->width, r->height, rgb,
+                              &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         goto done;
     }

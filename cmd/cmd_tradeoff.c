@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "brdfit/image.h"
+#include "brdfit/render.h"
 #include "brdfit/tradeoff.h"
 #include "args.h"
 #include "cli.h"
@@ -57,13 +57,14 @@ static const cli_option own[] = {
      NULL},
     {"--json", 0, "FILE", "the table, machine-readable (stable keys; - for standard output)", "file"},
     {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file"},
-    {"--plot", 0, "FILE.png|.exr", "test error against the cost, Pareto front in red", "file"},
-    {"--plot-size", 0, "WxH", "(default 640x400)", NULL},
+    {"--plot", 0, "FILE.png|.svg|.pdf", "test error against the cost with the Pareto front (format by\n"
+                                        "the extension)", "file"},
+    {"--plot-size", 0, "WxH", "pixels (PNG) or points (SVG, PDF); default 640x400", NULL},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_tradeoff = {
-    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png]",
+    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png|.svg|.pdf]",
     "measure fitting cost against accuracy",
     "Fits one model to a training share of DATA under every combination of sample count, method, residual and "
     "start count, measures each fit's error on the held-out samples, and recommends the cheapest setting within "
@@ -346,8 +347,8 @@ static int check_args(tradeoff_run *r)
                 !r->data ? "a data file is required" : "-m MODEL is required");
         return -1;
     }
-    if (r->plot_path && !bf_image_format_of(r->plot_path)) {
-        fprintf(stderr, "%s: --plot %s: the name must end in .png or .exr\n", cmd, r->plot_path);
+    if (r->plot_path && !bf_plot_format_of(r->plot_path)) {
+        fprintf(stderr, "%s: --plot %s: the name must end in .png, .svg or .pdf\n", cmd, r->plot_path);
         return -1;
     }
     if (r->plot_path && !strcmp(r->plot_path, "-")) {
@@ -535,17 +536,14 @@ static void print_recommendation(FILE *info, const tradeoff_run *run)
             run->data, run->data_args, t->model, fa);
 }
 
-/* The image has no text: its axes are said here. */
-static void print_plot_axes(FILE *info, const bf_tradeoff *t, const char *plot_path, const bf_scatter_range *range)
+/* What the plot's axes span, for a reader of the terminal. */
+static void print_plot_axes(FILE *info, const bf_tradeoff *t, const char *plot_path, const bf_plot_axes *axes)
 {
-    int log_y = 1; /* as bf_tradeoff_write_plot decides */
-    for (int i = 0; i < t->nrows; i++)
-        log_y &= !(t->rows[i].error <= 0.0);
     int seconds = t->cost == BF_TRADEOFF_COST_SECONDS;
-    fprintf(info, "plot %s: test %s (y, %s%.3g to %.3g) against fitting %s (x, log10 %s, %.3g to %.3g); "
-                  "red: Pareto front\n",
-            plot_path, bf_compare_metric_name(t->metric), log_y ? "log10 " : "", range->y_lo, range->y_hi,
-            seconds ? "time" : "work", seconds ? "s" : "sample evaluations", range->x_lo, range->x_hi);
+    fprintf(info, "plot %s: test %s (y, %s axis, %.4g to %.4g) against fitting %s (x, log axis, %s, %.4g to %.4g); "
+                  "Pareto front labelled #N\n",
+            plot_path, bf_compare_metric_name(t->metric), axes->log_y ? "log" : "linear", axes->y_lo, axes->y_hi,
+            seconds ? "time" : "work", seconds ? "s" : "sample evaluations", axes->x_lo, axes->x_hi);
 }
 
 /* The table and the recommendation (to stdout unless a machine-readable output goes
@@ -553,7 +551,7 @@ static void print_plot_axes(FILE *info, const bf_tradeoff *t, const char *plot_p
 static int report(tradeoff_run *r)
 {
     bf_error err;
-    bf_scatter_range range;
+    bf_plot_axes range;
     memset(&range, 0, sizeof range);
     int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->csv_path && !strcmp(r->csv_path, "-"));
     FILE *info = stdout_taken ? stderr : stdout;
@@ -562,7 +560,7 @@ static int report(tradeoff_run *r)
     fflush(info);
     if ((r->json_path && bf_tradeoff_write_json(&r->t, r->json_path, &err) != BF_OK) ||
         (r->csv_path && bf_tradeoff_write_csv(&r->t, r->csv_path, &err) != BF_OK) ||
-        (r->plot_path && bf_tradeoff_write_plot(&r->t, r->plot_path, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
+        (r->plot_path && bf_tradeoff_write_plot(&r->t, r->plot_path, BF_PLOT_BY_NAME, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return -1;
     }

@@ -9,8 +9,11 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libcmocka-dev libxml2-dev jq libxml2-utils \
+  libcairo2-dev fonts-dejavu-core poppler-utils \
   clang libclang-rt-14-dev man-db groff-base >/dev/null
 # jq, openimageio-tools (iinfo, oiiotool) and libxml2-utils (xmllint): the command-line
 # tests check brdfit's JSON output, images and JUnit XML with them. clang and
 # libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.
 # man-db and groff-base: the tests render the generated man pages with man -l.
+# libcairo2-dev draws the plots (PNG, SVG, PDF) with the DejaVu fonts (fonts-dejavu-core);
+# poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.

@@ -42,13 +42,16 @@ while read -r src w h; do
   [ "$size" = "${w}x${h}" ] && ok || bad "$src is $size, the page says ${w}x${h}"
 done < <(grep -o '<img src="[^"]*" width="[0-9]*" height="[0-9]*"' "$html" |
          sed 's/<img src="\([^"]*\)" width="\([0-9]*\)" height="\([0-9]*\)"/\1 \2 \3/')
-# Per material: 2 scatter plots + 3 slices + 3 spheres.
+# Per material: 2 scatter plots + 3 slices + 3 spheres (each plot also as a linked PDF:
+# cli_plots.sh reads them).
 [ "$nimg" = 16 ] && ok || bad "expected 16 images, found $nimg"
 [ "$(grep -c '<img' "$html")" = "$nimg" ] && ok || bad "an <img> the size check did not parse"
 [ "$(ls "$R"/*.png | wc -l)" = 16 ] && ok || bad "PNG count: $(ls "$R")"
-# Spheres are 160x160 and plots 480x320, as asked for a quick report.
+# Spheres are 160x160, scatter plots 520x360 and slices 440x330, as asked for a quick report.
 grep -q 'src="m1-sphere-1.png" width="160" height="160"' "$html" && ok || bad "sphere size"
-grep -q 'src="m2-k.png" width="480" height="320"' "$html" && ok || bad "scatter plot size"
+grep -q 'src="m2-k.png" width="520" height="360"' "$html" && ok || bad "scatter plot size"
+grep -q 'src="m2-slice-1.png" width="440" height="330"' "$html" && ok || bad "slice plot size"
+[ "$(ls "$R"/*.pdf | wc -l)" = 10 ] && ok || bad "PDF count (2 x (2 scatter + 3 slices)): $(ls "$R")"
 # The model table lists the three models per material, in a row each; the summary table.
 for m in lambert walter cook_torrance; do
   [ "$(grep -c "<td class=\"spec\">$m</td><td>" "$html")" = 3 ] && ok ||

@@ -45,13 +45,13 @@ if "$BRDFIT" tradeoff "$W" -m walter --samples 2000,500,all,9999 --methods ceres
   awk -F, 'NR == 1 { ok = $1 == "samples" && $3 == "method"; next }
            { if ($1 + 0 < last) ok = 0; last = $1 + 0; if ($6 != "ok") ok = 0 }
            END { exit !ok }' "$tmp/t.csv" && ok || bad "CSV rows: $(cat "$tmp/t.csv")"
-  # The plot: the size asked for.
+  # The plot: the size asked for (its text: cli_plots.sh).
   iinfo "$tmp/t.png" | grep -q '320 x  *200' && ok || bad "plot: $(iinfo "$tmp/t.png")"
   # Terminal table: 12 rows and the recommendation as brdfit fit options.
   [ "$(grep -c '^ *[0-9][0-9]* *\(500\|2000\|all\) ' "$tmp/out")" = 12 ] && ok || bad "table: $(cat "$tmp/out")"
   grep -q '^recommended: #[0-9]* .*brdfit fit .* -m walter .*--residual log --starts [12]$' "$tmp/out" && ok \
     || bad "recommendation line: $(tail -1 "$tmp/out")"
-  grep -q "^plot $tmp/t.png: test rmse_log (y, log10 .*) against fitting work (x, log10 sample evaluations, " "$tmp/out" && ok \
+  grep -q "^plot $tmp/t.png: test rmse_log (y, log axis, .*) against fitting work (x, log axis, sample evaluations, .*); Pareto front labelled #N$" "$tmp/out" && ok \
     || bad "plot caption: $(cat "$tmp/out")"
   [ "$(grep -c '^brdfit tradeoff: [0-9]*/12 ' "$tmp/err")" = 12 ] && ok || bad "progress: $(cat "$tmp/err")"
 else
@@ -117,7 +117,7 @@ expect_error "missing data" 1 'nothere.csv' "$tmp/nothere.csv" -m walter
 # A plot name the image writer cannot take.
 rm -f "$tmp"/o.*
 "$BRDFIT" tradeoff "$W" -m walter --plot "$tmp/o.gif" >/dev/null 2>"$tmp/err"
-[ $? = 2 ] && grep -q '.png or .exr' "$tmp/err" && [ ! -e "$tmp/o.gif" ] && ok || bad "plot extension: $(cat "$tmp/err")"
+[ $? = 2 ] && grep -q '.png, .svg or .pdf' "$tmp/err" && [ ! -e "$tmp/o.gif" ] && ok || bad "plot extension: $(cat "$tmp/err")"
 "$BRDFIT" tradeoff --help | grep -q -- '--starts-list' && ok || bad "tradeoff --help"
 
 finish

@@ -1,6 +1,6 @@
 /* Pictures: the lit sphere (Lambert radiance exact at the centre, lit where the light
  * is, black background), the theta_h x theta_d image against direct model evaluation
- * and MERL cells, slice plots (lines and overlaid samples where expected), and the
+ * and MERL cells, slice plots (curves and overlaid samples where expected), and the
  * OpenImageIO shim (EXR round trip, PNG sRGB codes, errors leave no file). */
 #include <math.h>
 #include <setjmp.h>
@@ -15,6 +15,8 @@
 
 #include "brdfit/image.h"
 #include "brdfit/render.h"
+#include "plot/plot.h"
+#include "render/slices.h"
 #include "support.h"
 
 static float *px(float *rgb, int w, int x, int y) { return rgb + 3 * ((size_t)y * (size_t)w + (size_t)x); }
@@ -193,16 +195,12 @@ static void test_halfdiff_merl(void **state)
     bf_samples_free(s);
 }
 
-static int is_white(const float *p) { return p[0] == 1.0f && p[1] == 1.0f && p[2] == 1.0f; }
-
-/* A Lambert slice is one horizontal black line at log10(rho/pi). */
+/* A Lambert slice is one flat curve at rho/pi; the in-plane samples overlay it. */
 static void test_slice_lambert(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 1);
     const double rho = 0.5, inc[1] = {30.0};
-    const int W = 200, H = 150;
-    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
     bf_error err;
     bf_slice_range r;
     /* Measured samples: two in the plane (one each side), one out of it, one at another
@@ -216,28 +214,53 @@ static void test_slice_lambert(void **state)
         s->phi_o[q] = ang[q][3];
         s->value[q] = 0.5;
     }
-    bf_slice_options o = {W, H, inc, 1, s, 2.0};
-    assert_int_equal(bf_render_slice(m, &rho, &o, rgb, &r, &err), BF_OK);
-    assert_true(r.log10_lo == -1.0 && r.log10_hi == 0.0);
+    bf_slice_options o = {200, 150, inc, 1, s, 2.0, NULL, 0.0, 0.0};
+    plot *p;
+    assert_int_equal(slice_plot_build(m, &rho, &o, &p, &r, &err), BF_OK);
     assert_int_equal(r.overlaid, 2);
-    int yline = (int)lround(r.y1 - (log10(rho / M_PI) + 1.0) * (r.y1 - r.y0));
-    int xmid = (r.x0 + r.x1) / 2 - 20; /* away from the mirror marker */
-    for (int c = 0; c < 3; c++)
-        assert_true(px(rgb, W, xmid, yline)[c] == 0.0f);
-    assert_true(is_white(px(rgb, W, xmid, yline - 5)));
-    assert_true(is_white(px(rgb, W, xmid, yline + 5)));
-    assert_true(is_white(px(rgb, W, 2, 2))); /* outside the frame */
-    /* The dot of the sample at theta_o = +20 (value 0.5 at log10 -0.30). */
-    int xd = (int)lround(r.x0 + (20.0 + 90.0) / 180.0 * (r.x1 - r.x0));
-    int yd = (int)lround(r.y1 - (log10(0.5) + 1.0) * (r.y1 - r.y0));
-    assert_true(px(rgb, W, xd, yd)[0] == 0.0f && px(rgb, W, xd + 1, yd + 1)[0] == 0.0f);
-    assert_true(is_white(px(rgb, W, xd, yd - 6)));
+    assert_int_equal(r.shown, 2);
+    /* The axis covers rho/pi and the samples (0.5), padded, never collapsed. */
+    assert_true(r.log10_lo < log10(rho / M_PI) && r.log10_hi > log10(0.5));
+    assert_true(r.log10_hi - r.log10_lo < 2.0);
+    /* The curve: every point at rho/pi; the samples at +20 and -50. */
+    const plot_series *curve = plot_series_at(p, 0);
+    assert_int_equal(curve->n, 361);
+    for (size_t i = 0; i < curve->n; i++) /* 0 at grazing view (+-90 degrees) */
+        if (fabs(curve->x[i]) < 90.0)
+            ts_assert_near(curve->y[i], rho / M_PI, 1e-12, 1e-12, "lambert curve");
+    assert_string_equal(curve->name, "\xce\xb8_{i} = 30\xc2\xb0");
+    int found = 0;
+    for (int k = 0; k < plot_nseries(p); k++) {
+        const plot_series *q = plot_series_at(p, k);
+        if (q->style == PLOT_MARKERS && q->n == 2) {
+            found = 1;
+            assert_true((q->x[0] == 20.0 && q->x[1] == -50.0) || (q->x[0] == -50.0 && q->x[1] == 20.0));
+            assert_true(q->y[0] == 0.5 && q->y[1] == 0.5);
+        }
+    }
+    assert_true(found);
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 640, 480, &l), 0);
+    /* x: -90..90 every 30 degrees; legend: the incidence and the measured samples. */
+    assert_int_equal(l.axis[PLOT_X].ticks.n, 7);
+    assert_string_equal(l.axis[PLOT_X].ticks.label[0], "\xe2\x88\x92" "90");
+    assert_string_equal(l.axis[PLOT_X].ticks.label[6], "90");
+    assert_int_equal(l.nlegend, 2);
+    plot_free(p);
+    /* A shared range is used as given. */
+    bf_slice_options shared = {200, 150, inc, 1, NULL, 2.0, "mine", -3.0, 1.0};
+    assert_int_equal(slice_plot_build(m, &rho, &shared, &p, &r, &err), BF_OK);
+    assert_true(r.log10_lo == -3.0 && r.log10_hi == 1.0);
+    plot_free(p);
+    double lo, hi;
+    assert_int_equal(bf_slice_extent(m, &rho, &o, &lo, &hi, &err), BF_OK);
+    ts_assert_near(lo, log10(rho / M_PI), 1e-12, 1e-12, "extent lo");
+    ts_assert_near(hi, log10(0.5), 1e-12, 1e-12, "extent hi");
     bf_samples_free(s);
-    free(rgb);
     bf_model_free(m);
 }
 
-/* A glossy slice peaks at the mirror angle, in the channel colours. */
+/* A glossy slice peaks at the mirror angle, in every channel (dashes tell them apart). */
 static void test_slice_peak(void **state)
 {
     (void)state;
@@ -245,27 +268,42 @@ static void test_slice_peak(void **state)
     double x[8];
     bf_model_defaults(m, x);
     const double inc[1] = {40.0};
-    const int W = 361, H = 240;
-    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
     bf_error err;
     bf_slice_range r;
-    bf_slice_options o = {W, H, inc, 1, NULL, 2.0};
-    assert_int_equal(bf_render_slice(m, x, &o, rgb, &r, &err), BF_OK);
-    int top_x = -1, top_y = H;
-    for (int y = r.y0; y <= r.y1 && top_x < 0; y++)
-        for (int xx = r.x0; xx <= r.x1; xx++) {
-            const float *p = px(rgb, W, xx, y);
-            if (!is_white(p) && !(p[0] == p[1] && p[1] == p[2])) { /* a coloured curve */
-                top_x = xx;
-                top_y = y;
-                break;
-            }
-        }
-    assert_true(top_x >= 0);
-    double theta_top = -90.0 + 180.0 * (top_x - r.x0) / (r.x1 - r.x0);
-    assert_true(fabs(theta_top - 40.0) < 3.0);
-    assert_true(top_y < r.y1);
-    free(rgb);
+    bf_slice_options o = {361, 240, inc, 1, NULL, 2.0, NULL, 0.0, 0.0};
+    plot *p;
+    assert_int_equal(slice_plot_build(m, x, &o, &p, &r, &err), BF_OK);
+    int curves = 0;
+    for (int k = 0; k < plot_nseries(p); k++) {
+        const plot_series *c = plot_series_at(p, k);
+        if (c->n != 361)
+            continue;
+        size_t top = 0;
+        for (size_t i = 0; i < c->n; i++)
+            if (c->y[i] > c->y[top])
+                top = i;
+        assert_true(fabs(c->x[top] - 40.0) < 3.0);
+        assert_true(log10(c->y[top]) <= r.log10_hi);
+        assert_int_equal(c->dash, curves); /* solid, dashed, dotted */
+        curves++;
+    }
+    assert_int_equal(curves, 3);
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 640, 480, &l), 0);
+    assert_int_equal(l.nlegend, 4); /* the incidence, then channels R, G, B */
+    plot_free(p);
+    /* The file: a PNG of the size asked for; a bad name or size fails without a file. */
+    const char *path = ts_tmp_path("slice.png");
+    assert_int_equal(bf_render_slice(m, x, &o, path, BF_PLOT_BY_NAME, NULL, &err), BF_OK);
+    bf_image img;
+    assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
+    assert_int_equal(img.width, 361);
+    assert_int_equal(img.height, 240);
+    bf_image_free(&img);
+    assert_int_equal(bf_render_slice(m, x, &o, ts_tmp_path("slice.gif"), BF_PLOT_BY_NAME, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(access(ts_tmp_path("slice.gif"), F_OK), -1);
+    bf_slice_options tiny = {10, 10, inc, 1, NULL, 2.0, NULL, 0.0, 0.0};
+    assert_int_equal(bf_render_slice(m, x, &tiny, ts_tmp_path("t.png"), BF_PLOT_BY_NAME, NULL, &err), BF_ERR_ARG);
     bf_model_free(m);
 }
 

@@ -1,5 +1,6 @@
 /* Pictures of a model or a measurement as float RGB buffers (pure computation; image.h
- * writes them): a lit sphere, in-plane slice plots, and the theta_h x theta_d image.
+ * writes them): a lit sphere and the theta_h x theta_d image; and in-plane slice plots,
+ * figures drawn with Cairo and written as PNG, SVG or PDF.
  * Buffers are width*height*3 floats, row-major from the top row. Every model channel
  * count is shown as RGB: C = 1 as grey, C = 3 as is, any other C as the mean of its
  * channels (grey). Angles are in degrees. */
@@ -45,19 +46,38 @@ int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options
  * angles, phi_d folded by reciprocity); 0 where that cell is invalid. */
 int bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
 
+/* ---- Plots -----------------------------------------------------------------------
+ * Plots (slices here, compare's and tradeoff's figures) are drawn with Cairo: title,
+ * axis titles with units, 1-2-5 ticks (decades labelled 10^k on log axes), padded
+ * ranges that never collapse, a legend, labelled points. Written as PNG (width x
+ * height pixels), SVG or PDF (width x height points) through bf_outfile (io.h): a
+ * failed write leaves no partial file. */
+typedef enum bf_plot_format { BF_PLOT_BY_NAME = 0, BF_PLOT_PNG = 1, BF_PLOT_SVG, BF_PLOT_PDF } bf_plot_format;
+/* By the name's extension (.png, .svg, .pdf, case-insensitive), 0 otherwise. */
+int bf_plot_format_of(const char *path);
+/* "png", "svg", "pdf" as --to/--format names take them; 0 otherwise. */
+int bf_plot_format_parse(const char *name);
+
+/* What a plot's axes span (data units, not log10) and how many points it drew. */
+typedef struct bf_plot_axes {
+    double x_lo, x_hi, y_lo, y_hi;
+    int log_x, log_y;
+    int drawn;
+} bf_plot_axes;
+
 /* ---- In-plane slices -------------------------------------------------------------
  * For each incidence angle theta_i (light at phi_i = 0), f at viewing directions in the
- * plane of incidence, theta_o signed from -90 to 90 on the x axis: positive theta_o on
- * the mirror side (phi_o = 180), negative on the light's side (phi_o = 0), so the
- * specular peak sits at +theta_i. The y axis is log10 f over whole decades covering the
- * curves' positive values (at most 8 decades down from the top). Drawn on white: a
- * black frame, x ticks every 30 degrees (0 longer), y ticks every decade, a faint grey
- * line at each incidence's mirror angle; one line per incidence angle and channel (red,
- * green, blue for RGB; black otherwise), lighter for later incidence angles. No text:
- * the axes are fixed (x) or whole decades (y); bf_slice_range says which. Measured
- * samples, when given, are drawn as 3x3 dots in a darker shade of their curve: those
- * whose theta_i lies within plane_tol of an incidence angle and whose viewing direction
- * lies within plane_tol of the plane of incidence. */
+ * plane of incidence, theta_o signed from -90 to 90 on the x axis (ticks every 30
+ * degrees): positive theta_o on the mirror side (phi_o = 180), negative on the light's
+ * side (phi_o = 0), so the specular peak sits at +theta_i (a dotted guide line). The y
+ * axis is f on a log axis: the curves' positive values (and the overlaid samples'),
+ * at most 8 decades down from the largest, padded; or log10_lo..log10_hi when given
+ * (log10_lo < log10_hi: a range shared by several plots). Colour tells the incidence
+ * angle; for RGB, the line style (solid, dashed, dotted) and the sample marker (circle,
+ * square, triangle) the channel; the legend says both. Measured samples, when given, are
+ * drawn as translucent markers: those whose theta_i lies within plane_tol of an
+ * incidence angle and whose viewing direction lies within plane_tol of the plane of
+ * incidence, at most 400 per incidence angle (every n-th when there are more). */
 #define BF_SLICE_MAX_INCIDENCE 16
 typedef struct bf_slice_options {
     int width, height;
@@ -66,16 +86,24 @@ typedef struct bf_slice_options {
     bf_samples *samples;     /* NULL, or measured samples to overlay (same channel count
                                 or any: shown as the model's channels are) */
     double plane_tol;        /* degrees */
+    const char *title;       /* NULL: "In-plane slices of MODEL" */
+    double log10_lo, log10_hi; /* the y axis (log10 f) when log10_lo < log10_hi */
 } bf_slice_options;
 
-/* The plot's y range in log10 f, for a caption; and where the plot area lies. */
+/* The plot's y range in log10 f, and the samples overlaid (in the plane) and drawn. */
 typedef struct bf_slice_range {
     double log10_lo, log10_hi;
-    int x0, y0, x1, y1;      /* plot area in pixels, inclusive (x0,y0 top-left) */
-    size_t overlaid;         /* measured samples drawn */
+    size_t overlaid;         /* measured samples in the plane of an incidence angle */
+    size_t shown;            /* of those, drawn (thinned to 400 per incidence angle) */
 } bf_slice_range;
 
-int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, float *rgb,
+/* The data's extent in log10 f (curves and in-plane samples, at most 8 decades down),
+ * so that several plots can share one y range: BF_OK, *lo <= *hi. */
+int bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
+                    double *log10_hi, bf_error *err);
+/* The slice plot written to path ("-": standard output) in format (BF_PLOT_BY_NAME: by
+ * the extension); range may be NULL. */
+int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
                     bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
@@ -92,23 +120,6 @@ int bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, doubl
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the
  * difference vector rotated by theta_h about y, V its mirror about H. */
 void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3]);
-
-/* ---- Scatter plot ----------------------------------------------------------------
- * n points (x[i], y[i]) on white inside a black frame (10 px margin), no text: the axes
- * span the drawable values padded by 5% (log axes in log10; points <= 0 or NaN there are
- * left out); highlight (NULL: none) marks points drawn in red and joined in x order,
- * the rest grey. bf_scatter_range says what the axes span, for a caption. */
-typedef struct bf_scatter_options {
-    int width, height;     /* >= 40 each */
-    int log_x, log_y;      /* 1: log10 axis */
-} bf_scatter_options;
-typedef struct bf_scatter_range {
-    double x_lo, x_hi, y_lo, y_hi; /* axis ends (log10 of the value on a log axis) */
-    int x0, y0, x1, y1;            /* plot area in pixels, inclusive */
-    int drawn;                     /* points drawn */
-} bf_scatter_range;
-int bf_render_scatter(int n, const double *x, const double *y, const int *highlight,
-                      const bf_scatter_options *o, float *rgb, bf_scatter_range *range, bf_error *err);
 
 /* ---- Display mapping for 8-bit images ------------------------------------------
  * In place over n floats: CLAMP: exposure * v (the PNG writer clamps to [0, 1]);

@@ -123,10 +123,13 @@ const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
 int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
 int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
 
-/* Test error (log axis unless some error is 0) against the cost (log axis), the Pareto
- * front in red, as a width x height PNG (bf_render_scatter); range may be NULL. */
-int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int width, int height,
-                           bf_scatter_range *range, bf_error *err);
+/* Test error (log axis unless some error is 0) against the cost (log axis): every
+ * setting, the Pareto front drawn and named, its points labelled #N (the row's number,
+ * from 1), the recommended setting ringed; a plot (render.h) of width x height in format
+ * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL): what the
+ * axes span. */
+int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+                           bf_plot_axes *axes, bf_error *err);
 
 #ifdef __cplusplus
 }

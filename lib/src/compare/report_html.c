@@ -8,9 +8,12 @@
  *    folder, and an old report stays whole until the new one replaces it.
  *  - An existing DIR is replaced only when it holds BF_REPORT_MARKER (a previous report)
  *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
- *  - Pictures are small (spheres 160x160, slices 320x240, scatter plots 480x320) so a
+ *  - Pictures are small (spheres 160x160, slices 440x330, scatter plots 520x360) so a
  *    report over many fits stays quick; each model's pictures come from its fitted
  *    parameters. Spheres share one display mapping (clamp, exposure 1) so they compare.
+ *  - Plots (error against k and against work, slices) are Cairo figures (plot/plot.h)
+ *    with axes, ticks and legends, embedded as PNG, each with a PDF beside it (linked).
+ *    The slices of one material share one y range, so the models compare.
  *  - MERL tables: a sphere of the measurement leads the row of spheres, and the table's
  *    theta_h x theta_d image (phi_d 90) stands beside each model's, with a difference
  *    image: |log10(model / measured)|, mean over channels, black = equal, white = one
@@ -39,8 +42,10 @@
 #include "brdfit/version.h"
 #include "io/out_target.h"
 #include "io/temp_registry.h"
+#include "plot/scatter.h"
+#include "render/slices.h"
 
-enum { SPHERE = 160, SLICE_W = 320, SLICE_H = 240, PLOT_W = 480, PLOT_H = 320, HD = 160 };
+enum { SPHERE = 160, SLICE_W = 440, SLICE_H = 330, PLOT_W = 520, PLOT_H = 360, HD = 160 };
 
 typedef struct report {
     const bf_compare *c;
@@ -90,6 +95,30 @@ static int image(report *r, const char *name, int w, int h, const float *rgb, co
     esc(r->fp, alt);
     fputs("\">", r->fp);
     return BF_OK;
+}
+
+/* Writes a plot as NAME.png (embedded) and NAME.pdf (linked) in the report folder. */
+static int figure(report *r, const char *name, const plot *p, int w, int h, const char *alt)
+{
+    char path[4096];
+    for (int f = 0; f < 2; f++) {
+        if (snprintf(path, sizeof path, "%s/%s.%s", r->tmp, name, f ? "pdf" : "png") >= (int)sizeof path)
+            return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
+        int rc = plot_write(p, path, f ? BF_PLOT_PDF : BF_PLOT_PNG, w, h, r->err);
+        if (rc != BF_OK)
+            return rc;
+    }
+    fprintf(r->fp, "<img src=\"%s.png\" width=\"%d\" height=\"%d\" alt=\"", name, w, h);
+    esc(r->fp, alt);
+    fprintf(r->fp, "\"><br><a class=\"pdf\" href=\"%s.pdf\">PDF</a>", name);
+    return BF_OK;
+}
+
+/* The data file's name without its folders, for plot titles. */
+static const char *base_name(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    return b && b[1] ? b + 1 : path;
 }
 
 static const bf_fit_result *fitted(const bf_compare_fit *f)
@@ -173,12 +202,15 @@ static void model_table(report *r, const bf_compare_material *m)
 
 static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
 {
-    int n = r->c->nmodels;
+    const bf_compare *c = r->c;
+    int n = c->nmodels;
     double *x = malloc(2 * (size_t)n * sizeof *x);
     int *on = malloc((size_t)n * sizeof *on);
-    if (!x || !on) {
+    const char **labels = malloc((size_t)n * sizeof *labels);
+    if (!x || !on || !labels) {
         free(x);
         free(on);
+        free(labels);
         return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
     }
     double *y = x + n;
@@ -187,29 +219,50 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
         x[j] = f->rank ? (by_work ? f->work : (double)f->metrics.k) : NAN;
         y[j] = f->rank ? f->error : NAN;
         on[j] = by_work ? f->pareto_work : f->pareto_k;
+        labels[j] = c->models[j];
     }
     /* Errors span decades, so a log axis; linear when one is 0 (an exact fit). */
     int log_y = 1;
     for (int j = 0; j < n; j++)
         log_y &= !(y[j] <= 0.0);
-    bf_scatter_options o = {PLOT_W, PLOT_H, by_work, log_y};
-    bf_scatter_range g;
-    char name[64], alt[128];
-    snprintf(name, sizeof name, "m%d-%s.png", i + 1, by_work ? "work" : "k");
-    snprintf(alt, sizeof alt, "%s against %s", error_name(r->c), by_work ? "fitting work" : "free parameters");
-    int rc = bf_render_scatter(n, x, y, on, &o, r->buf, &g, r->err);
-    free(x);
+    char title[512], ytitle[128], chosen[128], name[64];
+    snprintf(title, sizeof title, "%s: error against %s", base_name(m->data),
+             by_work ? "fitting work" : "free parameters");
+    snprintf(ytitle, sizeof ytitle, "%s", error_name(c));
+    snprintf(chosen, sizeof chosen, "simplest within %g%% of the best", 100.0 * c->tolerance);
+    plot_scatter_spec sp = {title,
+                            by_work ? "fitting work (sample evaluations)" : "free parameters k",
+                            ytitle,
+                            by_work,
+                            log_y,
+                            !by_work,
+                            n,
+                            x,
+                            y,
+                            on,
+                            labels,
+                            "models (labelled)",
+                            "Pareto front",
+                            m->simplest,
+                            chosen};
+    plot *p = plot_scatter(&sp);
     free(on);
+    free(labels);
+    int rc = p ? BF_OK : bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
+    snprintf(name, sizeof name, "m%d-%s", i + 1, by_work ? "work" : "k");
+    char alt[128];
+    snprintf(alt, sizeof alt, "%s against %s", error_name(c), by_work ? "fitting work" : "free parameters");
     fputs("<figure>", r->fp);
     if (rc == BF_OK)
-        rc = image(r, name, PLOT_W, PLOT_H, r->buf, alt);
+        rc = figure(r, name, p, PLOT_W, PLOT_H, alt);
+    plot_free(p);
+    free(x);
     if (rc != BF_OK)
         return rc;
-    fprintf(r->fp, "<figcaption>%s (y, %s%.3g to %.3g) against %s (x, %s%.3g to %.3g); red: Pareto front"
-                   "</figcaption></figure>\n",
-            error_name(r->c), log_y ? "log10 " : "", g.y_lo, g.y_hi,
-            by_work ? "fitting work (sample evaluations)" : "free parameters k", by_work ? "log10, " : "", g.x_lo,
-            g.x_hi);
+    fprintf(r->fp, "<figcaption>%s (y, %s axis) against %s (x, %s axis); the Pareto front joins the models no "
+                   "other beats in both</figcaption></figure>\n",
+            error_name(c), log_y ? "log" : "linear", by_work ? "fitting work" : "free parameters k",
+            by_work ? "log" : "linear");
     return BF_OK;
 }
 
@@ -242,27 +295,56 @@ static int pictures(report *r, int i, const bf_compare_material *m)
     char name[64];
     int rc;
 
-    fputs("<h3>Slices</h3>\n<p>log10 f against the viewing angle in the plane of incidence (&minus;90&deg; to "
-          "90&deg;, mirror side right) for incidence 0&deg;, 30&deg; and 60&deg; (lighter: larger); dots: "
-          "measured samples within 2&deg; of the plane.</p>\n<div class=\"row\">\n",
-          fp);
     static const double inc[3] = {0.0, 30.0, 60.0};
+    /* One y range for every model's slices (and the samples): they compare. */
+    double lo = INFINITY, hi = -INFINITY;
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *res = fitted(&m->fits[j]);
+        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0, NULL, 0.0, 0.0};
+        double a, b;
+        if (!res)
+            continue;
+        if ((rc = bf_slice_extent(res->model, res->x, &so, &a, &b, r->err)) != BF_OK)
+            return rc;
+        lo = fmin(lo, a);
+        hi = fmax(hi, b);
+    }
+    if (lo <= hi) {
+        double a, b;
+        lo = fmax(lo, hi - 8.0);
+        plot_pad(pow(10.0, lo), pow(10.0, hi), 1, 1, &a, &b);
+        lo = log10(a);
+        hi = log10(b);
+    }
+    fprintf(fp, "<h3>Slices</h3>\n<p>BRDF f (log axis, the same range for every model: 10<sup>%.2f</sup> to "
+                "10<sup>%.2f</sup> sr<sup>&minus;1</sup>) against the viewing angle in the plane of incidence "
+                "(&minus;90&deg; to 90&deg;, mirror side right, dotted: the mirror direction) for incidence 0&deg;, "
+                "30&deg; and 60&deg; (colours); markers: measured samples within 2&deg; of the plane.</p>\n"
+                "<div class=\"row\">\n",
+            lo, hi);
     for (int j = 0; j < c->nmodels; j++) {
         const bf_fit_result *res = fitted(&m->fits[j]);
         if (!res)
             continue;
-        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0};
+        char title[512];
+        snprintf(title, sizeof title, "%s: %s", base_name(m->data), c->models[j]);
+        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0, title, lo, hi};
         bf_slice_range sr;
-        if ((rc = bf_render_slice(res->model, res->x, &so, r->buf, &sr, r->err)) != BF_OK)
+        plot *p;
+        if ((rc = slice_plot_build(res->model, res->x, &so, &p, &sr, r->err)) != BF_OK)
             return rc;
-        snprintf(name, sizeof name, "m%d-slice-%d.png", i + 1, j + 1);
+        snprintf(name, sizeof name, "m%d-slice-%d", i + 1, j + 1);
         fputs("<figure>", fp);
-        if ((rc = image(r, name, SLICE_W, SLICE_H, r->buf, c->models[j])) != BF_OK)
+        rc = figure(r, name, p, SLICE_W, SLICE_H, c->models[j]);
+        plot_free(p);
+        if (rc != BF_OK)
             return rc;
         fputs("<figcaption>", fp);
         esc(fp, c->models[j]);
-        fprintf(fp, "<br>log10 f %ld to %ld, %zu samples shown</figcaption></figure>\n", lround(sr.log10_lo),
-                lround(sr.log10_hi), sr.overlaid);
+        if (sr.shown < sr.overlaid)
+            fprintf(fp, "<br>%zu of %zu in-plane samples shown</figcaption></figure>\n", sr.shown, sr.overlaid);
+        else
+            fprintf(fp, "<br>%zu in-plane samples shown</figcaption></figure>\n", sr.overlaid);
     }
     fputs("</div>\n<h3>Spheres</h3>\n<p>Light from 45&deg;, viewed from above, all with the same mapping.",
           fp);
@@ -378,7 +460,7 @@ static const char css[] =
     "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
     "tr.chosen td{background:#e6f4e6;font-weight:bold}"
     ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
-    "figcaption{font-size:80%;max-width:480px;font-family:monospace}"
+    "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
     "h2{border-bottom:2px solid #ccc;margin-top:1.5em}";
 
 static int page(report *r)
