@@ -18,6 +18,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/fit.h"
 #include "brdfit/objective.h"
 #include "brdfit/samples.h"

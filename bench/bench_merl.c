@@ -13,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/objective.h"
 #include "brdfit/prep.h"
 #include "brdfit/samples.h"

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/scene.h"
 
 static double now(void)

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 #include "args.h"
 #include "cli.h"

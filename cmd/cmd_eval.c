@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "args.h"

@@ -22,6 +22,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/fit.h"
 #include "brdfit/regress.h"
 #include "brdfit/scene.h"

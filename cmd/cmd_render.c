@@ -23,6 +23,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/limits.h"

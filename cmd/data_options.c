@@ -3,6 +3,7 @@
 
 #include "args.h"
 
+#include "brdfit/formats.h"
 #include "brdfit/scene.h"
 
 #include <ctype.h>

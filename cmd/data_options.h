@@ -3,6 +3,7 @@
 #ifndef BRDFIT_DATA_OPTIONS_H
 #define BRDFIT_DATA_OPTIONS_H
 
+#include "brdfit/formats.h"
 #include "brdfit/prep.h"
 #include "brdfit/samples.h"
 #include "cli.h"

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/model.h"
 #include "brdfit/samples.h"

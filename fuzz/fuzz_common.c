@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 
 void fuzz_fail(const char *fmt, ...)

@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "brdfit/error.h"
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 
 /* Prints the message and aborts. */

@@ -4,6 +4,7 @@
  * known extension. */
 #include "fuzz_common.h"
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 
 static int read_csv(const char *path, bf_samples **out, bf_error *err)

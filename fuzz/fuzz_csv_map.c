@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 
 /* The next '|'-separated piece of *p, NUL-terminated in place. */

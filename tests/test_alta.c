@@ -11,6 +11,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 #include "support.h"
 

@@ -22,6 +22,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 #include "support.h"

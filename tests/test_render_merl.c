@@ -9,6 +9,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/render.h"
 #include "support.h"
 #include "synth.h"

@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 #include "support.h"
 #include "synth.h"

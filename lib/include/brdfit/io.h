@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/error.h"
 #include "brdfit/model.h"
 

@@ -9,6 +9,7 @@
 
 #include <stddef.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/error.h"
 #include "brdfit/model.h"
 #include "brdfit/samples.h"

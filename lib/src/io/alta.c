@@ -18,6 +18,7 @@
  * difference vector V, while this library uses the Rusinkiewicz and MERL convention of
  * docs/formats.md (L is the difference vector rotated by theta_h about Y, V mirrors L about
  * H). For reciprocal data the two name the same pair of directions, swapped. */
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 #include "../big_alloc.h"

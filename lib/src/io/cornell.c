@@ -8,6 +8,7 @@
  * direction is theta_s = theta_i, phi_s = phi_i + pi), which is this library's
  * convention for (theta_i, phi_i, theta_o, phi_o). Values: spectral BRDF in 1/sr.
  * One channel per wavelength, named by it ("400"). */
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 #include "../big_alloc.h"

@@ -2,6 +2,7 @@
 #ifndef BF_IO_FORMATS_H
 #define BF_IO_FORMATS_H
 
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 
 bf_format bf_format_by_extension(const char *path);

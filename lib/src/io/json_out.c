@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/version.h"
 

@@ -16,6 +16,7 @@
  * such a cell is still read as a sample, with theta_i or theta_o above 90 degrees: it is
  * what the file says, and the geometry marks it invalid (lz or vz <= 0), so models give
  * it 0 and preprocessing decides whether to drop it. */
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 

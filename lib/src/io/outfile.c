@@ -8,6 +8,7 @@
  * Anything else (a device, FIFO, /dev/stdout) cannot be replaced: it is opened and
  * written through. */
 #define _GNU_SOURCE /* fopencookie */
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 
 #include "io/out_target.h"

@@ -1,5 +1,6 @@
 /* Which reader or writer a file gets: by the --format option, else by extension, else
  * by content. */
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "formats.h"
 

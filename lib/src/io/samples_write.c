@@ -1,5 +1,6 @@
 /* Writing a sample set in the format its path names (.csv, .binary). Kept apart from
  * the reader dispatch so that writing pulls in no reader. */
+#include "brdfit/formats.h"
 #include "brdfit/samples.h"
 
 int bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err)

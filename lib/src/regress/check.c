@@ -1,5 +1,6 @@
 /* Comparing a fit result with a baseline case: ok, each pinned parameter value (per
  * channel) and metric, within its tolerance; one line per quantity that moved. */
+#include "brdfit/formats.h"
 #include "brdfit/regress.h"
 
 #include <math.h>

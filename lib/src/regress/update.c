@@ -3,6 +3,7 @@
  * file is printed by hand (2-space indent, small objects and arrays of scalars on one
  * line) so it stays readable in review; numbers use the shortest text that reads back
  * exactly, strings cJSON's escaping. */
+#include "brdfit/formats.h"
 #include "brdfit/regress.h"
 
 #include <cjson/cJSON.h>
