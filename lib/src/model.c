@@ -422,19 +422,26 @@ int bf_model_check(const bf_model *m, const double *x, bf_error *err)
 }
 
 /* A model with tied (mono) parameters: the untied model on the expanded vector, and its
- * Jacobian columns summed onto the tied entries, a chunk of samples at a time. Out of
- * memory (no error path here) gives NaN, which every caller treats as a failed step. */
+ * Jacobian columns summed onto the tied entries, a chunk of samples at a time. The
+ * expanded vector and a chunk's untied gradient live on the stack (a chunk is cut to
+ * fit MONO_STACK doubles; the values of a sample do not depend on the chunks); only
+ * models with over MONO_STACK untied entries times channels use the heap. Out of memory
+ * (no error path here) gives NaN, which every caller treats as a failed step. */
+enum { MONO_STACK = 2048 }; /* doubles: 16 KiB each for the vector and the gradient */
+
 static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
                       double *values, double *grad)
 {
     const bf_model *in = m->inner;
     const size_t C = (size_t)m->channels, P = (size_t)m->nfree, Pi = (size_t)in->nfree;
-    size_t chunk = grad ? 16384 / (C * Pi) : 0;
+    size_t chunk = grad ? MONO_STACK / (C * Pi) : 0;
     if (chunk < 1)
         chunk = 1;
     if (chunk > i1 - i0)
         chunk = i1 - i0;
-    double *xi = malloc(Pi * sizeof *xi), *gi = grad ? malloc(chunk * C * Pi * sizeof *gi) : NULL;
+    double xs[MONO_STACK], gs[MONO_STACK];
+    double *xi = Pi <= MONO_STACK ? xs : malloc(Pi * sizeof *xi);
+    double *gi = !grad ? NULL : chunk * C * Pi <= MONO_STACK ? gs : malloc(chunk * C * Pi * sizeof *gi);
     if (!xi || (grad && !gi)) {
         for (size_t r = 0; r < (i1 - i0) * C; r++) {
             values[r] = NAN;
@@ -458,8 +465,10 @@ static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, 
             }
         }
     }
-    free(xi);
-    free(gi);
+    if (xi != xs)
+        free(xi);
+    if (gi != gs)
+        free(gi);
 }
 
 static void eval_stored(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,

@@ -211,8 +211,8 @@ static int lobe_entry(const bf_lobe_layout *lay, int u, int ch)
 
 /* A chunk's sums: *ssq, jtr and jtj (P entries, lower triangle). 0, or -1 when out of
  * memory. */
-static int lobe_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out, double *jtr, double *jtj,
-                      metric_buf *ms)
+static int lobe_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i1, double *ssq_out, double *jtr,
+                      double *jtj, metric_buf *ms)
 {
     const bf_objective *o = j->o;
     const bf_lobe_layout *lay = &j->lay;
@@ -220,15 +220,15 @@ static int lobe_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out
     int L = 1 + K;
     for (int k = 0; k < K; k++)
         L += lay->nscalar[k];
-    lobe_sums ls = {L, calloc((size_t)C * (size_t)L, sizeof(double)),
-                    j->want_jtj ? calloc((size_t)C * (size_t)L * (size_t)L, sizeof(double)) : NULL,
-                    malloc(((size_t)L + 2) * BF_LOBE_BLOCK * sizeof(double))};
-    if (!ls.tr || !ls.col || (j->want_jtj && !ls.tj)) {
-        free(ls.tr);
-        free(ls.tj);
-        free(ls.col);
+    const size_t ntr = (size_t)C * (size_t)L, ntj = ntr * (size_t)L;
+    lobe_sums ls = {L, bf_obj_ws_buf(ws, BF_WS_TR, ntr * sizeof(double)),
+                    j->want_jtj ? bf_obj_ws_buf(ws, BF_WS_TJ, ntj * sizeof(double)) : NULL,
+                    bf_obj_ws_buf(ws, BF_WS_COL, ((size_t)L + 2) * BF_LOBE_BLOCK * sizeof(double))};
+    if (!ls.tr || !ls.col || (j->want_jtj && !ls.tj))
         return -1;
-    }
+    memset(ls.tr, 0, ntr * sizeof(double));
+    if (ls.tj)
+        memset(ls.tj, 0, ntj * sizeof(double));
     double S[BF_MAX_LOBES][BF_LOBE_BLOCK], dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK];
     double ssq = 0.0;
     bf_geometry_block gb;
@@ -251,9 +251,6 @@ static int lobe_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out
                 }
             }
     }
-    free(ls.tr);
-    free(ls.tj);
-    free(ls.col);
     *ssq_out = ssq;
     return 0;
 }
@@ -346,20 +343,23 @@ static void block_normal(const normal_job *j, size_t cnt, block_scratch *b, doub
     }
 }
 
-static int generic_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_out, double *jtr, double *jtj,
-                         metric_buf *ms)
+static int generic_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i1, double *ssq_out, double *jtr,
+                         double *jtj, metric_buf *ms)
 {
     const bf_objective *o = j->o;
     const size_t C = (size_t)o->C, P = (size_t)j->P;
     size_t blk = BLOCK_DOUBLES / (C * (j->want_jac ? P + 1 : 1));
     blk = blk < 1 ? 1 : blk > BF_GEOMETRY_BLOCK ? BF_GEOMETRY_BLOCK : blk;
-    block_scratch b = {malloc(blk * C * sizeof(double)), j->want_jac ? malloc(blk * C * P * sizeof(double)) : NULL,
-                       malloc(blk * C * sizeof(double)), malloc(blk * C * sizeof(double)),
-                       malloc((P + 1) * blk * sizeof(double)), malloc(P * sizeof(int)), malloc(P * sizeof(uint64_t))};
+    block_scratch b = {bf_obj_ws_buf(ws, BF_WS_VALS, blk * C * sizeof(double)),
+                       j->want_jac ? bf_obj_ws_buf(ws, BF_WS_GRAD, blk * C * P * sizeof(double)) : NULL,
+                       bf_obj_ws_buf(ws, BF_WS_G, blk * C * sizeof(double)),
+                       bf_obj_ws_buf(ws, BF_WS_S, blk * C * sizeof(double)),
+                       bf_obj_ws_buf(ws, BF_WS_JC, (P + 1) * blk * sizeof(double)),
+                       bf_obj_ws_buf(ws, BF_WS_COLS, P * sizeof(int)),
+                       bf_obj_ws_buf(ws, BF_WS_USED, P * sizeof(uint64_t))};
     double ssq = 0.0;
-    int rc = -1;
     if (!b.vals || !b.g || !b.s || !b.jc || !b.cols || !b.used || (j->want_jac && !b.grad))
-        goto done;
+        return -1;
     bf_geometry_block gb;
     for (size_t ib = i0; ib < i1; ib += blk) {
         const size_t cnt = i1 - ib < blk ? i1 - ib : blk;
@@ -377,16 +377,7 @@ static int generic_chunk(const normal_job *j, size_t i0, size_t i1, double *ssq_
             block_normal(j, cnt, &b, jtr, jtj);
     }
     *ssq_out = ssq;
-    rc = 0;
-done:
-    free(b.vals);
-    free(b.grad);
-    free(b.g);
-    free(b.s);
-    free(b.jc);
-    free(b.cols);
-    free(b.used);
-    return rc;
+    return 0;
 }
 
 /* ---- The pass ---------------------------------------------------------------------- */
@@ -399,9 +390,15 @@ static void normal_chunk(void *ctx, size_t c)
     double *jtr = out + 1, *jtj = j->want_jtj ? out + 1 + j->P : NULL;
     const size_t C = (size_t)j->o->C;
     metric_buf mbuf = {i0, NULL, NULL, NULL}, *ms = NULL;
+    bf_obj_ws *ws = bf_obj_ws_get(j->o);
+    if (!ws) {
+        j->failed = 1;
+        return;
+    }
     if (j->msum) {
-        mbuf.f = malloc((i1 - i0) * (2 * C + 1) * sizeof(double));
+        mbuf.f = bf_obj_ws_buf(ws, BF_WS_MBUF, (i1 - i0) * (2 * C + 1) * sizeof(double));
         if (!mbuf.f) {
+            bf_obj_ws_put(j->o, ws);
             j->failed = 1;
             return;
         }
@@ -410,12 +407,13 @@ static void normal_chunk(void *ctx, size_t c)
         memset(mbuf.cs, 0, (i1 - i0) * sizeof *mbuf.cs);
         ms = &mbuf;
     }
-    int rc = j->lobe_path ? lobe_chunk(j, i0, i1, out, jtr, jtj, ms) : generic_chunk(j, i0, i1, out, jtr, jtj, ms);
+    int rc = j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms)
+                          : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
     if (rc == 0 && ms)
         bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
                         j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
                         j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C);
-    free(mbuf.f);
+    bf_obj_ws_put(j->o, ws);
     if (rc)
         j->failed = 1; /* written only as 1, by any thread */
 }
@@ -439,13 +437,29 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
     j.lobe_path = bf_model_lobe_layout(m, &j.lay);
     /* The untied vector: entry k of m is entry map[k] of the model's. */
     double xs[256], *xu = (size_t)P <= 256 ? xs : malloc((size_t)P * sizeof *xu);
-    j.part = calloc(nchunks * ps + 1, sizeof(double));
-    double *sum = calloc(ps, sizeof *sum);
-    j.msum = metrics ? calloc(nchunks + 1, sizeof *j.msum) : NULL;
+    const int PM = o->P;
+    bf_obj_ws *ws = bf_obj_ws_get(o);
+    double *sum = NULL, *ftr = NULL, *ftj = NULL;
+    if (ws) {
+        j.part = bf_obj_ws_buf(ws, BF_WS_PART, (nchunks * ps + 1) * sizeof(double));
+        sum = bf_obj_ws_buf(ws, BF_WS_SUM, ps * sizeof *sum);
+        j.msum = metrics ? bf_obj_ws_buf(ws, BF_WS_MSUM, (nchunks + 1) * sizeof *j.msum) : NULL;
+        ftr = j.want_jac ? bf_obj_ws_buf(ws, BF_WS_FTR, (size_t)PM * sizeof *ftr) : NULL;
+        ftj = jtj ? bf_obj_ws_buf(ws, BF_WS_FTJ, (size_t)PM * (size_t)PM * sizeof *ftj) : NULL;
+    }
     j.mweight = weighted ? o->samples->scene_weight : NULL;
     int rc = -1;
-    if (!xu || !j.part || !sum || (metrics && !j.msum))
+    if (!ws || !xu || !j.part || !sum || (metrics && !j.msum) || (j.want_jac && !ftr) || (jtj && !ftj))
         goto done;
+    /* Zeroed as the pass's calloc did: the chunks add into their parts. */
+    memset(j.part, 0, (nchunks * ps + 1) * sizeof(double));
+    memset(sum, 0, ps * sizeof *sum);
+    if (j.msum)
+        memset(j.msum, 0, (nchunks + 1) * sizeof *j.msum);
+    if (ftr)
+        memset(ftr, 0, (size_t)PM * sizeof *ftr);
+    if (ftj)
+        memset(ftj, 0, (size_t)PM * (size_t)PM * sizeof *ftj);
     for (int k = 0; k < P; k++)
         xu[k] = x[map ? map[k] : k];
     j.x = xu;
@@ -464,14 +478,6 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
             bf_metric_sums_add(metrics, &j.msum[c]);
     }
     /* Untied entries folded onto the model's, then the requested columns taken. */
-    const int PM = o->P;
-    double *ftr = j.want_jac ? calloc((size_t)PM, sizeof *ftr) : NULL;
-    double *ftj = jtj ? calloc((size_t)PM * (size_t)PM, sizeof *ftj) : NULL;
-    if ((j.want_jac && !ftr) || (jtj && !ftj)) {
-        free(ftr);
-        free(ftj);
-        goto done;
-    }
     for (int a = 0; j.want_jac && a < P; a++) {
         const int ka = map ? map[a] : a;
         ftr[ka] += sum[1 + a];
@@ -488,14 +494,10 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
     for (int a = 0; jtj && a < ncols; a++)
         for (int b = 0; b < ncols; b++)
             jtj[a * ncols + b] = ftj[(size_t)cols[a] * (size_t)PM + (size_t)cols[b]] * colscale[a] * colscale[b];
-    free(ftr);
-    free(ftj);
     rc = 0;
 done:
     if (xu != xs)
         free(xu);
-    free(j.part);
-    free(j.msum);
-    free(sum);
+    bf_obj_ws_put(o, ws);
     return rc;
 }
