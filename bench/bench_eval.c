@@ -51,7 +51,7 @@ int main(int argc, char **argv)
         if (!selected(only, name))
             continue;
         bf_model *m = bf_model_create(name, C, NULL);
-        int P = bf_model_nfree(m);
+        int P = bf_model_nvalues(m);
         double *x = malloc((size_t)P * sizeof *x);
         double *jac = malloc(n * C * (size_t)P * sizeof *jac);
         bf_model_defaults(m, x);

@@ -93,7 +93,7 @@ static void time_parts(bf_samples *s, const bf_objective_options *oo, int thread
     if (!obj)
         die("objective", err);
     const bf_problem *p = bf_objective_problem(obj);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x), z[16], jtr[16], jtj[256], ssq;
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x), z[16], jtr[16], jtj[256], ssq;
     if (bf_fit_initial_guess(m, s, x, err) != BF_OK)
         die("initial guess", err);
     bf_objective_to_internal(obj, x, z);

@@ -71,8 +71,8 @@ static cJSON *family_json(const bf_family_info *fi)
         cJSON_AddItemToArray(opts, opt);
     }
     cJSON *nfree = cJSON_AddObjectToObject(o, "free_params");
-    cJSON_AddNumberToObject(nfree, "1", bf_model_nfree(m1));
-    cJSON_AddNumberToObject(nfree, "3", bf_model_nfree(m3));
+    cJSON_AddNumberToObject(nfree, "1", bf_model_nvalues(m1));
+    cJSON_AddNumberToObject(nfree, "3", bf_model_nvalues(m3));
     bf_model_free(m1);
     bf_model_free(m3);
     return o;
@@ -86,7 +86,7 @@ static void print_text(const bf_family_info *fi)
            fi->anisotropic ? "anisotropic" : "isotropic",
            bf_model_reciprocal(m1) ? "reciprocal" : "not reciprocal",
            bf_model_energy_conserving(m1) ? "energy conserving" : "not energy conserving",
-           fi->lobes ? ", lobes=K" : "", bf_model_nfree(m1), bf_model_nfree(m3));
+           fi->lobes ? ", lobes=K" : "", bf_model_nvalues(m1), bf_model_nvalues(m3));
     for (int i = 0; i < bf_model_nparams(m1); i++) {
         const bf_param_info *p = bf_model_param(m1, i);
         printf("  %-16s %-6s %-20s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",

@@ -22,7 +22,7 @@ static void evaluate(const bf_model *m, const double *x)
     bf_geometry *g = bf_geometry_from_angles(4, ti, pi_, to, po, &err);
     if (!g)
         fuzz_fail("geometry: %s", err.msg);
-    const size_t C = (size_t)bf_model_channels(m), P = (size_t)bf_model_nfree(m);
+    const size_t C = (size_t)bf_model_channels(m), P = (size_t)bf_model_nvalues(m);
     /* The Jacobian is C x P per sample: up to 10,000 x 640,000; only the smaller ones. */
     double *v = malloc(4 * C * sizeof *v), *grad = C * P <= 1000000 ? malloc(4 * C * P * sizeof *grad) : NULL;
     if (!v || (!grad && C * P <= 1000000))
@@ -35,7 +35,7 @@ static void evaluate(const bf_model *m, const double *x)
 
 static void round_trip(bf_model *m, double *x)
 {
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     bf_fit_result r;
     memset(&r, 0, sizeof r);
     r.model = m;
@@ -54,7 +54,7 @@ static void round_trip(bf_model *m, double *x)
     if (bf_params_read(path, &m2, &x2, &err) != BF_OK)
         fuzz_fail("reading back the result written for %s: %s", bf_model_spec(m), err.msg);
     if (strcmp(bf_model_spec(m), bf_model_spec(m2)) != 0 || bf_model_channels(m) != bf_model_channels(m2) ||
-        bf_model_nfree(m2) != P)
+        bf_model_nvalues(m2) != P)
         fuzz_fail("model %s (%d channels) read back as %s (%d)", bf_model_spec(m), bf_model_channels(m),
                   bf_model_spec(m2), bf_model_channels(m2));
     for (int k = 0; k < P; k++)

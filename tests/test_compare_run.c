@@ -117,8 +117,8 @@ static void assert_same_fit(const bf_compare_fit *a, const bf_compare_fit *b)
     assert_memory_equal(&a->cv_error, &b->cv_error, sizeof a->cv_error);
     assert_non_null(a->result);
     assert_non_null(b->result);
-    int P = bf_model_nfree(a->result->model);
-    assert_int_equal(P, bf_model_nfree(b->result->model));
+    int P = bf_model_nvalues(a->result->model);
+    assert_int_equal(P, bf_model_nvalues(b->result->model));
     assert_memory_equal(a->result->x, b->result->x, (size_t)P * sizeof *a->result->x);
 }
 

@@ -48,7 +48,7 @@ static void check(const char *spec, int C)
         return;
     }
     ts_rng rng = {0x2545F4914F6CDD1DULL + (uint64_t)C};
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     for (int t = 0; t < TRIALS; t++) {
         ts_random_params(m, &rng, TS_PARAMS_MODERATE, x);
         double *v = ts_eval(m, x, geom);

@@ -55,7 +55,7 @@ static bf_geometry *extreme_geometry(void)
 static void check_geometry(const char *spec, const bf_model *m, const double *x, const char *what,
                            const bf_geometry *geo)
 {
-    const int C = bf_model_channels(m), P = bf_model_nfree(m);
+    const int C = bf_model_channels(m), P = bf_model_nvalues(m);
     size_t nv = geo->n * (size_t)C;
     double *v = malloc(nv * sizeof *v), *g = malloc(nv * (size_t)P * sizeof *g);
     bf_model_eval(m, x, geo, v, g);
@@ -83,7 +83,7 @@ static void check(const char *spec, int C)
     bf_model *m = bf_model_create(spec, C, &err);
     if (!m)
         fail_msg("%s: %s", spec, err.msg);
-    int P = bf_model_nfree(m), np = bf_model_nparams(m);
+    int P = bf_model_nvalues(m), np = bf_model_nparams(m);
     double *x = malloc((size_t)P * sizeof *x);
     ts_rng rng = {0xA0761D6478BD642FULL};
 
@@ -120,7 +120,7 @@ static void test_horizon_is_zero(void **state)
     (void)state;
     for (int f = 0; f < bf_family_count(); f++) {
         bf_model *m = bf_model_create(bf_family_get(f)->name, 1, NULL);
-        double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+        double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
         bf_model_defaults(m, x);
         assert_true(ts_eval1(m, x, 90.0, 0.0, 30.0, 180.0, 0) == 0.0);
         assert_true(ts_eval1(m, x, 30.0, 0.0, 90.0, 180.0, 0) == 0.0);

@@ -38,7 +38,7 @@ static bf_samples *synth(const char *spec, int C, const double *x, bf_synth_patt
 
 static void assert_params(const bf_fit_result *r, const double *truth, double tol, const char *spec)
 {
-    int P = bf_model_nfree(r->model);
+    int P = bf_model_nvalues(r->model);
     for (int k = 0; k < P; k++) {
         char what[96];
         snprintf(what, sizeof what, "%s parameter %d", spec, k);
@@ -73,7 +73,7 @@ static void test_recover_ceres(void **state)
         ts_fit_ok(s, t->spec, &o, &r);
         assert_params(&r, t->x, 1e-6, t->spec);
         assert_int_equal(r.metrics.n, 3 * NSAMPLES);
-        assert_int_equal(r.metrics.k, bf_model_nfree(r.model));
+        assert_int_equal(r.metrics.k, bf_model_nvalues(r.model));
         assert_int_equal(r.samples, NSAMPLES);
         assert_int_equal(r.starts, 1);
         assert_true(r.metrics.rmse < 1e-9);
@@ -172,7 +172,7 @@ static void test_initial_guess_hard_data(void **state)
     int ns = ts_all_specs(&specs);
     for (int k = 0; k < ns; k++) {
         bf_model *m = ts_model(specs[k], 3);
-        double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+        double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
         for (size_t j = 0; j < sizeof sets / sizeof sets[0]; j++) {
             bf_error err;
             if (bf_fit_initial_guess(m, sets[j], x, &err) != BF_OK)
@@ -224,7 +224,7 @@ static void test_multistart_deterministic(void **state)
     assert_int_equal(b.starts, 5);
     assert_int_equal(a.seed, 1234);
     assert_int_equal(a.threads, 2);
-    int P = bf_model_nfree(a.model);
+    int P = bf_model_nvalues(a.model);
     assert_memory_equal(a.x, b.x, (size_t)P * sizeof *a.x);
     assert_true(a.solution.final_cost == b.solution.final_cost);
     /* The best of five is at least as good as the data-driven start alone, which
@@ -254,7 +254,7 @@ static void test_fix_holds(void **state)
     assert_true(r.x[1] == 0.3);
     assert_true(r.fixed[7] && r.fixed[1] && !r.fixed[0] && !r.fixed[6]);
     assert_true(r.stderr_[7] == 0.0);
-    assert_int_equal(r.metrics.k, bf_model_nfree(r.model) - 2);
+    assert_int_equal(r.metrics.k, bf_model_nvalues(r.model) - 2);
     assert_params(&r, t->x, 1e-6, "walter with f0 and rho_d[1] fixed at the truth");
     bf_fit_result_free(&r);
 
@@ -320,7 +320,7 @@ static void test_result_json_round_trip(void **state)
                         0.2, 0.2, 0.2, 0.37, 0.5};
     const char *spec = "walter:lobes=2";
     bf_model *m = ts_model(spec, 3);
-    assert_int_equal(bf_model_nfree(m), 13);
+    assert_int_equal(bf_model_nvalues(m), 13);
     bf_model_free(m);
     bf_samples *s = synth(spec, 3, truth, BF_SYNTH_UNIFORM, 2000);
     bf_fit_options o;

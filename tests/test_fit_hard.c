@@ -66,7 +66,7 @@ static int fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_
     bf_error err;
     if (bf_fit(s, spec, o, r, &err) != BF_OK)
         fail_msg("%s: bf_fit %s: %s", what, spec, err.msg);
-    int P = bf_model_nfree(r->model);
+    int P = bf_model_nvalues(r->model);
     for (int k = 0; k < P; k++)
         if (!isfinite(r->x[k]))
             fail_msg("%s: %s parameter %d is %g", what, spec, k, r->x[k]);

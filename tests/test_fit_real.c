@@ -111,7 +111,7 @@ static void fit_all(bf_samples *s, const char *what)
             continue;
         if (bf_fit(s, spec, &o, &r, &err) != BF_OK)
             fail_msg("%s: %s: %s", what, spec, err.msg);
-        for (int k = 0; k < bf_model_nfree(r.model); k++)
+        for (int k = 0; k < bf_model_nvalues(r.model); k++)
             if (!isfinite(r.x[k]))
                 fail_msg("%s: %s parameter %d is %g", what, spec, k, r.x[k]);
         if (verbose())

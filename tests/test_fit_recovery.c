@@ -163,7 +163,7 @@ static double max_abs_value(const bf_samples *s)
 static void fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
 {
     ts_fit_ok(s, spec, o, r);
-    for (int k = 0; k < bf_model_nfree(r->model); k++)
+    for (int k = 0; k < bf_model_nvalues(r->model); k++)
         if (!isfinite(r->x[k]))
             fail_msg("fit %s: parameter %d is %g", spec, k, r->x[k]);
 }

@@ -81,7 +81,7 @@ static void check_fit_threads(bf_samples *s, const char *spec, bf_backend backen
             assert_int_equal(ref.presolve.samples, presolve > 0 ? (size_t)presolve : 0);
             continue;
         }
-        const int P = bf_model_nfree(r.model);
+        const int P = bf_model_nvalues(r.model);
         assert_memory_equal(r.x, ref.x, (size_t)P * sizeof *r.x);
         assert_memory_equal(r.stderr_, ref.stderr_, (size_t)P * sizeof *r.x);
         assert_memory_equal(&r.metrics, &ref.metrics, sizeof r.metrics);

@@ -60,7 +60,7 @@ static void check_model(const char *spec, int C, int *checked, int *kinks)
     bf_model *m = bf_model_create(spec, C, &err);
     if (!m)
         fail_msg("%s: %s", spec, err.msg);
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     ts_rng rng = {0x9E3779B97F4A7C15ULL ^ (uint64_t)(strlen(spec) * 131 + (size_t)C)};
     double ti[NDIRS], pi_[NDIRS], to[NDIRS], po[NDIRS];
     ts_random_dirs(&rng, NDIRS, ti, pi_, to, po);

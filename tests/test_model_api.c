@@ -83,9 +83,9 @@ static void test_free_parameter_counts(void **state)
         for (int k = 0; k < 3; k++) {
             bf_model *m = ts_model(cases[i].spec, counts[k]);
             int expect = cases[i].colour * counts[k] + cases[i].scalar;
-            if (bf_model_nfree(m) != expect)
+            if (bf_model_nvalues(m) != expect)
                 fail_msg("%s C=%d: %d free parameters, expected %d", cases[i].spec, counts[k],
-                         bf_model_nfree(m), expect);
+                         bf_model_nvalues(m), expect);
             bf_model_free(m);
         }
     }
@@ -124,7 +124,7 @@ static void test_bounds_check(void **state)
 {
     (void)state;
     bf_model *m = ts_model("brady", 1);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     bf_model_defaults(m, x);
     bf_error err;
     assert_int_equal(bf_model_check(m, x, &err), BF_OK);
@@ -156,7 +156,7 @@ static void test_defaults_in_bounds(void **state)
     assert_true(n > 0);
     for (int i = 0; i < n; i++) {
         bf_model *m = ts_model(specs[i], 3);
-        double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+        double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
         bf_model_defaults(m, x);
         bf_error err;
         if (bf_model_check(m, x, &err) != BF_OK)
@@ -192,7 +192,7 @@ static void test_eval_range(void **state)
     ts_rng r = {42};
     ts_random_dirs(&r, N, ti, pi_, to, po);
     bf_geometry *g = bf_geometry_from_angles(N, ti, pi_, to, po, NULL);
-    int P = bf_model_nfree(m);
+    int P = bf_model_nvalues(m);
     double *x = malloc((size_t)P * sizeof *x);
     bf_model_defaults(m, x);
     double *all = malloc(N * 3 * sizeof *all), *part = malloc(N * 3 * sizeof *part);

@@ -33,7 +33,7 @@ static void test_table_and_spec(void **state)
     (void)state;
     bf_model *m = ts_model("walter:mono=rho_s", 3);
     /* rho_d 3 + rho_s 1 + alpha + f0 */
-    assert_int_equal(bf_model_nfree(m), 6);
+    assert_int_equal(bf_model_nvalues(m), 6);
     int i = bf_model_find_param(m, "rho_s");
     assert_true(i >= 0);
     assert_int_equal(bf_model_param(m, i)->colour, 0);
@@ -44,22 +44,22 @@ static void test_table_and_spec(void **state)
     assert_non_null(strstr(bf_model_spec(m), "mono=specular"));
     bf_model *again = ts_model(bf_model_spec(m), 3);
     assert_string_equal(bf_model_spec(again), bf_model_spec(m));
-    assert_int_equal(bf_model_nfree(again), 6);
+    assert_int_equal(bf_model_nvalues(again), 6);
     bf_model_free(again);
     bf_model_free(m);
 
     m = ts_model("cook_torrance:lobes=2,mono=rho_s_2", 3);
     assert_string_equal(bf_model_option(m, "mono"), "rho_s_2");
-    assert_int_equal(bf_model_nfree(m), 3 + 3 + 1 + 1 + 1 + 1 + 1);
+    assert_int_equal(bf_model_nvalues(m), 3 + 3 + 1 + 1 + 1 + 1 + 1);
     bf_model_free(m);
 
     m = ts_model("lambert:mono=all", 3);
-    assert_int_equal(bf_model_nfree(m), 1);
+    assert_int_equal(bf_model_nvalues(m), 1);
     bf_model_free(m);
 
     /* One channel: nothing to tie, same layout. */
     m = ts_model("walter:mono=specular", 1);
-    assert_int_equal(bf_model_nfree(m), 4);
+    assert_int_equal(bf_model_nvalues(m), 4);
     bf_model_free(m);
 
     /* Untied models say no mono. */
@@ -95,7 +95,7 @@ static void test_bad_specs(void **state)
 static void check_against_untied(const char *untied_spec, const char *mono_spec, int C, ts_rng *r)
 {
     bf_model *mu = ts_model(untied_spec, C), *mm = ts_model(mono_spec, C);
-    const int Pu = bf_model_nfree(mu), Pm = bf_model_nfree(mm), np = bf_model_nparams(mm);
+    const int Pu = bf_model_nvalues(mu), Pm = bf_model_nvalues(mm), np = bf_model_nparams(mm);
     assert_int_equal(bf_model_nparams(mu), np);
     assert_true(Pm < Pu);
     bf_geometry *g = random_geometry(r);

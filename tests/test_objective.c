@@ -213,7 +213,7 @@ static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
     const size_t n = 40;
     bf_model *m = ts_model(jc->spec, C);
     bf_samples *s = random_samples(n, C, seed);
-    int P = bf_model_nfree(m);
+    int P = bf_model_nvalues(m);
     double *x = malloc((size_t)P * sizeof *x), *xm = malloc((size_t)P * sizeof *xm);
     ts_rng r = {seed * 7 + 1};
     /* Measurements from other parameters, some negative and some zero. */
@@ -359,7 +359,7 @@ static void check_normal(const normal_case *nc, uint64_t seed)
     assert_non_null(m);
     bf_samples *s = nc->cells ? cell_samples(n, seed) : random_samples(n, C, seed);
     ts_rng r = {seed + 1};
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     double *x = malloc((size_t)P * sizeof *x);
     ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
     const bf_geometry *g = bf_samples_geometry(s, NULL);
@@ -452,7 +452,7 @@ static void test_final_pass(void **state)
             bf_model *m = bf_model_create(specs[c], 3, NULL);
             bf_samples *s = c % 2 ? cell_samples(n, 70 + c) : random_samples(n, 3, 70 + c);
             ts_rng r = {80 + c};
-            const int P = bf_model_nfree(m);
+            const int P = bf_model_nvalues(m);
             double *x = malloc((size_t)P * sizeof *x), *se1 = malloc((size_t)P * sizeof *se1);
             double *se2 = malloc((size_t)P * sizeof *se2);
             ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
@@ -525,7 +525,7 @@ static void test_row_ranges(void **state)
     s->theta_i[10] = 91; /* one below the horizon */
     bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LOG, NULL, 0);
     const bf_problem *p = bf_objective_problem(obj);
-    int P = bf_model_nfree(m), nz = p->npar;
+    int P = bf_model_nvalues(m), nz = p->npar;
     assert_int_equal(nz, P);
     double *x = malloc((size_t)P * sizeof *x), *z = malloc((size_t)nz * sizeof *z);
     ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
@@ -626,7 +626,7 @@ static void test_open_bounds(void **state)
     bf_model *m = ts_model("brady", 1);
     bf_samples *s = random_samples(10, 1, 4);
     bf_objective *obj = make_obj(m, s, BF_RESIDUAL_LINEAR, NULL, 0);
-    int P = bf_model_nfree(m);
+    int P = bf_model_nvalues(m);
     double lo[16], hi[16];
     bf_objective_bounds(obj, lo, hi);
     int ka = bf_model_param_offset(m, bf_model_find_param(m, "a"));

@@ -26,7 +26,7 @@ static void check(const char *spec, int C)
     ts_random_dirs(&rng, NDIRS, ti, pi_, to, po);
     bf_geometry *g = bf_geometry_from_angles(NDIRS, ti, pi_, to, po, NULL);
     bf_geometry *gs = bf_geometry_from_angles(NDIRS, to, po, ti, pi_, NULL);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     for (int t = 0; t < TRIALS; t++) {
         ts_random_params(m, &rng, TS_PARAMS_MODERATE, x);
         double *a = ts_eval(m, x, g), *b = ts_eval(m, x, gs);

@@ -127,7 +127,7 @@ static void test_halfdiff_model(void **state)
     (void)state;
     bf_model *m = ts_model("walter", 3);
     double x[8];
-    assert_true(bf_model_nfree(m) <= 8);
+    assert_true(bf_model_nvalues(m) <= 8);
     bf_model_defaults(m, x);
     const int W = 45, H = 30;
     float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);

@@ -44,7 +44,7 @@ static double cosd(double deg) { return cos(deg * DEG); }
 static bf_model *lambert(int C, const double *rho, double **x)
 {
     bf_model *m = ts_model("lambert", C);
-    *x = malloc((size_t)bf_model_nfree(m) * sizeof **x);
+    *x = malloc((size_t)bf_model_nvalues(m) * sizeof **x);
     for (int c = 0; c < C; c++)
         (*x)[c] = rho[c];
     return m;
@@ -434,7 +434,7 @@ static void test_values_are_the_model(void **state)
 {
     (void)state;
     bf_model *m = ts_model("walter", 3);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     ts_rng rr = {42};
     ts_random_params(m, &rr, TS_PARAMS_MODERATE, x);
     const double inc[2] = {10, 55};
@@ -478,7 +478,7 @@ static void test_determinism(void **state)
 {
     (void)state;
     bf_model *m = ts_model("walter", 3);
-    double *x = malloc((size_t)bf_model_nfree(m) * sizeof *x);
+    double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     ts_rng rr = {7};
     ts_random_params(m, &rr, TS_PARAMS_MODERATE, x);
     const bf_synth_noise noises[] = {

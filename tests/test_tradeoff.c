@@ -36,7 +36,7 @@ static bf_samples *synthetic(size_t n)
     }
     bf_model *m = ts_model("walter", 1);
     double x[8];
-    assert_true(bf_model_nfree(m) <= 8);
+    assert_true(bf_model_nvalues(m) <= 8);
     bf_model_defaults(m, x);
     const bf_geometry *g = bf_samples_geometry(s, &err);
     assert_non_null(g);

@@ -47,7 +47,7 @@ static void test_table(void **state)
     (void)state;
     bf_model *m = bf_model_create("ashikhmin_shirley", 3, NULL);
     assert_non_null(m);
-    assert_int_equal(bf_model_nfree(m), 3 + 3 + 2);
+    assert_int_equal(bf_model_nvalues(m), 3 + 3 + 2);
     const char *names[] = {"rho_d", "rho_s", "nu", "nv"};
     for (int i = 0; i < 4; i++)
         assert_string_equal(bf_model_param(m, i)->name, names[i]);

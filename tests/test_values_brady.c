@@ -96,7 +96,7 @@ static double brady_plain(int C, const double *x, int c, double ti, double pi_, 
 static void check_random(int C)
 {
     bf_model *m = make(C);
-    assert_int_equal(bf_model_nfree(m), 2 * C + 3);
+    assert_int_equal(bf_model_nvalues(m), 2 * C + 3);
     ts_rng rng = {0xBF58476D1CE4E5B9ULL + (uint64_t)C};
     double x[16];
     for (int t = 0; t < 30; t++) {

@@ -30,7 +30,7 @@ static bf_model *make(int C)
 static void pack(const bf_model *m, const double *base, const dp *p, double *x)
 {
     int C = bf_model_channels(m);
-    assert_int_equal(bf_model_nfree(m), C + 10);
+    assert_int_equal(bf_model_nvalues(m), C + 10);
     const double s[10] = {p->metallic, p->subsurface, p->specular, p->roughness,
                           p->specular_tint, p->anisotropic, p->sheen, p->sheen_tint,
                           p->clearcoat, p->clearcoat_gloss};

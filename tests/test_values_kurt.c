@@ -94,7 +94,7 @@ static double kurt_plain(int lobes, int C, const double *x, int c, double ti, do
 static void check_random(const char *spec, int lobes, int C)
 {
     bf_model *m = ts_model(spec, C);
-    assert_int_equal(bf_model_nfree(m), C + lobes * (C + 3));
+    assert_int_equal(bf_model_nvalues(m), C + lobes * (C + 3));
     ts_rng rng = {0x853C49E6748FEA9BULL + (uint64_t)(lobes * 7 + C)};
     double x[64];
     for (int t = 0; t < 20; t++) {

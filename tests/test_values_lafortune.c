@@ -43,7 +43,7 @@ static void test_tables(void **state)
     assert_non_null(m);
     const char *n1[] = {"rho_d", "rho_s", "cxy", "cz", "n"};
     assert_int_equal(bf_model_nparams(m), 5);
-    assert_int_equal(bf_model_nfree(m), 3 + 3 + 3);
+    assert_int_equal(bf_model_nvalues(m), 3 + 3 + 3);
     for (int i = 0; i < 5; i++)
         assert_string_equal(bf_model_param(m, i)->name, n1[i]);
     double x[9];
@@ -216,7 +216,7 @@ static void random_case(const char *spec, int aniso, int K, uint64_t seed)
     const int C = 3, ns = aniso ? 4 : 3; /* scalars per lobe */
     bf_model *m = bf_model_create(spec, C, NULL);
     assert_non_null(m);
-    assert_int_equal(bf_model_nfree(m), C + K * (C + ns));
+    assert_int_equal(bf_model_nvalues(m), C + K * (C + ns));
     ts_rng r = {seed};
     for (int t = 0; t < 200; t++) {
         double x[64];

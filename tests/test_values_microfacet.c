@@ -79,7 +79,7 @@ static void test_parameter_tables(void **state)
     /* Defaults are D=ggx, G=smith_ggx, F=schlick, the canonical spec lists them all. */
     bf_model *m = ts_model("microfacet", 3);
     assert_string_equal(bf_model_spec(m), "microfacet:D=ggx,G=smith_ggx,F=schlick,lobes=1");
-    assert_int_equal(bf_model_nfree(m), 3 + 3 + 1 + 1);
+    assert_int_equal(bf_model_nvalues(m), 3 + 3 + 1 + 1);
     bf_model_free(m);
 
     /* Bounds and scales. */
@@ -440,8 +440,8 @@ static void compare_specs(const char *s1, const char *s2)
     enum { N = 300 };
     for (int C = 1; C <= 3; C += 2) {
         bf_model *a = ts_model(s1, C), *b = ts_model(s2, C);
-        int P = bf_model_nfree(a);
-        assert_int_equal(P, bf_model_nfree(b));
+        int P = bf_model_nvalues(a);
+        assert_int_equal(P, bf_model_nvalues(b));
         assert_int_equal(bf_model_nparams(a), bf_model_nparams(b));
         for (int i = 0; i < bf_model_nparams(a); i++) {
             const bf_param_info *p = bf_model_param(a, i), *q = bf_model_param(b, i);
@@ -513,7 +513,7 @@ static void check_grazing(const char *spec)
     bf_geometry *g = bf_geometry_from_vectors(N, &Ls[0][0], &Vs[0][0], NULL);
     for (int C = 1; C <= 2; C++) {
         bf_model *m = ts_model(spec, C);
-        int P = bf_model_nfree(m), np = bf_model_nparams(m);
+        int P = bf_model_nvalues(m), np = bf_model_nparams(m);
         double *x = malloc((size_t)P * sizeof *x);
         double *v = malloc((size_t)N * C * sizeof *v), *gr = malloc((size_t)N * C * P * sizeof *gr);
         ts_rng rng = {0xE17ULL};

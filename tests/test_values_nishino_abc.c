@@ -157,7 +157,7 @@ static void check_random(int model, int kind, int C)
     snprintf(spec, sizeof spec, "%s:fresnel=%s", model == NISHINO ? "nishino" : "abc", kinds[kind]);
     bf_model *m = ts_model(spec, C);
     int P = 2 * C + 2 + (kind != 2);
-    assert_int_equal(bf_model_nfree(m), P);
+    assert_int_equal(bf_model_nvalues(m), P);
     ts_rng rng = {0x94D049BB133111EBULL + (uint64_t)(model * 31 + kind * 7 + C)};
     double x[16];
     for (int t = 0; t < 24; t++) {

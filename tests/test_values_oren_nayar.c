@@ -28,7 +28,7 @@ static void test_table(void **state)
     bf_model *m = bf_model_create("oren_nayar", 3, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 2);
-    assert_int_equal(bf_model_nfree(m), 4);
+    assert_int_equal(bf_model_nvalues(m), 4);
     assert_string_equal(bf_model_param(m, 0)->name, "rho_d");
     assert_string_equal(bf_model_param(m, 1)->name, "sigma");
     assert_true(bf_model_param(m, 1)->lo == 0.0 && bf_model_param(m, 1)->hi == M_PI / 2.0);

@@ -83,7 +83,7 @@ static void test_tables(void **state)
         bf_model *m = bf_model_create(fam[f], 3, NULL);
         assert_non_null(m);
         assert_int_equal(bf_model_nparams(m), 3);
-        assert_int_equal(bf_model_nfree(m), 3 + 3 + 1);
+        assert_int_equal(bf_model_nvalues(m), 3 + 3 + 1);
         assert_string_equal(bf_model_param(m, 0)->name, "rho_d");
         assert_string_equal(bf_model_param(m, 1)->name, "rho_s");
         const bf_param_info *n = bf_model_param(m, 2);
@@ -104,7 +104,7 @@ static void test_tables(void **state)
     m = bf_model_create("heidrich_seidel", 2, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 4);
-    assert_int_equal(bf_model_nfree(m), 2 + 2 + 2);
+    assert_int_equal(bf_model_nvalues(m), 2 + 2 + 2);
     assert_string_equal(bf_model_param(m, 2)->name, "s");
     assert_true(bf_model_param(m, 2)->lo == 0.0 && bf_model_param(m, 2)->hi == 1e6);
     const bf_param_info *p = bf_model_param(m, 3);

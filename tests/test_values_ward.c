@@ -36,7 +36,7 @@ static void test_table(void **state)
     bf_model *m = bf_model_create("ward", 3, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 4);
-    assert_int_equal(bf_model_nfree(m), 3 + 3 + 2);
+    assert_int_equal(bf_model_nvalues(m), 3 + 3 + 2);
     const char *names[] = {"rho_d", "rho_s", "alpha_x", "alpha_y"};
     for (int i = 0; i < 4; i++)
         assert_string_equal(bf_model_param(m, i)->name, names[i]);

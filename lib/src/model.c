@@ -336,7 +336,7 @@ int bf_model_lobes(const bf_model *m) { return m->lobes; }
 int bf_model_reciprocal(const bf_model *m) { return m->reciprocal; }
 int bf_model_energy_conserving(const bf_model *m) { return m->energy_conserving; }
 int bf_model_nparams(const bf_model *m) { return m->nparam; }
-int bf_model_nfree(const bf_model *m) { return m->nfree; }
+int bf_model_nvalues(const bf_model *m) { return m->nfree; }
 
 const char *bf_model_option(const bf_model *m, const char *key)
 {

@@ -92,7 +92,7 @@ typedef struct bf_presolve_info {
 
 typedef struct bf_fit_result {
     bf_model *model;        /* configured with the samples' channel count (owned) */
-    double *x;              /* best parameters, bf_model_nfree entries, always finite */
+    double *x;              /* best parameters, bf_model_nvalues entries, always finite */
     double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
     unsigned char *fixed;   /* 1 where fixed */
     bf_metrics metrics;

@@ -35,7 +35,7 @@ int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
  * the configured model must be given, with one value per channel for colour
  * parameters, inside its bounds. Other top-level keys are ignored, so a fit result can
  * stand in for a parameter file. On success *model and *x (malloc'd, length
- * bf_model_nfree) belong to the caller. */
+ * bf_model_nvalues) belong to the caller. */
 int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 
 /* ---- Outputs that survive failures. bf_outfile_open resolves path: a regular file

@@ -97,13 +97,14 @@ const bf_param_info *bf_model_param(const bf_model *m, int i);
 int bf_model_param_offset(const bf_model *m, int i);
 int bf_model_find_param(const bf_model *m, const char *name); /* -1 if absent */
 
-/* The name of model-vector entry k (0 <= k < bf_model_nfree): "alpha", or "rho_d[c]"
+/* The name of model-vector entry k (0 <= k < bf_model_nvalues): "alpha", or "rho_d[c]"
  * for channel c of a colour parameter when the model has several channels (the
  * spelling --fix and --bound take). Returns buf. */
 const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size);
 
-/* Length P of the parameter vector: colour_count * C + scalar_count. */
-int bf_model_nfree(const bf_model *m);
+/* Length P of the model vector: colour_count * C + scalar_count, fixed entries included
+ * (the free parameters of a fit are fewer when some are fixed: bf_fit_result). */
+int bf_model_nvalues(const bf_model *m);
 void bf_model_defaults(const bf_model *m, double *x);
 /* BF_ERR_RANGE naming the parameter when a value is NaN, Inf or out of bounds. */
 int bf_model_check(const bf_model *m, const double *x, bf_error *err);

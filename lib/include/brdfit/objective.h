@@ -80,7 +80,7 @@ void bf_objective_free(bf_objective *obj);
 const bf_problem *bf_objective_problem(const bf_objective *obj);
 int bf_objective_nz(const bf_objective *obj);
 
-/* Model vector x (bf_model_nfree entries) <-> internal z. to_internal clamps x into the
+/* Model vector x (bf_model_nvalues entries) <-> internal z. to_internal clamps x into the
  * effective bounds first; to_model writes every entry of x, fixed ones included. */
 void bf_objective_to_internal(const bf_objective *obj, const double *x, double *z);
 void bf_objective_to_model(const bf_objective *obj, const double *z, double *x);

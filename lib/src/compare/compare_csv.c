@@ -35,7 +35,7 @@ static char (*param_columns(const bf_compare *c, int *count))[NAME_LEN]
     for (int j = 0; names && j < c->nmodels; j++)
         for (int i = 0; names && i < c->nmaterials; i++) {
             const bf_fit_result *r = ran_result(&c->materials[i].fits[j]);
-            for (int k = 0; r && names && k < bf_model_nfree(r->model); k++) {
+            for (int k = 0; r && names && k < bf_model_nvalues(r->model); k++) {
                 char name[NAME_LEN];
                 bf_model_entry_name(r->model, k, name, sizeof name);
                 int seen = 0;
@@ -63,7 +63,7 @@ static char (*param_columns(const bf_compare *c, int *count))[NAME_LEN]
 static double param_value(const bf_fit_result *r, const char *name)
 {
     char e[NAME_LEN];
-    for (int k = 0; r && k < bf_model_nfree(r->model); k++)
+    for (int k = 0; r && k < bf_model_nvalues(r->model); k++)
         if (!strcmp(bf_model_entry_name(r->model, k, e, sizeof e), name))
             return r->x[k];
     return NAN;

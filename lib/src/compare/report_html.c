@@ -173,10 +173,10 @@ static void model_table(report *r, const bf_compare_material *m)
         /* Every fitted entry, and what to doubt. */
         const bf_fit_result *res = f->result;
         fputs("<td class=\"params\">", fp);
-        for (int k = 0; res && k < bf_model_nfree(res->model); k++) {
+        for (int k = 0; res && k < bf_model_nvalues(res->model); k++) {
             char name[64];
             esc(fp, bf_model_entry_name(res->model, k, name, sizeof name));
-            fprintf(fp, "&nbsp;%.6g%s", res->x[k], k + 1 < bf_model_nfree(res->model) ? "<br>" : "");
+            fprintf(fp, "&nbsp;%.6g%s", res->x[k], k + 1 < bf_model_nvalues(res->model) ? "<br>" : "");
         }
         fputs("</td><td class=\"warn\">", fp);
         for (int w = 0; res && w < res->nwarnings; w++) {

@@ -70,7 +70,7 @@ static void warn_entry(bf_fit_result *r, const char *name, int kind, double x, d
 static void check_entries(const bf_objective *o, bf_fit_result *r)
 {
     const bf_model *m = r->model;
-    const int P = bf_model_nfree(m), C = bf_model_channels(m);
+    const int P = bf_model_nvalues(m), C = bf_model_channels(m);
     double *lo = malloc((size_t)P * sizeof *lo), *hi = malloc((size_t)P * sizeof *hi);
     if (!lo || !hi) {
         free(lo);
@@ -294,7 +294,7 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
     bf_lobe_layout lay;
     if (!bf_model_lobe_layout(um, &lay) || lay.lobes == 0)
         return;
-    const int P = bf_model_nfree(um);
+    const int P = bf_model_nvalues(um);
     double *xu = malloc((size_t)P * sizeof *xu);
     if (!xu)
         return;

@@ -132,7 +132,7 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
     if (!r->model)
         return err ? err->code : BF_ERR_ARG;
     const bf_model *m = r->model;
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     int rc = alloc_result(r, P, err);
     if (rc != BF_OK) {
         bf_fit_result_free(r);

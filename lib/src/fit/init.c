@@ -228,7 +228,7 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
                            double *xs, double *f1, double *over)
 {
     *over = 0.0;
-    const int P = bf_model_nfree(m), C = bf_model_channels(m), np = bf_model_nparams(m);
+    const int P = bf_model_nvalues(m), C = bf_model_channels(m), np = bf_model_nparams(m);
     memcpy(xs, x, (size_t)P * sizeof *xs);
     set_widths(m, xs, h);
     for (int i = 0; i < np; i++) {
@@ -268,7 +268,7 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
 static double scan_widths(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y,
                           double *xs, double *xb, double *f1, double *over)
 {
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     double best = HUGE_VAL, best_h = h;
     for (int j = -6; j <= 10; j++) {
         double hj = h * pow(2.0, j / 2.0);
@@ -284,7 +284,7 @@ static double scan_widths(const bf_model *m, double *x, double h, const bf_geome
 
 int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
 {
-    const int C = bf_model_channels(m), P = bf_model_nfree(m), np = bf_model_nparams(m);
+    const int C = bf_model_channels(m), P = bf_model_nvalues(m), np = bf_model_nparams(m);
     if (C != s->channels)
         return bf_fail(err, BF_ERR_ARG, "model %s has %d channels, the samples %d", bf_model_spec(m), C,
                        s->channels);

@@ -411,7 +411,7 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     o->threads = opt->threads;
     o->n = s->n;
     o->C = s->channels;
-    o->P = bf_model_nfree(m);
+    o->P = bf_model_nvalues(m);
     size_t P1 = (size_t)o->P + 1, np = (size_t)bf_model_nparams(m) + 1;
     o->lo = malloc(P1 * sizeof *o->lo);
     o->hi = malloc(P1 * sizeof *o->hi);

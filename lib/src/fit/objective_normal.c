@@ -430,7 +430,7 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
 {
     const int *map;
     const bf_model *m = bf_model_untied(o->model, &map);
-    const int P = bf_model_nfree(m);
+    const int P = bf_model_nvalues(m);
     const size_t nchunks = (o->n + NORMAL_CHUNK - 1) / NORMAL_CHUNK, ps = normal_part(P);
     normal_job j = {.o = o, .m = m, .P = P, .loss = loss, .want_jac = jtr != NULL || jtj != NULL,
                     .want_jtj = jtj != NULL};

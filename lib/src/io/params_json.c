@@ -202,7 +202,7 @@ int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err
         rc = bf_fail(err, e2.code, "%s:%zu: %s", path, line_of_key(text, "model"), e2.msg);
         goto done;
     }
-    if (!(v = malloc((size_t)bf_model_nfree(m) * sizeof *v + 1))) {
+    if (!(v = malloc((size_t)bf_model_nvalues(m) * sizeof *v + 1))) {
         rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
         goto done;
     }

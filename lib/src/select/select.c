@@ -105,7 +105,7 @@ int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, 
             bf_select_free(s);
             return BF_ERR_ARG;
         }
-        c->k = bf_model_nfree(m);
+        c->k = bf_model_nvalues(m);
         c->anisotropic = family_anisotropic(bf_model_name(m));
         c->lobes = bf_model_lobes(m);
         c->coloured_specular = coloured_specular(m);
