@@ -131,7 +131,7 @@ int main(int argc, char **argv)
     int threads = 2, repeats = 3;
     const char *residual = "log", *methods = "ceres,LD_LBFGS,LD_SLSQP,LN_BOBYQA";
     const char *data = NULL, *write = NULL;
-    for (int a = 1; a < argc; a++) {
+    for (int a = 1; a < argc; a += 2) { /* every option takes a value */
         const char *v = a + 1 < argc ? argv[a + 1] : NULL;
         if (!v)
             die("every option takes a value", NULL);
@@ -149,7 +149,6 @@ int main(int argc, char **argv)
             write = v;
         else
             die("unknown option (--threads --residual --repeats --methods --data --write)", NULL);
-        a++;
     }
     if (repeats < 1)
         repeats = 1;
