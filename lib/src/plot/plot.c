@@ -552,7 +552,8 @@ static int clampi(int v, int lo, int hi)
 
 static int drawable(const plot_layout *l, double x, double y);
 
-/* The corner of the plot area whose legend box covers the fewest points. */
+/* The corner of the plot area whose legend box covers the fewest points; a labelled
+ * point counts with the room its label takes beside it (its name must stay readable). */
 static void legend_corner(const plot *p, plot_layout *l)
 {
     double inset = 0.5 * l->font, best_x = l->x1 - inset - l->legend_w, best_y = l->y0 + inset;
@@ -567,7 +568,9 @@ static void legend_corner(const plot *p, plot_layout *l)
                 if (!drawable(l, s->x[k], s->y[k]))
                     continue;
                 double X = map(l, PLOT_X, s->x[k]), Y = map(l, PLOT_Y, s->y[k]);
-                covered += X >= x && X <= x + l->legend_w && Y >= y && Y <= y + l->legend_h;
+                const double mx = s->labels && s->labels[k] ? 6.0 * l->font : 0.0,
+                             my = s->labels && s->labels[k] ? 1.5 * l->font : 0.0;
+                covered += X >= x - mx && X <= x + l->legend_w + mx && Y >= y - my && Y <= y + l->legend_h + my;
             }
         if (covered < best) {
             best = covered;
