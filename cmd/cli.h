@@ -51,7 +51,6 @@ typedef struct cli_arg {
 typedef struct cli_args {
     cli_arg *v;
     int n;
-    int verbosity; /* 0 with --quiet, 1 by default, 2 with --verbose */
 } cli_args;
 
 enum { CLI_OK = 0, CLI_EXIT = 1, CLI_USAGE = 2 };
