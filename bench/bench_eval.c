@@ -42,7 +42,8 @@ int main(int argc, char **argv)
         a[i] = (i / n) % 2 ? 2.0 * M_PI * u : acos(u);
     }
     double t0 = now();
-    bf_geometry *g = bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, &g, NULL);
     printf("geometry: %zu samples in %.3f s\n", n, now() - t0);
     printf("%-24s %4s %14s %18s\n", "model", "P", "values Ms/s", "values+grad Ms/s");
     double *v = malloc(n * C * sizeof *v);
@@ -50,7 +51,8 @@ int main(int argc, char **argv)
         const char *name = bf_family_get(f)->name;
         if (!selected(only, name))
             continue;
-        bf_model *m = bf_model_create(name, C, NULL);
+        bf_model *m = NULL;
+        bf_model_new(name, C, &m, NULL);
         int P = bf_model_nvalues(m);
         double *x = malloc((size_t)P * sizeof *x);
         double *jac = malloc(n * C * (size_t)P * sizeof *jac);

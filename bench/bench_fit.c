@@ -62,8 +62,8 @@ static void set_param(const bf_model *m, double *x, const char *name, const doub
 
 static bf_samples *generate(bf_error *err)
 {
-    bf_model *m = bf_model_create(SPEC, 3, err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new(SPEC, 3, &m, err) != BF_OK)
         die("model", err);
     double x[16];
     bf_model_defaults(m, x);
@@ -88,9 +88,9 @@ static bf_samples *generate(bf_error *err)
 static void time_parts(bf_samples *s, const bf_objective_options *oo, int threads, double *t_pass,
                        double *t_cost, double *t_metrics, double *t_stderr, bf_error *err)
 {
-    bf_model *m = bf_model_create(SPEC, 3, err);
-    bf_objective *obj = m ? bf_objective_new(m, s, oo, err) : NULL;
-    if (!obj)
+    bf_model *m;
+    bf_objective *obj;
+    if (bf_model_new(SPEC, 3, &m, err) != BF_OK || bf_objective_new(m, s, oo, &obj, err) != BF_OK)
         die("objective", err);
     const bf_problem *p = bf_objective_problem(obj);
     double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x), z[16], jtr[16], jtj[256], ssq;
@@ -171,13 +171,15 @@ int main(int argc, char **argv)
     }
     if (write && bf_samples_write_merl(s, write, &err) != BF_OK)
         die(write, &err);
-    if (!bf_samples_geometry(s, &err))
+    const bf_geometry *g;
+    if (bf_samples_geometry(s, &g, &err) != BF_OK)
         die("geometry", &err);
     printf("walter (%s), %zu samples x %d channels (%s in %.2f s), residual %s, %d thread%s\n",
            SPEC, s->n, s->channels, data ? "read" : "generated", now() - t0, residual, threads,
            threads == 1 ? "" : "s");
 
-    bf_model *m = bf_model_create(SPEC, 3, &err);
+    bf_model *m = NULL;
+    bf_model_new(SPEC, 3, &m, &err);
     double x0[16];
     double ts = now();
     if (!m || bf_fit_initial_guess(m, s, x0, &err) != BF_OK)
@@ -208,14 +210,14 @@ int main(int argc, char **argv)
             best_fit = fmin(best_fit, r.seconds);
             best_solve = fmin(best_solve, r.solution.seconds);
             if (rep + 1 < repeats)
-                bf_fit_result_free(&r);
+                bf_fit_result_clear(&r);
         }
         int it = r.solution.iterations;
         printf("%-10s %8.3f %8.3f %8.3f %6d %6d %10.4f %12.6g %10.2e%s\n", tok, best_fit, best_cpu, best_solve, it,
                r.solution.evaluations, it > 0 ? best_solve / it : NAN, r.solution.final_cost,
                fabs(r.x[ia] - kAlpha) / kAlpha, r.ok ? "" : "  (not usable)");
         printf("%-10s %s\n", "", r.solution.termination);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
     }
     bf_model_free(m);
     bf_samples_free(s);

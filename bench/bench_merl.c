@@ -65,8 +65,8 @@ int main(int argc, char **argv)
     char *buf = malloc(bytes);
     bf_error err;
     bf_samples *s = NULL;
-    bf_model *m = bf_model_create("walter", 3, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new("walter", 3, &m, &err) != BF_OK)
         die("model", &err);
     double best_file = 1e30, best_read = 1e30, best_raw = 1e30, best_prep = 1e30, best_write = 1e30;
     double best_write_plain = 1e30;
@@ -83,8 +83,8 @@ int main(int argc, char **argv)
         double t2 = now();
         bf_prep_report rep;
         bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
-        bf_objective *obj = NULL;
-        if (bf_samples_prep(s, NULL, &rep, &err) != BF_OK || !(obj = bf_objective_new(m, s, &oo, &err)))
+        bf_objective *obj;
+        if (bf_samples_prep(s, NULL, &rep, &err) != BF_OK || bf_objective_new(m, s, &oo, &obj, &err) != BF_OK)
             die("prepare", &err);
         bf_objective_free(obj);
         double t3 = now();

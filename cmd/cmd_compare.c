@@ -270,8 +270,9 @@ static bf_samples **load(const compare_args *a)
     }
     for (int i = 0; i < a->ndata; i++) {
         bf_error err;
+        const bf_geometry *g;
         if (!(samples[i] = data_options_load(&a->dopt, a->data[i], NULL, cmd)) ||
-            !bf_samples_geometry(samples[i], &err)) {
+            bf_samples_geometry(samples[i], &g, &err) != BF_OK) {
             if (samples[i])
                 fprintf(stderr, "%s: %s: %s\n", cmd, a->data[i], err.msg);
             free_samples(samples, a->ndata);
@@ -488,7 +489,7 @@ static int compare(const compare_args *a)
     if (status == 0)
         status = outcome(&cmp);
     free_samples(samples, a->ndata);
-    bf_compare_free(&cmp);
+    bf_compare_clear(&cmp);
     return status;
 }
 

@@ -108,7 +108,8 @@ static int evaluate(const bf_model *m, const double *x, const bf_csv *t, const i
     for (size_t r = 0; r < n; r++)
         for (int k = 0; k < 4; k++)
             ang[(size_t)k * n + r] = t->data[r * t->ncols + (size_t)col[k]] * (M_PI / 180.0);
-    bf_geometry *g = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &err);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &g, &err);
     free(ang);
     if (!g) {
         fprintf(stderr, "brdfit eval: %s\n", err.msg);

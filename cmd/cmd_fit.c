@@ -213,7 +213,7 @@ static int run(fit_run *f)
 static void run_free(fit_run *f)
 {
     for (int k = 0; k < f->nres; k++)
-        bf_fit_result_free(&f->results[k]);
+        bf_fit_result_clear(&f->results[k]);
     for (int k = 0; k < f->nmodels; k++)
         free(f->specs[k]);
     bf_samples_free(f->s);

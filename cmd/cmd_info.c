@@ -210,7 +210,7 @@ int cmd_info(int argc, char **argv)
         print_json(path, s, &o, &report, &scene, &info);
     else
         print_text(path, s, &o, &report, &scene, &info);
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
     return 0;
 }

@@ -33,7 +33,8 @@ static cJSON *variant_params(const char *family, const char *option, const char 
 {
     char spec[160];
     snprintf(spec, sizeof spec, "%s:%s=%s", family, option, value);
-    bf_model *m = bf_model_create(spec, 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new(spec, 1, &m, NULL);
     cJSON *a = cJSON_CreateArray();
     for (int i = 0; m && i < bf_model_nparams(m); i++)
         cJSON_AddItemToArray(a, cJSON_CreateString(bf_model_param(m, i)->name));
@@ -41,9 +42,23 @@ static cJSON *variant_params(const char *family, const char *option, const char 
     return a;
 }
 
+/* A family's default model for 1 and for 3 channels; 0 (nothing made) when out of memory,
+ * the only way a registered family's defaults can fail. */
+static int family_models(const bf_family_info *fi, bf_model **m1, bf_model **m3)
+{
+    *m3 = NULL;
+    if (bf_model_new(fi->name, 1, m1, NULL) == BF_OK && bf_model_new(fi->name, 3, m3, NULL) == BF_OK)
+        return 1;
+    bf_model_free(*m1);
+    *m1 = NULL;
+    return 0;
+}
+
 static cJSON *family_json(const bf_family_info *fi)
 {
-    bf_model *m1 = bf_model_create(fi->name, 1, NULL), *m3 = bf_model_create(fi->name, 3, NULL);
+    bf_model *m1, *m3;
+    if (!family_models(fi, &m1, &m3))
+        return NULL;
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "name", fi->name);
     cJSON_AddStringToObject(o, "summary", fi->summary);
@@ -80,7 +95,11 @@ static cJSON *family_json(const bf_family_info *fi)
 
 static void print_text(const bf_family_info *fi)
 {
-    bf_model *m1 = bf_model_create(fi->name, 1, NULL), *m3 = bf_model_create(fi->name, 3, NULL);
+    bf_model *m1, *m3;
+    if (!family_models(fi, &m1, &m3)) {
+        fprintf(stderr, "brdfit models: out of memory\n");
+        return;
+    }
     printf("%s  (%s; %s)\n", fi->name, fi->summary, fi->reference);
     printf("  %s, %s, %s%s; free parameters: %d for 1 channel, %d for 3\n",
            fi->anisotropic ? "anisotropic" : "isotropic",

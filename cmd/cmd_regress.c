@@ -190,7 +190,7 @@ static void load_failure(const case_run *cr, const char *path, char *msg, size_t
 /* Loads, fits and compares case c; the fit stays in *r for --update. Returns BF_OK, or
  * an error only when memory runs out (a case that cannot run is an ERROR outcome, its
  * reason printed on stderr). */
-static int run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_result *r, bf_regress_outcome *out,
+static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_result *r, bf_regress_outcome *out,
                bf_error *err)
 {
     const bf_regress_case *cs = &b->cases[c];
@@ -350,7 +350,7 @@ static int run_case(bf_regress_baseline *b, int c, case_run *cr, int update, bf_
     int status = 0;
     if (run(b, c, cr, &r, o, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         return 1;
     }
     t->passed += o->status == BF_REGRESS_PASS;
@@ -368,7 +368,7 @@ static int run_case(bf_regress_baseline *b, int c, case_run *cr, int update, bf_
         status = update_case(b, c, &r, o, t);
     }
     fflush(stdout);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     return status;
 }
 
@@ -446,10 +446,10 @@ int cmd_regress(int argc, char **argv)
     for (int c = 0; runs && c < n; c++)
         case_run_free(&runs[c]);
     for (int c = 0; outs && c < n; c++)
-        bf_regress_outcome_free(&outs[c]);
+        bf_regress_outcome_clear(&outs[c]);
     free(runs);
     free(outs);
     free(run_it);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
     return status;
 }

@@ -304,7 +304,7 @@ static int load_inputs(const render_args *r, bf_model **m, double **x, bf_sample
 
 /* Draws the mode's picture into rgb (width x height x 3, linear), and tone maps it for
  * a PNG. Returns a BF_ status. */
-static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
+static bf_status draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
 {
     int rc;
     if (r->halfdiff) {
@@ -323,7 +323,7 @@ static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_
 }
 
 /* The slice plot, written: a BF_ status. */
-static int slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
+static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
 {
     bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol, NULL, 0.0, 0.0};
     int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;

@@ -258,7 +258,7 @@ static int report(select_run *r)
 
 static void run_free(select_run *r)
 {
-    bf_select_free(&r->sel);
+    bf_select_clear(&r->sel);
     free(r->defaults);
     for (int k = 0; k < r->nmodels; k++)
         free(r->specs[k]);

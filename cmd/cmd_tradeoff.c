@@ -571,7 +571,7 @@ static int report(tradeoff_run *r)
 
 static void run_free(tradeoff_run *r)
 {
-    bf_tradeoff_free(&r->t);
+    bf_tradeoff_clear(&r->t);
     bf_samples_free(r->train);
     bf_samples_free(r->test);
     for (int k = 0; k < r->nspecs; k++)

@@ -256,8 +256,8 @@ int fit_options_check_models(const fit_options *o, char *const *specs, int n, co
 {
     for (int k = 0; k < n; k++) {
         bf_error err;
-        bf_model *m = bf_model_create(specs[k], 1, &err);
-        if (!m) {
+        bf_model *m = NULL;
+        if (bf_model_new(specs[k], 1, &m, &err) != BF_OK) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             return -1;
         }

@@ -22,7 +22,7 @@ const char *bf_synth_noise_model_name(bf_synth_noise_model m)
     return (int)m >= 0 && (int)m < NNOISE ? noise_names[m] : "unknown";
 }
 
-int bf_synth_noise_check(const bf_synth_noise *nz, bf_error *err)
+bf_status bf_synth_noise_check(const bf_synth_noise *nz, bf_error *err)
 {
     if ((int)nz->model < 0 || (int)nz->model >= NNOISE)
         return bf_fail(err, BF_ERR_ARG, "unknown noise model %d", (int)nz->model);
@@ -66,7 +66,7 @@ static void choose(size_t n, size_t k, unsigned char *mark, bf_synth_rng *r)
     }
 }
 
-static int outliers(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err)
+static bf_status outliers(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err)
 {
     const size_t C = (size_t)s->channels, n = s->n;
     const size_t k = (size_t)llround(nz->outlier_fraction * (double)n);
@@ -97,7 +97,7 @@ static int outliers(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf
     return BF_OK;
 }
 
-int bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err)
+bf_status bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err)
 {
     int rc = bf_synth_noise_check(nz, err);
     if (rc != BF_OK)

@@ -207,7 +207,7 @@ static int merl_above(int32_t cell)
 
 /* ---- dispatch ---------------------------------------------------------------------- */
 
-int bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
+bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
                         bf_synth_rng *r, int channels, bf_samples **out, bf_error *err)
 {
     *out = NULL;
@@ -239,9 +239,10 @@ int bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *
 
     /* MERL cells stay cells (no angle arrays): the same directions and geometry as the
      * table read back. */
-    bf_samples *s = p == BF_SYNTH_MERL ? bf_samples_new_cells(n, channels, err) : bf_samples_new(n, channels, err);
-    if (!s)
-        return err ? err->code : BF_ERR_NOMEM;
+    bf_samples *s;
+    bf_status rc = p == BF_SYNTH_MERL ? bf_samples_new_cells(n, channels, &s, err) : bf_samples_new(n, channels, &s, err);
+    if (rc != BF_OK)
+        return rc;
     switch (p) {
     case BF_SYNTH_STRATIFIED:
         stratified(s, r);

@@ -1,7 +1,7 @@
 /* The whole generation: pattern, model values, noise. */
 #include "synth.h"
 
-int bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
+bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
                       bf_samples **out, bf_error *err)
 {
     *out = NULL;
@@ -21,10 +21,10 @@ int bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options
     bf_samples *s;
     if ((rc = bf_synth_directions(o->pattern, o->count, &o->gonio, &dir_rng, C, &s, err)) != BF_OK)
         return rc;
-    const bf_geometry *g = bf_samples_geometry(s, err);
-    if (!g) {
+    const bf_geometry *g;
+    if ((rc = bf_samples_geometry(s, &g, err)) != BF_OK) {
         bf_samples_free(s);
-        return err ? err->code : BF_ERR_NOMEM;
+        return rc;
     }
     bf_model_eval(m, x, g, s->value, NULL);
 

@@ -83,7 +83,7 @@ void bf_synth_strata(size_t n, size_t dims[4]);
 /* The pattern's direction pairs (degrees) in a new sample set of `channels` channels,
  * values zero. count: for uniform, cosine, stratified and random (>= 1); ignored for
  * gonio and merl. gonio: for BF_SYNTH_GONIO. Every pair is above the horizon. */
-int bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
+bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
                         bf_synth_rng *r, int channels, bf_samples **out, bf_error *err);
 
 /* ---- Noise (noise.c) ---------------------------------------------------------------
@@ -115,10 +115,10 @@ int bf_synth_noise_model_from_name(const char *name); /* "none", "relative", ...
 const char *bf_synth_noise_model_name(bf_synth_noise_model m);
 
 /* BF_ERR_ARG naming the setting when one is out of range. */
-int bf_synth_noise_check(const bf_synth_noise *nz, bf_error *err);
+bf_status bf_synth_noise_check(const bf_synth_noise *nz, bf_error *err);
 /* BF_ERR_RANGE if a value comes out NaN or Inf (a level or factor near DBL_MAX); photon
  * counts whose mean k v overflows leave v as it is (the limit of infinite counts). */
-int bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err);
+bf_status bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth_rng *r, bf_error *err);
 
 /* ---- The whole job (synth.c) -------------------------------------------------------- */
 typedef struct bf_synth_options {
@@ -133,7 +133,7 @@ typedef struct bf_synth_options {
  * a second stream (the seed's stream jumped), so the same seed gives the same directions
  * with or without noise. For merl: the model must have 3 channels, and clamping is
  * always on, since a negative value marks a cell invalid in a MERL table. */
-int bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
+bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
                       bf_samples **out, bf_error *err);
 
 #ifdef __cplusplus

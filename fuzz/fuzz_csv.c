@@ -7,12 +7,12 @@
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
 
-static int read_csv(const char *path, bf_samples **out, bf_error *err)
+static bf_status read_csv(const char *path, bf_samples **out, bf_error *err)
 {
     return bf_samples_read_csv(path, NULL, out, err);
 }
 
-static int read_any(const char *path, bf_samples **out, bf_error *err)
+static bf_status read_any(const char *path, bf_samples **out, bf_error *err)
 {
     return bf_samples_read(path, NULL, out, err);
 }

@@ -67,8 +67,8 @@ static void full_table(const uint8_t *data, size_t size)
             fuzz_fail("out of memory");
         for (size_t i = 0; i < plain->n; i += 4099)
             keep[i] = 1;
-        bf_samples *few = bf_samples_copy(plain, keep, &err);
-        if (!few)
+        bf_samples *few = NULL;
+        if (bf_samples_copy(plain, keep, &few, &err) != BF_OK)
             fuzz_fail("copy: %s", err.msg);
         fuzz_csv_round_trip(few);
         bf_samples_free(few);

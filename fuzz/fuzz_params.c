@@ -19,8 +19,8 @@ static const double to[4] = {0.0, 0.6, 1.4, 0.2}, po[4] = {0.0, 3.4, 4.0, 3.1};
 static void evaluate(const bf_model *m, const double *x)
 {
     bf_error err;
-    bf_geometry *g = bf_geometry_from_angles(4, ti, pi_, to, po, &err);
-    if (!g)
+    bf_geometry *g = NULL;
+    if (bf_geometry_from_angles(4, ti, pi_, to, po, &g, &err) != BF_OK)
         fuzz_fail("geometry: %s", err.msg);
     const size_t C = (size_t)bf_model_channels(m), P = (size_t)bf_model_nvalues(m);
     /* The Jacobian is C x P per sample: up to 10,000 x 640,000; only the smaller ones. */

@@ -17,7 +17,7 @@ enum { MAX_CASES = 4 };
 static int make_result(const bf_regress_case *cs, int C, bf_fit_result *r)
 {
     memset(r, 0, sizeof *r);
-    if (!(r->model = bf_model_create(cs->model, C, NULL)))
+    if (bf_model_new(cs->model, C, &r->model, NULL) != BF_OK)
         return 0;
     if (!(r->x = malloc((size_t)bf_model_nvalues(r->model) * sizeof *r->x + 1)))
         fuzz_fail("out of memory");
@@ -102,14 +102,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fuzz_fail("check after update: %s", err.msg);
         if (o.status != BF_REGRESS_PASS)
             fuzz_fail("case %d fails right after its update: %s", c, o.nlines ? o.lines[0] : "?");
-        bf_regress_outcome_free(&o);
+        bf_regress_outcome_clear(&o);
     }
     for (int c = 0; c < n; c++) {
-        bf_regress_outcome_free(&outs[c]);
+        bf_regress_outcome_clear(&outs[c]);
         if (made[c])
             free_result(&r[c]);
     }
-    bf_regress_free(b2);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b2);
+    bf_regress_baseline_free(b);
     return 0;
 }

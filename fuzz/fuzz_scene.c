@@ -14,8 +14,8 @@ enum { N = 48 };
 static bf_samples *samples(void)
 {
     bf_error err;
-    bf_samples *s = bf_samples_new(N, 1, &err);
-    if (!s)
+    bf_samples *s = NULL;
+    if (bf_samples_new(N, 1, &s, &err) != BF_OK)
         fuzz_fail("samples: %s", err.msg);
     for (size_t i = 0; i < N; i++) {
         s->theta_i[i] = (double)(i * 11 % 89);

@@ -183,7 +183,8 @@ bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, cons
         a[2 * n + k] = to[k] * DEG;
         a[3 * n + k] = po[k] * DEG;
     }
-    bf_geometry *g = bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, &g, NULL);
     free(a);
     return g;
 }
@@ -202,10 +203,19 @@ double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, doubl
 bf_model *ts_model(const char *spec, int C)
 {
     bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
+    bf_model *m;
+    if (bf_model_new(spec, C, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     return m;
+}
+
+const bf_geometry *ts_samples_geometry(bf_samples *s)
+{
+    bf_error err;
+    const bf_geometry *g;
+    if (bf_samples_geometry(s, &g, &err) != BF_OK)
+        fail_msg("geometry: %s", err.msg);
+    return g;
 }
 
 void ts_assert_rel(double got, double want, double tol, const char *what)

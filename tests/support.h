@@ -57,6 +57,8 @@ bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, cons
 
 /* A model that must exist (fails the current cmocka test otherwise). */
 bf_model *ts_model(const char *spec, int C);
+/* bf_samples_geometry, failing the test if it fails. */
+const bf_geometry *ts_samples_geometry(bf_samples *s);
 
 /* Fails the current test unless |got - want| <= tol |want| (plus 1e-300); `what`
  * (may be NULL) names the quantity in the message. */
@@ -77,7 +79,7 @@ const char *ts_read_file(const char *path);
 /* Writes text to ts_tmp_path(name), reads it with `reader`, and fails the test unless
  * the read fails with `code`, leaves *out NULL, and gives a one-line message that
  * names the file and contains `fragment`. */
-typedef int (*ts_reader)(const char *path, bf_samples **out, bf_error *err);
+typedef bf_status (*ts_reader)(const char *path, bf_samples **out, bf_error *err);
 void ts_expect_read_error(ts_reader reader, const char *name, const char *text, size_t len, int code,
                           const char *fragment);
 

@@ -64,7 +64,7 @@ static void half_diff_of(const bf_samples *s, size_t i, double *th, double *ph, 
 static void assert_same_geometry(bf_samples *a, bf_samples *b, double tol)
 {
     assert_int_equal(a->n, b->n);
-    const bf_geometry *ga = bf_samples_geometry(a, NULL), *gb = bf_samples_geometry(b, NULL);
+    const bf_geometry *ga = ts_samples_geometry(a), *gb = ts_samples_geometry(b);
     assert_non_null(ga);
     assert_non_null(gb);
     for (size_t i = 0; i < a->n; i++) {

@@ -93,7 +93,7 @@ static void test_ranks_and_ties(void **state)
     assert_int_equal(f[3].rank, 1);
     assert_int_equal(f[1].rank, 3);
     assert_int_equal(f[0].rank, 4);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 /* Ranked by cross-validation: cv_error orders the fits and is the error of the
@@ -131,7 +131,7 @@ static void test_rank_by_cv(void **state)
     }
     assert_int_equal(bf_compare_rank_parse("mdl", &by, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "'mdl'"));
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_pareto_known_set(void **state)
@@ -175,7 +175,7 @@ static void test_pareto_marks_in_rank(void **state)
     /* equal criteria: everyone ranks 1 */
     for (int j = 0; j < 4; j++)
         assert_int_equal(f[j].rank_bic, 1);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_simplest_within_tolerance(void **state)
@@ -207,7 +207,7 @@ static void test_simplest_within_tolerance(void **state)
     bf_compare_rank(&c);
     assert_int_equal(c.materials[0].best, -1);
     assert_int_equal(c.materials[0].simplest, -1);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 /* Three materials x three models with the choices worked out by hand. */
@@ -251,7 +251,7 @@ static void test_summary(void **state)
     assert_true(fabs(s[2].mean_rank_bic - (3 + 1 + 1) / 3.0) < 1e-12);
     assert_true(fabs(s[0].mean_error - (0.1 + 0.5 + 0.2) / 3) < 1e-12);
     assert_true(fabs(s[1].mean_error - (0.1 + 0.3) / 2) < 1e-12);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static char *slurp(const char *path)
@@ -329,7 +329,7 @@ static void test_json_keys(void **state)
     cJSON_Delete(root);
     free(text);
     unlink(path);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_csv_rows(void **state)
@@ -362,7 +362,7 @@ static void test_csv_rows(void **state)
     unlink(path);
     /* an unwritable path: an error, nothing written */
     assert_int_not_equal(bf_compare_write_csv(&c, "/nonexistent/dir/r.csv", &err), BF_OK);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_metric_names(void **state)

@@ -26,14 +26,15 @@ static const char *const model_specs[NMOD] = {"lambert", "walter", "cook_torranc
 static bf_samples *material(const char *spec, const double *x, uint64_t seed)
 {
     bf_error err;
-    bf_samples *s = bf_samples_new(NPOINTS, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(NPOINTS, 3, &s, &err);
     assert_non_null(s);
     ts_rng r = {seed};
     for (size_t i = 0; i < NPOINTS; i++)
         ts_random_pair_deg(&r, i % 4 == 0, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
     bf_model *m = ts_model(spec, 3);
-    assert_non_null(bf_samples_geometry(s, &err));
-    bf_model_eval(m, x, bf_samples_geometry(s, &err), s->value, NULL);
+    assert_non_null(ts_samples_geometry(s));
+    bf_model_eval(m, x, ts_samples_geometry(s), s->value, NULL);
     for (size_t k = 0; k < NPOINTS * 3; k++)
         s->value[k] *= 1.0 + 0.02 * (ts_uniform(&r) - 0.5);
     bf_model_free(m);
@@ -157,8 +158,8 @@ static void test_jobs_give_identical_results(void **state)
     /* A table runs once. */
     bf_error err;
     assert_int_equal(bf_compare_run(&one, f->samples, &f->fo, NULL, &err), BF_ERR_ARG);
-    bf_compare_free(&one);
-    bf_compare_free(&three);
+    bf_compare_clear(&one);
+    bf_compare_clear(&three);
 }
 
 static void test_cancel_before_the_run(void **state)
@@ -176,7 +177,7 @@ static void test_cancel_before_the_run(void **state)
             assert_null(c.materials[i].fits[j].result);
     bf_compare_rank(&c);
     assert_int_equal(c.materials[0].simplest, -1);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_cancel_midway_keeps_what_finished(void **state)
@@ -192,7 +193,7 @@ static void test_cancel_midway_keeps_what_finished(void **state)
     assert_int_equal(c.materials[0].fits[0].state, BF_CMP_OK);
     assert_non_null(c.materials[0].fits[0].result);
     assert_int_equal(bf_compare_count(&c, BF_CMP_NOT_RUN), NFITS - 1);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_a_fit_that_cannot_run(void **state)
@@ -210,7 +211,7 @@ static void test_a_fit_that_cannot_run(void **state)
         assert_non_null(strstr(c.materials[i].fits[1].message, "nonesuch"));
         assert_null(c.materials[i].fits[1].result);
     }
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 static void test_bad_arguments(void **state)
@@ -224,7 +225,7 @@ static void test_bad_arguments(void **state)
     assert_non_null(strstr(err.msg, "walter.csv"));
     assert_int_equal(bf_compare_run(&c, f->samples, NULL, NULL, &err), BF_ERR_ARG);
     assert_int_equal(bf_compare_count(&c, BF_CMP_NOT_RUN), NFITS);
-    bf_compare_free(&c);
+    bf_compare_clear(&c);
 }
 
 int main(void)

@@ -19,7 +19,8 @@
 /* n samples of lambert (rho_d 0.4, 0.3) at random directions, with relative noise. */
 static bf_samples *lambert_samples(size_t n, double noise)
 {
-    bf_samples *s = bf_samples_new(n, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 2, &s, NULL);
     assert_non_null(s);
     ts_rng r = {99};
     for (size_t i = 0; i < n; i++) {
@@ -86,7 +87,7 @@ static void test_cv_error(void **state)
     bf_fit_result r;
     ts_fit_ok(s, "lambert", &o, &r);
     const double train = r.metrics.rmse_log;
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     assert_int_equal(bf_fit_cv(s, "lambert", &o, 5, 1, &cv, &err), BF_OK);
     printf("  train %.6g, cv %.6g\n", train, cv.error);
     assert_true(cv.error > 0.95 * train && cv.error < 1.2 * train);

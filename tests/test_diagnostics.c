@@ -23,7 +23,8 @@
 static bf_samples *samples_of(const char *spec, int C, const double *x, size_t n, double max_theta_d, int spread)
 {
     bf_model *m = ts_model(spec, C);
-    bf_samples *s = bf_samples_new(n, C, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, C, &s, NULL);
     assert_non_null(s);
     ts_rng r = {777};
     for (size_t i = 0; i < n;) {
@@ -42,7 +43,7 @@ static bf_samples *samples_of(const char *spec, int C, const double *x, size_t n
         s->theta_i[i] = ti, s->phi_i[i] = pi_, s->theta_o[i] = to, s->phi_o[i] = po;
         i++;
     }
-    bf_model_eval(m, x, bf_samples_geometry(s, NULL), s->value, NULL);
+    bf_model_eval(m, x, ts_samples_geometry(s), s->value, NULL);
     for (size_t k = 0; k < n * (size_t)C; k++)
         s->value[k] *= 1.0 + 0.01 * sin(1.3 * (double)k);
     bf_model_free(m);
@@ -83,7 +84,7 @@ static void test_clean_fit(void **state)
     print_warnings("clean", &r);
     assert_true(r.ok);
     assert_int_equal(r.nwarnings, 0);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
@@ -104,7 +105,7 @@ static void test_bound(void **state)
     assert_non_null(w);
     assert_null(warning(&r, "rho_d[0]"));
     assert_null(warning(&r, "rho_d[2]"));
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
@@ -124,7 +125,7 @@ static void test_undetermined(void **state)
     assert_true(warning(&r, "alpha = ") || warning(&r, "f0 = "));
     assert_non_null(warning(&r, "not determined by the data"));
     assert_null(warning(&r, "rho_d"));
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
@@ -145,7 +146,7 @@ static int walter_warns(const double *x, size_t n, double max_theta_d, int sprea
     for (const char *f; (f = va_arg(ap, const char *));)
         all &= warning(&r, f) != NULL;
     va_end(ap);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
     return all;
 }
@@ -216,7 +217,7 @@ static void test_limit_and_loss(void **state)
     assert_non_null(warning(&r, "stopped on its limit after 1 iteration,"));
     assert_null(warning(&r, "robust loss"));
     assert_true(isfinite(r.metrics.bic));
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     ts_fit_defaults(&o);
     o.solver.loss.kind = BF_LOSS_CAUCHY;
     o.solver.loss.scale = 0.1;
@@ -225,7 +226,7 @@ static void test_limit_and_loss(void **state)
     assert_non_null(warning(&r, "AIC, AICc and BIC are undefined: a robust loss"));
     assert_null(warning(&r, "stopped on its limit"));
     assert_true(isnan(r.metrics.bic) && isnan(r.metrics.aic) && isnan(r.metrics.aicc));
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 

@@ -30,7 +30,8 @@ static bf_geometry *quadrature_geometry(void)
                 a[2 * n + k] = acos(u);
                 a[3 * n + k] = (ip + 0.5) * 2.0 * M_PI / NPHI;
             }
-    bf_geometry *g = bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(n, a, a + n, a + 2 * n, a + 3 * n, &g, NULL);
     free(a);
     return g;
 }
@@ -40,8 +41,8 @@ static bf_geometry *geom;
 static void check(const char *spec, int C)
 {
     bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new(spec, C, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     if (!bf_model_energy_conserving(m)) {
         bf_model_free(m);
@@ -78,7 +79,8 @@ static void test_spec(void **state) { check(*state, 1); }
 static void test_quadrature_lambert(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("lambert", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("lambert", 1, &m, NULL);
     double x = 0.7;
     double *v = ts_eval(m, &x, geom);
     double sum = 0.0;

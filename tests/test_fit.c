@@ -78,7 +78,7 @@ static void test_recover_ceres(void **state)
         assert_int_equal(r.starts, 1);
         assert_true(r.metrics.rmse < 1e-9);
         assert_string_equal(r.solution.backend, "ceres");
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }
@@ -99,7 +99,7 @@ static void test_recover_nlopt(void **state)
     ts_fit_ok(s, t->spec, &o, &r);
     assert_string_equal(r.solution.backend, "nlopt");
     assert_params(&r, t->x, 1e-6, t->spec);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
@@ -146,7 +146,8 @@ static void test_initial_guess_hard_data(void **state)
 
     /* Far from the mirror direction only: theta_h > 35 degrees. */
     bf_samples *far = synth("walter", 3, cases[1].x, BF_SYNTH_UNIFORM, 3000);
-    const bf_geometry *g = bf_samples_geometry(far, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(far, &g, NULL);
     unsigned char *keep = malloc(far->n);
     for (size_t i = 0; i < far->n; i++)
         keep[i] = g->hz[i] < cos(35 * DEG);
@@ -199,7 +200,7 @@ static void test_initial_guess_hard_data(void **state)
     for (int c = 0; c < 3; c++)
         ts_assert_near(r.x[c], rho[c], 1e-4, 0.0, "rho_d of walter on Lambertian data");
     assert_true(r.metrics.rmse < 1e-4);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
 
     for (size_t j = 0; j < sizeof sets / sizeof sets[0]; j++)
         bf_samples_free(sets[j]);
@@ -230,8 +231,8 @@ static void test_multistart_deterministic(void **state)
     /* The best of five is at least as good as the data-driven start alone, which
      * already finds the truth. */
     assert_params(&a, t->x, 1e-6, t->spec);
-    bf_fit_result_free(&a);
-    bf_fit_result_free(&b);
+    bf_fit_result_clear(&a);
+    bf_fit_result_clear(&b);
     bf_samples_free(s);
 }
 
@@ -256,7 +257,7 @@ static void test_fix_holds(void **state)
     assert_true(r.stderr_[7] == 0.0);
     assert_int_equal(r.metrics.k, bf_model_nvalues(r.model) - 2);
     assert_params(&r, t->x, 1e-6, "walter with f0 and rho_d[1] fixed at the truth");
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
 
     /* Fixed away from the truth: held, and the rest compensates (a worse fit). */
     assert_int_equal(bf_override_parse_fix("f0=0.9", &ov[0], &err), BF_OK);
@@ -264,7 +265,7 @@ static void test_fix_holds(void **state)
     ts_fit_ok(s, t->spec, &o, &r);
     assert_true(r.x[7] == 0.9);
     assert_true(r.metrics.rmse > 1e-6);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
@@ -299,7 +300,7 @@ static void test_impossible_fit(void **state)
     assert_true(r.solution.termination[0] != '\0');
     assert_true(all_finite(r.x, 8));
     assert_memory_equal(r.x, start, sizeof start);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
 
     /* Bad specification and options: errors, not failed fits. */
     assert_int_not_equal(bf_fit(s, "no_such_model", &o, &r, &err), BF_OK);
@@ -346,7 +347,7 @@ static void test_result_json_round_trip(void **state)
     const char *lpath = ts_tmp_path("fits.json");
     assert_int_equal(bf_fit_write_json_list(list, 2, "data.csv", lpath, &err), BF_OK);
     assert_int_not_equal(bf_params_read(lpath, &back, &x, &err), BF_OK);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 

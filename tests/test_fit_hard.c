@@ -128,7 +128,7 @@ static void test_near_mirror(void **state)
         } else {
             fail_msg("near-mirror %s did not converge: %s", cases[i].spec, r.solution.termination);
         }
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }
@@ -152,7 +152,7 @@ static void test_large_exponents(void **state)
             fail_msg("%s n = %g did not converge: %s", cases[i].spec, cases[i].n, r.solution.termination);
         for (int k = 0; k < 7; k++)
             expect_rel(&r, k, x[k], 1e-6, cases[i].spec);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }
@@ -179,7 +179,7 @@ static void test_lambertian_data(void **state)
                 fail_msg("%s rho_s[%d] = %g on Lambertian data", specs[i], c, r.x[3 + c]);
             ts_assert_near(r.x[c], rho[c], 2e-3, 0.0, "rho_d on Lambertian data");
         }
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
     }
     bf_samples_free(s);
 }
@@ -218,7 +218,7 @@ static void test_grazing_only(void **state)
             for (int k = 0; k < 8; k++)
                 expect_rel(&r, k, truth[k], 1e-6, "walter on grazing data");
         }
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
     }
     bf_samples_free(s);
 }
@@ -245,7 +245,7 @@ static void test_f0_near_one(void **state)
             fail_msg("%s with f0 %g: %s", cases[i].spec, cases[i].x[7], r.solution.termination);
         for (int k = 0; k < 8; k++)
             expect_rel(&r, k, cases[i].x[k], 1e-6, cases[i].spec);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }
@@ -300,7 +300,7 @@ static void test_zeros_and_negatives(void **state)
                     for (int c = 0; c < 3; c++)
                         ts_assert_rel(r.x[3 + c], truth[3 + c], 0.05, "rho_s with negatives kept");
                 }
-                bf_fit_result_free(&r);
+                bf_fit_result_clear(&r);
             }
         }
         bf_samples_free(s);

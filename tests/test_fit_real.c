@@ -103,7 +103,7 @@ static void fit_all(bf_samples *s, const char *what)
     if (verbose())
         printf("%s: n %zu, lambert log rmse %.6g\n", what, s->n, lambert);
     assert_true(isfinite(lambert) && lambert > 0.0);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     int worse = 0;
     for (int f = 0; f < bf_family_count(); f++) {
         const char *spec = bf_family_get(f)->name;
@@ -137,7 +137,7 @@ static void fit_all(bf_samples *s, const char *what)
             print_error("%s: %s log rmse %.6g, not below Lambert's %.6g\n", what, spec, r.metrics.rmse_log, lambert);
             worse++;
         }
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
     }
     assert_int_equal(worse, 0);
 }

@@ -127,7 +127,7 @@ static bf_samples *make_data(const char *spec, const double *x, double noise)
     bf_error err;
     if (bf_synth_directions(BF_SYNTH_STRATIFIED, NSTRAT, NULL, &r, NCH, &u, &err) != BF_OK)
         fail_msg("bf_synth_directions: %s", err.msg);
-    s = bf_samples_new(NSTRAT + NMIRROR, NCH, &err);
+    bf_samples_new(NSTRAT + NMIRROR, NCH, &s, &err);
     assert_non_null(s);
     for (size_t i = 0; i < NSTRAT; i++) {
         s->theta_i[i] = u->theta_i[i], s->phi_i[i] = u->phi_i[i];
@@ -136,7 +136,8 @@ static bf_samples *make_data(const char *spec, const double *x, double noise)
     for (size_t i = NSTRAT; i < s->n; i++)
         mirror_pair(&r, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
     bf_samples_free(u);
-    const bf_geometry *g = bf_samples_geometry(s, &err);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, &err);
     assert_non_null(g);
     bf_model_eval(m, x, g, s->value, NULL);
     if (noise > 0.0) {
@@ -285,7 +286,7 @@ static void test_recover_noiseless_ceres(void **state)
             fail_msg("%s: rmse %g for values up to %g", t->spec, r.metrics.rmse, max_abs_value(s));
         assert_recovered(t, &r, 1e-6);
         assert_int_equal(r.starts, t->starts);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }
@@ -320,7 +321,7 @@ static void test_recover_noiseless_nlopt(void **state)
             if (!(r.metrics.rmse < 1e-7 * max_abs_value(s)))
                 fail_msg("%s %s: rmse %g", t->spec, o.solver.algorithm, r.metrics.rmse);
             assert_recovered(t, &r, 1e-5);
-            bf_fit_result_free(&r);
+            bf_fit_result_clear(&r);
         }
         bf_samples_free(s);
     }
@@ -378,7 +379,7 @@ static void test_recover_noisy(void **state)
         }
         /* The fit reaches the noise floor: rms relative residual ~ 0.02. */
         assert_true(r.solution.final_cost < 0.5 * 0.03 * 0.03 * (double)r.metrics.n);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
         bf_samples_free(s);
     }
 }

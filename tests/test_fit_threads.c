@@ -19,7 +19,8 @@
  * several chunks (8192 samples per metrics chunk, 4096 rows per stderr chunk). */
 static bf_samples *make_samples(const bf_model *m, const double *x, size_t n)
 {
-    bf_samples *s = bf_samples_new(n, 3, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 3, &s, NULL);
     ts_rng r = {12345};
     double *ti = malloc(4 * n * sizeof *ti), *pi_ = ti + n, *to = ti + 2 * n, *po = ti + 3 * n;
     ts_random_dirs(&r, n, ti, pi_, to, po);
@@ -30,7 +31,7 @@ static bf_samples *make_samples(const bf_model *m, const double *x, size_t n)
         s->phi_o[i] = po[i] / DEG;
     }
     free(ti);
-    bf_model_eval(m, x, bf_samples_geometry(s, NULL), s->value, NULL);
+    bf_model_eval(m, x, ts_samples_geometry(s), s->value, NULL);
     for (size_t k = 0; k < 3 * n; k++)
         s->value[k] *= 1.0 + 0.02 * sin(1.7 * (double)k);
     return s;
@@ -47,7 +48,8 @@ static void test_thread_count_independence(void **state)
     for (int threads = 1; threads <= 4; threads++) {
         assert_int_equal(bf_metrics_compute(m, x, s, 8, threads, &mt, NULL), BF_OK);
         bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = threads};
-        bf_objective *obj = bf_objective_new(m, s, &oo, NULL);
+        bf_objective *obj = NULL;
+        bf_objective_new(m, s, &oo, &obj, NULL);
         assert_non_null(obj);
         assert_int_equal(bf_objective_stderr(obj, x, se, NULL), BF_OK);
         bf_objective_free(obj);
@@ -89,9 +91,9 @@ static void check_fit_threads(bf_samples *s, const char *spec, bf_backend backen
         assert_int_equal(r.solution.iterations, ref.solution.iterations);
         assert_int_equal(r.solution.evaluations, ref.solution.evaluations);
         assert_int_equal(r.presolve.evaluations, ref.presolve.evaluations);
-        bf_fit_result_free(&r);
+        bf_fit_result_clear(&r);
     }
-    bf_fit_result_free(&ref);
+    bf_fit_result_clear(&ref);
 }
 
 static void test_fit_thread_independence(void **state)

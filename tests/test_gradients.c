@@ -57,14 +57,15 @@ static const bf_param_info *slot_param(const bf_model *m, int k)
 static void check_model(const char *spec, int C, int *checked, int *kinks)
 {
     bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new(spec, C, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     const int P = bf_model_nvalues(m);
     ts_rng rng = {0x9E3779B97F4A7C15ULL ^ (uint64_t)(strlen(spec) * 131 + (size_t)C)};
     double ti[NDIRS], pi_[NDIRS], to[NDIRS], po[NDIRS];
     ts_random_dirs(&rng, NDIRS, ti, pi_, to, po);
-    bf_geometry *g = bf_geometry_from_angles(NDIRS, ti, pi_, to, po, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(NDIRS, ti, pi_, to, po, &g, NULL);
     size_t nv = (size_t)NDIRS * (size_t)C;
     double *x = malloc((size_t)P * sizeof *x);
     double *val = malloc(nv * sizeof *val), *grad = malloc(nv * (size_t)P * sizeof *grad);

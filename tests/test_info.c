@@ -28,7 +28,8 @@ static void assert_range(bf_range r, double lo, double hi, const char *what)
 static void test_describe(void **state)
 {
     (void)state;
-    bf_samples *s = bf_samples_new(4, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(4, 2, &s, NULL);
     /* (theta_h, theta_d) = (1, 10), (20, 30), (40, 45); the fourth is below the
      * horizon, so out of the angle ranges but in the value ranges. */
     set_half_diff(s, 0, 1, 10);
@@ -57,13 +58,13 @@ static void test_describe(void **state)
     ts_assert_rel(info.mean[1], 7.0 / 4, 1e-15, "mean 1");
     assert_false(info.weighted);
     assert_non_null(s->geom); /* computed once, kept for the fit */
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     assert_null(info.value);
 
     assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_true(info.weighted);
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
 }
 
@@ -71,7 +72,8 @@ static void test_describe(void **state)
 static void test_describe_half_angles(void **state)
 {
     (void)state;
-    bf_samples *s = bf_samples_new(1, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(1, 1, &s, NULL);
     s->theta_i[0] = s->theta_o[0] = 40;
     s->phi_o[0] = 90;
     s->value[0] = 1;
@@ -81,7 +83,7 @@ static void test_describe_half_angles(void **state)
     assert_range(info.theta_h, acos(2 * ct / len) / DEG, acos(2 * ct / len) / DEG, "theta_h");
     assert_range(info.theta_d, acos((st * st + 2 * ct * ct) / len) / DEG,
                  acos((st * st + 2 * ct * ct) / len) / DEG, "theta_d");
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     /* L = V (retro-reflection): theta_d is 0 to rounding, not the 1e-6 degrees of acos. */
     s->theta_o[0] = 40;
     s->phi_o[0] = 0;
@@ -90,7 +92,7 @@ static void test_describe_half_angles(void **state)
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_true(info.theta_d.hi < 1e-12);
     ts_assert_rel(info.theta_h.lo, 40, 1e-14, "theta_h of a retro pair");
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
 }
 
@@ -98,7 +100,8 @@ static void test_describe_nothing_to_cover(void **state)
 {
     (void)state;
     /* Every sample below the horizon and one channel all NaN: NaN ranges, not garbage. */
-    bf_samples *s = bf_samples_new(2, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(2, 2, &s, NULL);
     for (size_t i = 0; i < 2; i++) {
         s->theta_i[i] = 90;
         s->value[2 * i] = NAN;
@@ -112,15 +115,15 @@ static void test_describe_nothing_to_cover(void **state)
     assert_true(isnan(info.value[0].lo) && isnan(info.value[0].hi) && isnan(info.mean[0]));
     assert_range(info.value[1], 3, 6, "channel 1");
     ts_assert_rel(info.mean[1], 4.5, 1e-15, "mean");
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
 
-    s = bf_samples_new(0, 3, NULL);
+    bf_samples_new(0, 3, &s, NULL);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_int_equal(info.n, 0);
     assert_int_equal(info.channels, 3);
     assert_true(isnan(info.theta_d.lo) && isnan(info.mean[2]));
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
 }
 
@@ -129,7 +132,8 @@ static void test_describe_mean_precision(void **state)
 {
     (void)state;
     const size_t n = 1000000;
-    bf_samples *s = bf_samples_new(n, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 1, &s, NULL);
     for (size_t i = 0; i < n; i++) {
         s->theta_i[i] = 30;
         s->value[i] = 0.1 + (i % 2 ? 1e-9 : -1e-9);
@@ -138,7 +142,7 @@ static void test_describe_mean_precision(void **state)
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     ts_assert_rel(info.mean[0], 0.1, 1e-14, "mean of a million values");
     assert_range(info.value[0], 0.1 - 1e-9, 0.1 + 1e-9, "range");
-    bf_samples_info_free(&info);
+    bf_samples_info_clear(&info);
     bf_samples_free(s);
 }
 

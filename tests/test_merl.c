@@ -337,7 +337,8 @@ static void test_cell_geometry(void **state)
     bf_samples *s;
     bf_error err;
     assert_int_equal(bf_samples_read_merl(path, 0, &s, &err), BF_OK);
-    const bf_geometry *g = bf_samples_geometry(s, &err);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, &err);
     assert_non_null(g);
     assert_false(bf_geometry_stored(g));
     double *rad = malloc(4 * s->n * sizeof *rad);
@@ -347,7 +348,8 @@ static void test_cell_geometry(void **state)
         for (int k = 0; k < 4; k++)
             rad[k * s->n + i] = dir[k] * (M_PI / 180.0);
     }
-    bf_geometry *ga = bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, &err);
+    bf_geometry *ga = NULL;
+    bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, &ga, &err);
     assert_non_null(ga);
     bf_geometry_block gb;
     for (size_t i0 = 0; i0 < s->n; i0 += BF_GEOMETRY_BLOCK) {
@@ -469,7 +471,8 @@ static void test_write_without_origin(void **state)
     (void)state;
     const int32_t cells[4] = {0, 12345, 700001, BF_MERL_CELLS - 1};
     bf_error err;
-    bf_samples *s = bf_samples_new(4, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(4, 3, &s, &err);
     ts_rng r = {3};
     for (int i = 0; i < 4; i++) {
         bf_merl_cell_directions(cells[i], &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
@@ -533,12 +536,14 @@ static void test_write_errors(void **state)
 {
     (void)state;
     bf_error err;
-    bf_samples *mono = bf_samples_new(1, 1, &err);
+    bf_samples *mono = NULL;
+    bf_samples_new(1, 1, &mono, &err);
     bf_merl_cell_directions(5, &mono->theta_i[0], &mono->phi_i[0], &mono->theta_o[0], &mono->phi_o[0]);
     expect_write_error(mono, BF_ERR_ARG, "3 channels");
     bf_samples_free(mono);
 
-    bf_samples *s = bf_samples_new(3, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(3, 3, &s, &err);
     for (int i = 0; i < 3; i++) {
         bf_merl_cell_directions(100 * i + 1, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
         for (int p = 0; p < 3; p++)

@@ -22,7 +22,8 @@ static void test_metrics_values(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 2);
-    bf_samples *s = bf_samples_new(4, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(4, 2, &s, NULL);
     const double ti[4] = {0, 60, 120, 0};
     const double meas[8] = {0.2, 0.0, 0.1, 0.05, 9.0, 9.0, -0.01, 0.1};
     for (int i = 0; i < 4; i++) {
@@ -114,7 +115,8 @@ static void test_metrics_edges(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 1);
-    bf_samples *s = bf_samples_new(2, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(2, 1, &s, NULL);
     s->theta_o[0] = s->theta_o[1] = 10;
     double x = 0.5;
     s->value[0] = s->value[1] = 0.5 / M_PI;
@@ -136,7 +138,7 @@ static void test_metrics_edges(void **state)
 
     /* Nothing above the horizon; channel mismatch. */
     bf_samples_free(s);
-    s = bf_samples_new(1, 1, NULL);
+    bf_samples_new(1, 1, &s, NULL);
     s->theta_i[0] = 90;
     bf_error err = {0};
     assert_int_equal(bf_metrics_compute(m, &x, s, 1, 1, &mt, &err), BF_ERR_ARG);

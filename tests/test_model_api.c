@@ -13,7 +13,8 @@
 static void expect_error(const char *spec, int C, const char *fragment)
 {
     bf_error err = {0};
-    bf_model *m = bf_model_create(spec, C, &err);
+    bf_model *m = NULL;
+    bf_model_new(spec, C, &m, &err);
     if (m)
         fail_msg("%s accepted", spec);
     assert_int_equal(err.code, BF_ERR_ARG);
@@ -191,7 +192,8 @@ static void test_eval_range(void **state)
     double ti[N], pi_[N], to[N], po[N];
     ts_rng r = {42};
     ts_random_dirs(&r, N, ti, pi_, to, po);
-    bf_geometry *g = bf_geometry_from_angles(N, ti, pi_, to, po, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(N, ti, pi_, to, po, &g, NULL);
     int P = bf_model_nvalues(m);
     double *x = malloc((size_t)P * sizeof *x);
     bf_model_defaults(m, x);

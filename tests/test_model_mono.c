@@ -23,7 +23,8 @@ static bf_geometry *random_geometry(ts_rng *r)
     double ti[NDIRS], pi_[NDIRS], to[NDIRS], po[NDIRS];
     ts_random_dirs(r, NDIRS, ti, pi_, to, po);
     bf_error err;
-    bf_geometry *g = bf_geometry_from_angles(NDIRS, ti, pi_, to, po, &err);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(NDIRS, ti, pi_, to, po, &g, &err);
     assert_non_null(g);
     return g;
 }
@@ -83,7 +84,8 @@ static void test_bad_specs(void **state)
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         bf_error err;
-        bf_model *m = bf_model_create(bad[k].spec, 3, &err);
+        bf_model *m = NULL;
+        bf_model_new(bad[k].spec, 3, &m, &err);
         if (m || !strstr(err.msg, bad[k].fragment))
             fail_msg("%s: expected an error with '%s', got %s", bad[k].spec, bad[k].fragment,
                      m ? "a model" : err.msg);
@@ -180,14 +182,16 @@ static void test_fit_recovers_white_highlight(void **state)
     (void)state;
     enum { N = 3000 };
     bf_error err;
-    bf_samples *s = bf_samples_new(N, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(N, 3, &s, &err);
     assert_non_null(s);
     ts_rng r = {12345};
     for (size_t i = 0; i < N; i++)
         ts_random_pair_deg(&r, i % 3 == 0, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
     bf_model *truth = ts_model("walter", 3);
     const double xt[] = {0.6, 0.3, 0.1, 0.4, 0.4, 0.4, 0.15, 0.05};
-    const bf_geometry *g = bf_samples_geometry(s, &err);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, &err);
     assert_non_null(g);
     bf_model_eval(truth, xt, g, s->value, NULL);
 
@@ -206,7 +210,7 @@ static void test_fit_recovers_white_highlight(void **state)
     for (int c = 0; c < 3; c++)
         ts_assert_rel(res.x[bf_model_param_offset(m, bf_model_find_param(m, "rho_d")) + c], xt[c], 1e-6, "rho_d");
     assert_true(res.metrics.rmse < 1e-8);
-    bf_fit_result_free(&res);
+    bf_fit_result_clear(&res);
     bf_model_free(truth);
     bf_samples_free(s);
 }

@@ -24,7 +24,8 @@ static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, 
 /* n samples of C channels at random directions above the horizon (degrees). */
 static bf_samples *random_samples(size_t n, int C, uint64_t seed)
 {
-    bf_samples *s = bf_samples_new(n, C, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, C, &s, NULL);
     assert_non_null(s);
     ts_rng r = {seed};
     ts_random_dirs(&r, n, s->theta_i, s->phi_i, s->theta_o, s->phi_o);
@@ -51,8 +52,8 @@ static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form
 {
     bf_objective_options o = {.residual = form, .overrides = ov, .noverrides = nov};
     bf_error err = {0};
-    bf_objective *obj = bf_objective_new(m, s, &o, &err);
-    if (!obj)
+    bf_objective *obj = NULL;
+    if (bf_objective_new(m, s, &o, &obj, &err) != BF_OK)
         fail_msg("bf_objective_new: %s", err.msg);
     return obj;
 }
@@ -65,7 +66,8 @@ static void test_forms_values(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 1);
-    bf_samples *s = bf_samples_new(1, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(1, 1, &s, NULL);
     s->theta_i[0] = 60;
     s->theta_o[0] = 30;
     s->phi_o[0] = 180;
@@ -107,7 +109,8 @@ static void test_forms_extremes(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 1);
-    bf_samples *s = bf_samples_new(3, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(3, 1, &s, NULL);
     for (int i = 0; i < 3; i++) {
         s->theta_i[i] = 60;
         s->theta_o[i] = 30;
@@ -145,7 +148,8 @@ static void test_weights_and_horizon(void **state)
 {
     (void)state;
     bf_model *m = ts_model("lambert", 2);
-    bf_samples *s = bf_samples_new(3, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(3, 2, &s, NULL);
     assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
     for (int i = 0; i < 3; i++) {
         s->theta_i[i] = 20;
@@ -157,7 +161,8 @@ static void test_weights_and_horizon(void **state)
     s->weight[0] = 4.0;
     s->weight[2] = 0.25;
     bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .use_weights = 1};
-    bf_objective *obj = bf_objective_new(m, s, &o, NULL);
+    bf_objective *obj = NULL;
+    bf_objective_new(m, s, &o, &obj, NULL);
     assert_non_null(obj);
     const bf_problem *p = bf_objective_problem(obj);
     assert_int_equal(p->nres, 6);
@@ -175,7 +180,7 @@ static void test_weights_and_horizon(void **state)
     bf_objective_free(obj);
     /* Without use_weights the weights are ignored. */
     o.use_weights = 0;
-    obj = bf_objective_new(m, s, &o, NULL);
+    bf_objective_new(m, s, &o, &obj, NULL);
     p = bf_objective_problem(obj);
     assert_int_equal(p->eval(p->ctx, z, 0, 2, r, NULL), 0);
     ts_assert_rel(r[0], 0.3 / M_PI - 0.05, 1e-15, "unweighted r0");
@@ -218,7 +223,8 @@ static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
     ts_rng r = {seed * 7 + 1};
     /* Measurements from other parameters, some negative and some zero. */
     ts_random_params(m, &r, TS_PARAMS_MODERATE, xm);
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     bf_model_eval(m, xm, g, s->value, NULL);
     for (size_t i = 0; i < n * (size_t)C; i++) {
         double u = ts_uniform(&r);
@@ -338,7 +344,8 @@ static const normal_case normal_cases[] = {
 /* n samples at MERL cell centres above the horizon (cells spread over the table). */
 static bf_samples *cell_samples(size_t n, uint64_t seed)
 {
-    bf_samples *s = bf_samples_new_cells(n, 3, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new_cells(n, 3, &s, NULL);
     assert_non_null(s);
     ts_rng r = {seed};
     for (size_t i = 0; i < n;) {
@@ -355,14 +362,16 @@ static void check_normal(const normal_case *nc, uint64_t seed)
 {
     const int C = 3;
     const size_t n = 9000; /* three chunks of the pass, the last one short */
-    bf_model *m = bf_model_create(nc->spec, C, NULL);
+    bf_model *m = NULL;
+    bf_model_new(nc->spec, C, &m, NULL);
     assert_non_null(m);
     bf_samples *s = nc->cells ? cell_samples(n, seed) : random_samples(n, C, seed);
     ts_rng r = {seed + 1};
     const int P = bf_model_nvalues(m);
     double *x = malloc((size_t)P * sizeof *x);
     ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     assert_non_null(g);
     bf_model_eval(m, x, g, s->value, NULL); /* data from the model, then perturbed */
     for (size_t v = 0; v < n * (size_t)C; v++)
@@ -378,8 +387,8 @@ static void check_normal(const normal_case *nc, uint64_t seed)
         assert_int_equal(bf_override_parse_fix(nc->fix, &ov[nov++], NULL), BF_OK);
     bf_objective_options oo = {.residual = nc->form, .overrides = ov, .noverrides = nov, .use_weights = 1};
     bf_error err = {0};
-    bf_objective *obj = bf_objective_new(m, s, &oo, &err);
-    if (!obj)
+    bf_objective *obj = NULL;
+    if (bf_objective_new(m, s, &oo, &obj, &err) != BF_OK)
         fail_msg("%s: %s", nc->spec, err.msg);
     const bf_problem *p = bf_objective_problem(obj);
     bf_loss loss = {BF_LOSS_NONE, 1.0};
@@ -449,14 +458,15 @@ static void test_final_pass(void **state)
     for (size_t c = 0; c < 4; c++)
         for (int weighted = 0; weighted < 2; weighted++) {
             const size_t n = 6000;
-            bf_model *m = bf_model_create(specs[c], 3, NULL);
+            bf_model *m = NULL;
+            bf_model_new(specs[c], 3, &m, NULL);
             bf_samples *s = c % 2 ? cell_samples(n, 70 + c) : random_samples(n, 3, 70 + c);
             ts_rng r = {80 + c};
             const int P = bf_model_nvalues(m);
             double *x = malloc((size_t)P * sizeof *x), *se1 = malloc((size_t)P * sizeof *se1);
             double *se2 = malloc((size_t)P * sizeof *se2);
             ts_random_params(m, &r, TS_PARAMS_MODERATE, x);
-            bf_model_eval(m, x, bf_samples_geometry(s, NULL), s->value, NULL);
+            bf_model_eval(m, x, ts_samples_geometry(s), s->value, NULL);
             for (size_t v = 0; v < 3 * n; v++)
                 s->value[v] *= 1.0 + 0.2 * (ts_uniform(&r) - 0.5);
             if (weighted) {
@@ -465,7 +475,8 @@ static void test_final_pass(void **state)
                     s->scene_weight[i] = i % 7 ? ts_uniform(&r) : 0.0;
             }
             bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
-            bf_objective *obj = bf_objective_new(m, s, &oo, NULL);
+            bf_objective *obj = NULL;
+            bf_objective_new(m, s, &oo, &obj, NULL);
             assert_non_null(obj);
             bf_metrics a, b;
             bf_error err;
@@ -493,7 +504,7 @@ static void test_final_pass(void **state)
             double slw = 0.0;
             for (size_t i = 0; i < n; i++) {
                 const double w = s->scene_weight ? s->scene_weight[i] : 1.0;
-                if (bf_geometry_valid_at(bf_samples_geometry(s, NULL), i) && w > 0.0) {
+                if (bf_geometry_valid_at(ts_samples_geometry(s), i) && w > 0.0) {
                     N += 3;
                     slw += 3.0 * log(w);
                 }
@@ -710,7 +721,9 @@ static void expect_new_error(const char *text, int bound, int code, const char *
         assert_int_equal(bf_override_parse_fix(text, &ov, NULL), BF_OK);
     bf_objective_options o = {.overrides = &ov, .noverrides = 1};
     bf_error err = {0};
-    assert_null(bf_objective_new(m, s, &o, &err));
+    bf_objective *bad;
+    assert_int_equal(bf_objective_new(m, s, &o, &bad, &err), code);
+    assert_null(bad);
     assert_int_equal(err.code, code);
     if (!strstr(err.msg, fragment) || !strstr(err.msg, ov.name))
         fail_msg("'%s': message '%s' lacks '%s' or the name", text, err.msg, fragment);
@@ -741,7 +754,9 @@ static void test_override_validation(void **state)
     assert_int_equal(bf_override_parse_bound("alpha=1e-4:0.4", &ov[2], NULL), BF_OK);
     bf_objective_options dup = {.residual = BF_RESIDUAL_LINEAR, .overrides = ov, .noverrides = 3};
     bf_error derr = {0};
-    assert_null(bf_objective_new(m, s, &dup, &derr));
+    bf_objective *bad;
+    assert_int_equal(bf_objective_new(m, s, &dup, &bad, &derr), BF_ERR_ARG);
+    assert_null(bad);
     assert_int_equal(derr.code, BF_ERR_ARG);
     assert_non_null(strstr(derr.msg, "fix alpha and bound alpha both set alpha"));
     assert_int_equal(bf_overrides_check(m, 0, ov, 3, &derr), BF_ERR_ARG);
@@ -760,7 +775,8 @@ static void test_override_validation(void **state)
     /* Channel mismatch. */
     bf_model *m1 = ts_model("walter", 1);
     bf_error err = {0};
-    assert_null(bf_objective_new(m1, s, NULL, &err));
+    assert_int_equal(bf_objective_new(m1, s, NULL, &bad, &err), BF_ERR_ARG);
+    assert_null(bad);
     assert_int_equal(err.code, BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "channel"));
     bf_model_free(m1);
@@ -808,7 +824,8 @@ static void test_solid_angle(void **state)
     static const int cells[][2] = {{0, 0}, {1, 0}, {1, 10}, {10, 5}, {30, 30}, {60, 20}, {85, 1}, {88, 0}, {89, 0}, {45, 44}};
     const size_t n = sizeof cells / sizeof cells[0];
     bf_model *m = ts_model("lambert", 3);
-    bf_samples *s = bf_samples_new(n, 3, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 3, &s, NULL);
     s->merl = calloc(1, sizeof *s->merl);
     s->merl->cell = calloc(n, sizeof *s->merl->cell);
     for (size_t q = 0; q < n; q++) {
@@ -816,14 +833,15 @@ static void test_solid_angle(void **state)
         s->merl->cell[q] = cell;
         bf_merl_cell_directions(cell, &s->theta_i[q], &s->phi_i[q], &s->theta_o[q], &s->phi_o[q]);
     }
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     for (size_t q = 0; q < n; q++)
         assert_true(bf_geometry_valid(g, q));
     /* Measured 0 and rho_d = 1 (f = 1/pi): the linear residual is sqrt(w) / pi. */
     bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .solid_angle = 1};
     bf_error err = {0};
-    bf_objective *obj = bf_objective_new(m, s, &o, &err);
-    if (!obj)
+    bf_objective *obj = NULL;
+    if (bf_objective_new(m, s, &o, &obj, &err) != BF_OK)
         fail_msg("%s", err.msg);
     const bf_problem *p = bf_objective_problem(obj);
     double x[3] = {1, 1, 1}, z[3], r[3 * 10];
@@ -846,14 +864,17 @@ static void test_solid_angle(void **state)
     bf_objective_free(obj);
 
     /* Samples that are not MERL cells (a copy, its cells taken away): an error. */
-    bf_samples *plain = bf_samples_copy(s, NULL, &err);
+    bf_samples *plain = NULL;
+    bf_samples_copy(s, NULL, &plain, &err);
     assert_non_null(plain);
     assert_memory_equal(plain->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
     free(plain->merl->cell);
     free(plain->merl);
     plain->merl = NULL;
     memset(&err, 0, sizeof err);
-    assert_null(bf_objective_new(m, plain, &o, &err));
+    bf_objective *bad;
+    assert_int_equal(bf_objective_new(m, plain, &o, &bad, &err), BF_ERR_ARG);
+    assert_null(bad);
     assert_int_equal(err.code, BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "MERL"));
     bf_samples_free(plain);
@@ -903,7 +924,8 @@ static void test_stderr_lambert(void **state)
     for (size_t i = 0; i < n; i++)
         s->value[i] = 0.1 + 0.02 * ts_uniform(&r);
     s->theta_i[7] = 100; /* below the horizon: does not count in n */
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     for (int form = 0; form < 2; form++) {
         bf_residual rf = form ? BF_RESIDUAL_COSINE : BF_RESIDUAL_LINEAR;
         bf_objective *obj = make_obj(m, s, rf, NULL, 0);
@@ -946,7 +968,8 @@ static void test_stderr_phong(void **state)
     assert_int_equal(bf_objective_stderr(obj, x, se, NULL), BF_OK);
     assert_true(se[6] == 0.0);
     /* Columns: a_i = f(rho_d = 1, rho_s = 0), b_i = f(0, 1) (the model is linear). */
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     double xa[7] = {1, 1, 1, 0, 0, 0, 8}, xb[7] = {0, 0, 0, 1, 1, 1, 8};
     double *a = ts_eval(m, xa, g), *b = ts_eval(m, xb, g), *f = ts_eval(m, x, g);
     double ssr = 0;

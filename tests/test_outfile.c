@@ -71,7 +71,7 @@ static int temporaries(const char *dir)
     return n;
 }
 
-static int write_text(const char *path, const char *text, bf_error *err)
+static bf_status write_text(const char *path, const char *text, bf_error *err)
 {
     bf_outfile o;
     int rc = bf_outfile_open(&o, path, err);
@@ -278,7 +278,7 @@ static void test_unusable_targets(void **state)
 }
 
 /* bf_outputs_check on one input and one or two outputs. */
-static int check(const char *in, const char *out1, const char *out2, bf_error *err)
+static bf_status check(const char *in, const char *out1, const char *out2, bf_error *err)
 {
     const bf_path_use i[] = {{"data file", in}}, o[] = {{"-o", out1}, {"--json", out2}};
     return bf_outputs_check(i, 1, o, 2, err);

@@ -15,8 +15,8 @@
 static int check_spec(const char *spec)
 {
     bf_error err;
-    bf_model *m = bf_model_create(spec, 3, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new(spec, 3, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     int diffuse = 0, weights[BF_MAX_LOBES + 1] = {0};
     for (int i = 0; i < bf_model_nparams(m); i++) {
@@ -83,7 +83,8 @@ static void test_roles_of_known_parameters(void **state)
         {"oren_nayar", "sigma", BF_ROLE_DIFFUSE_SHAPE}, {"microfacet:lobes=2", "rho_s_2", BF_ROLE_WEIGHT},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        bf_model *m = bf_model_create(cases[i].spec, 1, NULL);
+        bf_model *m = NULL;
+        bf_model_new(cases[i].spec, 1, &m, NULL);
         assert_non_null(m);
         int k = bf_model_find_param(m, cases[i].param);
         assert_true(k >= 0);
@@ -98,9 +99,10 @@ static void test_roles_of_known_parameters(void **state)
 static void test_mono_specular_by_role(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("disney:mono=specular", 3, NULL);
+    bf_model *m = NULL;
+    bf_model_new("disney:mono=specular", 3, &m, NULL);
     assert_null(m); /* Disney's only colour parameter is its base colour: nothing to tie */
-    m = bf_model_create("microfacet:lobes=2,mono=specular", 3, NULL);
+    bf_model_new("microfacet:lobes=2,mono=specular", 3, &m, NULL);
     assert_non_null(m);
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);

@@ -185,7 +185,7 @@ static void test_layout_and_scatter(void **state)
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, 300);
     assert_int_equal(img.height, 200);
-    bf_image_free(&img);
+    bf_image_clear(&img);
     /* Too small, or an unwritable place: an error naming the file, and no file. */
     assert_int_equal(plot_write(p, ts_tmp_path("tiny.png"), BF_PLOT_PNG, 10, 10, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "tiny.png"));

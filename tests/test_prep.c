@@ -18,7 +18,8 @@
  * weight[i] = i (a marker that bf_samples_keep carries along). */
 static bf_samples *make(size_t n, int C)
 {
-    bf_samples *s = bf_samples_new(n, C, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, C, &s, NULL);
     assert_non_null(s);
     assert_int_equal(bf_samples_add_weights(s, NULL), BF_OK);
     for (size_t i = 0; i < n; i++) {
@@ -300,7 +301,8 @@ static void test_drops(void **state)
     (void)state;
     /* The horizon test agrees with the geometry, to the last bit below 90 degrees. */
     bf_samples *s = make_mixed();
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, NULL);
     assert_false(bf_geometry_valid(g, 9));
     assert_true(bf_geometry_valid(g, 3));
     bf_prep_report r;

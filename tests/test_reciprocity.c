@@ -14,8 +14,8 @@ enum { NDIRS = 200, TRIALS = 8 };
 static void check(const char *spec, int C)
 {
     bf_error err;
-    bf_model *m = bf_model_create(spec, C, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new(spec, C, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     if (!bf_model_reciprocal(m)) {
         bf_model_free(m);
@@ -24,8 +24,10 @@ static void check(const char *spec, int C)
     ts_rng rng = {0xD1B54A32D192ED03ULL + (uint64_t)C};
     double ti[NDIRS], pi_[NDIRS], to[NDIRS], po[NDIRS];
     ts_random_dirs(&rng, NDIRS, ti, pi_, to, po);
-    bf_geometry *g = bf_geometry_from_angles(NDIRS, ti, pi_, to, po, NULL);
-    bf_geometry *gs = bf_geometry_from_angles(NDIRS, to, po, ti, pi_, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(NDIRS, ti, pi_, to, po, &g, NULL);
+    bf_geometry *gs = NULL;
+    bf_geometry_from_angles(NDIRS, to, po, ti, pi_, &gs, NULL);
     double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
     for (int t = 0; t < TRIALS; t++) {
         ts_random_params(m, &rng, TS_PARAMS_MODERATE, x);

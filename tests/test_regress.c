@@ -122,7 +122,7 @@ static void test_parse_fields(void **state)
     assert_true(isnan(c->params[0].v[0]));
     assert_int_equal(b->cases[1].expect_ok, 1);
     assert_int_equal(b->cases[1].nparams, 0);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
 }
 
 /* The base for the tolerance tests: alpha expected 0.1, rho_d[1] 0.4. */
@@ -149,9 +149,9 @@ static bf_regress_status status_of(const char *alpha, const char *f0, const char
     bf_error err;
     assert_int_equal(bf_regress_check(b, c, &f.r, &o, &err), BF_OK);
     bf_regress_status s = o.status;
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
     fake_free(&f);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
     return s;
 }
 
@@ -176,7 +176,7 @@ static void test_tolerance(void **state)
     assert_true(t.rel == 0.01 && t.abs == 2.0);
     t = bf_regress_tolerance(b, 1, "metrics", "rmse");
     assert_true(t.rel == 7.0 && t.abs == BF_REGRESS_METRICS_ABS);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
 
     /* |got - expected| <= abs + rel |expected|; the fake has alpha 0.1, f0 0.04,
      * rmse 0.01, rho_d[1] 0.4. Case "top": alpha rel 0.01 abs 0 -> tol 0.00101 at
@@ -205,7 +205,7 @@ static bf_regress_outcome check_text(const char *text, fake *f)
     bf_regress_outcome o;
     bf_error err;
     assert_int_equal(bf_regress_check(b, 0, &f->r, &o, &err), BF_OK);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
     return o;
 }
 
@@ -226,7 +226,7 @@ static void test_diff_lines(void **state)
     /* Verbose: ok, three channels, alpha, two metrics. */
     assert_int_equal(o.nchecked, 1 + 3 + 1 + 2);
     assert_string_equal(o.checked[4], "  params.alpha: expected 0.1, got 0.1 (|diff| 0 <= tol 1e-07)");
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
 
     /* Names the model does not have, a colour parameter with the wrong channel count,
      * a scalar given as an array: each fails with its own line. */
@@ -240,7 +240,7 @@ static void test_diff_lines(void **state)
     assert_string_equal(o.lines[1], "  params.alpha: expected holds 3 values, the parameter is a scalar");
     assert_non_null(strstr(o.lines[2], "params.m: not a parameter of walter"));
     assert_non_null(strstr(o.lines[2], "rho_d, rho_s, alpha, f0"));
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
 
     /* ok: a failed fit fails unless expected; an unexpected success fails. */
     const char *expect_false = "{\"brdfit_baseline\": 1, \"cases\": [{\"name\": \"a\", \"data\": \"x\", "
@@ -250,17 +250,17 @@ static void test_diff_lines(void **state)
     f.r.ok = 0;
     o = check_text(expect_false, &f);
     assert_int_equal(o.status, BF_REGRESS_PASS);
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
     o = check_text(expect_true, &f);
     assert_int_equal(o.status, BF_REGRESS_FAIL);
     assert_string_equal(o.lines[0], "  ok: expected true, got false (the fit failed)");
     assert_string_equal(o.lines[1], "  termination: CONVERGENCE");
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
     f.r.ok = 1;
     o = check_text(expect_false, &f);
     assert_int_equal(o.status, BF_REGRESS_FAIL);
     assert_string_equal(o.lines[0], "  ok: expected false, got true");
-    bf_regress_outcome_free(&o);
+    bf_regress_outcome_clear(&o);
     fake_free(&f);
 }
 
@@ -317,8 +317,8 @@ static void test_junit(void **state)
     assert_int_equal(bf_regress_write_junit(b, o, path, &err), BF_ERR_IO);
     rmdir(dir);
     for (int i = 0; i < 4; i++)
-        bf_regress_outcome_free(&o[i]);
-    bf_regress_free(b);
+        bf_regress_outcome_clear(&o[i]);
+    bf_regress_baseline_free(b);
 }
 
 /* Found by fuzz/fuzz_regress.c: a key given twice. cJSON keeps both, the check read
@@ -358,7 +358,7 @@ static void test_control_characters(void **state)
                        "base.json:3:", "'\\x09' holds");
     bf_regress_baseline *comment = parse_ok("{\"brdfit_baseline\": 1, \"comment\": \"line\\nnext\\u001b\", \"cases\": [\n"
                                             " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
-    bf_regress_free(comment);
+    bf_regress_baseline_free(comment);
     bf_regress_baseline *b = parse_ok("{\"brdfit_baseline\": 1, \"cases\": [\n"
                                       " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
     bf_regress_outcome o;
@@ -384,8 +384,8 @@ static void test_control_characters(void **state)
     assert_non_null(strstr(xml, "warning: rho_d\\x0c at a bound"));
     unlink(path);
     rmdir(dir);
-    bf_regress_outcome_free(&o);
-    bf_regress_free(b);
+    bf_regress_outcome_clear(&o);
+    bf_regress_baseline_free(b);
 }
 
 static void test_update(void **state)
@@ -429,7 +429,7 @@ static void test_update(void **state)
         free(changes[i]);
     free(changes);
     assert_int_equal(bf_regress_write(b, path, &err), BF_OK);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
 
     /* Read back: values exact, pinned subset kept (rmse only; rho_s unpinned), the new
      * case filled, tolerances and options as they were. */
@@ -454,9 +454,9 @@ static void test_update(void **state)
     for (int i = 0; i < 2; i++) {
         assert_int_equal(bf_regress_check(b, i, &f.r, &o, &err), BF_OK);
         assert_int_equal(o.status, BF_REGRESS_PASS);
-        bf_regress_outcome_free(&o);
+        bf_regress_outcome_clear(&o);
     }
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
     /* The layout: two-space indent, small objects and scalar arrays on one line. */
     const char *text = slurp(path);
     assert_non_null(strstr(text, "\n  \"tolerance\": {\n    \"params\": {\"rel\": 0.25}\n  },"));
@@ -471,7 +471,7 @@ static void test_update(void **state)
     assert_string_equal(changes[0], "  ok: true -> false");
     free(changes[0]);
     free(changes);
-    bf_regress_free(b);
+    bf_regress_baseline_free(b);
     fake_free(&f);
     unlink(path);
     rmdir(dir);

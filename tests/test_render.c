@@ -55,7 +55,7 @@ static void test_sphere_lambert_exr(void **state)
         ts_assert_near(px(img.pixels, N, 50, 32)[c], rho[c] / M_PI * sqrt(1.0 - sx * sx), 1e-6, 1e-7,
                        "off centre");
     }
-    bf_image_free(&img);
+    bf_image_clear(&img);
     free(rgb);
     bf_model_free(m);
 }
@@ -159,7 +159,8 @@ static void test_halfdiff_merl(void **state)
 {
     (void)state;
     bf_error err;
-    bf_samples *s = bf_samples_new(2, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(2, 3, &s, &err);
     s->merl = calloc(1, sizeof *s->merl);
     s->merl->raw = calloc(3 * (size_t)BF_MERL_CELLS, sizeof(double));
     s->merl->cell = calloc(2, sizeof(int32_t));
@@ -184,7 +185,8 @@ static void test_halfdiff_merl(void **state)
     assert_int_equal(bf_render_halfdiff_merl(s, W, W, 270.0, rgb, &err), BF_OK);
     assert_true(px(rgb, W, 20, 7)[0] == (float)0.1);
     /* Samples that are not MERL cells (a copy, its cells taken away): an error. */
-    bf_samples *plain = bf_samples_copy(s, NULL, &err);
+    bf_samples *plain = NULL;
+    bf_samples_copy(s, NULL, &plain, &err);
     assert_memory_equal(plain->merl->cell, s->merl->cell, s->n * sizeof *s->merl->cell);
     free(plain->merl->cell);
     free(plain->merl);
@@ -205,7 +207,8 @@ static void test_slice_lambert(void **state)
     bf_slice_range r;
     /* Measured samples: two in the plane (one each side), one out of it, one at another
      * incidence angle. */
-    bf_samples *s = bf_samples_new(4, 1, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(4, 1, &s, &err);
     const double ang[4][4] = {{30, 0, 20, 180}, {31, 10, 50, 10}, {30, 0, 45, 90}, {60, 0, 20, 180}};
     for (int q = 0; q < 4; q++) {
         s->theta_i[q] = ang[q][0];
@@ -299,7 +302,7 @@ static void test_slice_peak(void **state)
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, 361);
     assert_int_equal(img.height, 240);
-    bf_image_free(&img);
+    bf_image_clear(&img);
     assert_int_equal(bf_render_slice(m, x, &o, ts_tmp_path("slice.gif"), BF_PLOT_BY_NAME, NULL, &err), BF_ERR_ARG);
     assert_int_equal(access(ts_tmp_path("slice.gif"), F_OK), -1);
     bf_slice_options tiny = {10, 10, inc, 1, NULL, 2.0, NULL, 0.0, 0.0};
@@ -322,7 +325,7 @@ static void test_png_and_errors(void **state)
     const float want[6] = {0.0f, 188.0f, 255.0f, 255.0f, 0.0f, 10.0f};
     for (int q = 0; q < 6; q++)
         ts_assert_near(img.pixels[q] * 255.0, want[q], 0, 1e-3, "png code");
-    bf_image_free(&img);
+    bf_image_clear(&img);
     assert_int_equal(access(path, R_OK), 0);
     assert_int_equal(bf_image_write_rgb(ts_tmp_path("x.jpg"), 2, 1, rgb, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "x.jpg"));

@@ -93,7 +93,8 @@ static void test_glossy_table(void **state)
 static void test_needs_a_table(void **state)
 {
     (void)state;
-    bf_samples *s = bf_samples_new(3, 3, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(3, 3, &s, NULL);
     bf_dir light = {0.0, 0.0};
     bf_sphere_options o = {8, {0.0, 0.0}, &light, 1};
     float img[8 * 8 * 3];

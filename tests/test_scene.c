@@ -127,7 +127,8 @@ static void test_parse_errors(void **state)
 
 static bf_samples *make_samples(size_t n, const double (*dirs)[4])
 {
-    bf_samples *s = bf_samples_new(n, 1, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 1, &s, NULL);
     assert_non_null(s);
     for (size_t i = 0; i < n; i++) {
         s->theta_i[i] = dirs[i][0];
@@ -372,7 +373,8 @@ static int add_scene_weights(bf_samples *s)
 static bf_samples *random_samples(size_t n, uint64_t seed)
 {
     ts_rng rng = {seed};
-    bf_samples *s = bf_samples_new(n, 2, NULL);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 2, &s, NULL);
     assert_non_null(s);
     for (size_t i = 0; i < n; i++) {
         s->theta_i[i] = 85 * ts_uniform(&rng);
@@ -443,7 +445,8 @@ static void test_weighted_metrics_duplicates(void **state)
     s->value[0] = 50.0;
     s->scene_weight[4] = -2.0;
     s->value[8] = -40.0;
-    bf_samples *d = bf_samples_new(total, 2, NULL);
+    bf_samples *d = NULL;
+    bf_samples_new(total, 2, &d, NULL);
     assert_non_null(d);
     size_t j = 0;
     for (size_t i = 0; i < N; i++)
@@ -529,14 +532,14 @@ static void test_fit_weighted_metrics(void **state)
     assert_metrics_equal(&r.metrics, &want);
     assert_int_equal(bf_metrics_compute(r.model, r.x, s, r.metrics.k, 1, &plain, NULL), BF_OK);
     assert_true(plain.rmse != want.rmse);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
 
     o.weighted_metrics = 0;
     ts_fit_ok(s, "lambert", &o, &r);
     assert_int_equal(r.metrics.weighted, 0);
     assert_int_equal(bf_metrics_compute(r.model, r.x, s, r.metrics.k, 1, &plain, NULL), BF_OK);
     assert_metrics_equal(&r.metrics, &plain);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 

@@ -79,7 +79,7 @@ static void test_choose_order(void **state)
     bf_select_order(&s, order);
     assert_int_equal(order[0], 3);
     assert_int_equal(s.c[order[4]].k, 9);
-    bf_select_free(&s);
+    bf_select_clear(&s);
 
     /* Nothing fitted: no choice. */
     const char *one[] = {"lambert"};
@@ -88,7 +88,7 @@ static void test_choose_order(void **state)
     bf_select_choose(&s);
     assert_int_equal(s.chosen, -1);
     assert_int_equal(s.best, -1);
-    bf_select_free(&s);
+    bf_select_clear(&s);
 }
 
 /* Equal k: isotropic before anisotropic, one lobe before two, mono before colour. */
@@ -104,7 +104,7 @@ static int choose_between(const char *a, const char *b, int C, int k)
     set_error(&s, 1, BF_CMP_OK, 0.1);
     bf_select_choose(&s);
     int chosen = s.chosen;
-    bf_select_free(&s);
+    bf_select_clear(&s);
     return chosen;
 }
 
@@ -139,13 +139,15 @@ enum { NSAMPLES = 3000 };
 static bf_samples *synth(const char *spec, const double *x, uint64_t seed)
 {
     bf_error err;
-    bf_samples *s = bf_samples_new(NSAMPLES, 3, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(NSAMPLES, 3, &s, &err);
     assert_non_null(s);
     ts_rng r = {seed};
     for (size_t i = 0; i < NSAMPLES; i++)
         ts_random_pair_deg(&r, i % 3 == 0, &s->theta_i[i], &s->phi_i[i], &s->theta_o[i], &s->phi_o[i]);
     bf_model *m = ts_model(spec, 3);
-    const bf_geometry *g = bf_samples_geometry(s, &err);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, &err);
     assert_non_null(g);
     bf_model_eval(m, x, g, s->value, NULL);
     for (size_t k = 0; k < NSAMPLES * 3; k++)
@@ -192,7 +194,7 @@ static void test_lambert_data_selects_lambert(void **state)
     /* Every richer model fits it as well (the noise floor), and none is chosen. */
     assert_true(s.c[s.best].error > 0.0);
     free(specs);
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_samples_free(data);
 }
 
@@ -215,7 +217,7 @@ static void test_isotropic_ggx_selects_isotropic_mono(void **state)
     assert_string_equal(c->spec, "walter:mono=specular");
     /* The anisotropic model fits as well, with alpha_x = alpha_y. */
     assert_true(s.c[3].within);
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_samples_free(data);
 }
 
@@ -229,7 +231,7 @@ static void test_coloured_highlight_needs_colour(void **state)
     assert_string_equal(c->spec, "walter");
     assert_true(c->coloured_specular);
     assert_false(s.c[1].within); /* the white highlight cannot follow it */
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_samples_free(data);
 }
 
@@ -243,7 +245,7 @@ static void test_two_lobe_data_selects_two_lobes(void **state)
     const bf_select_candidate *c = select_on(data, NSINGLE, single_lobe_candidates, &s, 0);
     assert_int_equal(c->lobes, 2);
     assert_string_equal(c->spec, "walter:lobes=2,mono=specular");
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_samples_free(data);
 }
 
@@ -260,7 +262,7 @@ static void test_scene_changes_the_choice(void **state)
     const bf_select_candidate *c = select_on(data, 3, specs, &s, 0);
     assert_string_equal(c->spec, "walter:mono=specular");
     assert_false(s.c[0].within);
-    bf_select_free(&s);
+    bf_select_clear(&s);
 
     bf_scene *scene;
     bf_error err;
@@ -273,7 +275,7 @@ static void test_scene_changes_the_choice(void **state)
     c = select_on(data, 3, specs, &s, 1);
     assert_string_equal(c->spec, "lambert");
     assert_int_equal(s.c[0].result.metrics.n, kept * 3);
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_scene_free(scene);
     bf_samples_free(data);
 }
@@ -307,7 +309,7 @@ static void test_json(void **state)
     assert_non_null(cJSON_GetObjectItem(cJSON_GetObjectItem(first, "params"), "rho_d"));
     assert_non_null(cJSON_GetObjectItem(cJSON_GetObjectItem(first, "metrics"), "rmse_log"));
     cJSON_Delete(root);
-    bf_select_free(&s);
+    bf_select_clear(&s);
     bf_samples_free(data);
 }
 

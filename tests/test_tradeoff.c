@@ -24,7 +24,8 @@ static const char *const methods2[] = {"ceres", "LD_LBFGS"};
 static bf_samples *synthetic(size_t n)
 {
     bf_error err;
-    bf_samples *s = bf_samples_new(n, 1, &err);
+    bf_samples *s = NULL;
+    bf_samples_new(n, 1, &s, &err);
     assert_non_null(s);
     ts_rng r = {12345};
     ts_random_dirs(&r, n, s->theta_i, s->phi_i, s->theta_o, s->phi_o);
@@ -38,7 +39,8 @@ static bf_samples *synthetic(size_t n)
     double x[8];
     assert_true(bf_model_nvalues(m) <= 8);
     bf_model_defaults(m, x);
-    const bf_geometry *g = bf_samples_geometry(s, &err);
+    const bf_geometry *g = NULL;
+    bf_samples_geometry(s, &g, &err);
     assert_non_null(g);
     bf_model_eval(m, x, g, s->value, NULL);
     bf_model_free(m);
@@ -69,7 +71,7 @@ static void test_grid_size_and_order(void **state)
         if (i > 0)
             assert_true(r->samples >= t.rows[i - 1].samples);
     }
-    bf_tradeoff_free(&t);
+    bf_tradeoff_clear(&t);
 
     /* Every count beyond the training size: one row, "all". */
     const size_t big[] = {5000, 8000};
@@ -77,7 +79,7 @@ static void test_grid_size_and_order(void **state)
     assert_int_equal(t.nrows, 1);
     assert_int_equal(t.rows[0].all, 1);
     assert_int_equal(t.rows[0].samples, 1000);
-    bf_tradeoff_free(&t);
+    bf_tradeoff_clear(&t);
 
     /* Empty lists and zero starts are refused. */
     assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 0, big, 1, methods2, 1, res, 1, starts, &err),
@@ -199,7 +201,7 @@ static void test_rank_front_and_recommendation(void **state)
     bf_tradeoff_rank(&t);
     assert_int_equal(t.best, 0); /* rmse 1.0 ties rows 0, 2, 3, 4: the fastest is best */
     assert_int_equal(t.recommended, 0);
-    bf_tradeoff_free(&t);
+    bf_tradeoff_clear(&t);
 }
 
 static void test_same_seed_same_errors(void **state)
@@ -242,8 +244,8 @@ static void test_same_seed_same_errors(void **state)
         assert_true(t[0].rows[i].test.rmse_log < 1e-4);
     }
     assert_true(t[0].best >= 0 && t[0].recommended >= 0);
-    bf_tradeoff_free(&t[0]);
-    bf_tradeoff_free(&t[1]);
+    bf_tradeoff_clear(&t[0]);
+    bf_tradeoff_clear(&t[1]);
     bf_samples_free(train);
     bf_samples_free(test);
     bf_samples_free(s);
@@ -370,7 +372,7 @@ static void test_json_and_csv(void **state)
     cJSON_Delete(root);
     free(text);
     unlink(path);
-    bf_tradeoff_free(&t);
+    bf_tradeoff_clear(&t);
 }
 
 int main(void)

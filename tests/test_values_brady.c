@@ -17,8 +17,8 @@
 static bf_model *make(int C)
 {
     bf_error err;
-    bf_model *m = bf_model_create("brady", C, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new("brady", C, &m, &err) != BF_OK)
         fail_msg("brady: %s", err.msg);
     return m;
 }

@@ -21,8 +21,8 @@ typedef struct dp {
 static bf_model *make(int C)
 {
     bf_error err;
-    bf_model *m = bf_model_create("disney", C, &err);
-    if (!m)
+    bf_model *m = NULL;
+    if (bf_model_new("disney", C, &m, &err) != BF_OK)
         fail_msg("disney: %s", err.msg);
     return m;
 }

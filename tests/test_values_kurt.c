@@ -165,7 +165,8 @@ static void test_grazing(void **state)
     /* 2e-15: just above the 1e-15 the geometry takes as the horizon. */
     double L[6] = {1.0, 0.0, 2e-15, -1.0, 0.0, 2e-15};
     double V[6] = {-1.0, 0.0, 2e-15, -1.0, 1e-9, 2e-15};
-    bf_geometry *g = bf_geometry_from_vectors(2, L, V, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_vectors(2, L, V, &g, NULL);
     double v[2], gr[10];
     bf_model_eval(m, x, g, v, gr);
     for (int i = 0; i < 2; i++)

@@ -415,7 +415,8 @@ static void test_walter_aniso_isotropic(void **state)
     double x[2 + 2 + 2], y[2 + 2 + 3];
     double ti[64], pi_[64], to[64], po[64];
     ts_random_dirs(&rng, 64, ti, pi_, to, po);
-    bf_geometry *g = bf_geometry_from_angles(64, ti, pi_, to, po, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_angles(64, ti, pi_, to, po, &g, NULL);
     for (int t = 0; t < 10; t++) {
         ts_random_params(w, &rng, TS_PARAMS_ANY, x);
         /* same rho_d, rho_s (2 channels each), alpha, f0 */
@@ -453,7 +454,8 @@ static void compare_specs(const char *s1, const char *s2)
         ts_rng rng = {0xC0FFEEULL + (uint64_t)C};
         double ti[N], pi_[N], to[N], po[N];
         ts_random_dirs(&rng, N, ti, pi_, to, po);
-        bf_geometry *g = bf_geometry_from_angles(N, ti, pi_, to, po, NULL);
+        bf_geometry *g = NULL;
+        bf_geometry_from_angles(N, ti, pi_, to, po, &g, NULL);
         double *x = malloc((size_t)P * sizeof *x);
         size_t nv = (size_t)N * (size_t)C;
         double *va = malloc(nv * sizeof *va), *vb = malloc(nv * sizeof *vb);
@@ -510,7 +512,8 @@ static void check_grazing(const char *spec)
     const double Vs[][3] = {{-1, 0, e}, {1, 0, e}, {0, 1, e}, {0, 0, 1}, {-1, 0, 0.3}, {1, 0, e},
                             {0.6, 0.8, 1e-9}, {-0.6, 0.8, e}};
     enum { N = sizeof Ls / sizeof Ls[0] };
-    bf_geometry *g = bf_geometry_from_vectors(N, &Ls[0][0], &Vs[0][0], NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_vectors(N, &Ls[0][0], &Vs[0][0], &g, NULL);
     for (int C = 1; C <= 2; C++) {
         bf_model *m = ts_model(spec, C);
         int P = bf_model_nvalues(m), np = bf_model_nparams(m);
@@ -591,7 +594,8 @@ static double spec_albedo(const char *spec, double rough, double w, double ti_de
             }
         }
     }
-    bf_geometry *g = bf_geometry_from_vectors(n, L, V, NULL);
+    bf_geometry *g = NULL;
+    bf_geometry_from_vectors(n, L, V, &g, NULL);
     bf_model *m = ts_model(spec, 1);
     double x[3] = {0.0, 1.0, rough};
     bf_model_eval(m, x, g, f, NULL);

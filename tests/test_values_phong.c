@@ -80,7 +80,8 @@ static void test_tables(void **state)
     (void)state;
     const char *fam[] = {"phong", "blinn_phong"};
     for (int f = 0; f < 2; f++) {
-        bf_model *m = bf_model_create(fam[f], 3, NULL);
+        bf_model *m = NULL;
+        bf_model_new(fam[f], 3, &m, NULL);
         assert_non_null(m);
         assert_int_equal(bf_model_nparams(m), 3);
         assert_int_equal(bf_model_nvalues(m), 3 + 3 + 1);
@@ -93,7 +94,8 @@ static void test_tables(void **state)
         assert_int_equal(bf_model_energy_conserving(m), 1);
         bf_model_free(m);
     }
-    bf_model *m = bf_model_create("gaussian", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("gaussian", 1, &m, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 3);
     assert_string_equal(bf_model_param(m, 2)->name, "m");
@@ -101,7 +103,7 @@ static void test_tables(void **state)
     assert_int_equal(bf_model_energy_conserving(m), 0);
     bf_model_free(m);
 
-    m = bf_model_create("heidrich_seidel", 2, NULL);
+    bf_model_new("heidrich_seidel", 2, &m, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 4);
     assert_int_equal(bf_model_nvalues(m), 2 + 2 + 2);
@@ -123,7 +125,8 @@ static void test_tables(void **state)
 static void test_phong_mirror(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("phong", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("phong", 1, &m, NULL);
     const double ns[] = {0.0, 1.0, 50.0, 1e4, 1e6};
     const double th[] = {0.0, 20.0, 45.0, 70.0, 89.0};
     for (int a = 0; a < 5; a++)
@@ -141,7 +144,8 @@ static void test_phong_mirror(void **state)
 static void test_phong_hand(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("phong", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("phong", 1, &m, NULL);
     /* Retro direction at 30 degrees: R.V = cos^2 30 - sin^2 30 = 1/2.
      * n = 2: f = rho_d/pi + rho_s (4/(2 pi)) (1/4) = rho_d/pi + rho_s/(2 pi). */
     double x[3] = {0.2, 0.7, 2.0};
@@ -167,7 +171,8 @@ static void test_phong_hand(void **state)
 static void test_phong_random(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("phong", 3, NULL);
+    bf_model *m = NULL;
+    bf_model_new("phong", 3, &m, NULL);
     ts_rng r = {0x1234567ULL};
     for (int t = 0; t < 300; t++) {
         double x[7];
@@ -198,7 +203,8 @@ static double blinn_norm(double n)
 static void test_blinn_normal(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("blinn_phong", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("blinn_phong", 1, &m, NULL);
     /* Normal incidence and view: NH = 1, f = rho_d/pi + rho_s N(n). Hand values:
      * N(0) = 8/(8 pi) = 1/pi; N(2) = 24/(8 pi 2.5) = 1.2/pi; N(1e6) ~ (n+6)/(8 pi). */
     double x[3] = {0.25, 0.5, 0.0};
@@ -224,7 +230,8 @@ static void test_blinn_normal(void **state)
 static void test_blinn_random(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("blinn_phong", 2, NULL);
+    bf_model *m = NULL;
+    bf_model_new("blinn_phong", 2, &m, NULL);
     ts_rng r = {0x9876543ULL};
     for (int t = 0; t < 300; t++) {
         double x[5];
@@ -246,7 +253,8 @@ static void test_blinn_random(void **state)
 static void test_gaussian_peak(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("gaussian", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("gaussian", 1, &m, NULL);
     const double ms[] = {1e-3, 0.05, 0.3, 1.0};
     for (int a = 0; a < 4; a++) {
         double x[3] = {0.4, 0.5, ms[a]};
@@ -266,7 +274,8 @@ static void test_gaussian_peak(void **state)
 static void test_gaussian_random(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("gaussian", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("gaussian", 1, &m, NULL);
     ts_rng r = {0x5555ULL};
     for (int t = 0; t < 300; t++) {
         double x[3] = {ts_uniform(&r), ts_uniform(&r), 0.05 * pow(20.0, ts_uniform(&r))};
@@ -284,7 +293,8 @@ static void test_gaussian_random(void **state)
 static void test_hs_hand(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("heidrich_seidel", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("heidrich_seidel", 1, &m, NULL);
     /* The mirror direction lies on the reflection cone for every thread direction:
      * x = (1 - a^2) + a^2 = 1, f = rho_d/pi + rho_s (s+2)/(2 pi), even at s = 1e6. */
     const double ss[] = {0.0, 3.0, 1e6};
@@ -324,7 +334,8 @@ static void test_hs_hand(void **state)
 static void test_hs_rotation(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("heidrich_seidel", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("heidrich_seidel", 1, &m, NULL);
     ts_rng r = {0x777ULL};
     for (int t = 0; t < 100; t++) {
         double x[4] = {0.2, 0.6, 1.0 + 30.0 * ts_uniform(&r), 0.5 * M_PI * ts_uniform(&r)};
@@ -348,7 +359,8 @@ static void test_hs_rotation(void **state)
 static void test_hs_random(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("heidrich_seidel", 3, NULL);
+    bf_model *m = NULL;
+    bf_model_new("heidrich_seidel", 3, &m, NULL);
     ts_rng r = {0xABCDEFULL};
     for (int t = 0; t < 300; t++) {
         double x[8];

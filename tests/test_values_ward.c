@@ -33,7 +33,8 @@ static double ward_ref(double rd, double rs, double ax, double ay, double ti, do
 static void test_table(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("ward", 3, NULL);
+    bf_model *m = NULL;
+    bf_model_new("ward", 3, &m, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 4);
     assert_int_equal(bf_model_nvalues(m), 3 + 3 + 2);
@@ -44,7 +45,7 @@ static void test_table(void **state)
     assert_true(bf_model_param(m, 3)->lo == 1e-3 && bf_model_param(m, 3)->hi == 1.0);
     assert_int_equal(bf_model_energy_conserving(m), 0);
     bf_model_free(m);
-    m = bf_model_create("ward_iso", 1, NULL);
+    bf_model_new("ward_iso", 1, &m, NULL);
     assert_non_null(m);
     assert_int_equal(bf_model_nparams(m), 3);
     assert_string_equal(bf_model_param(m, 2)->name, "alpha");
@@ -55,7 +56,8 @@ static void test_table(void **state)
 static void test_peak_normal(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("ward", 3, NULL);
+    bf_model *m = NULL;
+    bf_model_new("ward", 3, &m, NULL);
     double x[8] = {0.1, 0.2, 0.3, 0.7, 0.5, 0.25, 0.05, 0.3};
     for (int c = 0; c < 3; c++) {
         double want = x[c] / M_PI + x[3 + c] / (4.0 * M_PI * 0.05 * 0.3);
@@ -68,7 +70,8 @@ static void test_peak_normal(void **state)
 static void test_mirror(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("ward", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("ward", 1, &m, NULL);
     double x[4] = {0.3, 0.6, 0.2, 0.08};
     double th[] = {10.0, 45.0, 75.0, 89.0};
     for (int k = 0; k < 4; k++) {
@@ -84,7 +87,8 @@ static void test_mirror(void **state)
 static void test_axis(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("ward", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("ward", 1, &m, NULL);
     double x[4] = {0.0, 1.0, 0.3, 0.05};
     double ti = 20.0, to = 26.0, th = (to - ti) / 2.0 * DEG;
     double t = tan(th) / 0.3;
@@ -101,7 +105,7 @@ static void test_random(void **state)
 {
     (void)state;
     ts_rng r = {0x1234567887654321ULL};
-    bf_model *m = bf_model_create("ward", 3, NULL), *mi = bf_model_create("ward_iso", 3, NULL);
+    bf_model *m = ts_model("ward", 3), *mi = ts_model("ward_iso", 3);
     double x[8], xi[7];
     for (int k = 0; k < 300; k++) {
         for (int c = 0; c < 3; c++) {
@@ -142,7 +146,8 @@ static void test_random(void **state)
 static void test_limits(void **state)
 {
     (void)state;
-    bf_model *m = bf_model_create("ward_iso", 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new("ward_iso", 1, &m, NULL);
     double x[3] = {0.4, 0.6, 1e-3};
     assert_true(ts_eval1(m, x, 95.0, 0.0, 30.0, 180.0, 0) == 0.0);
     ts_assert_rel(ts_eval1(m, x, 30.0, 0.0, 60.0, 90.0, 0), 0.4 / M_PI, 1e-15, "ward underflow");

@@ -23,7 +23,7 @@ int bf_memory_allows(size_t bytes);
 
 /* The error for an array of `bytes` refused or not obtained while reading path (at line,
  * when not 0): "PATH:LINE: not enough memory: 9.6 GB needed, 4.2 GB available". */
-int bf_fail_memory(bf_error *err, const char *path, size_t line, size_t bytes);
+bf_status bf_fail_memory(bf_error *err, const char *path, size_t line, size_t bytes);
 
 /* bytes (> 0) uninitialised, or NULL (also when bf_memory_allows refuses them). */
 void *bf_big_malloc(size_t bytes);

@@ -125,10 +125,10 @@ char *bf_printable_dup(const char *s)
     return buf ? (char *)bf_printable(s, 0, 0, buf, 4 * n + 8) : NULL;
 }
 
-int bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
+bf_status bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
 {
     if (!err)
-        return (int)code;
+        return code;
     /* Formatted whole first (the problem is often named after a long quoted token),
      * into memory apart from err->msg, which may be one of the arguments. */
     char small[1024], *text = small;
@@ -146,14 +146,14 @@ int bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
     if (text != small)
         free(text);
     err->code = code;
-    return (int)code;
+    return code;
 }
 
-int bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
+bf_status bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    int rc = bf_failv(err, code, fmt, ap);
+    bf_status rc = bf_failv(err, code, fmt, ap);
     va_end(ap);
     return rc;
 }

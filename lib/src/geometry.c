@@ -8,7 +8,7 @@
 
 enum { NFIELDS = 11 };
 
-static bf_geometry *alloc_geometry(size_t n, bf_error *err)
+static bf_status alloc_geometry(size_t n, bf_geometry **out, bf_error *err)
 {
     bf_geometry *g = calloc(1, sizeof *g);
     /* One block for all fields; +1 so n = 0 still gets a valid pointer. */
@@ -16,15 +16,15 @@ static bf_geometry *alloc_geometry(size_t n, bf_error *err)
     if (!g || !block) {
         free(g);
         free(block);
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", n);
-        return NULL;
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", n);
     }
     double **fields[NFIELDS] = {&g->lx, &g->ly, &g->lz, &g->vx, &g->vy, &g->vz,
                                 &g->hx, &g->hy, &g->hz, &g->vh, &g->sin2h};
     for (int f = 0; f < NFIELDS; f++)
         *fields[f] = block + (size_t)f * n;
     g->n = n;
-    return g;
+    *out = g;
+    return BF_OK;
 }
 
 /* Fills H, V.H and sin^2(theta_h) for sample i from L and V already stored. */
@@ -53,13 +53,15 @@ static void half_vector(bf_geometry *g, size_t i)
 /* A cosine within 1e-15 of zero is the horizon (see geometry.h). */
 static double horizon(double c) { return fabs(c) < 1e-15 ? 0.0 : c; }
 
-bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
-                                     const double *theta_o, const double *phi_o,
-                                     bf_error *err)
+bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
+                                  const double *theta_o, const double *phi_o, bf_geometry **out,
+                                  bf_error *err)
 {
-    bf_geometry *g = alloc_geometry(n, err);
-    if (!g)
-        return NULL;
+    *out = NULL;
+    bf_geometry *g;
+    bf_status rc = alloc_geometry(n, &g, err);
+    if (rc != BF_OK)
+        return rc;
     for (size_t i = 0; i < n; i++) {
         double si = sin(theta_i[i]), so = sin(theta_o[i]);
         g->lx[i] = si * cos(phi_i[i]);
@@ -70,23 +72,24 @@ bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const doub
         g->vz[i] = horizon(cos(theta_o[i]));
         half_vector(g, i);
     }
-    return g;
+    *out = g;
+    return BF_OK;
 }
 
-bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V,
-                                      bf_error *err)
+bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
+                                   bf_error *err)
 {
+    *out = NULL;
     for (size_t i = 0; i < n; i++) {
         double ll = L[3 * i] * L[3 * i] + L[3 * i + 1] * L[3 * i + 1] + L[3 * i + 2] * L[3 * i + 2];
         double vv = V[3 * i] * V[3 * i] + V[3 * i + 1] * V[3 * i + 1] + V[3 * i + 2] * V[3 * i + 2];
-        if (!(ll > 0.0) || !(vv > 0.0) || !isfinite(ll) || !isfinite(vv)) {
-            bf_fail(err, BF_ERR_RANGE, "sample %zu: direction is zero, NaN or Inf", i);
-            return NULL;
-        }
+        if (!(ll > 0.0) || !(vv > 0.0) || !isfinite(ll) || !isfinite(vv))
+            return bf_fail(err, BF_ERR_RANGE, "sample %zu: direction is zero, NaN or Inf", i);
     }
-    bf_geometry *g = alloc_geometry(n, err);
-    if (!g)
-        return NULL;
+    bf_geometry *g;
+    bf_status rc = alloc_geometry(n, &g, err);
+    if (rc != BF_OK)
+        return rc;
     for (size_t i = 0; i < n; i++) {
         double il = 1.0 / sqrt(L[3 * i] * L[3 * i] + L[3 * i + 1] * L[3 * i + 1] + L[3 * i + 2] * L[3 * i + 2]);
         double iv = 1.0 / sqrt(V[3 * i] * V[3 * i] + V[3 * i + 1] * V[3 * i + 1] + V[3 * i + 2] * V[3 * i + 2]);
@@ -98,24 +101,23 @@ bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V
         g->vz[i] = horizon(V[3 * i + 2] * iv);
         half_vector(g, i);
     }
-    return g;
+    *out = g;
+    return BF_OK;
 }
 
-bf_geometry *bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_error *err)
+bf_status bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_geometry **out, bf_error *err)
 {
+    *out = NULL;
     for (size_t i = 0; i < n; i++)
-        if (cell[i] < 0 || cell[i] >= BF_MERL_CELLS) {
-            bf_fail(err, BF_ERR_RANGE, "sample %zu: MERL cell %ld is out of range", i, (long)cell[i]);
-            return NULL;
-        }
+        if (cell[i] < 0 || cell[i] >= BF_MERL_CELLS)
+            return bf_fail(err, BF_ERR_RANGE, "sample %zu: MERL cell %ld is out of range", i, (long)cell[i]);
     bf_geometry *g = calloc(1, sizeof *g);
-    if (!g) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for a geometry");
-        return NULL;
-    }
+    if (!g)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for a geometry");
     g->n = n;
     g->cell = cell;
-    return g;
+    *out = g;
+    return BF_OK;
 }
 
 void bf_geometry_free(bf_geometry *g)

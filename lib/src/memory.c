@@ -133,7 +133,7 @@ static void human(char *buf, size_t len, double bytes)
     snprintf(buf, len, "%.3g %s", bytes, unit[u]);
 }
 
-int bf_fail_memory(bf_error *err, const char *path, size_t line, size_t bytes)
+bf_status bf_fail_memory(bf_error *err, const char *path, size_t line, size_t bytes)
 {
     char where[32] = "";
     if (line)

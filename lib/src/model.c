@@ -24,7 +24,7 @@ static int count_options(const bf_family *f)
 }
 
 /* Applies one "key=value" to m. */
-static int apply_option(bf_model *m, const char *kv, size_t len, int *seen, bf_error *err)
+static bf_status apply_option(bf_model *m, const char *kv, size_t len, int *seen, bf_error *err)
 {
     const bf_family *f = m->family;
     const char *eq = memchr(kv, '=', len);
@@ -108,7 +108,7 @@ static void make_canonical_spec(bf_model *m)
 
 /* Which colour parameters mono=WHAT ties (tie[i] = 1); rewrites m->mono canonically:
  * "specular" or "all" when the set is one of those, else the names joined by '+'. */
-static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
+static bf_status mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
 {
     const char *fam = m->family->info.name;
     int first = -1, ncolour = 0;
@@ -166,7 +166,7 @@ static int mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
 
 /* Applies mono: the tied parameters become one value; the evaluator keeps the untied
  * model as `inner` and a map from its vector onto this one (only needed for C > 1). */
-static int mono_apply(bf_model *m, bf_error *err)
+static bf_status mono_apply(bf_model *m, bf_error *err)
 {
     unsigned char tie[BF_MAX_PARAMS] = {0};
     int rc = mono_resolve(m, tie, err);
@@ -204,53 +204,48 @@ static int mono_apply(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-bf_model *bf_model_create(const char *spec, int channels, bf_error *err)
+bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err)
 {
-    if (!spec || !*spec) {
-        bf_fail(err, BF_ERR_ARG, "empty model name");
-        return NULL;
-    }
-    if (channels < 1 || channels > BF_MAX_CHANNELS) {
-        bf_fail(err, BF_ERR_ARG, "channel count must be from 1 to %d, got %d", BF_MAX_CHANNELS, channels);
-        return NULL;
-    }
+    *out = NULL;
+    if (!spec || !*spec)
+        return bf_fail(err, BF_ERR_ARG, "empty model name");
+    if (channels < 1 || channels > BF_MAX_CHANNELS)
+        return bf_fail(err, BF_ERR_ARG, "channel count must be from 1 to %d, got %d", BF_MAX_CHANNELS, channels);
     const char *colon = strchr(spec, ':');
     size_t nlen = colon ? (size_t)(colon - spec) : strlen(spec);
     const bf_family *f = bf_registry_find(spec, nlen);
-    if (!f) {
-        bf_fail(err, BF_ERR_ARG, "unknown model '%.*s' (see brdfit models)", (int)nlen, spec);
-        return NULL;
-    }
+    if (!f)
+        return bf_fail(err, BF_ERR_ARG, "unknown model '%.*s' (see brdfit models)", (int)nlen, spec);
     bf_model *m = calloc(1, sizeof *m);
-    if (!m) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory");
-        return NULL;
-    }
+    if (!m)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
     m->family = f;
     m->channels = channels;
     m->lobes = 1;
     m->reciprocal = 1;
     int seen[BF_MAX_OPTIONS + 2] = {0}; /* the family's options, lobes, mono */
+    bf_status rc = BF_OK;
     if (colon) {
         const char *p = colon + 1;
         for (;;) {
             const char *comma = strchr(p, ',');
             size_t len = comma ? (size_t)(comma - p) : strlen(p);
-            if (apply_option(m, p, len, seen, err) != BF_OK) {
-                free(m);
-                return NULL;
-            }
+            if ((rc = apply_option(m, p, len, seen, err)) != BF_OK)
+                break;
             if (!comma)
                 break;
             p = comma + 1;
         }
     }
-    if (f->configure(m, err) != BF_OK || (m->mono[0] && mono_apply(m, err) != BF_OK)) {
-        free(m);
-        return NULL;
+    if (rc == BF_OK && (rc = f->configure(m, err)) == BF_OK && m->mono[0])
+        rc = mono_apply(m, err);
+    if (rc != BF_OK) {
+        bf_model_free(m);
+        return rc;
     }
     make_canonical_spec(m);
-    return m;
+    *out = m;
+    return BF_OK;
 }
 
 void bf_model_free(bf_model *m)
@@ -262,7 +257,7 @@ void bf_model_free(bf_model *m)
     free(m);
 }
 
-int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
                             int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {
     if (m->nparam >= BF_MAX_PARAMS)
@@ -294,7 +289,7 @@ int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo
     return BF_OK;
 }
 
-int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
+bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
                        int lobe, bf_param_role role, bf_error *err)
 {
     return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, role, err);
@@ -400,7 +395,7 @@ void bf_model_defaults(const bf_model *m, double *x)
     }
 }
 
-int bf_model_check(const bf_model *m, const double *x, bf_error *err)
+bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err)
 {
     for (int i = 0; i < m->nparam; i++) {
         const bf_param_info *p = &m->param[i];

@@ -22,17 +22,14 @@ static const char *default_name(int C, int c, char *buf, size_t size)
 }
 
 /* The parts every sample set has: channel names and values. */
-static bf_samples *new_common(size_t n, int channels, bf_error *err)
+static bf_status new_common(size_t n, int channels, bf_samples **out, bf_error *err)
 {
-    if (channels < 1 || channels > BF_MAX_CHANNELS) {
-        bf_fail(err, BF_ERR_ARG, "a sample set has 1 to %d channels, not %d", BF_MAX_CHANNELS, channels);
-        return NULL;
-    }
+    *out = NULL;
+    if (channels < 1 || channels > BF_MAX_CHANNELS)
+        return bf_fail(err, BF_ERR_ARG, "a sample set has 1 to %d channels, not %d", BF_MAX_CHANNELS, channels);
     /* The sizes below (n * C values, 4 n angles) must not wrap around. */
-    if (n > SIZE_MAX / sizeof(double) / ((size_t)channels + 4)) {
-        bf_fail(err, BF_ERR_NOMEM, "%zu samples of %d channels are too many", n, channels);
-        return NULL;
-    }
+    if (n > SIZE_MAX / sizeof(double) / ((size_t)channels + 4))
+        return bf_fail(err, BF_ERR_NOMEM, "%zu samples of %d channels are too many", n, channels);
     bf_samples *s = calloc(1, sizeof *s);
     if (!s)
         goto nomem;
@@ -47,41 +44,45 @@ static bf_samples *new_common(size_t n, int channels, bf_error *err)
         if (!(s->channel_names[c] = strdup(default_name(channels, c, buf, sizeof buf))))
             goto nomem;
     }
-    return s;
+    *out = s;
+    return BF_OK;
 nomem:
     bf_samples_free(s);
-    bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
-    return NULL;
+    return bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
 }
 
-bf_samples *bf_samples_new(size_t n, int channels, bf_error *err)
+bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err)
 {
-    bf_samples *s = new_common(n, channels, err);
-    if (!s)
-        return NULL;
+    *out = NULL;
+    bf_samples *s;
+    bf_status rc = new_common(n, channels, &s, err);
+    if (rc != BF_OK)
+        return rc;
     /* One block for the four angle arrays; +1 keeps n = 0 allocations valid. */
     if (!(s->theta_i = bf_big_calloc(4 * n + 1, sizeof *s->theta_i))) {
         bf_samples_free(s);
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
-        return NULL;
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
     }
     s->phi_i = s->theta_i + n;
     s->theta_o = s->theta_i + 2 * n;
     s->phi_o = s->theta_i + 3 * n;
-    return s;
+    *out = s;
+    return BF_OK;
 }
 
-bf_samples *bf_samples_new_cells(size_t n, int channels, bf_error *err)
+bf_status bf_samples_new_cells(size_t n, int channels, bf_samples **out, bf_error *err)
 {
-    bf_samples *s = new_common(n, channels, err);
-    if (!s)
-        return NULL;
+    *out = NULL;
+    bf_samples *s;
+    bf_status rc = new_common(n, channels, &s, err);
+    if (rc != BF_OK)
+        return rc;
     if (!(s->merl = calloc(1, sizeof *s->merl)) || !(s->merl->cell = bf_big_calloc(n + 1, sizeof *s->merl->cell))) {
         bf_samples_free(s);
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
-        return NULL;
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu samples of %d channels", n, channels);
     }
-    return s;
+    *out = s;
+    return BF_OK;
 }
 
 void bf_samples_drop_origin(bf_samples *s)
@@ -137,7 +138,7 @@ void bf_samples_free(bf_samples *s)
     free(s);
 }
 
-int bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err)
+bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err)
 {
     char *copy = strdup(name);
     if (!copy)
@@ -147,7 +148,7 @@ int bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error
     return BF_OK;
 }
 
-int bf_samples_add_weights(bf_samples *s, bf_error *err)
+bf_status bf_samples_add_weights(bf_samples *s, bf_error *err)
 {
     if (s->weight)
         return BF_OK;
@@ -158,26 +159,28 @@ int bf_samples_add_weights(bf_samples *s, bf_error *err)
     return BF_OK;
 }
 
-const bf_geometry *bf_samples_geometry(bf_samples *s, bf_error *err)
+bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err)
 {
-    if (s->geom)
-        return s->geom;
-    if (!s->theta_i)
-        return s->geom = bf_geometry_from_merl_cells(s->n, s->merl->cell, err);
-    double *rad = bf_big_malloc((4 * s->n + 1) * sizeof *rad);
-    if (!rad) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", s->n);
-        return NULL;
+    bf_status rc = BF_OK;
+    if (!s->geom && !s->theta_i) {
+        rc = bf_geometry_from_merl_cells(s->n, s->merl->cell, &s->geom, err);
+    } else if (!s->geom) {
+        double *rad = bf_big_malloc((4 * s->n + 1) * sizeof *rad);
+        if (!rad) {
+            *out = NULL;
+            return bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", s->n);
+        }
+        /* The four angle arrays are one block of 4n (bf_samples_new). */
+        for (size_t k = 0; k < 4 * s->n; k++)
+            rad[k] = s->theta_i[k] * (M_PI / 180.0);
+        rc = bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, &s->geom, err);
+        free(rad);
     }
-    /* The four angle arrays are one block of 4n (bf_samples_new). */
-    for (size_t k = 0; k < 4 * s->n; k++)
-        rad[k] = s->theta_i[k] * (M_PI / 180.0);
-    s->geom = bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, err);
-    free(rad);
-    return s->geom;
+    *out = s->geom;
+    return rc;
 }
 
-int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
+bf_status bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
 {
     (void)err; /* compaction happens in place: nothing to allocate */
     const size_t C = (size_t)s->channels;
@@ -223,36 +226,38 @@ int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err)
     return BF_OK;
 }
 
-bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_error *err)
+bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err)
 {
     const size_t C = (size_t)s->channels;
     size_t n = 0;
     for (size_t i = 0; i < s->n; i++)
         n += !keep || keep[i];
-    bf_samples *o = s->theta_i ? bf_samples_new(n, s->channels, err) : bf_samples_new_cells(n, s->channels, err);
-    if (!o)
-        return NULL;
+    *out = NULL;
+    bf_samples *o;
+    bf_status rc = s->theta_i ? bf_samples_new(n, s->channels, &o, err) : bf_samples_new_cells(n, s->channels, &o, err);
+    if (rc != BF_OK)
+        return rc;
     /* MERL cells are per-sample data (solid-angle weights use them), whichever way the
      * directions are held. */
     if (s->merl && !o->merl &&
         (!(o->merl = calloc(1, sizeof *o->merl)) || !(o->merl->cell = bf_big_calloc(n + 1, sizeof *o->merl->cell)))) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
         goto fail;
     }
     for (size_t c = 0; c < C; c++)
-        if (bf_samples_set_channel_name(o, (int)c, s->channel_names[c], err) != BF_OK)
+        if ((rc = bf_samples_set_channel_name(o, (int)c, s->channel_names[c], err)) != BF_OK)
             goto fail;
     if (s->wavelength) {
         if (!(o->wavelength = malloc(C * sizeof *o->wavelength))) {
-            bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
             goto fail;
         }
         memcpy(o->wavelength, s->wavelength, C * sizeof *o->wavelength);
     }
-    if (s->weight && bf_samples_add_weights(o, err) != BF_OK)
+    if (s->weight && (rc = bf_samples_add_weights(o, err)) != BF_OK)
         goto fail;
     if (s->scene_weight && !(o->scene_weight = malloc((n + 1) * sizeof *o->scene_weight))) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory copying samples");
         goto fail;
     }
     size_t j = 0;
@@ -274,8 +279,9 @@ bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_e
             o->scene_weight[j] = s->scene_weight[i];
         j++;
     }
-    return o;
+    *out = o;
+    return BF_OK;
 fail:
     bf_samples_free(o);
-    return NULL;
+    return rc;
 }

@@ -30,7 +30,7 @@ static double theta_d(const bf_geometry *g, size_t i)
     return atan2(sqrt(cx * cx + cy * cy + cz * cz), g->vh[i]);
 }
 
-int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
+bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
 {
     const bf_range none = {NAN, NAN};
     const size_t C = (size_t)s->channels;
@@ -44,12 +44,15 @@ int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
     size_t *nfinite = calloc(C, sizeof *nfinite);
     /* Compensated (Neumaier) sums: a million similar values lose no digits. */
     double *sum = calloc(2 * C, sizeof *sum), *comp = sum ? sum + C : NULL;
-    const bf_geometry *g = s->n ? bf_samples_geometry(s, err) : NULL;
-    if (!info->value || !info->mean || !nfinite || !sum || (s->n && !g)) {
+    const bf_geometry *g = NULL;
+    bf_status rc = s->n ? bf_samples_geometry(s, &g, err) : BF_OK;
+    if (rc == BF_OK && (!info->value || !info->mean || !nfinite || !sum))
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory describing %zu samples", s->n);
+    if (rc != BF_OK) {
         free(nfinite);
         free(sum);
-        bf_samples_info_free(info);
-        return bf_fail(err, BF_ERR_NOMEM, "out of memory describing %zu samples", s->n);
+        bf_samples_info_clear(info);
+        return rc;
     }
     for (size_t c = 0; c < C; c++)
         info->value[c] = none;
@@ -97,7 +100,7 @@ int bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
     return BF_OK;
 }
 
-void bf_samples_info_free(bf_samples_info *info)
+void bf_samples_info_clear(bf_samples_info *info)
 {
     if (!info)
         return;

@@ -39,7 +39,7 @@
 /* ---- Channels ---------------------------------------------------------------- */
 
 /* New channel arrays for n samples and K channels; names zeroed. */
-static int alloc_channels(size_t n, int K, double **vals, char ***names, bf_error *err)
+static bf_status alloc_channels(size_t n, int K, double **vals, char ***names, bf_error *err)
 {
     *vals = bf_big_calloc(n * (size_t)K + 1, sizeof **vals);
     *names = calloc((size_t)K, sizeof **names);
@@ -100,7 +100,7 @@ static int find_channel(const bf_samples *s, const char *tok)
     return idx < s->channels ? (int)idx : -1;
 }
 
-static int select_channels(bf_samples *s, const char *spec, bf_error *err)
+static bf_status select_channels(bf_samples *s, const char *spec, bf_error *err)
 {
     char listbuf[200];
     int K = 1;
@@ -200,7 +200,7 @@ static int band_of(double w)
     return -1;
 }
 
-static int to_rgb(bf_samples *s, bf_error *err)
+static bf_status to_rgb(bf_samples *s, bf_error *err)
 {
     const int C = s->channels;
     int *band = malloc((size_t)C * sizeof *band);
@@ -277,7 +277,7 @@ done:
     return rc;
 }
 
-static int to_luminance(bf_samples *s, bf_error *err)
+static bf_status to_luminance(bf_samples *s, bf_error *err)
 {
     const int C = s->channels;
     if (C == 1)
@@ -393,7 +393,7 @@ static void strata(const bf_samples *s, unsigned char *st, size_t count[STRATA_H
  * (TAOCP 3.4.2, Algorithm S) walks the samples in order, keeping each with probability
  * (still needed) / (still to see): a uniform random subset of exactly the quota, in the
  * original order, from one splitmix64 stream seeded with `seed`. */
-int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err)
+bf_status bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err)
 {
     enum { K = STRATA_H * STRATA_D };
     const size_t n = s->n;
@@ -440,7 +440,7 @@ int bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsi
     return BF_OK;
 }
 
-int bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err)
+bf_status bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err)
 {
     enum { NS = STRATA_H * STRATA_D, MAXK = 255 };
     if (K < 2 || K > MAXK)
@@ -477,7 +477,7 @@ int bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *f
     return BF_OK;
 }
 
-static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
+static bf_status subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
 {
     unsigned char *keep = bf_big_malloc(s->n + 1);
     if (!keep)
@@ -491,7 +491,7 @@ static int subsample(bf_samples *s, size_t N, uint64_t seed, bf_error *err)
 
 /* ---- The whole step ---------------------------------------------------------------- */
 
-int bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err)
+bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err)
 {
     static const bf_prep none = {0};
     bf_prep_report r = {0};

@@ -20,8 +20,8 @@ int main(int argc, char **argv)
 {
     bf_error err;
     /* An 8 x 8 grid of incident and outgoing elevations in the plane, value rho/pi. */
-    bf_samples *s = bf_samples_new(64, 1, &err);
-    if (!s) {
+    bf_samples *s = NULL;
+    if (bf_samples_new(64, 1, &s, &err) != BF_OK) {
         fprintf(stderr, "consumer: %s\n", err.msg);
         return 1;
     }
@@ -46,7 +46,7 @@ int main(int argc, char **argv)
     printf("rho_d %.6f\n", rho);
     printf("version %s (headers %s, %d.%d.%d)\n", bf_version(), BRDFIT_VERSION, BRDFIT_VERSION_MAJOR,
            BRDFIT_VERSION_MINOR, BRDFIT_VERSION_PATCH);
-    bf_fit_result_free(&r);
+    bf_fit_result_clear(&r);
     bf_samples_free(s);
     if (!(fabs(rho - RHO) < 1e-6) || strncmp(bf_version(), BRDFIT_VERSION, strlen(BRDFIT_VERSION)) != 0)
         return 1;

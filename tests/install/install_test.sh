@@ -52,7 +52,7 @@ done
 # The shared library exports the public API and nothing else.
 nm -D --defined-only "$libdir/libbrdfit.so" | awk '{print $3}' | sort >"$tmp/exports"
 grep -vq '^bf_' "$tmp/exports" && bad "exports beyond bf_*: $(grep -v '^bf_' "$tmp/exports" | head -n 5 | tr '\n' ' ')"
-for s in bf_version bf_fit bf_model_create bf_regress_metric_names; do
+for s in bf_version bf_fit bf_model_new bf_regress_metric_names; do
   grep -qx "$s" "$tmp/exports" && ok || bad "$s not exported"
 done
 for s in bf_json_number bf_image_plugin_get; do # internal

@@ -13,7 +13,9 @@
  * bf_compare_run runs the fits (several at once, cancellable, with a progress callback)
  * and fills one bf_compare_fit per material x model; a caller may instead run the fits
  * its own way and fill them itself. bf_compare_rank derives everything else. A report
- * writer (HTML, pictures) reads the same filled structure. */
+ * writer (HTML, pictures) reads the same filled structure.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_COMPARE_H
 #define BRDFIT_COMPARE_H
 
@@ -36,7 +38,7 @@ typedef enum bf_compare_metric {
     BF_CMP_RMSE_REL,
 } bf_compare_metric;
 
-int bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err);
+bf_status bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err);
 const char *bf_compare_metric_name(bf_compare_metric m);
 double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which);
 
@@ -59,7 +61,7 @@ typedef enum bf_compare_rank_by {
     BF_RANK_ERROR, /* the error metric (bf_compare.metric) */
 } bf_compare_rank_by;
 
-int bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
+bf_status bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
 const char *bf_compare_rank_name(bf_compare_rank_by r); /* "bic", "aic", "aicc", "cv", "error" */
 
 /* Sample evaluations of a fit: passes over the samples times their number, presolve
@@ -122,10 +124,10 @@ typedef struct bf_compare {
 } bf_compare;
 
 /* Allocates the tables (fits zeroed, state NOT_RUN) and copies the names. */
-int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
+bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                     const char *const *models, bf_error *err);
 /* Frees the tables, and the fit results bf_compare_run made. */
-void bf_compare_free(bf_compare *c);
+void bf_compare_clear(bf_compare *c);
 
 /* Called once per fit, when it is done (whatever its state; never for a fit not run):
  * material and model index its slot, done counts the fits done so far (this one
@@ -155,13 +157,13 @@ typedef struct bf_compare_run_options {
  * an ERROR. A fit that cannot run is an ERROR with its message; the others go on. After
  * a cancel, fits never started stay NOT_RUN and c->interrupted is 1.
  * The results depend neither on jobs, nor on the thread count, nor on the order the
- * fits finish in: each fit has its slot. The results are owned by c (bf_compare_free).
+ * fits finish in: each fit has its slot. The results are owned by c (bf_compare_clear).
  * Nothing is printed and no signal handler installed: the caller does both, through
  * progress and cancel. Each sample set's geometry is computed before the threads start.
  * Returns BF_OK when the fits were run (whatever their outcome, interrupted or not);
  * BF_ERR_ARG (bad arguments, or c already run) or BF_ERR_NOMEM before any fit. Call
  * bf_compare_rank after. */
-int bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
+bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
                    const bf_compare_run_options *ro, bf_error *err);
 
 /* How many fits of c are in state s. */
@@ -183,8 +185,8 @@ void bf_compare_pareto(int n, const double *x, const double *y, int *on);
  * row per material x model in input order, with one column per fitted parameter and
  * channel (the union over the models, "name" or "name[c]"; empty where a model has no
  * such parameter) and the warnings joined by "; ". */
-int bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
-int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
+bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
+bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
 
 /* The HTML report: DIR/index.html and its PNG images (relative links), built in a
  * temporary sibling folder and renamed into place, so a failure leaves nothing. An
@@ -192,8 +194,8 @@ int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
  * empty; otherwise BF_ERR_IO. samples: nmaterials sets (or NULL) for the overlays.
  * bf_compare_html_check says early (before fitting) whether DIR could be written. */
 #define BF_REPORT_MARKER ".brdfit-report"
-int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
-int bf_compare_html_check(const char *dir, bf_error *err);
+bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
+bf_status bf_compare_html_check(const char *dir, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,4 +1,22 @@
-/* Error reporting: the library never prints or exits; it fills a bf_error. */
+/* Error reporting, and the conventions every public header follows.
+ *
+ * Failing: the library never prints or exits. A function that can fail returns a
+ * bf_status (BF_OK = 0) and, if its last argument err is not NULL, fills it with a
+ * one-line message; the returned code and err->code are the same. Functions that
+ * cannot fail return their result (a count, a value, void).
+ *
+ * Owning:
+ *  - Objects the library allocates (bf_model, bf_samples, bf_geometry, bf_objective,
+ *    bf_csv, bf_scene, bf_regress_baseline) are made by bf_x_new or by a function named
+ *    after their source (bf_x_read: a file, bf_x_parse: text, bf_x_from_*, bf_x_copy),
+ *    which hands the object back through an out pointer (set to NULL on failure), and
+ *    are released with bf_x_free (NULL allowed).
+ *  - Structs the caller owns (bf_compare, bf_select, bf_tradeoff, bf_fit_result,
+ *    bf_regress_outcome, bf_image, bf_samples_info, ...) are set up by bf_x_init or by
+ *    the function that fills them (bf_fit, bf_image_read, ...), and their contents
+ *    released with bf_x_clear (clearing twice is harmless).
+ *    bf_outfile is a file being written: bf_outfile_open, then commit or abort.
+ *  - Pointers passed in are borrowed unless a function says it keeps them. */
 #ifndef BRDFIT_ERROR_H
 #define BRDFIT_ERROR_H
 
@@ -32,12 +50,12 @@ typedef struct bf_error {
 } bf_error;
 
 /* Sets err (if not NULL) and returns code, so callers can `return bf_fail(...)`. */
-int bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
+bf_status bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-int bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
+bf_status bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 0)))
 #endif

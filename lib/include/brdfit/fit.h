@@ -1,5 +1,7 @@
 /* Fitting a model to a sample set: data-driven start, seeded multistart, the chosen
- * back end, metrics and standard errors; and the result file. */
+ * back end, metrics and standard errors; and the result file.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_FIT_H
 #define BRDFIT_FIT_H
 
@@ -68,7 +70,7 @@ enum {
 };
 
 /* "fast", "balanced", "best" -> *out (BF_ERR_ARG for any other name, NULL included). */
-int bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err);
+bf_status bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err);
 /* The preset's name; "" for BF_ACCURACY_NONE, "unknown" out of range. */
 const char *bf_fit_accuracy_name(bf_fit_accuracy acc);
 
@@ -117,8 +119,8 @@ typedef struct bf_fit_result {
 /* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s. Returns BF_OK when a fit
  * ran (check r->ok: a failed fit says so in r->solution.termination, and r->x is the
  * start, never NaN); errors for bad specs, options or data. */
-int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
-void bf_fit_result_free(bf_fit_result *r);
+bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
+void bf_fit_result_clear(bf_fit_result *r);
 
 /* K-fold cross-validation: the held-out error of the fitted objective. The samples are
  * cut into `folds` seeded folds stratified over theta_h and theta_d
@@ -135,7 +137,7 @@ typedef struct bf_cv_result {
     int failed;                         /* folds whose fit failed */
 } bf_cv_result;
 
-int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
+bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
               bf_error *err);
 
 /* The largest directional albedo of model m at x, integral of f cos theta_o over the
@@ -148,13 +150,13 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
 /* A data-driven start for any model: diffuse level from off-specular samples, lobe
  * weight and width from the samples near the specular peak, every other parameter at
  * its default, all inside the bounds. */
-int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err);
+bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err);
 
 /* The result JSON: a parameter file (model, options, channels, params) plus data,
  * residual, metrics, optimizer summary, standard errors and timing; feeds brdfit eval. */
-int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err);
+bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err);
 /* Several fits of one data set as {"fits": [result, ...]} (not a parameter file). */
-int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
+bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
                            bf_error *err);
 
 #ifdef __cplusplus

@@ -1,5 +1,7 @@
 /* Data files: reading any supported format into samples (by --format, extension or
- * content) and writing CSV or MERL tables. The container is samples.h. */
+ * content) and writing CSV or MERL tables. The container is samples.h.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_FORMATS_H
 #define BRDFIT_FORMATS_H
 
@@ -36,27 +38,27 @@ typedef struct bf_read_options {
 
 /* Reads any supported format. Errors name the file, the line or byte offset, and the
  * problem. Negative values are kept (they are data); NaN or Inf is an error. */
-int bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
+bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
 int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta": a bf_format; -1 if unknown */
 const char *bf_format_name(bf_format f);
 /* The format a path's extension names for writing (csv, binary); BF_FORMAT_AUTO if none. */
 bf_format bf_format_for_writing(const char *path);
 
 /* Per-format readers (bf_samples_read dispatches to them). */
-int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err);
+bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err);
 /* MERL: samples addressed by cells; keep_raw keeps the raw table (bf_merl_origin). */
-int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
-int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
-int bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
+bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
+bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
+bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
 
 /* Writers: the whole file appears only when complete (bf_outfile). CSV: the four angle
  * columns in degrees, one column per channel (its name), then weight if present; values
  * with round-trip precision. MERL: needs 3 channels; every sample must sit at a cell
  * centre (else BF_ERR_ARG naming the first that does not); cells without a sample are
  * written from the raw table when the samples keep one, or as invalid (-1). */
-int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err);
-int bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err);
-int bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
+bf_status bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err);
+bf_status bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err);
+bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
 
 #ifdef __cplusplus
 }

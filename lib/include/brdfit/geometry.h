@@ -5,7 +5,9 @@
  * set addressed by MERL table cells the vectors of a cell centre cost a few multiplies
  * from a small table, so they are made a block at a time when needed instead of being
  * kept (88 bytes per sample, 97 MB for a full table). Code that reads the arrays takes
- * a block view first (bf_geometry_view); bf_model_eval_range does so itself. */
+ * a block view first (bf_geometry_view); bf_model_eval_range does so itself.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_GEOMETRY_H
 #define BRDFIT_GEOMETRY_H
 
@@ -36,18 +38,18 @@ typedef struct bf_geometry {
 /* Angles in radians. A cosine within 1e-15 of zero is taken as exactly zero, so a
  * direction given as exactly 90 degrees lies on the horizon (f = 0) rather than at
  * cos = 6e-17, where 1/(NL NV) factors would dominate a fit. */
-bf_geometry *bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
-                                     const double *theta_o, const double *phi_o,
-                                     bf_error *err);
+bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
+                                  const double *theta_o, const double *phi_o, bf_geometry **out,
+                                  bf_error *err);
 
 /* L and V as n vectors each, xyz interleaved (3n doubles). They are normalised, and a
  * z within 1e-15 of zero is set to zero (on the horizon), as for angles. */
-bf_geometry *bf_geometry_from_vectors(size_t n, const double *L, const double *V,
-                                      bf_error *err);
+bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
+                                   bf_error *err);
 
 /* The geometry of n MERL cell centres (merl.h's convention), generated on demand from
  * cell[] (not copied: it must outlive the geometry). Every cell must be in range. */
-bf_geometry *bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_error *err);
+bf_status bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_geometry **out, bf_error *err);
 
 void bf_geometry_free(bf_geometry *g);
 

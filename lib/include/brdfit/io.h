@@ -1,5 +1,7 @@
 /* Reading and writing the files the commands exchange: numeric CSV tables, parameter
- * files (JSON), and output files that appear only when complete. */
+ * files (JSON), and output files that appear only when complete.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_IO_H
 #define BRDFIT_IO_H
 
@@ -26,7 +28,7 @@ typedef struct bf_csv {
     size_t *line;   /* source line number of each row (for later error messages) */
 } bf_csv;
 
-int bf_csv_read(const char *path, bf_csv **out, bf_error *err);
+bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err);
 void bf_csv_free(bf_csv *t);
 int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
 
@@ -36,7 +38,7 @@ int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
  * parameters, inside its bounds. Other top-level keys are ignored, so a fit result can
  * stand in for a parameter file. On success *model and *x (malloc'd, length
  * bf_model_nvalues) belong to the caller. */
-int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
+bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 
 /* ---- Outputs that survive failures. bf_outfile_open resolves path: a regular file
  * (symbolic links followed: the file a link points to is replaced, the link stays) is
@@ -60,13 +62,13 @@ typedef struct bf_outfile {
     int handle;               /* the temporary's registration */
 } bf_outfile;
 
-int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
-int bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
+bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
+bf_status bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
 void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temporary */
 
 /* Whether bf_outfile_open(path) could write (nothing is created: access() on the
  * folder and the file), so a command can fail before long work. */
-int bf_outfile_check(const char *path, bf_error *err);
+bf_status bf_outfile_check(const char *path, bf_error *err);
 
 /* One file a command reads or writes, with the option or role that names it in
  * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped). */
@@ -84,7 +86,7 @@ typedef struct bf_path_use {
  *   input and output, destroys nothing;
  * - every output must be writable (bf_outfile_check; BF_ERR_IO).
  * The first problem found is returned, as one line in err. */
-int bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
+bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
                      bf_error *err);
 
 /* Installs a handler for the signals that end a process by default (SIGHUP, SIGINT,

@@ -1,6 +1,8 @@
 /* Limits on sizes that files declare, checked before any arithmetic or allocation:
  * hostile or broken files must get a one-line error, not an overflow or an attempt to
- * allocate terabytes. */
+ * allocate terabytes.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_LIMITS_H
 #define BRDFIT_LIMITS_H
 

@@ -1,6 +1,8 @@
 /* MERL tables: the cell grid (90 theta_h x 90 theta_d x 180 phi_d, theta_h on a square
  * root scale) and its arithmetic. A sample set read from a MERL table is addressed by
- * cells (samples.h); reading and writing the files is formats.h. */
+ * cells (samples.h); reading and writing the files is formats.h.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_MERL_H
 #define BRDFIT_MERL_H
 

@@ -1,4 +1,6 @@
-/* Fit error as users compare it. */
+/* Fit error as users compare it.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_METRICS_H
 #define BRDFIT_METRICS_H
 
@@ -58,10 +60,10 @@ typedef struct bf_metrics {
 void bf_metrics_criteria(bf_metrics *m, size_t n, int k, double wssr, double sum_log_w);
 
 /* threads: 0 or 1 for one; the result is the same for any count. */
-int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                        bf_metrics *out, bf_error *err);
 /* The same; weighted = 1 applies the samples' scene weights (if they have any) as above. */
-int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                                 int weighted, bf_metrics *out, bf_error *err);
 
 #ifdef __cplusplus

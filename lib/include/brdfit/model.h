@@ -1,6 +1,8 @@
 /* Parametric BRDF models: configured from a spec string ("walter:fresnel=dielectric",
  * "microfacet:D=ggx,G=smith_ggx,F=schlick,lobes=2") and a channel count, each exposes
- * its parameter table and evaluates values and analytic gradients over many samples. */
+ * its parameter table and evaluates values and analytic gradients over many samples.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_MODEL_H
 #define BRDFIT_MODEL_H
 
@@ -80,7 +82,7 @@ typedef struct bf_model bf_model;
  * on coloured data costs one parameter instead of C): WHAT is "specular" (every colour
  * parameter but the first, the diffuse colour), "all", or parameter names joined by '+'
  * ("rho_s+rho_s_2"). The canonical spec writes it last. */
-bf_model *bf_model_create(const char *spec, int channels, bf_error *err);
+bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);
 void bf_model_free(bf_model *m);
 
 const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
@@ -107,7 +109,7 @@ const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size
 int bf_model_nvalues(const bf_model *m);
 void bf_model_defaults(const bf_model *m, double *x);
 /* BF_ERR_RANGE naming the parameter when a value is NaN, Inf or out of bounds. */
-int bf_model_check(const bf_model *m, const double *x, bf_error *err);
+bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err);
 
 /* values[i*C + c] for every sample i and channel c. grad (NULL: none) is the row-major
  * Jacobian: grad[(i*C + c)*P + k] = d values[i*C + c] / d x[k]. Thread-safe. */

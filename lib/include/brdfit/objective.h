@@ -1,7 +1,9 @@
 /* The fitting objective: a model, a sample set and a residual form become a bf_problem
  * over well-scaled internal parameters. Fixed parameters, bound overrides and the
  * internal parametrisation (log space for roughness and exponents) live here, not in
- * the models and not in the back ends. */
+ * the models and not in the back ends.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_OBJECTIVE_H
 #define BRDFIT_OBJECTIVE_H
 
@@ -31,7 +33,7 @@ typedef enum bf_residual {
     BF_RESIDUAL_RELATIVE,
 } bf_residual;
 
-int bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
+bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
 const char *bf_residual_name(bf_residual r);
 
 /* --fix NAME=VALUE and --bound NAME=LO:HI. NAME is a parameter name (every channel of a
@@ -43,15 +45,15 @@ typedef struct bf_override {
     double value, lo, hi;
 } bf_override;
 
-int bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
-int bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
+bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
+bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
 
 /* Checks overrides against model m before any data is read (channels <= 0: the
  * channel count is not known yet, channel indices unchecked): an unknown parameter, a
  * channel index on a scalar, a value or bounds outside the model's bounds, lo >= hi,
  * and two overrides of one entry (--fix alpha with --bound alpha, or two --fix
  * rho_d[1]): BF_ERR_ARG or BF_ERR_RANGE with a one-line message. */
-int bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
+bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
 
 typedef struct bf_objective_options {
     bf_residual residual;
@@ -71,8 +73,8 @@ typedef struct bf_objective bf_objective;
 /* The model's channel count must equal the samples'. Validates overrides (unknown
  * parameter, channel out of range, value or bounds outside the model's bounds, lo >= hi)
  * with one-line errors. Computes the sample geometry if needed. */
-bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
-                               bf_error *err);
+bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
+                           bf_objective **out, bf_error *err);
 void bf_objective_free(bf_objective *obj);
 
 /* The problem over the internal vector z (free parameters only, in their internal
@@ -94,7 +96,7 @@ int bf_objective_fixed(const bf_objective *obj, int k);
  * the residuals with respect to the model parameters: s^2 (J^T J)^-1 with
  * s^2 = sum r^2 / (n - k). 0 for fixed parameters; NaN where J^T J is singular there
  * (a parameter the data do not determine). */
-int bf_objective_stderr(const bf_objective *obj, const double *x, double *se, bf_error *err);
+bf_status bf_objective_stderr(const bf_objective *obj, const double *x, double *se, bf_error *err);
 
 #ifdef __cplusplus
 }

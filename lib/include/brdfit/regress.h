@@ -15,7 +15,9 @@
  * A value passes when |got - expected| <= abs + rel |expected|. Tolerances resolve from
  * the most general to the most specific: built-in defaults, the file's group ("params"
  * or "metrics") rel/abs, the file's per-name entry, the case's group rel/abs, the case's
- * per-name entry; each layer may set rel, abs or both. */
+ * per-name entry; each layer may set rel, abs or both.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_REGRESS_H
 #define BRDFIT_REGRESS_H
 
@@ -78,9 +80,9 @@ extern const int bf_regress_nmetric_names;
 /* Reads and checks a baseline: structure, types, known keys, unique case names, model
  * specs, tolerances >= 0. Errors name the file and line. bf_regress_parse does the same
  * on text already in memory (path: for messages and the relative-path folder). */
-int bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err);
-int bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err);
-void bf_regress_free(bf_regress_baseline *b);
+bf_status bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err);
+bf_status bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err);
+void bf_regress_baseline_free(bf_regress_baseline *b);
 
 /* path resolved against the baseline's folder (absolute paths unchanged); malloc'd. */
 char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
@@ -119,28 +121,28 @@ typedef struct bf_regress_outcome {
  * the fit's warnings).
  * Expected ok false passes when the fit failed (values unchecked) and fails when it
  * succeeded. Returns BF_OK unless memory runs out. */
-int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
+bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
                      bf_error *err);
 /* Marks case c as not runnable with message (status ERROR). */
-int bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
-void bf_regress_outcome_free(bf_regress_outcome *out);
+bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
+void bf_regress_outcome_clear(bf_regress_outcome *out);
 
 /* Sets case c's expectations to r in the document: expected.ok; the parameters and
  * metrics the case pins (every one when it pins none of the group, and the model's own
  * names and channel count where they differ). A failed fit (r->ok 0) sets ok false and
  * leaves the values. Appends one line per change to *changes ("params.alpha: 0.12 ->
  * 0.1201"; caller frees each and the array). */
-int bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
+bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
                       bf_error *err);
 /* Writes the document (2-space indent, arrays of scalars on one line, numbers that
  * read back exactly) to path through a temporary file. */
-int bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
+bf_status bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
 
 /* JUnit XML: <testsuites><testsuite name="brdfit regress" tests failures errors time>,
  * one <testcase name classname=(baseline path) time> per case not skipped, <failure>
  * holding the diff lines, <error> the reason a case could not run, <system-out> the
  * fit's warnings. Written through a temporary file. */
-int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
+bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
                            bf_error *err);
 
 #ifdef __cplusplus

@@ -3,7 +3,9 @@
  * figures drawn with Cairo and written as PNG, SVG or PDF.
  * Buffers are width*height*3 floats, row-major from the top row. Every model channel
  * count is shown as RGB: C = 1 as grey, C = 3 as is, any other C as the mean of its
- * channels (grey). Angles are in degrees. */
+ * channels (grey). Angles are in degrees.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_RENDER_H
 #define BRDFIT_RENDER_H
 
@@ -40,12 +42,12 @@ typedef struct bf_sphere_options {
     int nlights;           /* >= 1 */
 } bf_sphere_options;
 
-int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
+bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err);
 /* The same sphere of a measured MERL table (read with its origin): each pixel's pair of
  * directions takes the value of the cell MERL's own lookup picks (half/difference
  * angles, phi_d folded by reciprocity); 0 where that cell is invalid. */
-int bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
+bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
 
 /* ---- Plots -----------------------------------------------------------------------
  * Plots (slices here, compare's and tradeoff's figures) are drawn with Cairo: title,
@@ -100,11 +102,11 @@ typedef struct bf_slice_range {
 
 /* The data's extent in log10 f (curves and in-plane samples, at most 8 decades down),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
-int bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
+bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
                     double *log10_hi, bf_error *err);
 /* The slice plot written to path ("-": standard output) in format (BF_PLOT_BY_NAME: by
  * the extension); range may be NULL. */
-int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
+bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
                     bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
@@ -113,9 +115,9 @@ int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *
  * Values are f (linear, per channel). From a model, or from a MERL table read with
  * bf_samples_read_merl: the cell containing (theta_h, theta_d, phi_d) (MERL's own
  * lookup), 0 where that cell is invalid or was not read. */
-int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
+bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
                              double phi_d, float *rgb, bf_error *err);
-int bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
+bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
                             float *rgb, bf_error *err);
 
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the

@@ -1,6 +1,8 @@
 /* Sample sets: measured or synthetic reflectance at direction pairs, with C channels,
  * optional weights, and the geometry model evaluation uses (computed once, on demand).
- * The container only: reading and writing files is formats.h, MERL cells merl.h. */
+ * The container only: reading and writing files is formats.h, MERL cells merl.h.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_SAMPLES_H
 #define BRDFIT_SAMPLES_H
 
@@ -37,13 +39,13 @@ typedef struct bf_samples {
 
 /* n samples, C channels; names "value" (C = 1), "r,g,b" (C = 3) or "c0".. otherwise.
  * Arrays are allocated (angles and values zeroed); no weights, wavelengths or origin. */
-bf_samples *bf_samples_new(size_t n, int channels, bf_error *err);
+bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err);
 /* The same, addressed by MERL cells: s->merl->cell (n, zeroed) instead of angle arrays;
  * no raw table. */
-bf_samples *bf_samples_new_cells(size_t n, int channels, bf_error *err);
+bf_status bf_samples_new_cells(size_t n, int channels, bf_samples **out, bf_error *err);
 void bf_samples_free(bf_samples *s);
 /* Replaces channel c's name (copied). */
-int bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
+bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
 /* Forgets the raw MERL table (the values no longer are that table's); the cells stay,
  * they are the samples' directions. */
 void bf_samples_drop_origin(bf_samples *s);
@@ -55,23 +57,23 @@ void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *
 /* One sample's directions in degrees: theta_i, phi_i, theta_o, phi_o. */
 void bf_samples_direction(const bf_samples *s, size_t i, double dir[4]);
 /* Adds a weight array, all 1. */
-int bf_samples_add_weights(bf_samples *s, bf_error *err);
+bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
 
 /* The geometry for the current directions (computed on first use, kept until the
  * samples change through bf_samples_keep): stored for angle arrays, generated for MERL
- * cells (geometry.h). NULL only on allocation failure. */
-const bf_geometry *bf_samples_geometry(bf_samples *s, bf_error *err);
+ * cells (geometry.h). *out is NULL only on failure (out of memory, a cell out of range). */
+bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
 
 /* Keeps the samples whose keep[i] is non-zero, in order. Drops the geometry; marks the
  * cells of dropped samples invalid (-1) in the raw MERL table, so a table written back
  * has exactly the kept samples. Any change of channels (selection, spectral to RGB) must
  * forget the raw table instead (bf_samples_drop_origin): it no longer describes the data. */
-int bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err);
+bf_status bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err);
 
 /* A new sample set with the samples of s whose keep[i] is non-zero (keep NULL: all),
  * in order: directions (MERL cells stay cells), values, weights, channel names and
  * wavelengths; no raw MERL table (a copy describes no file) and no geometry yet. */
-bf_samples *bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_error *err);
+bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -12,7 +12,9 @@
  * Among candidates within tolerance (or with equal criteria) the order of preference is:
  * fewer free parameters, then isotropic before anisotropic, one lobe before two, a
  * monochrome (mono) highlight before a coloured one, then the lower error, then the
- * earlier candidate. Nothing depends on wall time. */
+ * earlier candidate. Nothing depends on wall time.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_SELECT_H
 #define BRDFIT_SELECT_H
 
@@ -34,7 +36,7 @@ typedef struct bf_select_candidate {
     int coloured_specular;   /* a colour parameter besides the diffuse colour, C > 1 */
     /* The fit (bf_select_run). */
     bf_compare_state state;
-    bf_fit_result result;    /* valid when state is OK or FAILED (free with bf_select_free) */
+    bf_fit_result result;    /* valid when state is OK or FAILED (free with bf_select_clear) */
     double cv_error;         /* rank_by cv: the held-out error (NaN otherwise or failed) */
     double work;             /* sample evaluations (bf_compare_work) */
     double seconds;          /* wall time: written only with bf_select.timing */
@@ -66,11 +68,11 @@ typedef struct bf_select {
  * strings (free the array only). */
 int bf_select_default_candidates(int channels, const char ***specs);
 
-/* Sets up s for the specs (each checked with bf_model_create: BF_ERR_ARG naming the
+/* Sets up s for the specs (each checked with bf_model_new: BF_ERR_ARG naming the
  * bad one) and fills each candidate's description. */
-int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
+bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
                    double tolerance, double abs_tolerance, bf_error *err);
-void bf_select_free(bf_select *s);
+void bf_select_clear(bf_select *s);
 
 /* Called after each candidate's fit (i its index), for progress output. */
 typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i);
@@ -79,7 +81,7 @@ typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i);
  * marked ERROR with the message; the others go on), cross-validates each with s->folds
  * folds (seed o->seed) when ranked by cv, then bf_select_choose. Returns BF_OK when the
  * candidates were run, whatever their outcome. */
-int bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
                   void *ctx, bf_error *err);
 
 /* From the candidates' states, errors and criteria: error, criterion, rank, within,
@@ -95,7 +97,7 @@ void bf_select_order(const bf_select *s, int *order);
  * spec, k, flags, state, error, criterion, rank, work, within, metrics, parameters,
  * standard errors and warnings when fitted (seconds only with s->timing). Through
  * bf_outfile (path "-": stdout). data names the data file in the output. */
-int bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err);
+bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,7 @@
 /* The optimizer layer: every back end sees only "n residuals, p parameters, bounds, a
- * function that fills residuals and the Jacobian". No model or data types here. */
+ * function that fills residuals and the Jacobian". No model or data types here.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_SOLVE_H
 #define BRDFIT_SOLVE_H
 
@@ -57,7 +59,7 @@ typedef struct bf_loss {
 } bf_loss;
 
 /* Parses "huber:0.1", "cauchy", "none" ... (scale 1 when omitted). */
-int bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
+bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
 /* rho(s) and rho'(s); rho' is floored at DBL_MIN, so a residual never loses its weight
  * entirely. */
 double bf_loss_eval(const bf_loss *l, double s, double *d1);
@@ -113,7 +115,7 @@ typedef struct bf_method_info {
 int bf_method_count(void);
 const bf_method_info *bf_method_get(int i);
 const char *bf_backend_name(bf_backend b); /* "ceres", "nlopt" */
-int bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
+bf_status bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
 /* The back end's default method. */
 const bf_method_info *bf_method_default(bf_backend backend);
 /* A back end's method by name (NULL or "": its default; NLopt names in any case, Ceres'
@@ -121,7 +123,7 @@ const bf_method_info *bf_method_default(bf_backend backend);
 const bf_method_info *bf_method_find(bf_backend backend, const char *name);
 /* "ceres", "ceres:dogleg", "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA": the back end
  * and the method (a back end alone: its default). */
-int bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err);
+bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err);
 /* "A, B, C": a back end's methods whose caps hold every bit of need and none of avoid,
  * into buf; returns the length written. */
 size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *buf, size_t size);
@@ -149,7 +151,7 @@ typedef struct bf_solver_options {
 
 /* The method, the local method and the constraint of o against the registry, before any
  * work: BF_OK, or BF_ERR_ARG with a message listing what would do. */
-int bf_solver_options_check(const bf_solver_options *o, bf_error *err);
+bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
 
 typedef struct bf_solution {
     double initial_cost, final_cost; /* 1/2 sum rho(r^2) */
@@ -168,7 +170,7 @@ typedef struct bf_solution {
  * it stopped on a limit (see s->usable and s->termination); an error for bad options
  * (unknown algorithm: the message lists the known ones) or a failed back end. Prints
  * nothing. */
-int bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 
 #ifdef __cplusplus
 }

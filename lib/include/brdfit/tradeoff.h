@@ -11,7 +11,9 @@
  *
  * The caller builds the grid (bf_tradeoff_init), runs each row (bf_tradeoff_run_row, in
  * any order, one at a time, since rows are timed) and ranks (bf_tradeoff_rank); the
- * writers read the filled table. */
+ * writers read the filled table.
+ * Status codes and ownership follow brdfit/error.h.
+ */
 #ifndef BRDFIT_TRADEOFF_H
 #define BRDFIT_TRADEOFF_H
 
@@ -33,13 +35,13 @@ extern "C" {
  * "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA" ...), checked against the method
  * registry with so's other settings (bf_solver_options_check). Sets backend and
  * algorithm in so (the registry's name). Unknown names are BF_ERR_ARG. */
-int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err);
+bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err);
 
 /* Splits s into a training and a test set, disjoint, together every sample: the test set
  * is a seeded uniform random subset of exactly round(n * fraction) samples (at least 1,
  * and at least 1 left for training), both in the original order. fraction in (0, 1).
  * Weights and channel names are copied; the MERL origin is not (neither set is a table). */
-int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
                       bf_samples **test, bf_error *err);
 
 typedef struct bf_tradeoff_row {
@@ -93,10 +95,10 @@ typedef struct bf_tradeoff {
  * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
  * sorted ascending and deduplicated, so rows run in ascending sample count. Then
  * methods, residuals, starts, in the order given. Every list must be non-empty. */
-int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
                      const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
                      const bf_residual *residuals, int nstarts, const int *starts, bf_error *err);
-void bf_tradeoff_free(bf_tradeoff *t);
+void bf_tradeoff_clear(bf_tradeoff *t);
 
 /* Runs row i: subsamples train (seeded stratified, bf_prep with t->seed) unless the row is
  * all, fits t->model with base overridden by the row's method, residual and starts,
@@ -104,7 +106,7 @@ void bf_tradeoff_free(bf_tradeoff *t);
  * fit's time with the least interference), and measures the best fit on train and test
  * (every metric). Returns BF_OK when the row was filled (a fit that could not run says so
  * in row->message and returns its error code too). */
-int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
+bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
                         bf_error *err);
 
 /* error from t->metric on the test set, the Pareto front of (cost, error) over the ok
@@ -120,15 +122,15 @@ const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
 /* Outputs through bf_outfile (no partial file on failure; "-": stdout). JSON: every key
  * always present (null where not applicable), seconds only with t->timing; CSV: a header
  * and one row per grid row, a seconds column only with t->timing. */
-int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
-int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
+bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
+bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
 
 /* Test error (log axis unless some error is 0) against the cost (log axis): every
  * setting, the Pareto front drawn and named, its points labelled #N (the row's number,
  * from 1), the recommended setting ringed; a plot (render.h) of width x height in format
  * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL): what the
  * axes span. */
-int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
                            bf_plot_axes *axes, bf_error *err);
 
 #ifdef __cplusplus

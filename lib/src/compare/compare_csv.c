@@ -69,7 +69,7 @@ static double param_value(const bf_fit_result *r, const char *name)
     return NAN;
 }
 
-int bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err)
+bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err)
 {
     const char *name = path ? path : "-";
     int ncols = 0;

@@ -105,7 +105,7 @@ static cJSON *compare_json(const bf_compare *c)
     return root;
 }
 
-int bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err)
+bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err)
 {
     return bf_json_write(compare_json(c), path, "the comparison", err);
 }

@@ -61,7 +61,7 @@ static void fit_one(void *arg, size_t chunk)
     if (rc == BF_OK && c->folds > 0 && res->ok) {
         rc = bf_fit_cv(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
         if (rc != BF_OK)
-            bf_fit_result_free(res);
+            bf_fit_result_clear(res);
     }
     const double seconds = bf_now_seconds() - t0;
 
@@ -84,7 +84,7 @@ static void fit_one(void *arg, size_t chunk)
     pthread_mutex_unlock(&r->lock);
 }
 
-int bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
+bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
                    const bf_compare_run_options *ro, bf_error *err)
 {
     static const bf_compare_run_options defaults = {.jobs = 1};
@@ -101,8 +101,10 @@ int bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_optio
         if (!samples[i])
             return bf_fail(err, BF_ERR_ARG, "compare: no samples for %s", c->materials[i].data);
         /* Computed on first use: computed here, before the threads share it. */
-        if (!bf_samples_geometry(samples[i], err))
-            return err->code;
+        const bf_geometry *g;
+        bf_status rc = bf_samples_geometry(samples[i], &g, err);
+        if (rc != BF_OK)
+            return rc;
         c->materials[i].samples = samples[i]->n;
         c->materials[i].channels = samples[i]->channels;
     }

@@ -8,7 +8,7 @@
 
 static const char *const metric_names[] = {"rmse", "rmse_log", "rmse_cos", "rmse_rel"};
 
-int bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err)
+bf_status bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err)
 {
     for (int i = 0; i < (int)(sizeof metric_names / sizeof metric_names[0]); i++)
         if (text && !strcmp(text, metric_names[i])) {
@@ -37,7 +37,7 @@ double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which)
 
 static const char *const rank_names[] = {"bic", "aic", "aicc", "cv", "error"};
 
-int bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err)
+bf_status bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err)
 {
     for (int i = 0; i < (int)(sizeof rank_names / sizeof rank_names[0]); i++)
         if (text && !strcmp(text, rank_names[i])) {
@@ -69,7 +69,7 @@ const char *bf_compare_state_name(bf_compare_state s)
     return "?";
 }
 
-int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
+bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                     const char *const *models, bf_error *err)
 {
     memset(c, 0, sizeof *c);
@@ -92,17 +92,17 @@ int bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int 
         ok = (m->data = strdup(data[i])) && (m->fits = calloc((size_t)nmodels, sizeof *m->fits));
     }
     if (!ok) {
-        bf_compare_free(c);
+        bf_compare_clear(c);
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for a comparison table");
     }
     return BF_OK;
 }
 
-void bf_compare_free(bf_compare *c)
+void bf_compare_clear(bf_compare *c)
 {
     if (c->results)
         for (size_t k = 0; k < (size_t)c->nmaterials * (size_t)c->nmodels; k++)
-            bf_fit_result_free(&c->results[k]);
+            bf_fit_result_clear(&c->results[k]);
     free(c->results);
     if (c->models)
         for (int j = 0; j < c->nmodels; j++)

@@ -533,7 +533,7 @@ static int replaceable(const char *dir)
     return empty;
 }
 
-int bf_compare_html_check(const char *dir, bf_error *err)
+bf_status bf_compare_html_check(const char *dir, bf_error *err)
 {
     if (!dir || !*dir)
         return bf_fail(err, BF_ERR_ARG, "report folder: empty name");
@@ -569,7 +569,7 @@ static int open_in(report *r, bf_outfile *o, const char *name)
  * registered, and removed by the caller); otherwise it is moved aside to a registered
  * temporary and the new one renamed in, with fatal signals held off between the two
  * renames so that target is never left missing. *aside: where the old report went. */
-static int swap_in(const char *tmp, const char *target, int had, char **aside, int *aside_handle, bf_error *err)
+static bf_status swap_in(const char *tmp, const char *target, int had, char **aside, int *aside_handle, bf_error *err)
 {
     *aside = NULL;
     if (had != 1)
@@ -614,7 +614,7 @@ static void name_target(bf_error *err, const char *tmp, const char *target)
     snprintf(at, sizeof err->msg - (size_t)(at - err->msg), "%s%s", target, rest);
 }
 
-int bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
+bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
 {
     if (!c)
         return bf_fail(err, BF_ERR_ARG, "report: no comparison");

@@ -14,18 +14,18 @@
 #include "objective_impl.h"
 
 /* The held-out samples' sum of w r^2 and sum of w at the model vector x. */
-static int held_out(bf_samples *test, const bf_model *m, const double *x, const bf_fit_options *o, double *wssr,
+static bf_status held_out(bf_samples *test, const bf_model *m, const double *x, const bf_fit_options *o, double *wssr,
                     double *wsum, bf_error *err)
 {
     bf_objective_options oo = o->objective;
     if (oo.threads < 1)
         oo.threads = o->solver.threads;
-    bf_objective *obj = bf_objective_new(m, test, &oo, err);
-    if (!obj)
-        return err ? err->code : BF_ERR_ARG;
+    bf_objective *obj;
+    bf_status rc = bf_objective_new(m, test, &oo, &obj, err);
+    if (rc != BF_OK)
+        return rc;
     const int nz = bf_objective_nz(obj);
     double *z = malloc(((size_t)nz + 1) * sizeof *z);
-    int rc = BF_OK;
     if (!z) {
         rc = bf_fail(err, BF_ERR_NOMEM, "cross-validation: out of memory");
     } else {
@@ -39,7 +39,7 @@ static int held_out(bf_samples *test, const bf_model *m, const double *x, const 
     return rc;
 }
 
-int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
+bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
               bf_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -63,16 +63,14 @@ int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int fold
         out->fold_error[k] = NAN;
         for (size_t i = 0; i < s->n; i++)
             keep[i] = fold[i] != k;
-        bf_samples *train = bf_samples_copy(s, keep, err), *test = NULL;
+        bf_samples *train, *test = NULL;
+        rc = bf_samples_copy(s, keep, &train, err);
         for (size_t i = 0; i < s->n; i++)
             keep[i] = !keep[i];
-        if (train)
-            test = bf_samples_copy(s, keep, err);
-        if (!train || !test) {
-            rc = err ? err->code : BF_ERR_NOMEM;
+        if (rc == BF_OK && (rc = bf_samples_copy(s, keep, &test, err)) != BF_OK)
             bf_samples_free(train);
+        if (rc != BF_OK)
             break;
-        }
         bf_fit_result r;
         rc = bf_fit(train, spec, o, &r, err);
         if (rc == BF_OK) {
@@ -84,7 +82,7 @@ int bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int fold
                 wssr += fw;
                 wsum += fs;
             }
-            bf_fit_result_free(&r);
+            bf_fit_result_clear(&r);
         }
         bf_samples_free(train);
         bf_samples_free(test);

@@ -211,8 +211,8 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
                 }
             }
             bf_error err;
-            bf_geometry *g = bf_geometry_from_vectors(n, L, V, &err);
-            if (!g) {
+            bf_geometry *g = NULL;
+            if (bf_geometry_from_vectors(n, L, V, &g, &err) != BF_OK) {
                 rc = -1;
                 break;
             }
@@ -252,8 +252,8 @@ static double lobe_hwhm(const bf_model *m, const double *x, int k)
         V[3 * i] = d[2] * s - d[0] * c, V[3 * i + 1] = 0.0, V[3 * i + 2] = d[2] * c + d[0] * s;
     }
     bf_error err;
-    bf_geometry *g = bf_geometry_from_vectors(NT, L, V, &err);
-    if (!g)
+    bf_geometry *g = NULL;
+    if (bf_geometry_from_vectors(NT, L, V, &g, &err) != BF_OK)
         return 0.0;
     bf_model_lobe_shape(m, x, k, g, 0, NT, S, NULL);
     bf_geometry_free(g);
@@ -272,8 +272,8 @@ static double lobe_hwhm(const bf_model *m, const double *x, int k)
 /* Samples above the horizon with theta_h below w. */
 static size_t samples_within(bf_samples *s, double w)
 {
-    const bf_geometry *g = bf_samples_geometry(s, NULL);
-    if (!g)
+    const bf_geometry *g = NULL;
+    if (bf_samples_geometry(s, &g, NULL) != BF_OK)
         return (size_t)-1;
     const double s2 = sin(w) * sin(w);
     size_t n = 0;

@@ -46,7 +46,7 @@ static void random_start(const bf_problem *p, const double *z0, uint64_t *state,
 }
 
 /* The cost 1/2 sum r^2 at z when nothing is free to solve for (every parameter fixed). */
-static int plain_cost(const bf_problem *p, const double *z, double *cost, bf_error *err)
+static bf_status plain_cost(const bf_problem *p, const double *z, double *cost, bf_error *err)
 {
     enum { CHUNK = 4096 };
     double *r = malloc(CHUNK * sizeof *r);
@@ -67,7 +67,7 @@ static int plain_cost(const bf_problem *p, const double *z, double *cost, bf_err
     return BF_OK;
 }
 
-static int fixed_only(const bf_problem *p, const double *z, bf_solution *sol, bf_error *err)
+static bf_status fixed_only(const bf_problem *p, const double *z, bf_solution *sol, bf_error *err)
 {
     memset(sol, 0, sizeof *sol);
     double cost = NAN;
@@ -84,7 +84,7 @@ static int fixed_only(const bf_problem *p, const double *z, bf_solution *sol, bf
     return BF_OK;
 }
 
-static int alloc_result(bf_fit_result *r, int P, bf_error *err)
+static bf_status alloc_result(bf_fit_result *r, int P, bf_error *err)
 {
     r->x = calloc((size_t)P + 1, sizeof *r->x);
     r->stderr_ = calloc((size_t)P + 1, sizeof *r->stderr_);
@@ -105,22 +105,22 @@ static size_t presolve_samples(const bf_fit_options *o, size_t n)
 }
 
 /* The presolve's subsample of s and its objective (same options), or an error. */
-static int presolve_objective(bf_samples *s, size_t pn, const bf_fit_options *o, const bf_model *m,
+static bf_status presolve_objective(bf_samples *s, size_t pn, const bf_fit_options *o, const bf_model *m,
                               const bf_objective_options *oo, bf_samples **ps, bf_objective **pobj, bf_error *err)
 {
     unsigned char *keep = bf_big_malloc(s->n + 1);
     if (!keep)
         return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the presolve");
-    int rc = bf_samples_subsample_mask(s, pn, o->seed, keep, err);
-    if (rc == BF_OK && !(*ps = bf_samples_copy(s, keep, err)))
-        rc = err ? err->code : BF_ERR_NOMEM;
+    bf_status rc = bf_samples_subsample_mask(s, pn, o->seed, keep, err);
+    if (rc == BF_OK)
+        rc = bf_samples_copy(s, keep, ps, err);
     free(keep);
-    if (rc == BF_OK && !(*pobj = bf_objective_new(m, *ps, oo, err)))
-        rc = err ? err->code : BF_ERR_ARG;
+    if (rc == BF_OK)
+        rc = bf_objective_new(m, *ps, oo, pobj, err);
     return rc;
 }
 
-int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
+bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
     double t0 = bf_now_seconds();
     memset(r, 0, sizeof *r);
@@ -128,23 +128,23 @@ int bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_resu
         return bf_fail(err, BF_ERR_ARG, "fit: no samples or no options");
     if (s->n == 0)
         return bf_fail(err, BF_ERR_ARG, "fit: no samples");
-    r->model = bf_model_create(spec, s->channels, err);
-    if (!r->model)
-        return err ? err->code : BF_ERR_ARG;
+    bf_status rc = bf_model_new(spec, s->channels, &r->model, err);
+    if (rc != BF_OK)
+        return rc;
     const bf_model *m = r->model;
     const int P = bf_model_nvalues(m);
-    int rc = alloc_result(r, P, err);
+    rc = alloc_result(r, P, err);
     if (rc != BF_OK) {
-        bf_fit_result_free(r);
+        bf_fit_result_clear(r);
         return rc;
     }
     bf_objective_options oo = o->objective; /* its own passes use the solver's threads */
     if (oo.threads < 1)
         oo.threads = o->solver.threads;
-    bf_objective *obj = bf_objective_new(m, s, &oo, err);
-    if (!obj) {
-        bf_fit_result_free(r);
-        return err ? err->code : BF_ERR_ARG;
+    bf_objective *obj;
+    if ((rc = bf_objective_new(m, s, &oo, &obj, err)) != BF_OK) {
+        bf_fit_result_clear(r);
+        return rc;
     }
     const bf_problem *full = bf_objective_problem(obj);
     const int nz = bf_objective_nz(obj);
@@ -289,14 +289,14 @@ done:
     bf_samples_free(ps);
     bf_objective_free(obj);
     if (rc != BF_OK) {
-        bf_fit_result_free(r);
+        bf_fit_result_clear(r);
         return rc;
     }
     r->seconds = bf_now_seconds() - t0;
     return BF_OK;
 }
 
-void bf_fit_result_free(bf_fit_result *r)
+void bf_fit_result_clear(bf_fit_result *r)
 {
     if (!r)
         return;

@@ -282,18 +282,18 @@ static double scan_widths(const bf_model *m, double *x, double h, const bf_geome
     return fit_at_width(m, x, best_h, g, y, xs, f1, over);
 }
 
-int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
+bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
 {
     const int C = bf_model_channels(m), P = bf_model_nvalues(m), np = bf_model_nparams(m);
     if (C != s->channels)
         return bf_fail(err, BF_ERR_ARG, "model %s has %d channels, the samples %d", bf_model_spec(m), C,
                        s->channels);
     bf_model_defaults(m, x);
-    const bf_geometry *g = bf_samples_geometry(s, err);
-    if (!g)
-        return err ? err->code : BF_ERR_NOMEM;
+    const bf_geometry *g;
+    bf_status rc = bf_samples_geometry(s, &g, err);
+    if (rc != BF_OK)
+        return rc;
 
-    int rc = BF_OK;
     size_t n = s->n, nvalid = 0, nfar = 0;
     unsigned char *code = bf_big_malloc(n + 1);
     double *q = malloc((QUANTILE_CAP + 1) * sizeof *q);
@@ -464,12 +464,10 @@ int bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *
             ev[ns * C + c] = s->value[i * C + c];
         ns++;
     }
-    sg = ns ? bf_geometry_from_vectors(ns, L, V, err) : NULL;
+    rc = ns ? bf_geometry_from_vectors(ns, L, V, &sg, err) : BF_OK;
     free(L);
-    if (!sg) {
-        rc = ns ? (err ? err->code : BF_ERR_NOMEM) : BF_OK;
+    if (!sg) /* failed, or no sample to scan */
         goto clamp;
-    }
     /* Width scan (see scan_widths). A lobe that needs a weight above its bound with f0
      * at its default (a metal, or a highlight brighter than f0 = 0.04 allows) gets f0
      * raised by that factor and another scan, kept while it fits better (4 at most). */

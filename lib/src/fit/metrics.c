@@ -82,13 +82,13 @@ static void chunk_sums(void *ctx, size_t c)
     free(f);
 }
 
-int bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                        bf_metrics *out, bf_error *err)
 {
     return bf_metrics_compute_weighted(m, x, s, k, threads, 0, out, err);
 }
 
-int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                                 int weighted, bf_metrics *out, bf_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -96,9 +96,10 @@ int bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *
     if (bf_model_channels(m) != C)
         return bf_fail(err, BF_ERR_ARG, "metrics: model %s has %d channels but the samples have %d",
                        bf_model_name(m), bf_model_channels(m), C);
-    const bf_geometry *g = bf_samples_geometry(s, err);
-    if (!g)
-        return err ? (int)err->code : BF_ERR_NOMEM;
+    const bf_geometry *g;
+    bf_status rc = bf_samples_geometry(s, &g, err);
+    if (rc != BF_OK)
+        return rc;
     size_t nchunks = (s->n + BF_METRIC_CHUNK - 1) / BF_METRIC_CHUNK;
     job j = {m, x, g, s->value, weighted ? s->scene_weight : NULL, s->n, C, calloc(nchunks + 1, sizeof(partial))};
     if (!j.part)
@@ -129,7 +130,7 @@ void bf_metric_sums_add(bf_metric_sums *t, const bf_metric_sums *p)
     t->nrel += p->nrel;
 }
 
-int bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metrics *out, bf_error *err)
+bf_status bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metrics *out, bf_error *err)
 {
     memset(out, 0, sizeof *out);
     if (t->n == 0)

@@ -55,6 +55,6 @@ void bf_metric_chunk(bf_metric_sums *p, const double *f, const double *mv, const
 /* t += p (chunks added in a fixed order). */
 void bf_metric_sums_add(bf_metric_sums *t, const bf_metric_sums *p);
 /* The metrics from the whole set's sums; BF_ERR_ARG when no value counted. */
-int bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metrics *out, bf_error *err);
+bf_status bf_metric_sums_finish(const bf_metric_sums *t, int k, int weighted, bf_metrics *out, bf_error *err);
 
 #endif

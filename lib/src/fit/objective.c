@@ -256,7 +256,7 @@ void bf_objective_free(bf_objective *o)
 }
 
 /* Combined per-sample weights (sample weights, solid angle), as square roots. */
-static int setup_weights(bf_objective *o, const bf_objective_options *opt, bf_error *err)
+static bf_status setup_weights(bf_objective *o, const bf_objective_options *opt, bf_error *err)
 {
     bf_samples *s = o->samples;
     int use_w = opt->use_weights && s->weight;
@@ -373,37 +373,29 @@ static int scan_samples(bf_objective *o)
     return 0;
 }
 
-bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
-                               bf_error *err)
+bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
+                           bf_objective **out, bf_error *err)
 {
+    *out = NULL;
     static const bf_objective_options defaults = {0};
     if (!opt)
         opt = &defaults;
-    if (!m || !s) {
-        bf_fail(err, BF_ERR_ARG, "objective: no model or no samples");
-        return NULL;
-    }
-    if (bf_model_channels(m) != s->channels) {
-        bf_fail(err, BF_ERR_ARG, "model %s has %d channel%s but the samples have %d", bf_model_name(m),
+    if (!m || !s)
+        return bf_fail(err, BF_ERR_ARG, "objective: no model or no samples");
+    if (bf_model_channels(m) != s->channels)
+        return bf_fail(err, BF_ERR_ARG, "model %s has %d channel%s but the samples have %d", bf_model_name(m),
                 bf_model_channels(m), bf_model_channels(m) == 1 ? "" : "s", s->channels);
-        return NULL;
-    }
-    if ((int)opt->residual < 0 || opt->residual > BF_RESIDUAL_RELATIVE) {
-        bf_fail(err, BF_ERR_ARG, "objective: unknown residual form %d", (int)opt->residual);
-        return NULL;
-    }
-    if (opt->noverrides > 0 && !opt->overrides) {
-        bf_fail(err, BF_ERR_ARG, "objective: %d overrides but no array", opt->noverrides);
-        return NULL;
-    }
-    const bf_geometry *g = bf_samples_geometry(s, err);
-    if (!g)
-        return NULL;
+    if ((int)opt->residual < 0 || opt->residual > BF_RESIDUAL_RELATIVE)
+        return bf_fail(err, BF_ERR_ARG, "objective: unknown residual form %d", (int)opt->residual);
+    if (opt->noverrides > 0 && !opt->overrides)
+        return bf_fail(err, BF_ERR_ARG, "objective: %d overrides but no array", opt->noverrides);
+    const bf_geometry *g;
+    bf_status rc = bf_samples_geometry(s, &g, err);
+    if (rc != BF_OK)
+        return rc;
     bf_objective *o = calloc(1, sizeof *o);
-    if (!o) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
-        return NULL;
-    }
+    if (!o)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
     o->model = m;
     o->samples = s;
     o->geom = g;
@@ -432,21 +424,21 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     if (!o->ws || !o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx ||
         !o->zlo || !o->zhi || !o->delta || !o->colour_off ||
         !o->colour_step) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
     }
-    if (bf_obj_apply_overrides(o, opt->overrides, opt->noverrides, err))
+    if ((rc = bf_obj_apply_overrides(o, opt->overrides, opt->noverrides, err)) != BF_OK)
         goto fail;
     bf_obj_setup_scale(o);
 
-    if (setup_weights(o, opt, err))
+    if ((rc = setup_weights(o, opt, err)) != BF_OK)
         goto fail;
     if (scan_samples(o)) {
-        bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
     }
     if (o->nvalid == 0) {
-        bf_fail(err, BF_ERR_ARG, "no samples above the horizon to fit (%zu samples)", o->n);
+        rc = bf_fail(err, BF_ERR_ARG, "no samples above the horizon to fit (%zu samples)", o->n);
         goto fail;
     }
 
@@ -464,10 +456,11 @@ bf_objective *bf_objective_new(const bf_model *m, bf_samples *s, const bf_object
     o->problem.normal = problem_normal;
     o->problem.ctx = o;
     o->problem.constraint = o->ncolour > 0 ? problem_constraint : NULL;
-    return o;
+    *out = o;
+    return BF_OK;
 fail:
     bf_objective_free(o);
-    return NULL;
+    return rc;
 }
 
 const bf_problem *bf_objective_problem(const bf_objective *o) { return &o->problem; }

@@ -182,12 +182,12 @@ double bf_obj_dxdz(bf_scale sc, double x);
 /* ---- Overrides (overrides.c) ---------------------------------------------------------
  * Fills lo, hi, fixed, fixval from the model's bounds and the overrides, in order (a
  * later override of the same entry replaces an earlier one). */
-int bf_obj_apply_overrides(bf_objective *o, const bf_override *ov, int nov, bf_error *err);
+bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ov, int nov, bf_error *err);
 
 /* ---- Solid-angle weights (solid_angle.c) ---------------------------------------------
  * n weights, one per sample, from its MERL cell's extent; mean 1 over the samples above
  * the horizon. BF_ERR_ARG without a MERL origin. */
-int bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err);
+bf_status bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err);
 
 /* ---- Evaluation (objective.c) --------------------------------------------------------
  * Residuals r0..r1-1 at the model vector x, and when jac is not NULL their Jacobian
@@ -216,7 +216,7 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
  * with k free parameters) and the criteria of the objective's residuals without a loss
  * (bf_metrics_criteria) at x, from one pass; corr (NULL: not wanted; nz x nz over the free
  * entries) the parameters' correlations, NaN where one of the pair is undetermined. */
-int bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics,
+bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics,
                  double *se, double *corr, bf_error *err);
 
 #endif

@@ -128,7 +128,7 @@ static void covariance(const double *jtj, int nz, double s2, double *se, double 
 
 /* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
  * squared residuals. */
-static int stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, double *corr,
+static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, double *corr,
                        bf_error *err)
 {
     const int nz = o->nz;
@@ -161,7 +161,7 @@ done:
 
 /* The pass behind both: J'J of the plain residuals (no loss) with respect to the model
  * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
-static int final_pass(const bf_objective *o, const double *x, int weighted, bf_metric_sums *metrics, double *se,
+static bf_status final_pass(const bf_objective *o, const double *x, int weighted, bf_metric_sums *metrics, double *se,
                       double *corr, double *wssr, bf_error *err)
 {
     int rc = bf_model_check(o->model, x, err);
@@ -196,13 +196,13 @@ done:
     return rc;
 }
 
-int bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
+bf_status bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
     double wssr;
     return final_pass(o, x, 0, NULL, se, NULL, &wssr, err);
 }
 
-int bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
+bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
                  double *corr, bf_error *err)
 {
     bf_metric_sums sums;

@@ -53,7 +53,7 @@ static const preset presets[] = {
 };
 #define NPRESETS ((int)(sizeof presets / sizeof presets[0]))
 
-int bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err)
+bf_status bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err)
 {
     for (int k = BF_ACCURACY_NONE + 1; name && k < NPRESETS; k++)
         if (!strcmp(name, presets[k].name)) {

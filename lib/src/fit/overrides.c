@@ -16,7 +16,7 @@
 #include "objective_impl.h"
 
 /* Parses "NAME" or "NAME[c]" from text up to '='; *rest points after the '='. */
-static int parse_target(const char *what, const char *text, bf_override *out, const char **rest,
+static bf_status parse_target(const char *what, const char *text, bf_override *out, const char **rest,
                         bf_error *err)
 {
     const char *eq = strchr(text, '=');
@@ -64,7 +64,7 @@ static int parse_number(const char *s, const char *e, int allow_inf, double *v)
     return 1;
 }
 
-int bf_override_parse_fix(const char *text, bf_override *out, bf_error *err)
+bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err)
 {
     const char *rest;
     int rc;
@@ -80,7 +80,7 @@ int bf_override_parse_fix(const char *text, bf_override *out, bf_error *err)
     return BF_OK;
 }
 
-int bf_override_parse_bound(const char *text, bf_override *out, bf_error *err)
+bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err)
 {
     const char *rest;
     int rc;
@@ -129,7 +129,7 @@ static void interval_text(const bf_param_info *p, char *buf, size_t size)
 }
 
 /* The bounds override ov gives its parameter p (lo == hi for a fix), or an error. */
-static int override_interval(const bf_override *ov, const bf_param_info *p, double *lo, double *hi, bf_error *err)
+static bf_status override_interval(const bf_override *ov, const bf_param_info *p, double *lo, double *hi, bf_error *err)
 {
     char tgt[80], range[96];
     target_text(ov, tgt, sizeof tgt);
@@ -155,7 +155,7 @@ static int override_interval(const bf_override *ov, const bf_param_info *p, doub
     return BF_OK;
 }
 
-int bf_overrides_check(const bf_model *m, int channels, const bf_override *ovs, int nov, bf_error *err)
+bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ovs, int nov, bf_error *err)
 {
     for (int v = 0; v < nov; v++) {
         const bf_override *ov = &ovs[v];
@@ -191,7 +191,7 @@ int bf_overrides_check(const bf_model *m, int channels, const bf_override *ovs, 
     return BF_OK;
 }
 
-int bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int nov, bf_error *err)
+bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int nov, bf_error *err)
 {
     const bf_model *m = o->model;
     int rc = bf_overrides_check(m, o->C, ovs, nov, err);

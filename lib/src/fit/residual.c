@@ -6,7 +6,7 @@
 static const char *const residual_names[] = {"linear", "cosine", "log", "cbrt", "relative"};
 #define NFORMS ((int)(sizeof residual_names / sizeof residual_names[0]))
 
-int bf_residual_parse(const char *name, bf_residual *out, bf_error *err)
+bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err)
 {
     for (int i = 0; name && i < NFORMS; i++)
         if (strcmp(name, residual_names[i]) == 0) {

@@ -126,14 +126,14 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top
     return o;
 }
 
-int bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err)
+bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err)
 {
     if (!r || !r->model || !r->x)
         return bf_fail(err, BF_ERR_ARG, "no fit result to write");
     return bf_json_write(result_json(r, data_path, 1), out_path, "the result", err);
 }
 
-int bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
+bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
                            bf_error *err)
 {
     cJSON *root = cJSON_CreateObject();

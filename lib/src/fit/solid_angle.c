@@ -43,7 +43,7 @@ static double theta_d_edge(int j)
     return (double)j / BF_MERL_TD * (M_PI / 2);
 }
 
-int bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err)
+bf_status bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err)
 {
     if (!s->merl || !s->merl->cell)
         return bf_fail(err, BF_ERR_ARG, "solid-angle weights need MERL data (this sample set has no MERL cells)");

@@ -266,7 +266,7 @@ static int integer(const char *w, long max, int *out)
 }
 
 /* One '#KEY value' line (line + 1 is past the hash). */
-static int header_line(header *h, const char *path, size_t lineno, const char *line, bf_error *err)
+static bf_status header_line(header *h, const char *path, size_t lineno, const char *line, bf_error *err)
 {
     const char *p = line;
     char key[64], val[128], extra[8];
@@ -337,7 +337,7 @@ static int header_line(header *h, const char *path, size_t lineno, const char *l
 }
 
 /* Called at the first data row (lineno) or at the end of a file without rows. */
-static int header_complete(const header *h, const char *path, size_t lineno, bf_error *err)
+static bf_status header_complete(const header *h, const char *path, size_t lineno, bf_error *err)
 {
     if (!h->dim_line)
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: missing #DIM header line before the data", path, lineno);
@@ -358,7 +358,7 @@ static int header_complete(const header *h, const char *path, size_t lineno, bf_
 
 /* ---- Reading ------------------------------------------------------------------- */
 
-int bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
+bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
 {
     *out = NULL;
     FILE *fp = bf_input_open(path);
@@ -479,8 +479,7 @@ int bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: no data rows after the header", path, lineno);
         goto done;
     }
-    if (!(s = bf_samples_new(r.n, h.nout, err))) {
-        rc = err ? err->code : BF_ERR_NOMEM;
+    if ((rc = bf_samples_new(r.n, h.nout, &s, err)) != BF_OK) {
         goto done;
     }
     if (h.out == O_XYZ_COLOR) {

@@ -49,7 +49,7 @@ static int push(numbers *a, double x)
 /* Where a token sits in the stream: the count, the wavelengths, the records. */
 enum { IN_COUNT, IN_WAVELENGTHS, IN_RECORDS };
 
-int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
+bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
 {
     *out = NULL;
     FILE *fp = bf_input_open(path);
@@ -188,8 +188,7 @@ int bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
         rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: no records after the %zu wavelengths", path, lineno, nwl);
         goto done;
     }
-    if (!(s = bf_samples_new(n, (int)nwl, err))) {
-        rc = err ? err->code : BF_ERR_NOMEM;
+    if ((rc = bf_samples_new(n, (int)nwl, &s, err)) != BF_OK) {
         goto done;
     }
     if (!(s->wavelength = malloc(nwl * sizeof *s->wavelength))) {

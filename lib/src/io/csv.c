@@ -146,7 +146,7 @@ static int by_name(const void *a, const void *b)
 /* The header row: names (quoted or not), none empty, none twice, not a row of numbers
  * (a file without a header), which spectral names such as "400" alone are not. Sets
  * t->names, t->ncols and *fields (room for a row's fields). */
-static int read_header(bf_csv *t, const char *path, size_t lineno, char *line, char ***fields, bf_error *err)
+static bf_status read_header(bf_csv *t, const char *path, size_t lineno, char *line, char ***fields, bf_error *err)
 {
     size_t n = 1, bad = 0; /* an upper bound first: commas inside quotes are text */
     for (const char *q = line; *q; q++)
@@ -208,7 +208,7 @@ done:
     return rc;
 }
 
-int bf_csv_read(const char *path, bf_csv **out, bf_error *err)
+bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err)
 {
     *out = NULL;
     FILE *fp = bf_input_open(path);

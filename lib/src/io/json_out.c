@@ -67,7 +67,7 @@ cJSON *bf_json_metrics(const bf_metrics *m)
     return o;
 }
 
-int bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err)
+bf_status bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err)
 {
     const char *name = path ? path : "-";
     char *text = root ? cJSON_Print(root) : NULL;

@@ -25,6 +25,6 @@ cJSON *bf_json_params(const bf_model *m, const double *x);
 cJSON *bf_json_metrics(const bf_metrics *m);
 /* Prints root (formatted) to path ("-" or NULL: stdout) and deletes it. what names the
  * document in messages ("the comparison"). */
-int bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err);
+bf_status bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err);
 
 #endif

@@ -71,14 +71,14 @@ static size_t stream_size(FILE *fp, size_t pos)
     return pos;
 }
 
-static int read_error(FILE *fp, const char *path, bf_error *err)
+static bf_status read_error(FILE *fp, const char *path, bf_error *err)
 {
     (void)fp;
     return bf_fail(err, BF_ERR_IO, "%s: read error: %s", path, strerror(errno));
 }
 
 /* The header: dimensions checked, fp left at the first table byte. */
-static int read_header(FILE *fp, const char *path, bf_error *err)
+static bf_status read_header(FILE *fp, const char *path, bf_error *err)
 {
     int32_t dims[3];
     size_t got = fread(dims, 1, HEADER_BYTES, fp);
@@ -103,7 +103,7 @@ static int read_header(FILE *fp, const char *path, bf_error *err)
  * samples' layout), a chunk at a time so no second copy of the table is needed. */
 enum { READ_CHUNK = 65536 }; /* doubles */
 
-static int read_planes(FILE *fp, const char *path, double *dst, int interleaved, bf_error *err)
+static bf_status read_planes(FILE *fp, const char *path, double *dst, int interleaved, bf_error *err)
 {
     double *buf = malloc(READ_CHUNK * sizeof *buf);
     if (!buf)
@@ -158,11 +158,12 @@ static int read_planes(FILE *fp, const char *path, double *dst, int interleaved,
  * planar or interleaved as read_planes wrote it; interleaved, values are compacted in
  * place and the buffer becomes the samples' value array (n is only known after the
  * whole table is read, and this keeps the peak at one table instead of two). */
-static int table_samples(const char *path, double *table, int interleaved, bf_samples **out, bf_error *err)
+static bf_status table_samples(const char *path, double *table, int interleaved, bf_samples **out, bf_error *err)
 {
     int32_t *cell = bf_big_malloc((size_t)BF_MERL_CELLS * sizeof *cell);
     double *vals = interleaved ? table : bf_big_malloc(TABLE_DOUBLES * sizeof *vals);
-    bf_samples *s = bf_samples_new_cells(0, 3, err);
+    bf_samples *s = NULL;
+    bf_samples_new_cells(0, 3, &s, err);
     if (!cell || !vals || !s) {
         free(cell);
         if (!interleaved)
@@ -195,7 +196,7 @@ static int table_samples(const char *path, double *table, int interleaved, bf_sa
     return BF_OK;
 }
 
-int bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err)
+bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err)
 {
     *out = NULL;
     FILE *fp = bf_input_open(path);
@@ -247,7 +248,7 @@ static double raw_for(double v, double scale)
 }
 
 /* Fills table (raw, host order) from the samples; 0 or an error. */
-static int fill_table(const bf_samples *s, const char *path, double *table, uint32_t *owner,
+static bf_status fill_table(const bf_samples *s, const char *path, double *table, uint32_t *owner,
                       bf_error *err)
 {
     const bf_merl_origin *o = s->merl;
@@ -284,7 +285,7 @@ static int fill_table(const bf_samples *s, const char *path, double *table, uint
     return BF_OK;
 }
 
-int bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err)
+bf_status bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err)
 {
     if (s->channels != 3)
         return bf_fail(err, BF_ERR_ARG, "%s: a MERL table needs 3 channels (R, G, B); the samples have %d",

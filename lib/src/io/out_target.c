@@ -78,7 +78,7 @@ static char *follow(const char *link)
     return next;
 }
 
-static int io_fail(bf_error *err, const char *path, const char *file, int e)
+static bf_status io_fail(bf_error *err, const char *path, const char *file, int e)
 {
     if (file && strcmp(file, path))
         return bf_fail(err, BF_ERR_IO, "%s (-> %s): cannot write: %s", path, file, strerror(e));
@@ -86,20 +86,19 @@ static int io_fail(bf_error *err, const char *path, const char *file, int e)
 }
 
 /* file does not exist: BF_OK when its folder does (a new file may be made there). */
-static int new_file(const char *path, const char *file, bf_error *err)
+static bf_status new_file(const char *path, const char *file, bf_error *err)
 {
     char *dir = out_dirname(file);
     if (!dir)
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
     struct stat st;
     int e = stat(dir, &st) != 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
-    if (e)
-        bf_fail(err, BF_ERR_IO, "%s: cannot write in the folder %s: %s", path, dir, strerror(e));
+    bf_status rc = e ? bf_fail(err, BF_ERR_IO, "%s: cannot write in the folder %s: %s", path, dir, strerror(e)) : BF_OK;
     free(dir);
-    return e ? BF_ERR_IO : BF_OK;
+    return rc;
 }
 
-int out_resolve(const char *path, out_target *t, bf_error *err)
+bf_status out_resolve(const char *path, out_target *t, bf_error *err)
 {
     memset(t, 0, sizeof *t);
     if (!path || !*path)
@@ -166,13 +165,13 @@ int out_resolve(const char *path, out_target *t, bf_error *err)
     }
 }
 
-void out_target_free(out_target *t)
+void out_target_clear(out_target *t)
 {
     free(t->file);
     t->file = NULL;
 }
 
-int out_writable(const out_target *t, const char *path, bf_error *err)
+bf_status out_writable(const out_target *t, const char *path, bf_error *err)
 {
     if (t->kind != OUT_NEW && access(t->file, W_OK) != 0)
         return io_fail(err, path, t->file, errno);

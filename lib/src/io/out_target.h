@@ -25,14 +25,14 @@ typedef struct out_target {
 /* Follows path's links (at most 40) to what an output would write. Errors (BF_ERR_IO,
  * naming path): a folder, a loop, a missing parent folder, lstat/readlink failures;
  * BF_ERR_ARG for an empty name. */
-int out_resolve(const char *path, out_target *t, bf_error *err);
-void out_target_free(out_target *t);
+bf_status out_resolve(const char *path, out_target *t, bf_error *err);
+void out_target_clear(out_target *t);
 
 /* Whether the output can be written: a replaced or new file needs its folder writable
  * (and an existing file writable, as a plain open would); a written-through one needs
  * write permission. Checked with access(), so nothing is created. BF_ERR_IO naming
  * path on failure. */
-int out_writable(const out_target *t, const char *path, bf_error *err);
+bf_status out_writable(const out_target *t, const char *path, bf_error *err);
 
 /* After a rename into place: the folder holding path is synced so that the new entry
  * reaches the disk too (best effort: some file systems cannot sync a folder, and the

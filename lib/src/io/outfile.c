@@ -96,7 +96,7 @@ static int open_fd(bf_outfile *o, out_target *t)
     return fd;
 }
 
-int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
+bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
 {
     memset(o, 0, sizeof *o);
     o->handle = -1;
@@ -107,20 +107,20 @@ int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
     out_target t;
     int rc = out_resolve(path, &t, err);
     if (rc == BF_OK && (rc = out_writable(&t, path, err)) != BF_OK)
-        out_target_free(&t);
+        out_target_clear(&t);
     if (rc != BF_OK)
         return rc;
     o->path = strdup(path);
     o->sink = calloc(1, sizeof *o->sink);
     if (!o->path || !o->sink) {
-        out_target_free(&t);
+        out_target_clear(&t);
         reset(o);
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
     }
     int direct = t.kind == OUT_DIRECT;
     int fd = open_fd(o, &t);
     int e = errno;
-    out_target_free(&t);
+    out_target_clear(&t);
     if (fd < 0) {
         reset(o);
         return bf_fail(err, BF_ERR_IO, direct ? "%s: cannot open: %s" : "%s: cannot create a temporary file beside it: %s",
@@ -136,7 +136,7 @@ int bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
     return BF_OK;
 }
 
-int bf_outfile_commit(bf_outfile *o, bf_error *err)
+bf_status bf_outfile_commit(bf_outfile *o, bf_error *err)
 {
     if (!o->sink) {
         if (fflush(o->fp) != 0 || ferror(o->fp))
@@ -184,7 +184,7 @@ void bf_outfile_abort(bf_outfile *o)
     reset(o);
 }
 
-int bf_outfile_check(const char *path, bf_error *err)
+bf_status bf_outfile_check(const char *path, bf_error *err)
 {
     if (!path || !strcmp(path, "-"))
         return BF_OK;
@@ -192,7 +192,7 @@ int bf_outfile_check(const char *path, bf_error *err)
     int rc = out_resolve(path, &t, err);
     if (rc == BF_OK)
         rc = out_writable(&t, path, err);
-    out_target_free(&t);
+    out_target_clear(&t);
     return rc;
 }
 

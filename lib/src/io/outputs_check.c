@@ -53,7 +53,7 @@ static file_id output_id(const out_target *t)
     return id;
 }
 
-int bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
+bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
                      bf_error *err)
 {
     /* Usage first: standard input read twice, names that can never be written. */
@@ -102,7 +102,7 @@ int bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *
         if (t[a].file)
             rc = out_writable(&t[a], outputs[a].path, err);
     for (int a = 0; t && a < noutputs; a++)
-        out_target_free(&t[a]);
+        out_target_clear(&t[a]);
     free(t);
     free(ids);
     return rc;

@@ -23,7 +23,7 @@ static size_t line_of_key(const char *text, const char *key)
 
 /* Builds "model:k=v,..." from the model string and the options object; every piece is
  * measured before it is copied. */
-static int build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options,
+static bf_status build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options,
                       char *spec, size_t size, bf_error *err)
 {
     if (!cJSON_IsString(model) || !*model->valuestring)
@@ -67,7 +67,7 @@ static int build_spec(const char *path, const char *text, const cJSON *model, co
 }
 
 /* Channel count: "channels" if given, else the length of the first colour array, else 1. */
-static int channel_count(const char *path, const char *text, const cJSON *root, const cJSON *params,
+static bf_status channel_count(const char *path, const char *text, const cJSON *root, const cJSON *params,
                          int *C, bf_error *err)
 {
     const cJSON *ch = cJSON_GetObjectItemCaseSensitive(root, "channels");
@@ -95,7 +95,7 @@ static int channel_count(const char *path, const char *text, const cJSON *root, 
     return BF_OK;
 }
 
-static int read_value(const char *path, const char *text, const cJSON *v, const char *name,
+static bf_status read_value(const char *path, const char *text, const cJSON *v, const char *name,
                       double *out, bf_error *err)
 {
     if (!cJSON_IsNumber(v))
@@ -107,7 +107,7 @@ static int read_value(const char *path, const char *text, const cJSON *v, const 
     return BF_OK;
 }
 
-static int fill_params(const char *path, const char *text, const cJSON *params, const bf_model *m,
+static bf_status fill_params(const char *path, const char *text, const cJSON *params, const bf_model *m,
                        double *x, bf_error *err)
 {
     int C = bf_model_channels(m), rc;
@@ -157,15 +157,15 @@ static int fill_params(const char *path, const char *text, const cJSON *params, 
     return BF_OK;
 }
 
-int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err)
+bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err)
 {
     *model = NULL;
     *x = NULL;
     size_t len;
-    char *text = bf_read_text(path, &len, err);
-    if (!text)
-        return err ? err->code : BF_ERR_IO;
-    int rc = BF_OK;
+    char *text;
+    bf_status rc = bf_read_text(path, &text, &len, err);
+    if (rc != BF_OK)
+        return rc;
     bf_model *m = NULL;
     double *v = NULL;
     const char *end = NULL;
@@ -198,7 +198,7 @@ int bf_params_read(const char *path, bf_model **model, double **x, bf_error *err
         (rc = channel_count(path, text, root, params, &C, err)) != BF_OK)
         goto done;
     bf_error e2;
-    if (!(m = bf_model_create(spec, C, &e2))) {
+    if (bf_model_new(spec, C, &m, &e2) != BF_OK) {
         rc = bf_fail(err, e2.code, "%s:%zu: %s", path, line_of_key(text, "model"), e2.msg);
         goto done;
     }

@@ -16,13 +16,12 @@ static size_t line_of(const char *text, size_t off)
     return line;
 }
 
-char *bf_read_text(const char *path, size_t *len, bf_error *err)
+bf_status bf_read_text(const char *path, char **text, size_t *len, bf_error *err)
 {
+    *text = NULL;
     FILE *fp = bf_input_open(path);
-    if (!fp) {
-        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-        return NULL;
-    }
+    if (!fp)
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     size_t cap = 4096, n = 0;
     char *buf = malloc(cap);
     while (buf) {
@@ -38,15 +37,16 @@ char *bf_read_text(const char *path, size_t *len, bf_error *err)
     fclose(fp);
     if (!buf || bad) {
         free(buf);
-        bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
-        return NULL;
+        return bf_fail(err, bad ? BF_ERR_IO : BF_ERR_NOMEM, "%s: cannot read", path);
     }
     buf[n] = '\0';
     if (strlen(buf) != n) {
-        bf_fail(err, BF_ERR_PARSE, "%s:%zu: not a text file (a NUL byte)", path, line_of(buf, strlen(buf)));
+        bf_status rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: not a text file (a NUL byte)", path,
+                               line_of(buf, strlen(buf)));
         free(buf);
-        return NULL;
+        return rc;
     }
     *len = n;
-    return buf;
+    *text = buf;
+    return BF_OK;
 }

@@ -7,9 +7,9 @@
 
 #include "brdfit/error.h"
 
-/* The file's bytes plus a terminating NUL (malloc'd; *len = bytes read), or NULL with
- * err set ("PATH: cannot open: reason", "PATH: cannot read", "PATH:LINE: not a text
- * file (a NUL byte)"). */
-char *bf_read_text(const char *path, size_t *len, bf_error *err);
+/* *text: the file's bytes plus a terminating NUL (malloc'd; *len = bytes read), or NULL
+ * with err set ("PATH: cannot open: reason", "PATH: cannot read", "PATH:LINE: not a
+ * text file (a NUL byte)"). */
+bf_status bf_read_text(const char *path, char **text, size_t *len, bf_error *err);
 
 #endif

@@ -22,31 +22,28 @@ static int column_of(const bf_csv *t, const char *name, size_t len)
 }
 
 /* Column indices of the comma-separated names in list; returns the count or -1. */
-static int find_columns(const bf_csv *t, const char *path, const char *list, int *idx, int max,
-                        bf_error *err)
+/* idx[0..*n): the columns named in list (at most max). */
+static bf_status find_columns(const bf_csv *t, const char *path, const char *list, int *idx, int max, int *n,
+                              bf_error *err)
 {
-    int n = 0;
+    *n = 0;
     for (const char *p = list; *p;) {
         const char *comma = strchr(p, ',');
         size_t len = comma ? (size_t)(comma - p) : strlen(p);
         int c = column_of(t, p, len);
-        if (c < 0) {
-            bf_fail(err, BF_ERR_PARSE, "%s: no column '%.*s' for a channel", path, (int)len, p);
-            return -1;
-        }
-        if (n == max) {
-            bf_fail(err, BF_ERR_PARSE, "%s: too many channel columns", path);
-            return -1;
-        }
-        idx[n++] = c;
+        if (c < 0)
+            return bf_fail(err, BF_ERR_PARSE, "%s: no column '%.*s' for a channel", path, (int)len, p);
+        if (*n == max)
+            return bf_fail(err, BF_ERR_PARSE, "%s: too many channel columns", path);
+        idx[(*n)++] = c;
         if (!comma)
             break;
         p = comma + 1;
     }
-    return n;
+    return BF_OK;
 }
 
-int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err)
+bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err)
 {
     static const bf_csv_map defaults = {{NULL, NULL, NULL, NULL}, 0, NULL, NULL};
     if (!map)
@@ -80,10 +77,8 @@ int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **ou
         wcol = bf_csv_column(t, "weight");
     }
     if (map->channels) {
-        if ((C = find_columns(t, path, map->channels, chan, (int)t->ncols, err)) < 0) {
-            rc = err ? err->code : BF_ERR_PARSE;
+        if ((rc = find_columns(t, path, map->channels, chan, (int)t->ncols, &C, err)) != BF_OK)
             goto done;
-        }
     } else {
         for (size_t c = 0; c < t->ncols; c++)
             if ((int)c != ang[0] && (int)c != ang[1] && (int)c != ang[2] && (int)c != ang[3] && (int)c != wcol)
@@ -98,8 +93,7 @@ int bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **ou
                      BF_MAX_CHANNELS);
         goto done;
     }
-    if (!(s = bf_samples_new(t->nrows, C, err))) {
-        rc = err ? err->code : BF_ERR_NOMEM;
+    if ((rc = bf_samples_new(t->nrows, C, &s, err)) != BF_OK) {
         goto done;
     }
     for (int c = 0; c < C; c++)
@@ -200,7 +194,7 @@ static void put_name(FILE *fp, const char *name)
         bf_csv_put_text(fp, name);
 }
 
-int bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
+bf_status bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err)
 {
     char **names = header_names(s);
     if (!names)

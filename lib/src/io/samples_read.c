@@ -12,19 +12,18 @@
 
 /* MERL by its dimensions; text formats by their first meaningful line: ALTA starts with '#' header keys
  * (#DIM ...), Cornell with a lone wavelength count, CSV with a header row. */
-static bf_format by_content(const char *path, bf_error *err)
+static bf_status by_content(const char *path, bf_format *format, bf_error *err)
 {
     FILE *fp = bf_input_open(path);
-    if (!fp) {
-        bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-        return BF_FORMAT_AUTO;
-    }
+    if (!fp)
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     /* MERL tables open with their dimensions, three int32: 90 90 180. */
     unsigned char head[12];
     static const unsigned char merl_dims[12] = {90, 0, 0, 0, 90, 0, 0, 0, 180, 0, 0, 0};
     if (fread(head, 1, sizeof head, fp) == sizeof head && !memcmp(head, merl_dims, sizeof head)) {
         fclose(fp);
-        return BF_FORMAT_MERL;
+        *format = BF_FORMAT_MERL;
+        return BF_OK;
     }
     rewind(fp);
     char line[512];
@@ -48,16 +47,18 @@ static bf_format by_content(const char *path, bf_error *err)
         break;
     }
     fclose(fp);
-    return f;
+    *format = f;
+    return BF_OK;
 }
 
-int bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err)
+bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err)
 {
     bf_format f = opt ? opt->format : BF_FORMAT_AUTO;
     if (f == BF_FORMAT_AUTO)
         f = bf_format_by_extension(path);
-    if (f == BF_FORMAT_AUTO && (f = by_content(path, err)) == BF_FORMAT_AUTO)
-        return err ? err->code : BF_ERR_IO;
+    bf_status rc;
+    if (f == BF_FORMAT_AUTO && (rc = by_content(path, &f, err)) != BF_OK)
+        return rc;
     switch (f) {
     case BF_FORMAT_MERL:
         return bf_samples_read_merl(path, opt ? opt->keep_origin : 0, out, err);

@@ -3,7 +3,7 @@
 #include "brdfit/formats.h"
 #include "brdfit/samples.h"
 
-int bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err)
+bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err)
 {
     if (f == BF_FORMAT_AUTO)
         f = bf_format_for_writing(path);

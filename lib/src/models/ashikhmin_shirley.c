@@ -98,7 +98,7 @@ static void eval_iso(const bf_model *m, const double *x, const bf_geometry *g, s
 
 /* Exponents: LOG1P scale, as for the other Phong-like exponents (the lower bound 1
  * keeps them away from 0 anyway). */
-static int configure_aniso(bf_model *m, bf_error *err)
+static bf_status configure_aniso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;
@@ -110,7 +110,7 @@ static int configure_aniso(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static int configure_iso(bf_model *m, bf_error *err)
+static bf_status configure_iso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;

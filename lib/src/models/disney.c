@@ -23,7 +23,7 @@
 enum { P_BASE, P_METAL, P_SUBSURF, P_SPEC, P_ROUGH, P_STINT, P_ANISO, P_SHEEN, P_SHTINT,
        P_CC, P_CCGLOSS, P_COUNT };
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     /* Disney's artist parameters mostly shape one term each; only the base colour, the
      * roughness and the sheen and clearcoat weights have a role the start can use. */

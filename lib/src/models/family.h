@@ -53,7 +53,7 @@ struct bf_family {
     bf_family_info info;
     /* Adds the parameters for m->lobes and m->opt (via bf_model_add_param) and sets
      * reciprocal / energy_conserving. Returns BF_OK or an error. */
-    int (*configure)(bf_model *m, bf_error *err);
+    bf_status (*configure)(bf_model *m, bf_error *err);
     /* Evaluator over samples [i0, i1), outputs relative to i0 (as bf_model_eval_range): either the
      * family's own, or bf_eval_diffuse_lobes together with a `lobe` shape. */
     void (*eval)(const bf_model *m, const double *x, const bf_geometry *g,
@@ -63,15 +63,15 @@ struct bf_family {
 
 /* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when
  * m->lobes > 1. */
-int bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
+bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
                        int lobe, bf_param_role role, bf_error *err);
 /* Same, with open bounds. */
-int bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
                             int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
  * schlick, ior [1, 3] for dielectric, none for none. */
-int bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *err);
+bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *err);
 
 /* The shared driver for families with a `lobe` function. Expects the table laid out as
  * rho_d (colour), then for each lobe k: rho_s (colour) followed by its scalars. */

@@ -32,7 +32,7 @@ static void lobe_gaussian(const bf_model *m, int lobe, const double *s, const bf
     }
 }
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo ~4 rho_s at normal incidence for narrow lobes */
     int rc;

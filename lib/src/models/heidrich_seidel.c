@@ -67,7 +67,7 @@ static void lobe_hs(const bf_model *m, int lobe, const double *sc, const bf_geom
     }
 }
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo grows like sqrt(s) */
     int rc;

@@ -16,7 +16,7 @@
  * symmetric (lobe 2 twice as rough as lobe 1), all inside [1e-3, 1]. */
 static const double m_default[BF_MAX_LOBES] = {0.2, 0.4, 0.8, 0.1, 0.05, 0.6, 0.3, 0.025};
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
     for (int k = 1; rc == BF_OK && k <= m->lobes; k++) {

@@ -149,7 +149,7 @@ static double default_n(int k)
     return ns[(k - 1) % BF_MAX_LOBES];
 }
 
-static int configure_common(bf_model *m, int aniso, bf_error *err)
+static bf_status configure_common(bf_model *m, int aniso, bf_error *err)
 {
     m->energy_conserving = 1; /* albedo <= rho_d + sum rho_s (see above) */
     int rc;
@@ -173,8 +173,8 @@ static int configure_common(bf_model *m, int aniso, bf_error *err)
     return BF_OK;
 }
 
-static int configure_iso(bf_model *m, bf_error *err) { return configure_common(m, 0, err); }
-static int configure_aniso(bf_model *m, bf_error *err) { return configure_common(m, 1, err); }
+static bf_status configure_iso(bf_model *m, bf_error *err) { return configure_common(m, 0, err); }
+static bf_status configure_aniso(bf_model *m, bf_error *err) { return configure_common(m, 1, err); }
 
 const bf_family bf_family_lafortune = {
     .info = {.name = "lafortune",

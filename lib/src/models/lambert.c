@@ -1,7 +1,7 @@
 /* Lambert: rho_d / pi. The diffuse-only case of the shared lobe driver. */
 #include "family.h"
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     return bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);

@@ -200,7 +200,7 @@ static double default_roughness(int d, int k)
     return d == D_BLINN ? 2.0 / (mk * mk) - 2.0 : mk;
 }
 
-static int configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
+static bf_status configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
 {
     m->energy_conserving = conserving(c);
     int rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
@@ -226,7 +226,7 @@ static int configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
     return rc;
 }
 
-static int configure(bf_model *m, bf_error *err) { return configure_cfg(m, resolve(m), err); }
+static bf_status configure(bf_model *m, bf_error *err) { return configure_cfg(m, resolve(m), err); }
 
 static const bf_option_info microfacet_options[] = {
     {"D", d_values}, {"G", g_values}, {"F", bf_fresnel_values}, {NULL, NULL}};

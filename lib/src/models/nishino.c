@@ -18,7 +18,7 @@
 
 static const bf_option_info options[] = {{"fresnel", bf_fresnel_values}, {NULL, NULL}};
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     int rc;
     if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||

@@ -49,7 +49,7 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     }
 }
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* see above: albedo up to about 1.015 rho_d */
     int rc;

@@ -90,7 +90,7 @@ static void lobe_blinn(const bf_model *m, int lobe, const double *s, const bf_ge
     }
 }
 
-static int add_params(bf_model *m, bf_error *err)
+static bf_status add_params(bf_model *m, bf_error *err)
 {
     int rc;
     if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
@@ -100,13 +100,13 @@ static int add_params(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static int configure_phong(bf_model *m, bf_error *err)
+static bf_status configure_phong(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1; /* Lewis 1994: albedo <= rho_s, equality at normal incidence */
     return add_params(m, err);
 }
 
-static int configure_blinn(bf_model *m, bf_error *err)
+static bf_status configure_blinn(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1; /* albedo <= rho_s, equality at normal incidence */
     return add_params(m, err);

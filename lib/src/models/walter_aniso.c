@@ -68,7 +68,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
     }
 }
 
-static int configure(bf_model *m, bf_error *err)
+static bf_status configure(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 1;
     int rc;

@@ -70,7 +70,7 @@ static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geom
     }
 }
 
-static int configure_aniso(bf_model *m, bf_error *err)
+static bf_status configure_aniso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo exceeds 1 at grazing incidence */
     int rc;
@@ -82,7 +82,7 @@ static int configure_aniso(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static int configure_iso(bf_model *m, bf_error *err)
+static bf_status configure_iso(bf_model *m, bf_error *err)
 {
     m->energy_conserving = 0; /* albedo exceeds 1 at grazing incidence */
     int rc;

@@ -48,7 +48,7 @@ const char *bf_backend_name(bf_backend b)
     return b == BF_BACKEND_NLOPT ? "nlopt" : "ceres";
 }
 
-int bf_backend_parse(const char *text, bf_backend *out, bf_error *err)
+bf_status bf_backend_parse(const char *text, bf_backend *out, bf_error *err)
 {
     if (text && !strcmp(text, "ceres"))
         *out = BF_BACKEND_CERES;
@@ -97,7 +97,7 @@ size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *b
     return used;
 }
 
-int bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err)
+bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err)
 {
     if (!text || !*text)
         return bf_fail(err, BF_ERR_ARG, "empty method name");
@@ -127,7 +127,7 @@ int bf_method_parse(const char *text, bf_backend *backend, const bf_method_info 
     return BF_OK;
 }
 
-int bf_solver_options_check(const bf_solver_options *o, bf_error *err)
+bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err)
 {
     char list[256];
     const bf_method_info *m = bf_method_find(o->backend, o->algorithm);

@@ -174,7 +174,7 @@ static int set_tolerances(nlopt_opt opt, const bf_solver_options *o)
     return nlopt_set_ftol_rel(opt, ftol) > 0 && nlopt_set_xtol_rel(opt, xtol) > 0;
 }
 
-int bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
+bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
                    bf_error *err)
 {
     const double t0 = bf_now_seconds();

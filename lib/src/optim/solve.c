@@ -61,7 +61,7 @@ double bf_loss_eval(const bf_loss *l, double s, double *d1)
     return rho;
 }
 
-int bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
+bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
 {
     static const struct { const char *name; bf_loss_kind kind; } names[] = {
         {"none", BF_LOSS_NONE},       {"huber", BF_LOSS_HUBER},   {"cauchy", BF_LOSS_CAUCHY},
@@ -99,7 +99,7 @@ int bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
     return BF_OK;
 }
 
-int bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
+bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {
     bf_solver_options defaults;
     bf_solution scratch;

@@ -955,7 +955,7 @@ static cairo_status_t mem_write(void *closure, const unsigned char *data, unsign
     return CAIRO_STATUS_SUCCESS;
 }
 
-int plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsigned char **data, size_t *len,
+bf_status plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsigned char **data, size_t *len,
                 bf_error *err)
 {
     *data = NULL;
@@ -1011,7 +1011,7 @@ int plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsign
     return BF_OK;
 }
 
-int plot_write(const plot *p, const char *path, bf_plot_format fmt, int width, int height, bf_error *err)
+bf_status plot_write(const plot *p, const char *path, bf_plot_format fmt, int width, int height, bf_error *err)
 {
     unsigned char *data;
     size_t len;

@@ -108,10 +108,10 @@ void plot_make_ticks(double lo, double hi, int log, int target, int integer, dou
 int plot_layout_compute(const plot *p, int width, int height, plot_layout *l);
 
 /* The plot as a file's bytes (malloc'd): BF_OK, or an error. */
-int plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsigned char **data, size_t *len,
+bf_status plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsigned char **data, size_t *len,
                 bf_error *err);
 /* Written to path ("-": standard output) through bf_outfile. */
-int plot_write(const plot *p, const char *path, bf_plot_format fmt, int width, int height, bf_error *err);
+bf_status plot_write(const plot *p, const char *path, bf_plot_format fmt, int width, int height, bf_error *err);
 
 /* The markup's plain text (braces and ^ _ dropped), for tests and messages. */
 void plot_plain_text(const char *markup, char *out, size_t size);

@@ -157,7 +157,8 @@ static int only_keys(parser *p, const cJSON *o, const char *path, const char *co
 
 static int is_param_of(const char *spec, const char *name)
 {
-    bf_model *m = bf_model_create(spec, 1, NULL);
+    bf_model *m = NULL;
+    bf_model_new(spec, 1, &m, NULL);
     int found = m && bf_model_find_param(m, name) >= 0;
     bf_model_free(m);
     return found;
@@ -306,8 +307,8 @@ static int read_case(parser *p, const cJSON *o, int i, bf_regress_case *c)
     c->model_line = bf_regress_line(p->b, "%s/model", path);
 
     bf_error merr;
-    bf_model *m = bf_model_create(c->model, 1, &merr);
-    if (!m) {
+    bf_model *m = NULL;
+    if (bf_model_new(c->model, 1, &m, &merr) != BF_OK) {
         snprintf(sub, sizeof sub, "%s/model", path);
         return FAIL(p, sub, "case '%.60s': %.300s", c->name, merr.msg);
     }
@@ -474,38 +475,39 @@ static int parse_doc(parser *p)
     return BF_OK;
 }
 
-int bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err)
+bf_status bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err)
 {
     *out = NULL;
     bf_regress_baseline *b = calloc(1, sizeof *b);
     if (!b || !(b->text = strdup(text)) || !(b->path = strdup(path))) {
-        bf_regress_free(b);
+        bf_regress_baseline_free(b);
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
     }
     const char *slash = strrchr(path, '/');
     b->dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path)) : strdup(".");
     if (!b->dir) {
-        bf_regress_free(b);
+        bf_regress_baseline_free(b);
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
     }
     parser p = {b, err};
     int rc = parse_doc(&p);
     if (rc != BF_OK) {
-        bf_regress_free(b);
+        bf_regress_baseline_free(b);
         return rc;
     }
     *out = b;
     return BF_OK;
 }
 
-int bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err)
+bf_status bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err)
 {
     *out = NULL;
     size_t len;
-    char *text = bf_read_text(path, &len, err);
-    if (!text)
-        return err ? err->code : BF_ERR_IO;
-    int rc = bf_regress_parse(text, path, out, err);
+    char *text;
+    bf_status rc = bf_read_text(path, &text, &len, err);
+    if (rc != BF_OK)
+        return rc;
+    rc = bf_regress_parse(text, path, out, err);
     free(text);
     return rc;
 }
@@ -519,7 +521,7 @@ static void free_values(bf_regress_value *v, int n)
     free(v);
 }
 
-void bf_regress_free(bf_regress_baseline *b)
+void bf_regress_baseline_free(bf_regress_baseline *b)
 {
     if (!b)
         return;

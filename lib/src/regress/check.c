@@ -96,7 +96,7 @@ static void check_params(checker *ck, const bf_regress_baseline *b, int c, const
     }
 }
 
-int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
+bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
                      bf_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -126,13 +126,13 @@ int bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r
         }
     }
     if (ck.nomem) {
-        bf_regress_outcome_free(out);
+        bf_regress_outcome_clear(out);
         return bf_fail(err, BF_ERR_NOMEM, "out of memory comparing case '%s'", cs->name);
     }
     return BF_OK;
 }
 
-int bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err)
+bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err)
 {
     memset(out, 0, sizeof *out);
     out->status = BF_REGRESS_ERROR;
@@ -141,7 +141,7 @@ int bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error 
     return BF_OK;
 }
 
-void bf_regress_outcome_free(bf_regress_outcome *out)
+void bf_regress_outcome_clear(bf_regress_outcome *out)
 {
     for (int i = 0; i < out->nlines; i++)
         free(out->lines[i]);

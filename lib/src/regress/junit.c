@@ -118,7 +118,7 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
     return xmlTextWriterEndDocument(w) < 0 ? -1 : 0; /* closes every open element */
 }
 
-int bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
+bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
                            bf_error *err)
 {
     xmlBufferPtr buf = xmlBufferCreate();

@@ -123,7 +123,7 @@ static void update_metrics(updater *u, cJSON *g, const bf_fit_result *r)
     }
 }
 
-int bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
+bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
                       bf_error *err)
 {
     updater u = {changes, nchanges, 0};
@@ -235,7 +235,7 @@ static int stamp_version(cJSON *doc)
     return 0;
 }
 
-int bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err)
+bf_status bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err)
 {
     if (stamp_version(b->doc) != 0)
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing the baseline", path);

@@ -23,7 +23,7 @@ void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3],
 
 static double pixel_angle(int i, int n) { return (i + 0.5) / n * (M_PI / 2); }
 
-static int check_size(int width, int height, double phi_d, bf_error *err)
+static bf_status check_size(int width, int height, double phi_d, bf_error *err)
 {
     if (width < 1 || height < 1)
         return bf_fail(err, BF_ERR_ARG, "half/difference image: bad size %dx%d", width, height);
@@ -32,11 +32,12 @@ static int check_size(int width, int height, double phi_d, bf_error *err)
     return BF_OK;
 }
 
-int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
+bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
                              double phi_d, float *rgb, bf_error *err)
 {
-    if (check_size(width, height, phi_d, err) != BF_OK)
-        return err ? err->code : BF_ERR_ARG;
+    bf_status status = check_size(width, height, phi_d, err);
+    if (status != BF_OK)
+        return status;
     /* In bands of rows: memory O(width x BAND) whatever the size. */
     enum { BAND = 64 };
     const int rows = height < BAND ? height : BAND;
@@ -44,7 +45,6 @@ int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int 
     const int C = bf_model_channels(m);
     double *L = malloc(nb * 3 * sizeof *L), *V = malloc(nb * 3 * sizeof *V);
     double *f = malloc(nb * (size_t)C * sizeof *f);
-    int status = BF_OK;
     if (!L || !V || !f) {
         status = bf_fail(err, BF_ERR_NOMEM, "half/difference image: out of memory for %dx%d pixels", width, height);
         goto done;
@@ -58,11 +58,9 @@ int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int 
                 size_t q = (size_t)(j - j0) * (size_t)width + (size_t)i;
                 bf_halfdiff_dirs(pixel_angle(i, width), pixel_angle(j, height), pd, L + 3 * q, V + 3 * q);
             }
-        bf_geometry *g = bf_geometry_from_vectors(n, L, V, err);
-        if (!g) {
-            status = err ? err->code : BF_ERR_NOMEM;
+        bf_geometry *g;
+        if ((status = bf_geometry_from_vectors(n, L, V, &g, err)) != BF_OK)
             goto done;
-        }
         bf_model_eval(m, x, g, f, NULL);
         bf_geometry_free(g);
         float *out = rgb + (size_t)j0 * (size_t)width * 3;
@@ -80,11 +78,12 @@ done:
     return status;
 }
 
-int bf_render_halfdiff_merl(const bf_samples *s, int width, int height, double phi_d, float *rgb,
+bf_status bf_render_halfdiff_merl(const bf_samples *s, int width, int height, double phi_d, float *rgb,
                             bf_error *err)
 {
-    if (check_size(width, height, phi_d, err) != BF_OK)
-        return err ? err->code : BF_ERR_ARG;
+    bf_status status = check_size(width, height, phi_d, err);
+    if (status != BF_OK)
+        return status;
     if (!s || !s->merl)
         return bf_fail(err, BF_ERR_ARG, "half/difference image: the data is not a MERL table as read");
     /* Which sample sits in each cell (invalid cells have none). Values come from the

@@ -43,7 +43,7 @@ float bf_srgb_encode(float v)
 
 /* The encoded bytes into path through bf_outfile: a temporary renamed into place with
  * every write checked, or written through to a device. */
-static int write_bytes(const char *path, const unsigned char *data, size_t size, bf_error *err)
+static bf_status write_bytes(const char *path, const unsigned char *data, size_t size, bf_error *err)
 {
     bf_outfile o;
     int rc = bf_outfile_open(&o, path, err);
@@ -53,24 +53,24 @@ static int write_bytes(const char *path, const unsigned char *data, size_t size,
     return bf_outfile_commit(&o, err); /* checks every write */
 }
 
-int bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err)
+bf_status bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err)
 {
     return bf_image_write_rgb_as(path, BF_IMAGE_BY_NAME, width, height, rgb, err);
 }
 
-int bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err)
+bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err)
 {
     int fmt = format == BF_IMAGE_PNG || format == BF_IMAGE_EXR ? format : bf_image_format_of(path);
     if (!fmt)
         return bf_fail(err, BF_ERR_ARG, "%s: unknown image format (use .png or .exr)", path ? path : "(null)");
     if (width <= 0 || height <= 0 || !rgb)
         return bf_fail(err, BF_ERR_ARG, "%s: bad image size %dx%d", path, width, height);
-    const bf_image_plugin *plugin = bf_image_plugin_get(err);
-    if (!plugin)
-        return BF_ERR_IO;
+    const bf_image_plugin *plugin;
+    bf_status rc = bf_image_plugin_get(&plugin, err);
+    if (rc != BF_OK)
+        return rc;
     unsigned char *px = NULL, *data = NULL;
     size_t size = 0;
-    int rc;
     if (fmt == 2) {
         rc = plugin->encode_rgb(path, fmt, width, height, rgb, &data, &size, err);
     } else {
@@ -88,16 +88,15 @@ int bf_image_write_rgb_as(const char *path, int format, int width, int height, c
     return rc;
 }
 
-int bf_image_read(const char *path, bf_image *img, bf_error *err)
+bf_status bf_image_read(const char *path, bf_image *img, bf_error *err)
 {
     memset(img, 0, sizeof *img);
-    const bf_image_plugin *plugin = bf_image_plugin_get(err);
-    if (!plugin)
-        return BF_ERR_IO;
-    return plugin->read(path, img, err);
+    const bf_image_plugin *plugin;
+    bf_status rc = bf_image_plugin_get(&plugin, err);
+    return rc != BF_OK ? rc : plugin->read(path, img, err);
 }
 
-void bf_image_free(bf_image *img)
+void bf_image_clear(bf_image *img)
 {
     if (img) {
         free(img->pixels);

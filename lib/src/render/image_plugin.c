@@ -176,12 +176,9 @@ static void load(void)
     set_error("not found in %s (set BRDFIT_PLUGIN_DIR)", list);
 }
 
-const bf_image_plugin *bf_image_plugin_get(bf_error *err)
+bf_status bf_image_plugin_get(const bf_image_plugin **out, bf_error *err)
 {
     pthread_once(&load_once, load);
-    if (!plugin_ok) {
-        bf_fail(err, BF_ERR_IO, "%s", load_error);
-        return NULL;
-    }
-    return &plugin;
+    *out = plugin_ok ? &plugin : NULL;
+    return plugin_ok ? BF_OK : bf_fail(err, BF_ERR_IO, "%s", load_error);
 }

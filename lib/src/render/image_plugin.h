@@ -32,20 +32,20 @@ typedef int (*bf_oiio_abi_fn)(void);
  * The file's bytes go to *data (malloc'd, the caller frees) and *size; no file is
  * touched, so that the library alone writes files, with every write checked. name is
  * for messages. */
-typedef int (*bf_oiio_encode_rgb_fn)(const char *name, int fmt, int width, int height, const void *pixels,
-                                     unsigned char **data, size_t *size, bf_error *err);
+typedef bf_status (*bf_oiio_encode_rgb_fn)(const char *name, int fmt, int width, int height, const void *pixels,
+                                           unsigned char **data, size_t *size, bf_error *err);
 
 /* "bf_oiio_read": bf_image_read's contract (img->pixels from malloc). */
-typedef int (*bf_oiio_read_fn)(const char *path, bf_image *img, bf_error *err);
+typedef bf_status (*bf_oiio_read_fn)(const char *path, bf_image *img, bf_error *err);
 
-/* The loaded module's entry points, or NULL with err set (BF_ERR_IO, one line) when it
- * cannot be loaded. Thread-safe; the first call loads, later calls reuse the outcome. */
+/* *out: the loaded module's entry points, or NULL with err set (BF_ERR_IO, one line)
+ * when it cannot be loaded. Thread-safe; the first call loads, later calls reuse the outcome. */
 typedef struct bf_image_plugin {
     bf_oiio_encode_rgb_fn encode_rgb;
     bf_oiio_read_fn read;
 } bf_image_plugin;
 
-const bf_image_plugin *bf_image_plugin_get(bf_error *err);
+bf_status bf_image_plugin_get(const bf_image_plugin **out, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -26,7 +26,7 @@ using OIIO::TypeDesc;
 namespace {
 
 // bf_fail's contract, without needing the library's copy.
-__attribute__((format(printf, 3, 4))) int fail(bf_error *err, bf_status code, const char *fmt, ...)
+__attribute__((format(printf, 3, 4))) bf_status fail(bf_error *err, bf_status code, const char *fmt, ...)
 {
     if (err) {
         va_list ap;
@@ -35,7 +35,7 @@ __attribute__((format(printf, 3, 4))) int fail(bf_error *err, bf_status code, co
         va_end(ap);
         err->code = code;
     }
-    return static_cast<int>(code);
+    return code;
 }
 
 // OpenImageIO messages may span lines; ours are one line.
@@ -56,7 +56,7 @@ BF_OIIO_EXPORT int bf_oiio_abi(void)
     return BF_IMAGE_PLUGIN_ABI;
 }
 
-BF_OIIO_EXPORT int bf_oiio_encode_rgb(const char *name, int fmt, int width, int height, const void *pixels,
+BF_OIIO_EXPORT bf_status bf_oiio_encode_rgb(const char *name, int fmt, int width, int height, const void *pixels,
                                       unsigned char **data, size_t *size, bf_error *err)
 {
     // The library has checked the name and size and sRGB-encoded PNG pixels (image.c).
@@ -101,7 +101,7 @@ BF_OIIO_EXPORT int bf_oiio_encode_rgb(const char *name, int fmt, int width, int 
     return BF_OK;
 }
 
-BF_OIIO_EXPORT int bf_oiio_read(const char *path, bf_image *img, bf_error *err)
+BF_OIIO_EXPORT bf_status bf_oiio_read(const char *path, bf_image *img, bf_error *err)
 {
     std::memset(img, 0, sizeof *img);
     try {
@@ -111,7 +111,7 @@ BF_OIIO_EXPORT int bf_oiio_read(const char *path, bf_image *img, bf_error *err)
         const ImageSpec &spec = in->spec();
         size_t n = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
                    static_cast<size_t>(spec.nchannels);
-        // malloc, not new: the library frees it (bf_image_free), with the same C library.
+        // malloc, not new: the library frees it (bf_image_clear), with the same C library.
         float *px = static_cast<float *>(std::malloc(n * sizeof(float)));
         if (!px)
             return fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu values", path, n);

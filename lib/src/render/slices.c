@@ -21,7 +21,7 @@ static void view_angles(double signed_to, double *to, double *po)
     *po = signed_to >= 0.0 ? 180.0 : 0.0;
 }
 
-static int check(const bf_slice_options *o, bf_error *err)
+static bf_status check(const bf_slice_options *o, bf_error *err)
 {
     if (!o || o->nincidence < 1 || o->nincidence > BF_SLICE_MAX_INCIDENCE || !o->incidence)
         return bf_fail(err, BF_ERR_ARG, "slice plot: 1 to %d incidence angles", BF_SLICE_MAX_INCIDENCE);
@@ -61,7 +61,7 @@ static int in_plane(const bf_samples *s, size_t q, const bf_slice_options *o, do
     return k;
 }
 
-int slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err)
+bf_status slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err)
 {
     memset(d, 0, sizeof *d);
     int rc = check(o, err);
@@ -91,8 +91,7 @@ int slice_data_compute(const bf_model *m, const double *x, const bf_slice_option
             ang[2 * n + q] = to * (M_PI / 180.0);
             ang[3 * n + q] = po * (M_PI / 180.0);
         }
-    if (!(g = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, err))) {
-        rc = err ? err->code : BF_ERR_NOMEM;
+    if ((rc = bf_geometry_from_angles(n, ang, ang + n, ang + 2 * n, ang + 3 * n, &g, err)) != BF_OK) {
         goto done;
     }
     bf_model_eval(m, x, g, f, NULL);
@@ -150,7 +149,7 @@ done:
     return rc;
 }
 
-int bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
+bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
                     double *log10_hi, bf_error *err)
 {
     slice_data d;
@@ -294,7 +293,7 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
     return 0;
 }
 
-int slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
+bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
                      bf_slice_range *range, bf_error *err)
 {
     *out = NULL;
@@ -317,7 +316,7 @@ int slice_plot_build(const bf_model *m, const double *x, const bf_slice_options 
     return rc;
 }
 
-int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
+bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
                     bf_slice_range *range, bf_error *err)
 {
     if (!o || o->width < 40 || o->height < 40)

@@ -15,10 +15,10 @@ typedef struct slice_data {
     double log10_lo, log10_hi; /* the data's extent (bf_slice_extent) */
 } slice_data;
 
-int slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err);
+bf_status slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err);
 void slice_data_free(slice_data *d);
 /* The plot bf_render_slice writes. */
-int slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
+bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
                      bf_slice_range *range, bf_error *err);
 
 #endif

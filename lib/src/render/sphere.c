@@ -120,7 +120,7 @@ static size_t band_frames(int N, int j0, int j1, const double *u, const double *
     return n;
 }
 
-static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
+static bf_status render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
     if (!o || o->size < 1 || o->nlights < 1 || !o->lights)
         return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
@@ -161,11 +161,9 @@ static int render(const source *src, const bf_sphere_options *o, float *rgb, bf_
                     V[3 * q + k] = dot(F + 3 * k, w);
                 }
             }
-            bf_geometry *g = bf_geometry_from_vectors(n, L, V, err);
-            if (!g) {
-                status = err ? err->code : BF_ERR_NOMEM;
+            bf_geometry *g;
+            if ((status = bf_geometry_from_vectors(n, L, V, &g, err)) != BF_OK)
                 break;
-            }
             src->eval(src, g, f);
             for (size_t q = 0; q < n; q++) {
                 if (!bf_geometry_valid(g, q))
@@ -191,14 +189,14 @@ done:
     return status;
 }
 
-int bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
+bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err)
 {
     source src = {bf_model_channels(m), eval_model, m, x, NULL, NULL};
     return render(&src, o, rgb, err);
 }
 
-int bf_render_sphere_merl(const bf_samples *s, const bf_sphere_options *o, float *rgb, bf_error *err)
+bf_status bf_render_sphere_merl(const bf_samples *s, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
     if (!s || !s->merl)
         return bf_fail(err, BF_ERR_ARG, "sphere render: the data is not a MERL table as read");

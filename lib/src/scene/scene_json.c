@@ -220,7 +220,7 @@ static int parse_root(const ctx *c, const cJSON *root, bf_scene *sc)
     return BF_OK;
 }
 
-int bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error *err)
+bf_status bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error *err)
 {
     *out = NULL;
     if (!path)
@@ -266,14 +266,15 @@ int bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error 
     return BF_OK;
 }
 
-int bf_scene_read(const char *path, bf_scene **out, bf_error *err)
+bf_status bf_scene_read(const char *path, bf_scene **out, bf_error *err)
 {
     *out = NULL;
     size_t n;
-    char *buf = bf_read_text(path, &n, err);
-    if (!buf)
-        return err ? err->code : BF_ERR_IO;
-    int rc = bf_scene_parse(buf, path, out, err);
+    char *buf;
+    bf_status rc = bf_read_text(path, &buf, &n, err);
+    if (rc != BF_OK)
+        return rc;
+    rc = bf_scene_parse(buf, path, out, err);
     free(buf);
     return rc;
 }

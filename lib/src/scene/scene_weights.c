@@ -60,7 +60,7 @@ static int cell_of(double v, double lo, double h, int n)
 
 /* The grid over the pairs (see the top). Dimensions are capped so that a tiny radius
  * cannot ask for more cells than pairs are worth; wider cells only cost more checks. */
-static int build_grid(prepared *q, bf_error *err)
+static bf_status build_grid(prepared *q, bf_error *err)
 {
     enum { MAX_DIM = 128 };
     const int both = q->lights && q->views;
@@ -112,7 +112,7 @@ static void release(prepared *q)
     free(q->by_cell);
 }
 
-static int prepare(const bf_scene *sc, prepared *q, bf_error *err)
+static bf_status prepare(const bf_scene *sc, prepared *q, bf_error *err)
 {
     memset(q, 0, sizeof *q);
     q->lr = sc->light_theta;
@@ -253,7 +253,7 @@ static void weights_chunk(void *ctx, size_t chunk)
         w[i0 + i] = sw[i] > w[i0 + i] ? sw[i] : w[i0 + i];
 }
 
-int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err)
+bf_status bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err)
 {
     prepared q;
     int rc = prepare(sc, &q, err);
@@ -269,7 +269,7 @@ int bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err
     return BF_OK;
 }
 
-int bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err)
+bf_status bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err)
 {
     if (kept)
         *kept = 0;

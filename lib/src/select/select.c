@@ -76,7 +76,7 @@ static int coloured_specular(const bf_model *m)
     return bf_model_channels(m) > 1 && colours > 1;
 }
 
-int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
+bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
                    double tolerance, double abs_tolerance, bf_error *err)
 {
     memset(s, 0, sizeof *s);
@@ -96,13 +96,13 @@ int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, 
     for (int i = 0; i < n; i++) {
         bf_select_candidate *c = &s->c[i];
         if (strlen(specs[i]) >= sizeof c->spec) {
-            bf_select_free(s);
+            bf_select_clear(s);
             return bf_fail(err, BF_ERR_ARG, "model spec '%.40s...' is too long", specs[i]);
         }
         snprintf(c->spec, sizeof c->spec, "%s", specs[i]);
-        bf_model *m = bf_model_create(specs[i], channels, err);
-        if (!m) {
-            bf_select_free(s);
+        bf_model *m = NULL;
+        if (bf_model_new(specs[i], channels, &m, err) != BF_OK) {
+            bf_select_clear(s);
             return BF_ERR_ARG;
         }
         c->k = bf_model_nvalues(m);
@@ -115,18 +115,18 @@ int bf_select_init(bf_select *s, int n, const char *const *specs, int channels, 
     return BF_OK;
 }
 
-void bf_select_free(bf_select *s)
+void bf_select_clear(bf_select *s)
 {
     if (!s)
         return;
     for (int i = 0; i < s->n && s->c; i++)
-        bf_fit_result_free(&s->c[i].result);
+        bf_fit_result_clear(&s->c[i].result);
     free(s->c);
     memset(s, 0, sizeof *s);
     s->best = s->chosen = -1;
 }
 
-int bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
                   void *ctx, bf_error *err)
 {
     (void)err;
@@ -243,7 +243,7 @@ void bf_select_order(const bf_select *s, int *order)
         }
 }
 
-int bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
+bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "version", 2);

@@ -17,7 +17,7 @@
 
 /* ---- Methods ------------------------------------------------------------------- */
 
-int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
+bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
 {
     bf_backend backend;
     const bf_method_info *m;
@@ -34,7 +34,7 @@ int bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *
 
 /* ---- Train / test split -------------------------------------------------------- */
 
-int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
                       bf_samples **test, bf_error *err)
 {
     *train = *test = NULL;
@@ -58,14 +58,13 @@ int bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_sa
         mask[i] = (double)(n - i) * u < (double)need;
         need -= mask[i];
     }
-    int rc = BF_OK;
-    if ((*test = bf_samples_copy(s, mask, err)))
-        for (size_t i = 0; i < n; i++)
-            mask[i] = !mask[i];
-    if (!*test || !(*train = bf_samples_copy(s, mask, err))) {
+    *train = NULL;
+    bf_status rc = bf_samples_copy(s, mask, test, err);
+    for (size_t i = 0; i < n; i++)
+        mask[i] = !mask[i];
+    if (rc == BF_OK && (rc = bf_samples_copy(s, mask, train, err)) != BF_OK) {
         bf_samples_free(*test);
         *test = NULL;
-        rc = err ? err->code : BF_ERR_NOMEM;
     }
     free(mask);
     return rc;
@@ -79,7 +78,7 @@ static int cmp_size(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
                      const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
                      const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
 {
@@ -118,7 +117,7 @@ int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t
     t->rows = calloc(rows, sizeof *t->rows);
     if (!t->data || !t->model || !t->rows) {
         free(c);
-        bf_tradeoff_free(t);
+        bf_tradeoff_clear(t);
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
     }
     t->nrows = (int)rows;
@@ -139,7 +138,7 @@ int bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t
     return BF_OK;
 }
 
-void bf_tradeoff_free(bf_tradeoff *t)
+void bf_tradeoff_clear(bf_tradeoff *t)
 {
     free(t->data);
     free(t->model);

@@ -78,7 +78,7 @@ static cJSON *tradeoff_json(const bf_tradeoff *t)
     return root;
 }
 
-int bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err)
+bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err)
 {
     return bf_json_write(tradeoff_json(t), path, "the tradeoff table", err);
 }
@@ -92,7 +92,7 @@ static void put_metrics(FILE *fp, const bf_metrics *m, int ran)
     bf_csv_put_number(fp, ran ? m->max_err : NAN);
 }
 
-int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
+bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
 {
     bf_outfile f;
     int rc = bf_outfile_open(&f, path, err);
@@ -126,7 +126,7 @@ int bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err)
     return bf_outfile_commit(&f, err); /* checks every write */
 }
 
-int bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
                            bf_plot_axes *axes, bf_error *err)
 {
     if (width < 40 || height < 40 || width > 8192 || height > 8192)

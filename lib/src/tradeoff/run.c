@@ -17,13 +17,13 @@
 
 #include "brdfit/prep.h"
 
-static int row_error(bf_tradeoff_row *row, bf_error *err)
+static bf_status row_error(bf_tradeoff_row *row, bf_error *err)
 {
     snprintf(row->message, sizeof row->message, "%s", err->msg);
     return err->code;
 }
 
-int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
+bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
                         bf_error *err)
 {
     bf_error local;
@@ -50,7 +50,7 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
 
     bf_samples *fit_set = train, *sub = NULL;
     if (!row->all && row->samples < train->n) {
-        if (!(sub = bf_samples_copy(train, NULL, err)))
+        if (bf_samples_copy(train, NULL, &sub, err) != BF_OK)
             return row_error(row, err);
         bf_prep p;
         memset(&p, 0, sizeof p);
@@ -76,7 +76,7 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
         } else {
             if (r.seconds < row->seconds)
                 row->seconds = r.seconds;
-            bf_fit_result_free(&r);
+            bf_fit_result_clear(&r);
         }
     }
     if (rc == BF_OK) {
@@ -98,7 +98,7 @@ int bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *te
     if (rc != BF_OK)
         row_error(row, err);
     if (best.model)
-        bf_fit_result_free(&best);
+        bf_fit_result_clear(&best);
     bf_samples_free(sub);
     return rc;
 }
