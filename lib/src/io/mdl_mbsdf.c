@@ -12,6 +12,12 @@
  * phi = (j + 1/2) pi / n_phi; between them it interpolates trilinearly, clamped at the
  * edges, which is what evaluating on a direction grid does here.
  *
+ * The MDL SDK evaluates the reciprocal average of the table, (f(in, out) + f(out, in)) / 2
+ * (its prepare_mbsdfs_part makes "lookup data symmetric"), and so do the samples here:
+ * measured tables are not exactly reciprocal, and the car paint of examples/mdl shows
+ * why it matters: its raw rows peak one theta cell short of the mirror direction, the
+ * average peaks on it.
+ *
  * The reflection part is the BRDF (1/sr) and becomes the samples (phi_i = 0,
  * phi_o = the azimuth difference). A transmission part is a BTDF, which no brdfit model
  * describes: it is read and checked like the reflection (so a broken file is refused
@@ -20,6 +26,7 @@
 #include "brdfit/formats.h"
 #include "brdfit/samples.h"
 
+#include "../big_alloc.h"
 #include "direction_grid.h"
 #include "read_binary.h"
 
@@ -136,15 +143,40 @@ static int parse(const char *path, const unsigned char *b, size_t size, mbsdf_pa
 /* ---- Evaluation ------------------------------------------------------------------ */
 
 typedef struct mbsdf_table {
-    const unsigned char *values; /* the float32 table in the file */
+    double *values; /* the reciprocal average, in the file's layout */
     size_t n_theta, n_phi;
     int channels;
 } mbsdf_table;
 
+static size_t index_of(const mbsdf_table *t, size_t ti, size_t to, size_t j, int c)
+{
+    return ((ti * t->n_theta + to) * t->n_phi + j) * (size_t)t->channels + (size_t)c;
+}
+
 static double value_at(const mbsdf_table *t, size_t ti, size_t to, size_t j, int c)
 {
-    const size_t i = ((ti * t->n_theta + to) * t->n_phi + j) * (size_t)t->channels + (size_t)c;
-    return bf_le_f32(t->values + 4 * i);
+    return t->values[index_of(t, ti, to, j, c)];
+}
+
+/* The part's table as the MDL SDK evaluates it: each cell the mean of itself and its
+ * reciprocal (theta_in and theta_out exchanged). */
+static int symmetric_table(const char *path, const unsigned char *bytes, const mbsdf_part *p, mbsdf_table *t,
+                           bf_error *err)
+{
+    t->n_theta = p->n_theta;
+    t->n_phi = p->n_phi;
+    t->channels = p->channels;
+    const size_t count = p->n_theta * p->n_theta * p->n_phi * (size_t)p->channels;
+    if (!(t->values = bf_big_malloc(count * sizeof *t->values)))
+        return bf_fail_memory(err, path, 0, count * sizeof *t->values);
+    const unsigned char *raw = bytes + p->offset;
+    for (size_t ti = 0; ti < t->n_theta; ti++)
+        for (size_t to = 0; to < t->n_theta; to++)
+            for (size_t j = 0; j < t->n_phi; j++)
+                for (int c = 0; c < t->channels; c++)
+                    t->values[index_of(t, ti, to, j, c)] = 0.5 * ((double)bf_le_f32(raw + 4 * index_of(t, ti, to, j, c)) +
+                                                                  (double)bf_le_f32(raw + 4 * index_of(t, to, ti, j, c)));
+    return BF_OK;
 }
 
 /* A texture axis of n texels over [0, 1]: the two texels around coordinate u and the
@@ -234,10 +266,12 @@ int bf_samples_read_mbsdf(const char *path, const char *grid, bf_samples **out, 
         return rc;
     mbsdf_part refl = {0, 0, 0, 0, 0};
     rc = parse(path, bytes, size, &refl, err);
-    if (rc == BF_OK) {
-        const mbsdf_table t = {bytes + refl.offset, refl.n_theta, refl.n_phi, refl.channels};
-        rc = grid ? grid_samples(&t, grid, out, err) : cell_samples(&t, out, err);
-    }
+    mbsdf_table t = {NULL, 0, 0, 0};
+    if (rc == BF_OK)
+        rc = symmetric_table(path, bytes, &refl, &t, err);
     free(bytes);
+    if (rc == BF_OK)
+        rc = grid ? grid_samples(&t, grid, out, err) : cell_samples(&t, out, err);
+    free(t.values);
     return rc;
 }

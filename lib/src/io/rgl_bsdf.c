@@ -295,12 +295,13 @@ void bf_rgl_bsdf_eval(const bf_rgl_bsdf *b, const double wi[3], const double wo[
     }
 }
 
-int bf_rgl_bsdf_point(const bf_rgl_bsdf *b, size_t k, size_t x, size_t y, double wi[3], double wo[3])
+int bf_rgl_bsdf_point(const bf_rgl_bsdf *b, size_t k, size_t x, size_t y, double wi[3], double wo[3], double *f)
 {
     const double theta_i = b->theta_i[k];
     spherical(theta_i, b->phi_i, wi);
-    const bf_rgl_mix m = incident_mix(b, theta_i);
-    const double s[2] = {(double)x / (double)(b->values.nx - 1), (double)y / (double)(b->values.ny - 1)};
+    const bf_rgl_mix m = incident_mix(b, theta_i), one = {1, {0}, {1.0}};
+    const size_t nx = b->values.nx, ny = b->values.ny;
+    const double s[2] = {(double)x / (double)(nx - 1), (double)y / (double)(ny - 1)};
     double u[2], wm[3];
     bf_rgl_warp_sample(&b->vndf, &m, s, u);
     spherical(u[0] * u[0] * (M_PI / 2), (2.0 * u[1] - 1.0) * M_PI + b->phi_i, wm);
@@ -310,7 +311,18 @@ int bf_rgl_bsdf_point(const bf_rgl_bsdf *b, size_t k, size_t x, size_t y, double
     const double len = sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
     for (int j = 0; j < 3; j++)
         wo[j] /= len;
-    return wo[2] > GRAZING_COS ? 0 : -1;
+    if (!(wo[2] > GRAZING_COS))
+        return -1;
+    if (f) {
+        const double u_wi[2] = {sqrt(theta_i * (2.0 / M_PI)), (b->phi_i + M_PI) / (2.0 * M_PI)};
+        double factor = 1.0 / wo[2];
+        if (b->jacobian)
+            factor *= bf_rgl_warp_eval(&b->ndf, &one, u) / (4.0 * bf_rgl_warp_eval(&b->sigma, &one, u_wi));
+        const size_t C = (size_t)b->channels;
+        for (size_t c = 0; c < C; c++) /* the first azimuth slice, elevation k, channel c */
+            f[c] = b->values.data[((k * C + c) * ny + y) * nx + x] * factor;
+    }
+    return 0;
 }
 
 /* ---- Samples --------------------------------------------------------------------- */
@@ -346,7 +358,10 @@ static int name_channels(const bf_rgl_bsdf *b, bf_samples *s, bf_error *err)
 }
 
 /* The measured points with the outgoing direction above the horizon, in file order
- * (elevation, then sample-space row, then column). */
+ * (elevation, then sample-space row, then column), with the values stored at them. (The
+ * evaluation at their directions agrees, except on the grid's column 0, which the warp
+ * maps to theta_m = 0 whatever the row: those 32 nodes are one direction pair, measured
+ * 32 times.) */
 static int measured_samples(const char *path, const bf_rgl_bsdf *b, bf_samples **out, bf_error *err)
 {
     const size_t nx = b->values.nx, ny = b->values.ny, C = (size_t)b->channels;
@@ -355,7 +370,7 @@ static int measured_samples(const char *path, const bf_rgl_bsdf *b, bf_samples *
     for (size_t k = 0; k < b->n_theta; k++)
         for (size_t y = 0; y < ny; y++)
             for (size_t x = 0; x < nx; x++)
-                n += bf_rgl_bsdf_point(b, k, x, y, wi, wo) == 0;
+                n += bf_rgl_bsdf_point(b, k, x, y, wi, wo, NULL) == 0;
     if (n == 0)
         return bf_fail(err, BF_ERR_PARSE, "%s: no measured point reflects above the horizon", path);
     bf_samples *s = bf_samples_new(n, b->channels, err);
@@ -365,13 +380,12 @@ static int measured_samples(const char *path, const bf_rgl_bsdf *b, bf_samples *
     for (size_t k = 0; k < b->n_theta; k++)
         for (size_t y = 0; y < ny; y++)
             for (size_t x = 0; x < nx; x++) {
-                if (bf_rgl_bsdf_point(b, k, x, y, wi, wo) != 0)
+                if (bf_rgl_bsdf_point(b, k, x, y, wi, wo, s->value + i * C) != 0)
                     continue;
                 s->theta_i[i] = degrees(b->theta_i[k]);
                 s->phi_i[i] = azimuth(wi);
                 s->theta_o[i] = degrees(elevation(wo));
                 s->phi_o[i] = azimuth(wo);
-                bf_rgl_bsdf_eval(b, wi, wo, s->value + i * C, NULL);
                 i++;
             }
     int rc = name_channels(b, s, err);

@@ -36,9 +36,10 @@ void bf_rgl_bsdf_clear(bf_rgl_bsdf *b);
 void bf_rgl_bsdf_eval(const bf_rgl_bsdf *b, const double wi[3], const double wo[3], double *f, double *stored);
 
 /* The directions of measured point (k, x, y): incident elevation k, node (x, y) of the
- * nx x ny sample-space grid (b->values.nx, .ny). Returns 0 when wo is above the horizon,
- * -1 when the point lies below it or within 1e-6 of it in cosine (not a sample: the
- * BRDF there is the stored value divided by cos(theta_o) = 0). */
-int bf_rgl_bsdf_point(const bf_rgl_bsdf *b, size_t k, size_t x, size_t y, double wi[3], double wo[3]);
+ * nx x ny sample-space grid (b->values.nx, .ny), and (f not NULL) the BRDF from the
+ * values stored at the node. Returns 0 when wo is above the horizon, -1 when the point
+ * lies below it or within 1e-6 of it in cosine (not a sample: the BRDF there is the
+ * stored value divided by cos(theta_o) = 0; f is then not set). */
+int bf_rgl_bsdf_point(const bf_rgl_bsdf *b, size_t k, size_t x, size_t y, double wi[3], double wo[3], double *f);
 
 #endif
