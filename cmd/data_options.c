@@ -13,7 +13,9 @@
 #include <string.h>
 
 static const cli_option reading[] = {
-    {"--format", 0, "csv|merl|cornell|alta", "file format (default: by extension, then content)", NULL},
+    {"--format", 0, "csv|merl|cornell|alta|rgl|mbsdf", "file format (default: by extension, then content)", NULL},
+    {"--grid", 0, "merl|uniform:N|FILE", "evaluate an RGL .bsdf or .mbsdf file at these directions\n"
+                                         "instead of its measured points (docs/formats.md)", NULL},
     {"--angles", 0, "TI,PI,TO,PO", "CSV angle column names (default theta_i,phi_i,theta_o,phi_o)", NULL},
     {"--radians", 0, NULL, "CSV angles are in radians (default degrees)", NULL},
     {"--values", 0, "COL,...", "CSV value columns (default: all but angles and weight)", NULL},
@@ -104,7 +106,7 @@ static int parse_choice(data_options *o, const char *a, const char *v, const cha
     if (!strcmp(a, "--format")) {
         int f = bf_format_from_name(v);
         if (f < 0) {
-            fprintf(stderr, "%s: unknown format '%s' (csv, merl, cornell, alta)\n", cmd, v);
+            fprintf(stderr, "%s: unknown format '%s' (csv, merl, cornell, alta, rgl, mbsdf)\n", cmd, v);
             return -1;
         }
         o->read.format = (bf_format)f;
@@ -146,6 +148,8 @@ int data_options_parse(data_options *o, const char *a, const char *v, const char
         o->read.csv.channels = v;
     else if (!strcmp(a, "--weight"))
         o->read.csv.weight_col = v;
+    else if (!strcmp(a, "--grid"))
+        o->read.grid = v;
     else if (!strcmp(a, "--scene"))
         o->scene = v;
     else if (!strcmp(a, "--channels"))

@@ -7,11 +7,11 @@
 # report; the input that caused it is left in build-fuzz/findings/TARGET/.
 #
 #   scripts/fuzz.sh [TARGET|all] [SECONDS]     (default: all, 10 seconds each)
-#   targets: csv csv_map merl merl_file cornell alta params scene regress
+#   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress
 #   FUZZ_RUNS=N runs each target for N executions instead of SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(csv csv_map merl merl_file cornell alta params scene regress)
+all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress)
 target=${1:-all}
 seconds=${2:-10}
 if [ "$target" = all ]; then

@@ -78,7 +78,7 @@ complete_words() { # WORD... : what _brdfit offers for the last word
   bash -c 'source "$1"; shift; COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); _brdfit; echo "${COMPREPLY[*]}"' _ \
     "$doc/completions/brdfit" "$@"
 }
-[ "$(complete_words brdfit fit --format '')" = "csv merl cornell alta" ] && ok || bad "completion of --format"
+[ "$(complete_words brdfit fit --format '')" = "csv merl cornell alta rgl mbsdf" ] && ok || bad "completion of --format"
 [ "$(complete_words brdfit fit -m walter)" = "walter walter_aniso" ] && ok || bad "completion of -m walter"
 [ "$(complete_words brdfit compare --rank a)" = "aic aicc" ] && ok || bad "completion of --rank"
 [ "$(complete_words brdfit help re)" = "render regress" ] && ok || bad "completion of help"

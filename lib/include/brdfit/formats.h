@@ -18,6 +18,8 @@ typedef enum bf_format {
     BF_FORMAT_MERL,     /* .binary */
     BF_FORMAT_CORNELL,  /* Cornell spectral gonioreflectometer text (.brdf) */
     BF_FORMAT_ALTA,     /* ALTA text data (#DIM / #PARAM_IN / #PARAM_OUT header) */
+    BF_FORMAT_RGL,      /* RGL-EPFL measured material (.bsdf, Mitsuba tensor file) */
+    BF_FORMAT_MBSDF,    /* NVIDIA MDL measured BSDF (.mbsdf) */
 } bf_format;
 
 /* How a CSV maps onto samples. Zeroed = the defaults (docs/formats.md, CSV). */
@@ -34,12 +36,17 @@ typedef struct bf_read_options {
     bf_csv_map csv;
     int keep_origin; /* keep what writing the file back byte for byte needs (MERL: the raw
                         table, 35 MB); only a command that writes the format back asks */
+    const char *grid; /* NULL: the file's own measured points. Else the directions at which
+                         to evaluate a format that can be evaluated anywhere (RGL, mbsdf):
+                         "merl" (MERL cell centres above the horizon), "uniform:N" (N^3:
+                         theta_i, theta_o, phi_o - phi_i at cell centres), or a CSV file of
+                         theta_i,phi_i,theta_o,phi_o in degrees (docs/formats.md) */
 } bf_read_options;
 
 /* Reads any supported format. Errors name the file, the line or byte offset, and the
  * problem. Negative values are kept (they are data); NaN or Inf is an error. */
 bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
-int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta": a bf_format; -1 if unknown */
+int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf": a bf_format; -1 if unknown */
 const char *bf_format_name(bf_format f);
 /* The format a path's extension names for writing (csv, binary); BF_FORMAT_AUTO if none. */
 bf_format bf_format_for_writing(const char *path);
@@ -50,6 +57,14 @@ bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_sample
 bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
 bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
 bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
+/* RGL-EPFL .bsdf (isotropic; RGB: channels r, g, b; spectral: one per wavelength, named
+ * by it in nm, s->wavelength set): the BRDF at the measured points (grid NULL) or
+ * evaluated at a direction grid (bf_read_options.grid). Anisotropic files are refused. */
+bf_status bf_samples_read_rgl(const char *path, const char *grid, bf_samples **out, bf_error *err);
+/* NVIDIA .mbsdf: the reflection table at its cell centres (grid NULL; channels r, g, b
+ * or value), or interpolated on a direction grid. A transmission part is checked and
+ * left out. */
+bf_status bf_samples_read_mbsdf(const char *path, const char *grid, bf_samples **out, bf_error *err);
 
 /* Writers: the whole file appears only when complete (bf_outfile). CSV: the four angle
  * columns in degrees, one column per channel (its name), then weight if present; values

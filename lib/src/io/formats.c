@@ -4,7 +4,7 @@
 #include <string.h>
 #include <strings.h>
 
-static const char *const format_names[] = {"auto", "csv", "merl", "cornell", "alta"};
+static const char *const format_names[] = {"auto", "csv", "merl", "cornell", "alta", "rgl", "mbsdf"};
 
 int bf_format_from_name(const char *name)
 {
@@ -31,6 +31,10 @@ bf_format bf_format_by_extension(const char *path)
         return BF_FORMAT_CORNELL;
     if (!strcasecmp(ext, "alta"))
         return BF_FORMAT_ALTA;
+    if (!strcasecmp(ext, "bsdf"))
+        return BF_FORMAT_RGL;
+    if (!strcasecmp(ext, "mbsdf"))
+        return BF_FORMAT_MBSDF;
     return BF_FORMAT_AUTO;
 }
 

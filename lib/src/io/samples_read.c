@@ -10,7 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* MERL by its dimensions; text formats by their first meaningful line: ALTA starts with '#' header keys
+/* Binary formats by their first bytes (MERL's dimensions, the RGL tensor file's and the
+ * mbsdf's magic); text formats by their first meaningful line: ALTA starts with '#' header keys
  * (#DIM ...), Cornell with a lone wavelength count, CSV with a header row. */
 static bf_status by_content(const char *path, bf_format *format, bf_error *err)
 {
@@ -18,11 +19,16 @@ static bf_status by_content(const char *path, bf_format *format, bf_error *err)
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     /* MERL tables open with their dimensions, three int32: 90 90 180. */
-    unsigned char head[12];
+    unsigned char head[20];
     static const unsigned char merl_dims[12] = {90, 0, 0, 0, 90, 0, 0, 0, 180, 0, 0, 0};
-    if (fread(head, 1, sizeof head, fp) == sizeof head && !memcmp(head, merl_dims, sizeof head)) {
+    const size_t got = fread(head, 1, sizeof head, fp);
+    bf_format binary = got >= 12 && !memcmp(head, merl_dims, 12)            ? BF_FORMAT_MERL
+                       : got >= 12 && !memcmp(head, "tensor_file", 12)      ? BF_FORMAT_RGL
+                       : got >= 20 && !memcmp(head, "NVIDIA ARC MBSDF", 16) ? BF_FORMAT_MBSDF
+                                                                            : BF_FORMAT_AUTO;
+    if (binary != BF_FORMAT_AUTO) {
         fclose(fp);
-        *format = BF_FORMAT_MERL;
+        *format = binary;
         return BF_OK;
     }
     rewind(fp);
@@ -59,7 +65,18 @@ bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_sampl
     bf_status rc;
     if (f == BF_FORMAT_AUTO && (rc = by_content(path, &f, err)) != BF_OK)
         return rc;
+    const char *grid = opt ? opt->grid : NULL;
+    if (grid && f != BF_FORMAT_RGL && f != BF_FORMAT_MBSDF) {
+        *out = NULL;
+        return bf_fail(err, BF_ERR_ARG,
+                       "%s: a direction grid (%s) needs a format that can be evaluated anywhere (rgl, mbsdf), not %s",
+                       path, grid, bf_format_name(f));
+    }
     switch (f) {
+    case BF_FORMAT_RGL:
+        return bf_samples_read_rgl(path, grid, out, err);
+    case BF_FORMAT_MBSDF:
+        return bf_samples_read_mbsdf(path, grid, out, err);
     case BF_FORMAT_MERL:
         return bf_samples_read_merl(path, opt ? opt->keep_origin : 0, out, err);
     case BF_FORMAT_CORNELL:

@@ -9,7 +9,7 @@
 extern "C" {
 #endif
 
-int bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+bf_status bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 
 #ifdef __cplusplus

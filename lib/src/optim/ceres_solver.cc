@@ -331,8 +331,8 @@ void silence_glog()
     });
 }
 
-int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
-          bf_error *err)
+bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
+                bf_error *err)
 {
     const int np = p->npar;
     const double inf = std::numeric_limits<double>::infinity();
@@ -340,8 +340,8 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
     // Options first, so a bad name fails before any work (the registry, methods.c).
     bf_solver_options chk = *o;
     chk.backend = BF_BACKEND_CERES;
-    if (bf_solver_options_check(&chk, err) != BF_OK)
-        return BF_ERR_ARG;
+    if (bf_status rc = bf_solver_options_check(&chk, err); rc != BF_OK)
+        return rc;
     const bf_method_info *method = bf_method_find(BF_BACKEND_CERES, o->algorithm);
     const NamedAlgorithm *alg = &kAlgorithms[0];
     for (const NamedAlgorithm &a : kAlgorithms)
@@ -504,7 +504,7 @@ int solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solutio
 
 } // namespace
 
-extern "C" int bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x,
+extern "C" bf_status bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x,
                               bf_solution *s, bf_error *err)
 {
     if (!p || !o || !x || !s)
