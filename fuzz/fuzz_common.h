@@ -38,7 +38,7 @@ void fuzz_csv_round_trip(const bf_samples *s);
 
 /* The input as file NAME through a sample reader, checked, and what it reads through
  * the CSV round trip. */
-typedef int (*fuzz_reader)(const char *path, bf_samples **out, bf_error *err);
+typedef bf_status (*fuzz_reader)(const char *path, bf_samples **out, bf_error *err);
 void fuzz_read_samples(fuzz_reader read, const char *name, const uint8_t *data, size_t size);
 
 #endif
