@@ -27,6 +27,7 @@
 
 #define PLOT_MAX_TICKS 32
 #define PLOT_LABEL_LEN 48
+#define PLOT_LUT 256 /* entries of a colour bar's table */
 
 enum { PLOT_X = 0, PLOT_Y = 1 };
 typedef enum plot_style { PLOT_LINE = 1, PLOT_MARKERS = 2, PLOT_LINE_MARKERS = 3 } plot_style;
@@ -70,6 +71,9 @@ typedef struct plot_layout {
     int nlegend;                 /* series with a name, in order */
     double legend_x, legend_y, legend_w, legend_h;
     int legend_inside;           /* 1: in a corner of the plot area (a wide legend) */
+    int colour_bar;              /* 1: a colour bar right of the plot area (and legend) */
+    double bar_x, bar_w;
+    plot_ticks bar_ticks;
 } plot_layout;
 
 plot *plot_new(const char *title);
@@ -81,6 +85,17 @@ void plot_axis_integer(plot *p, int axis);
 void plot_axis_step(plot *p, int axis, double step);
 /* A fixed range (data units); lo < hi (on a log axis, 0 < lo). */
 void plot_axis_range(plot *p, int axis, double lo, double hi);
+/* Ticks at n given positions (data units) with the given labels (markup), in place of
+ * the computed ones: an axis whose numbers are not its values (sqrt theta_h, labelled
+ * in degrees). 0, or -1 when out of memory. */
+int plot_axis_ticks(plot *p, int axis, int n, const double *values, const char *const *labels);
+/* An image of width x height RGB bytes (top row first, copied) filling the plot area,
+ * in place of the grid: set both axis ranges to what its edges stand for. Cells stay
+ * sharp blocks when scaled. 0, or -1 when out of memory. */
+int plot_raster(plot *p, int width, int height, const unsigned char *rgb);
+/* A colour bar right of the plot area: lut[0] at lo up to lut[PLOT_LUT-1] at hi, on a
+ * linear or log scale, ticked and titled (markup). 0, or -1 when out of memory. */
+int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3]);
 /* A series (x, y copied); NULL when out of memory. Colour, dash, marker and sizes are
  * set on the returned series; defaults: black, solid, circle, opaque, size 1. */
 plot_series *plot_add(plot *p, const char *name, plot_style style, size_t n, const double *x, const double *y);
