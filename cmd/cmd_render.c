@@ -2,6 +2,7 @@
  * PNG, SVG or PDF.
  *   sphere (default)  --params P.json [--light T,P ...] [--view T,P]
  *   --slice           --params P.json [--incidence A,B,...] [--data FILE [data options]] [--plane-tol D]
+ *                     (without --incidence, with --data: the measured incidences nearest 0, 30, 60)
  *   --half-diff       --params P.json | --data T.binary  [--phi-d D]
  *
  * Decisions:
@@ -53,7 +54,8 @@ static const cli_option own[] = {
     {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL},
     {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL},
     {"--decades", 0, "D", "range of the log mapping (default 4)", NULL},
-    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60)", NULL},
+    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60; with --data, the\n"
+                                  "measured incidences nearest those)", NULL},
     {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file"},
     {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL},
     {"--phi-d", 0, "D", "half-diff: phi_d in degrees (default 90)", NULL},
@@ -126,7 +128,7 @@ typedef struct render_args {
     int to;      /* --to: a to_format, or 0 */
     double exposure, decades, plane_tol, phi_d;
     double incidence[BF_SLICE_MAX_INCIDENCE];
-    int nincidence;
+    int nincidence, incidence_given;
 } render_args;
 
 /* --incidence A,B,...: at most BF_SLICE_MAX_INCIDENCE angles in [0, 90). */
@@ -186,7 +188,7 @@ static int take_value(render_args *r, const char *a, const char *v)
     else if (!strcmp(a, "--tonemap"))
         return (r->tonemap = parse_tonemap(v)) != -2;
     else if (!strcmp(a, "--incidence"))
-        return parse_incidence(v, r);
+        return (r->incidence_given = 1) && parse_incidence(v, r);
     return 1;
 }
 
@@ -322,10 +324,14 @@ static int draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_
     return rc;
 }
 
-/* The slice plot, written: a BF_ status. */
+/* The slice plot, written: a BF_ status. Without --incidence, measured data is sliced
+ * where it was measured (the Cornell files have no 0 degree incidence). */
 static int slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
 {
-    bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol, NULL, 0.0, 0.0};
+    double measured[BF_SLICE_MAX_INCIDENCE];
+    int nm = s && !r->incidence_given ? bf_slice_incidences(s, r->incidence, r->nincidence, measured) : 0;
+    bf_slice_options so = {r->width, r->height, nm ? measured : r->incidence, nm ? nm : r->nincidence, s,
+                           r->plane_tol, NULL, 0.0, 0.0};
     int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;
     return bf_render_slice(m, x, &so, r->out_path, pf, NULL, err);
 }

@@ -223,8 +223,11 @@ static void test_slice_lambert(void **state)
     assert_true(r.log10_lo < log10(rho / M_PI) && r.log10_hi > log10(0.5));
     assert_true(r.log10_hi - r.log10_lo < 2.0);
     /* The curve: every point at rho/pi; the samples at +20 and -50. */
-    const plot_series *curve = plot_series_at(p, 0);
-    assert_int_equal(curve->n, 361);
+    const plot_series *curve = NULL;
+    for (int k = 0; k < plot_nseries(p) && !curve; k++)
+        if (plot_series_at(p, k)->n == 361)
+            curve = plot_series_at(p, k);
+    assert_non_null(curve);
     for (size_t i = 0; i < curve->n; i++) /* 0 at grazing view (+-90 degrees) */
         if (fabs(curve->x[i]) < 90.0)
             ts_assert_near(curve->y[i], rho / M_PI, 1e-12, 1e-12, "lambert curve");
@@ -258,6 +261,72 @@ static void test_slice_lambert(void **state)
     ts_assert_near(hi, log10(0.5), 1e-12, 1e-12, "extent hi");
     bf_samples_free(s);
     bf_model_free(m);
+}
+
+/* Slices of measured data: at the incidences it has, the same curves named once, and
+ * dense samples thinned to one per degree, drawn under the curves. */
+static void test_slice_measured(void **state)
+{
+    (void)state;
+    bf_error err;
+    /* Incidences 10.04, 29.96 and 61 degrees (none at 0), 1000 in-plane samples each,
+     * every 0.18 degrees of theta_o on the mirror side. */
+    const double measured[3] = {10.04, 29.96, 61.0};
+    bf_samples *s = bf_samples_new(3000, 1, &err);
+    for (size_t q = 0; q < 3000; q++) {
+        s->theta_i[q] = measured[q / 1000];
+        s->phi_i[q] = 0.0;
+        s->theta_o[q] = 0.09 + 0.18 * (double)(q % 500);
+        s->phi_o[q] = q % 1000 < 500 ? 180.0 : 0.0;
+        s->value[q] = 0.2;
+    }
+    const double want[3] = {0.0, 30.0, 60.0};
+    double inc[BF_SLICE_MAX_INCIDENCE];
+    assert_int_equal(bf_slice_incidences(s, want, 3, inc), 3);
+    assert_true(inc[0] == 10.0 && inc[1] == 30.0 && inc[2] == 61.0);
+    const double near[2] = {0.0, 5.0}; /* both nearest 10.04: one angle */
+    assert_int_equal(bf_slice_incidences(s, near, 2, inc), 1);
+    assert_int_equal(bf_slice_incidences(NULL, want, 3, inc), 0);
+    assert_int_equal(bf_slice_incidences(s, want, 3, inc), 3);
+
+    bf_model *m = ts_model("lambert", 1);
+    const double rho = 0.5;
+    bf_slice_options o = {400, 300, inc, 3, s, 1.0, NULL, 0.0, 0.0};
+    bf_slice_range r;
+    plot *p;
+    assert_int_equal(slice_plot_build(m, &rho, &o, &p, &r, &err), BF_OK);
+    assert_int_equal(r.overlaid, 3000);
+    /* One per degree of theta_o (0..90 on both sides) and incidence: 3 x 180. */
+    assert_int_equal(r.shown, 540);
+    int curves = 0, last_marker = -1, first_curve = -1;
+    for (int k = 0; k < plot_nseries(p); k++) {
+        const plot_series *q = plot_series_at(p, k);
+        if (q->n == 361) {
+            curves++;
+            if (first_curve < 0)
+                first_curve = k;
+            /* Lambert: the three incidences are one curve, named for all three. */
+            assert_string_equal(q->name, "\xce\xb8_{i} = 10\xc2\xb0, 30\xc2\xb0, 61\xc2\xb0 (one curve)");
+        } else if (q->style == PLOT_MARKERS && q->n > 0)
+            last_marker = k;
+    }
+    assert_int_equal(curves, 1);
+    assert_true(last_marker >= 0 && last_marker < first_curve); /* samples under the curve */
+    plot_free(p);
+    /* A glossy model: a curve per incidence, each named alone. */
+    bf_model *w = ts_model("walter", 1);
+    double x[8];
+    bf_model_defaults(w, x);
+    assert_int_equal(slice_plot_build(w, x, &o, &p, &r, &err), BF_OK);
+    curves = 0;
+    for (int k = 0; k < plot_nseries(p); k++)
+        if (plot_series_at(p, k)->n == 361)
+            assert_null(strstr(plot_series_at(p, k)->name, "one curve")), curves++;
+    assert_int_equal(curves, 3);
+    plot_free(p);
+    bf_model_free(w);
+    bf_model_free(m);
+    bf_samples_free(s);
 }
 
 /* A glossy slice peaks at the mirror angle, in every channel (dashes tell them apart). */
@@ -351,7 +420,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sphere_lambert_exr), cmocka_unit_test(test_sphere_lighting),
         cmocka_unit_test(test_halfdiff_dirs_merl), cmocka_unit_test(test_halfdiff_model),
-        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert),
+        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert), cmocka_unit_test(test_slice_measured),
         cmocka_unit_test(test_slice_peak),         cmocka_unit_test(test_png_and_errors),
         cmocka_unit_test(test_tonemap),
     };

@@ -75,10 +75,12 @@ typedef struct bf_plot_axes {
  * at most 8 decades down from the largest, padded; or log10_lo..log10_hi when given
  * (log10_lo < log10_hi: a range shared by several plots). Colour tells the incidence
  * angle; for RGB, the line style (solid, dashed, dotted) and the sample marker (circle,
- * square, triangle) the channel; the legend says both. Measured samples, when given, are
- * drawn as translucent markers: those whose theta_i lies within plane_tol of an
- * incidence angle and whose viewing direction lies within plane_tol of the plane of
- * incidence, at most 400 per incidence angle (every n-th when there are more). */
+ * square, triangle) the channel; the legend says both. Incidence angles whose curves are
+ * the same (a Lambert surface) are drawn once, in the first one's colour, and named
+ * together. Measured samples, when given, are drawn as translucent markers under the
+ * curves: those whose theta_i lies within plane_tol of an incidence angle and whose
+ * viewing direction lies within plane_tol of the plane of incidence; of an incidence
+ * angle with more than 90, one per degree of theta_o (the nearest the degree's centre). */
 #define BF_SLICE_MAX_INCIDENCE 16
 typedef struct bf_slice_options {
     int width, height;
@@ -95,8 +97,13 @@ typedef struct bf_slice_options {
 typedef struct bf_slice_range {
     double log10_lo, log10_hi;
     size_t overlaid;         /* measured samples in the plane of an incidence angle */
-    size_t shown;            /* of those, drawn (thinned to 400 per incidence angle) */
+    size_t shown;            /* of those, drawn (dense ones: one per degree of theta_o) */
 } bf_slice_range;
+
+/* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
+ * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds
+ * BF_SLICE_MAX_INCIDENCE; returns how many (0: no samples, or none below 90). */
+int bf_slice_incidences(const bf_samples *s, const double *want, int nwant, double *out);
 
 /* The data's extent in log10 f (curves and in-plane samples, at most 8 decades down),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
