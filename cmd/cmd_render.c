@@ -40,7 +40,7 @@ static const char cmd[] = "brdfit render";
 
 static const cli_option modes[] = {
     {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL},
-    {"--half-diff", 0, NULL, "theta_h (x, 0..90) by theta_d (y, 0..90 downwards) at a fixed phi_d", NULL},
+    {"--half-diff", 0, NULL, "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards) at a fixed phi_d", NULL},
 };
 static const cli_option own[] = {
     {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},

@@ -136,7 +136,7 @@ static void test_halfdiff_model(void **state)
     const int at[][2] = {{0, 0}, {10, 5}, {22, 14}, {44, 29}, {3, 27}};
     for (size_t t = 0; t < sizeof at / sizeof at[0]; t++) {
         int i = at[t][0], j = at[t][1];
-        double th = (i + 0.5) / W * 90.0 * DEG, td = (j + 0.5) / H * 90.0 * DEG, L[3], V[3];
+        double th = (i + 0.5) / W * (i + 0.5) / W * 90.0 * DEG, td = (j + 0.5) / H * 90.0 * DEG, L[3], V[3];
         double ti, pi_, to, po;
         bf_halfdiff_dirs(th, td, 90.0 * DEG, L, V);
         vec_angles(L, &ti, &pi_);
@@ -163,11 +163,10 @@ static void test_halfdiff_merl(void **state)
     s->merl = calloc(1, sizeof *s->merl);
     s->merl->raw = calloc(3 * (size_t)BF_MERL_CELLS, sizeof(double));
     s->merl->cell = calloc(2, sizeof(int32_t));
-    /* Pixel (i, j) of a 90x90 image at phi_d 90: theta_h = i + 0.5 degrees (MERL bin
-     * floor(sqrt(th/90)*90)), theta_d bin j, phi_d bin 90. */
-    int ih = (int)floor(sqrt(20.5 / 90.0) * 90), cell = 90 + 7 * 180 + ih * 180 * 90;
-    s->merl->cell[0] = cell;
-    s->merl->cell[1] = 90 + 7 * 180 + 6 * 180 * 90; /* pixel 0 (0.5 deg): sqrt(0.5/90)*90 = 6.7 */
+    /* Pixel (i, j) of a 90x90 image at phi_d 90: column i is MERL's theta_h bin i (both
+     * even in sqrt(theta_h)), theta_d bin j, phi_d bin 90. */
+    s->merl->cell[0] = 90 + 7 * 180 + 20 * 180 * 90;
+    s->merl->cell[1] = 90 + 7 * 180 + 0 * 180 * 90;
     for (int c = 0; c < 3; c++) {
         s->value[c] = 0.1 * (c + 1);
         s->value[3 + c] = 5.0 + c;

@@ -115,8 +115,8 @@ int bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *
                     bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
- * Column i: theta_h = (i + 0.5)/width * 90; row j (from the top): theta_d = (j + 0.5)/
- * height * 90; phi_d fixed, phi_h = 0 (Rusinkiewicz; the convention of MERL tables).
+ * Column i: theta_h = ((i + 0.5)/width)^2 * 90 (even in sqrt(theta_h), as MERL tables
+ * index it); row j (from the top): theta_d = (j + 0.5)/height * 90; phi_d fixed, phi_h = 0 (Rusinkiewicz; the convention of MERL tables).
  * Values are f (linear, per channel). From a model, or from a MERL table read with
  * bf_samples_read_merl: the cell containing (theta_h, theta_d, phi_d) (MERL's own
  * lookup), 0 where that cell is invalid or was not read. */
@@ -135,6 +135,12 @@ void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3],
  * [log10(max e) - decades, log10(max e)] to [0, 1] (0 for v <= 0), max over the buffer. */
 typedef enum bf_tonemap_mode { BF_TONEMAP_CLAMP = 0, BF_TONEMAP_REINHARD, BF_TONEMAP_LOG } bf_tonemap_mode;
 void bf_tonemap(float *v, size_t n, bf_tonemap_mode mode, double exposure, double decades);
+
+/* An exposure from the data: 1 / the given percentile (0..100, interpolated) of the
+ * brightest channel of the npx RGB pixels that are > 0 (a sphere's background and its
+ * unlit side left out), so that CLAMP shows that share of the lit pixels unclipped.
+ * 1 when no pixel is > 0; NaN when out of memory. */
+double bf_exposure_percentile(const float *rgb, size_t npx, double percentile);
 
 #ifdef __cplusplus
 }
