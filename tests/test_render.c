@@ -312,6 +312,13 @@ static void test_slice_measured(void **state)
     assert_int_equal(curves, 1);
     assert_true(last_marker >= 0 && last_marker < first_curve); /* samples under the curve */
     plot_free(p);
+    /* The y extent ends a decade under the lowest sample: a curve far below every
+     * measurement (here Lambert's 0.16 under samples at 100) does not stretch it. */
+    for (size_t q = 0; q < 3000; q++)
+        s->value[q] = 100.0;
+    double lo, hi;
+    assert_int_equal(bf_slice_extent(m, &rho, &o, &lo, &hi, &err), BF_OK);
+    assert_true(lo == 1.0 && hi == 2.0);
     /* A glossy model: a curve per incidence, each named alone. */
     bf_model *w = ts_model("walter", 1);
     double x[8];

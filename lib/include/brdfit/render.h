@@ -72,7 +72,8 @@ typedef struct bf_plot_axes {
  * degrees): positive theta_o on the mirror side (phi_o = 180), negative on the light's
  * side (phi_o = 0), so the specular peak sits at +theta_i (a dotted guide line). The y
  * axis is f on a log axis: the curves' positive values (and the overlaid samples'),
- * at most 8 decades down from the largest, padded; or log10_lo..log10_hi when given
+ * at most 8 decades down from the largest and, with in-plane samples, at most one decade
+ * below the lowest of them, padded; or log10_lo..log10_hi when given
  * (log10_lo < log10_hi: a range shared by several plots). Colour tells the incidence
  * angle; for RGB, the line style (solid, dashed, dotted) and the sample marker (circle,
  * square, triangle) the channel; the legend says both. Incidence angles whose curves are
@@ -105,7 +106,7 @@ typedef struct bf_slice_range {
  * BF_SLICE_MAX_INCIDENCE; returns how many (0: no samples, or none below 90). */
 int bf_slice_incidences(const bf_samples *s, const double *want, int nwant, double *out);
 
-/* The data's extent in log10 f (curves and in-plane samples, at most 8 decades down),
+/* The data's extent in log10 f (curves and in-plane samples, limited as above),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
 int bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
                     double *log10_hi, bf_error *err);

@@ -129,17 +129,21 @@ int slice_data_compute(const bf_model *m, const double *x, const bf_slice_option
                 hi = fmax(hi, log10(v));
             }
         }
+    double sample_lo = INFINITY;
     for (size_t q = 0; q < d->ns; q++)
         for (int ch = 0; ch < d->nch; ch++) {
             double v = d->sf[3 * q + (size_t)ch];
             if (v > 0.0 && isfinite(v)) {
-                lo = fmin(lo, log10(v));
+                sample_lo = fmin(sample_lo, log10(v));
                 hi = fmax(hi, log10(v));
             }
         }
+    lo = fmin(lo, sample_lo);
     if (!(lo <= hi))
         lo = hi = -1.0; /* nothing positive: an arbitrary decade */
-    d->log10_lo = fmax(lo, hi - SLICE_DECADES);
+    /* With measurements, a curve's dip far below all of them (a model dark at grazing
+     * angles) would squeeze the data into a sliver: the axis ends a decade under them. */
+    d->log10_lo = fmax(fmax(lo, hi - SLICE_DECADES), isfinite(sample_lo) ? sample_lo - 1.0 : -INFINITY);
     d->log10_hi = hi;
 done:
     bf_geometry_free(g);
