@@ -82,6 +82,20 @@ refused() { # name, pattern, out, args...
 refused "slice as EXR" "not EXR" "$tmp/x.exr" render --params "$tmp/lam.json" --slice -o "$tmp/x.exr"
 refused "sphere as SVG" "SVG and PDF are for --slice" "$tmp/x.svg" render --params "$tmp/lam.json" -o "$tmp/x.svg"
 refused "sphere --to pdf" "SVG and PDF are for --slice" "$tmp/x.png" render --params "$tmp/lam.json" --to pdf -o "$tmp/x.png"
+
+# --- render --half-diff as a figure: the sqrt theta_h axis in degrees, a colour bar ------
+if "$BRDFIT" render --params "$tmp/wal.json" --half-diff -o "$tmp/hd.pdf" 2>"$tmp/err"; then
+  pdftotext "$tmp/hd.pdf" "$tmp/hd.txt"
+  for want in "half angle θh (√ scale)" "difference angle θd (°)" "BRDF f (sr${MINUS}1)" "2°" "45°"; do
+    grep -qxF -- "$want" "$tmp/hd.txt" && ok || bad "half-diff PDF lacks '$want': $(tr '\n' '|' < "$tmp/hd.txt")"
+  done
+  pdfinfo "$tmp/hd.pdf" | grep -q 'Page size: *480 x 400 pts' && ok || bad "half-diff PDF page size"
+  "$BRDFIT" render --params "$tmp/wal.json" --half-diff --size 300x250 -o "$tmp/hd.svg" 2>"$tmp/err" &&
+    xmllint --noout "$tmp/hd.svg" && grep -q 'width="300pt" height="250pt"' "$tmp/hd.svg" && ok ||
+    bad "half-diff SVG: $(cat "$tmp/err")"
+else
+  bad "render --half-diff to PDF failed: $(cat "$tmp/err")"
+fi
 refused "bad --to" "--to" "$tmp/x.png" render --params "$tmp/lam.json" --slice --to gif -o "$tmp/x.png"
 refused "tradeoff gif" ".png, .svg or .pdf" "$tmp/t.gif" tradeoff "$tmp/w.csv" -m lambert --plot "$tmp/t.gif"
 ls "$tmp" | grep -q '\.tmp\.' && bad "temporary file left: $(ls "$tmp")" || ok

@@ -126,6 +126,14 @@ int bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int 
 int bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
                             float *rgb, bf_error *err);
 
+/* The same image as a figure (a plot, PNG, SVG or PDF by format or the extension):
+ * theta_h on a sqrt axis ticked in degrees, theta_d upwards, the mean of the channels on
+ * a log colour scale from the image's 99th percentile down `decades`, a colour bar;
+ * cells with no value grey. Of the model m (parameters x), or of the MERL table merl
+ * when m is NULL. width x height: the figure, pixels (PNG) or points. */
+int bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
+                            int width, int height, const char *path, int format, bf_error *err);
+
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the
  * difference vector rotated by theta_h about y, V its mirror about H. */
 void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3]);

@@ -2,8 +2,11 @@
 #include "render/halfdiff_figure.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "brdfit/render.h"
 
 /* Colour maps as anchor colours, linearly interpolated between evenly spaced anchors. */
 static void interpolate(const unsigned char (*anchor)[3], int n, double t, unsigned char rgb[3])
@@ -166,4 +169,47 @@ plot *halfdiff_ratio_figure(const double *r, int w, int h, const char *title, do
         halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, lut[k]);
     return figure(title, raster(r, w, h, ratio_colour, span, 0.0), w, h, "log_{2}(model / measured)", -span, span, 0,
                   lut);
+}
+
+int bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
+                            int width, int height, const char *path, int format, bf_error *err)
+{
+    enum { PX = 180 }; /* two columns and rows per MERL cell */
+    int fmt = format ? format : bf_plot_format_of(path);
+    if (!fmt)
+        return bf_fail(err, BF_ERR_ARG, "%s: unknown plot format (.png, .svg or .pdf)", path ? path : "-");
+    if (!(decades > 0.0))
+        return bf_fail(err, BF_ERR_ARG, "half/difference plot: decades must be > 0");
+    const size_t npx = (size_t)PX * PX;
+    float *rgb = malloc(3 * npx * sizeof *rgb);
+    double *v = malloc(npx * sizeof *v);
+    if (!rgb || !v) {
+        free(rgb);
+        free(v);
+        return bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+    }
+    int rc = m ? bf_render_halfdiff_model(m, x, PX, PX, phi_d, rgb, err)
+               : bf_render_halfdiff_merl(merl, PX, PX, phi_d, rgb, err);
+    double lo, hi;
+    if (rc == BF_OK) {
+        halfdiff_mean(rgb, npx, v);
+        if (halfdiff_log_range(v, npx, 99.0, decades, &lo, &hi) < 0) {
+            lo = -decades; /* nothing positive: every cell shows as no value */
+            hi = 0.0;
+        }
+        char title[512];
+        snprintf(title, sizeof title, "\xce\xb8_{h} \xc3\x97 \xce\xb8_{d} of %s at \xcf\x86_{d} = %g\xc2\xb0",
+                 m ? bf_model_spec(m) : "the measurement", phi_d);
+        plot *p = halfdiff_value_figure(v, PX, PX, title, lo, hi);
+        if (!p)
+            rc = bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+        else if (plot_note(p, "mean of the channels; scale: the 99th percentile and down; grey: no value") < 0)
+            rc = bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+        if (rc == BF_OK)
+            rc = plot_write(p, path, (bf_plot_format)fmt, width, height, err);
+        plot_free(p);
+    }
+    free(rgb);
+    free(v);
+    return rc;
 }
