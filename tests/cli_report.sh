@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # brdfit compare --html: two synthetic materials x three models make one report folder
 # (index.html + PNGs, relative links, the images' sizes as the page says); the model
-# table per material and the summary across materials; a failing run leaves nothing; an
+# table per material (fitted parameters, the error once) and the summary across
+# materials; how the report was made; shared sphere exposure and the reasons for what is
+# not drawn; MERL tables' half/difference figures (whole table with --subsample);
+# --plot-format; the same bytes whatever --jobs; a failing run leaves nothing; an
 # existing folder that is not a report is refused before any fit, a previous report is
 # replaced.
 set -u
@@ -157,6 +160,19 @@ if "$BRDFIT" compare "$tmp/wm.binary" -m lambert --subsample 3000 --plot-format 
   grep -q '<th>log RMSE</th>' "$h" && bad "rmse_log shown twice" || ok
 else
   bad "subsampled MERL report: $(cat "$tmp/err")"
+fi
+# --jobs and --threads change no byte of the report but its command line.
+if "$BRDFIT" compare "$tmp/lam<1>.csv" -m lambert,walter --quiet --jobs 2 --threads 2 --html "$tmp/j2" >/dev/null 2>&1 &&
+   "$BRDFIT" compare "$tmp/lam<1>.csv" -m lambert,walter --quiet --jobs 1 --html "$tmp/j1" >/dev/null 2>&1; then
+  for f in "$tmp/j1"/*; do
+    b=$(basename "$f")
+    [ "$b" = index.html ] && continue
+    cmp -s "$f" "$tmp/j2/$b" && ok || bad "--jobs changed $b"
+  done
+  diff <(grep -v '<th>command</th>' "$tmp/j1/index.html") <(grep -v '<th>command</th>' "$tmp/j2/index.html") >/dev/null &&
+    ok || bad "--jobs changed index.html beyond its command line"
+else
+  bad "reports for the --jobs check"
 fi
 "$BRDFIT" compare "$tmp/wm.binary" -m lambert --plot-format gif --html "$tmp/gif_report" >/dev/null 2>"$tmp/err"
 [ $? = 2 ] && grep -q -- '--plot-format' "$tmp/err" && [ ! -e "$tmp/gif_report" ] && ok || bad "--plot-format gif: $(cat "$tmp/err")"

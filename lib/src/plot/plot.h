@@ -12,8 +12,13 @@
  *    around 0; log: 0.1 decade), then padded by 5% of the span on each side. A range
  *    set with plot_axis_range is used as given (shared scales across plots).
  *  - Ticks: 1-2-5 steps on linear axes; on log axes whole decades labelled 10^{k} when
- *    at least two decades lie in the range (every 2nd, 5th ... when crowded), else the
- *    1-2-5 values of the range, else linear 1-2-5 ticks of the values.
+ *    the range spans three decades or more (every 2nd, 5th ... when crowded), else the
+ *    labelled 1-2-5 values of the range (one notation for the axis) when there are 3 to
+ *    a few more than asked for, else the decades, else linear 1-2-5 ticks of the values.
+ *    Given ticks (plot_axis_ticks) replace them all.
+ *  - Legend sample lines sit on pixel-row centres, so equal lines look equal in a PNG.
+ *  - A raster (plot_raster) fills the plot area in place of the grid, cells kept sharp;
+ *    a colour bar (plot_colour_bar) stands right of the plot area and the legend.
  *  - The legend sits right of the plot area, so it never covers data; a legend wider
  *    than 30% of the figure goes inside, in the corner that covers the fewest points.
  *    Point labels take the first free place around their point. */
