@@ -28,7 +28,7 @@ if "$BRDFIT" render --params "$tmp/lam.json" --slice --incidence 10,50 -o "$tmp/
   ok
   pdftotext "$tmp/lam.pdf" "$tmp/lam.txt" && ok || bad "pdftotext cannot read the slice PDF"
   for want in "In-plane slices of lambert" "viewing angle θo in the plane of incidence (°; + mirror side)" \
-              "BRDF f (sr${MINUS}1)" "θi = 10°, 50° (one curve)" "${MINUS}90" "${MINUS}30" "60" "90"; do
+              "BRDF f (sr${MINUS}1)" "θi = 10°, 50°" "θi = 10°, 50°: the same curve, drawn once" "${MINUS}90" "${MINUS}30" "60" "90"; do
     grep -qxF -- "$want" "$tmp/lam.txt" && ok || bad "slice PDF lacks '$want': $(tr '\n' '|' < "$tmp/lam.txt")"
   done
   # y ticks: numbers near 0.159 only (the padded range), at least two of them.

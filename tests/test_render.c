@@ -305,7 +305,7 @@ static void test_slice_measured(void **state)
             if (first_curve < 0)
                 first_curve = k;
             /* Lambert: the three incidences are one curve, named for all three. */
-            assert_string_equal(q->name, "\xce\xb8_{i} = 10\xc2\xb0, 30\xc2\xb0, 61\xc2\xb0 (one curve)");
+            assert_string_equal(q->name, "\xce\xb8_{i} = 10\xc2\xb0, 30\xc2\xb0, 61\xc2\xb0");
         } else if (q->style == PLOT_MARKERS && q->n > 0)
             last_marker = k;
     }
@@ -327,7 +327,7 @@ static void test_slice_measured(void **state)
     curves = 0;
     for (int k = 0; k < plot_nseries(p); k++)
         if (plot_series_at(p, k)->n == 361)
-            assert_null(strstr(plot_series_at(p, k)->name, "one curve")), curves++;
+            assert_null(strchr(plot_series_at(p, k)->name, ',')), curves++;
     assert_int_equal(curves, 3);
     plot_free(p);
     bf_model_free(w);

@@ -310,16 +310,15 @@ static long sample_series(plot *p, const slice_data *d, int nk, const int *group
     return count;
 }
 
-/* The legend name of incidence group g: its angles, and that they share one curve. */
-static void group_name(const bf_slice_options *o, const int *group, int g, char *text, size_t size)
+/* The legend name of incidence group g, its angles; returns how many. */
+static int group_name(const bf_slice_options *o, const int *group, int g, char *text, size_t size)
 {
     int members = 0;
     size_t at = (size_t)snprintf(text, size, "\xce\xb8_{i} = ");
     for (int k = 0; k < o->nincidence && at < size; k++)
         if (group[k] == g)
             at += (size_t)snprintf(text + at, size - at, "%s%g\xc2\xb0", members++ ? ", " : "", o->incidence[k]);
-    if (members > 1 && at < size)
-        snprintf(text + at, size - at, " (one curve)");
+    return members;
 }
 
 static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_slice_range *range)
@@ -374,7 +373,13 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
             continue; /* the same curve as an earlier incidence: drawn and named there */
         double rgb[3];
         plot_palette(k, rgb);
-        group_name(o, group, k, text, sizeof text);
+        /* Said under the plot, not in the legend: a long entry would push the legend
+         * into the plot area and make this panel unlike its neighbours. */
+        if (group_name(o, group, k, text, sizeof text) > 1) {
+            char note[320];
+            snprintf(note, sizeof note, "%s: the same curve, drawn once", text);
+            fail |= plot_note(p, note) < 0;
+        }
         for (int ch = 0; ch < nch && !fail; ch++) {
             for (int i = 0; i < SLICE_POINTS; i++)
                 y[i] = d->f[3 * ((size_t)k * SLICE_POINTS + (size_t)i) + (size_t)ch];
