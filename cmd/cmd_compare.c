@@ -32,7 +32,11 @@
  *  - `all` is every registered family with its default options.
  *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
  *    any fit: an existing DIR that is neither empty nor a previous report is refused
- *    (exit 1) rather than replaced. The report is written after the summary is printed.
+ *    (exit 1) rather than replaced. The report is written after the summary is printed;
+ *    it shows the command line and the data options as given. With --subsample, a MERL
+ *    table is read again whole for the report's pictures of the measurement (the fits
+ *    still use the subsample). --plot-format picks the embedded plots' format (--format is
+ *    the data file's).
  *  - --json and --csv are checked before any data is read (args_check_outputs): the same
  *    file as a data file, the scene or each other, under any name, is refused (exit 2);
  *    an unwritable one fails (exit 1) before any fit.
@@ -51,6 +55,8 @@
 
 #include "brdfit/compare.h"
 #include "brdfit/fit.h"
+#include "brdfit/formats.h"
+#include "brdfit/render.h"
 #include "args.h"
 #include "cli.h"
 #include "commands.h"
@@ -75,6 +81,8 @@ static const cli_option own[] = {
     {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file"},
     {"--html", 0, "DIR", "a report to read in a browser: DIR/index.html and its images\n"
                          "(an existing DIR is replaced only if it is a previous report)", "dir"},
+    {"--plot-format", 0, "png|svg|pdf", "the report's plots: embedded as PNG (default) or SVG; pdf\n"
+                                        "embeds PNG; a PDF of each plot is linked whatever the format", NULL},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
@@ -100,6 +108,9 @@ typedef struct compare_args {
     const char *json_path, *csv_path, *html_dir;
     bf_compare_metric metric;
     double tolerance;
+    int plot_format;       /* --plot-format: a bf_plot_format */
+    char *command_line;    /* as typed, for the report (NULL when out of memory) */
+    char *data_opts;       /* the data options given, for the report */
 } compare_args;
 
 static void compare_args_free(compare_args *a)
@@ -108,6 +119,39 @@ static void compare_args_free(compare_args *a)
     for (int k = 0; k < a->nmodels; k++)
         free(a->specs[k]);
     free(a->data);
+    free(a->command_line);
+    free(a->data_opts);
+}
+
+/* Appends " word" to *text (a growing string; left as it was when out of memory), quoted
+ * for a shell when it holds anything but plain characters. */
+static void append_word(char **text, const char *word)
+{
+    int plain = *word != '\0';
+    for (const char *c = word; *c; c++)
+        plain &= !!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./,:=+@%", *c);
+    size_t old = *text ? strlen(*text) : 0, add = 4 * strlen(word) + 4;
+    char *t = realloc(*text, old + add);
+    if (!t)
+        return;
+    *text = t;
+    char *at = t + old;
+    if (old)
+        *at++ = ' ';
+    if (plain) {
+        strcpy(at, word);
+        return;
+    }
+    *at++ = '\'';
+    for (const char *c = word; *c; c++) {
+        if (*c == '\'') {
+            memcpy(at, "'\\''", 4);
+            at += 4;
+        } else
+            *at++ = *c;
+    }
+    *at++ = '\'';
+    *at = '\0';
 }
 
 /* One of this command's own options; 0, or -1 after a one-line error. */
@@ -144,6 +188,11 @@ static int parse_own(compare_args *a, const char *name, const char *v)
         a->json_path = v;
     } else if (!strcmp(name, "--html")) {
         a->html_dir = v;
+    } else if (!strcmp(name, "--plot-format")) {
+        if (!(a->plot_format = bf_plot_format_parse(v))) {
+            fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", cmd, v);
+            return -1;
+        }
     } else { /* --csv */
         a->csv_path = v;
     }
@@ -184,6 +233,9 @@ static int parse(compare_args *a, int argc, char **argv)
     int p = cli_parse(&cli_compare, argc, argv, &a->args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
+    append_word(&a->command_line, "brdfit");
+    for (int i = 0; i < argc; i++)
+        append_word(&a->command_line, argv[i]);
     for (int i = 0; i < a->args.n; i++) {
         const char *name = a->args.v[i].name, *v = a->args.v[i].value;
         if (!name) {
@@ -191,6 +243,11 @@ static int parse(compare_args *a, int argc, char **argv)
             continue;
         }
         int d = data_options_parse(&a->dopt, name, v, cmd);
+        if (d > 0) { /* for the report: how the data was read */
+            append_word(&a->data_opts, name);
+            if (v)
+                append_word(&a->data_opts, v);
+        }
         if (d == 0)
             d = fit_options_parse(&a->fopt, name, v, cmd);
         if (d == 0)
@@ -439,13 +496,53 @@ static void print_results(const compare_args *a, const bf_compare *c)
     fflush(stdout);
 }
 
+/* Material i's MERL table as read, whole, when the fits had a subsample of it (for the
+ * report's pictures of the measurement; NULL when not needed). *failed: 1 after a
+ * one-line error. */
+static bf_samples *whole_table(const compare_args *a, bf_samples *const *samples, int i, int *failed)
+{
+    bf_samples *t = NULL;
+    bf_error err;
+    *failed = 0;
+    if (!samples[i]->merl || a->dopt.prep.subsample == 0)
+        return NULL;
+    if (bf_samples_read_merl(a->data[i], 0, &t, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        *failed = 1;
+    }
+    return t;
+}
+
+/* The HTML report: the ranked table, each fit's result, the samples and the tables.
+ * 0, or 1 after a one-line error. */
+static int write_report(const compare_args *a, const bf_compare *c, bf_samples *const *samples)
+{
+    bf_samples **tables = calloc((size_t)a->ndata, sizeof *tables);
+    if (!tables) {
+        fprintf(stderr, "%s: out of memory\n", cmd);
+        return 1;
+    }
+    int failed = 0;
+    for (int i = 0; i < a->ndata && !failed; i++)
+        tables[i] = whole_table(a, samples, i, &failed);
+    bf_report_options o = {samples, tables, a->plot_format, a->command_line, a->data_opts,
+                           data_options_has_scene(&a->dopt) ? a->dopt.scene : NULL};
+    bf_error err;
+    if (!failed && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        failed = 1;
+    }
+    free_samples(tables, a->ndata);
+    return failed;
+}
+
 /* The report, the JSON and the CSV; 0, or 1 after a one-line error. */
 static int write_outputs(const compare_args *a, const bf_compare *c, bf_samples *const *samples)
 {
     bf_error err;
-    /* The HTML report: the ranked table, each fit's result and the samples. */
-    if ((a->html_dir && bf_compare_write_html(c, samples, a->html_dir, &err) != BF_OK) ||
-        (a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
+    if (a->html_dir && write_report(a, c, samples) != 0)
+        return 1;
+    if ((a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
         (a->csv_path && bf_compare_write_csv(c, a->csv_path, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;

@@ -2,6 +2,7 @@
  * PNG, SVG or PDF.
  *   sphere (default)  --params P.json [--light T,P ...] [--view T,P]
  *   --slice           --params P.json [--incidence A,B,...] [--data FILE [data options]] [--plane-tol D]
+ *                     (without --incidence, with --data: the measured incidences nearest 0, 30, 60)
  *   --half-diff       --params P.json | --data T.binary  [--phi-d D]
  *
  * Decisions:
@@ -10,7 +11,8 @@
  *    (e/(1+e)), or log (--decades decades below the maximum; the half/difference
  *    image's default, as BRDF papers show it), then sRGB-encoded to 8 bits. Slice plots
  *    are figures (render.h: axes, ticks, legend) drawn with Cairo as PNG, SVG or PDF;
- *    EXR is for linear images only, and SVG/PDF for plots only.
+ *    EXR is for linear images only, and SVG/PDF for plots only: a --half-diff to .svg or
+ *    .pdf is the figure (sqrt theta_h axis in degrees, log colour scale, colour bar).
  *  - The default light is at theta 45, phi 0 (the highlight off-centre, shading visible);
  *    the default view is straight down +z. Angles in degrees; render.h defines frames.
  *  - --size N or WxH (default 256; slice plots 640x480).
@@ -39,7 +41,8 @@ static const char cmd[] = "brdfit render";
 
 static const cli_option modes[] = {
     {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL},
-    {"--half-diff", 0, NULL, "theta_h (x, 0..90) by theta_d (y, 0..90 downwards) at a fixed phi_d", NULL},
+    {"--half-diff", 0, NULL, "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards)\n"
+                             "at a fixed phi_d; as .svg or .pdf a figure with axes and a colour bar", NULL},
 };
 static const cli_option own[] = {
     {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
@@ -49,11 +52,13 @@ static const cli_option own[] = {
                                    "--slice, exr for images)", NULL},
     {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL},
     {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL},
-    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, points for SVG and PDF)", NULL},
+    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, half-diff plots 480x400;\n"
+                           "points for SVG and PDF)", NULL},
     {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL},
     {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL},
     {"--decades", 0, "D", "range of the log mapping (default 4)", NULL},
-    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60)", NULL},
+    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60; with --data, the\n"
+                                  "measured incidences nearest those)", NULL},
     {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file"},
     {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL},
     {"--phi-d", 0, "D", "half-diff: phi_d in degrees (default 90)", NULL},
@@ -126,7 +131,7 @@ typedef struct render_args {
     int to;      /* --to: a to_format, or 0 */
     double exposure, decades, plane_tol, phi_d;
     double incidence[BF_SLICE_MAX_INCIDENCE];
-    int nincidence;
+    int nincidence, incidence_given;
 } render_args;
 
 /* --incidence A,B,...: at most BF_SLICE_MAX_INCIDENCE angles in [0, 90). */
@@ -186,7 +191,7 @@ static int take_value(render_args *r, const char *a, const char *v)
     else if (!strcmp(a, "--tonemap"))
         return (r->tonemap = parse_tonemap(v)) != -2;
     else if (!strcmp(a, "--incidence"))
-        return parse_incidence(v, r);
+        return (r->incidence_given = 1) && parse_incidence(v, r);
     return 1;
 }
 
@@ -244,8 +249,9 @@ static int check_mode(const render_args *r, int *fmt)
         fprintf(stderr, "%s: %s: slices are a plot: PNG, SVG or PDF, not EXR\n", cmd, r->out_path);
         return 2;
     }
-    if (!r->slice && (*fmt == TO_SVG || *fmt == TO_PDF)) {
-        fprintf(stderr, "%s: %s: SVG and PDF are for --slice plots; images are PNG or EXR\n", cmd, r->out_path);
+    if (!r->slice && !r->halfdiff && (*fmt == TO_SVG || *fmt == TO_PDF)) {
+        fprintf(stderr, "%s: %s: SVG and PDF are for --slice and --half-diff plots; the sphere is PNG or EXR\n",
+                cmd, r->out_path);
         return 2;
     }
     if (r->halfdiff ? (!r->params == !r->data) : !r->params) {
@@ -263,11 +269,16 @@ static int check_mode(const render_args *r, int *fmt)
 
 /* The mode's defaults for what was not given (size, light), then the checks that need
  * them: 0, or the exit status after a one-line error. */
-static int settle(render_args *r)
+static int settle(render_args *r, int fmt)
 {
+    const int hd_plot = r->halfdiff && (fmt == TO_SVG || fmt == TO_PDF);
     if (r->width == 0) {
-        r->width = r->slice ? 640 : 256;
-        r->height = r->slice ? 480 : 256;
+        r->width = r->slice ? 640 : hd_plot ? 480 : 256;
+        r->height = r->slice ? 480 : hd_plot ? 400 : 256;
+    }
+    if (hd_plot && (r->width < 40 || r->height < 40)) {
+        fprintf(stderr, "%s: a half-diff plot must be at least 40x40\n", cmd);
+        return 2;
     }
     if (!r->slice && !r->halfdiff && r->width != r->height) {
         fprintf(stderr, "%s: the sphere image is square: --size N\n", cmd);
@@ -322,10 +333,14 @@ static bf_status draw(render_args *r, int fmt, const bf_model *m, const double *
     return rc;
 }
 
-/* The slice plot, written: a BF_ status. */
+/* The slice plot, written: a BF_ status. Without --incidence, measured data is sliced
+ * where it was measured (the Cornell files have no 0 degree incidence). */
 static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
 {
-    bf_slice_options so = {r->width, r->height, r->incidence, r->nincidence, s, r->plane_tol, NULL, 0.0, 0.0};
+    double measured[BF_SLICE_MAX_INCIDENCE];
+    int nm = s && !r->incidence_given ? bf_slice_incidences(s, r->incidence, r->nincidence, measured) : 0;
+    bf_slice_options so = {r->width, r->height, nm ? measured : r->incidence, nm ? nm : r->nincidence, s,
+                           r->plane_tol, NULL, 0.0, 0.0};
     int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;
     return bf_render_slice(m, x, &so, r->out_path, pf, NULL, err);
 }
@@ -341,8 +356,11 @@ static int render(render_args *r, int fmt)
     int status = 1, rc;
     if (load_inputs(r, &m, &x, &s) < 0)
         goto done;
-    if (r->slice) {
-        if ((rc = slice_plot(r, fmt, m, x, s, &err)) != BF_OK) {
+    if (r->slice || (r->halfdiff && (fmt == TO_SVG || fmt == TO_PDF))) {
+        rc = r->slice ? slice_plot(r, fmt, m, x, s, &err)
+                      : bf_render_halfdiff_plot(m, x, s, r->phi_d, r->decades, r->width, r->height, r->out_path,
+                                                fmt == TO_SVG ? BF_PLOT_SVG : BF_PLOT_PDF, &err);
+        if (rc != BF_OK) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             status = rc == BF_ERR_ARG ? 2 : 1;
         } else
@@ -397,7 +415,7 @@ int cmd_render(int argc, char **argv)
     int bad = take_args(&r, &args) < 0 ? 2 : 0;
     cli_args_free(&args);
     int fmt = 0;
-    if (bad || (bad = check_mode(&r, &fmt)) != 0 || (bad = settle(&r)) != 0)
+    if (bad || (bad = check_mode(&r, &fmt)) != 0 || (bad = settle(&r, fmt)) != 0)
         return bad;
     return render(&r, fmt);
 }

@@ -28,7 +28,7 @@ if "$BRDFIT" render --params "$tmp/lam.json" --slice --incidence 10,50 -o "$tmp/
   ok
   pdftotext "$tmp/lam.pdf" "$tmp/lam.txt" && ok || bad "pdftotext cannot read the slice PDF"
   for want in "In-plane slices of lambert" "viewing angle θo in the plane of incidence (°; + mirror side)" \
-              "BRDF f (sr${MINUS}1)" "θi = 10°" "θi = 50°" "${MINUS}90" "${MINUS}30" "60" "90"; do
+              "BRDF f (sr${MINUS}1)" "θi = 10°, 50°" "θi = 10°, 50°: the same curve, drawn once" "${MINUS}90" "${MINUS}30" "60" "90"; do
     grep -qxF -- "$want" "$tmp/lam.txt" && ok || bad "slice PDF lacks '$want': $(tr '\n' '|' < "$tmp/lam.txt")"
   done
   # y ticks: numbers near 0.159 only (the padded range), at least two of them.
@@ -42,11 +42,16 @@ fi
 # With measured samples: the legend counts them; RGB models name the channels.
 if "$BRDFIT" render --params "$tmp/wal.json" --slice --data "$tmp/w.csv" --plane-tol 5 -o "$tmp/wal.pdf" 2>"$tmp/err"; then
   pdftotext "$tmp/wal.pdf" "$tmp/wal.txt"
-  for want in "channel R" "channel G" "channel B" "θi = 0°" "θi = 30°" "θi = 60°"; do
+  for want in "channel R" "channel G" "channel B" "θi = 30°" "θi = 60°"; do
     grep -qxF -- "$want" "$tmp/wal.txt" && ok || bad "RGB slice PDF lacks '$want'"
   done
+  # Without --incidence: the measured incidence nearest 0 (uniform data has none at 0).
+  inc0=$(sed -n 's/^θi = \([0-9.]*\)°$/\1/p' "$tmp/wal.txt" | head -1)
+  awk -v a="$inc0" 'BEGIN { exit !(a > 0 && a < 10) }' && ok || bad "first slice incidence '$inc0' is not measured"
   grep -q '^measured ([0-9][0-9]*)$' "$tmp/wal.txt" && ok || bad "no measured count: $(tr '\n' '|' < "$tmp/wal.txt")"
-  grep -q '^10[-−]\?[0-9]*$' "$tmp/wal.txt" && ok || bad "glossy slice: no decade tick labels"
+  # Under three decades: labelled 1-2-5 values, one of them a whole decade.
+  grep -qx '0\.1\|1\|10' "$tmp/wal.txt" && grep -qx '0\.2\|2\|20' "$tmp/wal.txt" && ok ||
+    bad "glossy slice: no 1-2-5 tick labels"
 else
   bad "render --slice with data failed: $(cat "$tmp/err")"
 fi
@@ -77,6 +82,20 @@ refused() { # name, pattern, out, args...
 refused "slice as EXR" "not EXR" "$tmp/x.exr" render --params "$tmp/lam.json" --slice -o "$tmp/x.exr"
 refused "sphere as SVG" "SVG and PDF are for --slice" "$tmp/x.svg" render --params "$tmp/lam.json" -o "$tmp/x.svg"
 refused "sphere --to pdf" "SVG and PDF are for --slice" "$tmp/x.png" render --params "$tmp/lam.json" --to pdf -o "$tmp/x.png"
+
+# --- render --half-diff as a figure: the sqrt theta_h axis in degrees, a colour bar ------
+if "$BRDFIT" render --params "$tmp/wal.json" --half-diff -o "$tmp/hd.pdf" 2>"$tmp/err"; then
+  pdftotext "$tmp/hd.pdf" "$tmp/hd.txt"
+  for want in "half angle θh (√ scale)" "difference angle θd (°)" "BRDF f (sr${MINUS}1)" "2°" "45°"; do
+    grep -qxF -- "$want" "$tmp/hd.txt" && ok || bad "half-diff PDF lacks '$want': $(tr '\n' '|' < "$tmp/hd.txt")"
+  done
+  pdfinfo "$tmp/hd.pdf" | grep -q 'Page size: *480 x 400 pts' && ok || bad "half-diff PDF page size"
+  "$BRDFIT" render --params "$tmp/wal.json" --half-diff --size 300x250 -o "$tmp/hd.svg" 2>"$tmp/err" &&
+    xmllint --noout "$tmp/hd.svg" && grep -q 'width="300pt" height="250pt"' "$tmp/hd.svg" && ok ||
+    bad "half-diff SVG: $(cat "$tmp/err")"
+else
+  bad "render --half-diff to PDF failed: $(cat "$tmp/err")"
+fi
 refused "bad --to" "--to" "$tmp/x.png" render --params "$tmp/lam.json" --slice --to gif -o "$tmp/x.png"
 refused "tradeoff gif" ".png, .svg or .pdf" "$tmp/t.gif" tradeoff "$tmp/w.csv" -m lambert --plot "$tmp/t.gif"
 ls "$tmp" | grep -q '\.tmp\.' && bad "temporary file left: $(ls "$tmp")" || ok

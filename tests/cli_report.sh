@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # brdfit compare --html: two synthetic materials x three models make one report folder
 # (index.html + PNGs, relative links, the images' sizes as the page says); the model
-# table per material and the summary across materials; a failing run leaves nothing; an
+# table per material (fitted parameters, the error once) and the summary across
+# materials; how the report was made; shared sphere exposure and the reasons for what is
+# not drawn; MERL tables' half/difference figures (whole table with --subsample);
+# --plot-format; the same bytes whatever --jobs; a failing run leaves nothing; an
 # existing folder that is not a report is refused before any fit, a previous report is
 # replaced.
 set -u
@@ -58,6 +61,23 @@ for m in lambert walter cook_torrance; do
     bad "$m: expected 2 material rows + 1 summary row"
 done
 grep -q '<h2 id="summary">Summary over 2 materials</h2>' "$html" && ok || bad "no summary table"
+# How it was made: the tool, the command line, the data options and the scene.
+grep -q '<th>command</th><td><code>brdfit compare .*--html ' "$html" && ok || bad "no command line in the report"
+grep -q '<th>data options</th><td><code>(none: every sample as read)</code>' "$html" && ok || bad "no data options row"
+grep -q '<th>scene</th><td>none' "$html" && ok || bad "no scene row"
+# The error (rmse_log by default) is one column, not also "log RMSE".
+grep -q '<th>log RMSE</th>' "$html" && bad "rmse_log shown twice" || ok
+grep -q '<th>rmse_log</th><th>RMSE</th><th>AIC</th>' "$html" && ok || bad "error column header"
+# Fitted parameters, one line per entry.
+grep -q '<td class="params">rho_d\[0\]&nbsp;' "$html" && ok || bad "no fitted parameters"
+# Spheres: one exposure for all, from the data, stated; CSV data cannot be drawn as a
+# sphere or a half/difference image, and the report says why.
+[ "$(grep -o 'One exposure for all, &times;[0-9.e+-]*' "$html" | wc -l)" = 2 ] && ok || bad "exposure captions"
+grep -q 'The measurement is not drawn: the data is not a MERL table' "$html" && ok || bad "no reason for no measured sphere"
+grep -q '<p>Not drawn: the data is not a MERL table' "$html" && ok || bad "no reason for no half/difference images"
+# Slices at the incidences the data has (uniform data: none exactly at 0).
+grep -q 'at incidence [0-9.]*&deg;, [0-9.]*&deg; and [0-9.]*&deg; (colours; the measured incidences nearest' "$html" &&
+  ok || bad "slice incidences not from the data: $(grep -o 'at incidence [^(]*' "$html" | head -1)"
 # lambert is the simplest on the Lambert data (and its row is marked), walter on Walter's.
 awk '/<h2 id="m1">/{m=1} /<h2 id="m2">/{m=2} /class="chosen"/{print m, $0}' "$html" > "$tmp/chosen"
 grep -q '^1 .*spec">lambert<' "$tmp/chosen" && grep -q '^2 .*spec">walter<' "$tmp/chosen" &&
@@ -112,8 +132,49 @@ if "$SYNTH" --params "$tmp/wm.json" --pattern merl --seed 1 -o "$tmp/wm.binary" 
   for f in m1-sphere-measured.png m1-hd-measured.png m1-hd-model-2.png m1-hd-diff-2.png; do
     [ -s "$tmp/merl_report/$f" ] && grep -q "src=\"$f\"" "$tmp/merl_report/index.html" && ok || bad "MERL report: $f"
   done
+  for f in m1-hd-measured m1-hd-model-2 m1-hd-diff-2; do
+    [ -s "$tmp/merl_report/$f.pdf" ] && ok || bad "MERL report: no $f.pdf"
+  done
+  # The half/difference figures: a sqrt theta_h axis ticked in degrees, colour bars.
+  pdftotext "$tmp/merl_report/m1-hd-diff-2.pdf" - > "$tmp/hd.txt"
+  for want in "half angle θh (√ scale)" "difference angle θd (°)" "log2(model / measured)" "45°" "90°"; do
+    grep -qxF -- "$want" "$tmp/hd.txt" && ok || bad "difference figure lacks '$want': $(tr '\n' '|' < "$tmp/hd.txt")"
+  done
+  # Measurement and model share one colour scale: the same colour bar labels.
+  pdftotext "$tmp/merl_report/m1-hd-measured.pdf" - | grep '^10' > "$tmp/bar1"
+  pdftotext "$tmp/merl_report/m1-hd-model-2.pdf" - | grep '^10' > "$tmp/bar2"
+  [ -s "$tmp/bar1" ] && cmp -s "$tmp/bar1" "$tmp/bar2" && ok || bad "colour bars differ: $(cat "$tmp/bar1" "$tmp/bar2" | tr '\n' ' ')"
 else
   bad "MERL report run"
 fi
+# With --subsample the fits use a subsample, and the pictures of the measurement the
+# whole table (read again); the plots can be embedded as SVG.
+if "$BRDFIT" compare "$tmp/wm.binary" -m lambert --subsample 3000 --plot-format svg --html "$tmp/sub_report" \
+     --quiet >/dev/null 2>"$tmp/err"; then
+  h=$tmp/sub_report/index.html
+  grep -q 'src="m1-sphere-measured.png"' "$h" && ok || bad "subsampled MERL report: no measured sphere"
+  grep -q 'src="m1-hd-measured.svg"' "$h" && ok || bad "subsampled MERL report: no measured half/difference image"
+  grep -q 'src="m1-slice-1.svg"' "$h" && grep -q 'href="m1-slice-1.pdf"' "$h" && ok || bad "--plot-format svg"
+  xmllint --noout "$tmp/sub_report/m1-hd-measured.svg" && ok || bad "half/difference SVG is not well formed"
+  grep -q '<th>data options</th><td><code>--subsample 3000</code>' "$h" && ok || bad "data options: $(grep -o '<th>data options</th>[^/]*' "$h")"
+  grep -q '<th>log RMSE</th>' "$h" && bad "rmse_log shown twice" || ok
+else
+  bad "subsampled MERL report: $(cat "$tmp/err")"
+fi
+# --jobs and --threads change no byte of the report but its command line.
+if "$BRDFIT" compare "$tmp/lam<1>.csv" -m lambert,walter --quiet --jobs 2 --threads 2 --html "$tmp/j2" >/dev/null 2>&1 &&
+   "$BRDFIT" compare "$tmp/lam<1>.csv" -m lambert,walter --quiet --jobs 1 --html "$tmp/j1" >/dev/null 2>&1; then
+  for f in "$tmp/j1"/*; do
+    b=$(basename "$f")
+    [ "$b" = index.html ] && continue
+    cmp -s "$f" "$tmp/j2/$b" && ok || bad "--jobs changed $b"
+  done
+  diff <(grep -v '<th>command</th>' "$tmp/j1/index.html") <(grep -v '<th>command</th>' "$tmp/j2/index.html") >/dev/null &&
+    ok || bad "--jobs changed index.html beyond its command line"
+else
+  bad "reports for the --jobs check"
+fi
+"$BRDFIT" compare "$tmp/wm.binary" -m lambert --plot-format gif --html "$tmp/gif_report" >/dev/null 2>"$tmp/err"
+[ $? = 2 ] && grep -q -- '--plot-format' "$tmp/err" && [ ! -e "$tmp/gif_report" ] && ok || bad "--plot-format gif: $(cat "$tmp/err")"
 
 finish

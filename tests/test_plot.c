@@ -114,6 +114,19 @@ static void test_ticks_log(void **state)
     assert_int_equal(t.n, 5);
     assert_string_equal(t.label[0], "0.2");
     assert_string_equal(t.label[4], "5");
+    /* 1.7 decades: two decade ticks would say little; the labelled 1-2-5 values. */
+    plot_make_ticks(0.011, 0.55, 1, 6, 0, 0.0, &t);
+    assert_int_equal(t.n, 5);
+    const char *want[5] = {"0.02", "0.05", "0.1", "0.2", "0.5"};
+    for (int i = 0; i < 5; i++)
+        assert_string_equal(t.label[i], want[i]);
+    assert_true(t.nminor > 0);
+    plot_make_ticks(2e-5, 1e-3, 1, 6, 0, 0.0, &t); /* small values: m x 10^k */
+    assert_true(has_label(&t, "5\xc3\x97" "10^{-5}") && has_label(&t, "10^{-4}") && has_label(&t, "10^{-3}"));
+    /* Three decades and more: decades only. */
+    plot_make_ticks(0.0011, 2.0, 1, 6, 0, 0.0, &t);
+    assert_int_equal(t.n, 3); /* 10^-2, 10^-1, 10^0 */
+    assert_string_equal(t.label[0], "10^{-2}");
     /* The tradeoff's 0.2% spread, padded: readable values, not one repeated label. */
     double lo, hi;
     plot_pad(0.00645, 0.00646, 1, 1, &lo, &hi);
@@ -195,6 +208,94 @@ static void test_layout_and_scatter(void **state)
     plot_free(p);
 }
 
+/* Rows of a PNG column that hold a colour (within 8 of each byte). */
+static int rows_of(const bf_image *img, int x, const unsigned char c[3])
+{
+    int n = 0;
+    for (int y = 0; y < img->height; y++) {
+        const float *v = img->pixels + 3 * ((size_t)y * (size_t)img->width + (size_t)x);
+        int hit = 1;
+        for (int k = 0; k < 3; k++)
+            hit &= fabs(v[k] * 255.0 - c[k]) <= 8.0;
+        n += hit;
+    }
+    return n;
+}
+
+/* Legend lines of one width are as many pixel rows thick whatever their place in the
+ * legend (a line between two rows would be smeared over both). */
+static void test_legend_lines_equal(void **state)
+{
+    (void)state;
+    plot *p = plot_new("legend");
+    const double x[2] = {0, 1}, y[2] = {1, 2};
+    for (int k = 0; k < 5; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "entry %d", k);
+        plot_series *s = plot_add(p, name, PLOT_LINE, 2, x, y);
+        plot_palette(k, s->rgb);
+    }
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 503, 377, &l), 0);
+    bf_error err;
+    const char *path = ts_tmp_path("legend.png");
+    assert_int_equal(plot_write(p, path, BF_PLOT_PNG, 503, 377, &err), BF_OK);
+    bf_image img;
+    assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
+    int column = (int)(l.legend_x + 0.6 * l.font + 1.2 * l.font), rows = -1;
+    for (int k = 0; k < 5; k++) {
+        double rgb[3];
+        plot_palette(k, rgb);
+        /* The exact colour as the PNG stores it (no sRGB step in Cairo's PNG). */
+        unsigned char c[3] = {(unsigned char)lround(rgb[0] * 255), (unsigned char)lround(rgb[1] * 255),
+                              (unsigned char)lround(rgb[2] * 255)};
+        int n = rows_of(&img, column, c);
+        assert_true(n >= 1);
+        if (rows < 0)
+            rows = n;
+        assert_int_equal(n, rows);
+    }
+    bf_image_clear(&img);
+    plot_free(p);
+}
+
+/* A raster with a colour bar: the bar's ticks span its range, its title is in the SVG,
+ * and the plot area is left of the bar. */
+static void test_raster_colour_bar(void **state)
+{
+    (void)state;
+    plot *p = plot_new("raster");
+    unsigned char px[4 * 3 * 3], lut[PLOT_LUT][3];
+    for (int i = 0; i < 36; i++)
+        px[i] = (unsigned char)(7 * i);
+    for (int k = 0; k < PLOT_LUT; k++)
+        lut[k][0] = lut[k][1] = lut[k][2] = (unsigned char)k;
+    assert_int_equal(plot_raster(p, 4, 3, px), 0);
+    plot_axis(p, PLOT_X, "x", 0);
+    plot_axis_range(p, PLOT_X, 0.0, 3.0);
+    plot_axis_range(p, PLOT_Y, 0.0, 90.0);
+    const double tv[3] = {0.0, 1.0, 3.0};
+    const char *tl[3] = {"0\xc2\xb0", "1\xc2\xb0", "9\xc2\xb0"};
+    assert_int_equal(plot_axis_ticks(p, PLOT_X, 3, tv, tl), 0);
+    assert_int_equal(plot_colour_bar(p, "log_{2} ratio", -2.0, 2.0, 0, lut), 0);
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 400, 300, &l), 0);
+    assert_int_equal(l.colour_bar, 1);
+    assert_true(l.bar_x > l.x1 && l.bar_x + l.bar_w < 400);
+    assert_true(has_label(&l.bar_ticks, "\xe2\x88\x92" "2") && has_label(&l.bar_ticks, "2"));
+    assert_int_equal(l.axis[PLOT_X].ticks.n, 3);
+    assert_string_equal(l.axis[PLOT_X].ticks.label[2], "9\xc2\xb0");
+    bf_error err;
+    unsigned char *data;
+    size_t len;
+    assert_int_equal(plot_encode(p, BF_PLOT_PDF, 400, 300, &data, &len, &err), BF_OK);
+    free(data);
+    assert_int_equal(plot_encode(p, BF_PLOT_SVG, 400, 300, &data, &len, &err), BF_OK);
+    assert_non_null(strstr((const char *)data, "<image"));
+    free(data);
+    plot_free(p);
+}
+
 static void test_formats(void **state)
 {
     (void)state;
@@ -213,6 +314,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ranges),  cmocka_unit_test(test_ticks_linear),       cmocka_unit_test(test_ticks_log),
         cmocka_unit_test(test_markup),  cmocka_unit_test(test_layout_and_scatter), cmocka_unit_test(test_formats),
+        cmocka_unit_test(test_legend_lines_equal), cmocka_unit_test(test_raster_colour_bar),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -136,7 +136,7 @@ static void test_halfdiff_model(void **state)
     const int at[][2] = {{0, 0}, {10, 5}, {22, 14}, {44, 29}, {3, 27}};
     for (size_t t = 0; t < sizeof at / sizeof at[0]; t++) {
         int i = at[t][0], j = at[t][1];
-        double th = (i + 0.5) / W * 90.0 * DEG, td = (j + 0.5) / H * 90.0 * DEG, L[3], V[3];
+        double th = (i + 0.5) / W * (i + 0.5) / W * 90.0 * DEG, td = (j + 0.5) / H * 90.0 * DEG, L[3], V[3];
         double ti, pi_, to, po;
         bf_halfdiff_dirs(th, td, 90.0 * DEG, L, V);
         vec_angles(L, &ti, &pi_);
@@ -164,11 +164,10 @@ static void test_halfdiff_merl(void **state)
     s->merl = calloc(1, sizeof *s->merl);
     s->merl->raw = calloc(3 * (size_t)BF_MERL_CELLS, sizeof(double));
     s->merl->cell = calloc(2, sizeof(int32_t));
-    /* Pixel (i, j) of a 90x90 image at phi_d 90: theta_h = i + 0.5 degrees (MERL bin
-     * floor(sqrt(th/90)*90)), theta_d bin j, phi_d bin 90. */
-    int ih = (int)floor(sqrt(20.5 / 90.0) * 90), cell = 90 + 7 * 180 + ih * 180 * 90;
-    s->merl->cell[0] = cell;
-    s->merl->cell[1] = 90 + 7 * 180 + 6 * 180 * 90; /* pixel 0 (0.5 deg): sqrt(0.5/90)*90 = 6.7 */
+    /* Pixel (i, j) of a 90x90 image at phi_d 90: column i is MERL's theta_h bin i (both
+     * even in sqrt(theta_h)), theta_d bin j, phi_d bin 90. */
+    s->merl->cell[0] = 90 + 7 * 180 + 20 * 180 * 90;
+    s->merl->cell[1] = 90 + 7 * 180 + 0 * 180 * 90;
     for (int c = 0; c < 3; c++) {
         s->value[c] = 0.1 * (c + 1);
         s->value[3 + c] = 5.0 + c;
@@ -226,8 +225,11 @@ static void test_slice_lambert(void **state)
     assert_true(r.log10_lo < log10(rho / M_PI) && r.log10_hi > log10(0.5));
     assert_true(r.log10_hi - r.log10_lo < 2.0);
     /* The curve: every point at rho/pi; the samples at +20 and -50. */
-    const plot_series *curve = plot_series_at(p, 0);
-    assert_int_equal(curve->n, 361);
+    const plot_series *curve = NULL;
+    for (int k = 0; k < plot_nseries(p) && !curve; k++)
+        if (plot_series_at(p, k)->n == 361)
+            curve = plot_series_at(p, k);
+    assert_non_null(curve);
     for (size_t i = 0; i < curve->n; i++) /* 0 at grazing view (+-90 degrees) */
         if (fabs(curve->x[i]) < 90.0)
             ts_assert_near(curve->y[i], rho / M_PI, 1e-12, 1e-12, "lambert curve");
@@ -261,6 +263,80 @@ static void test_slice_lambert(void **state)
     ts_assert_near(hi, log10(0.5), 1e-12, 1e-12, "extent hi");
     bf_samples_free(s);
     bf_model_free(m);
+}
+
+/* Slices of measured data: at the incidences it has, the same curves named once, and
+ * dense samples thinned to one per degree, drawn under the curves. */
+static void test_slice_measured(void **state)
+{
+    (void)state;
+    bf_error err;
+    /* Incidences 10.04, 29.96 and 61 degrees (none at 0), 1000 in-plane samples each,
+     * every 0.18 degrees of theta_o on the mirror side. */
+    const double measured[3] = {10.04, 29.96, 61.0};
+    bf_samples *s = NULL;
+    bf_samples_new(3000, 1, &s, &err);
+    for (size_t q = 0; q < 3000; q++) {
+        s->theta_i[q] = measured[q / 1000];
+        s->phi_i[q] = 0.0;
+        s->theta_o[q] = 0.09 + 0.18 * (double)(q % 500);
+        s->phi_o[q] = q % 1000 < 500 ? 180.0 : 0.0;
+        s->value[q] = 0.2;
+    }
+    const double want[3] = {0.0, 30.0, 60.0};
+    double inc[BF_SLICE_MAX_INCIDENCE];
+    assert_int_equal(bf_slice_incidences(s, want, 3, inc), 3);
+    assert_true(inc[0] == 10.0 && inc[1] == 30.0 && inc[2] == 61.0);
+    const double near[2] = {0.0, 5.0}; /* both nearest 10.04: one angle */
+    assert_int_equal(bf_slice_incidences(s, near, 2, inc), 1);
+    assert_int_equal(bf_slice_incidences(NULL, want, 3, inc), 0);
+    assert_int_equal(bf_slice_incidences(s, want, 3, inc), 3);
+
+    bf_model *m = ts_model("lambert", 1);
+    const double rho = 0.5;
+    bf_slice_options o = {400, 300, inc, 3, s, 1.0, NULL, 0.0, 0.0};
+    bf_slice_range r;
+    plot *p;
+    assert_int_equal(slice_plot_build(m, &rho, &o, &p, &r, &err), BF_OK);
+    assert_int_equal(r.overlaid, 3000);
+    /* One per degree of theta_o (0..90 on both sides) and incidence: 3 x 180. */
+    assert_int_equal(r.shown, 540);
+    int curves = 0, last_marker = -1, first_curve = -1;
+    for (int k = 0; k < plot_nseries(p); k++) {
+        const plot_series *q = plot_series_at(p, k);
+        if (q->n == 361) {
+            curves++;
+            if (first_curve < 0)
+                first_curve = k;
+            /* Lambert: the three incidences are one curve, named for all three. */
+            assert_string_equal(q->name, "\xce\xb8_{i} = 10\xc2\xb0, 30\xc2\xb0, 61\xc2\xb0");
+        } else if (q->style == PLOT_MARKERS && q->n > 0)
+            last_marker = k;
+    }
+    assert_int_equal(curves, 1);
+    assert_true(last_marker >= 0 && last_marker < first_curve); /* samples under the curve */
+    plot_free(p);
+    /* The y extent ends a decade under the lowest sample: a curve far below every
+     * measurement (here Lambert's 0.16 under samples at 100) does not stretch it. */
+    for (size_t q = 0; q < 3000; q++)
+        s->value[q] = 100.0;
+    double lo, hi;
+    assert_int_equal(bf_slice_extent(m, &rho, &o, &lo, &hi, &err), BF_OK);
+    assert_true(lo == 1.0 && hi == 2.0);
+    /* A glossy model: a curve per incidence, each named alone. */
+    bf_model *w = ts_model("walter", 1);
+    double x[8];
+    bf_model_defaults(w, x);
+    assert_int_equal(slice_plot_build(w, x, &o, &p, &r, &err), BF_OK);
+    curves = 0;
+    for (int k = 0; k < plot_nseries(p); k++)
+        if (plot_series_at(p, k)->n == 361)
+            assert_null(strchr(plot_series_at(p, k)->name, ',')), curves++;
+    assert_int_equal(curves, 3);
+    plot_free(p);
+    bf_model_free(w);
+    bf_model_free(m);
+    bf_samples_free(s);
 }
 
 /* A glossy slice peaks at the mirror angle, in every channel (dashes tell them apart). */
@@ -354,7 +430,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sphere_lambert_exr), cmocka_unit_test(test_sphere_lighting),
         cmocka_unit_test(test_halfdiff_dirs_merl), cmocka_unit_test(test_halfdiff_model),
-        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert),
+        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert), cmocka_unit_test(test_slice_measured),
         cmocka_unit_test(test_slice_peak),         cmocka_unit_test(test_png_and_errors),
         cmocka_unit_test(test_tonemap),
     };

@@ -188,13 +188,28 @@ void bf_compare_pareto(int n, const double *x, const double *y, int *on);
 bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
 bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
 
-/* The HTML report: DIR/index.html and its PNG images (relative links), built in a
+/* The HTML report: DIR/index.html and its images and plots (relative links), built in a
  * temporary sibling folder and renamed into place, so a failure leaves nothing. An
  * existing DIR is replaced only if it holds BF_REPORT_MARKER (a previous report) or is
  * empty; otherwise BF_ERR_IO. samples: nmaterials sets (or NULL) for the overlays.
  * bf_compare_html_check says early (before fitting) whether DIR could be written. */
 #define BF_REPORT_MARKER ".brdfit-report"
 bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
+
+/* What else a report can use and say. Every field may be 0 / NULL. */
+typedef struct bf_report_options {
+    bf_samples *const *samples; /* nmaterials sets the models were fitted to (overlays) */
+    bf_samples *const *tables;  /* nmaterials (entries may be NULL): MERL tables as read,
+                                   whole, for the pictures of the measurement when the
+                                   samples are a subsample of them */
+    int format;                 /* bf_plot_format (render.h) of the embedded plots: PNG
+                                   (0 too) or SVG; PDF embeds PNG. A PDF of every plot is
+                                   written and linked whatever the format */
+    const char *command_line;   /* the command that made the report, shown as given */
+    const char *data_options;   /* how the data was read and prepared, shown */
+    const char *scene;          /* the scene file the errors are over, or NULL */
+} bf_report_options;
+bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err);
 bf_status bf_compare_html_check(const char *dir, bf_error *err);
 
 #ifdef __cplusplus

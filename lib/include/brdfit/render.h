@@ -74,13 +74,16 @@ typedef struct bf_plot_axes {
  * degrees): positive theta_o on the mirror side (phi_o = 180), negative on the light's
  * side (phi_o = 0), so the specular peak sits at +theta_i (a dotted guide line). The y
  * axis is f on a log axis: the curves' positive values (and the overlaid samples'),
- * at most 8 decades down from the largest, padded; or log10_lo..log10_hi when given
+ * at most 8 decades down from the largest and, with in-plane samples, at most one decade
+ * below the lowest of them, padded; or log10_lo..log10_hi when given
  * (log10_lo < log10_hi: a range shared by several plots). Colour tells the incidence
  * angle; for RGB, the line style (solid, dashed, dotted) and the sample marker (circle,
- * square, triangle) the channel; the legend says both. Measured samples, when given, are
- * drawn as translucent markers: those whose theta_i lies within plane_tol of an
- * incidence angle and whose viewing direction lies within plane_tol of the plane of
- * incidence, at most 400 per incidence angle (every n-th when there are more). */
+ * square, triangle) the channel; the legend says both. Incidence angles whose curves are
+ * the same (a Lambert surface) are drawn once, in the first one's colour, and named
+ * together. Measured samples, when given, are drawn as translucent markers under the
+ * curves: those whose theta_i lies within plane_tol of an incidence angle and whose
+ * viewing direction lies within plane_tol of the plane of incidence; of an incidence
+ * angle with more than 90, one per degree of theta_o (the nearest the degree's centre). */
 #define BF_SLICE_MAX_INCIDENCE 16
 typedef struct bf_slice_options {
     int width, height;
@@ -97,10 +100,15 @@ typedef struct bf_slice_options {
 typedef struct bf_slice_range {
     double log10_lo, log10_hi;
     size_t overlaid;         /* measured samples in the plane of an incidence angle */
-    size_t shown;            /* of those, drawn (thinned to 400 per incidence angle) */
+    size_t shown;            /* of those, drawn (dense ones: one per degree of theta_o) */
 } bf_slice_range;
 
-/* The data's extent in log10 f (curves and in-plane samples, at most 8 decades down),
+/* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
+ * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds
+ * BF_SLICE_MAX_INCIDENCE; returns how many (0: no samples, or none below 90). */
+int bf_slice_incidences(const bf_samples *s, const double *want, int nwant, double *out);
+
+/* The data's extent in log10 f (curves and in-plane samples, limited as above),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
 bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
                     double *log10_hi, bf_error *err);
@@ -110,8 +118,8 @@ bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_opt
                     bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
- * Column i: theta_h = (i + 0.5)/width * 90; row j (from the top): theta_d = (j + 0.5)/
- * height * 90; phi_d fixed, phi_h = 0 (Rusinkiewicz; the convention of MERL tables).
+ * Column i: theta_h = ((i + 0.5)/width)^2 * 90 (even in sqrt(theta_h), as MERL tables
+ * index it); row j (from the top): theta_d = (j + 0.5)/height * 90; phi_d fixed, phi_h = 0 (Rusinkiewicz; the convention of MERL tables).
  * Values are f (linear, per channel). From a model, or from a MERL table read with
  * bf_samples_read_merl: the cell containing (theta_h, theta_d, phi_d) (MERL's own
  * lookup), 0 where that cell is invalid or was not read. */
@@ -119,6 +127,14 @@ bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width
                              double phi_d, float *rgb, bf_error *err);
 bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
                             float *rgb, bf_error *err);
+
+/* The same image as a figure (a plot, PNG, SVG or PDF by format or the extension):
+ * theta_h on a sqrt axis ticked in degrees, theta_d upwards, the mean of the channels on
+ * a log colour scale from the image's 99th percentile down `decades`, a colour bar;
+ * cells with no value grey. Of the model m (parameters x), or of the MERL table merl
+ * when m is NULL. width x height: the figure, pixels (PNG) or points. */
+bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
+                            int width, int height, const char *path, int format, bf_error *err);
 
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the
  * difference vector rotated by theta_h about y, V its mirror about H. */
@@ -130,6 +146,12 @@ void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3],
  * [log10(max e) - decades, log10(max e)] to [0, 1] (0 for v <= 0), max over the buffer. */
 typedef enum bf_tonemap_mode { BF_TONEMAP_CLAMP = 0, BF_TONEMAP_REINHARD, BF_TONEMAP_LOG } bf_tonemap_mode;
 void bf_tonemap(float *v, size_t n, bf_tonemap_mode mode, double exposure, double decades);
+
+/* An exposure from the data: 1 / the given percentile (0..100, interpolated) of the
+ * brightest channel of the npx RGB pixels that are > 0 (a sphere's background and its
+ * unlit side left out), so that CLAMP shows that share of the lit pixels unclipped.
+ * 1 when no pixel is > 0; NaN when out of memory. */
+double bf_exposure_percentile(const float *rgb, size_t npx, double percentile);
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,6 @@
-/* The comparison as an HTML report: one folder holding index.html and its PNG images,
- * links relative, so it opens from disk without a server.
+/* The comparison as an HTML report: one folder holding index.html, its images and its
+ * plots, links relative, so it opens from disk without a server. This file writes the
+ * page, its tables and the folder; report_pictures.c the pictures of each material.
  *
  * Decisions:
  *  - The folder is built under a registered temporary sibling (DIR.tmp.XXXXXX, removed
@@ -8,16 +9,12 @@
  *    folder, and an old report stays whole until the new one replaces it.
  *  - An existing DIR is replaced only when it holds BF_REPORT_MARKER (a previous report)
  *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
- *  - Pictures are small (spheres 160x160, slices 440x330, scatter plots 520x360) so a
- *    report over many fits stays quick; each model's pictures come from its fitted
- *    parameters. Spheres share one display mapping (clamp, exposure 1) so they compare.
- *  - Plots (error against k and against work, slices) are Cairo figures (plot/plot.h)
- *    with axes, ticks and legends, embedded as PNG, each with a PDF beside it (linked).
- *    The slices of one material share one y range, so the models compare.
- *  - MERL tables: a sphere of the measurement leads the row of spheres, and the table's
- *    theta_h x theta_d image (phi_d 90) stands beside each model's, with a difference
- *    image: |log10(model / measured)|, mean over channels, black = equal, white = one
- *    decade or more, blue where the table has no valid value.
+ *  - Plots (error against k and against work, slices, half/difference images) are Cairo
+ *    figures (plot/plot.h) with axes, ticks, legends and colour bars, embedded as PNG or
+ *    SVG (bf_report_options.format), each with a PDF beside it (linked).
+ *  - The page says how it was made: the command line, the data options, the scene and
+ *    the tool's version; each model's row holds its fitted parameters and warnings. The
+ *    error column is not repeated under its metric's own name.
  *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
 #define _GNU_SOURCE /* renameat2 */
 #include "brdfit/compare.h"
@@ -42,25 +39,15 @@
 #include "brdfit/version.h"
 #include "io/out_target.h"
 #include "io/temp_registry.h"
+#include "compare/report.h"
 #include "plot/scatter.h"
-#include "render/slices.h"
 
-enum { SPHERE = 160, SLICE_W = 440, SLICE_H = 330, PLOT_W = 520, PLOT_H = 360, HD = 160 };
-
-typedef struct report {
-    const bf_compare *c;
-    bf_samples *const *samples;
-    const char *tmp; /* the folder being written */
-    FILE *fp;
-    float *buf;      /* big enough for the largest picture */
-    float *buf2;
-    bf_error *err;
-} report;
+enum { PLOT_W = 520, PLOT_H = 360 };
 
 /* Text from the data and the command line as HTML: markup escaped, and control
  * characters and invalid UTF-8, which HTML cannot show, as a terminal shows them
  * (bf_printable_dup; out of memory: dropped). */
-static void esc(FILE *fp, const char *text)
+void report_esc(FILE *fp, const char *text)
 {
     char *safe = bf_printable_dup(text);
     for (const char *s = safe ? safe : ""; *s; s++)
@@ -83,8 +70,7 @@ static void num(FILE *fp, double v)
         fputs("<td>&ndash;</td>", fp);
 }
 
-/* Writes a display-referred RGB buffer as NAME in the report folder and links it. */
-static int image(report *r, const char *name, int w, int h, const float *rgb, const char *alt)
+int report_image(report *r, const char *name, int w, int h, const float *rgb, const char *alt)
 {
     char path[4096];
     if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
@@ -92,36 +78,38 @@ static int image(report *r, const char *name, int w, int h, const float *rgb, co
     if (bf_image_write_rgb(path, w, h, rgb, r->err) != BF_OK)
         return r->err->code;
     fprintf(r->fp, "<img src=\"%s\" width=\"%d\" height=\"%d\" alt=\"", name, w, h);
-    esc(r->fp, alt);
+    report_esc(r->fp, alt);
     fputs("\">", r->fp);
     return BF_OK;
 }
 
-/* Writes a plot as NAME.png (embedded) and NAME.pdf (linked) in the report folder. */
-static int figure(report *r, const char *name, const plot *p, int w, int h, const char *alt)
+int report_figure(report *r, const char *name, const plot *p, int w, int h, const char *alt)
 {
+    /* SVG stays sharp when zoomed; PNG is what any viewer shows; the PDF is for papers. */
+    const char *shown = r->o->format == BF_PLOT_SVG ? "svg" : "png";
+    const bf_plot_format fmt[2] = {r->o->format == BF_PLOT_SVG ? BF_PLOT_SVG : BF_PLOT_PNG, BF_PLOT_PDF};
     char path[4096];
     for (int f = 0; f < 2; f++) {
-        if (snprintf(path, sizeof path, "%s/%s.%s", r->tmp, name, f ? "pdf" : "png") >= (int)sizeof path)
+        if (snprintf(path, sizeof path, "%s/%s.%s", r->tmp, name, f ? "pdf" : shown) >= (int)sizeof path)
             return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
-        int rc = plot_write(p, path, f ? BF_PLOT_PDF : BF_PLOT_PNG, w, h, r->err);
+        int rc = plot_write(p, path, fmt[f], w, h, r->err);
         if (rc != BF_OK)
             return rc;
     }
-    fprintf(r->fp, "<img src=\"%s.png\" width=\"%d\" height=\"%d\" alt=\"", name, w, h);
-    esc(r->fp, alt);
+    fprintf(r->fp, "<img src=\"%s.%s\" width=\"%d\" height=\"%d\" alt=\"", name, shown, w, h);
+    report_esc(r->fp, alt);
     fprintf(r->fp, "\"><br><a class=\"pdf\" href=\"%s.pdf\">PDF</a>", name);
     return BF_OK;
 }
 
 /* The data file's name without its folders, for plot titles. */
-static const char *base_name(const char *path)
+const char *report_base_name(const char *path)
 {
     const char *b = strrchr(path, '/');
     return b && b[1] ? b + 1 : path;
 }
 
-static const bf_fit_result *fitted(const bf_compare_fit *f)
+const bf_fit_result *report_fitted(const bf_compare_fit *f)
 {
     return f->state == BF_CMP_OK && f->result && f->result->model ? f->result : NULL;
 }
@@ -136,10 +124,16 @@ static void model_table(report *r, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
-    fprintf(fp, "<table>\n<tr><th>rank (%s)</th><th>model</th><th>k</th><th>%s</th><th>RMSE</th><th>log RMSE</th>"
+    /* RMSE and log RMSE beside the error, unless the error is one of them (one number,
+     * one column). */
+    const int ranked_by_cv = c->rank_by == BF_RANK_CV;
+    const int show_rmse = ranked_by_cv || c->metric != BF_CMP_RMSE;
+    const int show_log = ranked_by_cv || c->metric != BF_CMP_RMSE_LOG;
+    fprintf(fp, "<table>\n<tr><th>rank (%s)</th><th>model</th><th>k</th><th>%s</th>%s%s"
                 "<th>AIC</th><th>AICc</th><th>BIC</th><th>CV error</th><th>work (M sample evaluations)</th>"
                 "<th>Pareto k</th><th>Pareto work</th><th>simplest</th><th>parameters</th><th>warnings</th></tr>\n",
-            bf_compare_rank_name(c->rank_by), error_name(c));
+            bf_compare_rank_name(c->rank_by), error_name(c), show_rmse ? "<th>RMSE</th>" : "",
+            show_log ? "<th>log RMSE</th>" : "");
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_fit *f = &m->fits[j];
         fprintf(fp, "<tr%s>", m->simplest == j ? " class=\"chosen\"" : "");
@@ -148,21 +142,23 @@ static void model_table(report *r, const bf_compare_material *m)
         else
             fputs("<td>&ndash;</td>", fp);
         fputs("<td class=\"spec\">", fp);
-        esc(fp, c->models[j]);
+        report_esc(fp, c->models[j]);
         fputs("</td>", fp);
         if (!f->rank) {
-            fprintf(fp, "<td colspan=\"14\">%s", bf_compare_state_name(f->state));
+            fprintf(fp, "<td colspan=\"%d\">%s", 12 + show_rmse + show_log, bf_compare_state_name(f->state));
             if (f->state == BF_CMP_ERROR) {
                 fputs(": ", fp);
-                esc(fp, f->message);
+                report_esc(fp, f->message);
             }
             fputs("</td></tr>\n", fp);
             continue;
         }
         fprintf(fp, "<td>%d</td>", f->metrics.k);
         num(fp, f->error);
-        num(fp, f->metrics.rmse);
-        num(fp, f->metrics.rmse_log);
+        if (show_rmse)
+            num(fp, f->metrics.rmse);
+        if (show_log)
+            num(fp, f->metrics.rmse_log);
         num(fp, f->metrics.aic);
         num(fp, f->metrics.aicc);
         num(fp, f->metrics.bic);
@@ -175,12 +171,12 @@ static void model_table(report *r, const bf_compare_material *m)
         fputs("<td class=\"params\">", fp);
         for (int k = 0; res && k < bf_model_nvalues(res->model); k++) {
             char name[64];
-            esc(fp, bf_model_entry_name(res->model, k, name, sizeof name));
+            report_esc(fp, bf_model_entry_name(res->model, k, name, sizeof name));
             fprintf(fp, "&nbsp;%.6g%s", res->x[k], k + 1 < bf_model_nvalues(res->model) ? "<br>" : "");
         }
         fputs("</td><td class=\"warn\">", fp);
         for (int w = 0; res && w < res->nwarnings; w++) {
-            esc(fp, res->warnings[w]);
+            report_esc(fp, res->warnings[w]);
             fputs(w + 1 < res->nwarnings ? "<br>" : "", fp);
         }
         fputs("</td></tr>\n", fp);
@@ -189,9 +185,9 @@ static void model_table(report *r, const bf_compare_material *m)
     if (m->simplest >= 0) {
         fprintf(fp, "<p>Ranked by %s. Simplest model within %g%% of the best %s (", bf_compare_rank_name(c->rank_by),
                 100.0 * c->tolerance, error_name(c));
-        esc(fp, c->models[m->best]);
+        report_esc(fp, c->models[m->best]);
         fputs("): <b>", fp);
-        esc(fp, c->models[m->simplest]);
+        report_esc(fp, c->models[m->simplest]);
         fputs("</b>. &#9679; marks the Pareto fronts of k and of fitting work against that error (no other "
               "model is at least as good in both and better in one).</p>\n",
               fp);
@@ -226,7 +222,7 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
     for (int j = 0; j < n; j++)
         log_y &= !(y[j] <= 0.0);
     char title[512], ytitle[128], chosen[128], name[64];
-    snprintf(title, sizeof title, "%s: error against %s", base_name(m->data),
+    snprintf(title, sizeof title, "%s: error against %s", report_base_name(m->data),
              by_work ? "fitting work" : "free parameters");
     snprintf(ytitle, sizeof ytitle, "%s", error_name(c));
     snprintf(chosen, sizeof chosen, "simplest within %g%% of the best", 100.0 * c->tolerance);
@@ -254,7 +250,7 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
     snprintf(alt, sizeof alt, "%s against %s", error_name(c), by_work ? "fitting work" : "free parameters");
     fputs("<figure>", r->fp);
     if (rc == BF_OK)
-        rc = figure(r, name, p, PLOT_W, PLOT_H, alt);
+        rc = report_figure(r, name, p, PLOT_W, PLOT_H, alt);
     plot_free(p);
     free(x);
     if (rc != BF_OK)
@@ -263,169 +259,6 @@ static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
                    "other beats in both</figcaption></figure>\n",
             error_name(c), log_y ? "log" : "linear", by_work ? "fitting work" : "free parameters k",
             by_work ? "log" : "linear");
-    return BF_OK;
-}
-
-/* |log10(model / measured)| as grey, one decade = white; blue where nothing measured. */
-static void difference(float *model, const float *meas, size_t npx)
-{
-    for (size_t p = 0; p < npx; p++) {
-        double d = 0.0;
-        int valid = 1;
-        for (int ch = 0; ch < 3; ch++) {
-            double a = meas[3 * p + ch], b = model[3 * p + ch];
-            if (!(a > 0)) {
-                valid = 0;
-                break;
-            }
-            d += fabs(log10(fmax(b, 1e-8) / a)) / 3.0;
-        }
-        float g = (float)fmin(d, 1.0);
-        model[3 * p] = valid ? g : 0.1f;
-        model[3 * p + 1] = valid ? g : 0.2f;
-        model[3 * p + 2] = valid ? g : 0.6f;
-    }
-}
-
-static int pictures(report *r, int i, const bf_compare_material *m)
-{
-    const bf_compare *c = r->c;
-    FILE *fp = r->fp;
-    bf_samples *s = r->samples ? r->samples[i] : NULL;
-    char name[64];
-    int rc;
-
-    static const double inc[3] = {0.0, 30.0, 60.0};
-    /* One y range for every model's slices (and the samples): they compare. */
-    double lo = INFINITY, hi = -INFINITY;
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *res = fitted(&m->fits[j]);
-        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0, NULL, 0.0, 0.0};
-        double a, b;
-        if (!res)
-            continue;
-        if ((rc = bf_slice_extent(res->model, res->x, &so, &a, &b, r->err)) != BF_OK)
-            return rc;
-        lo = fmin(lo, a);
-        hi = fmax(hi, b);
-    }
-    if (lo <= hi) {
-        double a, b;
-        lo = fmax(lo, hi - 8.0);
-        plot_pad(pow(10.0, lo), pow(10.0, hi), 1, 1, &a, &b);
-        lo = log10(a);
-        hi = log10(b);
-    }
-    fprintf(fp, "<h3>Slices</h3>\n<p>BRDF f (log axis, the same range for every model: 10<sup>%.2f</sup> to "
-                "10<sup>%.2f</sup> sr<sup>&minus;1</sup>) against the viewing angle in the plane of incidence "
-                "(&minus;90&deg; to 90&deg;, mirror side right, dotted: the mirror direction) for incidence 0&deg;, "
-                "30&deg; and 60&deg; (colours); markers: measured samples within 2&deg; of the plane.</p>\n"
-                "<div class=\"row\">\n",
-            lo, hi);
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *res = fitted(&m->fits[j]);
-        if (!res)
-            continue;
-        char title[512];
-        snprintf(title, sizeof title, "%s: %s", base_name(m->data), c->models[j]);
-        bf_slice_options so = {SLICE_W, SLICE_H, inc, 3, s, 2.0, title, lo, hi};
-        bf_slice_range sr;
-        plot *p;
-        if ((rc = slice_plot_build(res->model, res->x, &so, &p, &sr, r->err)) != BF_OK)
-            return rc;
-        snprintf(name, sizeof name, "m%d-slice-%d", i + 1, j + 1);
-        fputs("<figure>", fp);
-        rc = figure(r, name, p, SLICE_W, SLICE_H, c->models[j]);
-        plot_free(p);
-        if (rc != BF_OK)
-            return rc;
-        fputs("<figcaption>", fp);
-        esc(fp, c->models[j]);
-        if (sr.shown < sr.overlaid)
-            fprintf(fp, "<br>%zu of %zu in-plane samples shown</figcaption></figure>\n", sr.shown, sr.overlaid);
-        else
-            fprintf(fp, "<br>%zu in-plane samples shown</figcaption></figure>\n", sr.overlaid);
-    }
-    fputs("</div>\n<h3>Spheres</h3>\n<p>Light from 45&deg;, viewed from above, all with the same mapping.",
-          fp);
-    /* A sphere of the table needs most of its cells: a subsampled table would show as
-     * scattered dots, so it is drawn only from a dense one. */
-    int dense = s && s->merl && s->n >= (size_t)BF_MERL_CELLS / 4;
-    if (dense)
-        fputs(" The first is the measured table itself (each pixel the cell MERL's lookup picks).", fp);
-    else if (s && s->merl)
-        fprintf(fp, " The measured table is not drawn as a sphere: %zu samples are too few of its cells "
-                    "(subsampled?).", s->n);
-    fputs("</p>\n<div class=\"row\">\n", fp);
-    bf_dir light = {45.0, 0.0};
-    bf_sphere_options sp = {SPHERE, {0.0, 0.0}, &light, 1};
-    if (dense) {
-        if ((rc = bf_render_sphere_merl(s, &sp, r->buf, r->err)) != BF_OK)
-            return rc;
-        bf_tonemap(r->buf, 3 * (size_t)SPHERE * SPHERE, BF_TONEMAP_CLAMP, 1.0, 4.0);
-        snprintf(name, sizeof name, "m%d-sphere-measured.png", i + 1);
-        fputs("<figure>", fp);
-        if ((rc = image(r, name, SPHERE, SPHERE, r->buf, "measured")) != BF_OK)
-            return rc;
-        fputs("<figcaption>measured</figcaption></figure>\n", fp);
-    }
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *res = fitted(&m->fits[j]);
-        if (!res)
-            continue;
-        if ((rc = bf_render_sphere(res->model, res->x, &sp, r->buf, r->err)) != BF_OK)
-            return rc;
-        bf_tonemap(r->buf, 3 * (size_t)SPHERE * SPHERE, BF_TONEMAP_CLAMP, 1.0, 4.0);
-        snprintf(name, sizeof name, "m%d-sphere-%d.png", i + 1, j + 1);
-        fputs("<figure>", fp);
-        if ((rc = image(r, name, SPHERE, SPHERE, r->buf, c->models[j])) != BF_OK)
-            return rc;
-        fputs("<figcaption>", fp);
-        esc(fp, c->models[j]);
-        fputs("</figcaption></figure>\n", fp);
-    }
-    fputs("</div>\n", fp);
-    if (!s || !s->merl)
-        return BF_OK;
-
-    /* MERL: the measurement's theta_h x theta_d image, each model's, and their difference. */
-    size_t npx = (size_t)HD * HD;
-    fputs("<h3>Measurement and models: theta_h (x, 0&ndash;90&deg;) by theta_d (y, downwards), phi_d "
-          "90&deg;</h3>\n<p>Log mapping, 4 decades below each image's maximum. Difference: |log10(model / "
-          "measured)|, black equal, white one decade or more, blue no measured value.</p>\n<div class=\"row\">\n",
-          fp);
-    if ((rc = bf_render_halfdiff_merl(s, HD, HD, 90.0, r->buf2, r->err)) != BF_OK)
-        return rc;
-    memcpy(r->buf, r->buf2, 3 * npx * sizeof *r->buf);
-    bf_tonemap(r->buf, 3 * npx, BF_TONEMAP_LOG, 1.0, 4.0);
-    snprintf(name, sizeof name, "m%d-hd-measured.png", i + 1);
-    fputs("<figure>", fp);
-    if ((rc = image(r, name, HD, HD, r->buf, "measured")) != BF_OK)
-        return rc;
-    fputs("<figcaption>measured</figcaption></figure>\n</div>\n", fp);
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *res = fitted(&m->fits[j]);
-        if (!res)
-            continue;
-        fputs("<div class=\"row\">\n", fp);
-        if ((rc = bf_render_halfdiff_model(res->model, res->x, HD, HD, 90.0, r->buf, r->err)) != BF_OK)
-            return rc;
-        float *diff = r->buf + 3 * npx;
-        memcpy(diff, r->buf, 3 * npx * sizeof *r->buf);
-        difference(diff, r->buf2, npx);
-        bf_tonemap(r->buf, 3 * npx, BF_TONEMAP_LOG, 1.0, 4.0);
-        for (int d = 0; d < 2; d++) {
-            snprintf(name, sizeof name, "m%d-hd-%s-%d.png", i + 1, d ? "diff" : "model", j + 1);
-            fputs("<figure>", fp);
-            if ((rc = image(r, name, HD, HD, r->buf + 3 * npx * (size_t)d, c->models[j])) != BF_OK)
-                return rc;
-            fputs("<figcaption>", fp);
-            esc(fp, c->models[j]);
-            fputs(d ? " &minus; measured" : "", fp);
-            fputs("</figcaption></figure>\n", fp);
-        }
-        fputs("</div>\n", fp);
-    }
     return BF_OK;
 }
 
@@ -440,7 +273,7 @@ static void summary(report *r)
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_summary *s = &c->summary[j];
         fputs("<tr><td class=\"spec\">", fp);
-        esc(fp, c->models[j]);
+        report_esc(fp, c->models[j]);
         fprintf(fp, "</td><td>%d</td>", s->ranked);
         num(fp, s->mean_rank);
         num(fp, s->mean_rank_bic);
@@ -461,7 +294,33 @@ static const char css[] =
     "tr.chosen td{background:#e6f4e6;font-weight:bold}"
     ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
     "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
-    "h2{border-bottom:2px solid #ccc;margin-top:1.5em}";
+    "h2{border-bottom:2px solid #ccc;margin-top:1.5em}"
+    "table.made th,table.made td{text-align:left}";
+
+/* How the report was made, so that it can be made again. */
+static void how_made(report *r)
+{
+    const bf_report_options *o = r->o;
+    FILE *fp = r->fp;
+    fputs("<table class=\"made\">\n<tr><th>tool</th><td>brdfit ", fp);
+    report_esc(fp, bf_version());
+    fputs("</td></tr>\n", fp);
+    if (o->command_line) {
+        fputs("<tr><th>command</th><td><code>", fp);
+        report_esc(fp, o->command_line);
+        fputs("</code></td></tr>\n", fp);
+    }
+    fputs("<tr><th>data options</th><td><code>", fp);
+    report_esc(fp, o->data_options && *o->data_options ? o->data_options : "(none: every sample as read)");
+    fputs("</code></td></tr>\n<tr><th>scene</th><td>", fp);
+    if (o->scene) {
+        fputs("<code>", fp);
+        report_esc(fp, o->scene);
+        fputs("</code>: errors and criteria over its directions, weighted as it weighs them", fp);
+    } else
+        fputs("none: errors over every sample", fp);
+    fputs("</td></tr>\n</table>\n", fp);
+}
 
 static int page(report *r)
 {
@@ -475,12 +334,13 @@ static int page(report *r)
     if (c->residual)
         fprintf(fp, "; fit residual: %s", c->residual);
     fputs(c->interrupted ? ". <b>Interrupted: some fits never ran.</b></p>\n" : ".</p>\n", fp);
+    how_made(r);
     if (c->nmaterials > 1)
         summary(r);
     for (int i = 0; i < c->nmaterials; i++) {
         const bf_compare_material *m = &c->materials[i];
         fprintf(fp, "<h2 id=\"m%d\">", i + 1);
-        esc(fp, m->data);
+        report_esc(fp, m->data);
         fprintf(fp, "</h2>\n<p>%zu samples, %d channel%s.</p>\n", m->samples, m->channels, m->channels == 1 ? "" : "s");
         model_table(r, m);
         fputs("<div class=\"row\">\n", fp);
@@ -488,11 +348,11 @@ static int page(report *r)
         if ((rc = scatter(r, i, m, 0)) != BF_OK || (rc = scatter(r, i, m, 1)) != BF_OK)
             return rc;
         fputs("</div>\n", fp);
-        if ((rc = pictures(r, i, m)) != BF_OK)
+        if ((rc = report_pictures(r, i, m)) != BF_OK)
             return rc;
     }
     fputs("<footer><p>Written by brdfit ", fp);
-    esc(fp, bf_version());
+    report_esc(fp, bf_version());
     fputs(".</p></footer>\n</body>\n</html>\n", fp);
     return BF_OK;
 }
@@ -616,7 +476,13 @@ static void name_target(bf_error *err, const char *tmp, const char *target)
 
 bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
 {
-    if (!c)
+    bf_report_options o = {.samples = samples};
+    return bf_compare_write_report(c, &o, dir, err);
+}
+
+bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err)
+{
+    if (!c || !o)
         return bf_fail(err, BF_ERR_ARG, "report: no comparison");
     int rc = bf_compare_html_check(dir, err);
     if (rc != BF_OK)
@@ -635,12 +501,7 @@ bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples,
     if (bf_temp_create(target, 1, 0777, &tmp, &handle) < 0)
         return bf_fail(err, BF_ERR_IO, "%s: cannot create the report folder: %s", target, strerror(errno));
 
-    report r = {c, samples, tmp, NULL, NULL, NULL, err};
-    size_t big = 3 * (size_t)PLOT_W * PLOT_H; /* the largest picture; >= 2 half-diff images */
-    r.buf = malloc(big * sizeof *r.buf);
-    r.buf2 = malloc(3 * (size_t)HD * HD * sizeof *r.buf2);
-    if (!r.buf || !r.buf2)
-        rc = bf_fail(err, BF_ERR_NOMEM, "report: out of memory");
+    report r = {c, o, tmp, NULL, err};
     bf_outfile mk, index;
     if (rc == BF_OK && (rc = open_in(&r, &mk, BF_REPORT_MARKER)) == BF_OK) {
         fputs("brdfit compare report: this folder is replaced by the next report written here\n", mk.fp);
@@ -654,8 +515,6 @@ bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples,
         else
             bf_outfile_abort(&index);
     }
-    free(r.buf);
-    free(r.buf2);
 
     /* Into place; an old report is removed only once the new one is in. */
     int had = rc == BF_OK ? replaceable(target) : -1;

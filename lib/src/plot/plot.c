@@ -6,6 +6,7 @@
 #include <cairo.h>
 #include <ctype.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +21,16 @@ typedef struct axis_spec {
     char *title;
     int log, integer, fixed;
     double step, lo, hi;
+    plot_ticks *custom; /* ticks given by the caller (plot_axis_ticks), or NULL */
 } axis_spec;
+
+/* A colour bar right of the plot area: what the colours of a raster mean. */
+typedef struct colour_bar {
+    char *title;
+    double lo, hi;
+    int log;
+    unsigned char lut[PLOT_LUT][3];
+} colour_bar;
 
 typedef struct guide {
     int axis;
@@ -36,6 +46,9 @@ struct plot {
     int ng;
     char **notes;
     int nnotes;
+    unsigned char *raster; /* rw x rh RGB bytes over the plot area, or NULL */
+    int rw, rh;
+    colour_bar *bar;       /* or NULL */
 };
 
 /* Text as Cairo can take it: from file names and the command line it may hold invalid
@@ -86,6 +99,12 @@ void plot_free(plot *p)
     free(p->g);
     free(p->axis[0].title);
     free(p->axis[1].title);
+    free(p->axis[0].custom);
+    free(p->axis[1].custom);
+    free(p->raster);
+    if (p->bar)
+        free(p->bar->title);
+    free(p->bar);
     free(p->title);
     free(p);
 }
@@ -115,6 +134,49 @@ void plot_axis_range(plot *p, int axis, double lo, double hi)
     a->fixed = lo < hi && (!a->log || lo > 0.0);
     a->lo = lo;
     a->hi = hi;
+}
+
+int plot_axis_ticks(plot *p, int axis, int n, const double *values, const char *const *labels)
+{
+    axis_spec *a = &p->axis[axis];
+    if (!a->custom && !(a->custom = calloc(1, sizeof *a->custom)))
+        return -1;
+    memset(a->custom, 0, sizeof *a->custom);
+    for (int i = 0; i < n && i < PLOT_MAX_TICKS; i++) {
+        a->custom->value[i] = values[i];
+        snprintf(a->custom->label[i], PLOT_LABEL_LEN, "%s", labels[i]);
+        a->custom->n++;
+    }
+    return 0;
+}
+
+int plot_raster(plot *p, int width, int height, const unsigned char *rgb)
+{
+    unsigned char *r = malloc((size_t)width * (size_t)height * 3);
+    if (!r)
+        return -1;
+    memcpy(r, rgb, (size_t)width * (size_t)height * 3);
+    free(p->raster);
+    p->raster = r;
+    p->rw = width;
+    p->rh = height;
+    return 0;
+}
+
+int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3])
+{
+    colour_bar *b = p->bar ? p->bar : calloc(1, sizeof *b);
+    if (!b)
+        return -1;
+    p->bar = b;
+    free(b->title);
+    if (!(b->title = dup_or_null(title)) && title)
+        return -1;
+    b->lo = lo;
+    b->hi = hi;
+    b->log = log;
+    memcpy(b->lut, lut, sizeof b->lut);
+    return 0;
 }
 
 plot_series *plot_add(plot *p, const char *name, plot_style style, size_t n, const double *x, const double *y)
@@ -291,11 +353,11 @@ static void label_linear(plot_ticks *t, double step)
         fmt_tick(t->value[i], decimals, sci, e, t->label[i], PLOT_LABEL_LEN);
 }
 
-/* Shortest label that reads back as v (to 1e-9), scientific outside [1e-3, 1e5). */
-static void label_value(double v, char *out, size_t size)
+/* Shortest label that reads back as v (to 1e-9): m x 10^{e} when sci, else plain. */
+static void label_as(double v, int sci, char *out, size_t size)
 {
     double a = fabs(v);
-    if (a > 0.0 && (a < 1e-3 || a >= 1e5)) {
+    if (a > 0.0 && sci) {
         int e = (int)floor(log10(a) + 1e-9);
         double m = v / pow(10.0, e);
         char mb[32];
@@ -313,6 +375,13 @@ static void label_value(double v, char *out, size_t size)
     while (d < 12 && fabs(strtod((snprintf(out, size, "%.*f", d, v), out), NULL) - v) > 1e-9 * fmax(a, 1e-300))
         d++;
     minus_sign(out, size);
+}
+
+/* As label_as, scientific outside [1e-3, 1e5). */
+static void label_value(double v, char *out, size_t size)
+{
+    double a = fabs(v);
+    label_as(v, a > 0.0 && (a < 1e-3 || a >= 1e5), out, size);
 }
 
 static void linear_ticks(double lo, double hi, int target, int integer, double step, plot_ticks *t)
@@ -345,6 +414,34 @@ static void linear_ticks(double lo, double hi, int target, int integer, double s
     label_linear(t, step);
 }
 
+/* The labelled 1-2-5 values in [lo, hi] on a log axis: 1 when there are 3 to most. */
+static int log_125(double lo, double hi, int most, plot_ticks *t)
+{
+    static const double m125[3] = {1.0, 2.0, 5.0};
+    memset(t, 0, sizeof *t);
+    int d0 = (int)floor(log10(lo)), d1 = (int)floor(log10(hi));
+    for (int k = d0; k <= d1; k++)
+        for (int j = 0; j < 3; j++) {
+            double v = m125[j] * pow(10.0, k);
+            if (v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12) && t->n < PLOT_MAX_TICKS)
+                t->value[t->n++] = v;
+        }
+    if (t->n < 3 || t->n > most)
+        return 0;
+    /* One notation for the whole axis: 10^{-4} beside 0.001 reads as a mistake. */
+    int sci = t->value[0] < 1e-3 || t->value[t->n - 1] >= 1e5;
+    for (int i = 0; i < t->n; i++)
+        label_as(t->value[i], sci, t->label[i], PLOT_LABEL_LEN);
+    /* Minor ticks at the other whole multiples (3, 4, 6 ... x 10^k). */
+    for (int k = d0; k <= d1; k++)
+        for (int m = 3; m <= 9 && t->nminor < 4 * PLOT_MAX_TICKS; m++) {
+            double v = m * pow(10.0, k);
+            if (m != 5 && v >= lo && v <= hi)
+                t->minor[t->nminor++] = v;
+        }
+    return 1;
+}
+
 void plot_make_ticks(double lo, double hi, int log, int target, int integer, double step, plot_ticks *t)
 {
     memset(t, 0, sizeof *t);
@@ -356,6 +453,11 @@ void plot_make_ticks(double lo, double hi, int log, int target, int integer, dou
     }
     double a = log10(lo), b = log10(hi);
     int d0 = (int)ceil(a - 1e-9), d1 = (int)floor(b + 1e-9), ndec = d1 - d0 + 1;
+    /* Under three decades two or three decade ticks say too little: the labelled 1-2-5
+     * values instead, when they are not too many. */
+    if (ndec >= 2 && b - a < 3.0 && log_125(lo, hi, target + 3, t))
+        return;
+    memset(t, 0, sizeof *t);
     if (ndec >= 2) {
         /* Whole decades, every stride-th (a 1-2-5 stride) when there are many. */
         int stride = 1;
@@ -378,18 +480,8 @@ void plot_make_ticks(double lo, double hi, int log, int target, int integer, dou
         return;
     }
     /* Less than two decades: the 1-2-5 values inside, if there are enough of them. */
-    static const double m125[3] = {1.0, 2.0, 5.0};
-    for (int k = d0 - 1; k <= d1 && t->n < PLOT_MAX_TICKS; k++)
-        for (int j = 0; j < 3; j++) {
-            double v = m125[j] * pow(10.0, k);
-            if (v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12) && t->n < PLOT_MAX_TICKS)
-                t->value[t->n++] = v;
-        }
-    if (t->n >= 3) {
-        for (int i = 0; i < t->n; i++)
-            label_value(t->value[i], t->label[i], PLOT_LABEL_LEN);
+    if (log_125(lo, hi, PLOT_MAX_TICKS, t))
         return;
-    }
     /* A narrow range: linear 1-2-5 ticks of the values. */
     memset(t, 0, sizeof *t);
     linear_ticks(lo, hi, target < 4 ? target : 4, integer, step, t);
@@ -609,6 +701,14 @@ static void layout_with(const plot *p, cairo_t *cr, int width, int height, plot_
     double top = pad + (p->title ? 1.25 * font + pad : 0.0);
     double bottom = pad + tick + 1.3 * tick_font + (p->axis[0].title ? 1.35 * font : 0.0) + p->nnotes * 1.3 * tick_font;
     double right = (l->nlegend && !l->legend_inside ? l->legend_w + 1.2 * font : 0.0) + 1.5 * font;
+    if (p->bar) {
+        /* The bar, its tick labels and its title (turned, reading upwards). */
+        l->colour_bar = 1;
+        plot_make_ticks(p->bar->lo, p->bar->hi, p->bar->log, 5, 0, 0.0, &l->bar_ticks);
+        l->bar_w = 0.9 * font;
+        right += l->bar_w + tick + 0.3 * font + max_label_width(cr, &l->bar_ticks, tick_font) +
+                 (p->bar->title ? 1.3 * font + pad : 0.0);
+    }
     /* Two passes: the y ticks (and so the left margin) depend on the plot height. */
     double left = 4.0 * font;
     for (int pass = 0; pass < 2; pass++) {
@@ -626,10 +726,13 @@ static void layout_with(const plot *p, cairo_t *cr, int width, int height, plot_
                         &l->axis[1].ticks);
         plot_make_ticks(l->axis[0].lo, l->axis[0].hi, l->axis[0].log, tx, p->axis[0].integer, p->axis[0].step,
                         &l->axis[0].ticks);
+        for (int a = 0; a < 2; a++)
+            if (p->axis[a].custom)
+                l->axis[a].ticks = *p->axis[a].custom;
         /* Fewer x ticks when their labels would touch. */
         double xw = max_label_width(cr, &l->axis[0].ticks, tick_font);
         while (l->axis[0].ticks.n > 2 && tx > 2 && xw * l->axis[0].ticks.n * 1.3 > l->x1 - l->x0 &&
-               !(p->axis[0].step > 0.0)) {
+               !(p->axis[0].step > 0.0) && !p->axis[0].custom) {
             tx--;
             plot_make_ticks(l->axis[0].lo, l->axis[0].hi, l->axis[0].log, tx, p->axis[0].integer, 0.0,
                             &l->axis[0].ticks);
@@ -640,6 +743,7 @@ static void layout_with(const plot *p, cairo_t *cr, int width, int height, plot_
     }
     l->legend_x = l->x1 + 1.2 * font;
     l->legend_y = l->y0;
+    l->bar_x = l->x1 + 1.2 * font + (l->nlegend && !l->legend_inside ? l->legend_w + 1.2 * font : 0.0);
     if (l->legend_inside)
         legend_corner(p, l);
 }
@@ -809,6 +913,76 @@ static void span_line(cairo_t *cr, const plot_layout *l, int axis, double v)
     }
 }
 
+/* w x h RGB bytes stretched over a rectangle, each cell a sharp block (no smoothing
+ * between cells: a table's cells stay cells). */
+static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double dw,
+                        double dh)
+{
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(img);
+        return;
+    }
+    cairo_surface_flush(img);
+    unsigned char *d = cairo_image_surface_get_data(img);
+    int stride = cairo_image_surface_get_stride(img);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            const unsigned char *c = rgb + 3 * ((size_t)j * (size_t)w + (size_t)i);
+            uint32_t px = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | (uint32_t)c[2];
+            memcpy(d + (size_t)j * (size_t)stride + 4 * (size_t)i, &px, 4);
+        }
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, dw / w, dh / h);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_rectangle(cr, 0, 0, w, h);
+    cairo_fill(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
+}
+
+static double bar_map(const colour_bar *b, const plot_layout *l, double v)
+{
+    double t = b->log ? (log10(v) - log10(b->lo)) / (log10(b->hi) - log10(b->lo)) : (v - b->lo) / (b->hi - b->lo);
+    return l->y1 - t * (l->y1 - l->y0);
+}
+
+/* The colour bar: the table's colours bottom (lo) to top (hi), framed, ticked on the
+ * right, titled beside its labels. */
+static void draw_colour_bar(cairo_t *cr, const colour_bar *b, const plot_layout *l, double lw)
+{
+    double font = l->font, tick_font = 0.9 * font, tick = 0.4 * font, x = l->bar_x, w = l->bar_w;
+    unsigned char strip[PLOT_LUT * 3];
+    for (int k = 0; k < PLOT_LUT; k++)
+        memcpy(strip + 3 * k, b->lut[PLOT_LUT - 1 - k], 3);
+    draw_raster(cr, strip, 1, PLOT_LUT, x, l->y0, w, l->y1 - l->y0);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, lw);
+    cairo_rectangle(cr, x, l->y0, w, l->y1 - l->y0);
+    cairo_stroke(cr);
+    double widest = 0.0;
+    for (int i = 0; i < l->bar_ticks.n; i++) {
+        double v = bar_map(b, l, l->bar_ticks.value[i]);
+        if (v < l->y0 - 0.5 || v > l->y1 + 0.5)
+            continue;
+        cairo_move_to(cr, x + w, v);
+        cairo_line_to(cr, x + w + tick, v);
+        cairo_stroke(cr);
+        text_size ts = text_at(cr, l->bar_ticks.label[i], tick_font, x + w + tick + 0.3 * font, v, 0.0, 0.5);
+        widest = fmax(widest, ts.width);
+    }
+    if (b->title) {
+        cairo_save(cr);
+        cairo_translate(cr, x + w + tick + 0.3 * font + widest + 0.4 * font, 0.5 * (l->y0 + l->y1));
+        cairo_rotate(cr, -M_PI / 2);
+        text_at(cr, b->title, font, 0.0, 0.0, 0.5, 0.0);
+        cairo_restore(cr);
+    }
+}
+
 static void draw_plot(cairo_t *cr, const plot *p, const plot_layout *l)
 {
     double font = l->font, tick_font = 0.9 * font, tick = 0.4 * font, lw = fmax(1.0, font / 13.0);
@@ -816,13 +990,16 @@ static void draw_plot(cairo_t *cr, const plot *p, const plot_layout *l)
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
 
-    /* Grid at the major ticks, guides, then the series, inside the plot area. */
+    /* A raster, or a grid at the major ticks; guides, then the series, inside the plot
+     * area. */
     cairo_save(cr);
     cairo_rectangle(cr, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
     cairo_clip(cr);
+    if (p->raster)
+        draw_raster(cr, p->raster, p->rw, p->rh, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
     cairo_set_line_width(cr, 0.6 * lw);
     cairo_set_source_rgb(cr, 0.89, 0.89, 0.89);
-    for (int a = 0; a < 2; a++)
+    for (int a = 0; a < 2 && !p->raster; a++)
         for (int i = 0; i < l->axis[a].ticks.n; i++) {
             double v = map(l, a, l->axis[a].ticks.value[i]);
             span_line(cr, l, a, v);
@@ -907,7 +1084,9 @@ static void draw_plot(cairo_t *cr, const plot *p, const plot_layout *l)
             const plot_series *s = p->s[i];
             if (!s->name)
                 continue;
-            double cy = y - 0.33 * tick_font, sw = legend_sample_width(font);
+            /* On a pixel row's centre: a line between two rows would be smeared over
+             * both and look thicker than its neighbours in a PNG. */
+            double cy = floor(y - 0.33 * tick_font) + 0.5, sw = legend_sample_width(font);
             cairo_set_source_rgba(cr, s->rgb[0], s->rgb[1], s->rgb[2], s->alpha < 0.6 ? 0.6 : s->alpha);
             if (s->style & PLOT_LINE) {
                 cairo_set_line_width(cr, 1.6 * lw * s->line_width);
@@ -924,6 +1103,8 @@ static void draw_plot(cairo_t *cr, const plot *p, const plot_layout *l)
             y += 1.45 * tick_font;
         }
     }
+    if (l->colour_bar)
+        draw_colour_bar(cr, p->bar, l, lw);
     draw_labels(cr, p, l, 0.85 * font);
 }
 

@@ -12,8 +12,13 @@
  *    around 0; log: 0.1 decade), then padded by 5% of the span on each side. A range
  *    set with plot_axis_range is used as given (shared scales across plots).
  *  - Ticks: 1-2-5 steps on linear axes; on log axes whole decades labelled 10^{k} when
- *    at least two decades lie in the range (every 2nd, 5th ... when crowded), else the
- *    1-2-5 values of the range, else linear 1-2-5 ticks of the values.
+ *    the range spans three decades or more (every 2nd, 5th ... when crowded), else the
+ *    labelled 1-2-5 values of the range (one notation for the axis) when there are 3 to
+ *    a few more than asked for, else the decades, else linear 1-2-5 ticks of the values.
+ *    Given ticks (plot_axis_ticks) replace them all.
+ *  - Legend sample lines sit on pixel-row centres, so equal lines look equal in a PNG.
+ *  - A raster (plot_raster) fills the plot area in place of the grid, cells kept sharp;
+ *    a colour bar (plot_colour_bar) stands right of the plot area and the legend.
  *  - The legend sits right of the plot area, so it never covers data; a legend wider
  *    than 30% of the figure goes inside, in the corner that covers the fewest points.
  *    Point labels take the first free place around their point. */
@@ -27,6 +32,7 @@
 
 #define PLOT_MAX_TICKS 32
 #define PLOT_LABEL_LEN 48
+#define PLOT_LUT 256 /* entries of a colour bar's table */
 
 enum { PLOT_X = 0, PLOT_Y = 1 };
 typedef enum plot_style { PLOT_LINE = 1, PLOT_MARKERS = 2, PLOT_LINE_MARKERS = 3 } plot_style;
@@ -70,6 +76,9 @@ typedef struct plot_layout {
     int nlegend;                 /* series with a name, in order */
     double legend_x, legend_y, legend_w, legend_h;
     int legend_inside;           /* 1: in a corner of the plot area (a wide legend) */
+    int colour_bar;              /* 1: a colour bar right of the plot area (and legend) */
+    double bar_x, bar_w;
+    plot_ticks bar_ticks;
 } plot_layout;
 
 plot *plot_new(const char *title);
@@ -81,6 +90,17 @@ void plot_axis_integer(plot *p, int axis);
 void plot_axis_step(plot *p, int axis, double step);
 /* A fixed range (data units); lo < hi (on a log axis, 0 < lo). */
 void plot_axis_range(plot *p, int axis, double lo, double hi);
+/* Ticks at n given positions (data units) with the given labels (markup), in place of
+ * the computed ones: an axis whose numbers are not its values (sqrt theta_h, labelled
+ * in degrees). 0, or -1 when out of memory. */
+int plot_axis_ticks(plot *p, int axis, int n, const double *values, const char *const *labels);
+/* An image of width x height RGB bytes (top row first, copied) filling the plot area,
+ * in place of the grid: set both axis ranges to what its edges stand for. Cells stay
+ * sharp blocks when scaled. 0, or -1 when out of memory. */
+int plot_raster(plot *p, int width, int height, const unsigned char *rgb);
+/* A colour bar right of the plot area: lut[0] at lo up to lut[PLOT_LUT-1] at hi, on a
+ * linear or log scale, ticked and titled (markup). 0, or -1 when out of memory. */
+int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3]);
 /* A series (x, y copied); NULL when out of memory. Colour, dash, marker and sizes are
  * set on the returned series; defaults: black, solid, circle, opaque, size 1. */
 plot_series *plot_add(plot *p, const char *name, plot_style style, size_t n, const double *x, const double *y);

@@ -23,6 +23,14 @@ void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3],
 
 static double pixel_angle(int i, int n) { return (i + 0.5) / n * (M_PI / 2); }
 
+/* Columns are even in sqrt(theta_h), as MERL tables index theta_h: the highlight, a few
+ * degrees wide, gets a fair share of the image instead of a few columns. */
+static double column_theta_h(int i, int n)
+{
+    double u = (i + 0.5) / n;
+    return u * u * (M_PI / 2);
+}
+
 static bf_status check_size(int width, int height, double phi_d, bf_error *err)
 {
     if (width < 1 || height < 1)
@@ -56,7 +64,7 @@ bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width
         for (int j = j0; j < j1; j++)
             for (int i = 0; i < width; i++) {
                 size_t q = (size_t)(j - j0) * (size_t)width + (size_t)i;
-                bf_halfdiff_dirs(pixel_angle(i, width), pixel_angle(j, height), pd, L + 3 * q, V + 3 * q);
+                bf_halfdiff_dirs(column_theta_h(i, width), pixel_angle(j, height), pd, L + 3 * q, V + 3 * q);
             }
         bf_geometry *g;
         if ((status = bf_geometry_from_vectors(n, L, V, &g, err)) != BF_OK)
@@ -106,7 +114,7 @@ bf_status bf_render_halfdiff_merl(const bf_samples *s, int width, int height, do
     for (int j = 0; j < height; j++) {
         int jd = (int)floor(pixel_angle(j, height) / (M_PI / 2) * BF_MERL_TD);
         for (int i = 0; i < width; i++) {
-            int ih = (int)floor(sqrt(pixel_angle(i, width) / (M_PI / 2)) * BF_MERL_TH);
+            int ih = (int)floor(sqrt(column_theta_h(i, width) / (M_PI / 2)) * BF_MERL_TH);
             size_t q = (size_t)j * (size_t)width + (size_t)i;
             int32_t smp = sample_of[k + jd * BF_MERL_PD + ih * BF_MERL_PD * BF_MERL_TD];
             double c[3] = {0.0, 0.0, 0.0};

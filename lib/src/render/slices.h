@@ -16,7 +16,7 @@ typedef struct slice_data {
 } slice_data;
 
 bf_status slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err);
-void slice_data_free(slice_data *d);
+void slice_data_clear(slice_data *d);
 /* The plot bf_render_slice writes. */
 bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
                      bf_slice_range *range, bf_error *err);

@@ -1,0 +1,157 @@
+/* Half/difference figures (lib/src/render/halfdiff_figure.c) and the data-chosen
+ * exposure: a model against itself differs by exactly 0 everywhere and shows exactly
+ * the scale's white centre; the signed difference says which side is brighter; the
+ * shared log scale comes from the measurement; a sphere's exposure is its percentile. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "brdfit/render.h"
+#include "render/halfdiff_figure.h"
+#include "support.h"
+
+enum { W = 90, H = 60 };
+
+/* A model's image, as the report makes it: the mean of the channels per pixel. */
+static double *model_image(const char *spec)
+{
+    bf_model *m = ts_model(spec, 3);
+    double x[16];
+    assert_true(bf_model_nvalues(m) <= 16);
+    bf_model_defaults(m, x);
+    float *rgb = malloc((size_t)W * H * 3 * sizeof *rgb);
+    double *v = malloc((size_t)W * H * sizeof *v);
+    bf_error err;
+    assert_int_equal(bf_render_halfdiff_model(m, x, W, H, 90.0, rgb, &err), BF_OK);
+    halfdiff_mean(rgb, (size_t)W * H, v);
+    free(rgb);
+    bf_model_free(m);
+    return v;
+}
+
+static void test_self_difference_is_centre(void **state)
+{
+    (void)state;
+    double *v = model_image("walter"), *r = malloc((size_t)W * H * sizeof *r);
+    halfdiff_log2_ratio(v, v, (size_t)W * H, r);
+    unsigned char *px = malloc((size_t)W * H * 3);
+    halfdiff_ratio_raster(r, W, H, 2.0, px);
+    size_t valid = 0;
+    for (size_t p = 0; p < (size_t)W * H; p++) {
+        if (!(v[p] > 0.0)) { /* nothing to compare: the "no value" grey, never white */
+            assert_true(isnan(r[p]));
+            assert_int_equal(px[3 * p], HALFDIFF_NONE);
+            continue;
+        }
+        valid++;
+        assert_true(r[p] == 0.0);
+        assert_int_equal(px[3 * p], 255);
+        assert_int_equal(px[3 * p + 1], 255);
+        assert_int_equal(px[3 * p + 2], 255);
+    }
+    assert_true(valid > (size_t)W * H / 2);
+    /* The figure: a raster with a colour bar from -2 to 2, titled. */
+    plot *p = halfdiff_ratio_figure(r, W, H, "walter vs walter", 2.0);
+    assert_non_null(p);
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 340, 280, &l), 0);
+    assert_int_equal(l.colour_bar, 1);
+    assert_true(l.bar_ticks.n >= 3);
+    assert_true(l.bar_ticks.value[0] >= -2.0 && l.bar_ticks.value[l.bar_ticks.n - 1] <= 2.0);
+    /* theta_h ticks in degrees on the sqrt axis: 45 degrees sits at sqrt(1/2). */
+    int at45 = 0;
+    for (int i = 0; i < l.axis[PLOT_X].ticks.n; i++)
+        if (!strcmp(l.axis[PLOT_X].ticks.label[i], "45\xc2\xb0"))
+            at45 = fabs(l.axis[PLOT_X].ticks.value[i] - sqrt(0.5)) < 1e-12;
+    assert_true(at45);
+    plot_free(p);
+    free(px);
+    free(r);
+    free(v);
+}
+
+/* Signed: a brighter model is red (more red than blue), a darker one blue, and the
+ * colour saturates beyond the span. */
+static void test_signed_difference(void **state)
+{
+    (void)state;
+    const double model[4] = {2.0, 0.5, 64.0, 0.0}, meas[4] = {1.0, 1.0, 1.0, 1.0};
+    double r[4];
+    halfdiff_log2_ratio(model, meas, 4, r);
+    assert_true(r[0] == 1.0 && r[1] == -1.0 && r[2] == 6.0 && isinf(r[3]) && r[3] < 0);
+    unsigned char c[3], d[3];
+    halfdiff_diverging(r[0] / 2.0, c);
+    assert_true(c[0] > c[2]);
+    halfdiff_diverging(r[1] / 2.0, c);
+    assert_true(c[2] > c[0]);
+    halfdiff_diverging(r[2] / 2.0, c);
+    halfdiff_diverging(1.0, d);
+    assert_memory_equal(c, d, 3);
+    halfdiff_diverging(-INFINITY, c);
+    halfdiff_diverging(-1.0, d);
+    assert_memory_equal(c, d, 3);
+}
+
+/* The shared log scale: from the measurement's percentile, 4 decades down; models drawn
+ * with it keep it (the same numbers on every panel's colour bar). */
+static void test_shared_scale(void **state)
+{
+    (void)state;
+    double v[1000];
+    for (int i = 0; i < 1000; i++)
+        v[i] = i < 10 ? 0.0 : (double)i; /* zeros: no value */
+    double lo, hi;
+    assert_int_equal(halfdiff_log_range(v, 1000, 100.0, 4.0, &lo, &hi), 0);
+    assert_true(hi == log10(999.0) && lo == hi - 4.0);
+    assert_int_equal(halfdiff_log_range(v, 1000, 50.0, 4.0, &lo, &hi), 0);
+    assert_true(fabs(hi - log10(505.0)) < 0.01);
+    double zero[3] = {0, 0, 0};
+    assert_int_equal(halfdiff_log_range(zero, 3, 99.0, 4.0, &lo, &hi), -1);
+    double *a = model_image("walter"), *b = model_image("lambert");
+    assert_int_equal(halfdiff_log_range(a, (size_t)W * H, 99.0, 4.0, &lo, &hi), 0);
+    plot *pa = halfdiff_value_figure(a, W, H, "a", lo, hi), *pb = halfdiff_value_figure(b, W, H, "b", lo, hi);
+    plot_layout la, lb;
+    assert_int_equal(plot_layout_compute(pa, 340, 280, &la), 0);
+    assert_int_equal(plot_layout_compute(pb, 340, 280, &lb), 0);
+    assert_int_equal(la.bar_ticks.n, lb.bar_ticks.n);
+    for (int i = 0; i < la.bar_ticks.n; i++)
+        assert_string_equal(la.bar_ticks.label[i], lb.bar_ticks.label[i]);
+    plot_free(pa);
+    plot_free(pb);
+    free(a);
+    free(b);
+}
+
+/* The exposure: 1 / the percentile of the brightest channel of the lit pixels. */
+static void test_exposure(void **state)
+{
+    (void)state;
+    float rgb[3 * 101];
+    for (int p = 0; p < 101; p++) {
+        rgb[3 * p] = p == 0 ? 0.0f : 0.01f * (float)p; /* 0: background, left out */
+        rgb[3 * p + 1] = 0.0f;
+        rgb[3 * p + 2] = 0.5f * rgb[3 * p];
+    }
+    /* 100 lit pixels 0.01 .. 1.00: the 50th percentile is 0.505. */
+    ts_assert_near(bf_exposure_percentile(rgb, 101, 50.0), 1.0 / 0.505, 1e-5, 0, "median exposure");
+    ts_assert_near(bf_exposure_percentile(rgb, 101, 100.0), 1.0, 1e-6, 0, "max exposure");
+    float dark[6] = {0};
+    assert_true(bf_exposure_percentile(dark, 2, 99.0) == 1.0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_self_difference_is_centre),
+        cmocka_unit_test(test_signed_difference),
+        cmocka_unit_test(test_shared_scale),
+        cmocka_unit_test(test_exposure),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
