@@ -125,21 +125,17 @@ static int parse_subsample(data_options *o, const char *v, const char *cmd)
 static int parse_choice(data_options *o, const char *a, const char *v, const char *cmd)
 {
     double d;
-    if (!strcmp(a, "--color")) {
-        int c = bf_color_from_name(v);
-        if (c < 0) {
-            fprintf(stderr, "%s: --color takes srgb, acescg or xyz, got '%s'\n", cmd, v);
+    int is_color = !strcmp(a, "--color");
+    if (is_color || !strcmp(a, "--illuminant")) {
+        int k = is_color ? bf_color_from_name(v) : bf_illuminant_from_name(v);
+        if (k < 0) {
+            fprintf(stderr, "%s: %s takes %s, got '%s'\n", cmd, a, is_color ? "srgb, acescg or xyz" : "d65, e, a or d50",
+                    v);
             return -1;
         }
-        return set_spectral(o, "--color", (bf_color)c, cmd);
-    }
-    if (!strcmp(a, "--illuminant")) {
-        int i = bf_illuminant_from_name(v);
-        if (i < 0) {
-            fprintf(stderr, "%s: --illuminant takes d65, e, a or d50, got '%s'\n", cmd, v);
-            return -1;
-        }
-        o->prep.illuminant = (bf_illuminant)i;
+        if (is_color)
+            return set_spectral(o, "--color", (bf_color)k, cmd);
+        o->prep.illuminant = (bf_illuminant)k;
         return 1;
     }
     if (!strcmp(a, "--format")) {

@@ -35,6 +35,15 @@ static void apply(const double *w, int n, const double *v, double out[3])
     }
 }
 
+/* The XYZ weights and those of space c on the Cornell grid, under D65. */
+static void d65_weights(bf_color c, double *w_xyz, double *w_c)
+{
+    double wl[NW];
+    grid(wl);
+    assert_int_equal(bf_color_weights(wl, NW, BF_COLOR_XYZ, BF_ILLUMINANT_D65, w_xyz, NULL), BF_OK);
+    assert_int_equal(bf_color_weights(wl, NW, c, BF_ILLUMINANT_D65, w_c, NULL), BF_OK);
+}
+
 static void test_white_points(void **state)
 {
     (void)state;
@@ -49,8 +58,10 @@ static void test_white_points(void **state)
     static const struct {
         bf_illuminant ill;
         double x, y;
-    } ref[] = {{BF_ILLUMINANT_D65, 0.31272, 0.32903}, {BF_ILLUMINANT_A, 0.44757, 0.40745},
-               {BF_ILLUMINANT_D50, 0.34567, 0.35850}, {BF_ILLUMINANT_E, 1.0 / 3.0, 1.0 / 3.0}};
+    } ref[] = {{BF_ILLUMINANT_D65, 0.31272, 0.32903},
+               {BF_ILLUMINANT_A, 0.44757, 0.40745},
+               {BF_ILLUMINANT_D50, 0.34567, 0.35850},
+               {BF_ILLUMINANT_E, 1.0 / 3.0, 1.0 / 3.0}};
     for (size_t r = 0; r < sizeof ref / sizeof ref[0]; r++) {
         assert_int_equal(bf_color_weights(wl, 95, BF_COLOR_XYZ, ref[r].ill, w, NULL), BF_OK);
         apply(w, 95, one, X);
@@ -88,10 +99,8 @@ static void test_srgb_matrix(void **state)
     (void)state;
     /* Three narrow spectra give three independent XYZ; their sRGB must be the
      * published matrix applied to their XYZ. */
-    double wl[NW], w_xyz[3 * NW], w_rgb[3 * NW];
-    grid(wl);
-    assert_int_equal(bf_color_weights(wl, NW, BF_COLOR_XYZ, BF_ILLUMINANT_D65, w_xyz, NULL), BF_OK);
-    assert_int_equal(bf_color_weights(wl, NW, BF_COLOR_SRGB, BF_ILLUMINANT_D65, w_rgb, NULL), BF_OK);
+    double w_xyz[3 * NW], w_rgb[3 * NW];
+    d65_weights(BF_COLOR_SRGB, w_xyz, w_rgb);
     static const double M[9] = {3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570};
     for (int probe = 0; probe < 3; probe++) {
         double v[NW] = {0}, X[3], rgb[3];
@@ -152,12 +161,10 @@ static void test_colorchecker(void **state)
 static void test_acescg(void **state)
 {
     (void)state;
-    double wl[NW], w_xyz[3 * NW], w_ap1[3 * NW];
-    grid(wl);
-    assert_int_equal(bf_color_weights(wl, NW, BF_COLOR_XYZ, BF_ILLUMINANT_D65, w_xyz, NULL), BF_OK);
-    assert_int_equal(bf_color_weights(wl, NW, BF_COLOR_ACESCG, BF_ILLUMINANT_D65, w_ap1, NULL), BF_OK);
+    double w_xyz[3 * NW], w_ap1[3 * NW];
+    d65_weights(BF_COLOR_ACESCG, w_xyz, w_ap1);
     static const double M[9] = {1.6410234, -0.3248033, -0.2364247, -0.6636629, 1.6153316,
-                                0.0167563, 0.0117219, -0.0082844, 0.9883949};
+                                0.0167563, 0.0117219,  -0.0082844, 0.9883949};
     static const double B[9] = {0.8951, 0.2664, -0.1614, -0.7502, 1.7135, 0.0367, 0.0389, -0.0685, 1.0296};
     static const double Bi[9] = {0.9869929, -0.1470543, 0.1599627, 0.4323053, 0.5183603,
                                  0.0492912, -0.0085287, 0.0400428, 0.9684867};

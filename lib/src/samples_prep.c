@@ -62,6 +62,19 @@ static void free_names(char **names, int K)
     free(names);
 }
 
+/* New arrays for three output channels with the given names (to_bands, to_color). */
+static int alloc_three(size_t n, const char *const name[3], double **vals, char ***names, bf_error *err)
+{
+    int rc = alloc_channels(n, 3, vals, names, err);
+    for (int k = 0; rc == BF_OK && k < 3; k++)
+        if (!((*names)[k] = strdup(name[k]))) {
+            free(*vals);
+            free_names(*names, 3);
+            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
+        }
+    return rc;
+}
+
 /* Replaces the channels of s (taking ownership). The MERL origin no longer describes
  * the data, so it goes. */
 static void set_channels(bf_samples *s, int K, double *vals, char **names, double *wl)
@@ -264,16 +277,9 @@ static int to_bands(bf_samples *s, bf_error *err)
             count[band[c]]++;
     double *vals;
     char **names;
-    if ((rc = alloc_channels(s->n, 3, &vals, &names, err)) != BF_OK)
-        goto done;
     static const char *const rgb[3] = {"r", "g", "b"};
-    for (int b = 0; b < 3; b++)
-        if (!(names[b] = strdup(rgb[b]))) {
-            free(vals);
-            free_names(names, 3);
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
-            goto done;
-        }
+    if ((rc = alloc_three(s->n, rgb, &vals, &names, err)) != BF_OK)
+        goto done;
     for (size_t i = 0; i < s->n; i++) {
         const double *v = s->value + i * (size_t)C;
         double *o = vals + 3 * i;
@@ -311,17 +317,10 @@ static int to_color(bf_samples *s, bf_color space, bf_illuminant ill, bf_error *
                      list_names(s, listbuf, sizeof listbuf));
         goto done;
     }
-    if ((rc = bf_color_weights(wl, C, space, ill, w, err)) != BF_OK ||
-        (rc = alloc_channels(s->n, 3, &vals, &names, err)) != BF_OK)
-        goto done;
     static const char *const rgb[3] = {"r", "g", "b"}, *const xyz[3] = {"X", "Y", "Z"};
-    for (int k = 0; k < 3; k++)
-        if (!(names[k] = strdup((space == BF_COLOR_XYZ ? xyz : rgb)[k]))) {
-            free(vals);
-            free_names(names, 3);
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
-            goto done;
-        }
+    if ((rc = bf_color_weights(wl, C, space, ill, w, err)) != BF_OK ||
+        (rc = alloc_three(s->n, space == BF_COLOR_XYZ ? xyz : rgb, &vals, &names, err)) != BF_OK)
+        goto done;
     for (size_t i = 0; i < s->n; i++) {
         const double *v = s->value + i * (size_t)C;
         for (int k = 0; k < 3; k++) {

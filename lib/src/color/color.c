@@ -49,14 +49,10 @@ int bf_illuminant_from_name(const char *name)
 static double illuminant(bf_illuminant ill, const bf_cie_row *r)
 {
     switch (ill) {
-    case BF_ILLUMINANT_E:
-        return 100.0;
-    case BF_ILLUMINANT_A:
-        return bf_cie_illuminant_a(r->nm);
-    case BF_ILLUMINANT_D50:
-        return r->d50;
-    default:
-        return r->d65;
+    case BF_ILLUMINANT_E: return 100.0;
+    case BF_ILLUMINANT_A: return bf_cie_illuminant_a(r->nm);
+    case BF_ILLUMINANT_D50: return r->d50;
+    default: return r->d65;
     }
 }
 
