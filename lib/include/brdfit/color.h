@@ -32,8 +32,8 @@ int bf_illuminant_from_name(const char *name);
 
 /* The linear map from a reflectance spectrum sampled at n wavelengths (nm, any order,
  * distinct, n >= 2, at least one inside 360-830 nm) to the three outputs of space c:
- * out[k] = sum_i w[k * n + i] v[i]. The spectrum is interpolated linearly between the
- * given wavelengths and held at its end values outside them, over the CIE table's 360-
+ * out[k] = sum_i w[k * n + i] v[i]. The spectrum is interpolated between the given
+ * wavelengths (cubic Lagrange on the four nearest) and held at its end values outside them, over the CIE table's 360-
  * 830 nm every 5 nm. Normalised as reflectance: a flat spectrum of 1 gives Y = 1 (the
  * illuminant's white) in XYZ and, after Bradford adaptation from the illuminant's
  * white to the space's white, (1, 1, 1) in sRGB and ACEScg. Errors: bad wavelengths,
