@@ -23,7 +23,11 @@ static const cli_option reading[] = {
 };
 static const cli_option preprocessing[] = {
     {"--channels", 0, "NAME|INDEX,...", "keep these channels, in this order", NULL},
-    {"--rgb", 0, NULL, "spectral data to three bands", NULL},
+    {"--rgb", 0, NULL, "spectral data to linear sRGB (CIE 1931 2 deg, D65; --color srgb)", NULL},
+    {"--color", 0, "srgb|acescg|xyz", "spectral data to this colour space (docs/colour.md)", NULL},
+    {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb (default d65)", NULL},
+    {"--rgb-bands", 0, NULL, "spectral data to three band means (600-700, 500-600,\n"
+                             "400-500 nm; not colorimetric: the old --rgb)", NULL},
     {"--luminance", 0, NULL, "spectral or RGB data to one channel", NULL},
     {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL},
     {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL},
@@ -35,6 +39,27 @@ static const cli_option preprocessing[] = {
 const cli_group data_options_reading = CLI_GROUP("reading", reading);
 const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
 
+/* What spectral data becomes: --rgb, --color, --rgb-bands and --luminance each choose
+ * it, so two of them exclude each other (--rgb with --color srgb repeats one choice).
+ * Returns 1, or -1 after the error. */
+static int set_spectral(data_options *o, const char *opt, bf_color color, const char *cmd)
+{
+    const char *prev = o->spectral_opt;
+    int same = prev && color != BF_COLOR_NONE && o->prep.color == color;
+    if (prev && strcmp(prev, opt) && !same) {
+        fprintf(stderr, "%s: %s and %s exclude each other\n", cmd, prev, opt);
+        return -1;
+    }
+    o->spectral_opt = opt;
+    if (color != BF_COLOR_NONE)
+        o->prep.color = color;
+    else if (!strcmp(opt, "--rgb-bands"))
+        o->prep.to_bands = 1;
+    else
+        o->prep.to_luminance = 1;
+    return 1;
+}
+
 /* The flags: 1 when a was one of them, -1 after an error, 0 when it is not a flag. */
 static int parse_flag(data_options *o, const char *a, const char *cmd)
 {
@@ -42,14 +67,13 @@ static int parse_flag(data_options *o, const char *a, const char *cmd)
         o->read.csv.radians = 1;
         return 1;
     }
-    if (strcmp(a, "--rgb") && strcmp(a, "--luminance"))
-        return 0;
-    *(a[2] == 'r' ? &o->prep.to_rgb : &o->prep.to_luminance) = 1;
-    if (o->prep.to_rgb && o->prep.to_luminance) {
-        fprintf(stderr, "%s: --rgb and --luminance exclude each other\n", cmd);
-        return -1;
-    }
-    return 1;
+    if (!strcmp(a, "--rgb"))
+        return set_spectral(o, "--rgb", BF_COLOR_SRGB, cmd);
+    if (!strcmp(a, "--rgb-bands"))
+        return set_spectral(o, "--rgb-bands", BF_COLOR_NONE, cmd);
+    if (!strcmp(a, "--luminance"))
+        return set_spectral(o, "--luminance", BF_COLOR_NONE, cmd);
+    return 0;
 }
 
 /* --angles TI,PI,TO,PO: four names, kept in o->angles_buf. */
@@ -99,10 +123,23 @@ static int parse_subsample(data_options *o, const char *v, const char *cmd)
     return 1;
 }
 
-/* --format, --max-theta and --negative: a value from a fixed set or range. */
+/* --color, --illuminant, --format, --max-theta and --negative: a value from a fixed set or range. */
 static int parse_choice(data_options *o, const char *a, const char *v, const char *cmd)
 {
     double d;
+    int is_color = !strcmp(a, "--color");
+    if (is_color || !strcmp(a, "--illuminant")) {
+        int k = is_color ? bf_color_from_name(v) : bf_illuminant_from_name(v);
+        if (k < 0) {
+            fprintf(stderr, "%s: %s takes %s, got '%s'\n", cmd, a, is_color ? "srgb, acescg or xyz" : "d65, e, a or d50",
+                    v);
+            return -1;
+        }
+        if (is_color)
+            return set_spectral(o, "--color", (bf_color)k, cmd);
+        o->prep.illuminant = (bf_illuminant)k;
+        return 1;
+    }
     if (!strcmp(a, "--format")) {
         int f = bf_format_from_name(v);
         if (f < 0) {

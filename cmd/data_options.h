@@ -13,6 +13,8 @@ typedef struct data_options {
     bf_prep prep;
     char angles_buf[256]; /* storage for --angles names */
     const char *scene;    /* --scene FILE (brdfit/scene.h), read when data is loaded; NULL: none */
+    const char *spectral_opt; /* the option that chose what spectral data becomes
+                                 (--rgb, --color, --rgb-bands, --luminance); NULL: none */
     int subsample_given;  /* --subsample was on the command line (an --accuracy preset's
                              subsample then gives way) */
 } data_options;

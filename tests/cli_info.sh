@@ -43,6 +43,23 @@ expect 2 "--negative takes" "$tmp/s.csv" --negative maybe
 expect 1 "unknown channel 'q'" "$tmp/s.csv" --channels q
 expect 1 "no sample left" "$tmp/s.csv" --max-theta 5
 expect 1 "s.csv: cannot make RGB" "$tmp/s.csv" --rgb
+expect 1 "s.csv: cannot make RGB" "$tmp/s.csv" --rgb-bands
 expect 1 "missing.csv" "$tmp/missing.csv"
+
+# Colour: a flat spectrum (wavelength columns) is neutral in sRGB under any illuminant,
+# Y = 1 in XYZ; the spectral options exclude each other.
+cat > "$tmp/flat.csv" <<'CSV'
+theta_i,phi_i,theta_o,phi_o,400,500,600,700
+10,0,10,180,0.5,0.5,0.5,0.5
+CSV
+"$BRDFIT" info "$tmp/flat.csv" --rgb --illuminant a --json |
+  jq -e '.channels == ["r","g","b"] and ([.values[].mean | . - 0.5 | fabs < 1e-12] | all)' >/dev/null &&
+  ok || bad "flat spectrum not neutral"
+"$BRDFIT" info "$tmp/flat.csv" --color xyz --json |
+  jq -e '.channels == ["X","Y","Z"] and (.values[1].mean - 0.5 | fabs < 1e-12)' >/dev/null && ok || bad "flat Y"
+expect 2 "--rgb and --rgb-bands exclude each other" "$tmp/flat.csv" --rgb --rgb-bands
+expect 2 "--color and --luminance exclude each other" "$tmp/flat.csv" --color xyz --luminance
+expect 2 "--color takes srgb, acescg or xyz" "$tmp/flat.csv" --color rec2020
+expect 1 "applies only to a colour conversion" "$tmp/flat.csv" --illuminant e
 
 finish

@@ -41,7 +41,7 @@ static bf_samples *read_cornell(const char *name)
         fail_msg("%s", err.msg);
     bf_prep p;
     memset(&p, 0, sizeof p);
-    p.to_rgb = 1;
+    p.color = BF_COLOR_SRGB;
     if (bf_samples_prep(s, &p, NULL, &err) != BF_OK)
         fail_msg("%s: %s", name, err.msg);
     assert_int_equal(s->channels, 3);

@@ -81,6 +81,11 @@ static const truth_case cases[] = {
     {"microfacet", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
     {"walter:fresnel=dielectric", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 1.6}, 1},
     {"microfacet:D=beckmann,G=smith_ggx", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
+    /* Metals: gold-like and copper-like reflectivity r and edge tint g per channel. */
+    {"microfacet:F=conductor",
+     {0.05, 0.03, 0.01, 0.9, 0.9, 0.9, 0.2, 0.944, 0.776, 0.373, 0.998, 0.981, 0.751}, 1},
+    {"walter:fresnel=conductor",
+     {0.04, 0.02, 0.02, 0.8, 0.8, 0.8, 0.1, 0.955, 0.638, 0.538, 0.999, 0.983, 0.949}, 1},
     {"cook_torrance:lobes=2", {0.4, 0.35, 0.3, 0.7, 0.6, 0.5, 0.1, 0.2, 0.3, 0.3, 0.3, 0.4, 0.05}, 1},
     {"lafortune:lobes=2",
      {0.3, 0.3, 0.35, 0.5, 0.45, 0.4, -0.9, 0.7, 30, 0.2, 0.2, 0.2, -0.5, 0.9, 4}, 16},
@@ -332,7 +337,8 @@ static void test_recover_noiseless_nlopt(void **state)
  * likelihood and the fit's standard errors are the parameters' own spread. Tolerance:
  * 5 standard errors (a normal deviate beyond 5 sigma has probability 6e-7; the largest
  * of the ~250 checked here is 3.5 sigma). For every model but Disney the standard
- * errors are also below 1% of the truth, so the bound is within 5% of the truth.
+ * errors are also below 1% of the truth (2% for a conductor's edge tint), so the bound
+ * is within 5% (10%) of the truth.
  * (With the linear residual the same data give up to 30% error on a dark diffuse
  * channel under a bright lobe: large values carry large absolute noise.) Disney's
  * sheen_tint and clearcoat are weakly determined (standard errors up to 6%), so Disney
@@ -358,7 +364,10 @@ static void test_recover_noisy(void **state)
             for (int c = 0; c < (pi->colour ? NCH : 1); c++) {
                 int k = off + c;
                 double se = r.stderr_[k], want = t->x[k], e = fabs(r.x[k] - want);
-                if (!(se > 0.0) || !(e <= 5.0 * se) || (!disney && !(se <= 0.01 * fabs(want))))
+                /* A conductor's edge tint shows only where V.H is small (grazing
+                 * half-angles, few samples): standard errors up to 1.3%. */
+                double within = pi->role == BF_ROLE_EDGE_TINT ? 0.02 : 0.01;
+                if (!(se > 0.0) || !(e <= 5.0 * se) || (!disney && !(se <= within * fabs(want))))
                     fail_msg("%s %s[%d]: fit %.8g, truth %g, standard error %.3g", t->spec, pi->name, c,
                              r.x[k], want, se);
             }

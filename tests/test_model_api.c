@@ -29,7 +29,7 @@ static void test_bad_specs(void **state)
     expect_error("", 1, "empty model name");
     expect_error("lambert", 0, "channel count");
     expect_error("lambert:lobes=2", 1, "does not accept lobes");
-    expect_error("walter:fresnel=metal", 1, "no value 'metal' (one of schlick|dielectric|none)");
+    expect_error("walter:fresnel=metal", 1, "no value 'metal' (one of schlick|dielectric|none|conductor)");
     expect_error("walter:colour=red", 1, "has no option 'colour'");
     expect_error("walter:fresnel", 1, "is not key=value");
     expect_error("walter:fresnel=none,fresnel=none", 1, "given twice");

@@ -175,7 +175,7 @@ static void assert_rgb(bf_samples *s, double r, double g, double b)
 static void test_rgb_by_wavelength(void **state)
 {
     (void)state;
-    bf_prep p = {.to_rgb = 1};
+    bf_prep p = {.to_bands = 1};
     /* 400..700 nm as Cornell: b = 400..490 (mean 445), g = 500..590 (545), r = 600..700 (650). */
     bf_samples *s = make_spectral(31, 400, 1);
     give_origin(s);
@@ -207,7 +207,7 @@ static void test_rgb_by_index_groups(void **state)
     (void)state;
     /* 7 channels c0..c6 (value = index for sample 0): b = {0,1}, g = {2,3}, r = {4,5,6}. */
     bf_samples *s = make(2, 7);
-    bf_prep p = {.to_rgb = 1};
+    bf_prep p = {.to_bands = 1};
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     assert_int_equal(s->channels, 3);
     assert_true(s->value[0] == 5.0 && s->value[1] == 2.5 && s->value[2] == 0.5);
@@ -218,7 +218,7 @@ static void test_rgb_by_index_groups(void **state)
 static void test_rgb_errors(void **state)
 {
     (void)state;
-    bf_prep p = {.to_rgb = 1};
+    bf_prep p = {.to_bands = 1};
     bf_error err;
     bf_samples *s = make(1, 3); /* already r, g, b */
     assert_int_equal(bf_samples_prep(s, &p, NULL, &err), BF_ERR_ARG);
@@ -268,7 +268,7 @@ static void test_luminance(void **state)
     bf_samples_free(s);
     /* Spectral -> RGB -> Rec. 709 luminance. */
     s = make_spectral(31, 400, 1);
-    p.to_rgb = 1;
+    p.to_bands = 1;
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     ts_assert_rel(s->value[0], 0.2126 * 650 + 0.7152 * 545 + 0.0722 * 445, 1e-15, "spectral Y");
     bf_samples_free(s);

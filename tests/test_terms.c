@@ -48,11 +48,65 @@ static void test_dielectric_ior_one(void **state)
     bf_model_free(m);
 }
 
+/* Conductor Fresnel for a complex index by the real-arithmetic form (Born & Wolf; as in
+ * Lazanyi & Szirmay-Kalos 2005), independent of the complex-number code under test. */
+static double conductor_ref(double c, double n, double k)
+{
+    double s2 = 1.0 - c * c, t = n * n - k * k - s2;
+    double ab = sqrt(t * t + 4.0 * n * n * k * k); /* a^2 + b^2 */
+    double a = sqrt(0.5 * (ab + t));
+    double Rs = (ab - 2.0 * a * c + c * c) / (ab + 2.0 * a * c + c * c);
+    double st = s2 / c; /* sin tan */
+    double Rp = Rs * (ab - 2.0 * a * st + st * st) / (ab + 2.0 * a * st + st * st);
+    return 0.5 * (Rs + Rp);
+}
+
+static void test_conductor(void **state)
+{
+    (void)state;
+    /* Gold-like reflectivity and edge tint per channel (illustrative values). */
+    const double r[3] = {0.944, 0.776, 0.373}, g[3] = {0.998, 0.981, 0.751};
+    for (int ch = 0; ch < 3; ch++) {
+        double n, k;
+        bf_conductor_nk(r[ch], g[ch], &n, &k, NULL);
+        /* The mapping keeps the normal reflectance at r. */
+        ts_assert_near(((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), r[ch], 1e-13, 0.0, "F(0) of n, k");
+        ts_assert_near(bf_conductor(1.0, r[ch], g[ch], NULL, NULL), r[ch], 1e-13, 0.0, "F at normal incidence");
+        for (double c = 0.05; c < 1.0; c += 0.1)
+            ts_assert_near(bf_conductor(c, r[ch], g[ch], NULL, NULL), conductor_ref(c, n, k), 1e-12, 0.0,
+                           "complex vs real form");
+        ts_assert_near(bf_conductor(0.0, r[ch], g[ch], NULL, NULL), 1.0, 0.0, 1e-15, "grazing");
+    }
+    /* g = 1: n = (1 - r)/(1 + r) and k = 2 sqrt(r)/(1 + r); g -> 0: k -> 0, n -> the
+     * dielectric index (1 + sqrt r)/(1 - sqrt r). */
+    double n, k;
+    bf_conductor_nk(0.64, 1.0, &n, &k, NULL);
+    ts_assert_near(n, 0.36 / 1.64, 1e-14, 0.0, "n at g = 1");
+    ts_assert_near(k, 1.6 / 1.64, 1e-14, 0.0, "k at g = 1");
+    bf_conductor_nk(0.64, 1e-3, &n, &k, NULL);
+    ts_assert_near(n, 1e-3 * 0.36 / 1.64 + 0.999 * 9.0, 1e-14, 0.0, "n near g = 0");
+    assert_true(k > 0.0 && k < 0.4);
+    /* The derivatives of the mapping against central differences. */
+    double d[4];
+    bf_conductor_nk(0.7, 0.6, &n, &k, d);
+    const double h = 1e-6;
+    double np, kp, nm, km;
+    bf_conductor_nk(0.7 + h, 0.6, &np, &kp, NULL);
+    bf_conductor_nk(0.7 - h, 0.6, &nm, &km, NULL);
+    ts_assert_near(d[0], (np - nm) / (2 * h), 1e-7, 0.0, "dn/dr");
+    ts_assert_near(d[2], (kp - km) / (2 * h), 1e-7, 0.0, "dk/dr");
+    bf_conductor_nk(0.7, 0.6 + h, &np, &kp, NULL);
+    bf_conductor_nk(0.7, 0.6 - h, &nm, &km, NULL);
+    ts_assert_near(d[1], (np - nm) / (2 * h), 1e-7, 0.0, "dn/dg");
+    ts_assert_near(d[3], (kp - km) / (2 * h), 1e-7, 0.0, "dk/dg");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dielectric_values),
         cmocka_unit_test(test_dielectric_ior_one),
+        cmocka_unit_test(test_conductor),
     };
     return cmocka_run_group_tests_name("terms", tests, NULL, NULL);
 }

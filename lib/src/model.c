@@ -283,8 +283,10 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, dou
     if (lobe > 0 && lobe <= BF_MAX_LOBES) {
         if (m->lobe_first[lobe] == 0 && colour)
             m->lobe_first[lobe] = i;
-        else
+        else {
             m->lobe_nscalar[lobe]++;
+            m->lobe_chroma[lobe] |= colour;
+        }
     }
     return BF_OK;
 }
@@ -309,6 +311,7 @@ const char *bf_param_role_name(bf_param_role role)
         [BF_ROLE_SLOPE_SPREAD] = "slope_spread",
         [BF_ROLE_F0] = "f0",
         [BF_ROLE_IOR] = "ior",
+        [BF_ROLE_EDGE_TINT] = "edge_tint",
         [BF_ROLE_ORIENTATION] = "orientation",
         [BF_ROLE_SHAPE] = "shape",
     };

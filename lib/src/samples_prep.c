@@ -6,7 +6,11 @@
  *   then (all digits) as a 0-based index, so "550" on spectral data means 550 nm when a
  *   channel has that name. A channel selected twice is an error. Selecting every
  *   channel in its own order changes nothing (a MERL origin is kept).
- * - to_rgb with wavelengths (s->wavelength, or channel names that are all numbers,
+ * - color: brdfit/color.h's weights on the channels' wavelengths (s->wavelength, or
+ *   channel names that are numbers as below); channels r, g, b (sRGB, ACEScg) or X, Y,
+ *   Z. It needs a wavelength for every channel: index groups are the bands' fallback
+ *   only, and a colour computed from guessed wavelengths would be wrong.
+ * - to_bands with wavelengths (s->wavelength, or channel names that are all numbers,
  *   optionally with "nm", as in a CSV with wavelength headers): b = mean of the
  *   channels in [400, 500) nm, g = [500, 600), r = [600, 700]; channels outside are
  *   ignored; a band without a channel is an error. Without wavelengths (more than 3
@@ -16,7 +20,7 @@
  * - to_luminance: 3 channels named r, g, b (any order, any case) give Rec. 709
  *   luminance 0.2126 r + 0.7152 g + 0.0722 b (channel "luminance"); anything else the
  *   unweighted mean of the channels (channel "mean"; for spectral data the mean over
- *   wavelengths, no photopic weighting). With both set, to_rgb runs first.
+ *   wavelengths, no photopic weighting). With both set, to_bands or color runs first.
  * - Drops count each sample once, under the first reason that applies in this order:
  *   non-finite angle or value (nonfinite), below the horizon, above max_theta, then a
  *   negative value. So `negative` counts the negative samples among those that passed
@@ -56,6 +60,19 @@ static void free_names(char **names, int K)
     for (int c = 0; names && c < K; c++)
         free(names[c]);
     free(names);
+}
+
+/* New arrays for three output channels with the given names (to_bands, to_color). */
+static bf_status alloc_three(size_t n, const char *const name[3], double **vals, char ***names, bf_error *err)
+{
+    int rc = alloc_channels(n, 3, vals, names, err);
+    for (int k = 0; rc == BF_OK && k < 3; k++)
+        if (!((*names)[k] = strdup(name[k]))) {
+            free(*vals);
+            free_names(*names, 3);
+            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
+        }
+    return rc;
 }
 
 /* Replaces the channels of s (taking ownership). The MERL origin no longer describes
@@ -200,30 +217,38 @@ static int band_of(double w)
     return -1;
 }
 
-static bf_status to_rgb(bf_samples *s, bf_error *err)
+/* The wavelength of every channel into wl (from s->wavelength, else from numeric
+ * channel names); 0 when some channel has none. */
+static int channel_wavelengths(const bf_samples *s, double *wl)
+{
+    for (int c = 0; c < s->channels; c++) {
+        if (s->wavelength)
+            wl[c] = s->wavelength[c];
+        else if (!name_wavelength(s->channel_names[c], &wl[c]))
+            return 0;
+    }
+    return 1;
+}
+
+static bf_status to_bands(bf_samples *s, bf_error *err)
 {
     const int C = s->channels;
     int *band = malloc((size_t)C * sizeof *band);
-    if (!band)
+    double *wl = malloc((size_t)C * sizeof *wl);
+    if (!band || !wl) {
+        free(band);
+        free(wl);
         return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-    int have_wl = s->wavelength != NULL;
-    double wlo = INFINITY, whi = -INFINITY;
-    for (int c = 0; c < C && !s->wavelength; c++) {
-        double w;
-        have_wl = name_wavelength(s->channel_names[c], &w);
-        if (!have_wl)
-            break;
     }
+    int have_wl = channel_wavelengths(s, wl);
+    double wlo = INFINITY, whi = -INFINITY;
     char listbuf[200];
     int rc = BF_OK;
     if (have_wl) {
         for (int c = 0; c < C; c++) {
-            double w = s->wavelength ? s->wavelength[c] : 0.0;
-            if (!s->wavelength)
-                name_wavelength(s->channel_names[c], &w);
-            band[c] = band_of(w);
-            wlo = fmin(wlo, w);
-            whi = fmax(whi, w);
+            band[c] = band_of(wl[c]);
+            wlo = fmin(wlo, wl[c]);
+            whi = fmax(whi, wl[c]);
         }
         static const char *const band_name[3] = {"600-700 nm (r)", "500-600 nm (g)", "400-500 nm (b)"};
         for (int b = 0; b < 3; b++) {
@@ -252,16 +277,9 @@ static bf_status to_rgb(bf_samples *s, bf_error *err)
             count[band[c]]++;
     double *vals;
     char **names;
-    if ((rc = alloc_channels(s->n, 3, &vals, &names, err)) != BF_OK)
-        goto done;
     static const char *const rgb[3] = {"r", "g", "b"};
-    for (int b = 0; b < 3; b++)
-        if (!(names[b] = strdup(rgb[b]))) {
-            free(vals);
-            free_names(names, 3);
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
-            goto done;
-        }
+    if ((rc = alloc_three(s->n, rgb, &vals, &names, err)) != BF_OK)
+        goto done;
     for (size_t i = 0; i < s->n; i++) {
         const double *v = s->value + i * (size_t)C;
         double *o = vals + 3 * i;
@@ -274,6 +292,48 @@ static bf_status to_rgb(bf_samples *s, bf_error *err)
     set_channels(s, 3, vals, names, NULL);
 done:
     free(band);
+    free(wl);
+    return rc;
+}
+
+/* Spectral channels to the three of a colour space (brdfit/color.h). */
+static bf_status to_color(bf_samples *s, bf_color space, bf_illuminant ill, bf_error *err)
+{
+    const int C = s->channels;
+    char listbuf[200];
+    double *wl = malloc((size_t)C * sizeof *wl), *w = malloc(3 * (size_t)C * sizeof *w);
+    double *vals = NULL;
+    char **names = NULL;
+    int rc = BF_OK;
+    if (!wl || !w) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    if (!channel_wavelengths(s, wl)) {
+        rc = bf_fail(err, BF_ERR_ARG,
+                     "cannot make %s: it needs spectral data with a wavelength for every channel; the data has "
+                     "%d channel%s (%s)",
+                     space == BF_COLOR_XYZ ? "XYZ" : "RGB", C, C == 1 ? "" : "s",
+                     list_names(s, listbuf, sizeof listbuf));
+        goto done;
+    }
+    static const char *const rgb[3] = {"r", "g", "b"}, *const xyz[3] = {"X", "Y", "Z"};
+    if ((rc = bf_color_weights(wl, C, space, ill, w, err)) != BF_OK ||
+        (rc = alloc_three(s->n, space == BF_COLOR_XYZ ? xyz : rgb, &vals, &names, err)) != BF_OK)
+        goto done;
+    for (size_t i = 0; i < s->n; i++) {
+        const double *v = s->value + i * (size_t)C;
+        for (int k = 0; k < 3; k++) {
+            double sum = 0.0;
+            for (int c = 0; c < C; c++)
+                sum += w[k * C + c] * v[c];
+            vals[3 * i + (size_t)k] = sum;
+        }
+    }
+    set_channels(s, 3, vals, names, NULL);
+done:
+    free(wl);
+    free(w);
     return rc;
 }
 
@@ -501,7 +561,14 @@ bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *repor
     int rc;
     if (p->channels && (rc = select_channels(s, p->channels, err)) != BF_OK)
         return rc;
-    if (p->to_rgb && (rc = to_rgb(s, err)) != BF_OK)
+    if (p->to_bands && p->color != BF_COLOR_NONE)
+        return bf_fail(err, BF_ERR_ARG, "three bands and a colour space exclude each other");
+    if (p->color == BF_COLOR_NONE && p->illuminant != BF_ILLUMINANT_D65)
+        return bf_fail(err, BF_ERR_ARG, "an illuminant (%s) applies only to a colour conversion",
+                       bf_illuminant_name(p->illuminant));
+    if (p->to_bands && (rc = to_bands(s, err)) != BF_OK)
+        return rc;
+    if (p->color != BF_COLOR_NONE && (rc = to_color(s, p->color, p->illuminant, err)) != BF_OK)
         return rc;
     if (p->to_luminance && (rc = to_luminance(s, err)) != BF_OK)
         return rc;

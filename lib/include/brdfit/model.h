@@ -35,6 +35,7 @@ typedef enum bf_param_role {
     BF_ROLE_SLOPE_SPREAD,          /* a spread of tan(theta_h), wider when larger: Brady's beta */
     BF_ROLE_F0,                    /* Fresnel reflectance at normal incidence */
     BF_ROLE_IOR,                   /* index of refraction of a Fresnel term */
+    BF_ROLE_EDGE_TINT,             /* a conductor's edge tint (Gulbrandsen's g) */
     BF_ROLE_ORIENTATION,           /* an azimuth: Heidrich-Seidel's thread direction */
     BF_ROLE_SHAPE                  /* any other shape of a lobe (Lafortune's C, ABC's c, ...) */
 } bf_param_role;

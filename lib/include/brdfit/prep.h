@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "brdfit/color.h"
 #include "brdfit/error.h"
 #include "brdfit/samples.h"
 
@@ -21,7 +22,10 @@ typedef enum bf_negative { BF_NEGATIVE_KEEP = 0, BF_NEGATIVE_DROP, BF_NEGATIVE_C
 typedef struct bf_prep {
     const char *channels;  /* keep these channels, in this order: comma-separated names or
                               0-based indices; NULL keeps all */
-    int to_rgb;            /* spectral -> three bands (B, G, R by wavelength) */
+    int to_bands;          /* spectral -> three band means r, g, b: 600-700, 500-600,
+                              400-500 nm (not colorimetric: see color) */
+    bf_color color;        /* spectral -> a colour space (brdfit/color.h); NONE: no */
+    bf_illuminant illuminant; /* of the colour conversion; D65 (0) by default */
     int to_luminance;      /* -> one channel */
     double max_theta;      /* degrees; > 0 drops samples with theta_i or theta_o above it */
     bf_negative negative;  /* negative values are data by default (KEEP) */
@@ -39,12 +43,13 @@ typedef struct bf_prep_report {
     size_t kept;            /* samples after */
 } bf_prep_report;
 
-/* Applies p to s in place: channel selection, then to_rgb / to_luminance, then the
- * drops, then subsampling. A dropped sample is counted once, under the first of:
+/* Applies p to s in place: channel selection, then to_bands or color, then
+ * to_luminance, then the drops, then subsampling. A dropped sample is counted once, under the first of:
  * non-finite, below the horizon, above max_theta, negative (so the negative count
  * describes samples otherwise used). Changing channels
- * drops the MERL origin. report may be NULL. Errors: unknown channel, to_rgb without
- * spectral data, no sample left. */
+ * drops the MERL origin. report may be NULL. Errors: unknown channel, to_bands without
+ * spectral data, color without a wavelength per channel, to_bands with color, an
+ * illuminant without color, no sample left. */
 bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
 
 /* The seeded stratified subsample of bf_prep.subsample as a mask: keep[i] = 1 for the

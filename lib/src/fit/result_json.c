@@ -7,6 +7,7 @@
 #include "brdfit/fit.h"
 #include "brdfit/io.h"
 #include "io/json_out.h"
+#include "models/terms.h"
 
 #include <cjson/cJSON.h>
 #include <ctype.h>
@@ -66,6 +67,35 @@ static cJSON *fixed_names(const bf_fit_result *r)
     return a;
 }
 
+/* The complex index n + ik of each conductor Fresnel term (Gulbrandsen's mapping of its
+ * r and g: a renderer that takes n and k, as pbrt's and Mitsuba's conductors do, reads
+ * them here): {"n": [...], "k": [...]}, "n_2"/"k_2" for lobe 2. NULL without one. */
+static cJSON *conductor_json(const bf_model *m, const double *x)
+{
+    cJSON *o = NULL;
+    const int C = bf_model_channels(m);
+    for (int i = 1; i < bf_model_nparams(m); i++) {
+        const bf_param_info *g = bf_model_param(m, i), *r = bf_model_param(m, i - 1);
+        if (g->role != BF_ROLE_EDGE_TINT || (!o && !(o = cJSON_CreateObject())))
+            continue;
+        const int K = g->colour ? C : 1; /* mono ties r and g to one value */
+        cJSON *na = cJSON_CreateArray(), *ka = cJSON_CreateArray();
+        for (int c = 0; c < K; c++) {
+            double n, k;
+            bf_conductor_nk(x[bf_model_param_offset(m, i - 1) + (r->colour ? c : 0)],
+                            x[bf_model_param_offset(m, i) + c], &n, &k, NULL);
+            cJSON_AddItemToArray(na, cJSON_CreateNumber(n));
+            cJSON_AddItemToArray(ka, cJSON_CreateNumber(k));
+        }
+        char key[40];
+        snprintf(key, sizeof key, "n%s", g->name + 1); /* g, g_2 -> n, n_2 */
+        cJSON_AddItemToObject(o, key, na);
+        key[0] = 'k';
+        cJSON_AddItemToObject(o, key, ka);
+    }
+    return o;
+}
+
 /* top: the whole document (a single result), which names the version first. */
 static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top)
 {
@@ -79,6 +109,9 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top
     cJSON_AddItemToObject(o, "options", options_json(m));
     cJSON_AddNumberToObject(o, "channels", bf_model_channels(m));
     cJSON_AddItemToObject(o, "params", bf_json_params(m, r->x));
+    cJSON *nk = conductor_json(m, r->x);
+    if (nk)
+        cJSON_AddItemToObject(o, "conductor", nk);
     if (data_path)
         cJSON_AddStringToObject(o, "data", data_path);
     else

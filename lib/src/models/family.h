@@ -30,6 +30,10 @@ struct bf_model {
      * weight (rho_s) and how many scalars follow it. */
     int lobe_first[BF_MAX_LOBES + 1];
     int lobe_nscalar[BF_MAX_LOBES + 1];
+    /* 1 when lobe k has colour parameters after its weight (a conductor's r and g): its
+     * shape then differs by channel, and the driver calls the lobe function once per
+     * channel with that channel's values in the scalars. */
+    int lobe_chroma[BF_MAX_LOBES + 1];
 
     char spec[160];
 
@@ -43,7 +47,8 @@ struct bf_model {
 
 /* Shape of lobe k over samples [i0, i0 + cnt): S[j] for j < cnt and, when dS is not
  * NULL, dS[s * BF_BLOCK + j] = dS / d(scalar s of the lobe), scalars in table order.
- * `s` holds the lobe's scalar values. Invalid samples (below the horizon) may be left
+ * `s` holds the lobe's scalar values (for a lobe_chroma lobe: one channel's values of
+ * its colour parameters). Invalid samples (below the horizon) may be left
  * with any finite or non-finite value: the driver overwrites them with 0. */
 typedef void (*bf_lobe_fn)(const bf_model *m, int lobe, const double *s,
                            const bf_geometry *g, size_t i0, size_t cnt,
@@ -70,7 +75,8 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, dou
                             int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
- * schlick, ior [1, 3] for dielectric, none for none. */
+ * schlick, ior [1, 3] for dielectric, none for none, colour r [1e-3, 0.99] and g
+ * [1e-3, 1] for conductor. */
 bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *err);
 
 /* The shared driver for families with a `lobe` function. Expects the table laid out as

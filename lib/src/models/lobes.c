@@ -30,8 +30,8 @@ int bf_model_lobe_layout(const bf_model *m, bf_lobe_layout *out)
         out->weight[k - 1] = m->offset[first];
         out->scalar[k - 1] = m->offset[first + 1];
         out->nscalar[k - 1] = m->lobe_nscalar[k];
-        if (m->lobe_nscalar[k] > BF_MAX_LOBE_SCALARS)
-            return 0;
+        if (m->lobe_nscalar[k] > BF_MAX_LOBE_SCALARS || m->lobe_chroma[k])
+            return 0; /* a shape per channel: only bf_eval_diffuse_lobes handles it */
     }
     return 1;
 }
@@ -55,6 +55,16 @@ void bf_model_lobe_shape(const bf_model *m, const double *x, int k, const bf_geo
         }
 }
 
+/* A lobe_chroma lobe's scalars for channel c: its colour parameters' channel-c values. */
+static void chroma_scalars(const bf_model *m, const double *x, int k, int c, double *s)
+{
+    int first = m->lobe_first[k];
+    for (int q = 0; q < m->lobe_nscalar[k]; q++) {
+        int p = first + 1 + q;
+        s[q] = x[m->offset[p] + (m->param[p].colour ? c : 0)];
+    }
+}
+
 void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
                            size_t i0, size_t i1, double *values, double *grad)
 {
@@ -63,18 +73,27 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
     const double *rho_d = x + m->offset[0];
     double S[BF_MAX_LOBES][BF_BLOCK];
     double dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_BLOCK];
+    double sc[BF_MAX_LOBE_SCALARS];
 
     for (size_t b0 = i0; b0 < i1; b0 += BF_BLOCK) {
         size_t cnt = i1 - b0 < BF_BLOCK ? i1 - b0 : BF_BLOCK;
         for (int k = 1; k <= K; k++) {
             int first = m->lobe_first[k];
             const double *s = x + m->offset[first + 1];
-            m->family->lobe(m, k, s, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
+            if (!m->lobe_chroma[k])
+                m->family->lobe(m, k, s, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
         }
-        for (size_t j = 0; j < cnt; j++) {
-            size_t i = b0 + j;
-            int valid = bf_geometry_valid(g, i);
-            for (int c = 0; c < C; c++) {
+        /* Channel-major, so a lobe whose shape depends on the channel is evaluated once
+         * per channel into the same buffers. */
+        for (int c = 0; c < C; c++) {
+            for (int k = 1; k <= K; k++)
+                if (m->lobe_chroma[k]) {
+                    chroma_scalars(m, x, k, c, sc);
+                    m->family->lobe(m, k, sc, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
+                }
+            for (size_t j = 0; j < cnt; j++) {
+                size_t i = b0 + j;
+                int valid = bf_geometry_valid(g, i);
                 double f = 0.0;
                 double *row = grad ? grad + (((i - i0) * (size_t)C) + (size_t)c) * (size_t)P : NULL;
                 if (row)
@@ -90,8 +109,11 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
                         f += w * S[k - 1][j];
                         if (row) {
                             row[o + c] = S[k - 1][j];
-                            for (int q = 0; q < m->lobe_nscalar[k]; q++)
-                                row[m->offset[first + 1 + q]] = w * dS[k - 1][q * BF_BLOCK + j];
+                            for (int q = 0; q < m->lobe_nscalar[k]; q++) {
+                                int p = first + 1 + q;
+                                int e = m->offset[p] + (m->param[p].colour ? c : 0);
+                                row[e] = w * dS[k - 1][q * BF_BLOCK + j];
+                            }
                         }
                     }
                 }

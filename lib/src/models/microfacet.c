@@ -42,7 +42,8 @@ static mf_cfg resolve(const bf_model *m)
 }
 
 /* One specular lobe over a block. Scalars: s[0] = the D's roughness (n for blinn),
- * s[1] = f0 or ior unless F=none. D, G and F are computed in separate passes, each with
+ * s[1] = f0 or ior unless F=none; for F=conductor s[1] = r, s[2] = g of one channel
+ * (the driver calls the lobe per channel). D, G and F are computed in separate passes, each with
  * its switch outside the sample loop so the loops stay branch-free and vectorise. */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
                  size_t cnt, double *S, double *dS)
@@ -54,7 +55,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
     const double *lx = g->lx + i0, *ly = g->ly + i0, *lz = g->lz + i0;
     const double *vx = g->vx + i0, *vy = g->vy + i0, *vz = g->vz + i0;
     const double *hz = g->hz + i0, *s2 = g->sin2h + i0, *vh = g->vh + i0;
-    double D[BF_BLOCK], dD[BF_BLOCK], G[BF_BLOCK], dG[BF_BLOCK], F[BF_BLOCK], dF[BF_BLOCK];
+    double D[BF_BLOCK], dD[BF_BLOCK], G[BF_BLOCK], dG[BF_BLOCK], F[BF_BLOCK], dF[BF_BLOCK], dF2[BF_BLOCK];
 
     switch (c.d) {
     case D_GGX:
@@ -134,6 +135,10 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         for (size_t j = 0; j < cnt; j++)
             F[j] = bf_dielectric(vh[j], p, &dF[j]);
         break;
+    case BF_FRESNEL_CONDUCTOR:
+        for (size_t j = 0; j < cnt; j++)
+            F[j] = bf_conductor(vh[j], p, s[2], &dF[j], &dF2[j]);
+        break;
     default:
         for (size_t j = 0; j < cnt; j++) {
             F[j] = 1.0;
@@ -154,6 +159,8 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
             dS[j] = valid ? (dD[j] * G[j] + D[j] * dG[j]) * F[j] * inv : 0.0;
             if (c.f != BF_FRESNEL_NONE)
                 dS[BF_BLOCK + j] = valid ? D[j] * G[j] * dF[j] * inv : 0.0;
+            if (c.f == BF_FRESNEL_CONDUCTOR)
+                dS[2 * BF_BLOCK + j] = valid ? D[j] * G[j] * dF2[j] * inv : 0.0;
         }
     }
 }
@@ -229,8 +236,8 @@ static bf_status configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
 static bf_status configure(bf_model *m, bf_error *err) { return configure_cfg(m, resolve(m), err); }
 
 static const bf_option_info microfacet_options[] = {
-    {"D", d_values}, {"G", g_values}, {"F", bf_fresnel_values}, {NULL, NULL}};
-static const bf_option_info preset_options[] = {{"fresnel", bf_fresnel_values}, {NULL, NULL}};
+    {"D", d_values}, {"G", g_values}, {"F", bf_fresnel_metal_values}, {NULL, NULL}};
+static const bf_option_info preset_options[] = {{"fresnel", bf_fresnel_metal_values}, {NULL, NULL}};
 
 const bf_family bf_family_cook_torrance = {
     .info = {.name = "cook_torrance",

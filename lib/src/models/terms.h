@@ -23,10 +23,22 @@ static inline double bf_log_nh(double nh, double sin2h)
 
 /* ---- Fresnel ---------------------------------------------------------------- */
 
-enum { BF_FRESNEL_SCHLICK = 0, BF_FRESNEL_DIELECTRIC = 1, BF_FRESNEL_NONE = 2 };
+enum { BF_FRESNEL_SCHLICK = 0, BF_FRESNEL_DIELECTRIC = 1, BF_FRESNEL_NONE = 2, BF_FRESNEL_CONDUCTOR = 3 };
 
-/* The option values shared by every family with a `fresnel=` option (order = enum). */
+/* The option values shared by every family with a `fresnel=` option (order = enum),
+ * and those of the microfacet family, which adds conductor (its lobe is then coloured
+ * by F, per channel: the lobe driver evaluates it channel by channel). */
 extern const char *const bf_fresnel_values[];
+extern const char *const bf_fresnel_metal_values[];
+
+/* Gulbrandsen 2014 ("Artist friendly metallic Fresnel", JCGT 3(4)): the complex index
+ * n + ik whose normal-incidence reflectance is r and whose edge tint is g, r in (0, 1),
+ * g in (0, 1]. d[0..3] (may be NULL): dn/dr, dn/dg, dk/dr, dk/dg (k > 0). */
+void bf_conductor_nk(double r, double g, double *n, double *k, double d[4]);
+
+/* Exact unpolarised Fresnel reflectance of a conductor n + ik (from n, k = the mapping
+ * above) at c = V.H; *dr, *dg (may be NULL) = dF/dr, dF/dg through the mapping. */
+double bf_conductor(double c, double r, double g, double *dr, double *dg);
 
 /* Schlick: F = f0 + (1 - f0)(1 - u)^5; *dF = dF/df0. */
 static inline double bf_schlick(double u, double f0, double *dF)
