@@ -58,7 +58,8 @@ double bf_conductor(double c, double r, double g, double *dr, double *dg)
     /* With eta = n + ik and w = sqrt(eta^2 - sin^2): r_s = (c - w)/(c + w), r_p =
      * (eta^2 c - w)/(eta^2 c + w), F = (|r_s|^2 + |r_p|^2)/2. Both are analytic in eta,
      * so dF/dn = Re(A) and dF/dk = -Im(A) with A = conj(r_s) r_s' + conj(r_p) r_p'. */
-    double complex eta = CMPLX(n, k), e2 = eta * eta;
+    /* n + k*I, not CMPLX: clang's glibc headers lack CMPLX, and n, k are finite here. */
+    double complex eta = n + k * I, e2 = eta * eta;
     double complex w = csqrt(e2 - (1.0 - c * c));
     double complex rs = (c - w) / (c + w), u = e2 * c, rp = (u - w) / (u + w);
     double F = 0.5 * (creal(rs * conj(rs)) + creal(rp * conj(rp)));
