@@ -24,6 +24,7 @@ extern const bf_family bf_family_disney;
 extern const bf_family bf_family_gaussian;
 extern const bf_family bf_family_heidrich_seidel;
 extern const bf_family bf_family_microfacet;
+extern const bf_family bf_family_gltf;
 
 static const bf_family *const families[] = {
     &bf_family_lambert,
@@ -47,6 +48,7 @@ static const bf_family *const families[] = {
     &bf_family_gaussian,
     &bf_family_heidrich_seidel,
     &bf_family_microfacet,
+    &bf_family_gltf,
 };
 
 enum { NFAMILIES = sizeof families / sizeof families[0] };
