@@ -25,6 +25,7 @@ extern const bf_family bf_family_gaussian;
 extern const bf_family bf_family_heidrich_seidel;
 extern const bf_family bf_family_microfacet;
 extern const bf_family bf_family_gltf;
+extern const bf_family bf_family_blender_principled;
 
 static const bf_family *const families[] = {
     &bf_family_lambert,
@@ -49,6 +50,7 @@ static const bf_family *const families[] = {
     &bf_family_heidrich_seidel,
     &bf_family_microfacet,
     &bf_family_gltf,
+    &bf_family_blender_principled,
 };
 
 enum { NFAMILIES = sizeof families / sizeof families[0] };
