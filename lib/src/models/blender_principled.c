@@ -25,7 +25,7 @@
  * in L and V); not energy conserving (the retro-reflection, sheen and coat are added,
  * not traded against the rest, as in Burley's model). */
 #include "family.h"
-#include "terms.h"
+#include "principled.h"
 
 #include <string.h>
 
@@ -63,28 +63,6 @@ static bf_status configure(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static inline double pow5(double u)
-{
-    double t = 1.0 - u;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    double t2 = t * t;
-    return t2 * t2 * t;
-}
-
-/* g(x) = (x - 1) / ln x, the GTR1 normalisation over pi, and *dg = g'(x), continued
- * through x = 1 (where Cycles switches to 1/pi, g's limit) by its series. */
-static inline double gtr1_norm(double x, double *dg)
-{
-    double u = x - 1.0;
-    if (fabs(u) < 1e-4) {
-        *dg = 0.5 - u / 6.0 + u * u / 8.0;
-        return 1.0 + u / 2.0 - u * u / 12.0;
-    }
-    double l = log(x);
-    *dg = (l - u / x) / (l * l);
-    return u / l;
-}
-
 static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
                  size_t i1, double *values, double *grad)
 {
@@ -107,15 +85,12 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     }
     const double ils = lum_s > 0.0 ? 1.0 / lum_s : 0.0, ily = lum_y > 0.0 ? 1.0 / lum_y : 0.0;
 
-    /* The specular's index: F0 = 0.08 specular; deta = d eta / d specular. */
-    const double F0 = 0.08 * spec, q = sqrt(F0);
-    const double eta = 2.0 / (1.0 - q) - 1.0;
-    const double deta = q > 0.0 ? 2.0 / ((1.0 - q) * (1.0 - q)) * 0.04 / q : 0.0;
-    const double iF0 = 1.0 / (1.0 - F0);
+    /* The specular's index gives F0 = 0.08 specular (principled.h). */
+    const double F0 = 0.08 * spec, iF0 = 1.0 / (1.0 - F0);
     const double a = rough * rough;
     const double xc = ccr * ccr * ccr * ccr; /* GTR1's b^2 */
     double dgx;
-    const double gx = gtr1_norm(xc, &dgx);
+    const double gx = bf_gtr1_norm(xc, &dgx);
 
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
@@ -133,10 +108,9 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
         const double tV = (g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]) / (NV * NV);
 
         /* Diffuse with retro-reflection. */
-        const double FL = pow5(NL), FV = pow5(NV), FH = pow5(VH);
-        const double LV1 = 2.0 * VH * VH, RR = rough * LV1;
-        const double Fd = (1.0 - 0.5 * FL) * (1.0 - 0.5 * FV) + RR * (FL + FV + FL * FV * (RR - 1.0));
-        const double dFd = LV1 * (FL + FV + FL * FV * (2.0 * RR - 1.0));
+        const double FL = bf_schlick_weight(NL), FV = bf_schlick_weight(NV), FH = bf_schlick_weight(VH);
+        double dFd;
+        const double Fd = bf_principled_diffuse(FL, FV, 2.0 * VH * VH, rough, &dFd);
 
         /* Specular GGX. */
         double dD, dGL, dGV;
@@ -144,17 +118,10 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
         const double GL = bf_g1_ggx(tL, a, &dGL), GV = bf_g1_ggx(tV, a, &dGV);
         const double S = D * GL * GV * i4;
         const double dS = (dD * GL * GV + D * (dGL * GV + GL * dGV)) * i4 * 2.0 * rough;
-        /* Fresnel weight; at specular 0 its derivative is the limit of the chain rule. */
-        double dFe;
-        const double Fdi = bf_dielectric(VH, eta, &dFe);
-        const double Fw = (Fdi - F0) * iF0;
+        /* Fresnel weight between cspec0 and white. */
         double dFdi_ds;
-        if (q > 0.0) {
-            dFdi_ds = dFe * deta;
-        } else {
-            const double b = 2.0 * VH * VH - 1.0, v2 = VH * VH;
-            dFdi_ds = 0.04 * (1.0 + b * b) / (v2 * v2);
-        }
+        const double Fdi = bf_dielectric_of_specular(VH, spec, &dFdi_ds);
+        const double Fw = (Fdi - F0) * iF0;
         const double dFw = ((dFdi_ds - 0.08) + Fw * 0.08) * iF0;
 
         /* Clear coat: GTR1 over t = 1 + (b^2 - 1) NH^2 = sin^2 + b^2 NH^2. */
