@@ -1,8 +1,9 @@
-/* brdfit export RESULT.json --to gltf|blender [-o OUT] [--convert]: a fitted material as
+/* brdfit export RESULT.json --to gltf|blender|mitsuba [-o OUT] [--convert]: a fitted material as
  * a renderer's file. A result in the target's native model (gltf, blender_principled)
  * maps exactly; any other is converted by fitting the native model to the source
  * model's values over a dense grid of directions, and the conversion's error is reported
- * and written into the file. The writers are export_gltf.c and export_blender.c. */
+ * and written into the file. The writers are export_gltf.c, export_blender.c and
+ * export_mitsuba.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,7 +19,8 @@
 #include "export.h"
 
 static const cli_option own[] = {
-    {"--to", 0, "gltf|blender", "the renderer: glTF 2.0 (.gltf with a sphere) or Blender 3.4 (a Python script)",
+    {"--to", 0, "gltf|blender|mitsuba",
+     "the renderer: glTF 2.0 (.gltf with a sphere), Blender 3.4 (a Python script) or\nMitsuba 3 (scene XML)",
      NULL},
     {"--output", 'o', "FILE", "the file (default and -: standard output)", "file"},
     {"--convert", 0, NULL, "convert an anisotropic or multi-lobe source too (the target holds one isotropic\n"
@@ -27,12 +29,12 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_export = {
-    "brdfit", "export", "RESULT.json --to gltf|blender [-o OUT] [--convert]", "write a fitted material for a renderer",
-    "A result whose model is the target's own (gltf for glTF, blender_principled for Blender) is written exactly. "
+    "brdfit", "export", "RESULT.json --to gltf|blender|mitsuba [-o OUT] [--convert]", "write a fitted material for a renderer",
+    "A result whose model is the target's own (gltf for glTF, blender_principled for Blender, mitsuba_principled for Mitsuba) is written exactly. "
     "Any other model is converted: the target's model is fitted to the source's values at 11664 direction pairs "
     "(theta 2.5..87.5 by 5 degrees, phi_o 0..350 by 10; phi_i 0..150 by 30 for an anisotropic source), and the "
     "conversion's metrics go to standard error and into the file (glTF asset.extras.brdfit, a comment in the "
-    "script). Colours need 1 or 3 channels. Parameter conventions: docs/export.md.",
+    "script or the XML). Colours need 1 or 3 channels. Parameter conventions: docs/export.md.",
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
@@ -41,7 +43,7 @@ typedef struct target {
     const char *model; /* the native model family */
 } target;
 
-static const target targets[] = {{"gltf", "gltf"}, {"blender", "blender_principled"}};
+static const target targets[] = {{"gltf", "gltf"}, {"blender", "blender_principled"}, {"mitsuba", "mitsuba_principled"}};
 
 double export_param(const export_material *e, const char *name, int c)
 {
@@ -79,7 +81,7 @@ static int take_args(const cli_args *args, const char **in, const target **to, c
         if (!strcmp(to_name, targets[k].name))
             *to = &targets[k];
     if (!*to) {
-        fprintf(stderr, "brdfit export: --to '%s': not a target (gltf, blender)\n", to_name);
+        fprintf(stderr, "brdfit export: --to '%s': not a target (gltf, blender, mitsuba)\n", to_name);
         return 2;
     }
     return 0;
@@ -172,8 +174,10 @@ static int write_file(const target *to, const export_material *e, const char *ou
             fprintf(stderr, "brdfit export: out of memory for the glTF document\n");
             return -1;
         }
-    } else {
+    } else if (!strcmp(to->name, "blender")) {
         export_write_blender(e, out.fp);
+    } else {
+        export_write_mitsuba(e, out.fp);
     }
     if (bf_outfile_commit(&out, &err) != BF_OK) {
         fprintf(stderr, "brdfit export: %s\n", err.msg);

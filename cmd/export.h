@@ -1,5 +1,5 @@
 /* brdfit export: what the target writers share. The material is always in the target's
- * native model (gltf, blender_principled) with 1 or 3 channels; export.c gets it there,
+ * native model (gltf, blender_principled, mitsuba_principled) with 1 or 3 channels; export.c gets it there,
  * exactly or by a conversion fit, and each writer maps it to the renderer's file. */
 #ifndef BRDFIT_EXPORT_H
 #define BRDFIT_EXPORT_H
@@ -22,9 +22,10 @@ typedef struct export_material {
  * only channel when the model has one). The name must be the model's. */
 double export_param(const export_material *e, const char *name, int c);
 
-/* The glTF 2.0 document (a sphere carrying the material) and the Blender Python script
- * (material and preview scene) to fp. glTF returns 0, or -1 out of memory. */
+/* The glTF 2.0 document (a sphere carrying the material), the Blender Python script
+ * (material and preview scene) and the Mitsuba 3 scene XML to fp. glTF returns 0, or -1 out of memory. */
 int export_write_gltf(const export_material *e, FILE *fp);
 void export_write_blender(const export_material *e, FILE *fp);
+void export_write_mitsuba(const export_material *e, FILE *fp);
 
 #endif

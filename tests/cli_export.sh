@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# brdfit export: exact mapping of native results (glTF, Blender), the Khronos validator on
+# brdfit export: exact mapping of native results (glTF, Blender, Mitsuba), the Khronos validator on
 # the .gltf, a conversion whose reported error matches brdfit eval of source against
 # converted parameters, refusals (anisotropic, multi-lobe, channels, target) with no
 # output left behind, and byte-identical reruns.
@@ -96,6 +96,25 @@ jq -e '.materials[0] as $m | ([$m.pbrMetallicRoughness.baseColorFactor[0:3][] | 
 "$BRDFIT" export "$tmp/w.json" --to blender -o "$tmp/w.py" 2>/dev/null && ok || bad "convert walter to blender"
 grep -q '^# Conversion over 11664 direction pairs: rmse ' "$tmp/w.py" && ok || bad "blender script lacks the conversion"
 
+# --- Mitsuba, exact ----------------------------------------------------------------------
+cat > "$tmp/m.json" <<'EOF'
+{"model":"mitsuba_principled","channels":3,"params":{"base_color":[0.7,0.5,0.2],"metallic":0.1,"specular":0.6,"spec_tint":0.25,"roughness":0.3,"sheen":0.2,"sheen_tint":0.4,"flatness":0.3,"clearcoat":0.5,"clearcoat_gloss":0.7}}
+EOF
+"$BRDFIT" export "$tmp/m.json" --to mitsuba -o "$tmp/m.xml" 2>"$tmp/err" && ok || bad "export mitsuba: $(cat "$tmp/err")"
+xmllint --noout "$tmp/m.xml" && ok || bad "mitsuba scene is not well-formed XML"
+[ "$(xmllint --xpath 'string(/scene/@version)' "$tmp/m.xml")" = 3.0.0 ] && ok || bad "scene version"
+[ "$(xmllint --xpath 'string(//shape[@type="sphere"]/bsdf/@type)' "$tmp/m.xml")" = principled ] && ok ||
+  bad "no principled bsdf on a sphere"
+[ "$(xmllint --xpath 'string(//bsdf/rgb[@name="base_color"]/@value)' "$tmp/m.xml")" = "0.7, 0.5, 0.2" ] && ok ||
+  bad "mitsuba base_color"
+for kv in metallic=0.1 specular=0.6 spec_tint=0.25 roughness=0.3 sheen=0.2 sheen_tint=0.4 flatness=0.3 \
+          clearcoat=0.5 clearcoat_gloss=0.7; do
+  [ "$(xmllint --xpath "string(//bsdf/float[@name=\"${kv%%=*}\"]/@value)" "$tmp/m.xml")" = "${kv#*=}" ] && ok ||
+    bad "mitsuba $kv"
+done
+"$BRDFIT" export "$tmp/w.json" --to mitsuba -o "$tmp/wm.xml" 2>/dev/null && xmllint --noout "$tmp/wm.xml" &&
+  grep -q 'Conversion over 11664 direction pairs: rmse ' "$tmp/wm.xml" && ok || bad "walter to mitsuba"
+
 # --- deterministic bytes ------------------------------------------------------------------
 "$BRDFIT" export "$tmp/w.json" --to gltf -o "$tmp/w2.gltf" 2>/dev/null && cmp -s "$tmp/w.gltf" "$tmp/w2.gltf" &&
   ok || bad "two conversions differ"
@@ -122,7 +141,7 @@ EOF
 refuse 1 "ward.* is anisotropic; gltf holds one isotropic lobe (--convert" "$tmp/ward.json" --to gltf
 refuse 1 "is multi-lobe; blender_principled holds one isotropic lobe" "$tmp/w2l.json" --to blender
 refuse 1 "5 channels" "$tmp/l5.json" --to gltf
-refuse 2 "not a target" "$tmp/g.json" --to mitsuba
+refuse 2 "not a target" "$tmp/g.json" --to renderman
 refuse 2 "are required" "$tmp/g.json"
 "$BRDFIT" export "$tmp/ward.json" --to gltf --convert -o "$tmp/ward.gltf" 2>"$tmp/err" &&
   grep -q "over 69984 direction pairs" "$tmp/err" && ok || bad "--convert of an anisotropic source: $(cat "$tmp/err")"
