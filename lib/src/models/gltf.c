@@ -86,13 +86,8 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
         double *rows = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
-        if (!bf_geometry_valid(g, i)) {
-            for (int c = 0; c < C; c++)
-                out[c] = 0.0;
-            if (rows)
-                memset(rows, 0, (size_t)C * (size_t)P * sizeof *rows);
+        if (bf_eval_skip_invalid(g, i, C, P, out, rows))
             continue;
-        }
         const double NL = g->lz[i], NV = g->vz[i];
         double dD, dlL, dlV;
         const double D = bf_d_ggx(g->hz[i], g->sin2h[i], a, &dD);

@@ -24,30 +24,22 @@
 #include "family.h"
 #include "principled.h"
 
-#include <string.h>
 
 enum { P_BASE, P_METAL, P_SPEC, P_STINT, P_ROUGH, P_SHEEN, P_SHTINT, P_FLAT, P_CC, P_CCG, P_COUNT };
 
 static bf_status configure(bf_model *m, bf_error *err)
 {
     /* Mitsuba's ranges ("all parameters ... between 0.0 and 1.0") and defaults. */
-    static const struct {
-        const char *name;
-        double def;
-        bf_param_role role;
-    } tab[P_COUNT] = {
-        {"base_color", 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0.0, BF_ROLE_SHAPE},
-        {"specular", 0.5, BF_ROLE_SHAPE},       {"spec_tint", 0.0, BF_ROLE_SHAPE},
-        {"roughness", 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"sheen", 0.0, BF_ROLE_WEIGHT},
-        {"sheen_tint", 0.0, BF_ROLE_SHAPE},     {"flatness", 0.0, BF_ROLE_DIFFUSE_SHAPE},
-        {"clearcoat", 0.0, BF_ROLE_WEIGHT},     {"clearcoat_gloss", 0.0, BF_ROLE_SHAPE},
+    static const bf_param_row tab[P_COUNT] = {
+        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},       {"spec_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"sheen_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},     {"flatness", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE},
+        {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},     {"clearcoat_gloss", 0, 0.0, 0.0, BF_ROLE_SHAPE},
     };
-    for (int k = 0; k < P_COUNT; k++) {
-        bf_status rc = bf_model_add_param(m, tab[k].name, k == P_BASE, 0.0, 1.0, tab[k].def, BF_SCALE_LINEAR, 0,
-                                          tab[k].role, err);
-        if (rc != BF_OK)
-            return rc;
-    }
+    bf_status rc = bf_model_add_rows(m, tab, P_COUNT, err);
+    if (rc != BF_OK)
+        return rc;
     m->energy_conserving = 0;
     return BF_OK;
 }
@@ -87,13 +79,8 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
         double *rows = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
-        if (!bf_geometry_valid(g, i)) {
-            for (int c = 0; c < C; c++)
-                out[c] = 0.0;
-            if (rows)
-                memset(rows, 0, (size_t)C * (size_t)P * sizeof *rows);
+        if (bf_eval_skip_invalid(g, i, C, P, out, rows))
             continue;
-        }
         const double NL = g->lz[i], NV = g->vz[i], NH = g->hz[i], VH = g->vh[i];
         const double tL = (g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]) / (NL * NL);
         const double tV = (g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]) / (NV * NV);
