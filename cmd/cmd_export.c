@@ -53,6 +53,14 @@ double export_param(const export_material *e, const char *name, int c)
     return p->colour && bf_model_channels(e->m) > 1 ? e->x[off + c] : e->x[off];
 }
 
+void export_conversion_note(const export_material *e, FILE *fp)
+{
+    fprintf(fp, "conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, rmse_rel %.6g, "
+                "max_err %.6g (1/sr)",
+            e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log, e->metrics.rmse_rel,
+            e->metrics.max_err);
+}
+
 /* Takes the parsed command line: 0, or 2 after a one-line error. */
 static int take_args(const cli_args *args, const char **in, const target **to, const char **out, int *convert)
 {
@@ -151,11 +159,9 @@ static int convert(const bf_model *src, const double *xs, const char *model, int
     e->x = r->x;
     e->converted = 1;
     e->metrics = r->metrics;
-    fprintf(stderr,
-            "brdfit export: converted %s to %s over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, "
-            "rmse_rel %.6g, max_err %.6g\n",
-            bf_model_spec(src), model, e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log,
-            e->metrics.rmse_rel, e->metrics.max_err);
+    fprintf(stderr, "brdfit export: converted %s to %s, ", bf_model_spec(src), model);
+    export_conversion_note(e, stderr);
+    fputc('\n', stderr);
     return 0;
 }
 

@@ -22,6 +22,10 @@ typedef struct export_material {
  * only channel when the model has one). The name must be the model's. */
 double export_param(const export_material *e, const char *name, int c);
 
+/* "Conversion over N direction pairs: rmse ..., max_err ..." (no newline), as export
+ * reports it and the script and XML writers repeat it. */
+void export_conversion_note(const export_material *e, FILE *fp);
+
 /* The glTF 2.0 document (a sphere carrying the material), the Blender Python script
  * (material and preview scene) and the Mitsuba 3 scene XML to fp. glTF returns 0, or -1 out of memory. */
 int export_write_gltf(const export_material *e, FILE *fp);

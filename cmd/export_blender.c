@@ -21,11 +21,11 @@ void export_write_blender(const export_material *e, FILE *fp)
     fprintf(fp, "# Written by brdfit export: a Blender 3.4 Principled BSDF (Cycles, GGX).\n");
     fprintf(fp, "# Run: blender --background --python THIS_FILE\n");
     fprintf(fp, "# Source model: %s (%s)\n", e->source, e->converted ? "converted" : "exact");
-    if (e->converted)
-        fprintf(fp, "# Conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, "
-                    "rmse_rel %.6g, max_err %.6g (1/sr)\n",
-                e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log, e->metrics.rmse_rel,
-                e->metrics.max_err);
+    if (e->converted) {
+        fputs("# ", fp);
+        export_conversion_note(e, fp);
+        fputc('\n', fp);
+    }
     fprintf(fp, "import bpy\n\nPREVIEW = True\n\n");
     fprintf(fp, "mat = bpy.data.materials.new(\"brdfit\")\nmat.use_nodes = True\n");
     fprintf(fp, "bsdf = mat.node_tree.nodes[\"Principled BSDF\"]\n");

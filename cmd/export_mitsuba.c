@@ -23,11 +23,11 @@ void export_write_mitsuba(const export_material *e, FILE *fp)
     fprintf(fp, "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n");
     fprintf(fp, "<!-- Written by brdfit export: Mitsuba 3 principled BSDF. Source model: %s (%s).", e->source,
             e->converted ? "converted" : "exact");
-    if (e->converted)
-        fprintf(fp, " Conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, rmse_rel %.6g, "
-                    "max_err %.6g (1/sr).",
-                e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log, e->metrics.rmse_rel,
-                e->metrics.max_err);
+    if (e->converted) {
+        fputc(' ', fp);
+        export_conversion_note(e, fp);
+        fputc('.', fp);
+    }
     fprintf(fp, " -->\n<scene version=\"3.0.0\">\n");
     fprintf(fp, "    <integrator type=\"path\"/>\n"
                 "    <sensor type=\"perspective\">\n"

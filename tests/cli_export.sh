@@ -68,7 +68,7 @@ fi
 
 # --- conversion: the reported error is that of the converted parameters -----------------
 "$BRDFIT" export "$tmp/w.json" --to gltf -o "$tmp/w.gltf" 2>"$tmp/err" && ok || bad "convert walter: $(cat "$tmp/err")"
-grep -q '^brdfit export: converted walter.* to gltf over 11664 direction pairs: rmse ' "$tmp/err" && ok ||
+grep -q '^brdfit export: converted walter.* to gltf, conversion over 11664 direction pairs: rmse ' "$tmp/err" && ok ||
   bad "conversion not reported: $(cat "$tmp/err")"
 jq '.materials[0] | {model: "gltf", channels: 3, params: {
       base_color: .pbrMetallicRoughness.baseColorFactor[0:3], metallic: .pbrMetallicRoughness.metallicFactor,
@@ -94,7 +94,7 @@ jq -e '.materials[0] as $m | ([$m.pbrMetallicRoughness.baseColorFactor[0:3][] | 
   and .asset.extras.brdfit.conversion.rmse_rel < 1e-6' "$tmp/l1.gltf" >/dev/null && ok ||
   bad "lambert 0.4 not held exactly: $(jq -c '.materials[0], .asset.extras' "$tmp/l1.gltf")"
 "$BRDFIT" export "$tmp/w.json" --to blender -o "$tmp/w.py" 2>/dev/null && ok || bad "convert walter to blender"
-grep -q '^# Conversion over 11664 direction pairs: rmse ' "$tmp/w.py" && ok || bad "blender script lacks the conversion"
+grep -q '^# conversion over 11664 direction pairs: rmse ' "$tmp/w.py" && ok || bad "blender script lacks the conversion"
 
 # --- Mitsuba, exact ----------------------------------------------------------------------
 cat > "$tmp/m.json" <<'EOF'
@@ -113,7 +113,7 @@ for kv in metallic=0.1 specular=0.6 spec_tint=0.25 roughness=0.3 sheen=0.2 sheen
     bad "mitsuba $kv"
 done
 "$BRDFIT" export "$tmp/w.json" --to mitsuba -o "$tmp/wm.xml" 2>/dev/null && xmllint --noout "$tmp/wm.xml" &&
-  grep -q 'Conversion over 11664 direction pairs: rmse ' "$tmp/wm.xml" && ok || bad "walter to mitsuba"
+  grep -q ' conversion over 11664 direction pairs: rmse ' "$tmp/wm.xml" && ok || bad "walter to mitsuba"
 
 # --- deterministic bytes ------------------------------------------------------------------
 "$BRDFIT" export "$tmp/w.json" --to gltf -o "$tmp/w2.gltf" 2>/dev/null && cmp -s "$tmp/w.gltf" "$tmp/w2.gltf" &&
