@@ -10,10 +10,15 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils \
-  clang libclang-rt-14-dev man-db groff-base >/dev/null
+  clang libclang-rt-14-dev man-db groff-base nodejs npm >/dev/null
+# The Khronos glTF validator (tests/cli_export.sh checks brdfit export's .gltf with it),
+# pinned, into the checkout's ignored tools/ folder: a test dependency only.
+root=$(cd "$(dirname "$0")/.." && pwd)
+npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 >/dev/null
 # jq, openimageio-tools (iinfo, oiiotool) and libxml2-utils (xmllint): the command-line
 # tests check brdfit's JSON output, images and JUnit XML with them. clang and
 # libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.
 # man-db and groff-base: the tests render the generated man pages with man -l.
+# nodejs and npm: the glTF validator above (tests only; brdfit does not need them).
 # libcairo2-dev draws the plots (PNG, SVG, PDF) with the DejaVu fonts (fonts-dejavu-core);
 # poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.

@@ -200,6 +200,32 @@ double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, doubl
     return r;
 }
 
+double ts_uniform_ends(ts_rng *r)
+{
+    double u = ts_uniform(r);
+    return u < 0.1 ? 0.0 : u < 0.2 ? 1.0 : ts_uniform(r);
+}
+
+void ts_compare_reference(const char *spec, uint64_t seed, ts_draw_fn draw, ts_ref_fn ref, void *ctx, double tol)
+{
+    static const int chans[] = {1, 3, 5};
+    ts_rng rng = {seed};
+    for (int ci = 0; ci < 3; ci++) {
+        int C = chans[ci];
+        bf_model *m = ts_model(spec, C);
+        double *x = malloc((size_t)bf_model_nvalues(m) * sizeof *x);
+        for (int t = 0; t < 400; t++) {
+            draw(&rng, m, x, ctx);
+            double ti, pi_, to, po;
+            ts_random_pair_deg(&rng, t % 3 == 0, &ti, &pi_, &to, &po);
+            for (int c = 0; c < C; c++)
+                ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), ref(ctx, C, ti, pi_, to, po, c), tol, spec);
+        }
+        free(x);
+        bf_model_free(m);
+    }
+}
+
 bf_model *ts_model(const char *spec, int C)
 {
     bf_error err;

@@ -89,6 +89,18 @@ void ts_fit_defaults(bf_fit_options *o);
 /* bf_fit that fails the test on an error or an unusable fit. */
 void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r);
 
+/* Uniform in [0, 1] with its ends drawn often: 0 and 1 a tenth of the time each. */
+double ts_uniform_ends(ts_rng *r);
+
+/* The model `spec` against a reference formula the test writes out, for C = 1, 3 and 5:
+ * `draw` fills the parameter vector x (and the test's own copy of the parameters in
+ * ctx) at random; `ref` gives channel c at a direction pair in degrees from ctx. 400
+ * draws per channel count, a third of the pairs near the mirror, each value to `tol`
+ * relative. */
+typedef void (*ts_draw_fn)(ts_rng *r, const bf_model *m, double *x, void *ctx);
+typedef double (*ts_ref_fn)(const void *ctx, int C, double ti, double pi_, double to, double po, int c);
+void ts_compare_reference(const char *spec, uint64_t seed, ts_draw_fn draw, ts_ref_fn ref, void *ctx, double tol);
+
 /* Single value of channel c at one direction pair in degrees. */
 double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
                 int c);

@@ -26,6 +26,10 @@
  *                             diffuse, specular and sheen       (rmse)
  *                             colours are products and lerps
  *                             of these, fewer than the knobs
+ *   gltf                      ior: F0 is ior's times            ior fixed at the truth,
+ *                             specular_color's                  8 starts; weakly determined
+ *   blender_principled,       - (weakly determined, see WEAK)   every parameter, 1e-6
+ *   mitsuba_principled
  *
  * Starts: one (the data-driven start) for every model but lafortune:lobes=2 with
  * Ceres' Levenberg-Marquardt, which from that start settles in a local minimum (lobe 1
@@ -56,6 +60,21 @@ typedef struct truth_case {
     int starts;   /* Ceres, linear residual, noiseless */
 } truth_case;
 
+/* The renderers' models (gltf, blender_principled, mitsuba_principled) tell metal from
+ * dielectric, and specular from tint, only through the grazing Fresnel rise, so their
+ * parameters are weakly determined (standard errors up to 4% at 2% noise; LD_LBFGS
+ * stops with the values right to 1e-7 but gltf's parameters up to 1.5% off). Ceres
+ * recovers them to 1e-6 from the multistart; NLopt is held to the values and the noisy
+ * fits to their standard errors, as Disney is. */
+#define WEAK(t) (!strcmp((t)->spec, "gltf") || strstr((t)->spec, "_principled") != NULL)
+
+/* --fix NAME=VALUE at the truth for a family with a direction the data cannot see
+ * (gltf: F0 is ior's times specular_color's, so ior is fixed as a user would), or NULL. */
+static const char *case_fix(const truth_case *t)
+{
+    return !strcmp(t->spec, "gltf") ? "ior=1.5" : NULL;
+}
+
 /* Plausible values inside the bounds, away from the defaults and the bounds. */
 static const truth_case cases[] = {
     {"lambert", {0.7, 0.45, 0.2}, 1},
@@ -76,6 +95,9 @@ static const truth_case cases[] = {
     {"abc", {0.5, 0.3, 0.15, 5, 6, 7, 200, 0.8, 0.1}, 1},
     {"brady", {0.5, 0.3, 0.15, 2, 2.5, 3, 0.1, 1.5, 0.3}, 1},
     {"disney", {0.6, 0.4, 0.3, 0.3, 0.4, 0.6, 0.4, 0.2, 0.3, 0.3, 0.4, 0.2, 0.7}, 1},
+    {"gltf", {0.6, 0.4, 0.3, 0.3, 0.45, 0.8, 1.2, 1.0, 0.8, 1.5}, 8},
+    {"blender_principled", {0.6, 0.4, 0.3, 0.3, 0.6, 0.3, 0.4, 0.3, 0.4, 0.4, 0.2}, 1},
+    {"mitsuba_principled", {0.6, 0.4, 0.3, 0.3, 0.6, 0.3, 0.4, 0.3, 0.4, 0.3, 0.4, 0.5}, 1},
     {"gaussian", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 0.25}, 1},
     {"heidrich_seidel", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 30, 0.7}, 1},
     {"microfacet", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
@@ -254,10 +276,18 @@ static void assert_recovered(const truth_case *t, const bf_fit_result *r, double
     }
 }
 
-static void base_options(bf_fit_options *o)
+/* The options every fit here starts from, with the case's --fix (into *ov). */
+static void base_options(bf_fit_options *o, const truth_case *t, bf_override *ov)
 {
     ts_fit_defaults(o);
     o->seed = 2;
+    if (case_fix(t)) {
+        bf_error err;
+        if (bf_override_parse_fix(case_fix(t), ov, &err) != BF_OK)
+            fail_msg("%s: %s", t->spec, err.msg);
+        o->objective.overrides = ov;
+        o->objective.noverrides = 1;
+    }
 }
 
 /* Every family appears in the table (with its default options). */
@@ -283,7 +313,8 @@ static void test_recover_noiseless_ceres(void **state)
         const truth_case *t = &cases[i];
         bf_samples *s = make_data(t->spec, t->x, 0.0);
         bf_fit_options o;
-        base_options(&o);
+        bf_override ov;
+        base_options(&o, t, &ov);
         o.starts = t->starts;
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
@@ -313,7 +344,8 @@ static void test_recover_noiseless_nlopt(void **state)
             if (!use)
                 continue;
             bf_fit_options o;
-            base_options(&o);
+            bf_override ov;
+            base_options(&o, t, &ov);
             o.solver.backend = BF_BACKEND_NLOPT;
             o.solver.algorithm = a == 0 ? "LD_LBFGS" : "LD_SLSQP";
             o.solver.max_iterations = 20000;
@@ -325,7 +357,8 @@ static void test_recover_noiseless_nlopt(void **state)
             assert_string_equal(r.solution.algorithm, o.solver.algorithm);
             if (!(r.metrics.rmse < 1e-7 * max_abs_value(s)))
                 fail_msg("%s %s: rmse %g", t->spec, o.solver.algorithm, r.metrics.rmse);
-            assert_recovered(t, &r, 1e-5);
+            if (!WEAK(t))
+                assert_recovered(t, &r, 1e-5);
             bf_fit_result_clear(&r);
         }
         bf_samples_free(s);
@@ -350,12 +383,13 @@ static void test_recover_noisy(void **state)
         const truth_case *t = &cases[i];
         bf_samples *s = make_data(t->spec, t->x, 0.02);
         bf_fit_options o;
-        base_options(&o);
+        bf_override ov;
+        base_options(&o, t, &ov);
         o.objective.residual = BF_RESIDUAL_RELATIVE;
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
         const bf_model *m = r.model;
-        int disney = !strcmp(t->spec, "disney"), lafortune = !strncmp(t->spec, "lafortune", 9);
+        int disney = !strcmp(t->spec, "disney"), weak = disney || WEAK(t), lafortune = !strncmp(t->spec, "lafortune", 9);
         for (int p = 0; p < bf_model_nparams(m); p++) {
             const bf_param_info *pi = bf_model_param(m, p);
             int off = bf_model_param_offset(m, p);
@@ -363,11 +397,13 @@ static void test_recover_noisy(void **state)
                 continue; /* not identifiable: the ratios are checked below */
             for (int c = 0; c < (pi->colour ? NCH : 1); c++) {
                 int k = off + c;
+                if (r.fixed[k])
+                    continue; /* the case's --fix: held at the truth */
                 double se = r.stderr_[k], want = t->x[k], e = fabs(r.x[k] - want);
                 /* A conductor's edge tint shows only where V.H is small (grazing
                  * half-angles, few samples): standard errors up to 1.3%. */
                 double within = pi->role == BF_ROLE_EDGE_TINT ? 0.02 : 0.01;
-                if (!(se > 0.0) || !(e <= 5.0 * se) || (!disney && !(se <= within * fabs(want))))
+                if (!(se > 0.0) || !(e <= 5.0 * se) || (!weak && !(se <= within * fabs(want))))
                     fail_msg("%s %s[%d]: fit %.8g, truth %g, standard error %.3g", t->spec, pi->name, c,
                              r.x[k], want, se);
             }

@@ -176,7 +176,7 @@ static void test_registry_names(void **state)
         "lambert", "oren_nayar", "phong", "blinn_phong", "cook_torrance", "ward", "ward_iso",
         "lafortune", "lafortune_aniso", "ashikhmin_shirley", "ashikhmin_shirley_iso", "walter",
         "walter_aniso", "kurt", "nishino", "abc", "brady", "disney", "gaussian",
-        "heidrich_seidel", "microfacet"};
+        "heidrich_seidel", "microfacet", "gltf", "blender_principled", "mitsuba_principled"};
     enum { N = sizeof names / sizeof names[0] };
     assert_int_equal(bf_family_count(), N);
     for (int i = 0; i < N; i++)

@@ -297,6 +297,17 @@ bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double l
     return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, role, err);
 }
 
+bf_status bf_model_add_rows(bf_model *m, const bf_param_row *rows, int n, bf_error *err)
+{
+    for (int k = 0; k < n; k++) {
+        bf_status rc = bf_model_add_param(m, rows[k].name, rows[k].colour, rows[k].lo, 1.0, rows[k].def,
+                                          BF_SCALE_LINEAR, 0, rows[k].role, err);
+        if (rc != BF_OK)
+            return rc;
+    }
+    return BF_OK;
+}
+
 const char *bf_param_role_name(bf_param_role role)
 {
     static const char *const names[] = {

@@ -24,6 +24,9 @@ extern const bf_family bf_family_disney;
 extern const bf_family bf_family_gaussian;
 extern const bf_family bf_family_heidrich_seidel;
 extern const bf_family bf_family_microfacet;
+extern const bf_family bf_family_gltf;
+extern const bf_family bf_family_blender_principled;
+extern const bf_family bf_family_mitsuba_principled;
 
 static const bf_family *const families[] = {
     &bf_family_lambert,
@@ -47,6 +50,9 @@ static const bf_family *const families[] = {
     &bf_family_gaussian,
     &bf_family_heidrich_seidel,
     &bf_family_microfacet,
+    &bf_family_gltf,
+    &bf_family_blender_principled,
+    &bf_family_mitsuba_principled,
 };
 
 enum { NFAMILIES = sizeof families / sizeof families[0] };

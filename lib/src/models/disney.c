@@ -14,7 +14,6 @@
 #include "family.h"
 
 #include <math.h>
-#include <string.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -27,24 +26,17 @@ static bf_status configure(bf_model *m, bf_error *err)
 {
     /* Disney's artist parameters mostly shape one term each; only the base colour, the
      * roughness and the sheen and clearcoat weights have a role the start can use. */
-    static const struct {
-        const char *name;
-        double def;
-        bf_param_role role;
-    } tab[P_COUNT] = {
-        {"base_color", 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0.0, BF_ROLE_SHAPE},
-        {"subsurface", 0.0, BF_ROLE_DIFFUSE_SHAPE}, {"specular", 0.5, BF_ROLE_SHAPE},
-        {"roughness", 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"specular_tint", 0.0, BF_ROLE_SHAPE},
-        {"anisotropic", 0.0, BF_ROLE_SHAPE},    {"sheen", 0.0, BF_ROLE_WEIGHT},
-        {"sheen_tint", 0.5, BF_ROLE_SHAPE},     {"clearcoat", 0.0, BF_ROLE_WEIGHT},
-        {"clearcoat_gloss", 1.0, BF_ROLE_SHAPE},
+    static const bf_param_row tab[P_COUNT] = {
+        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"subsurface", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE}, {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},
+        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"specular_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"anisotropic", 0, 0.0, 0.0, BF_ROLE_SHAPE},    {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"sheen_tint", 0, 0.0, 0.5, BF_ROLE_SHAPE},     {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"clearcoat_gloss", 0, 0.0, 1.0, BF_ROLE_SHAPE},
     };
-    for (int k = 0; k < P_COUNT; k++) {
-        int rc = bf_model_add_param(m, tab[k].name, k == P_BASE, 0.0, 1.0, tab[k].def, BF_SCALE_LINEAR, 0,
-                                    tab[k].role, err);
-        if (rc != BF_OK)
-            return rc;
-    }
+    bf_status rc = bf_model_add_rows(m, tab, P_COUNT, err);
+    if (rc != BF_OK)
+        return rc;
     /* Not energy conserving by design: diffuse retro-reflection (Fd90 up to 2.5), the
      * subsurface 1/(NL + NV) term, sheen and clearcoat all add energy. Reciprocal: every
      * term is symmetric in L and V (model.c's default). */
@@ -139,13 +131,8 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
         double *rows = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
-        if (!bf_geometry_valid(g, i)) {
-            for (int c = 0; c < C; c++)
-                out[c] = 0.0;
-            if (rows)
-                memset(rows, 0, (size_t)C * (size_t)P * sizeof *rows);
+        if (bf_eval_skip_invalid(g, i, C, P, out, rows))
             continue;
-        }
         const double NL = g->lz[i], NV = g->vz[i], NH = g->hz[i], LH = g->vh[i];
         const double HX = g->hx[i], HY = g->hy[i];
         const double NH2 = NH * NH;

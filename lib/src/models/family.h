@@ -74,6 +74,30 @@ bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double l
 bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
                             int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
+/* A table of parameters the way the artist-facing families declare them: outside the
+ * lobes, linear, in [lo, 1]; `colour` 1 for a colour. */
+typedef struct bf_param_row {
+    const char *name;
+    int colour;
+    double lo, def;
+    bf_param_role role;
+} bf_param_row;
+bf_status bf_model_add_rows(bf_model *m, const bf_param_row *rows, int n, bf_error *err);
+
+/* For a family's own evaluator: when sample i is below the horizon, zeroes its C values
+ * and (rows not NULL) its C gradient rows of P entries, and returns 1. */
+static inline int bf_eval_skip_invalid(const bf_geometry *g, size_t i, int C, int P, double *out, double *rows)
+{
+    if (bf_geometry_valid(g, i))
+        return 0;
+    for (int c = 0; c < C; c++)
+        out[c] = 0.0;
+    if (rows)
+        for (int k = 0; k < C * P; k++)
+            rows[k] = 0.0;
+    return 1;
+}
+
 /* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
  * schlick, ior [1, 3] for dielectric, none for none, colour r [1e-3, 0.99] and g
  * [1e-3, 1] for conductor. */
