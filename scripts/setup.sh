@@ -10,7 +10,12 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils \
-  clang libclang-rt-14-dev man-db groff-base nodejs npm >/dev/null
+  clang libclang-rt-14-dev man-db groff-base blender >/dev/null
+# Node.js and npm from Debian unless the machine has them already (a Node.js from
+# elsewhere, such as NodeSource's, bundles npm and conflicts with Debian's npm package).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+fi
 # The Khronos glTF validator (tests/cli_export.sh checks brdfit export's .gltf with it),
 # pinned, into the checkout's ignored tools/ folder: a test dependency only.
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,6 +24,7 @@ npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@
 # tests check brdfit's JSON output, images and JUnit XML with them. clang and
 # libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.
 # man-db and groff-base: the tests render the generated man pages with man -l.
-# nodejs and npm: the glTF validator above (tests only; brdfit does not need them).
+# nodejs and npm: the glTF validator above; blender (3.4, run headless with Cycles on the
+# CPU): tests/cli_blender.sh renders exported materials. Tests only: brdfit needs neither.
 # libcairo2-dev draws the plots (PNG, SVG, PDF) with the DejaVu fonts (fonts-dejavu-core);
 # poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.
