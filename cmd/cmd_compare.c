@@ -60,6 +60,7 @@
 #include "args.h"
 #include "cli.h"
 #include "commands.h"
+#include "compare_print.h"
 #include "data_options.h"
 #include "fit_options.h"
 #include "rank_options.h"
@@ -429,71 +430,13 @@ static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *sam
     return 0;
 }
 
-static const char *error_name(const bf_compare *c)
-{
-    return c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric);
-}
-
-static void print_material(FILE *out, const bf_compare *c, const bf_compare_material *m)
-{
-    fprintf(out, "%s  (%zu samples, %d channel%s)\n", m->data, m->samples, m->channels, m->channels == 1 ? "" : "s");
-    /* work M: millions of sample evaluations; wall time only when asked, so that the
-     * table, like the files, is the same from run to run. */
-    fprintf(out, "  %-5s %-28s %4s %12s %13s %13s %13s %11s%s  %s\n", "rank", "model", "k", error_name(c), "AIC",
-            "AICc", "BIC", "work M", c->timing ? "   time s" : "", "pareto");
-    /* Ranked fits by rank (ties in model order), then the rest in model order. */
-    for (int rank = 1; rank <= c->nmodels; rank++)
-        for (int j = 0; j < c->nmodels; j++) {
-            const bf_compare_fit *f = &m->fits[j];
-            if (f->rank != rank)
-                continue;
-            char secs[32] = "";
-            if (c->timing)
-                snprintf(secs, sizeof secs, " %8.3f", f->seconds);
-            fprintf(out, "  %-5d %-28s %4d %12.6g %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
-                    f->metrics.k, f->error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
-                    f->pareto_k ? "k" : "-", f->pareto_work ? "w" : "-", m->simplest == j ? "  <- simplest" : "");
-        }
-    for (int j = 0; j < c->nmodels; j++)
-        if (!m->fits[j].rank)
-            fprintf(out, "  %-5s %-28s %s%s%s\n", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
-                    m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
-    if (m->simplest >= 0)
-        fprintf(out, "  ranked by %s; simplest within %g%% of the best %s (%s): %s\n", bf_compare_rank_name(c->rank_by),
-                100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);
-    else
-        fprintf(out, "  no model fitted\n");
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *r = m->fits[j].result;
-        for (int w = 0; r && (m->fits[j].state == BF_CMP_OK || m->fits[j].state == BF_CMP_FAILED) && w < r->nwarnings;
-             w++)
-            fprintf(out, "  warning: %s: %s\n", c->models[j], r->warnings[w]);
-    }
-}
-
-static void print_summary(FILE *out, const bf_compare *c)
-{
-    fprintf(out, "summary over %d materials\n", c->nmaterials);
-    fprintf(out, "  %-28s %9s %13s %13s %13s %14s %8s\n", "model", "materials", "mean rank", "BIC rank", "AIC rank",
-            "mean error", "simplest");
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_compare_summary *s = &c->summary[j];
-        fprintf(out, "  %-28s %9d %13.3g %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank,
-                s->mean_rank_bic, s->mean_rank_aic, s->mean_error, s->chosen);
-    }
-}
-
 /* The tables on stdout: per material, then across them. */
 static void print_results(const compare_args *a, const bf_compare *c)
 {
     if (data_options_has_scene(&a->dopt))
         printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
                a->dopt.scene);
-    for (int i = 0; i < c->nmaterials; i++)
-        print_material(stdout, c, &c->materials[i]);
-    if (c->nmaterials > 1)
-        print_summary(stdout, c);
-    fflush(stdout);
+    compare_print_tables(stdout, c);
 }
 
 /* Material i's MERL table as read, whole, when the fits had a subsample of it (for the

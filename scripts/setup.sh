@@ -8,9 +8,11 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
-  libcjson-dev libcmocka-dev libxml2-dev jq libxml2-utils \
+  libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils \
   clang libclang-rt-14-dev man-db groff-base >/dev/null
+# libsqlite3-dev: brdfit batch's results database; sqlite3 (the shell): its tests and
+# docs/batch.md read the database with it.
 # jq, openimageio-tools (iinfo, oiiotool) and libxml2-utils (xmllint): the command-line
 # tests check brdfit's JSON output, images and JUnit XML with them. clang and
 # libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.

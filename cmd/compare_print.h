@@ -1,0 +1,14 @@
+/* The ranking tables brdfit compare prints, shared with brdfit report (which prints
+ * them from a batch database): per material, then the summary across materials. */
+#ifndef BRDFIT_COMPARE_PRINT_H
+#define BRDFIT_COMPARE_PRINT_H
+
+#include <stdio.h>
+
+#include "brdfit/compare.h"
+
+/* Every material's table (ranked fits by rank, then the others with their state), then
+ * the summary when there are several materials; flushed. */
+void compare_print_tables(FILE *out, const bf_compare *c);
+
+#endif
