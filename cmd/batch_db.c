@@ -78,7 +78,7 @@ static bf_status exec(batch_db *db, const char *sql, const char *what, bf_error 
 
 static bf_status prepare(batch_db *db, const char *sql, sqlite3_stmt **st, bf_error *err)
 {
-    return sqlite3_prepare_v2(db->db, sql, -1, st, NULL) == SQLITE_OK ? BF_OK : db_fail(db, err, "a query");
+    return sqlite3_prepare_v2(db->db, sql, -1, st, NULL) == SQLITE_OK ? BF_OK : db_fail(db, err, "reading it");
 }
 
 void batch_db_close(batch_db *db)

@@ -236,6 +236,8 @@ static void run_material(run *r, int i, const int *models, int n)
 {
     const batch_manifest *m = r->m;
     data_options dopt;
+    r->material = i;
+    r->model_of = models;
     if (batch_manifest_data_options(m, i, &dopt, cmd) < 0) { /* checked when read: cannot fail */
         data_error(r, models, n);
         return;
@@ -261,8 +263,6 @@ static void run_material(run *r, int i, const int *models, int n)
         on_sigint(0);
     } else {
         c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
-        r->material = i;
-        r->model_of = models;
         bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &stop};
         if (bf_compare_run(&c, &s, &fopt.fit, &ro, &err) != BF_OK) {
             /* Only before any fit: bad arguments or no memory. */
