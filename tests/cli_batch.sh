@@ -202,4 +202,12 @@ for bad_manifest in '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' \
   "$BRDFIT" batch "$tmp/bad.json" -o "$tmp/u.db" 2>"$tmp/err"
   [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
 done
+
+# --- docs/batch.md documents every column the database has ----------------------------------
+doc=$(dirname "$0")/../docs/batch.md
+for t in meta materials models items; do
+  for col in $(sqlite3 "$tmp/one.db" "SELECT name FROM pragma_table_info('$t')"); do
+    grep -Eq "(^| |\\(|,)$col (INTEGER|REAL|TEXT)" "$doc" && ok || bad "docs/batch.md: no column $t.$col"
+  done
+done
 finish
