@@ -14,8 +14,8 @@
  *    version or shard is refused (batch_db_setup), never mixed.
  *  - --shard I/N runs items with item % N == I - 1 (item = material x models + model)
  *    into its own database; brdfit merge combines the shards.
- *  - Data that cannot be read or prepared makes each of its items an error (the reason
- *    on stderr, the item's message saying so); the other materials go on.
+ *  - Data that cannot be read or prepared makes each of its items an error with the
+ *    reason as its message (printed on stderr too); the other materials go on.
  *  - --threads here overrides a manifest's: results do not depend on it (fit.h), and the
  *    machine that runs a batch is not part of what the manifest asks.
  *  - Progress (items done, failures, ETA) on a terminal; nothing when stderr is not one.
@@ -36,6 +36,7 @@
 #include "batch_manifest.h"
 #include "cli.h"
 #include "commands.h"
+#include "interrupt.h"
 
 static const char cmd[] = "brdfit batch";
 
@@ -51,7 +52,7 @@ static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_batch = {
     "brdfit", "batch", "MANIFEST -o RESULTS.db [--redo failed|all] [--shard I/N] [--jobs N]",
-    "fit a manifest's models to its materials into a resumable results database",
+    "run a manifest's fits into a resumable results database",
     "Runs every (material, model) fit a JSON manifest lists (materials with their data options, models, and the "
     "options of brdfit compare; docs/batch.md) and writes each result, as it finishes, into an SQLite database. "
     "Rerunning the same command resumes where a killed or interrupted run stopped. brdfit report ranks the results "
@@ -138,24 +139,6 @@ static int parse(batch_args *a, int argc, char **argv)
 
 /* ---- The run ------------------------------------------------------------------------- */
 
-static volatile sig_atomic_t stop; /* SIGINT, or the database failed: no new fit */
-static void on_sigint(int sig)
-{
-    (void)sig;
-#if defined(__GNUC__)
-    __atomic_store_n(&stop, 1, __ATOMIC_RELAXED);
-#else
-    stop = 1;
-#endif
-}
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 typedef struct run {
     const batch_args *a;
     const batch_manifest *m;
@@ -173,7 +156,7 @@ static void show_progress(const run *r)
 {
     if (!r->tty || cli_quiet())
         return;
-    double el = now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
+    double el = args_now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
     fprintf(stderr, "\r%s: %d/%d items, %d failed", cmd, r->done, r->total, r->bad);
     if (isfinite(eta))
         fprintf(stderr, ", ETA %.0f s", eta);
@@ -192,7 +175,7 @@ static void record(run *r, batch_row *row)
     row->item = r->material * r->m->nmodels + row->model;
     if (batch_db_put(r->db, row, &r->db_err) != BF_OK) {
         r->db_failed = 1;
-        on_sigint(0);
+        interrupt_raise();
         return;
     }
     r->done++;
@@ -211,7 +194,7 @@ static void fit_done(void *ctx, const bf_compare *c, int material, int j, int do
     batch_row row = {0};
     if (batch_row_from_fit(&row, c, j, &r->db_err) != BF_OK) {
         r->db_failed = 1;
-        on_sigint(0);
+        interrupt_raise();
         return;
     }
     row.model = r->model_of[j];
@@ -219,13 +202,13 @@ static void fit_done(void *ctx, const bf_compare *c, int material, int j, int do
     batch_row_clear(&row);
 }
 
-/* Every model of models[0..n-1] an error on this material: its data could not be used. */
-static void data_error(run *r, const int *models, int n)
+/* Every model of models[0..n-1] an error on this material: its data could not be used
+ * (why: reason). */
+static void data_error(run *r, const int *models, int n, const char *reason)
 {
     for (int k = 0; k < n; k++) {
         batch_row row = {.model = models[k], .state = BF_CMP_ERROR, .seconds = NAN, .cv = NAN, .work = NAN};
-        snprintf(row.message, sizeof row.message, "%s: the data could not be read or prepared",
-                 r->m->materials[r->material].data);
+        snprintf(row.message, sizeof row.message, "%s", reason);
         record(r, &row);
     }
 }
@@ -239,7 +222,7 @@ static void run_material(run *r, int i, const int *models, int n)
     r->material = i;
     r->model_of = models;
     if (batch_manifest_data_options(m, i, &dopt, cmd) < 0) { /* checked when read: cannot fail */
-        data_error(r, models, n);
+        data_error(r, models, n, "its data options do not parse");
         return;
     }
     fit_options fopt = m->fopt;
@@ -248,7 +231,9 @@ static void run_material(run *r, int i, const int *models, int n)
     fit_options_finish(&fopt, &dopt);
     bf_samples *s = data_options_load(&dopt, m->materials[i].data, NULL, cmd);
     if (!s) {
-        data_error(r, models, n);
+        char reason[512];
+        data_options_load_reason(&dopt, m->materials[i].data, reason, sizeof reason);
+        data_error(r, models, n, reason);
         return;
     }
     const char *specs[128], *data = m->materials[i].data;
@@ -260,14 +245,14 @@ static void run_material(run *r, int i, const int *models, int n)
     if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         r->db_failed = 1, r->db_err = err;
-        on_sigint(0);
+        interrupt_raise();
     } else {
         c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
-        bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &stop};
+        bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &interrupt_flag};
         if (bf_compare_run(&c, &s, &fopt.fit, &ro, &err) != BF_OK) {
             /* Only before any fit: bad arguments or no memory. */
             r->db_failed = 1, r->db_err = err;
-            on_sigint(0);
+            interrupt_raise();
         }
     }
     bf_compare_clear(&c);
@@ -278,7 +263,7 @@ static void run_material(run *r, int i, const int *models, int n)
 static void run_items(run *r, const int *items, int n)
 {
     int models[128];
-    for (int k = 0; k < n && !stop;) {
+    for (int k = 0; k < n && !interrupt_flag;) {
         const int i = items[k] / r->m->nmodels;
         int nm = 0;
         for (; k < n && items[k] / r->m->nmodels == i; k++)
@@ -303,17 +288,12 @@ static int batch(const batch_args *a, const batch_manifest *m)
         batch_db_close(db);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
-    run r = {.a = a, .m = m, .db = db, .total = n, .tty = isatty(STDERR_FILENO), .t0 = now()};
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
-    sigemptyset(&sa.sa_mask);
-    stop = 0;
-    sigaction(SIGINT, &sa, &old);
+    run r = {.a = a, .m = m, .db = db, .total = n, .tty = isatty(STDERR_FILENO), .t0 = args_now()};
+    struct sigaction old;
+    interrupt_catch(&old); /* SIGINT, or a database failure (interrupt_raise): no new fit */
     cli_note(cmd, "%d items to run into %s", n, a->output);
     run_items(&r, items, n);
-    sigaction(SIGINT, &old, NULL);
+    interrupt_release(&old);
     free(items);
     batch_db_close(db);
     if (r.tty && !cli_quiet() && r.done < r.total)

@@ -63,6 +63,7 @@
 #include "compare_print.h"
 #include "data_options.h"
 #include "fit_options.h"
+#include "interrupt.h"
 #include "rank_options.h"
 
 static const char cmd[] = "brdfit compare";
@@ -347,13 +348,6 @@ typedef struct progress_state {
     double t0;
 } progress_state;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void progress_bar(const progress_state *ps, int done, int total)
 {
     char bar[31];
@@ -361,7 +355,7 @@ static void progress_bar(const progress_state *ps, int done, int total)
     for (int k = 0; k < 30; k++)
         bar[k] = k < w ? '#' : '.';
     bar[30] = '\0';
-    double el = now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
+    double el = args_now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
     fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, done, total);
     if (isfinite(eta))
         fprintf(stderr, ", ETA %.0f s   ", eta);
@@ -391,36 +385,18 @@ static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int
     fflush(stderr);
 }
 
-/* The cancel flag of bf_compare_run: set here, read by the fitting threads (stored
- * atomically where the compiler can, as the library loads it). */
-static volatile sig_atomic_t interrupted;
-static void on_sigint(int sig)
-{
-    (void)sig;
-#if defined(__GNUC__)
-    __atomic_store_n(&interrupted, 1, __ATOMIC_RELAXED);
-#else
-    interrupted = 1;
-#endif
-}
-
 /* The fits, in the library, with progress on stderr and SIGINT as a cancel. 0, or 1
  * after an error. */
 static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *samples)
 {
-    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = now()};
+    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = args_now()};
     bf_compare_run_options ro = {.jobs = a->jobs, .progress = cli_quiet() ? NULL : progress, .ctx = &ps,
-                                 .cancel = &interrupted};
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
-    sigemptyset(&sa.sa_mask);
-    interrupted = 0;
-    sigaction(SIGINT, &sa, &old);
+                                 .cancel = &interrupt_flag};
+    struct sigaction old;
+    interrupt_catch(&old);
     bf_error err;
     int rc = bf_compare_run(c, samples, &a->fopt.fit, &ro, &err);
-    sigaction(SIGINT, &old, NULL);
+    interrupt_release(&old);
     if (rc != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
@@ -496,8 +472,8 @@ static int write_outputs(const compare_args *a, const bf_compare *c, bf_samples 
 /* 130 interrupted, 1 some fit failed, else 0; a line on stderr but for 0. */
 static int outcome(const bf_compare *c)
 {
-    const int total = c->nmaterials * c->nmodels, not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
-    const int bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+    int total, not_run, bad;
+    compare_counts(c, &total, &not_run, &bad);
     if (c->interrupted) {
         fprintf(stderr, "%s: interrupted after %d of %d fits; the outputs hold the finished ones\n", cmd,
                 total - not_run, total);

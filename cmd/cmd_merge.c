@@ -31,7 +31,7 @@ static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_merge = {
     "brdfit", "merge", "A.db B.db ... -o ALL.db",
-    "join brdfit batch databases of one manifest (--shard runs)",
+    "join the databases of brdfit batch --shard runs",
     "Joins results databases of one manifest and brdfit version into a new one, refusing inputs of another manifest "
     "or version and items finished twice with different results.",
     "file", groups, sizeof groups / sizeof groups[0],

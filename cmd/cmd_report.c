@@ -39,7 +39,7 @@ static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_report = {
     "brdfit", "report", "RESULTS.db [--json R.json] [--csv R.csv] [--html DIR]",
-    "rank the models of a brdfit batch database as compare does",
+    "compare's rankings and outputs from a batch database",
     "Reads the results database of brdfit batch (or brdfit merge), ranks the models per material and across "
     "materials with the manifest's ranking options, prints compare's tables and writes its JSON, CSV and HTML "
     "report.",
@@ -173,8 +173,8 @@ static int write_outputs(const report_args *a, const bf_compare *c)
 
 static int outcome(const bf_compare *c)
 {
-    const int total = c->nmaterials * c->nmodels, not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
-    const int bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+    int total, not_run, bad;
+    compare_counts(c, &total, &not_run, &bad);
     if (not_run)
         fprintf(stderr, "%s: %d of %d items not run yet (brdfit batch resumes them)\n", cmd, not_run, total);
     if (bad)

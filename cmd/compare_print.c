@@ -65,3 +65,10 @@ void compare_print_tables(FILE *out, const bf_compare *c)
         print_summary(out, c);
     fflush(out);
 }
+
+void compare_counts(const bf_compare *c, int *total, int *not_run, int *bad)
+{
+    *total = c->nmaterials * c->nmodels;
+    *not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
+    *bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+}

@@ -11,4 +11,8 @@
  * the summary when there are several materials; flushed. */
 void compare_print_tables(FILE *out, const bf_compare *c);
 
+/* The fits of c: all, those never run, those failed or in error (for the closing line
+ * and the exit status). */
+void compare_counts(const bf_compare *c, int *total, int *not_run, int *bad);
+
 #endif

@@ -31,6 +31,14 @@ JSON
 COLS="item,material,model,status,message,spec,samples,channels,n,k,rmse,rmse_log,rmse_cos,rmse_rel,max_err,weighted,crit_n,loglik,aic,aicc,bic,cv,work,params,stderr,warnings,options,tool_version"
 rows() { sqlite3 "$1" "SELECT $COLS FROM items ORDER BY item"; }
 count() { sqlite3 "$1" "$2"; }
+# Waits (up to 4 s) until database $1 of a running batch has $2 items finished.
+wait_items() {
+  for _ in $(seq 200); do
+    n=$(count "$1" "SELECT count(*) FROM items WHERE status != 'pending'" 2>/dev/null || echo 0)
+    [ "${n:-0}" -ge "$2" ] && return
+    sleep 0.02
+  done
+}
 
 # --- a run: 24 rows, all ok, the identity stored ----------------------------------------
 if "$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" 2>"$tmp/err"; then ok; else bad "batch: $(cat "$tmp/err")"; fi
@@ -58,11 +66,7 @@ cmp -s "$tmp/c.csv" "$tmp/r.csv" && ok || bad "report CSV differs from compare's
 # --- SIGKILL part-way, rerun: every item exactly once, the same rows -----------------------
 "$BRDFIT" batch "$tmp/m.json" -o "$tmp/k.db" 2>/dev/null &
 pid=$!
-for _ in $(seq 200); do
-  n=$(count "$tmp/k.db" "SELECT count(*) FROM items WHERE status != 'pending'" 2>/dev/null || echo 0)
-  [ "${n:-0}" -ge 5 ] && break
-  sleep 0.02
-done
+wait_items "$tmp/k.db" 5
 kill -KILL $pid 2>/dev/null
 wait $pid 2>/dev/null
 done_before=$(count "$tmp/k.db" "SELECT count(*) FROM items WHERE status != 'pending'")
@@ -76,11 +80,7 @@ rows "$tmp/k.db" | cmp -s - "$tmp/one.rows" && ok || bad "resumed rows differ fr
 # --- SIGINT: finished fits kept, exit 130, resumable ----------------------------------------
 "$BRDFIT" batch "$tmp/m.json" -o "$tmp/i.db" 2>"$tmp/err" &
 pid=$!
-for _ in $(seq 200); do
-  n=$(count "$tmp/i.db" "SELECT count(*) FROM items WHERE status != 'pending'" 2>/dev/null || echo 0)
-  [ "${n:-0}" -ge 3 ] && break
-  sleep 0.02
-done
+wait_items "$tmp/i.db" 3
 kill -INT $pid
 wait $pid
 rc=$?
@@ -181,7 +181,7 @@ JSON
 [ "$(count "$tmp/f.db" "SELECT options FROM items WHERE item = 3")" = '["--threads","1","--max-theta","80","-m","walter"]' ] &&
   ok || bad "material options in the options column"
 "$BRDFIT" report "$tmp/f.db" --json "$tmp/f.json" >/dev/null 2>&1
-jq -e '.materials[1].fits[0].status == "error" and (.materials[1].fits[0].message | test("later.csv"))' "$tmp/f.json" >/dev/null &&
+jq -e '.materials[1].fits[0].status == "error" and (.materials[1].fits[0].message | test("later.csv: cannot open"))' "$tmp/f.json" >/dev/null &&
   ok || bad "report of error items"
 cp "$tmp/lam2.csv" "$tmp/later.csv"
 "$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" 2>/dev/null
