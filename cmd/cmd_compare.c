@@ -458,15 +458,9 @@ static int write_report(const compare_args *a, const bf_compare *c, bf_samples *
 /* The report, the JSON and the CSV; 0, or 1 after a one-line error. */
 static int write_outputs(const compare_args *a, const bf_compare *c, bf_samples *const *samples)
 {
-    bf_error err;
     if (a->html_dir && write_report(a, c, samples) != 0)
         return 1;
-    if ((a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
-        (a->csv_path && bf_compare_write_csv(c, a->csv_path, &err) != BF_OK)) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        return 1;
-    }
-    return 0;
+    return compare_write_tables(cmd, c, a->json_path, a->csv_path);
 }
 
 /* 130 interrupted, 1 some fit failed, else 0; a line on stderr but for 0. */

@@ -162,13 +162,11 @@ static int write_outputs(const report_args *a, const bf_compare *c)
 {
     bf_error err;
     bf_report_options o = {NULL, NULL, a->plot_format, NULL, NULL, NULL};
-    if ((a->html_dir && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) ||
-        (a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
-        (a->csv_path && bf_compare_write_csv(c, a->csv_path, &err) != BF_OK)) {
+    if (a->html_dir && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
-    return 0;
+    return compare_write_tables(cmd, c, a->json_path, a->csv_path);
 }
 
 static int outcome(const bf_compare *c)

@@ -72,3 +72,14 @@ void compare_counts(const bf_compare *c, int *total, int *not_run, int *bad)
     *not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
     *bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
 }
+
+int compare_write_tables(const char *cmd, const bf_compare *c, const char *json_path, const char *csv_path)
+{
+    bf_error err;
+    if ((json_path && bf_compare_write_json(c, json_path, &err) != BF_OK) ||
+        (csv_path && bf_compare_write_csv(c, csv_path, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}
