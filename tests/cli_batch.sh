@@ -22,6 +22,9 @@ for k in 1 2 3; do
   "$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 3000 --noise 0.01 --seed $((k + 10)) -o "$tmp/wal$k.csv" ||
     bad "brdfit-synth failed"
 done
+cat > "$tmp/mm0.json" <<'JSON'
+{"models": ["lambert", "walter"], "options": ["--threads", "1"], "materials": ["lam1.csv", "missing.csv"]}
+JSON
 MATS='"lam1.csv", "wal1.csv", "lam2.csv", "wal2.csv", "lam3.csv", "wal3.csv"'
 cat > "$tmp/m.json" <<JSON
 {"models": ["lambert", "walter", "cook_torrance", "blinn_phong"],
@@ -52,6 +55,13 @@ if "$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" 2>"$tmp/err"; then ok; else ba
 rows "$tmp/one.db" > "$tmp/one.rows"
 "$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" && ok || bad "rerun of a finished batch"
 rows "$tmp/one.db" | cmp -s - "$tmp/one.rows" && ok || bad "rerun changed rows"
+
+# --- progress on a terminal: items done, failures, ETA ---------------------------------------
+if command -v script >/dev/null; then
+  script -qec "'$BRDFIT' batch '$tmp/mm0.json' -o '$tmp/tty.db'" /dev/null > "$tmp/tty" 2>&1
+  tr '\r' '\n' < "$tmp/tty" | grep -q "^brdfit batch: 4/4 items, 2 failed" && grep -q "ETA" "$tmp/tty" && ok ||
+    bad "progress on a terminal: $(tr '\r' '\n' < "$tmp/tty" | tail -3)"
+fi
 
 # --- report = compare for the same fits ---------------------------------------------------
 (cd "$tmp" && "$BRDFIT" compare "$tmp"/lam1.csv "$tmp"/wal1.csv "$tmp"/lam2.csv "$tmp"/wal2.csv "$tmp"/lam3.csv "$tmp"/wal3.csv \
@@ -97,8 +107,8 @@ fi
 rows "$tmp/i.db" | cmp -s - "$tmp/one.rows" && ok || bad "rows after SIGINT + resume differ"
 
 # --- --shard I/N + merge = one process -----------------------------------------------------
-for s in 1 2 3; do
-  "$BRDFIT" batch "$tmp/m.json" -o "$tmp/s$s.db" --shard $s/3 || bad "shard $s"
+for s in 1 2 3; do # --jobs changes nothing in the rows
+  "$BRDFIT" batch "$tmp/m.json" -o "$tmp/s$s.db" --shard $s/3 --jobs $s || bad "shard $s"
 done
 [ "$(count "$tmp/s2.db" "SELECT group_concat(item) FROM items")" = "1,4,7,10,13,16,19,22" ] && ok || bad "shard 2/3 items"
 "$BRDFIT" merge "$tmp/s1.db" "$tmp/s2.db" "$tmp/s3.db" -o "$tmp/all.db" && ok || bad "merge"
