@@ -328,10 +328,16 @@ bf_status batch_db_redo(batch_db *db, int failed, int all, bf_error *err)
 {
     if (!failed && !all)
         return BF_OK;
+    /* Pending again, and emptied: a pending row never shows an old result. */
+#define PENDING                                                                                                   \
+    "UPDATE items SET status = 'pending', message = NULL, spec = NULL, samples = NULL, channels = NULL, "         \
+    "n = NULL, k = NULL, rmse = NULL, rmse_log = NULL, rmse_cos = NULL, rmse_rel = NULL, max_err = NULL, "        \
+    "weighted = NULL, crit_n = NULL, loglik = NULL, aic = NULL, aicc = NULL, bic = NULL, cv = NULL, work = NULL, " \
+    "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL "
     return exec(db,
-                all ? "UPDATE items SET status = 'pending' WHERE status != 'pending'"
-                    : "UPDATE items SET status = 'pending' WHERE status IN ('failed', 'error')",
+                all ? PENDING "WHERE status != 'pending'" : PENDING "WHERE status IN ('failed', 'error')",
                 "marking items to redo", err);
+#undef PENDING
 }
 
 bf_status batch_db_pending(batch_db *db, int **items, int *n, bf_error *err)

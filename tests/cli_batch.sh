@@ -197,6 +197,13 @@ cp "$tmp/lam2.csv" "$tmp/later.csv"
 "$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" 2>/dev/null
 [ "$(count "$tmp/f.db" "SELECT group_concat(status) FROM items")" = "ok,ok,error,error" ] && ok || bad "plain rerun redid errors"
 "$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" --redo failed && ok || bad "--redo failed"
+# --redo all: every row again, the same results.
+cp "$tmp/one.db" "$tmp/redo.db"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/redo.db" --redo all --jobs 2 && ok || bad "--redo all"
+rows "$tmp/redo.db" | cmp -s - "$tmp/one.rows" && ok || bad "--redo all changed results"
+[ "$(count "$tmp/redo.db" "ATTACH '$tmp/one.db' AS o;
+       SELECT count(*) FROM items a JOIN o.items b USING(item) WHERE a.finished_at > b.finished_at")" = 24 ] &&
+  ok || bad "--redo all did not run every item again"
 [ "$(count "$tmp/f.db" "SELECT group_concat(status) FROM items")" = "ok,ok,ok,ok" ] && ok || bad "after --redo failed"
 
 # --- bad usage and bad manifests: one line, exit 2, no database ---------------------------
