@@ -98,6 +98,17 @@ static int parse_words(const cli_command *c, char **words, int n, int (*take)(vo
         fprintf(stderr, "%s: out of memory\n", cmd);
         return -1;
     }
+    /* An option these tables do not declare: said here, naming the list it is in (the
+     * grammar's own message would send the reader to brdfit batch --help). */
+    for (int k = 0; k < n; k++) {
+        const size_t len = strcspn(words[k], "=");
+        if (!strncmp(words[k], "--", 2) && len > 2 && !cli_find(c, words[k], len)) {
+            fprintf(stderr, "%s: %s: option '%.*s' is not taken here (%s)\n", cmd, where, (int)(len > 64 ? 64 : len),
+                    words[k], c == &material_cli ? "a material takes data options only" : "see docs/batch.md");
+            free(argv);
+            return -1;
+        }
+    }
     argv[0] = (char *)"batch";
     memcpy(argv + 1, words, (size_t)n * sizeof *argv);
     cli_args args = {0};
@@ -228,7 +239,9 @@ static int read_material(batch_manifest *m, const cJSON *e, const char *dir, bat
         b->words[b->nwords++] = b->scene;
     }
     data_options d;
-    return batch_manifest_data_options(m, (int)(b - m->materials), &d, cmd);
+    char prefix[600]; /* the parsers' messages name the manifest */
+    snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
+    return batch_manifest_data_options(m, (int)(b - m->materials), &d, prefix);
 }
 
 static int read_models(batch_manifest *m, const cJSON *models, const char *where, const char *cmd)
@@ -252,7 +265,9 @@ static int read_models(batch_manifest *m, const cJSON *models, const char *where
             return -1;
         m->nmodels = k;
     }
-    return fit_options_check_models(&m->fopt, m->models, m->nmodels, cmd);
+    char prefix[600];
+    snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
+    return fit_options_check_models(&m->fopt, m->models, m->nmodels, prefix);
 }
 
 static int read_root(batch_manifest *m, const char *dir, const char *where, const char *cmd)
@@ -266,12 +281,14 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
             fprintf(stderr, "%s: %s: unknown key \"%s\" (models, options, materials)\n", cmd, where, k->string);
             return -1;
         }
-    take_ctx t = {m, NULL, cmd};
+    char prefix[600]; /* the parsers' messages name the manifest: "brdfit batch: FILE" */
+    snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
+    take_ctx t = {m, NULL, prefix};
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(m->root, "materials");
     if ((m->nwords = words_of(cJSON_GetObjectItemCaseSensitive(m->root, "options"), 0, &m->words, "\"options\"", where,
                               cmd)) < 0 ||
-        parse_words(&shared_cli, m->words, m->nwords, take_shared, &t, where, cmd) < 0 ||
-        rank_options_check(&m->ro, &m->fopt.fit, cmd) < 0 ||
+        parse_words(&shared_cli, m->words, m->nwords, take_shared, &t, "\"options\"", prefix) < 0 ||
+        rank_options_check(&m->ro, &m->fopt.fit, prefix) < 0 ||
         read_models(m, cJSON_GetObjectItemCaseSensitive(m->root, "models"), where, cmd) < 0)
         return -1;
     if (!cJSON_IsArray(mats) || cJSON_GetArraySize(mats) == 0) {

@@ -217,7 +217,8 @@ for bad_manifest in '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' \
                     '{"models": ["lambert"], "materials": []}' '[1, 2]' '{"models": ["lambert"], "materials": ["a"], "x": 1}'; do
   echo "$bad_manifest" > "$tmp/bad.json"
   "$BRDFIT" batch "$tmp/bad.json" -o "$tmp/u.db" 2>"$tmp/err"
-  [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
+  [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "^brdfit batch: $tmp/bad.json: " "$tmp/err" &&
+    [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
 done
 
 # --- docs/batch.md documents every column the database has ----------------------------------
