@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd)
 {
@@ -79,4 +80,11 @@ int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, 
         return 0;
     fprintf(stderr, "%s: %s\n", cmd, err.msg);
     return rc == BF_ERR_ARG ? 2 : 1;
+}
+
+double args_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

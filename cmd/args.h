@@ -26,4 +26,7 @@ int args_size(const char *s, int lo, int hi, int *w, int *h);
 int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
                        int noutputs);
 
+/* Monotonic seconds, for progress and wall times (never for results). */
+double args_now(void);
+
 #endif

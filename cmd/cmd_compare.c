@@ -60,8 +60,10 @@
 #include "args.h"
 #include "cli.h"
 #include "commands.h"
+#include "compare_print.h"
 #include "data_options.h"
 #include "fit_options.h"
+#include "interrupt.h"
 #include "rank_options.h"
 
 static const char cmd[] = "brdfit compare";
@@ -346,13 +348,6 @@ typedef struct progress_state {
     double t0;
 } progress_state;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void progress_bar(const progress_state *ps, int done, int total)
 {
     char bar[31];
@@ -360,7 +355,7 @@ static void progress_bar(const progress_state *ps, int done, int total)
     for (int k = 0; k < 30; k++)
         bar[k] = k < w ? '#' : '.';
     bar[30] = '\0';
-    double el = now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
+    double el = args_now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
     fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, done, total);
     if (isfinite(eta))
         fprintf(stderr, ", ETA %.0f s   ", eta);
@@ -390,36 +385,18 @@ static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int
     fflush(stderr);
 }
 
-/* The cancel flag of bf_compare_run: set here, read by the fitting threads (stored
- * atomically where the compiler can, as the library loads it). */
-static volatile sig_atomic_t interrupted;
-static void on_sigint(int sig)
-{
-    (void)sig;
-#if defined(__GNUC__)
-    __atomic_store_n(&interrupted, 1, __ATOMIC_RELAXED);
-#else
-    interrupted = 1;
-#endif
-}
-
 /* The fits, in the library, with progress on stderr and SIGINT as a cancel. 0, or 1
  * after an error. */
 static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *samples)
 {
-    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = now()};
+    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = args_now()};
     bf_compare_run_options ro = {.jobs = a->jobs, .progress = cli_quiet() ? NULL : progress, .ctx = &ps,
-                                 .cancel = &interrupted};
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sa.sa_flags = SA_RESETHAND; /* a second ^C ends the process */
-    sigemptyset(&sa.sa_mask);
-    interrupted = 0;
-    sigaction(SIGINT, &sa, &old);
+                                 .cancel = &interrupt_flag};
+    struct sigaction old;
+    interrupt_catch(&old);
     bf_error err;
     int rc = bf_compare_run(c, samples, &a->fopt.fit, &ro, &err);
-    sigaction(SIGINT, &old, NULL);
+    interrupt_release(&old);
     if (rc != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
@@ -429,71 +406,13 @@ static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *sam
     return 0;
 }
 
-static const char *error_name(const bf_compare *c)
-{
-    return c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric);
-}
-
-static void print_material(FILE *out, const bf_compare *c, const bf_compare_material *m)
-{
-    fprintf(out, "%s  (%zu samples, %d channel%s)\n", m->data, m->samples, m->channels, m->channels == 1 ? "" : "s");
-    /* work M: millions of sample evaluations; wall time only when asked, so that the
-     * table, like the files, is the same from run to run. */
-    fprintf(out, "  %-5s %-28s %4s %12s %13s %13s %13s %11s%s  %s\n", "rank", "model", "k", error_name(c), "AIC",
-            "AICc", "BIC", "work M", c->timing ? "   time s" : "", "pareto");
-    /* Ranked fits by rank (ties in model order), then the rest in model order. */
-    for (int rank = 1; rank <= c->nmodels; rank++)
-        for (int j = 0; j < c->nmodels; j++) {
-            const bf_compare_fit *f = &m->fits[j];
-            if (f->rank != rank)
-                continue;
-            char secs[32] = "";
-            if (c->timing)
-                snprintf(secs, sizeof secs, " %8.3f", f->seconds);
-            fprintf(out, "  %-5d %-28s %4d %12.6g %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
-                    f->metrics.k, f->error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
-                    f->pareto_k ? "k" : "-", f->pareto_work ? "w" : "-", m->simplest == j ? "  <- simplest" : "");
-        }
-    for (int j = 0; j < c->nmodels; j++)
-        if (!m->fits[j].rank)
-            fprintf(out, "  %-5s %-28s %s%s%s\n", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
-                    m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
-    if (m->simplest >= 0)
-        fprintf(out, "  ranked by %s; simplest within %g%% of the best %s (%s): %s\n", bf_compare_rank_name(c->rank_by),
-                100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);
-    else
-        fprintf(out, "  no model fitted\n");
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_fit_result *r = m->fits[j].result;
-        for (int w = 0; r && (m->fits[j].state == BF_CMP_OK || m->fits[j].state == BF_CMP_FAILED) && w < r->nwarnings;
-             w++)
-            fprintf(out, "  warning: %s: %s\n", c->models[j], r->warnings[w]);
-    }
-}
-
-static void print_summary(FILE *out, const bf_compare *c)
-{
-    fprintf(out, "summary over %d materials\n", c->nmaterials);
-    fprintf(out, "  %-28s %9s %13s %13s %13s %14s %8s\n", "model", "materials", "mean rank", "BIC rank", "AIC rank",
-            "mean error", "simplest");
-    for (int j = 0; j < c->nmodels; j++) {
-        const bf_compare_summary *s = &c->summary[j];
-        fprintf(out, "  %-28s %9d %13.3g %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank,
-                s->mean_rank_bic, s->mean_rank_aic, s->mean_error, s->chosen);
-    }
-}
-
 /* The tables on stdout: per material, then across them. */
 static void print_results(const compare_args *a, const bf_compare *c)
 {
     if (data_options_has_scene(&a->dopt))
         printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
                a->dopt.scene);
-    for (int i = 0; i < c->nmaterials; i++)
-        print_material(stdout, c, &c->materials[i]);
-    if (c->nmaterials > 1)
-        print_summary(stdout, c);
-    fflush(stdout);
+    compare_print_tables(stdout, c);
 }
 
 /* Material i's MERL table as read, whole, when the fits had a subsample of it (for the
@@ -539,22 +458,16 @@ static int write_report(const compare_args *a, const bf_compare *c, bf_samples *
 /* The report, the JSON and the CSV; 0, or 1 after a one-line error. */
 static int write_outputs(const compare_args *a, const bf_compare *c, bf_samples *const *samples)
 {
-    bf_error err;
     if (a->html_dir && write_report(a, c, samples) != 0)
         return 1;
-    if ((a->json_path && bf_compare_write_json(c, a->json_path, &err) != BF_OK) ||
-        (a->csv_path && bf_compare_write_csv(c, a->csv_path, &err) != BF_OK)) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        return 1;
-    }
-    return 0;
+    return compare_write_tables(cmd, c, a->json_path, a->csv_path);
 }
 
 /* 130 interrupted, 1 some fit failed, else 0; a line on stderr but for 0. */
 static int outcome(const bf_compare *c)
 {
-    const int total = c->nmaterials * c->nmodels, not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
-    const int bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+    int total, not_run, bad;
+    compare_counts(c, &total, &not_run, &bad);
     if (c->interrupted) {
         fprintf(stderr, "%s: interrupted after %d of %d fits; the outputs hold the finished ones\n", cmd,
                 total - not_run, total);

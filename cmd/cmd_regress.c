@@ -159,34 +159,6 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
     return 0;
 }
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* Why path did not load: data_options_load has said it on stderr; reading once more
- * (only after a failure) gives the message for the JUnit report too. */
-static void load_failure(const case_run *cr, const char *path, char *msg, size_t size)
-{
-    bf_samples *s = NULL;
-    bf_error e;
-    if (bf_samples_read(path, &cr->dopt.read, &s, &e) != BF_OK)
-        snprintf(msg, size, "%s", e.msg);
-    else if (bf_samples_prep(s, &cr->dopt.prep, NULL, &e) != BF_OK)
-        snprintf(msg, size, "%s: %s", path, e.msg);
-    else {
-        bf_scene *sc = NULL;
-        if (cr->dopt.scene && (bf_scene_read(cr->dopt.scene, &sc, &e) != BF_OK || bf_scene_apply(sc, s, NULL, &e) != BF_OK))
-            snprintf(msg, size, "%s: --scene %s: %s", path, cr->dopt.scene, e.msg);
-        else
-            snprintf(msg, size, "%s: could not be loaded", path);
-        bf_scene_free(sc);
-    }
-    bf_samples_free(s);
-}
-
 /* Loads, fits and compares case c; the fit stays in *r for --update. Returns BF_OK, or
  * an error only when memory runs out (a case that cannot run is an ERROR outcome, its
  * reason printed on stderr). */
@@ -196,11 +168,11 @@ static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_r
     const bf_regress_case *cs = &b->cases[c];
     char prefix[1024], msg[1200];
     snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->data_line, cs->name);
-    double t0 = now();
+    double t0 = args_now();
     bf_samples *s = data_options_load(&cr->dopt, cs->data_path, NULL, prefix);
     int rc;
     if (!s) {
-        load_failure(cr, cs->data_path, msg, sizeof msg);
+        data_options_load_reason(&cr->dopt, cs->data_path, msg, sizeof msg);
         rc = bf_regress_set_error(out, msg, err);
     } else if (bf_fit(s, cs->model, &cr->fopt.fit, r, err) != BF_OK) {
         fprintf(stderr, "%s: %s:%d: case '%s': %s\n", cmd, b->path, cs->model_line, cs->name, err->msg);
@@ -210,7 +182,7 @@ static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_r
         rc = bf_regress_check(b, c, r, out, err);
     }
     bf_samples_free(s);
-    out->seconds = now() - t0;
+    out->seconds = args_now() - t0;
     return rc;
 }
 

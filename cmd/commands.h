@@ -6,7 +6,7 @@
 #include "cli.h"
 
 extern const cli_command cli_models, cli_methods, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
-    cli_select, cli_regress, cli_export;
+    cli_select, cli_regress, cli_export, cli_batch, cli_report, cli_merge;
 
 int cmd_models(int argc, char **argv);
 int cmd_methods(int argc, char **argv);
@@ -20,6 +20,9 @@ int cmd_tradeoff(int argc, char **argv);
 int cmd_select(int argc, char **argv);
 int cmd_regress(int argc, char **argv);
 int cmd_export(int argc, char **argv);
+int cmd_batch(int argc, char **argv);
+int cmd_report(int argc, char **argv);
+int cmd_merge(int argc, char **argv);
 
 /* The subcommands in the order brdfit --help lists them (command_list.c). */
 typedef struct command {

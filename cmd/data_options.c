@@ -281,3 +281,22 @@ bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_
         cli_note(cmd, "%s: %zu samples after preprocessing%s", path, report->kept, o->scene ? " and the scene" : "");
     return s;
 }
+
+void data_options_load_reason(const data_options *o, const char *path, char *msg, size_t size)
+{
+    bf_samples *s = NULL;
+    bf_error e;
+    if (bf_samples_read(path, &o->read, &s, &e) != BF_OK)
+        snprintf(msg, size, "%s", e.msg);
+    else if (bf_samples_prep(s, &o->prep, NULL, &e) != BF_OK)
+        snprintf(msg, size, "%s: %s", path, e.msg);
+    else {
+        bf_scene *sc = NULL;
+        if (o->scene && (bf_scene_read(o->scene, &sc, &e) != BF_OK || bf_scene_apply(sc, s, NULL, &e) != BF_OK))
+            snprintf(msg, size, "%s: --scene %s: %s", path, o->scene, e.msg);
+        else
+            snprintf(msg, size, "%s: could not be loaded", path);
+        bf_scene_free(sc);
+    }
+    bf_samples_free(s);
+}

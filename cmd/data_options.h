@@ -47,6 +47,11 @@ bf_samples *data_options_load(const data_options *o, const char *path, bf_prep_r
 bf_samples *data_options_load_scene(const data_options *o, const char *path, bf_prep_report *report,
                                     data_scene_report *scene, const char *cmd);
 
+/* Why path did not load (after data_options_load failed and said it on stderr): reads
+ * it once more, only then, for a message to keep (a JUnit report, a batch item), into
+ * msg. */
+void data_options_load_reason(const data_options *o, const char *path, char *msg, size_t size);
+
 /* 1 when --scene was given: error should then be reported over the scene's directions
  * (bf_fit_options.weighted_metrics). */
 int data_options_has_scene(const data_options *o);

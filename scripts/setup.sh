@@ -8,7 +8,7 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
-  libcjson-dev libcmocka-dev libxml2-dev jq libxml2-utils \
+  libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils \
   clang libclang-rt-14-dev man-db groff-base blender >/dev/null
 # Node.js and npm from Debian unless the machine has them already (a Node.js from
@@ -20,6 +20,8 @@ fi
 # pinned, into the checkout's ignored tools/ folder: a test dependency only.
 root=$(cd "$(dirname "$0")/.." && pwd)
 npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 >/dev/null
+# libsqlite3-dev: brdfit batch's results database; sqlite3 (the shell): its tests and
+# docs/batch.md read the database with it.
 # jq, openimageio-tools (iinfo, oiiotool) and libxml2-utils (xmllint): the command-line
 # tests check brdfit's JSON output, images and JUnit XML with them. clang and
 # libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.

@@ -12,7 +12,7 @@ awk 'BEGIN { print "theta_i,phi_i,theta_o,phi_o,value"; for (i = 0; i < 400; i++
 
 # --- help ---------------------------------------------------------------------------------
 commands=$("$BRDFIT" --help | awk '/^  [a-z]/ { print $1 }' | grep -v '^help$')
-[ "$(echo "$commands" | wc -l)" = 12 ] && ok || bad "brdfit --help lists: $commands"
+[ "$(echo "$commands" | wc -l)" = 15 ] && ok || bad "brdfit --help lists: $commands"
 for c in $commands; do
   "$BRDFIT" "$c" --help >"$tmp/h1" 2>&1 && "$BRDFIT" "$c" -h >"$tmp/h2" 2>&1 && "$BRDFIT" help "$c" >"$tmp/h3" 2>&1 &&
     head -1 "$tmp/h1" | grep -q "^usage: brdfit $c " && cmp -s "$tmp/h1" "$tmp/h2" && cmp -s "$tmp/h1" "$tmp/h3" &&
@@ -81,6 +81,6 @@ complete_words() { # WORD... : what _brdfit offers for the last word
 [ "$(complete_words brdfit fit --format '')" = "csv merl cornell alta rgl mbsdf" ] && ok || bad "completion of --format"
 [ "$(complete_words brdfit fit -m walter)" = "walter walter_aniso" ] && ok || bad "completion of -m walter"
 [ "$(complete_words brdfit compare --rank a)" = "aic aicc" ] && ok || bad "completion of --rank"
-[ "$(complete_words brdfit help re)" = "render regress" ] && ok || bad "completion of help"
+[ "$(complete_words brdfit help re)" = "render regress report" ] && ok || bad "completion of help"
 
 finish

@@ -1,0 +1,153 @@
+/* A work item as a database row and back (batch_rows.h).
+ *
+ * Decisions:
+ *  - Parameters and standard errors are JSON objects of the model's entry names
+ *    ("rho_d[0]": 0.6), readable in the sqlite3 shell; numbers are written with 17
+ *    significant digits so that reading them back gives the same doubles, and a
+ *    compare-style output from the database is the same to the byte. JSON has no NaN
+ *    or infinity: those are the strings "nan", "inf", "-inf".
+ *  - Entries are read back by position, after checking their count against the model
+ *    rebuilt from the canonical spec: the names are for people. */
+#include "batch_rows.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static cJSON *number(double v)
+{
+    if (isfinite(v)) {
+        char buf[40];
+        snprintf(buf, sizeof buf, "%.17g", v);
+        return cJSON_CreateRaw(buf);
+    }
+    return cJSON_CreateString(isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
+}
+
+static double number_of(const cJSON *e)
+{
+    if (cJSON_IsNumber(e))
+        return e->valuedouble;
+    if (cJSON_IsString(e) && !strcmp(e->valuestring, "inf"))
+        return INFINITY;
+    if (cJSON_IsString(e) && !strcmp(e->valuestring, "-inf"))
+        return -INFINITY;
+    return NAN;
+}
+
+/* The model's entries with values v as a JSON object text (malloc'd; NULL: no memory). */
+static char *entries_json(const bf_model *m, const double *v)
+{
+    cJSON *o = cJSON_CreateObject();
+    for (int k = 0; o && k < bf_model_nvalues(m); k++) {
+        char name[64];
+        cJSON_AddItemToObject(o, bf_model_entry_name(m, k, name, sizeof name), number(v[k]));
+    }
+    char *s = o ? cJSON_PrintUnformatted(o) : NULL;
+    cJSON_Delete(o);
+    return s;
+}
+
+static char *warnings_json(const bf_fit_result *r)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int w = 0; a && w < r->nwarnings; w++)
+        cJSON_AddItemToArray(a, cJSON_CreateString(r->warnings[w]));
+    char *s = a ? cJSON_PrintUnformatted(a) : NULL;
+    cJSON_Delete(a);
+    return s;
+}
+
+void batch_row_clear(batch_row *r)
+{
+    free(r->spec);
+    free(r->params);
+    free(r->stderr_);
+    free(r->warnings);
+    free(r->options);
+    r->spec = r->params = r->stderr_ = r->warnings = r->options = NULL;
+}
+
+bf_status batch_row_from_fit(batch_row *r, const bf_compare *c, int j, bf_error *err)
+{
+    const bf_compare_material *mat = &c->materials[0];
+    const bf_compare_fit *f = &mat->fits[j];
+    r->pending = 0;
+    r->state = f->state;
+    r->samples = mat->samples;
+    r->channels = mat->channels;
+    r->metrics = f->metrics;
+    r->cv = f->cv_error;
+    r->work = f->work;
+    r->seconds = f->seconds;
+    snprintf(r->message, sizeof r->message, "%s", f->state == BF_CMP_ERROR ? f->message : "");
+    const bf_fit_result *res = f->state == BF_CMP_ERROR ? NULL : f->result;
+    if (!res || !res->model)
+        return BF_OK;
+    if (!(r->spec = strdup(bf_model_spec(res->model))) || !(r->params = entries_json(res->model, res->x)) ||
+        !(r->stderr_ = entries_json(res->model, res->stderr_)) || !(r->warnings = warnings_json(res))) {
+        batch_row_clear(r);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for a result row");
+    }
+    return BF_OK;
+}
+
+/* n values of the JSON object text into v; -1 when it is not one of n entries. */
+static int entries_read(const char *text, double *v, int n)
+{
+    cJSON *o = text ? cJSON_Parse(text) : NULL;
+    int k = 0;
+    for (const cJSON *e = cJSON_IsObject(o) ? o->child : NULL; e; e = e->next, k++)
+        if (k < n)
+            v[k] = number_of(e);
+    cJSON_Delete(o);
+    return o && k == n ? 0 : -1;
+}
+
+static int warnings_read(const char *text, bf_fit_result *res)
+{
+    cJSON *a = text ? cJSON_Parse(text) : NULL;
+    int ok = cJSON_IsArray(a);
+    for (const cJSON *e = ok ? a->child : NULL; e && res->nwarnings < BF_FIT_MAX_WARNINGS; e = e->next)
+        if (cJSON_IsString(e))
+            snprintf(res->warnings[res->nwarnings++], BF_FIT_WARNING_LEN, "%s", e->valuestring);
+    cJSON_Delete(a);
+    return ok ? 0 : -1;
+}
+
+bf_status batch_row_to_fit(const batch_row *r, bf_compare_fit *f, bf_fit_result *res, bf_error *err)
+{
+    memset(res, 0, sizeof *res);
+    f->state = r->pending ? BF_CMP_NOT_RUN : r->state;
+    f->metrics = r->metrics;
+    f->cv_error = r->cv;
+    f->work = r->work;
+    f->seconds = r->seconds;
+    snprintf(f->message, sizeof f->message, "%s", r->message);
+    f->result = NULL;
+    if (r->pending || r->state == BF_CMP_ERROR || !r->spec)
+        return BF_OK;
+    bf_status rc = bf_model_new(r->spec, r->channels, &res->model, err);
+    if (rc != BF_OK)
+        return rc;
+    const int n = bf_model_nvalues(res->model);
+    res->x = calloc((size_t)n + 1, sizeof *res->x);
+    res->stderr_ = calloc((size_t)n + 1, sizeof *res->stderr_);
+    res->fixed = calloc((size_t)n + 1, 1);
+    if (!res->x || !res->stderr_ || !res->fixed) {
+        bf_fit_result_clear(res);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for item %d's result", r->item);
+    }
+    if (entries_read(r->params, res->x, n) < 0 || entries_read(r->stderr_, res->stderr_, n) < 0 ||
+        warnings_read(r->warnings, res) < 0) {
+        bf_fit_result_clear(res);
+        return bf_fail(err, BF_ERR_PARSE, "item %d: its parameters or warnings cannot be read back", r->item);
+    }
+    res->metrics = r->metrics;
+    res->samples = r->samples;
+    res->ok = r->state == BF_CMP_OK;
+    f->result = res;
+    return BF_OK;
+}

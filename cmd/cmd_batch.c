@@ -1,0 +1,329 @@
+/* brdfit batch MANIFEST -o RESULTS.db: every model of a manifest fitted to every
+ * material of it (batch_manifest.h), each (material, model) fit a work item whose
+ * result is a row of an SQLite database (batch_db.h, docs/batch.md).
+ *
+ * Decisions:
+ *  - Materials are read one at a time, when one of their items is to run, and released
+ *    after their last fit: memory is that of the largest material, not of all.
+ *  - A material's pending models run through bf_compare_run (--jobs at once, the
+ *    --threads budget shared), exactly as brdfit compare runs them, so the rows hold
+ *    compare's results; each finished fit is written in its own transaction from the
+ *    progress callback, so a killed run loses only the fits in flight.
+ *  - Rerunning resumes: only pending items run. --redo failed makes failed and error
+ *    items pending again first, --redo all every item. A database of another manifest,
+ *    version or shard is refused (batch_db_setup), never mixed.
+ *  - --shard I/N runs items with item % N == I - 1 (item = material x models + model)
+ *    into its own database; brdfit merge combines the shards.
+ *  - Data that cannot be read or prepared makes each of its items an error with the
+ *    reason as its message (printed on stderr too); the other materials go on.
+ *  - --threads here overrides a manifest's: results do not depend on it (fit.h), and the
+ *    machine that runs a batch is not part of what the manifest asks.
+ *  - Progress (items done, failures, ETA) on a terminal; nothing when stderr is not one.
+ *    SIGINT: no new fit starts, running fits finish and are written, exit 130; the
+ *    database is resumable. A second SIGINT ends the process at once.
+ *  - Exit: 0 every item of the shard ok; 1 some item failed or errored, or the database
+ *    could not be used; 2 bad usage or manifest; 130 interrupted. */
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "args.h"
+#include "batch_db.h"
+#include "batch_manifest.h"
+#include "cli.h"
+#include "commands.h"
+#include "interrupt.h"
+
+static const char cmd[] = "brdfit batch";
+
+static const cli_option own[] = {
+    {"--output", 'o', "FILE", "the results database (SQLite; made if absent, resumed if it is this\n"
+                              "manifest's)", "file"},
+    {"--redo", 0, "failed|all", "run these finished items again (failed: failed and error ones)", NULL},
+    {"--shard", 0, "I/N", "run only share I of N of the items (job arrays; brdfit merge joins them)", NULL},
+    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL},
+    {"--threads", 0, "N", "solver threads in all (default: every core; results do not depend on it)", NULL},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group};
+const cli_command cli_batch = {
+    "brdfit", "batch", "MANIFEST -o RESULTS.db [--redo failed|all] [--shard I/N] [--jobs N]",
+    "run a manifest's fits into a resumable results database",
+    "Runs every (material, model) fit a JSON manifest lists (materials with their data options, models, and the "
+    "options of brdfit compare; docs/batch.md) and writes each result, as it finishes, into an SQLite database. "
+    "Rerunning the same command resumes where a killed or interrupted run stopped. brdfit report ranks the results "
+    "as compare does; brdfit merge joins the databases of --shard runs.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
+
+typedef struct batch_args {
+    cli_args args;
+    const char *manifest, *output;
+    int redo_failed, redo_all, shard, nshards, jobs;
+    long threads; /* 0: as the manifest says */
+} batch_args;
+
+static int parse_shard(batch_args *a, const char *v)
+{
+    char *end;
+    long i = strtol(v, &end, 10), n = *end == '/' ? strtol(end + 1, &end, 10) : 0;
+    if (*end || n < 1 || n > 100000 || i < 1 || i > n) {
+        fprintf(stderr, "%s: --shard needs I/N with 1 <= I <= N, got '%s'\n", cmd, v);
+        return -1;
+    }
+    a->shard = (int)i;
+    a->nshards = (int)n;
+    return 0;
+}
+
+static int parse_own(batch_args *a, const char *name, const char *v)
+{
+    long n;
+    if (!strcmp(name, "--output")) {
+        a->output = v;
+    } else if (!strcmp(name, "--redo")) {
+        if (strcmp(v, "failed") && strcmp(v, "all")) {
+            fprintf(stderr, "%s: --redo needs failed or all, got '%s'\n", cmd, v);
+            return -1;
+        }
+        a->redo_failed = 1;
+        a->redo_all = !strcmp(v, "all");
+    } else if (!strcmp(name, "--shard")) {
+        return parse_shard(a, v);
+    } else if (!strcmp(name, "--jobs")) {
+        if (!args_int(v, 1, 1024, &n)) {
+            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
+            return -1;
+        }
+        a->jobs = (int)n;
+    } else { /* --threads */
+        if (!args_int(v, 1, FIT_OPTIONS_MAX_THREADS, &a->threads)) {
+            fprintf(stderr, "%s: --threads needs an integer from 1 to %d, got '%s'\n", cmd, FIT_OPTIONS_MAX_THREADS, v);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* -1 to go on, else the exit status. */
+static int parse(batch_args *a, int argc, char **argv)
+{
+    memset(a, 0, sizeof *a);
+    a->shard = a->nshards = a->jobs = 1;
+    int p = cli_parse(&cli_batch, argc, argv, &a->args);
+    if (p != CLI_OK)
+        return p == CLI_EXIT ? 0 : 2;
+    for (int i = 0; i < a->args.n; i++) {
+        const char *name = a->args.v[i].name, *v = a->args.v[i].value;
+        if (!name) {
+            if (a->manifest) {
+                fprintf(stderr, "%s: one manifest only (got '%s' and '%s')\n", cmd, a->manifest, v);
+                return 2;
+            }
+            a->manifest = v;
+        } else if (parse_own(a, name, v) < 0) {
+            return 2;
+        }
+    }
+    if (!a->manifest || !a->output) {
+        fprintf(stderr, "%s: %s (see brdfit batch --help)\n", cmd,
+                !a->manifest ? "a manifest is required" : "-o RESULTS.db is required");
+        return 2;
+    }
+    return -1;
+}
+
+/* ---- The run ------------------------------------------------------------------------- */
+
+typedef struct run {
+    const batch_args *a;
+    const batch_manifest *m;
+    batch_db *db;
+    int material;
+    const int *model_of; /* the comparison's model j -> the manifest's */
+    int done, total, ok, bad;
+    int tty;
+    double t0;
+    int db_failed;
+    bf_error db_err;
+} run;
+
+static void show_progress(const run *r)
+{
+    if (!r->tty || cli_quiet())
+        return;
+    double el = args_now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
+    fprintf(stderr, "\r%s: %d/%d items, %d failed", cmd, r->done, r->total, r->bad);
+    if (isfinite(eta))
+        fprintf(stderr, ", ETA %.0f s", eta);
+    fputs("    ", stderr);
+    if (r->done == r->total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+/* The item's row written (its own transaction); a database failure stops the run. */
+static void record(run *r, batch_row *row)
+{
+    if (r->db_failed)
+        return;
+    row->material = r->material;
+    row->item = r->material * r->m->nmodels + row->model;
+    if (batch_db_put(r->db, row, &r->db_err) != BF_OK) {
+        r->db_failed = 1;
+        interrupt_raise();
+        return;
+    }
+    r->done++;
+    if (!row->pending && row->state == BF_CMP_OK)
+        r->ok++;
+    else
+        r->bad++;
+    show_progress(r);
+}
+
+/* bf_compare_progress: one fit finished (calls never overlap). */
+static void fit_done(void *ctx, const bf_compare *c, int material, int j, int done, int total)
+{
+    (void)material, (void)done, (void)total;
+    run *r = ctx;
+    batch_row row = {0};
+    if (batch_row_from_fit(&row, c, j, &r->db_err) != BF_OK) {
+        r->db_failed = 1;
+        interrupt_raise();
+        return;
+    }
+    row.model = r->model_of[j];
+    record(r, &row);
+    batch_row_clear(&row);
+}
+
+/* Every model of models[0..n-1] an error on this material: its data could not be used
+ * (why: reason). */
+static void data_error(run *r, const int *models, int n, const char *reason)
+{
+    for (int k = 0; k < n; k++) {
+        batch_row row = {.model = models[k], .state = BF_CMP_ERROR, .seconds = NAN, .cv = NAN, .work = NAN};
+        snprintf(row.message, sizeof row.message, "%s", reason);
+        record(r, &row);
+    }
+}
+
+/* Material i's pending models (models[0..n-1], manifest indices): read, fitted, written,
+ * released. */
+static void run_material(run *r, int i, const int *models, int n)
+{
+    const batch_manifest *m = r->m;
+    data_options dopt;
+    r->material = i;
+    r->model_of = models;
+    if (batch_manifest_data_options(m, i, &dopt, cmd) < 0) { /* checked when read: cannot fail */
+        data_error(r, models, n, "its data options do not parse");
+        return;
+    }
+    fit_options fopt = m->fopt;
+    if (r->a->threads > 0)
+        fopt.fit.solver.threads = (int)r->a->threads;
+    fit_options_finish(&fopt, &dopt);
+    bf_samples *s = data_options_load(&dopt, m->materials[i].data, NULL, cmd);
+    if (!s) {
+        char reason[512];
+        data_options_load_reason(&dopt, m->materials[i].data, reason, sizeof reason);
+        data_error(r, models, n, reason);
+        return;
+    }
+    const char *specs[128], *data = m->materials[i].data;
+    for (int k = 0; k < n; k++)
+        specs[k] = m->models[models[k]];
+    bf_compare c;
+    bf_error err;
+    memset(&c, 0, sizeof c);
+    if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        r->db_failed = 1, r->db_err = err;
+        interrupt_raise();
+    } else {
+        c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
+        bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &interrupt_flag};
+        if (bf_compare_run(&c, &s, &fopt.fit, &ro, &err) != BF_OK) {
+            /* Only before any fit: bad arguments or no memory. */
+            r->db_failed = 1, r->db_err = err;
+            interrupt_raise();
+        }
+    }
+    bf_compare_clear(&c);
+    bf_samples_free(s);
+}
+
+/* The pending items, material by material. */
+static void run_items(run *r, const int *items, int n)
+{
+    int models[128];
+    for (int k = 0; k < n && !interrupt_flag;) {
+        const int i = items[k] / r->m->nmodels;
+        int nm = 0;
+        for (; k < n && items[k] / r->m->nmodels == i; k++)
+            models[nm++] = items[k] % r->m->nmodels;
+        run_material(r, i, models, nm);
+    }
+}
+
+static int batch(const batch_args *a, const batch_manifest *m)
+{
+    batch_db *db;
+    bf_error err;
+    int *items = NULL, n = 0;
+    if (batch_db_open(a->output, BATCH_DB_WRITE, &db, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    if (batch_db_setup(db, m, a->shard, a->nshards, &err) != BF_OK ||
+        batch_db_redo(db, a->redo_failed, a->redo_all, &err) != BF_OK ||
+        batch_db_pending(db, &items, &n, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        batch_db_close(db);
+        return err.code == BF_ERR_ARG ? 2 : 1;
+    }
+    run r = {.a = a, .m = m, .db = db, .total = n, .tty = isatty(STDERR_FILENO), .t0 = args_now()};
+    struct sigaction old;
+    interrupt_catch(&old); /* SIGINT, or a database failure (interrupt_raise): no new fit */
+    cli_note(cmd, "%d items to run into %s", n, a->output);
+    run_items(&r, items, n);
+    interrupt_release(&old);
+    free(items);
+    batch_db_close(db);
+    if (r.tty && !cli_quiet() && r.done < r.total)
+        fputc('\n', stderr);
+    if (r.db_failed) {
+        fprintf(stderr, "%s: %s\n", cmd, r.db_err.msg);
+        return 1;
+    }
+    if (r.done < r.total) {
+        fprintf(stderr, "%s: interrupted after %d of %d items; the same command resumes\n", cmd, r.done, r.total);
+        return 130;
+    }
+    if (r.bad) {
+        fprintf(stderr, "%s: %d of %d items failed (brdfit report lists them; --redo failed reruns them)\n", cmd,
+                r.bad, r.total);
+        return 1;
+    }
+    return 0;
+}
+
+int cmd_batch(int argc, char **argv)
+{
+    batch_args a;
+    batch_manifest m = {0};
+    int status = parse(&a, argc, argv);
+    if (status < 0)
+        status = batch_manifest_read(a.manifest, NULL, &m, cmd) < 0 ? 2 : -1;
+    if (status < 0)
+        status = batch(&a, &m);
+    batch_manifest_clear(&m);
+    cli_args_free(&a.args);
+    return status;
+}

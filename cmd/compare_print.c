@@ -1,0 +1,85 @@
+/* The ranking tables of brdfit compare and brdfit report (compare_print.h). Wall times
+ * appear only with --timing, so that the tables, like the files, are the same from run
+ * to run. */
+#include "compare_print.h"
+
+static const char *error_name(const bf_compare *c)
+{
+    return c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric);
+}
+
+static void print_material(FILE *out, const bf_compare *c, const bf_compare_material *m)
+{
+    fprintf(out, "%s  (%zu samples, %d channel%s)\n", m->data, m->samples, m->channels, m->channels == 1 ? "" : "s");
+    /* work M: millions of sample evaluations; wall time only when asked, so that the
+     * table, like the files, is the same from run to run. */
+    fprintf(out, "  %-5s %-28s %4s %12s %13s %13s %13s %11s%s  %s\n", "rank", "model", "k", error_name(c), "AIC",
+            "AICc", "BIC", "work M", c->timing ? "   time s" : "", "pareto");
+    /* Ranked fits by rank (ties in model order), then the rest in model order. */
+    for (int rank = 1; rank <= c->nmodels; rank++)
+        for (int j = 0; j < c->nmodels; j++) {
+            const bf_compare_fit *f = &m->fits[j];
+            if (f->rank != rank)
+                continue;
+            char secs[32] = "";
+            if (c->timing)
+                snprintf(secs, sizeof secs, " %8.3f", f->seconds);
+            fprintf(out, "  %-5d %-28s %4d %12.6g %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
+                    f->metrics.k, f->error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
+                    f->pareto_k ? "k" : "-", f->pareto_work ? "w" : "-", m->simplest == j ? "  <- simplest" : "");
+        }
+    for (int j = 0; j < c->nmodels; j++)
+        if (!m->fits[j].rank)
+            fprintf(out, "  %-5s %-28s %s%s%s\n", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
+                    m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
+    if (m->simplest >= 0)
+        fprintf(out, "  ranked by %s; simplest within %g%% of the best %s (%s): %s\n", bf_compare_rank_name(c->rank_by),
+                100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);
+    else
+        fprintf(out, "  no model fitted\n");
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_fit_result *r = m->fits[j].result;
+        for (int w = 0; r && (m->fits[j].state == BF_CMP_OK || m->fits[j].state == BF_CMP_FAILED) && w < r->nwarnings;
+             w++)
+            fprintf(out, "  warning: %s: %s\n", c->models[j], r->warnings[w]);
+    }
+}
+
+static void print_summary(FILE *out, const bf_compare *c)
+{
+    fprintf(out, "summary over %d materials\n", c->nmaterials);
+    fprintf(out, "  %-28s %9s %13s %13s %13s %14s %8s\n", "model", "materials", "mean rank", "BIC rank", "AIC rank",
+            "mean error", "simplest");
+    for (int j = 0; j < c->nmodels; j++) {
+        const bf_compare_summary *s = &c->summary[j];
+        fprintf(out, "  %-28s %9d %13.3g %13.3g %13.3g %14.6g %8d\n", c->models[j], s->ranked, s->mean_rank,
+                s->mean_rank_bic, s->mean_rank_aic, s->mean_error, s->chosen);
+    }
+}
+
+void compare_print_tables(FILE *out, const bf_compare *c)
+{
+    for (int i = 0; i < c->nmaterials; i++)
+        print_material(out, c, &c->materials[i]);
+    if (c->nmaterials > 1)
+        print_summary(out, c);
+    fflush(out);
+}
+
+void compare_counts(const bf_compare *c, int *total, int *not_run, int *bad)
+{
+    *total = c->nmaterials * c->nmodels;
+    *not_run = bf_compare_count(c, BF_CMP_NOT_RUN);
+    *bad = bf_compare_count(c, BF_CMP_FAILED) + bf_compare_count(c, BF_CMP_ERROR);
+}
+
+int compare_write_tables(const char *cmd, const bf_compare *c, const char *json_path, const char *csv_path)
+{
+    bf_error err;
+    if ((json_path && bf_compare_write_json(c, json_path, &err) != BF_OK) ||
+        (csv_path && bf_compare_write_csv(c, csv_path, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}

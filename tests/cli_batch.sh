@@ -1,0 +1,231 @@
+#!/usr/bin/env bash
+# brdfit batch, report and merge from the shell: a manifest of synthetic materials x
+# models into an SQLite database; report equal to compare for the same fits (tables,
+# JSON, CSV); a run killed with SIGKILL part-way, then rerun, has every item exactly
+# once and the rows of an uninterrupted run; SIGINT leaves a resumable database (exit
+# 130); --redo failed; another manifest refused; a locked or damaged database refused
+# with one line and left as it was; --shard runs merged equal the one-process run;
+# merge refuses inconsistent inputs.
+set -u
+source "$(dirname "$0")/common_cli.sh" "$@"
+command -v sqlite3 >/dev/null || { echo "sqlite3 (the shell) is needed"; exit 1; }
+
+cat > "$tmp/lam.json" <<'JSON'
+{"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}
+JSON
+cat > "$tmp/wal.json" <<'JSON'
+{"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,
+ "params": {"rho_d": [0.3, 0.2, 0.1], "rho_s": [0.8, 0.8, 0.7], "alpha": 0.1, "f0": 0.05}}
+JSON
+for k in 1 2 3; do
+  "$SYNTH" --params "$tmp/lam.json" --pattern uniform --count 3000 --noise 0.01 --seed $k -o "$tmp/lam$k.csv" &&
+  "$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 3000 --noise 0.01 --seed $((k + 10)) -o "$tmp/wal$k.csv" ||
+    bad "brdfit-synth failed"
+done
+cat > "$tmp/mm0.json" <<'JSON'
+{"models": ["lambert", "walter"], "options": ["--threads", "1"], "materials": ["lam1.csv", "missing.csv"]}
+JSON
+MATS='"lam1.csv", "wal1.csv", "lam2.csv", "wal2.csv", "lam3.csv", "wal3.csv"'
+cat > "$tmp/m.json" <<JSON
+{"models": ["lambert", "walter", "cook_torrance", "blinn_phong"],
+ "options": ["--threads", "1", "--seed", "3"], "materials": [$MATS]}
+JSON
+# Every column but the wall times, in item order.
+COLS="item,material,model,status,message,spec,samples,channels,n,k,rmse,rmse_log,rmse_cos,rmse_rel,max_err,weighted,crit_n,loglik,aic,aicc,bic,cv,work,params,stderr,warnings,options,tool_version"
+rows() { sqlite3 "$1" "SELECT $COLS FROM items ORDER BY item"; }
+count() { sqlite3 "$1" "$2"; }
+# Waits (up to 4 s) until database $1 of a running batch has $2 items finished.
+wait_items() {
+  for _ in $(seq 200); do
+    n=$(count "$1" "SELECT count(*) FROM items WHERE status != 'pending'" 2>/dev/null || echo 0)
+    [ "${n:-0}" -ge "$2" ] && return
+    sleep 0.02
+  done
+}
+
+# --- a run: 24 rows, all ok, the identity stored ----------------------------------------
+if "$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" 2>"$tmp/err"; then ok; else bad "batch: $(cat "$tmp/err")"; fi
+[ ! -s "$tmp/err" ] && ok || bad "batch not quiet off a terminal: $(cat "$tmp/err")"
+[ "$(count "$tmp/one.db" "SELECT count(*), sum(status = 'ok') FROM items")" = "24|24" ] && ok || bad "rows: $(count "$tmp/one.db" "SELECT status, count(*) FROM items GROUP BY 1")"
+[ "$(count "$tmp/one.db" "SELECT value FROM meta WHERE key = 'shard'")" = all ] && ok || bad "meta shard"
+[ "$(count "$tmp/one.db" "SELECT options FROM items WHERE item = 5")" = '["--threads","1","--seed","3","-m","walter"]' ] &&
+  ok || bad "options column: $(count "$tmp/one.db" "SELECT options FROM items WHERE item = 5")"
+[ "$(count "$tmp/one.db" "SELECT count(*) FROM items WHERE seconds > 0 AND finished_at LIKE '20%'")" = 24 ] && ok || bad "timings"
+# Rerun: nothing to do, nothing changed.
+rows "$tmp/one.db" > "$tmp/one.rows"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" && ok || bad "rerun of a finished batch"
+rows "$tmp/one.db" | cmp -s - "$tmp/one.rows" && ok || bad "rerun changed rows"
+
+# --- progress on a terminal: items done, failures, ETA ---------------------------------------
+if command -v script >/dev/null; then
+  script -qec "'$BRDFIT' batch '$tmp/mm0.json' -o '$tmp/tty.db'" /dev/null > "$tmp/tty" 2>&1
+  tr '\r' '\n' < "$tmp/tty" | grep -q "^brdfit batch: 4/4 items, 2 failed" && grep -q "ETA" "$tmp/tty" && ok ||
+    bad "progress on a terminal: $(tr '\r' '\n' < "$tmp/tty" | tail -3)"
+fi
+
+# --- report = compare for the same fits ---------------------------------------------------
+(cd "$tmp" && "$BRDFIT" compare "$tmp"/lam1.csv "$tmp"/wal1.csv "$tmp"/lam2.csv "$tmp"/wal2.csv "$tmp"/lam3.csv "$tmp"/wal3.csv \
+   -m lambert,walter,cook_torrance,blinn_phong --threads 1 --seed 3 --json c.json --csv c.csv >c.txt 2>/dev/null) ||
+  bad "compare"
+(cd "$tmp" && "$BRDFIT" report one.db --json r.json --csv r.csv --html rep >r.txt) && ok || bad "report"
+cmp -s "$tmp/c.txt" "$tmp/r.txt" && ok || bad "report tables differ from compare's: $(diff "$tmp/c.txt" "$tmp/r.txt" | head -5)"
+cmp -s "$tmp/c.json" "$tmp/r.json" && ok || bad "report JSON differs from compare's"
+cmp -s "$tmp/c.csv" "$tmp/r.csv" && ok || bad "report CSV differs from compare's"
+[ -s "$tmp/rep/index.html" ] && ok || bad "report --html"
+
+# --- SIGKILL part-way, rerun: every item exactly once, the same rows -----------------------
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/k.db" 2>/dev/null &
+pid=$!
+wait_items "$tmp/k.db" 5
+kill -KILL $pid 2>/dev/null
+wait $pid 2>/dev/null
+done_before=$(count "$tmp/k.db" "SELECT count(*) FROM items WHERE status != 'pending'")
+[ "$done_before" -ge 5 ] && [ "$done_before" -lt 24 ] && ok || bad "killed run had $done_before items done (wanted 5..23)"
+[ "$(count "$tmp/k.db" "PRAGMA integrity_check")" = ok ] && ok || bad "killed run left a damaged database"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/k.db" && ok || bad "resume after SIGKILL"
+[ "$(count "$tmp/k.db" "SELECT count(*), count(DISTINCT item), sum(status = 'ok') FROM items")" = "24|24|24" ] &&
+  ok || bad "after resume: $(count "$tmp/k.db" "SELECT count(*), count(DISTINCT item) FROM items")"
+rows "$tmp/k.db" | cmp -s - "$tmp/one.rows" && ok || bad "resumed rows differ from an uninterrupted run"
+
+# --- SIGINT: finished fits kept, exit 130, resumable ----------------------------------------
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/i.db" 2>"$tmp/err" &
+pid=$!
+wait_items "$tmp/i.db" 3
+kill -INT $pid
+wait $pid
+rc=$?
+if [ $rc = 130 ]; then
+  ok
+  grep -q "interrupted after .* items; the same command resumes" "$tmp/err" && ok || bad "SIGINT message: $(cat "$tmp/err")"
+else
+  # The run may have finished before the signal landed: then it must be complete.
+  [ $rc = 0 ] && [ "$(count "$tmp/i.db" "SELECT count(*) FROM items WHERE status = 'pending'")" = 0 ] && ok ||
+    bad "SIGINT: exit $rc"
+fi
+"$BRDFIT" report "$tmp/i.db" >/dev/null 2>&1 # a partial database reports (not_run) ...
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/i.db" && ok || bad "resume after SIGINT"
+rows "$tmp/i.db" | cmp -s - "$tmp/one.rows" && ok || bad "rows after SIGINT + resume differ"
+
+# --- --shard I/N + merge = one process -----------------------------------------------------
+for s in 1 2 3; do # --jobs changes nothing in the rows
+  "$BRDFIT" batch "$tmp/m.json" -o "$tmp/s$s.db" --shard $s/3 --jobs $s || bad "shard $s"
+done
+[ "$(count "$tmp/s2.db" "SELECT group_concat(item) FROM items")" = "1,4,7,10,13,16,19,22" ] && ok || bad "shard 2/3 items"
+"$BRDFIT" merge "$tmp/s1.db" "$tmp/s2.db" "$tmp/s3.db" -o "$tmp/all.db" && ok || bad "merge"
+rows "$tmp/all.db" | cmp -s - "$tmp/one.rows" && ok || bad "merged shards differ from the one-process run"
+"$BRDFIT" merge "$tmp/s1.db" "$tmp/one.db" -o "$tmp/again.db" && ok || bad "merging equal results is allowed"
+# The same item finished with another result: refused, no output.
+cp "$tmp/s2.db" "$tmp/s2x.db"
+sqlite3 "$tmp/s2x.db" "UPDATE items SET rmse = rmse * 2 WHERE item = 4"
+if "$BRDFIT" merge "$tmp/s2.db" "$tmp/s2x.db" -o "$tmp/x.db" 2>"$tmp/err"; then bad "merge of clashing results accepted"; else ok; fi
+grep -q "already merged with other results" "$tmp/err" && [ ! -e "$tmp/x.db" ] && ok || bad "merge clash: $(cat "$tmp/err")"
+if "$BRDFIT" merge "$tmp/s1.db" -o "$tmp/all.db" 2>/dev/null; then bad "merge over an existing file"; else ok; fi
+# A shard database is refused for another shard or for a whole run.
+if "$BRDFIT" batch "$tmp/m.json" -o "$tmp/s1.db" --shard 2/3 2>"$tmp/err"; then bad "other shard accepted"; else ok; fi
+grep -q "made by another --shard" "$tmp/err" && ok || bad "shard message: $(cat "$tmp/err")"
+
+# --- another manifest, another version: refused, untouched ------------------------------
+sed 's/"--seed", "3"/"--seed", "4"/' "$tmp/m.json" > "$tmp/m4.json"
+cp "$tmp/one.db" "$tmp/keep.db"
+"$BRDFIT" batch "$tmp/m4.json" -o "$tmp/one.db" 2>"$tmp/err"
+[ $? = 2 ] && grep -q "made by another manifest" "$tmp/err" && [ "$(wc -l < "$tmp/err")" = 1 ] && ok || bad "other manifest: $(cat "$tmp/err")"
+cmp -s "$tmp/one.db" "$tmp/keep.db" && ok || bad "refused database changed"
+sqlite3 "$tmp/keep.db" "UPDATE meta SET value = '0.0.0' WHERE key = 'tool_version'"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/keep.db" 2>"$tmp/err"
+[ $? = 2 ] && grep -q "made by another brdfit version" "$tmp/err" && ok || bad "other version: $(cat "$tmp/err")"
+if "$BRDFIT" merge "$tmp/keep.db" "$tmp/one.db" -o "$tmp/v.db" 2>/dev/null; then bad "merge across versions"; else ok; fi
+
+# --- a locked database: one line, nothing changed -----------------------------------------
+cp "$tmp/one.db" "$tmp/l.db"
+cp "$tmp/l.db" "$tmp/l.before"
+mkfifo "$tmp/hold"
+{ echo "BEGIN EXCLUSIVE;"; echo "UPDATE meta SET value = value WHERE key = 'schema';"; cat "$tmp/hold"; echo "ROLLBACK;"; } |
+  sqlite3 "$tmp/l.db" &
+lock=$!
+exec 7>"$tmp/hold" # keeps the shell in its transaction until closed
+for _ in $(seq 100); do [ -e "$tmp/l.db-journal" ] && break; sleep 0.02; done
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/l.db" --redo all 2>"$tmp/err"
+rc=$?
+"$BRDFIT" report "$tmp/l.db" >/dev/null 2>"$tmp/err2"
+rc2=$?
+exec 7>&-
+wait $lock
+[ $rc = 1 ] && grep -q "l.db: locked by another process" "$tmp/err" && [ "$(wc -l < "$tmp/err")" = 1 ] && ok ||
+  bad "locked database (batch): exit $rc, $(cat "$tmp/err")"
+[ $rc2 = 1 ] && grep -q "locked by another process" "$tmp/err2" && ok || bad "locked database (report): exit $rc2, $(cat "$tmp/err2")"
+rows "$tmp/l.db" | cmp -s - "$tmp/one.rows" && ok || bad "locked database changed"
+# Two batch runs on one database: the second refused at once.
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/two.db" 2>/dev/null &
+pid=$!
+for _ in $(seq 100); do [ -e "$tmp/two.db" ] && break; sleep 0.01; done
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/two.db" 2>"$tmp/err"
+rc=$?
+wait $pid
+[ $rc = 1 ] && grep -q "in use by another brdfit batch" "$tmp/err" || [ $rc = 0 ] && ok || bad "two writers: exit $rc $(cat "$tmp/err")"
+
+# --- a damaged database: one line, left as it was ------------------------------------------
+cp "$tmp/one.db" "$tmp/d.db"
+printf 'not an SQLite header' | dd of="$tmp/d.db" conv=notrunc 2>/dev/null
+cp "$tmp/d.db" "$tmp/d.before"
+for c in "batch $tmp/m.json -o" "report"; do
+  "$BRDFIT" $c "$tmp/d.db" >/dev/null 2>"$tmp/err"
+  [ $? = 1 ] && grep -q "d.db: damaged or not a database" "$tmp/err" && [ "$(wc -l < "$tmp/err")" = 1 ] && ok ||
+    bad "damaged database ($c): $(cat "$tmp/err")"
+done
+cmp -s "$tmp/d.db" "$tmp/d.before" && ok || bad "damaged database was written"
+printf 'SQLite format 3\0' > "$tmp/e.db"; head -c 4080 /dev/urandom >> "$tmp/e.db"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/e.db" 2>"$tmp/err"
+[ $? = 1 ] && grep -q "damaged or not a database" "$tmp/err" && ok || bad "random pages: $(cat "$tmp/err")"
+sqlite3 "$tmp/other.db" "CREATE TABLE t(x)"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/other.db" 2>"$tmp/err"
+[ $? = 2 ] && grep -q "not brdfit batch results" "$tmp/err" && ok || bad "foreign database: $(cat "$tmp/err")"
+
+# --- a missing data file: its items are errors; --redo failed runs them again --------------
+cat > "$tmp/mm.json" <<'JSON'
+{"models": ["lambert", "walter"], "options": ["--threads", "1"],
+ "materials": ["lam1.csv", {"data": "later.csv", "options": ["--max-theta", "80"]}]}
+JSON
+"$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" 2>"$tmp/err"
+[ $? = 1 ] && grep -q "2 of 4 items failed" "$tmp/err" && ok || bad "missing data: $(cat "$tmp/err")"
+[ "$(count "$tmp/f.db" "SELECT group_concat(status) FROM items")" = "ok,ok,error,error" ] && ok || bad "error rows"
+[ "$(count "$tmp/f.db" "SELECT options FROM items WHERE item = 3")" = '["--threads","1","--max-theta","80","-m","walter"]' ] &&
+  ok || bad "material options in the options column"
+"$BRDFIT" report "$tmp/f.db" --json "$tmp/f.json" >/dev/null 2>&1
+jq -e '.materials[1].fits[0].status == "error" and (.materials[1].fits[0].message | test("later.csv: cannot open"))' "$tmp/f.json" >/dev/null &&
+  ok || bad "report of error items"
+cp "$tmp/lam2.csv" "$tmp/later.csv"
+"$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" 2>/dev/null
+[ "$(count "$tmp/f.db" "SELECT group_concat(status) FROM items")" = "ok,ok,error,error" ] && ok || bad "plain rerun redid errors"
+"$BRDFIT" batch "$tmp/mm.json" -o "$tmp/f.db" --redo failed && ok || bad "--redo failed"
+# --redo all: every row again, the same results.
+cp "$tmp/one.db" "$tmp/redo.db"
+"$BRDFIT" batch "$tmp/m.json" -o "$tmp/redo.db" --redo all --jobs 2 && ok || bad "--redo all"
+rows "$tmp/redo.db" | cmp -s - "$tmp/one.rows" && ok || bad "--redo all changed results"
+[ "$(count "$tmp/redo.db" "ATTACH '$tmp/one.db' AS o;
+       SELECT count(*) FROM items a JOIN o.items b USING(item) WHERE a.finished_at > b.finished_at")" = 24 ] &&
+  ok || bad "--redo all did not run every item again"
+[ "$(count "$tmp/f.db" "SELECT group_concat(status) FROM items")" = "ok,ok,ok,ok" ] && ok || bad "after --redo failed"
+
+# --- bad usage and bad manifests: one line, exit 2, no database ---------------------------
+for args in "" "$tmp/m.json" "$tmp/m.json -o $tmp/u.db --shard 4/3" "$tmp/m.json -o $tmp/u.db --redo some"; do
+  "$BRDFIT" batch $args 2>"$tmp/err"
+  [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && [ ! -e "$tmp/u.db" ] && ok || bad "usage '$args': $(cat "$tmp/err")"
+done
+for bad_manifest in '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' \
+                    '{"models": ["lambert"], "materials": ["lam1.csv"], "options": ["--residual", "nope"]}' \
+                    '{"models": ["lambert"], "materials": [{"data": "lam1.csv", "options": ["--threads", "2"]}]}' \
+                    '{"models": ["lambert"], "materials": []}' '[1, 2]' '{"models": ["lambert"], "materials": ["a"], "x": 1}'; do
+  echo "$bad_manifest" > "$tmp/bad.json"
+  "$BRDFIT" batch "$tmp/bad.json" -o "$tmp/u.db" 2>"$tmp/err"
+  [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "^brdfit batch: $tmp/bad.json: " "$tmp/err" &&
+    [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
+done
+
+# --- docs/batch.md documents every column the database has ----------------------------------
+doc=$(dirname "$0")/../docs/batch.md
+for t in meta materials models items; do
+  for col in $(sqlite3 "$tmp/one.db" "SELECT name FROM pragma_table_info('$t')"); do
+    grep -Eq "(^| |\\(|,)$col (INTEGER|REAL|TEXT)" "$doc" && ok || bad "docs/batch.md: no column $t.$col"
+  done
+done
+finish
