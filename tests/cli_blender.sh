@@ -4,7 +4,7 @@
 # (tests/blender/render_sphere.py sets up the same camera, light and units), compared as
 # mean radiance over three regions: centre, highlight and lit limb. A diffuse, a glossy
 # dielectric, a metal and a coated material, each exact (blender_principled results).
-# Then a glTF export imported by Blender's own glTF importer, against brdfit's gltf model.
+# Then glTF exports imported by Blender's own glTF importer, against brdfit's gltf model.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -28,7 +28,7 @@ render() {
     "$BRDFIT" export "$2" --to "$3" -o "$tmp/$1.$3" 2>"$tmp/err" ||
         { bad "export $1: $(cat "$tmp/err")"; return 1; }
     "$BRDFIT" render --params "$2" --size $size -o "$tmp/$1.exr" || { bad "render $1"; return 1; }
-    blender --background --factory-startup --python "$here/blender/render_sphere.py" -- \
+    blender --background --factory-startup --python-exit-code 1 --python "$here/blender/render_sphere.py" -- \
         "$tmp/$1.$3" "$tmp/$1.exr" "$tmp/$1.json" $size 64 >"$tmp/$1.log" 2>&1 || { bad "blender $1: $(tail -5 "$tmp/$1.log")"; return 1; }
 }
 
@@ -50,7 +50,23 @@ for m in diffuse glossy metal coated; do
     render "$m" "$tmp/$m.p" blender && compare "$m" 0.02
 done
 
-for m in diffuse glossy metal coated; do
+# glTF through Blender's own importer (Blender 3.4), against brdfit's gltf model. A metal
+# (metallic 1: base colour is F0, Schlick to white) maps exactly onto the Principled BSDF
+# (measured 0.2%). A dielectric does not: the importer turns KHR_materials_specular into
+# Principled's Specular and Specular Tint (tinted towards the base colour) and Principled's
+# diffuse is not glTF's Lambert, so the highlight's colour moves (measured: -30% red, +42%
+# blue in the highlight, -7% to +12% at the centre); only the import itself is held to
+# 50% there, and the figures are printed.
+cat > "$tmp/gltf_metal.p" <<'P'
+{"model":"gltf","channels":3,"params":{"base_color":[0.95,0.64,0.54],"metallic":1,"roughness":0.5,"specular":1,"specular_color":[1,1,1],"ior":1.5}}
+P
+cat > "$tmp/gltf_dielectric.p" <<'P'
+{"model":"gltf","channels":3,"params":{"base_color":[0.1,0.2,0.5],"metallic":0,"roughness":0.5,"specular":1,"specular_color":[1,1,1],"ior":1.5}}
+P
+render gltf_metal "$tmp/gltf_metal.p" gltf && compare gltf_metal 0.02
+render gltf_dielectric "$tmp/gltf_dielectric.p" gltf && compare gltf_dielectric 0.5
+
+for m in diffuse glossy metal coated gltf_metal gltf_dielectric; do
     jq -r --arg m "$m" '[to_entries[] | .key as $k | .value as $r | range(3) as $c
         | (($r.blender[$c] - $r.brdfit[$c]) | fabs) / ([$r.blender[$c], $r.brdfit[$c], 1e-3] | max)] | max
         | "\($m): largest region difference \(. * 1000 | round / 10)%"' "$tmp/$m.json"

@@ -2,7 +2,9 @@
 draws, and compares the two images region by region.
 
 Run: blender --background --factory-startup --python render_sphere.py -- \
-         MATERIAL.py BRDFIT.exr OUT.json [SIZE] [SAMPLES]
+         MATERIAL.py|MATERIAL.gltf BRDFIT.exr OUT.json [SIZE] [SAMPLES]
+
+MATERIAL.gltf goes through Blender's own glTF importer (its material on this sphere).
 
 The scene is brdfit render's, in Blender's terms: a unit sphere (smooth UV sphere, fine
 enough that interpolated normals stand for the true ones) seen by an orthographic camera
@@ -30,10 +32,23 @@ samples = int(argv[4]) if len(argv) > 4 else 64
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
 
-# The exported script builds the material "brdfit"; its own preview scene is not wanted.
-source = open(material_script).read().replace("PREVIEW = True", "PREVIEW = False", 1)
-exec(compile(source, material_script, "exec"), {"__name__": "brdfit_material"})
-material = bpy.data.materials["brdfit"]
+if material_script.endswith(".gltf"):
+    # A glTF export through Blender's own importer: its material, on our sphere (the
+    # file's own sphere mesh is removed).
+    # Debian's Blender 3.4 importer still says np.bool, which Debian's NumPy (1.24) has
+    # removed; the alias it meant is the builtin.
+    import numpy
+    if not hasattr(numpy, "bool"):
+        numpy.bool = bool
+    bpy.ops.import_scene.gltf(filepath=material_script)
+    material = next(ob.active_material for ob in bpy.data.objects if ob.type == "MESH")
+    for ob in list(bpy.data.objects):
+        bpy.data.objects.remove(ob, do_unlink=True)
+else:
+    # The exported script builds the material "brdfit"; its preview scene is not wanted.
+    source = open(material_script).read().replace("PREVIEW = True", "PREVIEW = False", 1)
+    exec(compile(source, material_script, "exec"), {"__name__": "brdfit_material"})
+    material = bpy.data.materials["brdfit"]
 
 bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128, radius=1.0)
 sphere = bpy.context.active_object
