@@ -1,5 +1,7 @@
 #include "support.h"
 
+#include "io/read_binary.h"
+
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -233,6 +235,15 @@ bf_model *ts_model(const char *spec, int C)
     if (bf_model_new(spec, C, &m, &err) != BF_OK)
         fail_msg("%s: %s", spec, err.msg);
     return m;
+}
+
+unsigned char *ts_read_binary(const char *path, size_t *len)
+{
+    unsigned char *b;
+    bf_error err;
+    if (bf_read_binary(path, &b, len, &err) != BF_OK)
+        fail_msg("%s", err.msg);
+    return b;
 }
 
 const bf_geometry *ts_samples_geometry(bf_samples *s)

@@ -59,6 +59,8 @@ bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, cons
 bf_model *ts_model(const char *spec, int C);
 /* bf_samples_geometry, failing the test if it fails. */
 const bf_geometry *ts_samples_geometry(bf_samples *s);
+/* A whole file's bytes (malloc'd), failing the test if it cannot be read. */
+unsigned char *ts_read_binary(const char *path, size_t *len);
 
 /* Fails the current test unless |got - want| <= tol |want| (plus 1e-300); `what`
  * (may be NULL) names the quantity in the message. */

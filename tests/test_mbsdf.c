@@ -24,15 +24,6 @@
 #define NP 90
 #define HEAD 55 /* the magic line, the reflection line, 3 uint32 */
 
-static unsigned char *slurp(const char *path, size_t *len)
-{
-    unsigned char *b;
-    bf_error err;
-    if (bf_read_binary(path, &b, len, &err) != BF_OK)
-        fail_msg("%s", err.msg);
-    return b;
-}
-
 static bf_samples *read_ok(const char *path, const char *grid)
 {
     bf_samples *s;
@@ -48,7 +39,7 @@ static void test_cells(void **state)
 {
     (void)state;
     size_t len;
-    unsigned char *b = slurp(CARPAINT, &len);
+    unsigned char *b = ts_read_binary(CARPAINT, &len);
     assert_int_equal(len, HEAD + (size_t)NT * NT * NP * 3 * 4);
     bf_samples *s = read_ok(CARPAINT, NULL);
     assert_int_equal(s->n, (size_t)NT * NT * NP);
@@ -260,7 +251,7 @@ static void test_dispatch(void **state)
 {
     (void)state;
     size_t len;
-    unsigned char *b = slurp(CARPAINT, &len);
+    unsigned char *b = ts_read_binary(CARPAINT, &len);
     const char *other = ts_tmp_path("paint.bin");
     ts_write_file(other, (const char *)b, len);
     free(b);

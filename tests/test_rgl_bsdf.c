@@ -24,15 +24,6 @@
 #define IBIZA BRDFIT_EXAMPLES "/rgl/cc_ibiza_sunset_rgb.bsdf"
 #define FLOAT_EPS 1.2e-7 /* 2^-23 */
 
-static unsigned char *slurp(const char *path, size_t *len)
-{
-    unsigned char *b;
-    bf_error err;
-    if (bf_read_binary(path, &b, len, &err) != BF_OK)
-        fail_msg("%s", err.msg);
-    return b;
-}
-
 /* The raw float32 of the "rgb" field at (elevation k, channel c, row y, column x),
  * read from the file's bytes by the field's offset. */
 static double raw_rgb(const bf_tensor_file *t, size_t k, int c, size_t y, size_t x)
@@ -55,7 +46,7 @@ static void check_stored(const char *path, size_t want_points)
     if (bf_rgl_bsdf_read(path, &b, &err) != BF_OK)
         fail_msg("%s", err.msg);
     size_t len;
-    unsigned char *bytes = slurp(path, &len);
+    unsigned char *bytes = ts_read_binary(path, &len);
     bf_tensor_file t;
     assert_int_equal(bf_tensor_file_parse(path, bytes, len, &t, &err), BF_OK);
     assert_int_equal(b.channels, 3);
@@ -276,7 +267,7 @@ static void test_dispatch(void **state)
     bf_error err;
     bf_samples *s;
     size_t len;
-    unsigned char *bytes = slurp(PAPER, &len);
+    unsigned char *bytes = ts_read_binary(PAPER, &len);
     const char *other = ts_tmp_path("paper.dat");
     ts_write_file(other, (const char *)bytes, len);
     free(bytes);
@@ -308,7 +299,7 @@ static bf_status read_rgl(const char *path, bf_samples **out, bf_error *err)
 static void expect_edit(const char *name, size_t at, const void *with, size_t n, long cut, const char *fragment)
 {
     size_t len;
-    unsigned char *b = slurp(PAPER, &len);
+    unsigned char *b = ts_read_binary(PAPER, &len);
     memcpy(b + at, with, n);
     ts_expect_read_error(read_rgl, name, (const char *)b, cut >= 0 ? (size_t)cut : len, BF_ERR_PARSE, fragment);
     free(b);
@@ -318,7 +309,7 @@ static void expect_edit(const char *name, size_t at, const void *with, size_t n,
 static size_t field_record(const char *name)
 {
     size_t len;
-    unsigned char *b = slurp(PAPER, &len);
+    unsigned char *b = ts_read_binary(PAPER, &len);
     size_t pos = 18;
     for (;;) {
         const size_t nl = bf_le_u16(b + pos);
@@ -334,7 +325,7 @@ static void test_hostile(void **state)
 {
     (void)state;
     size_t len;
-    unsigned char *b = slurp(PAPER, &len);
+    unsigned char *b = ts_read_binary(PAPER, &len);
     free(b);
     /* Truncations: inside the header, inside a field record, inside the data. */
     const long cuts[] = {0, 5, 13, 17, 30, 200, 411, 2000, 600000, (long)len - 1};
@@ -361,7 +352,7 @@ static void test_hostile(void **state)
     expect_edit("stack.bsdf", vndf + 6 + 11 + 8, two, 8, -1, "stacked 1 x 2, expected 1 x 8");
     /* NaN and Inf in the data; theta_i out of order; a negative VNDF. */
     size_t l2;
-    b = slurp(PAPER, &l2);
+    b = ts_read_binary(PAPER, &l2);
     const size_t rgb_data = (size_t)bf_le_u64(b + rgb + 5 + 3), theta_data = (size_t)bf_le_u64(b + theta + 9 + 3),
                  vndf_data = (size_t)bf_le_u64(b + vndf + 6 + 3);
     free(b);
@@ -375,7 +366,7 @@ static void test_hostile(void **state)
     expect_edit("aniso.bsdf", field_record("phi_i") + 7 + 11, three, 8, -1,
                 "anisotropic material (3 incident azimuths)");
     /* Every prefix of the header fails cleanly (no crash, no acceptance). */
-    b = slurp(PAPER, &l2);
+    b = ts_read_binary(PAPER, &l2);
     for (size_t cut = 1; cut < 420; cut += 7) {
         const char *p = ts_tmp_path("prefix.bsdf");
         ts_write_file(p, (const char *)b, cut);
