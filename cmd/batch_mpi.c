@@ -13,9 +13,10 @@
  *    one-process run's. Rows travel as batch_row_pack bytes, doubles bit for bit.
  *  - Waiting is MPI_Iprobe and a 1 ms sleep, not a blocking receive: Open MPI's blocking
  *    calls spin on a core, and the coordinator would take one from the workers.
- *  - A rank that dies ends the job (Open MPI's default error handling, and what
- *    mpirun does when a process exits abnormally); the database keeps what was written
- *    and the same command resumes, the items in flight being pending still. */
+ *  - A rank that dies ends the job (mpirun kills the others when a process exits
+ *    abnormally), and so does the death of the launcher (PR_SET_PDEATHSIG below); the
+ *    database keeps what was written and the same command resumes, the items in flight
+ *    being pending still. Nothing is handed out again within the run. */
 #include "batch_mpi.h"
 
 #include <mpi.h>
@@ -24,6 +25,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef __linux__
+#include <signal.h>
+#include <sys/prctl.h>
+#include <unistd.h>
+#endif
 
 enum { TAG_ASK = 1, TAG_ITEM, TAG_STOP };
 
@@ -37,6 +43,15 @@ void batch_mpi_start(int *rank, int *size)
      * singleton start (a daemon in Open MPI 4) is not wanted. */
     if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_SIZE"))
         return;
+#ifdef __linux__
+    /* A rank whose launcher dies (mpirun, or the orted or slurmstepd under it, killed
+     * with SIGKILL) is killed too: Open MPI 4's ranks would otherwise go on as orphans,
+     * and the orphaned coordinator would keep the database (its flock) from the rerun. */
+    const pid_t parent = getppid();
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent)
+        raise(SIGKILL);
+#endif
     int provided;
     /* Only the main thread calls MPI; the solver's threads never do. */
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
