@@ -12,6 +12,7 @@
 
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -149,5 +150,138 @@ bf_status batch_row_to_fit(const batch_row *r, bf_compare_fit *f, bf_fit_result 
     res->samples = r->samples;
     res->ok = r->state == BF_CMP_OK;
     f->result = res;
+    return BF_OK;
+}
+
+/* ---- Bytes (batch_row_pack) ------------------------------------------------------------ */
+
+typedef struct packer {
+    unsigned char *p; /* NULL: only counting */
+    size_t n;
+} packer;
+
+static void put(packer *k, const void *v, size_t n)
+{
+    if (k->p)
+        memcpy(k->p + k->n, v, n);
+    k->n += n;
+}
+
+static void put_i64(packer *k, int64_t v) { put(k, &v, sizeof v); }
+static void put_f64(packer *k, double v) { put(k, &v, sizeof v); }
+
+/* A text as its length + 1 (0: absent) and its bytes. */
+static void put_text(packer *k, const char *s)
+{
+    const size_t n = s ? strlen(s) : 0;
+    put_i64(k, s ? (int64_t)n + 1 : 0);
+    put(k, s, n);
+}
+
+static void put_row(packer *k, const batch_row *r)
+{
+    const bf_metrics *m = &r->metrics;
+    const int64_t ints[] = {r->item, r->material, r->model, r->pending, r->state, (int64_t)r->samples, r->channels,
+                            (int64_t)m->n, m->k, m->weighted, (int64_t)m->crit_n};
+    const double reals[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel, m->max_err, m->loglik,
+                            m->aic, m->aicc, m->bic, r->cv, r->work, r->seconds};
+    for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++)
+        put_i64(k, ints[i]);
+    for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
+        put_f64(k, reals[i]);
+    put_text(k, r->message);
+    const char *texts[] = {r->spec, r->params, r->stderr_, r->warnings, r->options};
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
+        put_text(k, texts[i]);
+}
+
+bf_status batch_row_pack(const batch_row *r, unsigned char **buf, size_t *len, bf_error *err)
+{
+    packer k = {NULL, 0};
+    put_row(&k, r); /* the size first, then the bytes */
+    if (!(k.p = malloc(k.n)))
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for item %d's result", r->item);
+    *len = k.n;
+    k.n = 0;
+    put_row(&k, r);
+    *buf = k.p;
+    return BF_OK;
+}
+
+typedef struct unpacker {
+    const unsigned char *p;
+    size_t n, at;
+    int bad;
+} unpacker;
+
+static void get(unpacker *u, void *v, size_t n)
+{
+    if (u->bad || u->n - u->at < n) {
+        u->bad = 1;
+        memset(v, 0, n);
+        return;
+    }
+    memcpy(v, u->p + u->at, n);
+    u->at += n;
+}
+
+static int64_t get_i64(unpacker *u)
+{
+    int64_t v;
+    get(u, &v, sizeof v);
+    return v;
+}
+
+static double get_f64(unpacker *u)
+{
+    double v;
+    get(u, &v, sizeof v);
+    return v;
+}
+
+/* A text into buf (size cap) when buf is given, else malloc'd (NULL when absent). */
+static char *get_text(unpacker *u, char *buf, size_t cap)
+{
+    const int64_t n1 = get_i64(u);
+    if (u->bad || n1 <= 0)
+        return NULL;
+    const size_t n = (size_t)(n1 - 1);
+    if (n > u->n - u->at || (buf && n >= cap)) {
+        u->bad = 1;
+        return NULL;
+    }
+    char *s = buf ? buf : malloc(n + 1);
+    if (!s) {
+        u->bad = 2;
+        return NULL;
+    }
+    get(u, s, n);
+    s[n] = 0;
+    return s;
+}
+
+bf_status batch_row_unpack(const unsigned char *buf, size_t len, batch_row *r, bf_error *err)
+{
+    unpacker u = {buf, len, 0, 0};
+    bf_metrics *m = &r->metrics;
+    memset(r, 0, sizeof *r);
+    r->item = (int)get_i64(&u), r->material = (int)get_i64(&u), r->model = (int)get_i64(&u);
+    r->pending = (int)get_i64(&u), r->state = (bf_compare_state)get_i64(&u);
+    r->samples = (size_t)get_i64(&u), r->channels = (int)get_i64(&u);
+    m->n = (size_t)get_i64(&u), m->k = (int)get_i64(&u), m->weighted = (int)get_i64(&u);
+    m->crit_n = (size_t)get_i64(&u);
+    double *reals[] = {&m->rmse, &m->rmse_cos, &m->rmse_log, &m->rmse_rel, &m->max_err, &m->loglik,
+                       &m->aic, &m->aicc, &m->bic, &r->cv, &r->work, &r->seconds};
+    for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
+        *reals[i] = get_f64(&u);
+    get_text(&u, r->message, sizeof r->message);
+    char **texts[] = {&r->spec, &r->params, &r->stderr_, &r->warnings, &r->options};
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
+        *texts[i] = get_text(&u, NULL, 0);
+    if (u.bad || u.at != len) {
+        batch_row_clear(r);
+        return u.bad == 2 ? bf_fail(err, BF_ERR_NOMEM, "out of memory for a result row")
+                          : bf_fail(err, BF_ERR_PARSE, "a result row of %zu bytes that is not one", len);
+    }
     return BF_OK;
 }

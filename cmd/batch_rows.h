@@ -34,4 +34,15 @@ void batch_row_clear(batch_row *r);
  * ran. BF_ERR_PARSE for a row that cannot be read back. */
 bf_status batch_row_to_fit(const batch_row *r, bf_compare_fit *f, bf_fit_result *res, bf_error *err);
 
+/* A row as bytes and back, for sending a finished item from an MPI worker to the
+ * coordinator (cmd/batch_mpi.c): every field the database stores, doubles as their bit
+ * patterns (bit-exact, so the coordinator writes what a one-process run would), the
+ * texts with their lengths (absent ones apart from empty ones). Processes of one job
+ * share one architecture, so the bytes are in its order. batch_row_pack: a malloc'd
+ * buffer in *buf, its size in *len (BF_ERR_NOMEM). batch_row_unpack: r from the bytes,
+ * its texts malloc'd (clear it with batch_row_clear); BF_ERR_PARSE for bytes that are
+ * not a packed row. */
+bf_status batch_row_pack(const batch_row *r, unsigned char **buf, size_t *len, bf_error *err);
+bf_status batch_row_unpack(const unsigned char *buf, size_t len, batch_row *r, bf_error *err);
+
 #endif

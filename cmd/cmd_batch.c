@@ -29,11 +29,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "args.h"
 #include "batch_db.h"
 #include "batch_manifest.h"
+#ifdef BRDFIT_HAVE_MPI
+#include "batch_mpi.h"
+#endif
 #include "cli.h"
 #include "commands.h"
 #include "interrupt.h"
@@ -150,6 +154,7 @@ typedef struct run {
     double t0;
     int db_failed;
     bf_error db_err;
+    batch_row *kept; /* an MPI worker (db NULL): where its item's row goes */
 } run;
 
 static void show_progress(const run *r)
@@ -166,13 +171,19 @@ static void show_progress(const run *r)
     fflush(stderr);
 }
 
-/* The item's row written (its own transaction); a database failure stops the run. */
-static void record(run *r, batch_row *row)
+/* The run cannot go on (a database failure, no memory): no new fit starts. A worker's
+ * item becomes an error row instead (work_item). */
+static void fail(run *r, const bf_error *err)
 {
-    if (r->db_failed)
-        return;
-    row->material = r->material;
-    row->item = r->material * r->m->nmodels + row->model;
+    r->db_failed = 1;
+    r->db_err = *err;
+    if (r->db)
+        interrupt_raise();
+}
+
+/* A finished item's row written (its own transaction) and counted. */
+static void put_row(run *r, const batch_row *row)
+{
     if (batch_db_put(r->db, row, &r->db_err) != BF_OK) {
         r->db_failed = 1;
         interrupt_raise();
@@ -186,15 +197,30 @@ static void record(run *r, batch_row *row)
     show_progress(r);
 }
 
+/* The item's row written, or an MPI worker's kept for sending (its texts taken). */
+static void record(run *r, batch_row *row)
+{
+    if (r->db_failed)
+        return;
+    row->material = r->material;
+    row->item = r->material * r->m->nmodels + row->model;
+    if (r->db) {
+        put_row(r, row);
+    } else {
+        *r->kept = *row;
+        row->spec = row->params = row->stderr_ = row->warnings = row->options = NULL;
+    }
+}
+
 /* bf_compare_progress: one fit finished (calls never overlap). */
 static void fit_done(void *ctx, const bf_compare *c, int material, int j, int done, int total)
 {
     (void)material, (void)done, (void)total;
     run *r = ctx;
     batch_row row = {0};
-    if (batch_row_from_fit(&row, c, j, &r->db_err) != BF_OK) {
-        r->db_failed = 1;
-        interrupt_raise();
+    bf_error err;
+    if (batch_row_from_fit(&row, c, j, &err) != BF_OK) {
+        fail(r, &err);
         return;
     }
     row.model = r->model_of[j];
@@ -213,50 +239,77 @@ static void data_error(run *r, const int *models, int n, const char *reason)
     }
 }
 
-/* Material i's pending models (models[0..n-1], manifest indices): read, fitted, written,
- * released. */
-static void run_material(run *r, int i, const int *models, int n)
+/* A material read and prepared for fitting: s NULL when it could not be (why: reason). */
+typedef struct material {
+    int i;
+    bf_samples *s;
+    fit_options fopt;
+    char reason[512];
+} material;
+
+static void material_load(const run *r, int i, material *mt)
 {
     const batch_manifest *m = r->m;
     data_options dopt;
-    r->material = i;
-    r->model_of = models;
+    mt->i = i;
+    mt->s = NULL;
     if (batch_manifest_data_options(m, i, &dopt, cmd) < 0) { /* checked when read: cannot fail */
-        data_error(r, models, n, "its data options do not parse");
+        snprintf(mt->reason, sizeof mt->reason, "its data options do not parse");
         return;
     }
-    fit_options fopt = m->fopt;
+    mt->fopt = m->fopt;
     if (r->a->threads > 0)
-        fopt.fit.solver.threads = (int)r->a->threads;
-    fit_options_finish(&fopt, &dopt);
-    bf_samples *s = data_options_load(&dopt, m->materials[i].data, NULL, cmd);
-    if (!s) {
-        char reason[512];
-        data_options_load_reason(&dopt, m->materials[i].data, reason, sizeof reason);
-        data_error(r, models, n, reason);
+        mt->fopt.fit.solver.threads = (int)r->a->threads;
+    fit_options_finish(&mt->fopt, &dopt);
+    if (!(mt->s = data_options_load(&dopt, m->materials[i].data, NULL, cmd)))
+        data_options_load_reason(&dopt, m->materials[i].data, mt->reason, sizeof mt->reason);
+}
+
+static void material_release(material *mt)
+{
+    bf_samples_free(mt->s);
+    mt->s = NULL;
+    mt->i = -1;
+}
+
+/* The models models[0..n-1] (manifest indices) of a loaded material fitted, each row
+ * recorded as it finishes. */
+static void material_fit(run *r, material *mt, const int *models, int n)
+{
+    const batch_manifest *m = r->m;
+    r->material = mt->i;
+    r->model_of = models;
+    if (!mt->s) {
+        data_error(r, models, n, mt->reason);
         return;
     }
-    const char *specs[128], *data = m->materials[i].data;
+    const char *specs[128], *data = m->materials[mt->i].data;
     for (int k = 0; k < n; k++)
         specs[k] = m->models[models[k]];
     bf_compare c;
     bf_error err;
     memset(&c, 0, sizeof c);
     if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        r->db_failed = 1, r->db_err = err;
-        interrupt_raise();
+        if (r->db)
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        fail(r, &err);
     } else {
         c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
         bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &interrupt_flag};
-        if (bf_compare_run(&c, &s, &fopt.fit, &ro, &err) != BF_OK) {
-            /* Only before any fit: bad arguments or no memory. */
-            r->db_failed = 1, r->db_err = err;
-            interrupt_raise();
-        }
+        if (bf_compare_run(&c, &mt->s, &mt->fopt.fit, &ro, &err) != BF_OK)
+            fail(r, &err); /* only before any fit: bad arguments or no memory */
     }
     bf_compare_clear(&c);
-    bf_samples_free(s);
+}
+
+/* Material i's pending models (models[0..n-1], manifest indices): read, fitted, written,
+ * released. */
+static void run_material(run *r, int i, const int *models, int n)
+{
+    material mt;
+    material_load(r, i, &mt);
+    material_fit(r, &mt, models, n);
+    material_release(&mt);
 }
 
 /* The pending items, material by material. */
@@ -272,27 +325,105 @@ static void run_items(run *r, const int *items, int n)
     }
 }
 
-static int batch(const batch_args *a, const batch_manifest *m)
+#ifdef BRDFIT_HAVE_MPI
+/* ---- MPI (batch_mpi.h) ----------------------------------------------------------------- */
+
+/* The coordinator's batch_mpi_coordinate callback: a worker's row written and counted. */
+static void coordinator_done(void *ctx, batch_row *row)
+{
+    run *r = ctx;
+    if (!r->db_failed)
+        put_row(r, row);
+}
+
+/* The items of r (pending[0..n-1]) handed out to the workers; the weight of a material
+ * is its data file's size (-1 when it cannot be read: its items are errors, quick ones). */
+static void coordinate(run *r, const int *pending, int n)
+{
+    const batch_manifest *m = r->m;
+    double *weight = malloc(((size_t)m->nmaterials + 1) * sizeof *weight);
+    if (!weight) {
+        r->db_failed = 1;
+        bf_fail(&r->db_err, BF_ERR_NOMEM, "out of memory for the work queue");
+        n = 0; /* the workers are stopped all the same */
+    }
+    for (int i = 0; weight && i < m->nmaterials; i++) {
+        struct stat st;
+        weight[i] = stat(m->materials[i].data, &st) == 0 ? (double)st.st_size : -1;
+    }
+    batch_mpi_coordinate(pending, n, m->nmodels, weight, m->nmaterials, coordinator_done, r, &interrupt_flag);
+    free(weight);
+}
+
+typedef struct worker {
+    run r;
+    material mt; /* the material held (mt.i -1: none), kept for its next items */
+} worker;
+
+/* batch_mpi_work's callback: one item fitted into row; any failure is the item's error. */
+static void work_item(void *ctx, int item, batch_row *row, int *held)
+{
+    worker *w = ctx;
+    const int i = item / w->r.m->nmodels, model = item % w->r.m->nmodels;
+    if (w->mt.i != i) {
+        material_release(&w->mt);
+        material_load(&w->r, i, &w->mt);
+    }
+    w->r.kept = row;
+    w->r.db_failed = 0;
+    material_fit(&w->r, &w->mt, &model, 1);
+    if (w->r.db_failed) { /* no row recorded: the reason is the row */
+        *row = (batch_row){.item = item, .material = i, .model = model, .state = BF_CMP_ERROR,
+                           .seconds = NAN, .cv = NAN, .work = NAN};
+        snprintf(row->message, sizeof row->message, "%s", w->r.db_err.msg);
+    }
+    *held = w->mt.s ? i : -1;
+}
+
+static void work(const batch_args *a, const batch_manifest *m)
+{
+    worker w = {.r = {.a = a, .m = m}, .mt = {.i = -1}};
+    batch_mpi_work(work_item, &w);
+    material_release(&w.mt);
+}
+#endif
+
+/* One process, or the coordinator of several (nproc > 1): its workers are stopped on
+ * every path. */
+static int batch(const batch_args *a, const batch_manifest *m, int nproc)
 {
     batch_db *db;
     bf_error err;
-    int *items = NULL, n = 0;
+    int *items = NULL, n = 0, status = -1;
+    run r = {.a = a, .m = m, .tty = isatty(STDERR_FILENO)};
     if (batch_db_open(a->output, BATCH_DB_WRITE, &db, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        return 1;
-    }
-    if (batch_db_setup(db, m, a->shard, a->nshards, &err) != BF_OK ||
-        batch_db_redo(db, a->redo_failed, a->redo_all, &err) != BF_OK ||
-        batch_db_pending(db, &items, &n, &err) != BF_OK) {
+        db = NULL, status = 1;
+    } else if (batch_db_setup(db, m, a->shard, a->nshards, &err) != BF_OK ||
+               batch_db_redo(db, a->redo_failed, a->redo_all, &err) != BF_OK ||
+               batch_db_pending(db, &items, &n, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
-        batch_db_close(db);
-        return err.code == BF_ERR_ARG ? 2 : 1;
+        status = err.code == BF_ERR_ARG ? 2 : 1;
     }
-    run r = {.a = a, .m = m, .db = db, .total = n, .tty = isatty(STDERR_FILENO), .t0 = args_now()};
+    if (status >= 0) {
+#ifdef BRDFIT_HAVE_MPI
+        if (nproc > 1)
+            batch_mpi_coordinate(NULL, 0, m->nmodels, NULL, 0, coordinator_done, &r, &interrupt_flag);
+#endif
+        batch_db_close(db);
+        return status;
+    }
+    r.db = db, r.total = n, r.t0 = args_now();
     struct sigaction old;
     interrupt_catch(&old); /* SIGINT, or a database failure (interrupt_raise): no new fit */
     cli_note(cmd, "%d items to run into %s", n, a->output);
-    run_items(&r, items, n);
+#ifdef BRDFIT_HAVE_MPI
+    if (nproc > 1)
+        coordinate(&r, items, n);
+    else
+#endif
+        run_items(&r, items, n);
+    (void)nproc;
     interrupt_release(&old);
     free(items);
     batch_db_close(db);
@@ -318,11 +449,41 @@ int cmd_batch(int argc, char **argv)
 {
     batch_args a;
     batch_manifest m = {0};
-    int status = parse(&a, argc, argv);
+    int status = parse(&a, argc, argv), rank = 0, nproc = 1;
+#ifdef BRDFIT_HAVE_MPI
     if (status < 0)
+        batch_mpi_start(&rank, &nproc);
+#endif
+    if (status < 0 && rank == 0)
         status = batch_manifest_read(a.manifest, NULL, &m, cmd) < 0 ? 2 : -1;
+#ifdef BRDFIT_HAVE_MPI
+    if (nproc > 1) {
+        /* Every rank reads the manifest (the workers after rank 0 could) and checks that
+         * it is rank 0's: a file that differs on another machine would fit other items. */
+        char hash[17];
+        memcpy(hash, m.hash, sizeof hash);
+        batch_mpi_share(&status, hash);
+        if (status < 0 && rank > 0) {
+            if (batch_manifest_read(a.manifest, NULL, &m, cmd) < 0) {
+                status = 2;
+            } else if (memcmp(hash, m.hash, sizeof hash)) {
+                fprintf(stderr, "%s: %s: not the manifest rank 0 read (the file differs here)\n", cmd, a.manifest);
+                status = 2;
+            }
+        }
+        if (!batch_mpi_all(status < 0) && status < 0)
+            status = 2;
+        if (status < 0 && rank > 0) {
+            work(&a, &m);
+            status = 0;
+        }
+    }
+#endif
     if (status < 0)
-        status = batch(&a, &m);
+        status = batch(&a, &m, nproc);
+#ifdef BRDFIT_HAVE_MPI
+    batch_mpi_end();
+#endif
     batch_manifest_clear(&m);
     cli_args_free(&a.args);
     return status;

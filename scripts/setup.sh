@@ -9,7 +9,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
-  libcairo2-dev fonts-dejavu-core poppler-utils \
+  libcairo2-dev fonts-dejavu-core poppler-utils libopenmpi-dev openmpi-bin \
   clang libclang-rt-14-dev man-db groff-base blender >/dev/null
 # Node.js and npm from Debian unless the machine has them already (a Node.js from
 # elsewhere, such as NodeSource's, bundles npm and conflicts with Debian's npm package).
@@ -30,3 +30,5 @@ npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@
 # CPU): tests/cli_blender.sh renders exported materials. Tests only: brdfit needs neither.
 # libcairo2-dev draws the plots (PNG, SVG, PDF) with the DejaVu fonts (fonts-dejavu-core);
 # poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.
+# libopenmpi-dev and openmpi-bin (mpirun): brdfit batch under MPI (cmd/batch_mpi.c, built
+# only where CMake finds MPI) and tests/cli_batch_mpi.sh, which fails without mpirun.

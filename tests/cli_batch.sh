@@ -8,40 +8,11 @@
 # merge refuses inconsistent inputs.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
-command -v sqlite3 >/dev/null || { echo "sqlite3 (the shell) is needed"; exit 1; }
-
-cat > "$tmp/lam.json" <<'JSON'
-{"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}
-JSON
-cat > "$tmp/wal.json" <<'JSON'
-{"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,
- "params": {"rho_d": [0.3, 0.2, 0.1], "rho_s": [0.8, 0.8, 0.7], "alpha": 0.1, "f0": 0.05}}
-JSON
-for k in 1 2 3; do
-  "$SYNTH" --params "$tmp/lam.json" --pattern uniform --count 3000 --noise 0.01 --seed $k -o "$tmp/lam$k.csv" &&
-  "$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 3000 --noise 0.01 --seed $((k + 10)) -o "$tmp/wal$k.csv" ||
-    bad "brdfit-synth failed"
-done
+source "$(dirname "$0")/batch_common.sh"
+batch_manifest "" 3000
 cat > "$tmp/mm0.json" <<'JSON'
 {"models": ["lambert", "walter"], "options": ["--threads", "1"], "materials": ["lam1.csv", "missing.csv"]}
 JSON
-MATS='"lam1.csv", "wal1.csv", "lam2.csv", "wal2.csv", "lam3.csv", "wal3.csv"'
-cat > "$tmp/m.json" <<JSON
-{"models": ["lambert", "walter", "cook_torrance", "blinn_phong"],
- "options": ["--threads", "1", "--seed", "3"], "materials": [$MATS]}
-JSON
-# Every column but the wall times, in item order.
-COLS="item,material,model,status,message,spec,samples,channels,n,k,rmse,rmse_log,rmse_cos,rmse_rel,max_err,weighted,crit_n,loglik,aic,aicc,bic,cv,work,params,stderr,warnings,options,tool_version"
-rows() { sqlite3 "$1" "SELECT $COLS FROM items ORDER BY item"; }
-count() { sqlite3 "$1" "$2"; }
-# Waits (up to 4 s) until database $1 of a running batch has $2 items finished.
-wait_items() {
-  for _ in $(seq 200); do
-    n=$(count "$1" "SELECT count(*) FROM items WHERE status != 'pending'" 2>/dev/null || echo 0)
-    [ "${n:-0}" -ge "$2" ] && return
-    sleep 0.02
-  done
-}
 
 # --- a run: 24 rows, all ok, the identity stored ----------------------------------------
 if "$BRDFIT" batch "$tmp/m.json" -o "$tmp/one.db" 2>"$tmp/err"; then ok; else bad "batch: $(cat "$tmp/err")"; fi

@@ -1,0 +1,40 @@
+/* brdfit batch across MPI processes (built only when CMake finds MPI: BRDFIT_HAVE_MPI).
+ * Rank 0 is the coordinator: it alone opens the results database, hands out the pending
+ * work items one at a time and writes each result it gets back in its own transaction,
+ * as a one-process run does. The other ranks are workers: each fits the items it is
+ * given (cmd_batch.c's fitting, one item at a time) and sends back the item's row
+ * (batch_row_pack). docs/batch.md describes the mode. */
+#ifndef BRDFIT_BATCH_MPI_H
+#define BRDFIT_BATCH_MPI_H
+
+#include <signal.h>
+
+#include "batch_rows.h"
+
+/* Starts MPI when an MPI launcher (mpirun, srun) started this process, else nothing:
+ * *rank 0 and *size 1 then, and batch runs as one process. */
+void batch_mpi_start(int *rank, int *size);
+/* Ends MPI if batch_mpi_start started it. */
+void batch_mpi_end(void);
+
+/* Rank 0's status (-1: go on) and manifest hash to every rank: in *status and hash. */
+void batch_mpi_share(int *status, char hash[17]);
+/* 1 when ok is true on every rank. */
+int batch_mpi_all(int ok);
+
+/* The coordinator (rank 0): hands out items[0..n-1] (ascending; item / nmodels is the
+ * material, of weight[material], nmaterials of them) to the workers, the heaviest
+ * material's first and, to a worker that holds a material, that material's next item
+ * while there is one; each result row goes to done(ctx, row) (row's texts owned by the
+ * callee during the call only). Once *stop is set no item is handed out; the items in
+ * flight are waited for. Returns when every worker has been told to stop; n = 0 only
+ * stops them. Every worker must call batch_mpi_work. */
+void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *weight, int nmaterials,
+                          void (*done)(void *ctx, batch_row *row), void *ctx, const volatile sig_atomic_t *stop);
+
+/* A worker (rank > 0): fits the items the coordinator hands out with fit(ctx, item, row,
+ * &held) (row zeroed; it fills it, an error row if the item fails; held: the material
+ * it now keeps loaded, -1 for none) until told to stop. */
+void batch_mpi_work(void (*fit)(void *ctx, int item, batch_row *row, int *held), void *ctx);
+
+#endif
