@@ -162,7 +162,7 @@ typedef struct packer {
 
 static void put(packer *k, const void *v, size_t n)
 {
-    if (k->p)
+    if (k->p && n) /* an empty string or array may come as NULL, which memcpy may not take */
         memcpy(k->p + k->n, v, n);
     k->n += n;
 }
