@@ -8,7 +8,9 @@
  *    is given its own --threads (results do not depend on it, fit.h).
  *  - The identity hash is over the canonical text (cJSON's unformatted print), so
  *    reformatting a manifest keeps its results database; any change of content (a
- *    material, a model, an option, their order) makes another manifest. */
+ *    material, a model, an option, their order) makes another manifest.
+ *  - A plain list (batch_list.h) is read into the JSON tree it stands for; the database
+ *    stores the canonical JSON either way. */
 #include "batch_manifest.h"
 
 #include <math.h>
@@ -18,6 +20,7 @@
 #include <string.h>
 
 #include "args.h"
+#include "batch_list.h"
 #include "cli.h"
 
 static const cli_option own[] = {
@@ -29,7 +32,8 @@ static const cli_group *const shared_groups[] = {&own_group, &rank_options_bic, 
                                                  &fit_options_optimizer, &data_options_reading,
                                                  &data_options_preprocessing};
 static const cli_group *const material_groups[] = {&data_options_reading, &data_options_preprocessing};
-/* Grammars for the manifest's word lists (never shown as commands). */
+/* Grammars for the manifest's word lists (never shown as commands; without --help,
+ * --quiet, --verbose, which would act on the process). */
 static const cli_command shared_cli = {"brdfit", "batch", "", "", NULL, NULL, shared_groups,
                                        sizeof shared_groups / sizeof shared_groups[0]};
 static const cli_command material_cli = {"brdfit", "batch", "", "", NULL, NULL, material_groups,
@@ -43,11 +47,13 @@ void batch_manifest_clear(batch_manifest *m)
     for (int i = 0; i < m->nmaterials; i++) {
         free(m->materials[i].data);
         free(m->materials[i].scene);
+        free(m->materials[i].scene_word);
         free(m->materials[i].words);
     }
     free(m->materials);
     free(m->words);
     free(m->text);
+    free(m->lines);
     cJSON_Delete(m->root);
     memset(m, 0, sizeof *m);
 }
@@ -88,42 +94,33 @@ static int words_of(const cJSON *a, int extra, char ***out, const char *what, co
     return k;
 }
 
-/* Words as a command line of grammar c (argv[0] the command's name): every one an
- * option; each handed to take. 0, or -1 after an error. */
+/* Words parsed by grammar c: every one an option; each handed to take. 0, or -1 after an
+ * error, whose message starts "cmd: where". */
 static int parse_words(const cli_command *c, char **words, int n, int (*take)(void *, const char *, const char *),
                        void *ctx, const char *where, const char *cmd)
 {
-    char **argv = calloc((size_t)n + 2, sizeof *argv);
-    if (!argv) {
-        fprintf(stderr, "%s: out of memory\n", cmd);
-        return -1;
-    }
-    /* An option these tables do not declare: said here, naming the list it is in (the
-     * grammar's own message would send the reader to brdfit batch --help). */
+    char prefix[700];
+    snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
+    /* An option these tables do not declare: said here, saying what the list takes. */
     for (int k = 0; k < n; k++) {
         const size_t len = strcspn(words[k], "=");
         if (!strncmp(words[k], "--", 2) && len > 2 && !cli_find(c, words[k], len)) {
-            fprintf(stderr, "%s: %s: option '%.*s' is not taken here (%s)\n", cmd, where, (int)(len > 64 ? 64 : len),
-                    words[k], c == &material_cli ? "a material takes data options only" : "see docs/batch.md");
-            free(argv);
+            fprintf(stderr, "%s: option '%.*s' is not taken here (%s)\n", prefix, (int)(len > 64 ? 64 : len), words[k],
+                    c == &material_cli ? "a material takes data options only" : "see docs/batch.md");
             return -1;
         }
     }
-    argv[0] = (char *)"batch";
-    memcpy(argv + 1, words, (size_t)n * sizeof *argv);
     cli_args args = {0};
-    int rc = cli_parse(c, n + 1, argv, &args) == CLI_OK ? 0 : -1;
+    int rc = cli_parse_words(c, n, words, &args, prefix) == CLI_OK ? 0 : -1;
     for (int i = 0; rc == 0 && i < args.n; i++) {
         if (!args.v[i].name) {
-            fprintf(stderr, "%s: %s: '%s' is not an option (data files go in \"materials\")\n", cmd, where,
-                    args.v[i].value);
+            fprintf(stderr, "%s: '%s' is not an option (one data file per material)\n", prefix, args.v[i].value);
             rc = -1;
         } else if (take(ctx, args.v[i].name, args.v[i].value) <= 0) {
             rc = -1;
         }
     }
     cli_args_free(&args);
-    free(argv);
     return rc;
 }
 
@@ -234,9 +231,15 @@ static int read_material(batch_manifest *m, const cJSON *e, const char *dir, bat
             fprintf(stderr, "%s: out of memory\n", cmd);
         return -1;
     }
+    /* One word, "--scene=FILE": a file named like an option ("--x.json") is still the
+     * value, here and when the stored manifest is read back without its folder. */
     if (b->scene) {
-        b->words[b->nwords++] = (char *)"--scene";
-        b->words[b->nwords++] = b->scene;
+        if (!(b->scene_word = malloc(strlen(b->scene) + 9))) {
+            fprintf(stderr, "%s: out of memory\n", cmd);
+            return -1;
+        }
+        strcat(strcpy(b->scene_word, "--scene="), b->scene);
+        b->words[b->nwords++] = b->scene_word;
     }
     data_options d;
     char prefix[600]; /* the parsers' messages name the manifest */
@@ -261,8 +264,13 @@ static int read_models(batch_manifest *m, const cJSON *models, const char *where
             return -1;
         }
         int k = fit_options_split_models(e->valuestring, m->models, m->nmodels, MAX_MODELS, cmd);
-        if (k < 0)
+        if (k < 0) { /* the specs it added before the error are not counted: freed here */
+            for (int j = m->nmodels; j < MAX_MODELS; j++) {
+                free(m->models[j]);
+                m->models[j] = NULL;
+            }
             return -1;
+        }
         m->nmodels = k;
     }
     char prefix[600];
@@ -284,10 +292,13 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
     char prefix[600]; /* the parsers' messages name the manifest: "brdfit batch: FILE" */
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
     take_ctx t = {m, NULL, prefix};
+    char opts_where[32] = "\"options\"";
+    if (m->lines)
+        snprintf(opts_where, sizeof opts_where, "line %d", m->lines[0]);
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(m->root, "materials");
     if ((m->nwords = words_of(cJSON_GetObjectItemCaseSensitive(m->root, "options"), 0, &m->words, "\"options\"", where,
                               cmd)) < 0 ||
-        parse_words(&shared_cli, m->words, m->nwords, take_shared, &t, "\"options\"", prefix) < 0 ||
+        parse_words(&shared_cli, m->words, m->nwords, take_shared, &t, opts_where, prefix) < 0 ||
         rank_options_check(&m->ro, &m->fopt.fit, prefix) < 0 ||
         read_models(m, cJSON_GetObjectItemCaseSensitive(m->root, "models"), where, cmd) < 0)
         return -1;
@@ -319,10 +330,12 @@ int batch_manifest_read(const char *path, const char *text, batch_manifest *m, c
         text = own_text;
     }
     const char *where = path ? path : "the stored manifest";
-    m->root = cJSON_Parse(text);
+    const int list = path && batch_list_is_list(text);
+    m->root = list ? batch_list_parse(text, path, &m->lines, cmd) : cJSON_Parse(text);
     free(own_text);
     if (!m->root) {
-        fprintf(stderr, "%s: %s: not valid JSON\n", cmd, where);
+        if (!list)
+            fprintf(stderr, "%s: %s: not valid JSON\n", cmd, where);
         return -1;
     }
     if (!(m->text = cJSON_PrintUnformatted(m->root))) {
@@ -343,7 +356,10 @@ int batch_manifest_data_options(const batch_manifest *m, int i, data_options *ou
     *out = m->dopt;
     take_ctx t = {NULL, out, cmd};
     char where[64];
-    snprintf(where, sizeof where, "material %d", i + 1);
+    if (m->lines)
+        snprintf(where, sizeof where, "line %d", m->lines[i + 1]);
+    else
+        snprintf(where, sizeof where, "material %d", i + 1);
     return parse_words(&material_cli, m->materials[i].words, m->materials[i].nwords, take_data, &t, where, cmd);
 }
 

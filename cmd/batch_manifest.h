@@ -6,9 +6,10 @@
  *    "materials": ["a.csv", {"data": "b.binary", "options": ["--subsample", "20000"],
  *                            "scene": "studio.json"}]}
  *
- * Options are command-line words with the names brdfit fit and compare take (parsed by
- * the same tables: data_options.c, fit_options.c, rank_options.c, plus compare's --error
- * and --tolerance); a material's options are data options only. Relative paths are
+ * or as the plain list batch_list.h describes. Options are command-line words with the
+ * names brdfit fit and compare take (parsed by the same tables: data_options.c,
+ * fit_options.c, rank_options.c, plus compare's --error and --tolerance); a material's
+ * options are data options only. Relative paths are
  * relative to the manifest's folder. The identity of a manifest is a hash of its
  * canonical JSON text (whitespace and key spacing do not count). */
 #ifndef BRDFIT_BATCH_MANIFEST_H
@@ -24,8 +25,9 @@
 typedef struct batch_material {
     char *data;      /* the data file, resolved against the manifest's folder (owned) */
     char *scene;     /* its scene file, resolved (owned), or NULL */
+    char *scene_word; /* "--scene=" and scene (owned), or NULL */
     char **words;    /* its data options as given (borrowed from the JSON tree), then
-                        "--scene" and the resolved scene */
+                        scene_word */
     int nwords;
 } batch_material;
 
@@ -38,6 +40,8 @@ typedef struct batch_manifest {
     char **words;               /* the shared options (borrowed from the JSON tree) */
     int nwords;
     batch_material *materials;  /* nmaterials (owned) */
+    int *lines;                 /* a plain list's: the options: line, then each material's
+                                   (owned; NULL for JSON), for the messages */
     int nmaterials;
     /* The shared options, parsed: */
     data_options dopt;

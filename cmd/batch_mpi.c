@@ -13,10 +13,19 @@
  *    one-process run's. Rows travel as batch_row_pack bytes, doubles bit for bit.
  *  - Waiting is MPI_Iprobe and a 1 ms sleep, not a blocking receive: Open MPI's blocking
  *    calls spin on a core, and the coordinator would take one from the workers.
- *  - A rank that dies ends the job (mpirun kills the others when a process exits
- *    abnormally), and so does the death of the launcher (PR_SET_PDEATHSIG below); the
- *    database keeps what was written and the same command resumes, the items in flight
- *    being pending still. Nothing is handed out again within the run. */
+ *  - A worker's items are fitted by a child process of it (batch_fitter.h), which reads
+ *    the materials and lives on between items: when it dies (a crash, the out-of-memory
+ *    killer, a kill) the worker reports the item lost, starts a fresh one at its next
+ *    item and goes on. The coordinator hands a lost item out again, first of all (to
+ *    the worker that holds its material if one does); lost twice, it becomes an error
+ *    row with the reason, which --redo failed reruns. Twice, because a fit that died
+ *    for want of memory may pass on a less loaded machine, and one that crashes crashes
+ *    every time.
+ *  - A rank that dies ends the job (Open MPI 4 has no fault-tolerant MPI: mpirun kills
+ *    the others when a process exits abnormally), and so does the death of the launcher
+ *    (PR_SET_PDEATHSIG below); the database keeps what was written and the same command
+ *    resumes, the items in flight being pending still. A worker rank itself only passes
+ *    messages, which is why the fitting is what runs apart. */
 #include "batch_mpi.h"
 
 #include <mpi.h>
@@ -31,7 +40,8 @@
 #include <unistd.h>
 #endif
 
-enum { TAG_ASK = 1, TAG_ITEM, TAG_STOP };
+enum { TAG_ASK = 1, TAG_ITEM, TAG_STOP, TAG_LOST };
+enum { MAX_LOSSES = 2 }; /* an item lost this often is an error */
 
 static int started;
 
@@ -113,6 +123,7 @@ typedef struct queue {
     int *order;         /* materials with items, heaviest first */
     int norder, next;   /* order[next]: the first that may have items left */
     int *from, *to;     /* per material: its items' range in items (from == to: none) */
+    int *retry, nretry; /* lost items to hand out again, before any other */
 } queue;
 
 static const double *sort_weight;
@@ -131,7 +142,8 @@ static int queue_init(queue *q, const int *items, int n, int nmodels, const doub
     q->order = malloc(((size_t)nmaterials + 1) * sizeof *q->order);
     q->from = calloc((size_t)nmaterials + 1, sizeof *q->from);
     q->to = calloc((size_t)nmaterials + 1, sizeof *q->to);
-    if (!q->order || !q->from || !q->to)
+    q->retry = malloc(((size_t)n + 1) * sizeof *q->retry); /* each item is lost at most once before it is an error */
+    if (!q->order || !q->from || !q->to || !q->retry)
         return -1;
     for (int k = 0; k < n;) {
         const int i = items[k] / nmodels;
@@ -151,11 +163,23 @@ static void queue_clear(queue *q)
     free(q->order);
     free(q->from);
     free(q->to);
+    free(q->retry);
 }
 
-/* The next item for a worker that holds material `held` (-1: none), or -1. */
+/* The next item for a worker that holds material `held` (-1: none), or -1: a lost one
+ * first (held's if there is one), then held's next, then the heaviest material's. */
 static int queue_take(queue *q, int held)
 {
+    if (q->nretry > 0) {
+        int k = q->nretry - 1;
+        for (int j = 0; j < q->nretry; j++)
+            if (q->retry[j] / q->nmodels == held)
+                k = j;
+        const int item = q->retry[k];
+        memmove(q->retry + k, q->retry + k + 1, (size_t)(q->nretry - k - 1) * sizeof *q->retry);
+        q->nretry--;
+        return item;
+    }
     if (held >= 0 && q->from[held] < q->to[held])
         return q->items[q->from[held]++];
     while (q->next < q->norder && q->from[q->order[q->next]] == q->to[q->order[q->next]])
@@ -167,12 +191,14 @@ static int queue_take(queue *q, int held)
 }
 
 void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *weight, int nmaterials,
-                          void (*done)(void *ctx, batch_row *row), void *ctx, const volatile sig_atomic_t *stop)
+                          const batch_mpi_callbacks *cb, const volatile sig_atomic_t *stop)
 {
     queue q;
     int size;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (queue_init(&q, items, n, nmodels, weight, nmaterials) < 0) {
+    int *given = malloc(((size_t)size + 1) * sizeof *given); /* per rank: its item in flight */
+    unsigned char *losses = calloc((size_t)nmaterials * (size_t)nmodels + 1, 1); /* per item */
+    if (!given || !losses || queue_init(&q, items, n, nmodels, weight, nmaterials) < 0) {
         fprintf(stderr, "brdfit batch: out of memory for the work queue\n");
         MPI_Abort(MPI_COMM_WORLD, 1);
     }
@@ -183,18 +209,29 @@ void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *we
         int64_t held = -1;
         if (len >= (int)sizeof held)
             memcpy(&held, buf, sizeof held);
-        if (len > (int)sizeof held) { /* a result: [held][row] */
+        if (tag == TAG_LOST) { /* [held][why]: the process fitting given[from] died */
+            const int item = given[from];
+            char why[512];
+            const size_t wn = len > (int)sizeof held ? (size_t)len - sizeof held : 0;
+            snprintf(why, sizeof why, "%.*s", (int)(wn < sizeof why ? wn : sizeof why - 1),
+                     wn ? (const char *)buf + sizeof held : "");
+            const int again = ++losses[item] < MAX_LOSSES;
+            if (again)
+                q.retry[q.nretry++] = item;
+            cb->lost(cb->ctx, item, from, why, again);
+        } else if (len > (int)sizeof held) { /* a result: [held][row] */
             batch_row row;
             bf_error err;
             if (batch_row_unpack(buf + sizeof held, (size_t)len - sizeof held, &row, &err) != BF_OK) {
                 fprintf(stderr, "brdfit batch: from rank %d: %s\n", from, err.msg);
                 MPI_Abort(MPI_COMM_WORLD, 1);
             }
-            done(ctx, &row);
+            cb->done(cb->ctx, &row);
             batch_row_clear(&row);
         }
         free(buf);
         const int item = *stop ? -1 : queue_take(&q, held >= 0 && held < nmaterials ? (int)held : -1);
+        given[from] = item;
         if (item < 0) {
             MPI_Send(NULL, 0, MPI_BYTE, from, TAG_STOP, MPI_COMM_WORLD);
             active--;
@@ -203,15 +240,32 @@ void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *we
         }
     }
     queue_clear(&q);
+    free(given);
+    free(losses);
 }
 
 /* ---- A worker -------------------------------------------------------------------------- */
 
-void batch_mpi_work(void (*fit)(void *ctx, int item, batch_row *row, int *held), void *ctx)
+/* Sends [held][bytes] to the coordinator with tag. */
+static void send_held(int64_t held, const void *bytes, size_t n, int tag)
 {
-    int64_t held64 = -1;
+    unsigned char *buf;
+    if (n > (size_t)INT32_MAX - sizeof held || !(buf = malloc(n + sizeof held))) {
+        fprintf(stderr, "brdfit batch: out of memory for a %zu-byte message\n", n);
+        MPI_Abort(MPI_COMM_WORLD, 1);
+        return;
+    }
+    memcpy(buf, &held, sizeof held);
+    if (n)
+        memcpy(buf + sizeof held, bytes, n);
+    MPI_Send(buf, (int)(n + sizeof held), MPI_BYTE, 0, tag, MPI_COMM_WORLD);
+    free(buf);
+}
+
+void batch_mpi_work(int (*fit)(void *ctx, int item, batch_row *row, int *held, char *why, size_t n), void *ctx)
+{
     int held = -1;
-    MPI_Send(&held64, (int)sizeof held64, MPI_BYTE, 0, TAG_ASK, MPI_COMM_WORLD);
+    send_held(-1, NULL, 0, TAG_ASK);
     for (;;) {
         unsigned char *buf, *packed;
         int len, tag, from, item = -1;
@@ -222,20 +276,18 @@ void batch_mpi_work(void (*fit)(void *ctx, int item, batch_row *row, int *held),
         if (tag != TAG_ITEM)
             return;
         batch_row row;
-        memset(&row, 0, sizeof row);
-        fit(ctx, item, &row, &held);
+        char why[512] = "";
+        if (fit(ctx, item, &row, &held, why, sizeof why) < 0) {
+            send_held(held, why, strlen(why), TAG_LOST);
+            continue;
+        }
         size_t n;
         bf_error err;
-        if (batch_row_pack(&row, &packed, &n, &err) != BF_OK || n > (size_t)INT32_MAX - sizeof held64 ||
-            !(buf = malloc(n + sizeof held64))) {
+        if (batch_row_pack(&row, &packed, &n, &err) != BF_OK) {
             fprintf(stderr, "brdfit batch: item %d: %s\n", item, "out of memory for its result");
             MPI_Abort(MPI_COMM_WORLD, 1);
         }
-        held64 = held;
-        memcpy(buf, &held64, sizeof held64);
-        memcpy(buf + sizeof held64, packed, n);
-        MPI_Send(buf, (int)(n + sizeof held64), MPI_BYTE, 0, TAG_ASK, MPI_COMM_WORLD);
-        free(buf);
+        send_held(held, packed, n, TAG_ASK);
         free(packed);
         batch_row_clear(&row);
     }

@@ -2,8 +2,8 @@
  * Rank 0 is the coordinator: it alone opens the results database, hands out the pending
  * work items one at a time and writes each result it gets back in its own transaction,
  * as a one-process run does. The other ranks are workers: each fits the items it is
- * given (cmd_batch.c's fitting, one item at a time) and sends back the item's row
- * (batch_row_pack). docs/batch.md describes the mode. */
+ * given (cmd_batch.c's fitting, one item at a time, in a child process: batch_fitter.h)
+ * and sends back the item's row (batch_row_pack), or word that the item was lost. docs/batch.md describes the mode. */
 #ifndef BRDFIT_BATCH_MPI_H
 #define BRDFIT_BATCH_MPI_H
 
@@ -22,19 +22,30 @@ void batch_mpi_share(int *status, char hash[17]);
 /* 1 when ok is true on every rank. */
 int batch_mpi_all(int ok);
 
+/* What the coordinator does with what the workers send. */
+typedef struct batch_mpi_callbacks {
+    /* A result row (its texts owned by the callee during the call only). */
+    void (*done)(void *ctx, batch_row *row);
+    /* The process fitting item on worker `rank` died (why: how). again: it is handed out
+     * again; else it has been lost too often and is the callee's to record as an error. */
+    void (*lost)(void *ctx, int item, int rank, const char *why, int again);
+    void *ctx;
+} batch_mpi_callbacks;
+
 /* The coordinator (rank 0): hands out items[0..n-1] (ascending; item / nmodels is the
  * material, of weight[material], nmaterials of them) to the workers, the heaviest
  * material's first and, to a worker that holds a material, that material's next item
- * while there is one; each result row goes to done(ctx, row) (row's texts owned by the
- * callee during the call only). Once *stop is set no item is handed out; the items in
- * flight are waited for. Returns when every worker has been told to stop; n = 0 only
- * stops them. Every worker must call batch_mpi_work. */
+ * while there is one; a lost item is handed out again before any other. Once *stop is
+ * set no item is handed out; the items in flight are waited for. Returns when every
+ * worker has been told to stop; n = 0 only stops them. Every worker must call
+ * batch_mpi_work. */
 void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *weight, int nmaterials,
-                          void (*done)(void *ctx, batch_row *row), void *ctx, const volatile sig_atomic_t *stop);
+                          const batch_mpi_callbacks *cb, const volatile sig_atomic_t *stop);
 
 /* A worker (rank > 0): fits the items the coordinator hands out with fit(ctx, item, row,
- * &held) (row zeroed; it fills it, an error row if the item fails; held: the material
- * it now keeps loaded, -1 for none) until told to stop. */
-void batch_mpi_work(void (*fit)(void *ctx, int item, batch_row *row, int *held), void *ctx);
+ * &held, why, n) until told to stop. fit returns 0 with the row filled (an error row if
+ * the item fails), or -1 when the item was lost (its fitting process died) with the
+ * reason in why[0..n-1]; held: the material it now keeps loaded, -1 for none. */
+void batch_mpi_work(int (*fit)(void *ctx, int item, batch_row *row, int *held, char *why, size_t n), void *ctx);
 
 #endif

@@ -54,10 +54,11 @@ int cli_group_has(const cli_group *g, const char *name)
     return 0;
 }
 
-/* The option with this long name (with its dashes, up to len) or short letter. */
-static const cli_option *find(const cli_command *c, const char *name, size_t len, char letter)
+/* The option with this long name (with its dashes, up to len) or short letter; the
+ * common options (help, quiet, verbose) only when common. */
+static const cli_option *find_in(const cli_command *c, const char *name, size_t len, char letter, int common)
 {
-    for (int g = -1; g < c->ngroups; g++) {
+    for (int g = common ? -1 : 0; g < c->ngroups; g++) {
         const cli_group *grp = g < 0 ? &common_group : c->groups[g];
         for (int k = 0; k < grp->n; k++) {
             const cli_option *o = &grp->options[k];
@@ -66,6 +67,11 @@ static const cli_option *find(const cli_command *c, const char *name, size_t len
         }
     }
     return NULL;
+}
+
+static const cli_option *find(const cli_command *c, const char *name, size_t len, char letter)
+{
+    return find_in(c, name, len, letter, 1);
 }
 
 const cli_option *cli_find(const cli_command *c, const char *name, size_t len)
@@ -99,13 +105,19 @@ static int common_option(const cli_option *o, int *help)
     return 1;
 }
 
-int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
+/* argv[first..argc-1] parsed by c's options into a. where NULL: a command line, whose
+ * messages start with the command's name and point to its --help; else words that are
+ * not a command line (cli_parse_words): messages start with where, and the common
+ * options are not taken. */
+static int parse(const cli_command *c, int argc, char **argv, int first, cli_args *a, const char *where)
 {
-    char title[64];
-    cli_title(c, title, sizeof title);
+    char name[64], see[96] = "";
+    const char *title = where ? where : cli_title(c, name, sizeof name);
+    if (!where)
+        snprintf(see, sizeof see, " (see %s --help)", title);
     memset(a, 0, sizeof *a);
     int help = 0, options = 1;
-    for (int i = 1; i < argc; i++) {
+    for (int i = first; i < argc; i++) {
         const char *s = argv[i];
         if (!options || s[0] != '-' || !s[1]) { /* an operand, "-" included */
             if (!push(a, NULL, s))
@@ -119,10 +131,9 @@ int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
         if (s[1] == '-') { /* --name, --name=value, --name value */
             const char *eq = strchr(s, '=');
             size_t len = eq ? (size_t)(eq - s) : strlen(s);
-            const cli_option *o = find(c, s, len, 0);
+            const cli_option *o = find_in(c, s, len, 0, !where);
             if (!o) {
-                fprintf(stderr, "%s: unknown option '%.*s' (see %s --help)\n", title, (int)(len > 64 ? 64 : len), s,
-                        title);
+                fprintf(stderr, "%s: unknown option '%.*s'%s\n", title, (int)(len > 64 ? 64 : len), s, see);
                 goto usage;
             }
             if (!o->arg && eq) {
@@ -143,12 +154,12 @@ int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
         }
         /* -x, -xVALUE, -x VALUE, and flags bundled: -qv */
         for (const char *p = s + 1; *p; p++) {
-            const cli_option *o = find(c, NULL, 0, *p);
+            const cli_option *o = find_in(c, NULL, 0, *p, !where);
             if (!o) {
                 if (p == s + 1)
-                    fprintf(stderr, "%s: unknown option '-%c' (see %s --help)\n", title, *p, title);
+                    fprintf(stderr, "%s: unknown option '-%c'%s\n", title, *p, see);
                 else
-                    fprintf(stderr, "%s: unknown option '-%c' in '%.64s' (see %s --help)\n", title, *p, s, title);
+                    fprintf(stderr, "%s: unknown option '-%c' in '%.64s'%s\n", title, *p, s, see);
                 goto usage;
             }
             const char *value = NULL;
@@ -179,6 +190,16 @@ nomem:
 usage:
     cli_args_free(a);
     return CLI_USAGE;
+}
+
+int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
+{
+    return parse(c, argc, argv, 1, a, NULL);
+}
+
+int cli_parse_words(const cli_command *c, int n, char **words, cli_args *a, const char *where)
+{
+    return parse(c, n, words, 0, a, where);
 }
 
 void cli_args_free(cli_args *a)

@@ -59,6 +59,11 @@ enum { CLI_OK = 0, CLI_EXIT = 1, CLI_USAGE = 2 };
  * (freed with cli_args_free). CLI_OK; CLI_EXIT after printing --help to stdout (exit
  * 0); CLI_USAGE after printing one line to stderr (exit 2). */
 int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a);
+/* Option words that are not a command line (a batch manifest's): words[0..n-1] parsed as
+ * cli_parse does, except that --help, --quiet and --verbose are not options here (they
+ * would act on the process) and messages start with where ("brdfit batch: m.txt: line
+ * 2"). CLI_OK, or CLI_USAGE after one line on stderr. */
+int cli_parse_words(const cli_command *c, int n, char **words, cli_args *a, const char *where);
 void cli_args_free(cli_args *a);
 
 /* The option of c (or a common one) whose long form is name[0..len-1], or NULL. */

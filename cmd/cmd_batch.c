@@ -36,6 +36,7 @@
 #include "batch_db.h"
 #include "batch_manifest.h"
 #ifdef BRDFIT_HAVE_MPI
+#include "batch_fitter.h"
 #include "batch_mpi.h"
 #endif
 #include "cli.h"
@@ -57,8 +58,8 @@ static const cli_group *const groups[] = {&own_group};
 const cli_command cli_batch = {
     "brdfit", "batch", "MANIFEST -o RESULTS.db [--redo failed|all] [--shard I/N] [--jobs N]",
     "run a manifest's fits into a resumable results database",
-    "Runs every (material, model) fit a JSON manifest lists (materials with their data options, models, and the "
-    "options of brdfit compare; docs/batch.md) and writes each result, as it finishes, into an SQLite database. "
+    "Runs every (material, model) fit a manifest lists (materials with their data options, models, and the "
+    "options of brdfit compare; JSON or a plain list, one data file per line: docs/batch.md) and writes each result, as it finishes, into an SQLite database. "
     "Rerunning the same command resumes where a killed or interrupted run stopped. brdfit report ranks the results "
     "as compare does; brdfit merge joins the databases of --shard runs.",
     "file", groups, sizeof groups / sizeof groups[0],
@@ -328,12 +329,28 @@ static void run_items(run *r, const int *items, int n)
 #ifdef BRDFIT_HAVE_MPI
 /* ---- MPI (batch_mpi.h) ----------------------------------------------------------------- */
 
-/* The coordinator's batch_mpi_coordinate callback: a worker's row written and counted. */
+/* The coordinator's callbacks (batch_mpi_callbacks): a worker's row written and counted;
+ * a lost item told, and written as an error once it has been lost too often. */
 static void coordinator_done(void *ctx, batch_row *row)
 {
     run *r = ctx;
     if (!r->db_failed)
         put_row(r, row);
+}
+
+static void coordinator_lost(void *ctx, int item, int rank, const char *why, int again)
+{
+    run *r = ctx;
+    const int i = item / r->m->nmodels, model = item % r->m->nmodels;
+    fprintf(stderr, "%s: %s, %s: the process fitting it on rank %d died (%s); %s\n", cmd, r->m->materials[i].data,
+            r->m->models[model], rank, why,
+            again ? "handed out again" : "recorded as an error (--redo failed runs it again)");
+    if (again)
+        return;
+    char reason[sizeof ((batch_row *)0)->message];
+    snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %s", why);
+    r->material = i;
+    data_error(r, &model, 1, reason);
 }
 
 /* The items of r (pending[0..n-1]) handed out to the workers; the weight of a material
@@ -351,17 +368,20 @@ static void coordinate(run *r, const int *pending, int n)
         struct stat st;
         weight[i] = stat(m->materials[i].data, &st) == 0 ? (double)st.st_size : -1;
     }
-    batch_mpi_coordinate(pending, n, m->nmodels, weight, m->nmaterials, coordinator_done, r, &interrupt_flag);
+    const batch_mpi_callbacks cb = {coordinator_done, coordinator_lost, r};
+    batch_mpi_coordinate(pending, n, m->nmodels, weight, m->nmaterials, &cb, &interrupt_flag);
     free(weight);
 }
 
 typedef struct worker {
     run r;
-    material mt; /* the material held (mt.i -1: none), kept for its next items */
+    material mt;        /* in the fitting process: the material held (mt.i -1: none) */
+    batch_fitter child; /* the fitting process (batch_fitter.h) */
 } worker;
 
-/* batch_mpi_work's callback: one item fitted into row; any failure is the item's error. */
-static void work_item(void *ctx, int item, batch_row *row, int *held)
+/* The fitting process's work (batch_fit_fn): the item's material loaded unless held,
+ * the item fitted into row; any failure is the item's error row. */
+static void fit_item(void *ctx, int item, batch_row *row, int *held)
 {
     worker *w = ctx;
     const int i = item / w->r.m->nmodels, model = item % w->r.m->nmodels;
@@ -380,11 +400,19 @@ static void work_item(void *ctx, int item, batch_row *row, int *held)
     *held = w->mt.s ? i : -1;
 }
 
+/* batch_mpi_work's callback: the item to the fitting process and its row back. */
+static int work_item(void *ctx, int item, batch_row *row, int *held, char *why, size_t n)
+{
+    worker *w = ctx;
+    return batch_fitter_run(&w->child, item, row, held, why, n);
+}
+
 static void work(const batch_args *a, const batch_manifest *m)
 {
     worker w = {.r = {.a = a, .m = m}, .mt = {.i = -1}};
+    batch_fitter_init(&w.child, fit_item, &w);
     batch_mpi_work(work_item, &w);
-    material_release(&w.mt);
+    batch_fitter_clear(&w.child);
 }
 #endif
 
@@ -407,8 +435,10 @@ static int batch(const batch_args *a, const batch_manifest *m, int nproc)
     }
     if (status >= 0) {
 #ifdef BRDFIT_HAVE_MPI
-        if (nproc > 1)
-            batch_mpi_coordinate(NULL, 0, m->nmodels, NULL, 0, coordinator_done, &r, &interrupt_flag);
+        if (nproc > 1) {
+            const batch_mpi_callbacks cb = {coordinator_done, coordinator_lost, &r};
+            batch_mpi_coordinate(NULL, 0, m->nmodels, NULL, 0, &cb, &interrupt_flag);
+        }
 #endif
         batch_db_close(db);
         return status;

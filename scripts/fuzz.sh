@@ -7,11 +7,11 @@
 # report; the input that caused it is left in build-fuzz/findings/TARGET/.
 #
 #   scripts/fuzz.sh [TARGET|all] [SECONDS]     (default: all, 10 seconds each)
-#   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress
+#   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest
 #   FUZZ_RUNS=N runs each target for N executions instead of SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress)
+all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest)
 target=${1:-all}
 seconds=${2:-10}
 if [ "$target" = all ]; then
@@ -67,12 +67,16 @@ for t in "${targets[@]}"; do
             rm -rf "$corpus" && mkdir -p "$corpus"
         fi
     fi
+    # The manifest reader prints its one-line errors on stderr, as the command does:
+    # closed for the target (libFuzzer keeps its own reports and the sanitizers').
+    quiet=()
+    [ "$t" = manifest ] && quiet=(-close_fd_mask=2)
     limit=(-max_total_time="$seconds")
     [ -n "${FUZZ_RUNS:-}" ] && limit=(-runs="$FUZZ_RUNS")
     log=$build/fuzz_$t.log
     echo "fuzz $t: ${FUZZ_RUNS:+$FUZZ_RUNS runs}${FUZZ_RUNS:-$seconds s} ..."
     start=$(date +%s)
-    if "$build/fuzz/fuzz_$t" "${limit[@]}" -max_len=$max_len -timeout=$timeout -rss_limit_mb=4096 \
+    if "$build/fuzz/fuzz_$t" "${limit[@]}" "${quiet[@]}" -max_len=$max_len -timeout=$timeout -rss_limit_mb=4096 \
         -use_value_profile=1 -print_final_stats=1 -dict=fuzz/dict/"${t%_*}".dict -artifact_prefix="$findings/" \
         "$corpus" "$seeds" >"$log" 2>&1; then
         result="no findings"

@@ -5,7 +5,8 @@
 # once and the rows of an uninterrupted run; SIGINT leaves a resumable database (exit
 # 130); --redo failed; another manifest refused; a locked or damaged database refused
 # with one line and left as it was; --shard runs merged equal the one-process run;
-# merge refuses inconsistent inputs.
+# merge refuses inconsistent inputs; a plain-list manifest is the JSON one it spells, and
+# its errors name their line.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
 source "$(dirname "$0")/batch_common.sh"
@@ -191,6 +192,56 @@ for bad_manifest in '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' \
   [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "^brdfit batch: $tmp/bad.json: " "$tmp/err" &&
     [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
 done
+
+# --- a plain-list manifest: the JSON manifest it spells, one identity, one database ---------
+cat > "$tmp/m.txt" <<'LIST'
+# m.json as a plain list
+models: lambert walter cook_torrance blinn_phong
+options: --threads 1 --seed 3   # shared by every fit
+lam1.csv
+wal1.csv
+
+"lam2.csv"
+  wal2.csv
+lam3.csv
+wal3.csv
+LIST
+"$BRDFIT" batch "$tmp/m.txt" -o "$tmp/one.db" 2>"$tmp/err" && [ ! -s "$tmp/err" ] && ok || bad "plain list on m.json's database: $(cat "$tmp/err")"
+rows "$tmp/one.db" | cmp -s - "$tmp/one.rows" && ok || bad "the plain list changed m.json's rows"
+# A material's own options and a scene, relative to the list's folder (one word, so a
+# file named like an option stays a file).
+mkdir -p "$tmp/sub"
+cp "$(dirname "$0")/../examples/scenes/product_shot.json" "$tmp/sub/--studio.json"
+cp "$tmp/lam1.csv" "$tmp/sub/lam 1.csv"
+printf 'models: lambert\n"lam 1.csv" --scene --studio.json --subsample 500 --seed 2\n' > "$tmp/sub/s.txt"
+"$BRDFIT" batch "$tmp/sub/s.txt" -o "$tmp/s.db" 2>"$tmp/err" && ok || bad "list with options: $(cat "$tmp/err")"
+[ "$(count "$tmp/s.db" "SELECT data FROM materials")" = "$tmp/sub/lam 1.csv" ] && ok || bad "list material path"
+[ "$(count "$tmp/s.db" "SELECT options FROM items")" = "[\"--subsample\",\"500\",\"--seed\",\"2\",\"--scene=$tmp/sub/--studio.json\",\"-m\",\"lambert\"]" ] &&
+  ok || bad "list item options: $(count "$tmp/s.db" "SELECT options FROM items")"
+"$BRDFIT" report "$tmp/s.db" > /dev/null && ok || bad "report of a plain-list run"
+# Errors: one line naming the file and line, exit 2, no database.
+i=0
+while IFS='|' read -r text want; do
+  i=$((i + 1))
+  printf "$text" > "$tmp/bad.txt"
+  "$BRDFIT" batch "$tmp/bad.txt" -o "$tmp/u.db" 2>"$tmp/err"
+  [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -qF "brdfit batch: $tmp/bad.txt$want" "$tmp/err" &&
+    [ ! -e "$tmp/u.db" ] && ok || bad "bad list $i ($text): $(cat "$tmp/err")"
+done <<'CASES'
+models: lambert\na.csv --scene\n|:2: --scene needs a file
+models: lambert\n"a.csv\n|:2: a double quote is not closed on its line
+options: --seed 1\na.csv\n|: no models: line
+models:\na.csv\n|:1: models: lists no model
+models: lambert\n# only a comment\n|: no material lines
+models: lambert\nmodels: walter\na.csv\n|:2: a second models: line
+models: lambert\noptions: --bogus 1\na.csv\n|: line 2: option '--bogus' is not taken here
+models: lambert\n\na.csv --threads 2\n|: line 3: option '--threads' is not taken here (a material takes data options only)
+models: lambert\na.csv --subsample\n|: line 2: --subsample needs a value
+models: lambert\na.csv b.csv\n|: line 2: 'b.csv' is not an option
+models: lambert\noptions: --help\na.csv\n|: line 2: unknown option '--help'
+models: lambert\na.csv -q\n|: line 2: unknown option '-q'
+models: nosuchmodel\na.csv\n|: unknown model 'nosuchmodel'
+CASES
 
 # --- docs/batch.md documents every column the database has ----------------------------------
 doc=$(dirname "$0")/../docs/batch.md

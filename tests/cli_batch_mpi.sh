@@ -3,7 +3,9 @@
 # -np 1 give the rows of the one-process run; the launcher killed with SIGKILL part-way
 # takes its ranks with it, and reruns (under MPI and without) complete with every item
 # exactly once and the same rows; a worker killed ends the run, which resumes; a bad
-# manifest is one line. Fails without mpirun: scripts/setup.sh installs Open MPI.
+# manifest is one line. A fit's process killed costs only its item (handed out again, an
+# error row the second time); a worker rank killed, or Ctrl-C, ends the run, which resumes.
+# Fails without mpirun: scripts/setup.sh installs Open MPI.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
 source "$(dirname "$0")/batch_common.sh"
@@ -63,7 +65,67 @@ for rerun in mpi plain; do
   rows "$db" | cmp -s - "$tmp/bone.rows" && ok || bad "resumed rows ($rerun) differ from one process"
 done
 
-# --- a worker killed: the run ends (non-zero), the database resumes -------------------------
+# --- a fit's process killed: only its item is lost, and handed out again --------------------
+# A worker's fits run in a child process, named brdfit:ITEM while it fits ITEM. kill_fit P
+# COND stops one under mpirun P whose item i meets COND (shell arithmetic) with SIGSTOP, so that it cannot
+# finish first, then kills it with SIGKILL, and prints its item; waits up to 10 s for one.
+kill_fit() {
+  local rank c name i
+  for _ in $(seq 2000); do
+    for rank in $(pgrep -P "$1"); do
+      for c in $(pgrep -P "$rank"); do
+        name=$(cat /proc/$c/comm 2>/dev/null)
+        [[ $name == brdfit:* ]] || continue
+        i=${name#brdfit:}
+        [[ $i =~ ^[0-9]+$ ]] || continue # brdfit:idle between items
+        if (( $2 )) && kill -STOP "$c" 2>/dev/null && [ "$(cat /proc/$c/comm 2>/dev/null)" = "$name" ]; then
+          kill -KILL "$c"; echo "$i"; return 0
+        fi
+      done
+    done
+    sleep 0.002
+  done
+  return 1
+}
+# A material large enough that its cook_torrance fit (item 0) lasts long enough to be seen.
+"$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 200000 --noise 0.01 --seed 21 -o "$tmp/kwal.csv" ||
+  bad "brdfit-synth failed"
+cat > "$tmp/km.json" <<'JSON'
+{"models": ["cook_torrance", "lambert"], "options": ["--threads", "1", "--seed", "3"], "materials": ["kwal.csv"]}
+JSON
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/kone.db" || bad "one-process batch (k)"
+rows "$tmp/kone.db" > "$tmp/kone.rows"
+db=$tmp/once.db
+"${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/km.json" -o "$db" 2>"$tmp/err" &
+pid=$!
+item=$(kill_fit $pid "i == 0") || bad "no fitting process found under mpirun"
+wait $pid && ok || bad "one lost fit: mpirun exit $?: $(head -c 600 "$tmp/err")"
+[ "$(grep -c "the process fitting it on rank [12] died (killed by signal 9 (Killed).*); handed out again$" "$tmp/err")" = 1 ] &&
+  [ "$(wc -l < "$tmp/err")" = 1 ] && ok || bad "one lost fit, stderr: $(head -c 600 "$tmp/err")"
+[ "$(count "$db" "SELECT count(*), count(DISTINCT item), sum(status = 'ok') FROM items")" = "2|2|2" ] && ok ||
+  bad "after one lost fit: $(count "$db" "SELECT status, count(*) FROM items GROUP BY 1")"
+rows "$db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after one lost fit (item $item) differ from one process"
+
+# The same item's process killed twice: that item is an error row with the reason, the
+# others finish; --redo failed (under mpirun) completes it.
+db=$tmp/twice.db
+"${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/km.json" -o "$db" 2>"$tmp/err" &
+pid=$!
+item=$(kill_fit $pid "i == 0") && again=$(kill_fit $pid "i == $item") || bad "item $item: no second fitting process found"
+wait $pid
+rc=$?
+[ $rc != 0 ] && ok || bad "an item lost twice: mpirun exit 0"
+grep -q "recorded as an error (--redo failed runs it again)$" "$tmp/err" && ok || bad "lost twice, stderr: $(head -c 600 "$tmp/err")"
+[ "$(count "$db" "SELECT item, status FROM items WHERE status != 'ok'")" = "$item|error" ] &&
+  [ "$(count "$db" "SELECT count(*) FROM items")" = 2 ] && ok ||
+  bad "lost twice (item $item): $(count "$db" "SELECT item, status FROM items WHERE status != 'ok'")"
+count "$db" "SELECT message FROM items WHERE item = $item" |
+  grep -qx "the process fitting it died each of the 2 times it ran; the last time: killed by signal 9 (Killed): a kill, or the kernel out of memory" &&
+  ok || bad "lost twice, message: $(count "$db" "SELECT message FROM items WHERE item = $item")"
+"${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/km.json" -o "$db" --redo failed && ok || bad "--redo failed under mpirun"
+rows "$db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after --redo failed differ from one process"
+
+# --- a worker rank killed: the run ends (Open MPI 4 ends the job), the database resumes -------
 db=$tmp/w.db
 "${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/bm.json" -o "$db" 2>/dev/null &
 pid=$!
@@ -77,7 +139,7 @@ if [ -n "$worker" ]; then
   wait $pid
   rc=$?
   [ $rc != 0 ] && ok || bad "a killed worker: mpirun exit 0"
-  wait_gone "$db" && ok || bad "ranks outlived a killed worker"
+  wait_gone "$db" && ok || bad "ranks (or their fits) outlived a killed worker"
   "$BRDFIT" batch "$tmp/bm.json" -o "$db" && ok || bad "resume after a killed worker"
   [ "$(count "$db" "SELECT count(*), count(DISTINCT item), sum(status = 'ok') FROM items")" = "24|24|24" ] && ok ||
     bad "after a killed worker: $(count "$db" "SELECT status, count(*) FROM items GROUP BY 1")"
@@ -86,6 +148,29 @@ else
   wait $pid
   bad "no rank-2 process found under mpirun (pid $pid)"
 fi
+
+# --- Ctrl-C on the terminal: mpirun ends the job at once, the database resumes ---------------
+# script(1) gives mpirun a pseudo-terminal; ^C written to it is the terminal's SIGINT to the
+# foreground job (mpirun, its ranks and their fits).
+# Items long enough to be in flight: three copies of the large material x 4 models.
+cp "$tmp/kwal.csv" "$tmp/kwal2.csv" && cp "$tmp/kwal.csv" "$tmp/kwal3.csv"
+cat > "$tmp/cm.json" <<'JSON'
+{"models": ["lambert", "walter", "cook_torrance", "blinn_phong"], "options": ["--threads", "1", "--seed", "3"],
+ "materials": ["kwal.csv", "kwal2.csv", "kwal3.csv"]}
+JSON
+"$BRDFIT" batch "$tmp/cm.json" -o "$tmp/cone.db" || bad "one-process batch (c)"
+db=$tmp/c.db
+line=$(printf '%q ' "${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/cm.json" -o "$db")
+( wait_items "$db" 2; printf '\003'; sleep 10 ) |
+  timeout 60 script -qec "$line; echo \"exit \$?\"" /dev/null > "$tmp/tty" 2>&1
+grep -aq "exit [1-9]" "$tmp/tty" && ok || bad "Ctrl-C under mpirun: $(head -c 600 "$tmp/tty")"
+wait_gone "$db" && ok || bad "ranks outlived Ctrl-C"
+[ "$(count "$db" "PRAGMA integrity_check")" = ok ] && ok || bad "Ctrl-C left a damaged database"
+n=$(count "$db" "SELECT count(*) FROM items WHERE status = 'pending'")
+[ "$n" -ge 1 ] && [ "$(count "$db" "SELECT count(*) FROM items WHERE status NOT IN ('ok', 'pending')")" = 0 ] && ok ||
+  bad "after Ctrl-C: $(count "$db" "SELECT status, count(*) FROM items GROUP BY 1")"
+"${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/cm.json" -o "$db" && ok || bad "resume after Ctrl-C"
+[ "$(rows "$db")" = "$(rows "$tmp/cone.db")" ] && ok || bad "rows after Ctrl-C and resume differ from one process"
 
 # --- errors: one line from rank 0, every rank stops ------------------------------------------
 echo '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' > "$tmp/bad.json"
