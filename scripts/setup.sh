@@ -10,7 +10,8 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
   libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev man-db groff-base blender >/dev/null
+  clang libclang-rt-14-dev man-db groff-base blender \
+  slurmctld slurmd slurm-client munge >/dev/null
 # Node.js and npm from Debian unless the machine has them already (a Node.js from
 # elsewhere, such as NodeSource's, bundles npm and conflicts with Debian's npm package).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
@@ -32,3 +33,5 @@ npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@
 # poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.
 # libopenmpi-dev and openmpi-bin (mpirun): brdfit batch under MPI (cmd/batch_mpi.c, built
 # only where CMake finds MPI) and tests/cli_batch_mpi.sh, which fails without mpirun.
+# slurmctld, slurmd, slurm-client and munge: tests/cli_batch_slurm.sh runs the Slurm
+# examples (examples/slurm) on a one-node cluster of its own. Tests only.
