@@ -25,10 +25,10 @@ static const cli_option preprocessing[] = {
     {"--channels", 0, "NAME|INDEX,...", "keep these channels, in this order", NULL},
     {"--rgb", 0, NULL, "spectral data to linear sRGB (CIE 1931 2 deg, D65; --color srgb)", NULL},
     {"--color", 0, "srgb|acescg|xyz", "spectral data to this colour space (docs/colour.md)", NULL},
-    {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb (default d65)", NULL},
+    {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb, or of --luminance on spectra (default d65)", NULL},
     {"--rgb-bands", 0, NULL, "spectral data to three band means (600-700, 500-600,\n"
                              "400-500 nm; not colorimetric: the old --rgb)", NULL},
-    {"--luminance", 0, NULL, "spectral or RGB data to one channel", NULL},
+    {"--luminance", 0, NULL, "spectral (CIE Y) or RGB (Rec. 709) data to one channel", NULL},
     {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL},
     {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL},
     {"--subsample", 0, "N|all", "seeded stratified subsample to N samples (all: every one)", NULL},

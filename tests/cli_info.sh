@@ -61,5 +61,9 @@ expect 2 "--rgb and --rgb-bands exclude each other" "$tmp/flat.csv" --rgb --rgb-
 expect 2 "--color and --luminance exclude each other" "$tmp/flat.csv" --color xyz --luminance
 expect 2 "--color takes srgb, acescg or xyz" "$tmp/flat.csv" --color rec2020
 expect 1 "applies only to a colour conversion" "$tmp/flat.csv" --illuminant e
+# --luminance of spectral data is CIE Y under the illuminant: a flat spectrum keeps its value.
+"$BRDFIT" info "$tmp/flat.csv" --luminance --illuminant a --json |
+  jq -e '.channels == ["luminance"] and (.values[0].mean - 0.5 | fabs < 1e-12)' >/dev/null && ok || bad "flat luminance"
+expect 1 "applies only to a colour conversion or the luminance of spectral data" "$tmp/s.csv" --luminance --illuminant a
 
 finish

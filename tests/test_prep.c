@@ -252,13 +252,17 @@ static void test_luminance(void **state)
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     ts_assert_rel(s->value[0], 0.7152 + 2 * 0.2126, 1e-15, "Rec. 709 Y, b,g,r order");
     bf_samples_free(s);
-    /* Anything else: the mean of the channels (spectral: over wavelengths). */
-    s = make_spectral(4, 500, 1);
+    /* Anything else without wavelengths: the mean of the channels. */
+    s = make(2, 4); /* channels named c0..c3: values 10i + c */
+    for (int c = 0; c < 4; c++) {
+        char name[8];
+        snprintf(name, sizeof name, "c%d", c);
+        bf_samples_set_channel_name(s, c, name, NULL);
+    }
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     assert_string_equal(s->channel_names[0], "mean");
-    assert_null(s->wavelength);
-    ts_assert_rel(s->value[0], 515, 1e-15, "spectral mean");
-    ts_assert_rel(s->value[1], 1030, 1e-15, "spectral mean");
+    ts_assert_rel(s->value[0], 1.5, 1e-15, "mean");
+    ts_assert_rel(s->value[1], 11.5, 1e-15, "mean");
     bf_samples_free(s);
     /* One channel: unchanged. */
     s = make(2, 1);
@@ -271,6 +275,42 @@ static void test_luminance(void **state)
     p.to_bands = 1;
     assert_int_equal(bf_samples_prep(s, &p, NULL, NULL), BF_OK);
     ts_assert_rel(s->value[0], 0.2126 * 650 + 0.7152 * 545 + 0.0722 * 445, 1e-15, "spectral Y");
+    bf_samples_free(s);
+}
+
+/* Spectral data with wavelengths: --luminance is CIE Y under the illuminant, the Y of
+ * --color xyz, and a flat spectrum v gives v (the reflectance normalisation). */
+static void test_luminance_spectral(void **state)
+{
+    (void)state;
+    static const bf_illuminant ills[] = {BF_ILLUMINANT_D65, BF_ILLUMINANT_E, BF_ILLUMINANT_A, BF_ILLUMINANT_D50};
+    for (size_t k = 0; k < sizeof ills / sizeof ills[0]; k++) {
+        bf_prep lum = {.to_luminance = 1, .illuminant = ills[k]}, xyz = {.color = BF_COLOR_XYZ, .illuminant = ills[k]};
+        bf_samples *a = make_spectral(41, 380, 1), *b = make_spectral(41, 380, 1), *flat = make_spectral(41, 380, 0);
+        for (int c = 0; c < 41; c++)
+            flat->value[c] = flat->value[41 + c] = 0.18;
+        assert_int_equal(bf_samples_prep(a, &lum, NULL, NULL), BF_OK);
+        assert_int_equal(bf_samples_prep(b, &xyz, NULL, NULL), BF_OK);
+        assert_int_equal(bf_samples_prep(flat, &lum, NULL, NULL), BF_OK);
+        assert_int_equal(a->channels, 1);
+        assert_string_equal(a->channel_names[0], "luminance");
+        for (int i = 0; i < 2; i++) {
+            ts_assert_rel(a->value[i], b->value[3 * i + 1], 1e-14, "luminance = Y of XYZ");
+            ts_assert_rel(flat->value[i], 0.18, 1e-13, "flat 18% -> 0.18");
+        }
+        /* value (i + 1) * wavelength: Y is a weighted mean of 380..780, nearer the
+         * green (555 nm) than the ends. */
+        assert_true(a->value[0] > 450 && a->value[0] < 650);
+        bf_samples_free(a);
+        bf_samples_free(b);
+        bf_samples_free(flat);
+    }
+    /* An illuminant with data that is not spectral: an error. */
+    bf_prep p = {.to_luminance = 1, .illuminant = BF_ILLUMINANT_A};
+    bf_samples *s = make(2, 3);
+    bf_error err;
+    assert_int_equal(bf_samples_prep(s, &p, NULL, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "applies only to a colour conversion or the luminance of spectral data"));
     bf_samples_free(s);
 }
 
@@ -588,6 +628,7 @@ int main(void)
         cmocka_unit_test(test_rgb_by_index_groups),
         cmocka_unit_test(test_rgb_errors),
         cmocka_unit_test(test_luminance),
+        cmocka_unit_test(test_luminance_spectral),
         cmocka_unit_test(test_drops),
         cmocka_unit_test(test_drops_keep_origin_cells),
         cmocka_unit_test(test_no_sample_left),

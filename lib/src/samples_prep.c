@@ -18,9 +18,11 @@
  *   taken as b, g, r, assuming channels run from short to long wavelengths as spectral
  *   files list them. Output order r, g, b.
  * - to_luminance: 3 channels named r, g, b (any order, any case) give Rec. 709
- *   luminance 0.2126 r + 0.7152 g + 0.0722 b (channel "luminance"); anything else the
- *   unweighted mean of the channels (channel "mean"; for spectral data the mean over
- *   wavelengths, no photopic weighting). With both set, to_bands or color runs first.
+ *   luminance 0.2126 r + 0.7152 g + 0.0722 b (channel "luminance"); spectral channels
+ *   with a wavelength each give CIE Y under the illuminant, the Y of color = XYZ, so a
+ *   flat spectrum v gives v (channel "luminance"; that is what Rec. 709's weights are
+ *   for sRGB primaries); anything else the unweighted mean of the channels (channel
+ *   "mean"). With both set, to_bands or color runs first.
  * - Drops count each sample once, under the first reason that applies in this order:
  *   non-finite angle or value (nonfinite), below the horizon, above max_theta, then a
  *   negative value. So `negative` counts the negative samples among those that passed
@@ -337,11 +339,28 @@ done:
     return rc;
 }
 
-static bf_status to_luminance(bf_samples *s, bf_error *err)
+/* The CIE Y weights of spectral channels into y[0..C-1], *have 1; *have 0 when some
+ * channel has no wavelength. */
+static bf_status luminance_weights(const bf_samples *s, bf_illuminant ill, double *y, int *have, bf_error *err)
 {
     const int C = s->channels;
+    double *wl = malloc((size_t)C * sizeof *wl), *w = malloc(3 * (size_t)C * sizeof *w);
+    bf_status rc = wl && w ? BF_OK : bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    *have = rc == BF_OK && channel_wavelengths(s, wl);
+    if (*have && (rc = bf_color_weights(wl, C, BF_COLOR_XYZ, ill, w, err)) == BF_OK)
+        memcpy(y, w + C, (size_t)C * sizeof *y); /* the Y row */
+    free(wl);
+    free(w);
+    return rc;
+}
+
+static bf_status to_luminance(bf_samples *s, bf_illuminant ill, bf_error *err)
+{
+    const int C = s->channels;
+    const char *no_ill = "an illuminant (%s) applies only to a colour conversion or the luminance of spectral data "
+                         "with a wavelength per channel";
     if (C == 1)
-        return BF_OK;
+        return ill == BF_ILLUMINANT_D65 ? BF_OK : bf_fail(err, BF_ERR_ARG, no_ill, bf_illuminant_name(ill));
     /* Rec. 709 weights by channel name, so b,g,r order works too. */
     double w[3] = {0, 0, 0};
     int rgb = C == 3;
@@ -357,28 +376,46 @@ static bf_status to_luminance(bf_samples *s, bf_error *err)
             rgb = 0;
     }
     rgb = rgb && w[0] != w[1] && w[1] != w[2] && w[0] != w[2];
+    /* Spectral channels: CIE Y. */
+    int spectral = 0;
+    double *y = rgb ? NULL : malloc((size_t)C * sizeof *y);
+    bf_status st = !rgb && !y ? bf_fail(err, BF_ERR_NOMEM, "out of memory") : BF_OK;
+    if (y && (st = luminance_weights(s, ill, y, &spectral, err)) == BF_OK && !spectral && ill != BF_ILLUMINANT_D65)
+        st = bf_fail(err, BF_ERR_ARG, no_ill, bf_illuminant_name(ill));
+    if (rgb && ill != BF_ILLUMINANT_D65)
+        st = bf_fail(err, BF_ERR_ARG, no_ill, bf_illuminant_name(ill));
+    if (st != BF_OK) {
+        free(y);
+        return st;
+    }
     double *vals;
     char **names;
     int rc = alloc_channels(s->n, 1, &vals, &names, err);
-    if (rc != BF_OK)
-        return rc;
-    if (!(names[0] = strdup(rgb ? "luminance" : "mean"))) {
+    if (rc == BF_OK && !(names[0] = strdup(rgb || spectral ? "luminance" : "mean"))) {
         free(vals);
         free(names);
-        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    }
+    if (rc != BF_OK) {
+        free(y);
+        return rc;
     }
     for (size_t i = 0; i < s->n; i++) {
         const double *v = s->value + i * (size_t)C;
         double sum = 0.0;
-        if (rgb)
+        if (rgb) {
             sum = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
-        else {
+        } else if (spectral) {
+            for (int c = 0; c < C; c++)
+                sum += y[c] * v[c];
+        } else {
             for (int c = 0; c < C; c++)
                 sum += v[c];
             sum /= C;
         }
         vals[i] = sum;
     }
+    free(y);
     set_channels(s, 1, vals, names, NULL);
     return BF_OK;
 }
@@ -563,14 +600,14 @@ bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *repor
         return rc;
     if (p->to_bands && p->color != BF_COLOR_NONE)
         return bf_fail(err, BF_ERR_ARG, "three bands and a colour space exclude each other");
-    if (p->color == BF_COLOR_NONE && p->illuminant != BF_ILLUMINANT_D65)
+    if (p->color == BF_COLOR_NONE && !p->to_luminance && p->illuminant != BF_ILLUMINANT_D65)
         return bf_fail(err, BF_ERR_ARG, "an illuminant (%s) applies only to a colour conversion",
                        bf_illuminant_name(p->illuminant));
     if (p->to_bands && (rc = to_bands(s, err)) != BF_OK)
         return rc;
     if (p->color != BF_COLOR_NONE && (rc = to_color(s, p->color, p->illuminant, err)) != BF_OK)
         return rc;
-    if (p->to_luminance && (rc = to_luminance(s, err)) != BF_OK)
+    if (p->to_luminance && (rc = to_luminance(s, p->color == BF_COLOR_NONE ? p->illuminant : BF_ILLUMINANT_D65, err)) != BF_OK)
         return rc;
 
     const size_t C = (size_t)s->channels;

@@ -25,8 +25,10 @@ typedef struct bf_prep {
     int to_bands;          /* spectral -> three band means r, g, b: 600-700, 500-600,
                               400-500 nm (not colorimetric: see color) */
     bf_color color;        /* spectral -> a colour space (brdfit/color.h); NONE: no */
-    bf_illuminant illuminant; /* of the colour conversion; D65 (0) by default */
-    int to_luminance;      /* -> one channel */
+    bf_illuminant illuminant; /* of the colour conversion, or of to_luminance on spectra;
+                                 D65 (0) by default */
+    int to_luminance;      /* -> one channel: CIE Y of spectra with wavelengths, Rec. 709 of
+                              r, g, b, else the mean */
     double max_theta;      /* degrees; > 0 drops samples with theta_i or theta_o above it */
     bf_negative negative;  /* negative values are data by default (KEEP) */
     size_t subsample;      /* > 0: seeded stratified subsample to this many samples */
@@ -49,7 +51,7 @@ typedef struct bf_prep_report {
  * describes samples otherwise used). Changing channels
  * drops the MERL origin. report may be NULL. Errors: unknown channel, to_bands without
  * spectral data, color without a wavelength per channel, to_bands with color, an
- * illuminant without color, no sample left. */
+ * illuminant without color (or to_luminance on spectra), no sample left. */
 bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
 
 /* The seeded stratified subsample of bf_prep.subsample as a mask: keep[i] = 1 for the
