@@ -52,9 +52,8 @@ static int next_word(const char **p, char **word)
 }
 
 /* The words of one line (from *p, advanced to the next line) into array a (made when
- * NULL); the first word skipped when skip. The number of words, or -1 (a bad quote, or
- * no memory: *why). */
-static int line_words(const char **p, cJSON **a, int skip, const char **why)
+ * NULL). The number of words, or -1 (a bad quote, or no memory: *why). */
+static int line_words(const char **p, cJSON **a, const char **why)
 {
     int n = 0, r;
     char *w;
@@ -63,16 +62,14 @@ static int line_words(const char **p, cJSON **a, int skip, const char **why)
         return -1;
     }
     while ((r = next_word(p, &w)) > 0) {
-        if (n++ >= skip) {
-            cJSON *s = cJSON_CreateString(w);
-            if (!s) {
-                free(w);
-                *why = "out of memory";
-                return -1;
-            }
-            cJSON_AddItemToArray(*a, s);
-        }
+        cJSON *s = cJSON_CreateString(w);
         free(w);
+        if (!s || !cJSON_AddItemToArray(*a, s)) {
+            cJSON_Delete(s);
+            *why = "out of memory";
+            return -1;
+        }
+        n++;
     }
     *p += strcspn(*p, "\n");
     if (**p)
@@ -145,11 +142,11 @@ cJSON *batch_list_parse(const char *text, const char *path, int **lines, const c
             p = s + (is_models ? 7 : 8);
             if (!is_models)
                 (*lines)[0] = line;
-            if (line_words(&p, is_models ? &models : &options, 0, &why) == 0 && is_models)
+            if (line_words(&p, is_models ? &models : &options, &why) == 0 && is_models)
                 why = "models: lists no model";
             continue;
         }
-        const int n = line_words(&p, &words, 0, &why);
+        const int n = line_words(&p, &words, &why);
         if (n > 0) {
             cJSON *m = material_of(words, &why);
             if (m && cJSON_AddItemToArray(mats, m))
