@@ -310,7 +310,8 @@ void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
     for (int i = 0; i < p->nnotes; i++, ny += 1.3 * tick_font)
         plot_text_at(cr, p->notes[i], tick_font, l->x0, ny, 0.0, 0.0);
 
-    /* Legend: a framed box right of the plot area. */
+    /* Legend: a framed box right of the plot area, or inside it (a wide one, in the emptiest
+     * corner: plot_layout.c) on a translucent white ground. */
     if (l->nlegend) {
         if (l->legend_inside) {
             cairo_set_source_rgba(cr, 1, 1, 1, 0.88);
