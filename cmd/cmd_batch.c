@@ -7,8 +7,13 @@
  *    after their last fit: memory is that of the largest material, not of all.
  *  - A material's pending models run through bf_compare_run (--jobs at once, the
  *    --threads budget shared), exactly as brdfit compare runs them, so the rows hold
- *    compare's results; each finished fit is written in its own transaction from the
- *    progress callback, so a killed run loses only the fits in flight.
+ *    compare's results; each finished fit is written in its own transaction as it
+ *    arrives, so a killed run loses only the fits in flight.
+ *  - The fits run in a child process (batch_fitter.h) that sends their rows back: one
+ *    whose fit crashes or is killed costs that material's unfinished items, which run
+ *    again one at a time in a fresh process; an item that dies alone too is an error
+ *    row (--redo failed reruns it). A crash in one model on one material then cannot end
+ *    a library run, nor stop every rerun at the same item.
  *  - Rerunning resumes: only pending items run. --redo failed makes failed and error
  *    items pending again first, --redo all every item. A database of another manifest,
  *    version or shard is refused (batch_db_setup), never mixed.
@@ -147,7 +152,8 @@ static int parse(batch_args *a, int argc, char **argv)
 typedef struct run {
     const batch_args *a;
     const batch_manifest *m;
-    batch_db *db;
+    batch_db *db;        /* the writer (the one process, or the MPI coordinator); NULL in a
+                            fitting process */
     int material;
     const int *model_of; /* the comparison's model j -> the manifest's */
     int done, total, ok, bad;
@@ -155,7 +161,11 @@ typedef struct run {
     double t0;
     int db_failed;
     bf_error db_err;
-    batch_row *kept; /* an MPI worker (db NULL): where its item's row goes */
+    /* A fitting process (batch_fitter.h): where its rows go, the material it holds, and
+     * which models of the current call have a row. */
+    batch_fitter_out *out;
+    int held;
+    unsigned char sent[128];
 } run;
 
 static void show_progress(const run *r)
@@ -172,8 +182,8 @@ static void show_progress(const run *r)
     fflush(stderr);
 }
 
-/* The run cannot go on (a database failure, no memory): no new fit starts. A worker's
- * item becomes an error row instead (work_item). */
+/* The run cannot go on (a database failure, no memory): no new fit starts. In a fitting
+ * process the items of the call become error rows instead (fit_items). */
 static void fail(run *r, const bf_error *err)
 {
     r->db_failed = 1;
@@ -198,18 +208,18 @@ static void put_row(run *r, const batch_row *row)
     show_progress(r);
 }
 
-/* The item's row written, or an MPI worker's kept for sending (its texts taken). */
+/* The item's row written, or, in a fitting process, sent to its parent. */
 static void record(run *r, batch_row *row)
 {
     if (r->db_failed)
         return;
     row->material = r->material;
     row->item = r->material * r->m->nmodels + row->model;
-    if (r->db) {
-        put_row(r, row);
+    if (r->out) {
+        batch_fitter_emit(r->out, row, r->held);
+        r->sent[row->model] = 1;
     } else {
-        *r->kept = *row;
-        row->spec = row->params = row->stderr_ = row->warnings = row->options = NULL;
+        put_row(r, row);
     }
 }
 
@@ -229,8 +239,7 @@ static void fit_done(void *ctx, const bf_compare *c, int material, int j, int do
     batch_row_clear(&row);
 }
 
-/* Every model of models[0..n-1] an error on this material: its data could not be used
- * (why: reason). */
+/* Every model of models[0..n-1] an error on the current material (why: reason). */
 static void data_error(run *r, const int *models, int n, const char *reason)
 {
     for (int k = 0; k < n; k++) {
@@ -291,8 +300,6 @@ static void material_fit(run *r, material *mt, const int *models, int n)
     bf_error err;
     memset(&c, 0, sizeof c);
     if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
-        if (r->db)
-            fprintf(stderr, "%s: %s\n", cmd, err.msg);
         fail(r, &err);
     } else {
         c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
@@ -303,27 +310,107 @@ static void material_fit(run *r, material *mt, const int *models, int n)
     bf_compare_clear(&c);
 }
 
-/* Material i's pending models (models[0..n-1], manifest indices): read, fitted, written,
- * released. */
-static void run_material(run *r, int i, const int *models, int n)
-{
+/* ---- The fitting process (batch_fitter.h) ---------------------------------------------- */
+
+/* Its state: a run of its own (no database; rows go to its parent) and the material it
+ * holds. Made by the parent before the fork; only the child's copy is used. */
+typedef struct fitting {
+    run r;
     material mt;
-    material_load(r, i, &mt);
-    material_fit(r, &mt, models, n);
-    material_release(&mt);
+} fitting;
+
+/* batch_fit_fn: one material's items fitted, the material loaded unless held (and kept
+ * for the next call). Whatever stops the fits (no memory, a bad spec) makes the items
+ * without a row error rows; items not started after a SIGINT get none (pending). */
+static void fit_items(void *ctx, const int *items, int n, batch_fitter_out *out)
+{
+    fitting *w = ctx;
+    const int nm = w->r.m->nmodels, i = items[0] / nm;
+    int models[128];
+    for (int k = 0; k < n && k < 128; k++)
+        models[k] = items[k] % nm;
+    if (w->mt.i != i) {
+        material_release(&w->mt);
+        material_load(&w->r, i, &w->mt);
+    }
+    w->r.out = out;
+    w->r.held = w->mt.s ? i : -1;
+    w->r.db_failed = 0;
+    memset(w->r.sent, 0, sizeof w->r.sent);
+    material_fit(&w->r, &w->mt, models, n);
+    if (w->r.db_failed) {
+        w->r.db_failed = 0;
+        for (int k = 0; k < n; k++)
+            if (!w->r.sent[models[k]])
+                data_error(&w->r, &models[k], 1, w->r.db_err.msg);
+    }
 }
 
-/* The pending items, material by material. */
+static void fitting_init(fitting *w, batch_fitter *f, const batch_args *a, const batch_manifest *m)
+{
+    memset(w, 0, sizeof *w);
+    w->r.a = a, w->r.m = m;
+    w->mt.i = -1;
+    batch_fitter_init(f, fit_items, w);
+}
+
+/* ---- One process ---------------------------------------------------------------------- */
+
+/* batch_fitter_run's callback in the one process: a row written, its model marked. */
+static void got_row(void *ctx, batch_row *row)
+{
+    run *r = ctx;
+    r->sent[row->model] = 1;
+    if (!r->db_failed)
+        put_row(r, row);
+}
+
+/* One material's items (items[0..n-1]) through the fitting process. When that dies, each
+ * item without a row runs again alone; one that dies alone too is an error row. */
+static void run_material(run *r, batch_fitter *f, const int *items, int n)
+{
+    const int nm = r->m->nmodels, i = items[0] / nm;
+    char why[512], why2[512];
+    int held;
+    memset(r->sent, 0, sizeof r->sent);
+    if (batch_fitter_run(f, items, n, got_row, r, &held, why, sizeof why) == 0 || interrupt_flag)
+        return;
+    int left = 0;
+    for (int k = 0; k < n; k++)
+        left += !r->sent[items[k] % nm];
+    fprintf(stderr, "%s: %s: the process fitting it died (%s); %s\n", cmd, r->m->materials[i].data, why,
+            left == 1 ? "its unfinished fit runs again" : "its unfinished fits run again, one at a time");
+    for (int k = 0; k < n && !interrupt_flag; k++) {
+        const int model = items[k] % nm;
+        if (r->sent[model] || batch_fitter_run(f, &items[k], 1, got_row, r, &held, why2, sizeof why2) == 0 ||
+            interrupt_flag)
+            continue;
+        fprintf(stderr, "%s: %s, %s: the process fitting it died again (%s); recorded as an error (--redo failed "
+                "runs it again)\n", cmd, r->m->materials[i].data, r->m->models[model], why2);
+        char reason[sizeof ((batch_row *)0)->message];
+        snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %.400s",
+                 why2);
+        r->material = i;
+        data_error(r, &model, 1, reason);
+    }
+}
+
+/* The pending items, material by material, in one fitting process. */
 static void run_items(run *r, const int *items, int n)
 {
-    int models[128];
+    fitting w;
+    batch_fitter f;
+    fitting_init(&w, &f, r->a, r->m);
+    f.interrupt = &interrupt_flag;
     for (int k = 0; k < n && !interrupt_flag;) {
         const int i = items[k] / r->m->nmodels;
-        int nm = 0;
-        for (; k < n && items[k] / r->m->nmodels == i; k++)
-            models[nm++] = items[k] % r->m->nmodels;
-        run_material(r, i, models, nm);
+        int j = k;
+        while (j < n && items[j] / r->m->nmodels == i)
+            j++;
+        run_material(r, &f, items + k, j - k);
+        k = j;
     }
+    batch_fitter_clear(&f);
 }
 
 #ifdef BRDFIT_HAVE_MPI
@@ -374,43 +461,42 @@ static void coordinate(run *r, const int *pending, int n)
 }
 
 typedef struct worker {
-    run r;
-    material mt;        /* in the fitting process: the material held (mt.i -1: none) */
-    batch_fitter child; /* the fitting process (batch_fitter.h) */
+    batch_fitter child;
+    batch_row *row; /* the item's row, taken from the fitting process */
+    int got;
 } worker;
 
-/* The fitting process's work (batch_fit_fn): the item's material loaded unless held,
- * the item fitted into row; any failure is the item's error row. */
-static void fit_item(void *ctx, int item, batch_row *row, int *held)
+/* batch_fitter_run's callback on a worker: the row kept (its texts taken). */
+static void keep_row(void *ctx, batch_row *row)
 {
     worker *w = ctx;
-    const int i = item / w->r.m->nmodels, model = item % w->r.m->nmodels;
-    if (w->mt.i != i) {
-        material_release(&w->mt);
-        material_load(&w->r, i, &w->mt);
-    }
-    w->r.kept = row;
-    w->r.db_failed = 0;
-    material_fit(&w->r, &w->mt, &model, 1);
-    if (w->r.db_failed) { /* no row recorded: the reason is the row */
-        *row = (batch_row){.item = item, .material = i, .model = model, .state = BF_CMP_ERROR,
-                           .seconds = NAN, .cv = NAN, .work = NAN};
-        snprintf(row->message, sizeof row->message, "%s", w->r.db_err.msg);
-    }
-    *held = w->mt.s ? i : -1;
+    *w->row = *row;
+    row->spec = row->params = row->stderr_ = row->warnings = row->options = NULL;
+    w->got++;
 }
 
 /* batch_mpi_work's callback: the item to the fitting process and its row back. */
 static int work_item(void *ctx, int item, batch_row *row, int *held, char *why, size_t n)
 {
     worker *w = ctx;
-    return batch_fitter_run(&w->child, item, row, held, why, n);
+    memset(row, 0, sizeof *row);
+    w->row = row, w->got = 0;
+    if (batch_fitter_run(&w->child, &item, 1, keep_row, w, held, why, n) < 0)
+        return -1;
+    if (w->got != 1) { /* cannot happen: no SIGINT reaches the fitting process here */
+        batch_row_clear(row);
+        snprintf(why, n, "its process sent %d results for it", w->got);
+        return -1;
+    }
+    return 0;
 }
 
 static void work(const batch_args *a, const batch_manifest *m)
 {
-    worker w = {.r = {.a = a, .m = m}, .mt = {.i = -1}};
-    batch_fitter_init(&w.child, fit_item, &w);
+    fitting f;
+    worker w;
+    memset(&w, 0, sizeof w);
+    fitting_init(&f, &w.child, a, m);
     batch_mpi_work(work_item, &w);
     batch_fitter_clear(&w.child);
 }

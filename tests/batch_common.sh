@@ -36,3 +36,24 @@ wait_items() {
     sleep 0.02
   done
 }
+# A fit's process (cmd/batch_fitter.c) is named brdfit:ITEM while it fits ITEM alone and
+# brdfit:ITEM+ while it fits ITEM and more of that material. kill_fit P COND finds one
+# among the children and grandchildren of process P (a one-process batch, or mpirun and its
+# ranks) whose first item i and flag more (1 for "+") meet COND (shell arithmetic), stops
+# it with SIGSTOP, so that it cannot finish first, kills it with SIGKILL and prints i;
+# it waits up to 10 s for one.
+kill_fit() {
+  local c name i more
+  for _ in $(seq 2000); do
+    for c in $(pgrep -P "$1") $(for k in $(pgrep -P "$1"); do pgrep -P "$k"; done); do
+      name=$(cat /proc/$c/comm 2>/dev/null)
+      [[ $name =~ ^brdfit:([0-9]+)(\+?)$ ]] || continue
+      i=${BASH_REMATCH[1]} more=$([ -n "${BASH_REMATCH[2]}" ] && echo 1 || echo 0)
+      if (( $2 )) && kill -STOP "$c" 2>/dev/null && [ "$(cat /proc/$c/comm 2>/dev/null)" = "$name" ]; then
+        kill -KILL "$c"; echo "$i"; return 0
+      fi
+    done
+    sleep 0.002
+  done
+  return 1
+}

@@ -5,7 +5,8 @@
 # once and the rows of an uninterrupted run; SIGINT leaves a resumable database (exit
 # 130); --redo failed; another manifest refused; a locked or damaged database refused
 # with one line and left as it was; --shard runs merged equal the one-process run;
-# merge refuses inconsistent inputs; a plain-list manifest is the JSON one it spells, and
+# merge refuses inconsistent inputs; a fit's process killed costs only its fits (run again,
+# an error row the second time); a plain-list manifest is the JSON one it spells, and
 # its errors name their line.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
@@ -192,6 +193,40 @@ for bad_manifest in '{"models": ["nosuchmodel"], "materials": ["lam1.csv"]}' \
   [ $? = 2 ] && [ "$(wc -l < "$tmp/err")" = 1 ] && grep -q "^brdfit batch: $tmp/bad.json: " "$tmp/err" &&
     [ ! -e "$tmp/u.db" ] && ok || bad "manifest $bad_manifest: $(cat "$tmp/err")"
 done
+
+# --- a fit's process killed: its material's unfinished fits run again, one at a time -------
+# One material large enough that its fits last (the process is named brdfit:0+ while it
+# fits the material's four items, brdfit:K while it runs item K again alone).
+"$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 200000 --noise 0.01 --seed 21 -o "$tmp/kwal.csv" ||
+  bad "brdfit-synth failed"
+cat > "$tmp/km.json" <<'JSON'
+{"models": ["cook_torrance", "walter", "lambert", "blinn_phong"], "options": ["--threads", "1", "--seed", "3"],
+ "materials": ["kwal.csv"]}
+JSON
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/kone.db" || bad "batch (k)"
+rows "$tmp/kone.db" > "$tmp/kone.rows"
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/once.db" 2>"$tmp/err" &
+pid=$!
+kill_fit $pid "more" >/dev/null || bad "no fitting process under brdfit batch"
+wait $pid && ok || bad "one lost fit: exit $?: $(head -c 600 "$tmp/err")"
+grep -q "^brdfit batch: $tmp/kwal.csv: the process fitting it died (killed by signal 9 (Killed).*); its unfinished fits run again, one at a time$" "$tmp/err" &&
+  [ "$(wc -l < "$tmp/err")" = 1 ] && ok || bad "one lost fit, stderr: $(head -c 600 "$tmp/err")"
+rows "$tmp/once.db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after a lost fit differ from an uninterrupted run"
+# Killed again while it runs an item alone: that item is an error row, the others finish.
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/twice.db" 2>"$tmp/err" &
+pid=$!
+kill_fit $pid "more" >/dev/null && item=$(kill_fit $pid "!more") || bad "no second fitting process"
+wait $pid
+[ $? = 1 ] && ok || bad "an item lost twice: exit not 1"
+[ "$(count "$tmp/twice.db" "SELECT item, status FROM items WHERE status != 'ok'")" = "$item|error" ] && ok ||
+  bad "lost twice (item $item): $(count "$tmp/twice.db" "SELECT item, status FROM items")"
+count "$tmp/twice.db" "SELECT message FROM items WHERE item = $item" |
+  grep -qx "the process fitting it died each of the 2 times it ran; the last time: killed by signal 9 (Killed): a kill, or the kernel out of memory" &&
+  ok || bad "lost twice, message: $(count "$tmp/twice.db" "SELECT message FROM items WHERE item = $item")"
+grep -q "the process fitting it died again (killed by signal 9 .*); recorded as an error (--redo failed runs it again)$" "$tmp/err" &&
+  ok || bad "lost twice, stderr: $(head -c 600 "$tmp/err")"
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/twice.db" --redo failed && ok || bad "--redo failed after a lost item"
+rows "$tmp/twice.db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after --redo failed differ"
 
 # --- a plain-list manifest: the JSON manifest it spells, one identity, one database ---------
 cat > "$tmp/m.txt" <<'LIST'

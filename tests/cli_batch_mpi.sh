@@ -66,27 +66,7 @@ for rerun in mpi plain; do
 done
 
 # --- a fit's process killed: only its item is lost, and handed out again --------------------
-# A worker's fits run in a child process, named brdfit:ITEM while it fits ITEM. kill_fit P
-# COND stops one under mpirun P whose item i meets COND (shell arithmetic) with SIGSTOP, so that it cannot
-# finish first, then kills it with SIGKILL, and prints its item; waits up to 10 s for one.
-kill_fit() {
-  local rank c name i
-  for _ in $(seq 2000); do
-    for rank in $(pgrep -P "$1"); do
-      for c in $(pgrep -P "$rank"); do
-        name=$(cat /proc/$c/comm 2>/dev/null)
-        [[ $name == brdfit:* ]] || continue
-        i=${name#brdfit:}
-        [[ $i =~ ^[0-9]+$ ]] || continue # brdfit:idle between items
-        if (( $2 )) && kill -STOP "$c" 2>/dev/null && [ "$(cat /proc/$c/comm 2>/dev/null)" = "$name" ]; then
-          kill -KILL "$c"; echo "$i"; return 0
-        fi
-      done
-    done
-    sleep 0.002
-  done
-  return 1
-}
+# A worker's fits run in a child process (kill_fit: batch_common.sh).
 # A material large enough that its cook_torrance fit (item 0) lasts long enough to be seen.
 "$SYNTH" --params "$tmp/wal.json" --pattern uniform --count 200000 --noise 0.01 --seed 21 -o "$tmp/kwal.csv" ||
   bad "brdfit-synth failed"
