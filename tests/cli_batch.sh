@@ -228,6 +228,20 @@ grep -q "the process fitting it died again (killed by signal 9 .*); recorded as 
 "$BRDFIT" batch "$tmp/km.json" -o "$tmp/twice.db" --redo failed && ok || bad "--redo failed after a lost item"
 rows "$tmp/twice.db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after --redo failed differ"
 
+# SIGINT reaches the fitting process through the batch process (which passes it on): the
+# running fit finishes and is written, the next do not start, exit 130, resumable.
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/int.db" 2>"$tmp/err" &
+pid=$!
+wait_items "$tmp/int.db" 1
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc = 130 ] && [ "$(count "$tmp/int.db" "SELECT count(*) FROM items WHERE status = 'pending'")" -ge 1 ] &&
+  [ "$(count "$tmp/int.db" "SELECT count(*) FROM items WHERE status NOT IN ('ok', 'pending')")" = 0 ] && ok ||
+  bad "SIGINT to a run of long fits: exit $rc, $(count "$tmp/int.db" "SELECT status, count(*) FROM items GROUP BY 1")"
+"$BRDFIT" batch "$tmp/km.json" -o "$tmp/int.db" && rows "$tmp/int.db" | cmp -s - "$tmp/kone.rows" && ok ||
+  bad "rows after SIGINT to long fits and resume differ"
+
 # --- a plain-list manifest: the JSON manifest it spells, one identity, one database ---------
 cat > "$tmp/m.txt" <<'LIST'
 # m.json as a plain list
