@@ -354,6 +354,18 @@ static void fitting_init(fitting *w, batch_fitter *f, const batch_args *a, const
     batch_fitter_init(f, fit_items, w);
 }
 
+/* An item whose fitting process died both times it ran (one process or MPI): an error
+ * row saying so, with the last reason. */
+static void lost_twice(run *r, int item, const char *why)
+{
+    const int model = item % r->m->nmodels;
+    char reason[sizeof ((batch_row *)0)->message];
+    snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %.400s",
+             why);
+    r->material = item / r->m->nmodels;
+    data_error(r, &model, 1, reason);
+}
+
 /* ---- One process ---------------------------------------------------------------------- */
 
 /* batch_fitter_run's callback in the one process: a row written, its model marked. */
@@ -387,11 +399,7 @@ static void run_material(run *r, batch_fitter *f, const int *items, int n)
             continue;
         fprintf(stderr, "%s: %s, %s: the process fitting it died again (%s); recorded as an error (--redo failed "
                 "runs it again)\n", cmd, r->m->materials[i].data, r->m->models[model], why2);
-        char reason[sizeof ((batch_row *)0)->message];
-        snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %.400s",
-                 why2);
-        r->material = i;
-        data_error(r, &model, 1, reason);
+        lost_twice(r, items[k], why2);
     }
 }
 
@@ -432,12 +440,8 @@ static void coordinator_lost(void *ctx, int item, int rank, const char *why, int
     fprintf(stderr, "%s: %s, %s: the process fitting it on rank %d died (%s); %s\n", cmd, r->m->materials[i].data,
             r->m->models[model], rank, why,
             again ? "handed out again" : "recorded as an error (--redo failed runs it again)");
-    if (again)
-        return;
-    char reason[sizeof ((batch_row *)0)->message];
-    snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %s", why);
-    r->material = i;
-    data_error(r, &model, 1, reason);
+    if (!again)
+        lost_twice(r, item, why);
 }
 
 /* The items of r (pending[0..n-1]) handed out to the workers; the weight of a material
