@@ -11,7 +11,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
   libcairo2-dev fonts-dejavu-core poppler-utils libopenmpi-dev openmpi-bin \
   clang libclang-rt-14-dev man-db groff-base blender \
-  slurmctld slurmd slurm-client munge >/dev/null
+  slurmctld slurmd slurm-client munge python3 >/dev/null
 # Node.js and npm from Debian unless the machine has them already (a Node.js from
 # elsewhere, such as NodeSource's, bundles npm and conflicts with Debian's npm package).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
@@ -35,3 +35,4 @@ npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@
 # only where CMake finds MPI) and tests/cli_batch_mpi.sh, which fails without mpirun.
 # slurmctld, slurmd, slurm-client and munge: tests/cli_batch_slurm.sh runs the Slurm
 # examples (examples/slurm) on a one-node cluster of its own. Tests only.
+# python3: tests/cli_export.sh parses the Blender script it exports.

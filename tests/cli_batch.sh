@@ -30,11 +30,11 @@ rows "$tmp/one.db" > "$tmp/one.rows"
 rows "$tmp/one.db" | cmp -s - "$tmp/one.rows" && ok || bad "rerun changed rows"
 
 # --- progress on a terminal: items done, failures, ETA ---------------------------------------
-if command -v script >/dev/null; then
-  script -qec "'$BRDFIT' batch '$tmp/mm0.json' -o '$tmp/tty.db'" /dev/null > "$tmp/tty" 2>&1
-  tr '\r' '\n' < "$tmp/tty" | grep -q "^brdfit batch: 4/4 items, 2 failed" && grep -q "ETA" "$tmp/tty" && ok ||
-    bad "progress on a terminal: $(tr '\r' '\n' < "$tmp/tty" | tail -3)"
-fi
+# script(1) (util-linux, on every Debian system) gives the run a pseudo-terminal.
+command -v script >/dev/null || bad "script (util-linux) is needed for the terminal checks"
+script -qec "'$BRDFIT' batch '$tmp/mm0.json' -o '$tmp/tty.db'" /dev/null > "$tmp/tty" 2>&1
+tr '\r' '\n' < "$tmp/tty" | grep -q "^brdfit batch: 4/4 items, 2 failed" && grep -q "ETA" "$tmp/tty" && ok ||
+  bad "progress on a terminal: $(tr '\r' '\n' < "$tmp/tty" | tail -3)"
 
 # --- report = compare for the same fits ---------------------------------------------------
 (cd "$tmp" && "$BRDFIT" compare "$tmp"/lam1.csv "$tmp"/wal1.csv "$tmp"/lam2.csv "$tmp"/wal2.csv "$tmp"/lam3.csv "$tmp"/wal3.csv \

@@ -62,9 +62,7 @@ for line in 'bsdf.distribution = "GGX"' \
             'bsdf.inputs["Clearcoat Roughness"].default_value = 0.1' '# Source model: blender_principled (exact)'; do
   grep -qxF -- "$line" "$tmp/b.py" && ok || bad "blender script lacks: $line"
 done
-if command -v python3 >/dev/null; then
-  python3 -c "import ast, sys; ast.parse(open(sys.argv[1]).read())" "$tmp/b.py" && ok || bad "blender script is not Python"
-fi
+python3 -c "import ast, sys; ast.parse(open(sys.argv[1]).read())" "$tmp/b.py" && ok || bad "blender script is not Python"
 
 # --- conversion: the reported error is that of the converted parameters -----------------
 "$BRDFIT" export "$tmp/w.json" --to gltf -o "$tmp/w.gltf" 2>"$tmp/err" && ok || bad "convert walter: $(cat "$tmp/err")"

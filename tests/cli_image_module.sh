@@ -8,9 +8,7 @@ P=$DATA/lambert_rgb.json
 MOD=libbrdfit-oiio.so
 
 # --- OpenImageIO stays out of commands without images -----------------------------------
-if command -v ldd >/dev/null; then
-  [ "$(ldd "$BRDFIT" | grep -c OpenImageIO)" = 0 ] && ok || bad "brdfit links OpenImageIO"
-fi
+[ "$(ldd "$BRDFIT" | grep -c OpenImageIO)" = 0 ] && ok || bad "brdfit links OpenImageIO"
 # The dynamic loader names every object it maps (LD_DEBUG=files), dlopen'd ones too.
 maps_oiio() { LD_DEBUG=files "$BRDFIT" "$@" 2>&1 >/dev/null | grep -c 'OpenImageIO'; }
 [ "$(maps_oiio models)" = 0 ] && ok || bad "brdfit models maps OpenImageIO"

@@ -16,7 +16,7 @@ ncases=$(jq '.cases | length' "$EXAMPLE")
 junit_counts() { # FILE TESTS FAILURES ERRORS
   grep -q "<testsuite name=\"brdfit regress\" tests=\"$2\" failures=\"$3\" errors=\"$4\"" "$1" &&
     [ "$(grep -c '<testcase ' "$1")" = "$2" ] &&
-    { ! command -v xmllint >/dev/null || xmllint --noout "$1"; }
+    xmllint --noout "$1"
 }
 
 # --- the example, run from another directory: relative data paths follow the file -------

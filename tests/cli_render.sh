@@ -5,6 +5,9 @@
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
 P=$DATA/lambert_rgb.json
+for t in iinfo oiiotool; do # openimageio-tools (scripts/setup.sh)
+  command -v $t >/dev/null || { bad "$t is missing (scripts/setup.sh installs openimageio-tools)"; finish; exit 1; }
+done
 
 # --- good input: the image exists, has the size asked for, and nothing else is left ---
 render_ok() { # name, expected "W x H", args...
@@ -12,11 +15,7 @@ render_ok() { # name, expected "W x H", args...
   shift 2
   if "$BRDFIT" render "$@" 2>"$tmp/err"; then
     local out=${*: -1}
-    if command -v iinfo >/dev/null; then
-      iinfo "$out" 2>&1 | grep -Eq ": +${size% x *} x +${size#* x }, 3 channel" && ok || bad "$name: size is not $size: $(iinfo "$out" 2>&1)"
-    else
-      [ -s "$out" ] && ok || bad "$name: no image"
-    fi
+    iinfo "$out" 2>&1 | grep -Eq ": +${size% x *} x +${size#* x }, 3 channel" && ok || bad "$name: size is not $size: $(iinfo "$out" 2>&1)"
   else
     bad "$name failed: $(cat "$tmp/err")"
   fi
@@ -27,12 +26,10 @@ render_ok slice "300 x 200" --params "$P" --slice --incidence 0,45 --size 300x20
 render_ok slice-data "320 x 240" --params "$P" --slice --data "$DATA/dirs_small.csv" --values theta_o --size 320x240 -o "$tmp/sld.png"
 render_ok half-diff "90 x 45" --params "$P" --half-diff --phi-d 45 --size 90x45 -o "$tmp/hd.exr"
 render_ok half-diff-png "50 x 50" --params "$P" --half-diff --tonemap reinhard --size 50 -o "$tmp/hd.png"
-if command -v oiiotool >/dev/null; then
-  # Lambert sphere lit along the view: the centre pixel of the EXR is rho/pi = 0.2546479 (red).
-  "$BRDFIT" render --params "$P" --light 0,0 --size 33 -o "$tmp/c.exr" 2>/dev/null
-  v=$(oiiotool "$tmp/c.exr" --cut 1x1+16+16 --printstats 2>&1 | grep -i "Stats Avg" | head -1)
-  echo "$v" | grep -q "0.25464" && ok || bad "sphere centre: $v"
-fi
+# Lambert sphere lit along the view: the centre pixel of the EXR is rho/pi = 0.2546479 (red).
+"$BRDFIT" render --params "$P" --light 0,0 --size 33 -o "$tmp/c.exr" 2>/dev/null
+v=$(oiiotool "$tmp/c.exr" --cut 1x1+16+16 --printstats 2>&1 | grep -i "Stats Avg" | head -1)
+echo "$v" | grep -q "0.25464" && ok || bad "sphere centre: $v"
 ls "$tmp" | grep -q tmp && bad "temporary file left behind" || ok
 
 # --- bad input: one line on stderr naming the problem, exit status, no output ----------
