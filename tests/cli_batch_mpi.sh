@@ -131,7 +131,9 @@ fi
 
 # --- Ctrl-C on the terminal: mpirun ends the job at once, the database resumes ---------------
 # script(1) gives mpirun a pseudo-terminal; ^C written to it is the terminal's SIGINT to the
-# foreground job (mpirun, its ranks and their fits).
+# foreground job (mpirun, its ranks and their fits). script runs the line with $SHELL (/bin/sh,
+# which is dash, when unset, as in CI): dash would die of that SIGINT before printing the exit
+# status, bash waits for mpirun and prints it.
 # Items long enough to be in flight: three copies of the large material x 4 models.
 cp "$tmp/kwal.csv" "$tmp/kwal2.csv" && cp "$tmp/kwal.csv" "$tmp/kwal3.csv"
 cat > "$tmp/cm.json" <<'JSON'
@@ -142,7 +144,7 @@ JSON
 db=$tmp/c.db
 line=$(printf '%q ' "${MPIRUN[@]}" -np 3 "$BRDFIT" batch "$tmp/cm.json" -o "$db")
 ( wait_items "$db" 2; printf '\003'; sleep 10 ) |
-  timeout 60 script -qec "$line; echo \"exit \$?\"" /dev/null > "$tmp/tty" 2>&1
+  SHELL=/bin/bash timeout 60 script -qec "$line; echo \"exit \$?\"" /dev/null > "$tmp/tty" 2>&1
 grep -aq "exit [1-9]" "$tmp/tty" && ok || bad "Ctrl-C under mpirun: $(head -c 600 "$tmp/tty")"
 wait_gone "$db" && ok || bad "ranks outlived Ctrl-C"
 [ "$(count "$db" "PRAGMA integrity_check")" = ok ] && ok || bad "Ctrl-C left a damaged database"
