@@ -70,54 +70,70 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
 {
     const int C = m->channels, P = m->nfree;
     const int K = lobe_count(m);
-    const double *rho_d = x + m->offset[0];
     double S[BF_MAX_LOBES][BF_BLOCK];
     double dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_BLOCK];
     double sc[BF_MAX_LOBE_SCALARS];
+    /* The layout in locals: stores into values and grad may alias anything the compiler
+     * cannot see is private, and would otherwise reload m's arrays for every entry. */
+    int weight[BF_MAX_LOBES], scalars[BF_MAX_LOBES], nscalar[BF_MAX_LOBES], chroma[BF_MAX_LOBES];
+    int entry[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS], per_channel[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS];
+    int any_chroma = 0;
+    for (int k = 0; k < K; k++) {
+        int first = m->lobe_first[k + 1];
+        weight[k] = m->offset[first];
+        scalars[k] = m->offset[first + 1];
+        nscalar[k] = m->lobe_nscalar[k + 1];
+        chroma[k] = m->lobe_chroma[k + 1];
+        any_chroma |= chroma[k];
+        for (int q = 0; q < nscalar[k]; q++) {
+            entry[k][q] = m->offset[first + 1 + q];
+            per_channel[k][q] = m->param[first + 1 + q].colour;
+        }
+    }
+    const int diffuse = m->offset[0];
 
     for (size_t b0 = i0; b0 < i1; b0 += BF_BLOCK) {
         size_t cnt = i1 - b0 < BF_BLOCK ? i1 - b0 : BF_BLOCK;
-        for (int k = 1; k <= K; k++) {
-            int first = m->lobe_first[k];
-            const double *s = x + m->offset[first + 1];
-            if (!m->lobe_chroma[k])
-                m->family->lobe(m, k, s, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
-        }
+        for (int k = 0; k < K; k++)
+            if (!chroma[k])
+                m->family->lobe(m, k + 1, x + scalars[k], g, b0, cnt, S[k], grad ? dS[k] : NULL);
         /* Channel-major, so a lobe whose shape depends on the channel is evaluated once
          * per channel into the same buffers. */
         for (int c = 0; c < C; c++) {
-            for (int k = 1; k <= K; k++)
-                if (m->lobe_chroma[k]) {
-                    chroma_scalars(m, x, k, c, sc);
-                    m->family->lobe(m, k, sc, g, b0, cnt, S[k - 1], grad ? dS[k - 1] : NULL);
+            double w[BF_MAX_LOBES];
+            int e[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS];
+            for (int k = 0; k < K; k++) {
+                if (any_chroma && chroma[k]) {
+                    chroma_scalars(m, x, k + 1, c, sc);
+                    m->family->lobe(m, k + 1, sc, g, b0, cnt, S[k], grad ? dS[k] : NULL);
                 }
+                w[k] = x[weight[k] + c];
+                for (int q = 0; q < nscalar[k]; q++)
+                    e[k][q] = entry[k][q] + (per_channel[k][q] ? c : 0);
+            }
+            const double diffuse_value = x[diffuse + c] * (1.0 / M_PI);
             for (size_t j = 0; j < cnt; j++) {
                 size_t i = b0 + j;
                 int valid = bf_geometry_valid(g, i);
                 double f = 0.0;
-                double *row = grad ? grad + (((i - i0) * (size_t)C) + (size_t)c) * (size_t)P : NULL;
-                if (row)
-                    memset(row, 0, (size_t)P * sizeof *row);
                 if (valid) {
-                    f = rho_d[c] * (1.0 / M_PI);
-                    if (row)
-                        row[m->offset[0] + c] = 1.0 / M_PI;
-                    for (int k = 1; k <= K; k++) {
-                        int first = m->lobe_first[k];
-                        int o = m->offset[first];
-                        double w = x[o + c];
-                        f += w * S[k - 1][j];
-                        if (row) {
-                            row[o + c] = S[k - 1][j];
-                            for (int q = 0; q < m->lobe_nscalar[k]; q++) {
-                                int p = first + 1 + q;
-                                int e = m->offset[p] + (m->param[p].colour ? c : 0);
-                                row[e] = w * dS[k - 1][q * BF_BLOCK + j];
-                            }
-                        }
-                    }
+                    f = diffuse_value;
+                    for (int k = 0; k < K; k++)
+                        f += w[k] * S[k][j];
                 }
                 values[(i - i0) * (size_t)C + (size_t)c] = f;
+                if (!grad)
+                    continue;
+                double *row = grad + (((i - i0) * (size_t)C) + (size_t)c) * (size_t)P;
+                memset(row, 0, (size_t)P * sizeof *row);
+                if (!valid)
+                    continue;
+                row[diffuse + c] = 1.0 / M_PI;
+                for (int k = 0; k < K; k++) {
+                    row[weight[k] + c] = S[k][j];
+                    for (int q = 0; q < nscalar[k]; q++)
+                        row[e[k][q]] = w[k] * dS[k][q * BF_BLOCK + j];
+                }
             }
         }
     }
