@@ -136,6 +136,63 @@ static void test_initial_guess_walter(void **state)
     }
 }
 
+/* Which colour parameters the start sets comes from their roles: a conductor's r and g
+ * and glTF's specular_color keep their defaults (they were once scaled as weights or set
+ * to the diffuse level), the lobe's rho_s is scaled to the data, and Ashikhmin-Shirley's
+ * rho_s (a weight outside the lobes) starts at the diffuse level, as its rho_d. */
+static void start_of(const char *data_spec, const double *truth, const char *spec, double *x, bf_model **mo)
+{
+    bf_samples *s = synth(data_spec, 3, truth, BF_SYNTH_UNIFORM, 20000);
+    *mo = ts_model(spec, 3);
+    bf_error err;
+    assert_int_equal(bf_fit_initial_guess(*mo, s, x, &err), BF_OK);
+    assert_start_in_bounds(*mo, x);
+    bf_samples_free(s);
+}
+
+static double start_value(const bf_model *m, const double *x, const char *name, int c, double *def)
+{
+    int i = bf_model_find_param(m, name);
+    if (i < 0)
+        fail_msg("no parameter %s", name);
+    const bf_param_info *p = bf_model_param(m, i);
+    *def = p->def;
+    return x[bf_model_param_offset(m, i) + (p->colour ? c : 0)];
+}
+
+static void test_initial_guess_roles(void **state)
+{
+    (void)state;
+    const double walter_truth[8] = {0.3, 0.2, 0.1, 0.9, 0.85, 0.8, 0.15, 0.3};
+    double x[32], def;
+    bf_model *m;
+    const char *const keep[][2] = {{"walter:fresnel=conductor", "r"},
+                                   {"walter:fresnel=conductor", "g"},
+                                   {"gltf", "specular_color"}};
+    for (size_t k = 0; k < sizeof keep / sizeof keep[0]; k++) {
+        start_of("walter", walter_truth, keep[k][0], x, &m);
+        for (int c = 0; c < 3; c++) {
+            double v = start_value(m, x, keep[k][1], c, &def);
+            if (v != def)
+                fail_msg("%s %s[%d] starts at %g, not its default %g", keep[k][0], keep[k][1], c, v, def);
+        }
+        if (!strcmp(keep[k][1], "r")) { /* the weight is scaled: not left at its default */
+            double rs = start_value(m, x, "rho_s", 0, &def);
+            if (!(rs != def && rs > 0.0))
+                fail_msg("walter:fresnel=conductor rho_s[0] start %g (default %g)", rs, def);
+        }
+        bf_model_free(m);
+    }
+    const double as_truth[7] = {0.3, 0.2, 0.1, 0.05, 0.05, 0.05, 200.0};
+    start_of("ashikhmin_shirley_iso", as_truth, "ashikhmin_shirley_iso", x, &m);
+    for (int c = 0; c < 3; c++) {
+        double rd = start_value(m, x, "rho_d", c, &def), rs = start_value(m, x, "rho_s", c, &def);
+        if (!(rd > 0.0 && rs == rd))
+            fail_msg("ashikhmin_shirley_iso starts rho_d[%d] %g, rho_s %g: not both the diffuse level", c, rd, rs);
+    }
+    bf_model_free(m);
+}
+
 /* Data without a lobe, without near-specular samples, negative, or only at grazing
  * angles: a finite start inside the bounds for every model, and the Lambertian level. */
 static void test_initial_guess_hard_data(void **state)
@@ -358,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_recover_nlopt),
         cmocka_unit_test(test_initial_guess_walter),
         cmocka_unit_test(test_initial_guess_hard_data),
+        cmocka_unit_test(test_initial_guess_roles),
         cmocka_unit_test(test_multistart_deterministic),
         cmocka_unit_test(test_fix_holds),
         cmocka_unit_test(test_impossible_fit),
