@@ -249,12 +249,11 @@ static int read_material(batch_manifest *m, const cJSON *e, const char *dir, bat
 
 static int read_models(batch_manifest *m, const cJSON *models, const char *where, const char *cmd)
 {
-    enum { MAX_MODELS = 128 };
     if (!cJSON_IsArray(models) || cJSON_GetArraySize(models) == 0) {
         fprintf(stderr, "%s: %s: \"models\" must be a non-empty array of model specs\n", cmd, where);
         return -1;
     }
-    if (!(m->models = calloc(MAX_MODELS, sizeof *m->models))) {
+    if (!(m->models = calloc(BATCH_MAX_MODELS, sizeof *m->models))) {
         fprintf(stderr, "%s: out of memory\n", cmd);
         return -1;
     }
@@ -263,9 +262,9 @@ static int read_models(batch_manifest *m, const cJSON *models, const char *where
             fprintf(stderr, "%s: %s: \"models\" must be a non-empty array of model specs\n", cmd, where);
             return -1;
         }
-        int k = fit_options_split_models(e->valuestring, m->models, m->nmodels, MAX_MODELS, cmd);
+        int k = fit_options_split_models(e->valuestring, m->models, m->nmodels, BATCH_MAX_MODELS, cmd);
         if (k < 0) { /* the specs it added before the error are not counted: freed here */
-            for (int j = m->nmodels; j < MAX_MODELS; j++) {
+            for (int j = m->nmodels; j < BATCH_MAX_MODELS; j++) {
                 free(m->models[j]);
                 m->models[j] = NULL;
             }

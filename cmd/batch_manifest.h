@@ -22,6 +22,8 @@
 #include "fit_options.h"
 #include "rank_options.h"
 
+#define BATCH_MAX_MODELS 128 /* models a manifest may list */
+
 typedef struct batch_material {
     char *data;      /* the data file, resolved against the manifest's folder (owned) */
     char *scene;     /* its scene file, resolved (owned), or NULL */

@@ -2,8 +2,10 @@
  * Rank 0 is the coordinator: it alone opens the results database, hands out the pending
  * work items one at a time and writes each result it gets back in its own transaction,
  * as a one-process run does. The other ranks are workers: each fits the items it is
- * given (cmd_batch.c's fitting, one item at a time, in a child process: batch_fitter.h)
- * and sends back the item's row (batch_row_pack), or word that the item was lost. docs/batch.md describes the mode. */
+ * given (batch_run.c's fitting, one item at a time, in a child process: batch_fitter.h)
+ * and sends back the item's row (batch_row_pack), or word that the item was lost. This
+ * file is the messages; batch_mpi_run.c joins them to the run. docs/batch.md describes
+ * the mode. */
 #ifndef BRDFIT_BATCH_MPI_H
 #define BRDFIT_BATCH_MPI_H
 

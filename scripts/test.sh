@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite: a release build and an ASan+UBSan build, each under ctest.
+# The whole test suite: a release build and an ASan+UBSan build, each under ctest; then a
+# build without MPI (a machine without Open MPI), where brdfit batch runs as one process.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -9,3 +10,7 @@ ctest --test-dir build --output-on-failure -j "$jobs"
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBRDFIT_SANITIZE=ON >/dev/null
 cmake --build build-sanitize -j "$jobs" >/dev/null
 ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+cmake -S . -B build-nompi -DCMAKE_BUILD_TYPE=Release -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON >/dev/null
+cmake --build build-nompi -j "$jobs" --target brdfit_cmd >/dev/null
+echo "batch without MPI:"
+bash tests/cli_batch.sh build-nompi/cmd/brdfit tests/data build/data_synth/brdfit-synth build/lib
