@@ -33,7 +33,8 @@
  *  - --html DIR writes a report folder (compare.h, report_html.c). DIR is checked before
  *    any fit: an existing DIR that is neither empty nor a previous report is refused
  *    (exit 1) rather than replaced. The report is written after the summary is printed;
- *    it shows the command line and the data options as given. With --subsample, a MERL
+ *    it shows the command line (but for --jobs and --threads, which change no result, so
+ *    that the report is the same bytes whatever they are) and the data options as given. With --subsample, a MERL
  *    table is read again whole for the report's pictures of the measurement (the fits
  *    still use the subsample). --plot-format picks the embedded plots' format (--format is
  *    the data file's).
@@ -236,8 +237,19 @@ static int parse(compare_args *a, int argc, char **argv)
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
     append_word(&a->command_line, "brdfit");
-    for (int i = 0; i < argc; i++)
-        append_word(&a->command_line, argv[i]);
+    for (int i = 0, opts = 1; i < argc; i++) {
+        /* --jobs and --threads change no result: left out, the report is the same bytes
+         * whatever they are. */
+        const char *w = argv[i];
+        if (opts && (!strcmp(w, "--jobs") || !strcmp(w, "--threads"))) {
+            i++;
+            continue;
+        }
+        if (opts && (!strncmp(w, "--jobs=", 7) || !strncmp(w, "--threads=", 10)))
+            continue;
+        opts &= strcmp(w, "--") != 0;
+        append_word(&a->command_line, w);
+    }
     for (int i = 0; i < a->args.n; i++) {
         const char *name = a->args.v[i].name, *v = a->args.v[i].value;
         if (!name) {

@@ -13,4 +13,4 @@ ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
 cmake -S . -B build-nompi -DCMAKE_BUILD_TYPE=Release -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON >/dev/null
 cmake --build build-nompi -j "$jobs" --target brdfit_cmd >/dev/null
 echo "batch without MPI:"
-bash tests/cli_batch.sh build-nompi/cmd/brdfit tests/data build/data_synth/brdfit-synth build/lib
+bash tests/cli_batch.sh "$PWD/build-nompi/cmd/brdfit" "$PWD/tests/data" "$PWD/build/data_synth/brdfit-synth" "$PWD/build/lib"
