@@ -21,6 +21,9 @@
  *  - Nothing printed or written depends on wall time (the work column is in sample
  *    evaluations); --timing adds the seconds to the table and the JSON.
  *  - -o writes the chosen model's fit result (a parameter file for brdfit eval).
+ *  - --jobs N fits N candidates at once (bf_compare_run, as compare), each with
+ *    --threads / N threads; nothing printed or written depends on it but the order of the
+ *    progress lines.
  *  - Exit: 0 when a model was chosen; 1 for bad data or when no candidate could be
  *    fitted; 2 for bad usage. */
 #include <errno.h>
@@ -50,6 +53,7 @@ static const cli_option own[] = {
                             "(default 0.05); the one with the fewest free parameters is chosen,\n"
                             "then isotropic, one lobe, monochrome highlight, lower error", NULL},
     {"--abs-tolerance", 0, "A", "absolute part of the tolerance (default 1e-6)", NULL},
+    {"--jobs", 0, "N", "candidates fitted at once (default 1); each gets --threads / N threads", NULL},
     {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "the error compared (default rmse_log)", NULL},
     {"--json", 0, "FILE", "every candidate and the choice, machine-readable (- for standard output)", "file"},
     {"--output", 'o', "FILE", "the chosen model's fit result (a parameter file; - for standard output)", "file"},
@@ -65,14 +69,14 @@ const cli_command cli_select = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-static void progress(void *ctx, const bf_select *s, int i)
+static void progress(void *ctx, const bf_select *s, int i, int done)
 {
     (void)ctx;
     const bf_select_candidate *c = &s->c[i];
     if (c->state == BF_CMP_ERROR)
-        fprintf(stderr, "[%d/%d] %s: %s\n", i + 1, s->n, c->spec, c->message);
+        fprintf(stderr, "[%d/%d] %s: %s\n", done, s->n, c->spec, c->message);
     else
-        fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", i + 1, s->n, c->spec, c->result.metrics.k,
+        fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", done, s->n, c->spec, c->result.metrics.k,
                 bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result.metrics, s->metric),
                 c->seconds, c->state == BF_CMP_OK ? "" : " (failed)");
 }
@@ -133,7 +137,7 @@ typedef struct select_run {
     fit_options fopt;
     rank_options ro;
     char *specs[MAX_MODELS];
-    int nmodels;
+    int nmodels, jobs;
     double tolerance, abs_tolerance;
     bf_compare_metric metric;
     const char *data, *json_path, *out_path;
@@ -161,6 +165,13 @@ static int take_own(select_run *r, const char *a, const char *v)
             fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
             return -1;
         }
+    } else if (!strcmp(a, "--jobs")) {
+        long n;
+        if (!args_int(v, 1, 1024, &n)) {
+            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
+            return -1;
+        }
+        r->jobs = (int)n;
     } else if (!strcmp(a, "--json")) {
         r->json_path = v;
     } else { /* --output */
@@ -230,7 +241,7 @@ static int fit_candidates(select_run *r)
     r->sel.rank_by = r->ro.rank_by;
     r->sel.folds = r->ro.folds;
     r->sel.timing = r->ro.timing;
-    if (bf_select_run(&r->sel, r->s, &r->fopt.fit, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
+    if (bf_select_run(&r->sel, r->s, &r->fopt.fit, r->jobs, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
@@ -274,6 +285,7 @@ int cmd_select(int argc, char **argv)
     r.tolerance = 0.05;
     r.abs_tolerance = 1e-6;
     r.metric = BF_CMP_RMSE_LOG;
+    r.jobs = 1;
     cli_args args;
     int p = cli_parse(&cli_select, argc, argv, &args);
     if (p != CLI_OK)

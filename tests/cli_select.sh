@@ -34,6 +34,19 @@ if "$BRDFIT" select "$tmp/lam.csv" --threads 2 --json "$tmp/lam_sel.json" -o "$t
          and ([.candidates[] | select(.chosen)] | length) == 1
          and any(.candidates[]; .model == "walter:mono=specular" and .k == 6 and (.coloured_specular | not))
          and all(.candidates[]; .status == "ok")' "$tmp/lam_sel.json" >/dev/null && ok || bad "select JSON"
+  # --jobs: every candidate fitted again, 3 at once; the same table and JSON, the same fit
+  # file but for what it records of the run (wall times, the solver threads it had).
+  if "$BRDFIT" select "$tmp/lam.csv" --threads 2 --jobs 3 --json "$tmp/lam_sel3.json" -o "$tmp/lam_fit3.json" \
+       >"$tmp/out3" 2>"$tmp/err3"; then
+    run_free() { jq -S 'del(.seconds, .optimizer.seconds, .optimizer.threads)' "$1"; }
+    cmp -s "$tmp/out" "$tmp/out3" && cmp -s "$tmp/lam_sel.json" "$tmp/lam_sel3.json" &&
+      [ "$(run_free "$tmp/lam_fit.json")" = "$(run_free "$tmp/lam_fit3.json")" ] && ok ||
+      bad "--jobs 3 changed the outputs: $(diff "$tmp/out" "$tmp/out3" | head -4)"
+    [ "$(grep -c '^\[[0-9]*/[0-9]*\] ' "$tmp/err3")" = "$(grep -c '^\[[0-9]*/[0-9]*\] ' "$tmp/err")" ] &&
+      grep -q "^\[$(jq '.candidates | length' "$tmp/lam_sel.json")/" "$tmp/err3" && ok || bad "--jobs 3 progress: $(cat "$tmp/err3")"
+  else
+    bad "select --jobs 3: $(cat "$tmp/err3")"
+  fi
   # The chosen fit is a parameter file.
   printf 'theta_i,phi_i,theta_o,phi_o\n0,0,0,0\n' > "$tmp/dirs.csv"
   "$BRDFIT" eval --params "$tmp/lam_fit.json" --dirs "$tmp/dirs.csv" -o "$tmp/ev.csv" &&

@@ -175,7 +175,7 @@ static const bf_select_candidate *select_on(bf_samples *data, int n, const char 
     assert_int_equal(bf_select_init(s, n, specs, data->channels, BF_CMP_RMSE_LOG, 0.05, 1e-6, &err), BF_OK);
     bf_fit_options o = fit_options();
     o.weighted_metrics = weighted;
-    assert_int_equal(bf_select_run(s, data, &o, NULL, NULL, &err), BF_OK);
+    assert_int_equal(bf_select_run(s, data, &o, 1, NULL, NULL, &err), BF_OK);
     assert_true(s->chosen >= 0);
     return &s->c[s->chosen];
 }

@@ -74,15 +74,18 @@ bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int chan
                    double tolerance, double abs_tolerance, bf_error *err);
 void bf_select_clear(bf_select *s);
 
-/* Called after each candidate's fit (i its index), for progress output. */
-typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i);
+/* Called after each candidate's fit (i its index; done of s->n finished), for progress
+ * output. Calls never overlap; with jobs > 1 they come in the order the fits finish. */
+typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i, int done);
 
-/* Fits every candidate to data with the options (a candidate whose fit cannot run is
- * marked ERROR with the message; the others go on), cross-validates each with s->folds
- * folds (seed o->seed) when ranked by cv, then bf_select_choose. Returns BF_OK when the
- * candidates were run, whatever their outcome. */
-bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
-                  void *ctx, bf_error *err);
+/* Fits every candidate to data with the options, jobs fits at once (bf_compare_run: each
+ * gets o->solver.threads / jobs threads; the results do not depend on jobs), a candidate
+ * whose fit cannot run marked ERROR with the message (the others go on); cross-validates
+ * each with s->folds folds (seed o->seed) when ranked by cv (a cross-validation that
+ * cannot run makes the candidate an ERROR), then bf_select_choose. Returns BF_OK when
+ * the candidates were run, whatever their outcome. */
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
+                        bf_select_progress progress, void *ctx, bf_error *err);
 
 /* From the candidates' states, errors and criteria: error, criterion, rank, within,
  * best (lowest error) and chosen (see the top). Candidates not OK, or whose criterion

@@ -126,37 +126,58 @@ void bf_select_clear(bf_select *s)
     s->best = s->chosen = -1;
 }
 
-bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, bf_select_progress progress,
-                  void *ctx, bf_error *err)
+/* bf_compare_run's progress: the finished fit moved into its candidate (the table keeps
+ * a zeroed slot), then the caller's progress. Calls never overlap. */
+typedef struct select_run {
+    bf_select *s;
+    bf_select_progress progress;
+    void *ctx;
+} select_run;
+
+static void candidate_done(void *ctx, const bf_compare *c, int material, int j, int done, int total)
 {
-    (void)err;
-    for (int i = 0; i < s->n; i++) {
-        bf_select_candidate *c = &s->c[i];
-        bf_error e;
-        int rc = bf_fit(data, c->spec, o, &c->result, &e);
-        if (rc != BF_OK) {
-            c->state = BF_CMP_ERROR;
-            snprintf(c->message, sizeof c->message, "%s", e.msg);
-        } else {
-            c->state = c->result.ok ? BF_CMP_OK : BF_CMP_FAILED;
-            c->seconds = c->result.seconds;
-            c->work = bf_compare_work(&c->result);
-            c->k = c->result.metrics.k; /* fixed parameters (--fix) do not count */
-        }
-        if (c->state == BF_CMP_OK && s->rank_by == BF_RANK_CV) {
-            bf_cv_result cv;
-            if (bf_fit_cv(data, c->spec, o, s->folds, o->seed, &cv, &e) != BF_OK) {
-                c->state = BF_CMP_ERROR;
-                snprintf(c->message, sizeof c->message, "cross-validation: %.400s", e.msg);
-            } else {
-                c->cv_error = cv.error;
-            }
-        }
-        if (progress)
-            progress(ctx, s, i);
+    (void)material, (void)total;
+    select_run *r = ctx;
+    bf_select_candidate *cand = &r->s->c[j];
+    const bf_compare_fit *f = &c->materials[0].fits[j];
+    cand->state = f->state;
+    if (f->state == BF_CMP_ERROR) {
+        snprintf(cand->message, sizeof cand->message, "%s", f->message);
+    } else {
+        bf_fit_result *res = &c->results[j]; /* material 0's slot j */
+        cand->result = *res;
+        memset(res, 0, sizeof *res);
+        cand->seconds = cand->result.seconds;
+        cand->work = f->work;
+        cand->k = cand->result.metrics.k; /* fixed parameters (--fix) do not count */
+        cand->cv_error = f->cv_error;
     }
-    bf_select_choose(s);
-    return BF_OK;
+    if (r->progress)
+        r->progress(r->ctx, r->s, j, done);
+}
+
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
+                        bf_select_progress progress, void *ctx, bf_error *err)
+{
+    const char **specs = malloc((size_t)s->n * sizeof *specs);
+    if (!specs)
+        return bf_fail(err, BF_ERR_NOMEM, "select: out of memory");
+    for (int i = 0; i < s->n; i++)
+        specs[i] = s->c[i].spec;
+    const char *name = "data";
+    bf_compare c;
+    bf_status rc = bf_compare_init(&c, 1, &name, s->n, specs, err);
+    free(specs);
+    if (rc != BF_OK)
+        return rc;
+    c.folds = s->rank_by == BF_RANK_CV ? s->folds : 0;
+    select_run r = {s, progress, ctx};
+    const bf_compare_run_options ro = {.jobs = jobs, .progress = candidate_done, .ctx = &r};
+    rc = bf_compare_run(&c, &data, o, &ro, err);
+    bf_compare_clear(&c);
+    if (rc == BF_OK)
+        bf_select_choose(s);
+    return rc;
 }
 
 /* The order of preference between two candidates (negative: a first). */
