@@ -40,6 +40,17 @@ int args_int(const char *s, long lo, long hi, long *out)
     return 1;
 }
 
+int args_jobs(const char *cmd, const char *v, int *jobs)
+{
+    long n;
+    if (!args_int(v, 1, 1024, &n)) {
+        fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
+        return -1;
+    }
+    *jobs = (int)n;
+    return 0;
+}
+
 int args_number(const char *s, double lo, double hi, double *out)
 {
     if (!s || !*s || isspace((unsigned char)s[0]))

@@ -16,6 +16,9 @@ const char *args_value(int argc, char **argv, int *i, const char *const *valued,
  * [lo, hi], else 0 (the caller prints the usage error). ' 5', '+5', '5x', '' are not. */
 int args_int(const char *s, long lo, long hi, long *out);
 int args_number(const char *s, double lo, double hi, double *out);
+/* --jobs N (fits at once: compare, select, batch) into *jobs: 0, or -1 after a one-line
+ * error naming cmd. */
+int args_jobs(const char *cmd, const char *v, int *jobs);
 /* An image size "N" (square) or "WxH", each side an integer in [lo, hi]. */
 int args_size(const char *s, int lo, int hi, int *w, int *h);
 /* A command's outputs checked before any work (bf_outputs_check: empty names, an output

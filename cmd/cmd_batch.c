@@ -82,7 +82,6 @@ static int parse_shard(batch_args *a, const char *v)
 
 static int parse_own(batch_args *a, const char *name, const char *v)
 {
-    long n;
     if (!strcmp(name, "--output")) {
         a->output = v;
     } else if (!strcmp(name, "--redo")) {
@@ -95,11 +94,7 @@ static int parse_own(batch_args *a, const char *name, const char *v)
     } else if (!strcmp(name, "--shard")) {
         return parse_shard(a, v);
     } else if (!strcmp(name, "--jobs")) {
-        if (!args_int(v, 1, 1024, &n)) {
-            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
-            return -1;
-        }
-        a->jobs = (int)n;
+        return args_jobs(cmd, v, &a->jobs);
     } else { /* --threads */
         if (!args_int(v, 1, FIT_OPTIONS_MAX_THREADS, &a->threads)) {
             fprintf(stderr, "%s: --threads needs an integer from 1 to %d, got '%s'\n", cmd, FIT_OPTIONS_MAX_THREADS, v);

@@ -181,12 +181,7 @@ static int parse_own(compare_args *a, const char *name, const char *v)
             return -1;
         }
     } else if (!strcmp(name, "--jobs")) {
-        long n;
-        if (!args_int(v, 1, 1024, &n)) {
-            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
-            return -1;
-        }
-        a->jobs = (int)n;
+        return args_jobs(cmd, v, &a->jobs);
     } else if (!strcmp(name, "--json")) {
         a->json_path = v;
     } else if (!strcmp(name, "--html")) {

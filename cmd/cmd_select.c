@@ -166,12 +166,7 @@ static int take_own(select_run *r, const char *a, const char *v)
             return -1;
         }
     } else if (!strcmp(a, "--jobs")) {
-        long n;
-        if (!args_int(v, 1, 1024, &n)) {
-            fprintf(stderr, "%s: --jobs needs an integer from 1 to 1024, got '%s'\n", cmd, v);
-            return -1;
-        }
-        r->jobs = (int)n;
+        return args_jobs(cmd, v, &r->jobs);
     } else if (!strcmp(a, "--json")) {
         r->json_path = v;
     } else { /* --output */
