@@ -136,10 +136,10 @@ static void test_initial_guess_walter(void **state)
     }
 }
 
-/* Which colour parameters the start sets comes from their roles: a conductor's r and g
- * and glTF's specular_color keep their defaults (they were once scaled as weights or set
- * to the diffuse level), the lobe's rho_s is scaled to the data, and Ashikhmin-Shirley's
- * rho_s (a weight outside the lobes) starts at the diffuse level, as its rho_d. */
+/* Which colour parameters the start sets: a conductor's r and g (lobe colours that are not
+ * weights) keep their defaults, where they were once scaled as weights; the lobe's rho_s
+ * is scaled to the data; every colour outside the lobes starts at the diffuse level, as
+ * rho_d does: Ashikhmin-Shirley's rho_s (a weight) and glTF's specular_color (an f0). */
 static void start_of(const char *data_spec, const double *truth, const char *spec, double *x, bf_model **mo)
 {
     bf_samples *s = synth(data_spec, 3, truth, BF_SYNTH_UNIFORM, 20000);
@@ -166,31 +166,31 @@ static void test_initial_guess_roles(void **state)
     const double walter_truth[8] = {0.3, 0.2, 0.1, 0.9, 0.85, 0.8, 0.15, 0.3};
     double x[32], def;
     bf_model *m;
-    const char *const keep[][2] = {{"walter:fresnel=conductor", "r"},
-                                   {"walter:fresnel=conductor", "g"},
-                                   {"gltf", "specular_color"}};
-    for (size_t k = 0; k < sizeof keep / sizeof keep[0]; k++) {
-        start_of("walter", walter_truth, keep[k][0], x, &m);
-        for (int c = 0; c < 3; c++) {
-            double v = start_value(m, x, keep[k][1], c, &def);
+    start_of("walter", walter_truth, "walter:fresnel=conductor", x, &m);
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 2; k++) {
+            double v = start_value(m, x, k ? "g" : "r", c, &def);
             if (v != def)
-                fail_msg("%s %s[%d] starts at %g, not its default %g", keep[k][0], keep[k][1], c, v, def);
+                fail_msg("walter:fresnel=conductor %s[%d] starts at %g, not its default %g", k ? "g" : "r", c, v, def);
         }
-        if (!strcmp(keep[k][1], "r")) { /* the weight is scaled: not left at its default */
-            double rs = start_value(m, x, "rho_s", 0, &def);
-            if (!(rs != def && rs > 0.0))
-                fail_msg("walter:fresnel=conductor rho_s[0] start %g (default %g)", rs, def);
+    double rs = start_value(m, x, "rho_s", 0, &def);
+    if (!(rs != def && rs > 0.0))
+        fail_msg("walter:fresnel=conductor rho_s[0] start %g (default %g): not scaled", rs, def);
+    bf_model_free(m);
+
+    const double as_truth[7] = {0.3, 0.2, 0.1, 0.05, 0.05, 0.05, 200.0};
+    const char *const outside[][3] = {{"ashikhmin_shirley_iso", "rho_d", "rho_s"},
+                                      {"gltf", "base_color", "specular_color"}};
+    for (size_t k = 0; k < sizeof outside / sizeof outside[0]; k++) {
+        start_of(k ? "walter" : "ashikhmin_shirley_iso", k ? walter_truth : as_truth, outside[k][0], x, &m);
+        for (int c = 0; c < 3; c++) {
+            double d = start_value(m, x, outside[k][1], c, &def), v = start_value(m, x, outside[k][2], c, &def);
+            if (!(d > 0.0 && v == d))
+                fail_msg("%s starts %s[%d] %g, %s %g: not both the diffuse level", outside[k][0], outside[k][1], c,
+                         d, outside[k][2], v);
         }
         bf_model_free(m);
     }
-    const double as_truth[7] = {0.3, 0.2, 0.1, 0.05, 0.05, 0.05, 200.0};
-    start_of("ashikhmin_shirley_iso", as_truth, "ashikhmin_shirley_iso", x, &m);
-    for (int c = 0; c < 3; c++) {
-        double rd = start_value(m, x, "rho_d", c, &def), rs = start_value(m, x, "rho_s", c, &def);
-        if (!(rd > 0.0 && rs == rd))
-            fail_msg("ashikhmin_shirley_iso starts rho_d[%d] %g, rho_s %g: not both the diffuse level", c, rd, rs);
-    }
-    bf_model_free(m);
 }
 
 /* Data without a lobe, without near-specular samples, negative, or only at grazing
