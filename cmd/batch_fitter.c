@@ -1,4 +1,5 @@
-/* The child process that fits an MPI worker's items (batch_fitter.h).
+/* The child process that fits brdfit batch's items, for the one process or an MPI worker
+ * (batch_fitter.h).
  *
  * Decisions:
  *  - fork, not a new program, and one child for many calls: it reads the materials and

@@ -22,8 +22,9 @@
  *    evaluations); --timing adds the seconds to the table and the JSON.
  *  - -o writes the chosen model's fit result (a parameter file for brdfit eval).
  *  - --jobs N fits N candidates at once (bf_compare_run, as compare), each with
- *    --threads / N threads; nothing printed or written depends on it but the order of the
- *    progress lines.
+ *    --threads / N threads; the table and --json do not depend on it (the progress lines
+ *    come in the order fits finish; the -o fit file records its solver threads and wall
+ *    time, as brdfit fit's does).
  *  - Exit: 0 when a model was chosen; 1 for bad data or when no candidate could be
  *    fitted; 2 for bad usage. */
 #include <errno.h>

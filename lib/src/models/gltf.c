@@ -37,7 +37,8 @@ static bf_status configure(bf_model *m, bf_error *err)
         (rc = bf_model_add_param_open(m, "roughness", 0, 0.0, 1, 1.0, 0, 0.5, BF_SCALE_LINEAR, 0,
                                       BF_ROLE_PERCEPTUAL_ROUGHNESS, err)) ||
         (rc = bf_model_add_param(m, "specular", 0, 0.0, 1.0, 1.0, BF_SCALE_LINEAR, 0, BF_ROLE_WEIGHT, err)) ||
-        /* A factor on F0: the start may raise it for a bright highlight. */
+        /* A factor on F0; outside the lobes, so the start sets it to the diffuse level
+         * (lib/src/fit/init.c says why). */
         (rc = bf_model_add_param(m, "specular_color", 1, 0.0, 25.0, 1.0, BF_SCALE_LINEAR, 0, BF_ROLE_F0, err)) ||
         (rc = bf_model_add_param(m, "ior", 0, 1.0, 3.0, 1.5, BF_SCALE_LINEAR, 0, BF_ROLE_IOR, err)))
         return rc;
