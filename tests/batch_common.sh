@@ -36,6 +36,16 @@ wait_items() {
     sleep 0.02
   done
 }
+# Runs brdfit batch on manifest $1 into database $2 in the background, sends it SIGINT
+# once $3 items are finished, and sets rc to its exit status (stderr in $tmp/err).
+interrupt_batch() {
+  "$BRDFIT" batch "$1" -o "$2" 2>"$tmp/err" &
+  local pid=$!
+  wait_items "$2" "$3"
+  kill -INT $pid
+  wait $pid
+  rc=$?
+}
 # A fit's process (cmd/batch_fitter.c) is named brdfit:ITEM while it fits ITEM alone and
 # brdfit:ITEM+ while it fits ITEM and more of that material. kill_fit P COND finds one
 # among the children and grandchildren of process P (a one-process batch, or mpirun and its

@@ -61,12 +61,7 @@ done_before=$(count "$tmp/k.db" "SELECT count(*) FROM items WHERE status != 'pen
 rows "$tmp/k.db" | cmp -s - "$tmp/one.rows" && ok || bad "resumed rows differ from an uninterrupted run"
 
 # --- SIGINT: finished fits kept, exit 130, resumable ----------------------------------------
-"$BRDFIT" batch "$tmp/m.json" -o "$tmp/i.db" 2>"$tmp/err" &
-pid=$!
-wait_items "$tmp/i.db" 3
-kill -INT $pid
-wait $pid
-rc=$?
+interrupt_batch "$tmp/m.json" "$tmp/i.db" 3
 if [ $rc = 130 ]; then
   ok
   grep -q "interrupted after .* items; the same command resumes" "$tmp/err" && ok || bad "SIGINT message: $(cat "$tmp/err")"
@@ -230,12 +225,7 @@ rows "$tmp/twice.db" | cmp -s - "$tmp/kone.rows" && ok || bad "rows after --redo
 
 # SIGINT reaches the fitting process through the batch process (which passes it on): the
 # running fit finishes and is written, the next do not start, exit 130, resumable.
-"$BRDFIT" batch "$tmp/km.json" -o "$tmp/int.db" 2>"$tmp/err" &
-pid=$!
-wait_items "$tmp/int.db" 1
-kill -INT $pid
-wait $pid
-rc=$?
+interrupt_batch "$tmp/km.json" "$tmp/int.db" 1
 [ $rc = 130 ] && [ "$(count "$tmp/int.db" "SELECT count(*) FROM items WHERE status = 'pending'")" -ge 1 ] &&
   [ "$(count "$tmp/int.db" "SELECT count(*) FROM items WHERE status NOT IN ('ok', 'pending')")" = 0 ] && ok ||
   bad "SIGINT to a run of long fits: exit $rc, $(count "$tmp/int.db" "SELECT status, count(*) FROM items GROUP BY 1")"
