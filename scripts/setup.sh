@@ -1,38 +1,50 @@
 #!/usr/bin/env bash
-# Installs everything brdfit needs to build and test, from Debian packages.
+# Installs everything brdfit needs to build, test and package, from Debian packages (and
+# the glTF validator from npm). Checked on a fresh Debian 12 root (docs/releasing.md says
+# how): a tool a test uses and this script does not install is a bug of this script.
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends \
-  build-essential cmake pkg-config \
-  libceres-dev libnlopt-dev libopenimageio-dev openimageio-tools \
-  libcjson-dev libsqlite3-dev sqlite3 libcmocka-dev libxml2-dev jq libxml2-utils \
-  libcairo2-dev fonts-dejavu-core poppler-utils libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev man-db groff-base blender \
-  slurmctld slurmd slurm-client munge python3 >/dev/null
+fail() { echo "setup.sh: $*" >&2; exit 1; }
+
+# To build brdfit: the compilers, CMake and the libraries it links.
+build=(build-essential cmake pkg-config git
+  libceres-dev libnlopt-dev libopenimageio-dev libcjson-dev libsqlite3-dev libxml2-dev
+  libcairo2-dev fonts-dejavu-core libopenmpi-dev openmpi-bin libcmocka-dev)
+# To test it (tests only: brdfit needs none of these at run time):
+#  - jq, openimageio-tools (iinfo, oiiotool), libxml2-utils (xmllint), poppler-utils
+#    (pdftotext, pdftoppm, pdfinfo), sqlite3 (the shell): the command-line tests read
+#    brdfit's JSON, images, JUnit XML, PDF plots and batch databases with them;
+#  - man-db and groff-base: the generated man pages are rendered with man;
+#  - procps (pgrep): the batch tests find the fitting processes they kill;
+#  - python3 (Debian's /usr/bin/python3) parses the exported Blender script;
+#  - blender (3.4, headless Cycles on the CPU) renders exported materials; its glTF
+#    importer needs NumPy (python3-numpy; Debian's Blender runs Debian's Python);
+#  - slurmctld, slurmd, slurm-client and munge: a one-node Slurm cluster runs the examples
+#    of examples/slurm (tests/cli_batch_slurm.sh);
+#  - clang and libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh;
+#  - debhelper and lintian: scripts/package.sh builds and checks the Debian packages,
+#    which tests/package/package_test.sh installs with apt-get and removes again.
+tests=(jq openimageio-tools libxml2-utils poppler-utils sqlite3 man-db groff-base procps
+  python3 python3-numpy blender slurmctld slurmd slurm-client munge clang libclang-rt-14-dev
+  debhelper lintian)
+
+$SUDO apt-get update -qq || fail "apt-get update failed"
+if ! out=$($SUDO apt-get install -y -qq --no-install-recommends "${build[@]}" "${tests[@]}" 2>&1); then
+  echo "$out" | tail -n 20 >&2
+  fail "apt-get install failed (above: its last lines)"
+fi
+
 # Node.js and npm from Debian unless the machine has them already (a Node.js from
 # elsewhere, such as NodeSource's, bundles npm and conflicts with Debian's npm package).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null || fail "apt-get install nodejs npm failed"
 fi
 # The Khronos glTF validator (tests/cli_export.sh checks brdfit export's .gltf with it),
 # pinned, into the checkout's ignored tools/ folder: a test dependency only.
 root=$(cd "$(dirname "$0")/.." && pwd)
-npm install --no-audit --no-fund --silent --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 >/dev/null
-# libsqlite3-dev: brdfit batch's results database; sqlite3 (the shell): its tests and
-# docs/batch.md read the database with it.
-# jq, openimageio-tools (iinfo, oiiotool) and libxml2-utils (xmllint): the command-line
-# tests check brdfit's JSON output, images and JUnit XML with them. clang and
-# libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh.
-# man-db and groff-base: the tests render the generated man pages with man -l.
-# nodejs and npm: the glTF validator above; blender (3.4, run headless with Cycles on the
-# CPU): tests/cli_blender.sh renders exported materials. Tests only: brdfit needs neither.
-# libcairo2-dev draws the plots (PNG, SVG, PDF) with the DejaVu fonts (fonts-dejavu-core);
-# poppler-utils (pdftotext, pdftoppm): the tests read the plots' PDFs.
-# libopenmpi-dev and openmpi-bin (mpirun): brdfit batch under MPI (cmd/batch_mpi.c, built
-# only where CMake finds MPI) and tests/cli_batch_mpi.sh, which fails without mpirun.
-# slurmctld, slurmd, slurm-client and munge: tests/cli_batch_slurm.sh runs the Slurm
-# examples (examples/slurm) on a one-node cluster of its own. Tests only.
-# python3: tests/cli_export.sh parses the Blender script it exports.
+if ! out=$(npm install --no-audit --no-fund --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 2>&1); then
+  echo "$out" | tail -n 20 >&2
+  fail "npm install gltf-validator failed (above: npm's last lines)"
+fi

@@ -1,6 +1,6 @@
 # Sourced by the brdfit batch tests (cli_batch.sh, cli_batch_mpi.sh) after common_cli.sh:
 # the manifest they share and the helpers that read a results database.
-command -v sqlite3 >/dev/null || { echo "sqlite3 (the shell) is needed"; exit 1; }
+need sqlite3 sqlite3; need pgrep procps
 
 cat > "$tmp/lam.json" <<'JSON'
 {"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}

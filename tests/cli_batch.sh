@@ -10,6 +10,7 @@
 # its errors name their line.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq; need script bsdutils
 source "$(dirname "$0")/batch_common.sh"
 batch_manifest "" 3000
 cat > "$tmp/mm0.json" <<'JSON'
@@ -30,8 +31,7 @@ rows "$tmp/one.db" > "$tmp/one.rows"
 rows "$tmp/one.db" | cmp -s - "$tmp/one.rows" && ok || bad "rerun changed rows"
 
 # --- progress on a terminal: items done, failures, ETA ---------------------------------------
-# script(1) (util-linux, on every Debian system) gives the run a pseudo-terminal.
-command -v script >/dev/null || bad "script (util-linux) is needed for the terminal checks"
+# script(1) (bsdutils, on every Debian system) gives the run a pseudo-terminal.
 script -qec "'$BRDFIT' batch '$tmp/mm0.json' -o '$tmp/tty.db'" /dev/null > "$tmp/tty" 2>&1
 tr '\r' '\n' < "$tmp/tty" | grep -q "^brdfit batch: 4/4 items, 2 failed" && grep -q "ETA" "$tmp/tty" && ok ||
   bad "progress on a terminal: $(tr '\r' '\n' < "$tmp/tty" | tail -3)"

@@ -8,8 +8,8 @@
 # Fails without mpirun: scripts/setup.sh installs Open MPI.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need mpirun openmpi-bin; need pgrep procps; need script bsdutils; need timeout coreutils
 source "$(dirname "$0")/batch_common.sh"
-command -v mpirun >/dev/null || { bad "mpirun is needed (scripts/setup.sh installs openmpi-bin)"; finish; exit 1; }
 # As root (CI), on this machine only: the isolated launcher needs no ssh.
 MPIRUN=(mpirun --allow-run-as-root --oversubscribe --mca plm isolated)
 # In the sanitizer build, LeakSanitizer would report what Open MPI keeps until exit, much

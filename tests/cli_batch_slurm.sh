@@ -8,11 +8,9 @@
 # starts the jobs' processes.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need hostname hostname; need munged munge; need mungekey munge; need slurmctld slurmctld; need slurmd slurmd; need sbatch slurm-client; need srun slurm-client; need squeue slurm-client; need sinfo slurm-client
 source "$(dirname "$0")/batch_common.sh"
 examples=$(cd "$(dirname "$0")/../examples/slurm" && pwd)
-for tool in munged mungekey slurmctld slurmd sbatch srun squeue; do
-  command -v $tool >/dev/null || { bad "$tool is needed (scripts/setup.sh installs slurmctld, slurmd, slurm-client, munge)"; finish; exit 1; }
-done
 [ "$(id -u)" = 0 ] || { bad "slurmd must run as root to start jobs (CI runs as root)"; finish; exit 1; }
 
 # As in cli_batch_mpi.sh: LeakSanitizer would report Open MPI's exit-time memory in the
@@ -70,7 +68,7 @@ for _ in $(seq 100); do
   sleep 0.2
 done
 [ "$(sinfo -h -o %t 2>/dev/null)" = idle ] && ok ||
-  { bad "the node is not idle: $(sinfo 2>&1 | tail -2; tail -3 "$cluster/slurmctld.log" "$cluster/slurmd.log")"; finish; exit 1; }
+  { bad "the node is not idle: $(sinfo 2>&1 | tail -2; tail -n 3 "$cluster/slurmctld.log" "$cluster/slurmd.log")"; finish; exit 1; }
 
 # --- the manifest, and a one-process run for reference ----------------------------------------
 batch_manifest "" 3000

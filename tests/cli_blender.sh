@@ -7,8 +7,10 @@
 # Then glTF exports imported by Blender's own glTF importer, against brdfit's gltf model.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need blender blender; need jq jq
 here=$(cd "$(dirname "$0")" && pwd)
-command -v blender >/dev/null || { bad "blender is not installed (scripts/setup.sh installs it)"; finish; exit; }
+# Blender's glTF importer imports NumPy (Debian's Blender runs Debian's Python).
+need_python_module numpy python3-numpy
 size=128
 
 # compare NAME TOLERANCE: every region's mean, every channel, within TOLERANCE relative

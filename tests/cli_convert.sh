@@ -3,6 +3,7 @@
 # formats to CSV, column mapping, and bad input (one-line error, no output file).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 rows() { tail -n +2 "$1" | wc -l; }
 
 # CSV -> CSV gives back the same text (canonical numbers, weights kept).

@@ -8,6 +8,7 @@
 # select --rank.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 cat > "$tmp/lambert.json" <<'J'
 {"model": "lambert", "channels": 1, "params": {"rho_d": [0.5]}}

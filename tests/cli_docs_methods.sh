@@ -3,6 +3,7 @@
 # back end's section, so the page cannot fall behind the table.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 doc=$(dirname "$0")/../docs/methods.md
 "$BRDFIT" methods --json > "$tmp/m.json" || bad "brdfit methods --json failed"
 n=$(jq '.methods | length' "$tmp/m.json")

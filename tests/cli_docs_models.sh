@@ -4,6 +4,7 @@
 # page in backquotes, and the page's table of models lists exactly the registered ones.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 doc="$(dirname "$0")/../docs/models.md"
 [ -r "$doc" ] && ok || { bad "no $doc"; finish; exit; }

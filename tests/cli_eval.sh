@@ -3,6 +3,7 @@
 # (one-line error naming the file and problem, non-zero exit, no output file).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 # --- good input --------------------------------------------------------------
 if "$BRDFIT" eval --params "$DATA/lambert_rgb.json" --dirs "$DATA/dirs_small.csv" -o "$tmp/out.csv" 2>"$tmp/err"; then

@@ -5,6 +5,7 @@
 # output left behind, and byte-identical reruns.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq; need xmllint libxml2-utils; need node nodejs; need /usr/bin/python3 python3
 here=$(cd "$(dirname "$0")" && pwd)
 validator="$here/../tools/node_modules/gltf-validator"
 
@@ -40,7 +41,7 @@ len=$(jq -r '.buffers[0].uri' "$tmp/g.gltf" | sed 's/^data:[^,]*,//' | base64 -d
 [ "$len" = "$(jq '.buffers[0].byteLength' "$tmp/g.gltf")" ] && ok || bad "buffer decodes to $len bytes"
 
 # --- the Khronos validator ------------------------------------------------------------
-if [ -d "$validator" ] && command -v node >/dev/null; then
+if [ -d "$validator" ]; then
   for f in g; do
     node "$here/gltf_validate.js" "$validator" "$tmp/$f.gltf" > "$tmp/issues" 2>&1 && ok ||
       bad "glTF validator reports errors on $f.gltf: $(cat "$tmp/issues")"
@@ -62,7 +63,7 @@ for line in 'bsdf.distribution = "GGX"' \
             'bsdf.inputs["Clearcoat Roughness"].default_value = 0.1' '# Source model: blender_principled (exact)'; do
   grep -qxF -- "$line" "$tmp/b.py" && ok || bad "blender script lacks: $line"
 done
-python3 -c "import ast, sys; ast.parse(open(sys.argv[1]).read())" "$tmp/b.py" && ok || bad "blender script is not Python"
+/usr/bin/python3 -c "import ast, sys; ast.parse(open(sys.argv[1]).read())" "$tmp/b.py" && ok || bad "blender script is not Python"
 
 # --- conversion: the reported error is that of the converted parameters -----------------
 "$BRDFIT" export "$tmp/w.json" --to gltf -o "$tmp/w.gltf" 2>"$tmp/err" && ok || bad "convert walter: $(cat "$tmp/err")"

@@ -4,6 +4,7 @@
 # line on stderr, exit 2 or 1, no output file).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 cat > "$tmp/truth.json" <<'EOF'
 {"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,

@@ -5,6 +5,7 @@
 # pages and bash completion generated from the same tables (build/doc).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need man man-db; need groff groff-base
 doc=$(cd "$(dirname "$BRDFIT")/.." && pwd)/doc
 
 awk 'BEGIN { print "theta_i,phi_i,theta_o,phi_o,value"; for (i = 0; i < 400; i++)

@@ -5,6 +5,7 @@
 # back; JUnit and terminal output carry no control characters.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq; need xmllint libxml2-utils
 
 printf 'theta_i,phi_i,theta_o,phi_o\n0,0,10,180\n30,0,30,180\n' > "$tmp/dirs.csv"
 

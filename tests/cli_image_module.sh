@@ -4,6 +4,7 @@
 # the build tree); a missing or broken module is a one-line error, exit 1, and no file.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need ldd libc-bin
 P=$DATA/lambert_rgb.json
 MOD=libbrdfit-oiio.so
 

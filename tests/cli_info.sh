@@ -3,6 +3,7 @@
 # report, JSON output, and bad input (one-line error, exit 1 bad data, 2 bad usage).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 # Five samples: one on the horizon, one negative, one with a zero.
 cat > "$tmp/s.csv" <<'CSV'

@@ -5,6 +5,7 @@
 # with 2% noise).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 cat > "$tmp/gold.json" <<'JSON'
 {"model": "microfacet", "options": {"D": "ggx", "G": "smith_ggx", "F": "conductor"}, "channels": 3,

@@ -15,6 +15,7 @@
 #   temporary, for a file, a PNG and an HTML report folder.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need unshare util-linux; need setpriv util-linux; need mount mount; need timeout coreutils
 BRDFIT=$(cd "$(dirname "$BRDFIT")" && pwd)/$(basename "$BRDFIT") # the checks run from $tmp
 HERE=$(cd "$(dirname "$0")" && pwd)
 cd "$tmp" || exit 1

@@ -6,9 +6,7 @@
 # one y range; formats a plot cannot take are refused with no file left.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
-for t in pdftotext pdftoppm pdfinfo iinfo xmllint; do
-  command -v $t >/dev/null || { bad "$t is missing (scripts/setup.sh installs it)"; finish; exit; }
-done
+need iinfo openimageio-tools; need pdftotext poppler-utils; need pdftoppm poppler-utils; need pdfinfo poppler-utils; need xmllint libxml2-utils
 MINUS=$'\xe2\x88\x92'
 
 # A grey Lambert surface: f = 0.5/pi = 0.159 everywhere, so the y axis is a narrow

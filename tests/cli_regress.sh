@@ -5,6 +5,7 @@
 # baselines (exit 2, file:line on stderr, no JUnit file).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq; need xmllint libxml2-utils
 
 BRDFIT=$(cd "$(dirname "$BRDFIT")" && pwd)/$(basename "$BRDFIT") # the example runs from $tmp
 EXAMPLE=$(cd "$DATA/../../examples/regress" && pwd)/baseline.json

@@ -4,10 +4,8 @@
 # exit 2 or 1, and no image file.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need iinfo openimageio-tools; need oiiotool openimageio-tools
 P=$DATA/lambert_rgb.json
-for t in iinfo oiiotool; do # openimageio-tools (scripts/setup.sh)
-  command -v $t >/dev/null || { bad "$t is missing (scripts/setup.sh installs openimageio-tools)"; finish; exit 1; }
-done
 
 # --- good input: the image exists, has the size asked for, and nothing else is left ---
 render_ok() { # name, expected "W x H", args...

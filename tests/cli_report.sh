@@ -9,6 +9,7 @@
 # replaced.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need iinfo openimageio-tools; need oiiotool openimageio-tools; need pdftotext poppler-utils; need xmllint libxml2-utils
 
 cat > "$tmp/lam.json" <<'JSON'
 {"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}

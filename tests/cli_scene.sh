@@ -4,6 +4,7 @@
 # scene; a bad scene file is one line naming file:line, exit 1, and no output file.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 EXAMPLES=$(cd "$DATA/../../examples" && pwd)
 CAYMAN=$EXAMPLES/cornell/cayman.brdf
 SHOT=$EXAMPLES/scenes/product_shot.json

@@ -6,6 +6,7 @@
 # no output files).
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 
 cat > "$tmp/lam.json" <<'JSON'
 {"model": "lambert", "channels": 3, "params": {"rho_d": [0.6, 0.4, 0.2]}}

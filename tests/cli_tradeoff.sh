@@ -5,6 +5,7 @@
 # plot's size; bad usage: exit 2, one line on stderr, no output file.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq; need iinfo openimageio-tools
 
 cat > "$tmp/wal.json" <<'JSON'
 {"model": "walter", "options": {"fresnel": "schlick"}, "channels": 3,

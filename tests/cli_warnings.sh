@@ -5,6 +5,7 @@
 # same warnings in compare's text, JSON and CSV and in a clean fit's absence of them.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
+need jq jq
 EX="$DATA/../../examples"
 
 if "$BRDFIT" fit "$EX/cornell/garnet_red.brdf" -m disney -o "$tmp/g.json" >"$tmp/out" 2>&1; then

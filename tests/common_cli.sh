@@ -16,3 +16,19 @@ finish() {
     echo "$pass passed, $fails failed"
     [ "$fails" = 0 ]
 }
+# need TOOL PACKAGE: a program the test runs, and the Debian package that has it
+# (scripts/setup.sh installs them all). When it is missing the test fails at once with one
+# line naming the package: a check is never skipped for want of a tool.
+need() {
+    command -v "$1" >/dev/null && return 0
+    echo "FAIL: $1 is missing: install the Debian package $2 (scripts/setup.sh does)"
+    exit 1
+}
+# need_python_module MODULE PACKAGE: a module of Debian's Python (/usr/bin/python3, which
+# Debian's Blender runs too; python3 on PATH may be another interpreter).
+need_python_module() {
+    need /usr/bin/python3 python3
+    /usr/bin/python3 -c "import $1" 2>/dev/null && return 0
+    echo "FAIL: Debian's Python has no module $1: install the Debian package $2 (scripts/setup.sh does)"
+    exit 1
+}

@@ -3,10 +3,12 @@
 # installed tree's contents, a C program (consumer.c, copied out of the source tree)
 # built with pkg-config (shared and static) and with find_package(brdfit), and the
 # installed commands, the image module found from the installed library and commands.
-# Arguments: the build directory, the source directory, cmake, the C compiler, extra
-# C/link flags for the consumers (the sanitizer build's).
+# Arguments: the build directory, the source directory, cmake, the C compiler, the
+# project version and the soname's number (cmake/version.cmake), extra C/link flags for
+# the consumers (the sanitizer build's).
 set -u
-build=$1 src=$2 cmake=$3 cc=$4 flags=${5:-}
+build=$1 src=$2 cmake=$3 cc=$4 version=$5 so=$6 flags=${7:-}
+major=${version%%.*}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -30,15 +32,15 @@ libdir=$(dirname "$(dirname "$pc")")
 for f in bin/brdfit bin/brdfit-synth include/brdfit/version.h include/brdfit/fit.h; do
   [ -f "$prefix/$f" ] && ok || bad "$f not installed"
 done
-for f in libbrdfit.a libbrdfit.so libbrdfit.so.0 brdfit/libbrdfit-oiio.so cmake/brdfit/brdfitConfig.cmake \
+for f in libbrdfit.a libbrdfit.so libbrdfit.so.$so brdfit/libbrdfit-oiio.so cmake/brdfit/brdfitConfig.cmake \
          cmake/brdfit/brdfitConfigVersion.cmake cmake/brdfit/brdfitTargets.cmake; do
   [ -e "$libdir/$f" ] && ok || bad "$libdir/$f not installed"
 done
 for h in "$src"/lib/include/brdfit/*.h; do
   cmp -s "$h" "$prefix/include/brdfit/$(basename "$h")" && ok || bad "header $(basename "$h") not installed"
 done
-readelf -d "$libdir/libbrdfit.so" | grep -q 'SONAME.*\[libbrdfit\.so\.0\]' && ok || bad "SONAME is not libbrdfit.so.0"
-[ "$(readlink "$libdir/libbrdfit.so.0")" = libbrdfit.so.0.1.0 ] && ok || bad "libbrdfit.so.0 -> $(readlink "$libdir/libbrdfit.so.0")"
+readelf -d "$libdir/libbrdfit.so" | grep -q "SONAME.*\[libbrdfit\.so\.$so\]" && ok || bad "SONAME is not libbrdfit.so.$so"
+[ "$(readlink "$libdir/libbrdfit.so.$so")" = "libbrdfit.so.$version" ] && ok || bad "libbrdfit.so.$so -> $(readlink "$libdir/libbrdfit.so.$so")"
 # C headers only: each compiles alone as C11, and none includes a back end's header.
 [ -z "$(find "$prefix/include" -type f ! -name '*.h')" ] && ok || bad "non-C headers: $(find "$prefix/include" -type f ! -name '*.h')"
 if grep -lE '#include *<(cjson|nlopt|ceres|libxml|Eigen|glog|OpenImageIO)' "$prefix"/include/brdfit/*.h; then
@@ -64,7 +66,7 @@ mkdir "$tmp/consumer"
 cp "$src/tests/install/consumer.c" "$src/tests/install/CMakeLists.txt" "$tmp/consumer/"
 cd "$tmp/consumer" || exit 1
 expect_fit() { # $1: what, $2: output file
-  grep -qx 'rho_d 0.300000' "$2" && grep -q '^version 0\.1\.0.* (headers 0\.1\.0, 0\.1\.0)$' "$2" && ok ||
+  grep -qx 'rho_d 0.300000' "$2" && grep -qE "^version ${version//./\\.}( \(git [^)]+\))? \(headers ${version//./\\.}, ${version//./\\.}\)\$" "$2" && ok ||
     bad "$1: unexpected output: $(cat "$2")"
 }
 export PKG_CONFIG_PATH=$libdir/pkgconfig
@@ -76,9 +78,9 @@ if "$cc" $flags consumer.c -o app_pc $(pkg-config --cflags --libs brdfit) -lm \
   ./app_pc "$tmp/pc.png" >"$tmp/pc.out" 2>&1 && expect_fit "pkg-config" "$tmp/pc.out" ||
     bad "pkg-config consumer failed: $(cat "$tmp/pc.out")"
   [ -s "$tmp/pc.png" ] && ok || bad "the pkg-config consumer wrote no PNG"
-  used=$(ldd ./app_pc | sed -n 's/^[[:space:]]*libbrdfit\.so\.0 => \([^ ]*\) .*/\1/p')
-  [ -n "$used" ] && [ "$(realpath "$used")" = "$(realpath "$libdir/libbrdfit.so.0")" ] && ok ||
-    bad "app_pc uses '$used', not $libdir/libbrdfit.so.0"
+  used=$(ldd ./app_pc | sed -n "s/^[[:space:]]*libbrdfit\.so\.$so => \([^ ]*\) .*/\1/p")
+  [ -n "$used" ] && [ "$(realpath "$used")" = "$(realpath "$libdir/libbrdfit.so.$so")" ] && ok ||
+    bad "app_pc uses '$used', not $libdir/libbrdfit.so.$so"
   # The module beside the installed library, even with the build tree's copy present.
   [ "$(module_loaded ./app_pc "$tmp/pc2.png")" = "$libdir/brdfit/libbrdfit-oiio.so" ] && ok ||
     bad "app_pc loaded the image module from '$(module_loaded ./app_pc "$tmp/pc2.png")'"
@@ -108,13 +110,13 @@ else
   bad "find_package build: $(tail -n 20 "$tmp/cmake.log")"
 fi
 # A newer major version is not offered as compatible (SameMajorVersion).
-printf 'cmake_minimum_required(VERSION 3.18)\nproject(v LANGUAGES C)\nfind_package(brdfit 1.0 REQUIRED)\n' >"$tmp/v.txt"
+printf 'cmake_minimum_required(VERSION 3.18)\nproject(v LANGUAGES C)\nfind_package(brdfit %s.0 REQUIRED)\n' $((major + 1)) >"$tmp/v.txt"
 mkdir v && cp "$tmp/v.txt" v/CMakeLists.txt
-"$cmake" -S v -B v/build -DCMAKE_PREFIX_PATH="$prefix" >/dev/null 2>&1 && bad "find_package(brdfit 1.0) accepted 0.1.0"
+"$cmake" -S v -B v/build -DCMAKE_PREFIX_PATH="$prefix" >/dev/null 2>&1 && bad "find_package(brdfit $((major + 1)).0) accepted $version"
 
 # ---- the installed commands ------------------------------------------------------------
 "$prefix/bin/brdfit" --help >"$tmp/help" 2>&1 && grep -q usage "$tmp/help" && ok || bad "brdfit --help: $(head -n 3 "$tmp/help")"
-out=$("$prefix/bin/brdfit-synth" --version) && [[ "$out" =~ ^brdfit-synth\ 0\.1\.0( \(git [^\)]+\))?$ ]] && ok ||
+out=$("$prefix/bin/brdfit-synth" --version) && [[ "$out" =~ ^brdfit-synth\ ${version//./\\.}( \(git [^\)]+\))?$ ]] && ok ||
   bad "brdfit-synth --version: '$out'"
 "$prefix/bin/brdfit" render --params "$src/examples/walter_rgb.json" -o "$tmp/x.png" >"$tmp/render.out" 2>&1 &&
   [ -s "$tmp/x.png" ] && ok || bad "installed brdfit render: $(cat "$tmp/render.out")"
