@@ -85,6 +85,10 @@ static void summary(FILE *out, const bf_fit_result *r)
     fprintf(out, "  rmse %.6g  log rmse %.6g  k %d  %s/%s  %d iterations  %.3f s  (%d start%s", r->metrics.rmse,
             r->metrics.rmse_log, r->metrics.k, s->backend, s->algorithm, s->iterations, r->seconds, r->starts,
             r->starts == 1 ? "" : "s");
+    if (r->starts > 1)
+        fprintf(out, ", %d at the best", r->starts_at_best);
+    if (r->candidates > 0)
+        fprintf(out, "; screened from %d candidates on %zu samples", r->candidates, r->screen.samples);
     if (r->presolve.samples > 0)
         fprintf(out, "; presolved on %zu samples in %d iterations", r->presolve.samples, r->presolve.iterations);
     fputs(")\n", out);

@@ -46,7 +46,7 @@ static const cli_option own[] = {
                               "(LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
                               "--algorithm setting if given, else ceres,LD_LBFGS", NULL},
     {"--residuals", 0, "R,...", "residual forms (default: --residual, log)", NULL},
-    {"--starts-list", 0, "N,...", "multistart counts (default: --starts, 1)", NULL},
+    {"--starts-list", 0, "N|auto,...", "start counts (brdfit fit --starts; auto: its automatic\ncount; default: --starts, or auto)", NULL},
     {"--test-fraction", 0, "F", "held-out share of the samples, seeded random (default 0.2)", NULL},
     {"--cost", 0, "work|seconds", "what a setting costs: sample evaluations (default; the same on\n"
                                   "every machine) or wall time (varies from run to run)", NULL},
@@ -140,7 +140,10 @@ static void fit_args(const bf_tradeoff_row *r, char *buf, size_t size)
         snprintf(mbuf, sizeof mbuf, "--backend %s", bf_backend_name(b));
     else
         snprintf(mbuf, sizeof mbuf, "--backend %s --algorithm %s", bf_backend_name(b), m->name);
-    snprintf(buf, size, "%s%s --residual %s --starts %d", sub, mbuf, bf_residual_name(r->residual), r->starts);
+    char starts[32] = ""; /* automatic starts (0) are brdfit fit's default: no option */
+    if (r->starts > 0)
+        snprintf(starts, sizeof starts, " --starts %d", r->starts);
+    snprintf(buf, size, "%s%s --residual %s%s", sub, mbuf, bf_residual_name(r->residual), starts);
 }
 
 /* Appends " ARG" to buf, in single quotes when the shell would split or expand it. */
@@ -175,7 +178,10 @@ static void print_table(FILE *out, const bf_tradeoff *t)
             snprintf(n, sizeof n, "all");
         else
             snprintf(n, sizeof n, "%zu", r->samples);
-        fprintf(out, "  %4d %8s %-14s %-9s %6d ", i + 1, n, r->method, bf_residual_name(r->residual), r->starts);
+        char st[16] = "auto";
+        if (r->starts > 0)
+            snprintf(st, sizeof st, "%d", r->starts);
+        fprintf(out, "  %4d %8s %-14s %-9s %6s ", i + 1, n, r->method, bf_residual_name(r->residual), st);
         if (!r->ran) {
             fprintf(out, "error: %s\n", r->message);
             continue;
@@ -364,7 +370,10 @@ static int split_lists(tradeoff_run *r)
 {
     const bf_fit_options *fo = &r->fopt.fit;
     char starts_default[16], method[64];
-    snprintf(starts_default, sizeof starts_default, "%d", fo->starts);
+    if (fo->starts > 0)
+        snprintf(starts_default, sizeof starts_default, "%d", fo->starts);
+    else
+        snprintf(starts_default, sizeof starts_default, "auto");
     const char *lists[NLISTS];
     memcpy(lists, r->lists, sizeof lists);
     if (!lists[L_METHODS])
@@ -415,8 +424,10 @@ static int parse_lists(tradeoff_run *r)
             return -1;
         }
     for (int k = 0; k < r->nitems[L_STARTS]; k++) {
-        if (!parse_count(r->items[L_STARTS][k], 100000, &n)) {
-            fprintf(stderr, "%s: --starts-list: '%s' is not a positive integer\n", cmd, r->items[L_STARTS][k]);
+        if (!strcmp(r->items[L_STARTS][k], "auto")) {
+            n = 0; /* brdfit fit's automatic starts */
+        } else if (!parse_count(r->items[L_STARTS][k], 100000, &n)) {
+            fprintf(stderr, "%s: --starts-list: '%s' is not a positive integer or auto\n", cmd, r->items[L_STARTS][k]);
             return -1;
         }
         r->starts[k] = (int)n;

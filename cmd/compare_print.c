@@ -16,16 +16,20 @@ static void print_material(FILE *out, const bf_compare *c, const bf_compare_mate
     fprintf(out, "  %-5s %-28s %4s %12s %13s %13s %13s %11s%s  %s\n", "rank", "model", "k", error_name(c), "AIC",
             "AICc", "BIC", "work M", c->timing ? "   time s" : "", "pareto");
     /* Ranked fits by rank (ties in model order), then the rest in model order. */
+    int unsure = 0;
     for (int rank = 1; rank <= c->nmodels; rank++)
         for (int j = 0; j < c->nmodels; j++) {
             const bf_compare_fit *f = &m->fits[j];
             if (f->rank != rank)
                 continue;
-            char secs[32] = "";
+            char secs[32] = "", error[40];
             if (c->timing)
                 snprintf(secs, sizeof secs, " %8.3f", f->seconds);
-            fprintf(out, "  %-5d %-28s %4d %12.6g %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
-                    f->metrics.k, f->error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
+            /* '?': the search reached this optimum from one start only (footnote). */
+            snprintf(error, sizeof error, "%.6g%s", f->error, bf_fit_result_unsure(f->result) ? "?" : "");
+            unsure += bf_fit_result_unsure(f->result);
+            fprintf(out, "  %-5d %-28s %4d %12s %13.6g %13.6g %13.6g %11.4g%s  %s%s%s\n", f->rank, c->models[j],
+                    f->metrics.k, error, f->metrics.aic, f->metrics.aicc, f->metrics.bic, f->work / 1e6, secs,
                     f->pareto_k ? "k" : "-", f->pareto_work ? "w" : "-", m->simplest == j ? "  <- simplest" : "");
         }
     for (int j = 0; j < c->nmodels; j++)
@@ -37,6 +41,8 @@ static void print_material(FILE *out, const bf_compare *c, const bf_compare_mate
                 100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);
     else
         fprintf(out, "  no model fitted\n");
+    if (unsure)
+        fprintf(out, "  ?: the best optimum was reached from one start only: a better one may have been missed\n");
     for (int j = 0; j < c->nmodels; j++) {
         const bf_fit_result *r = m->fits[j].result;
         for (int w = 0; r && (m->fits[j].state == BF_CMP_OK || m->fits[j].state == BF_CMP_FAILED) && w < r->nwarnings;

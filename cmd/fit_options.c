@@ -28,7 +28,11 @@ static const cli_option optimizer[] = {
                                "brdfit methods lists them with what each can do", "method"},
     {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "local_method"},
     {"--max-iterations", 0, "N", "(default: ceres 100 iterations, nlopt 2000 evaluations)", NULL},
-    {"--starts", 0, "N", "the data-driven start and N-1 seeded random ones (default 1)", NULL},
+    {"--starts", 0, "N", "starts solved to convergence, the data-driven one first (default:\n"
+                         "automatic, " STR(BF_FIT_STARTS) " to " STR(BF_FIT_STARTS_MAX) " by the data's size; 1: it alone)", NULL},
+    {"--screen", 0, "M", "random candidates whose cost on a small subsample chooses the\n"
+                         "other starts, solved there first (default " STR(BF_FIT_SCREEN) "; 0: the other starts\n"
+                         "are drawn at random and solved on all samples)", NULL},
     {"--presolve", 0, "N|off",
      "solve the starts on a seeded stratified subsample of N samples\nfirst (default: " STR(
          BF_FIT_PRESOLVE_SAMPLES) " for data of " STR(BF_FIT_PRESOLVE_MIN) " samples and more)",
@@ -43,9 +47,10 @@ static const cli_option accuracy[] = {
     {"--accuracy", 0, "fast|balanced|best",
      "option bundles (explicit options win, in any order):\n"
      "fast: --subsample " STR(BF_ACCURACY_FAST_SUBSAMPLE) " --backend ceres --starts 1\n"
-     "balanced: the defaults (all samples, --backend ceres, --starts 1)\n"
-     "best: all samples, --backend ceres --starts " STR(BF_ACCURACY_BEST_STARTS) " --max-iterations " STR(
-         BF_ACCURACY_BEST_ITERATIONS),
+     "balanced: the defaults (all samples, --backend ceres, automatic starts,\n"
+     "--screen " STR(BF_FIT_SCREEN) ")\n"
+     "best: all samples, --backend ceres --starts " STR(BF_ACCURACY_BEST_STARTS) " --screen " STR(
+         BF_ACCURACY_BEST_SCREEN) "\n--max-iterations " STR(BF_ACCURACY_BEST_ITERATIONS),
      NULL},
 };
 const cli_group fit_options_accuracy = CLI_GROUP("accuracy", accuracy);
@@ -83,7 +88,7 @@ static long int_limit(const char *opt)
 {
     if (!strcmp(opt, "--threads"))
         return FIT_OPTIONS_MAX_THREADS;
-    if (!strcmp(opt, "--starts"))
+    if (!strcmp(opt, "--starts") || !strcmp(opt, "--screen"))
         return FIT_OPTIONS_MAX_STARTS;
     return 10000000; /* --max-iterations */
 }
@@ -109,6 +114,7 @@ static unsigned given_bit(const char *a)
            : !strcmp(a, "--backend")        ? BF_FIT_GIVEN_BACKEND
            : !strcmp(a, "--algorithm")      ? BF_FIT_GIVEN_ALGORITHM
            : !strcmp(a, "--starts")         ? BF_FIT_GIVEN_STARTS
+           : !strcmp(a, "--screen")         ? BF_FIT_GIVEN_SCREEN
            : !strcmp(a, "--max-iterations") ? BF_FIT_GIVEN_MAX_ITERATIONS
                                             : 0u;
 }
@@ -131,7 +137,7 @@ static int parse_override(fit_options *o, const char *a, const char *v, const ch
     return 1;
 }
 
-/* The counts: --presolve N|off, --max-iterations, --starts, --threads. */
+/* The counts: --presolve N|off, --max-iterations, --starts, --screen, --threads. */
 static int parse_integer(fit_options *o, const char *a, const char *v, const char *cmd)
 {
     long n;
@@ -147,14 +153,17 @@ static int parse_integer(fit_options *o, const char *a, const char *v, const cha
         o->fit.presolve = n;
         return 1;
     }
-    if (!args_int(v, 1, int_limit(a), &n)) {
-        fprintf(stderr, "%s: %s needs an integer from 1 to %ld, got '%s'\n", cmd, a, int_limit(a), v);
+    const long least = strcmp(a, "--screen") ? 1 : 0;
+    if (!args_int(v, least, int_limit(a), &n)) {
+        fprintf(stderr, "%s: %s needs an integer from %ld to %ld, got '%s'\n", cmd, a, least, int_limit(a), v);
         return -1;
     }
     if (!strcmp(a, "--max-iterations"))
         o->fit.solver.max_iterations = (int)n;
     else if (!strcmp(a, "--starts"))
         o->fit.starts = (int)n;
+    else if (!strcmp(a, "--screen"))
+        o->fit.screen = (int)n;
     else /* --threads */
         o->fit.solver.threads = (int)n;
     return 1;

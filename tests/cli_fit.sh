@@ -22,7 +22,8 @@ if "$BRDFIT" fit "$tmp/w.csv" -m walter --threads 2 -o "$tmp/r.json" >"$tmp/out"
          and (.brdfit_version | startswith("0."))
          and .ok == true and .samples == 3000 and .residual == "log" and .metrics.n == 9000 and .metrics.k == 8
          and (.params.alpha - 0.12 | fabs) < 1e-8 and (.params.rho_d[0] - 0.6 | fabs) < 1e-8
-         and .optimizer.backend == "ceres" and .optimizer.threads == 2 and .optimizer.starts == 1
+         and .optimizer.backend == "ceres" and .optimizer.threads == 2 and .optimizer.starts >= 8
+         and .optimizer.starts_at_best >= 2 and .optimizer.candidates >= 64 and .optimizer.screen.samples == 1024
          and .optimizer.seed == 0 and (.fixed | length) == 0 and (.stderr.alpha | type) == "number"
          and .data == $d and (.metrics | has("rmse_cos") and has("rmse_rel") and has("max_err") and has("aic") and has("bic"))' \
     --arg d "$tmp/w.csv" "$tmp/r.json" >/dev/null && ok || bad "result JSON: $(cat "$tmp/r.json")"
@@ -120,9 +121,12 @@ acc() { # ARGS... -> "samples starts backend" of the result
     jq -r '"\(.samples) \(.optimizer.starts) \(.optimizer.backend)"' "$tmp/acc.json"
 }
 [ "$(acc --accuracy fast)" = "16000 1 ceres" ] && ok || bad "fast: $(acc --accuracy fast) $(cat "$tmp/err")"
-[ "$(acc --accuracy balanced)" = "20000 1 ceres" ] && ok || bad "balanced: $(acc --accuracy balanced)"
-[ "$(acc --accuracy best)" = "20000 4 ceres" ] && ok || bad "best: $(acc --accuracy best)"
-[ "$(acc)" = "20000 1 ceres" ] && ok || bad "no preset: $(acc)"
+# Automatic starts: 8 on a screening set of 1024 samples (docs/fitting.md).
+[ "$(acc --accuracy balanced)" = "20000 8 ceres" ] && ok || bad "balanced: $(acc --accuracy balanced)"
+[ "$(acc --accuracy best)" = "20000 64 ceres" ] && ok || bad "best: $(acc --accuracy best)"
+[ "$(acc)" = "20000 8 ceres" ] && ok || bad "no preset: $(acc)"
+[ "$(acc --starts 3 --screen 0)" = "20000 3 ceres" ] && ok || bad "plain multistart: $(acc --starts 3 --screen 0)"
+jq -e '.optimizer | has("screen") or has("candidates") | not' "$tmp/acc.json" >/dev/null && ok || bad "--screen 0 still screened"
 [ "$(acc --subsample 5000 --accuracy fast --starts 2)" = "5000 2 ceres" ] && ok || bad "explicit before: $(acc --subsample 5000 --accuracy fast --starts 2)"
 [ "$(acc --accuracy best --starts 3 --backend nlopt)" = "20000 3 nlopt" ] && ok || bad "explicit after: $(acc --accuracy best --starts 3 --backend nlopt)"
 [ "$(acc --accuracy fast --subsample all)" = "20000 1 ceres" ] && ok || bad "--subsample all keeps all: $(acc --accuracy fast --subsample all)"

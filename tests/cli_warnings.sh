@@ -9,10 +9,11 @@ need jq jq
 EX="$DATA/../../examples"
 
 if "$BRDFIT" fit "$EX/cornell/garnet_red.brdf" -m disney -o "$tmp/g.json" >"$tmp/out" 2>&1; then
+  # One line per parameter and problem; the spectral base colour's 31 channels in one.
   jq -e '(.warnings | length) >= 6
-    and (.warnings | index("clearcoat = 0 is at its lower bound 0")) != null
-    and (.warnings | index("clearcoat_gloss = 1 is at its upper bound 1")) != null
-    and any(.warnings[]; startswith("base_color is not determined by the data in 31 of 31 channels"))
+    and (.warnings | index("clearcoat = 1 is at its upper bound 1")) != null
+    and any(.warnings[]; test("^base_color is not determined by the data in [0-9]+ of 31 channels"))
+    and ([.warnings[] | select(startswith("base_color"))] | length) <= 2
     and any(.warnings[]; test("^sheen = [0-9.]+ is not determined by the data"))' "$tmp/g.json" >/dev/null \
     && ok || bad "garnet disney warnings: $(jq -c .warnings "$tmp/g.json")"
   [ "$(grep -c '^  warning: ' "$tmp/out")" = "$(jq '.warnings | length' "$tmp/g.json")" ] && ok ||
@@ -26,15 +27,15 @@ fi
 if "$BRDFIT" compare "$tmp/w.binary" -m ward_iso,walter --quiet --json "$tmp/c.json" --csv "$tmp/c.csv" \
      >"$tmp/out" 2>&1; then
   jq -e '.materials[0].fits[0].warnings as $w
-    | ($w | index("rho_d[1] = 0 is at its lower bound 0")) != null
-    and ($w | index("rho_d[2] = 0 is at its lower bound 0")) != null
+    | ($w | index("rho_d: channels 1, 2 at the lower bound 0")) != null
+    and ([$w[] | select(startswith("rho_d"))] | length) == 1
     and (.materials[0].fits[0].params.rho_d[0] - 0.23 | fabs) < 0.02
     and ([.materials[0].fits[1].warnings[] | select(test("bound|determined|correlated"))] | length) == 0' \
     "$tmp/c.json" >/dev/null && ok || bad "MERL ward_iso warnings: $(jq -c '[.materials[0].fits[].warnings]' "$tmp/c.json")"
-  grep -q '^  warning: ward_iso: rho_d\[1\] = 0 is at its lower bound 0$' "$tmp/out" && ok ||
+  grep -q '^  warning: ward_iso: rho_d: channels 1, 2 at the lower bound 0$' "$tmp/out" && ok ||
     bad "compare text warnings: $(cat "$tmp/out")"
   # CSV: the warnings column, one field; parameter columns per channel
-  awk -F'"' 'NR > 1 && /^[^,]*,ward_iso,/ { found = index($0, "rho_d[1] = 0 is at its lower bound 0; rho_d[2] = 0") > 0 }
+  awk -F'"' 'NR > 1 && /^[^,]*,ward_iso,/ { found = index($0, ",\"rho_d: channels 1, 2 at the lower bound 0\",") > 0 }
              END { exit !found }' "$tmp/c.csv" && ok || bad "compare CSV warnings: $(cat "$tmp/c.csv")"
   head -1 "$tmp/c.csv" | grep -q ',rho_d\[0\],rho_d\[1\],rho_d\[2\],' && head -1 "$tmp/c.csv" | grep -q ',alpha' && ok ||
     bad "compare CSV parameter columns: $(head -1 "$tmp/c.csv")"

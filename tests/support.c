@@ -2,6 +2,9 @@
 
 #include "io/read_binary.h"
 
+#include "brdfit/formats.h"
+#include "brdfit/prep.h"
+
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -374,6 +377,29 @@ void ts_fit_defaults(bf_fit_options *o)
     /* The tests' own choices over the library's defaults. */
     o->objective.residual = BF_RESIDUAL_LINEAR;
     o->solver.threads = 0;
+    /* The data-driven start alone: the tests of models, objectives and diagnostics see one
+     * solve from a known start; the search for the optimum has tests of its own
+     * (test_search.c, tests/cli_optimum.sh). */
+    o->starts = 1;
+}
+
+bf_samples *ts_read_cornell_rgb(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_EXAMPLES, name);
+    bf_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    bf_samples *s = NULL;
+    bf_error err;
+    if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
+        fail_msg("%s", err.msg);
+    bf_prep p;
+    memset(&p, 0, sizeof p);
+    p.color = BF_COLOR_SRGB;
+    if (bf_samples_prep(s, &p, NULL, &err) != BF_OK)
+        fail_msg("%s: %s", name, err.msg);
+    assert_int_equal(s->channels, 3);
+    return s;
 }
 
 void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)

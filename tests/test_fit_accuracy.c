@@ -24,7 +24,8 @@ static void test_defaults(void **state)
     assert_int_equal(o.solver.backend, BF_BACKEND_CERES);
     assert_null(o.solver.algorithm);
     assert_int_equal(o.solver.max_iterations, 0);
-    assert_int_equal(o.starts, 1);
+    assert_int_equal(o.starts, 0); /* automatic: the screened search (search.c) */
+    assert_int_equal(o.screen, BF_FIT_SCREEN);
     assert_true(o.seed == 0);
     assert_null(o.start);
     assert_int_equal(o.presolve, 0);
@@ -71,21 +72,30 @@ static void test_presets_on_defaults(void **state)
     bf_fit_options_apply_accuracy(&o, BF_ACCURACY_FAST, 0, &sub);
     assert_int_equal(sub, BF_ACCURACY_FAST_SUBSAMPLE);
     assert_int_equal(o.solver.backend, BF_BACKEND_CERES);
-    assert_int_equal(o.starts, 1);
+    assert_int_equal(o.starts, 1); /* the data-driven start alone, unscreened */
+    assert_int_equal(o.screen, 0);
     assert_int_equal(o.solver.max_iterations, 0);
 
     sub = 0;
     bf_fit_options_init(&o);
     bf_fit_options_apply_accuracy(&o, BF_ACCURACY_BALANCED, 0, &sub);
     assert_int_equal(sub, 0);
-    assert_int_equal(o.starts, 1);
+    assert_int_equal(o.starts, 0);
+    assert_int_equal(o.screen, BF_FIT_SCREEN);
     assert_int_equal(o.solver.max_iterations, 0);
 
     bf_fit_options_init(&o);
     bf_fit_options_apply_accuracy(&o, BF_ACCURACY_BEST, 0, &sub);
     assert_int_equal(sub, 0);
     assert_int_equal(o.starts, BF_ACCURACY_BEST_STARTS);
+    assert_int_equal(o.screen, BF_ACCURACY_BEST_SCREEN);
     assert_int_equal(o.solver.max_iterations, BF_ACCURACY_BEST_ITERATIONS);
+
+    /* An explicit --screen stays. */
+    bf_fit_options_init(&o);
+    o.screen = 5;
+    bf_fit_options_apply_accuracy(&o, BF_ACCURACY_FAST, BF_FIT_GIVEN_SCREEN, &sub);
+    assert_int_equal(o.screen, 5);
 
     /* No preset changes nothing, and a NULL subsample is allowed. */
     bf_fit_options before, after;

@@ -29,25 +29,6 @@
 
 static int verbose(void) { return getenv("BRDFIT_TEST_VERBOSE") != NULL; }
 
-static bf_samples *read_cornell(const char *name)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_EXAMPLES, name);
-    bf_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    bf_samples *s = NULL;
-    bf_error err;
-    if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
-        fail_msg("%s", err.msg);
-    bf_prep p;
-    memset(&p, 0, sizeof p);
-    p.color = BF_COLOR_SRGB;
-    if (bf_samples_prep(s, &p, NULL, &err) != BF_OK)
-        fail_msg("%s: %s", name, err.msg);
-    assert_int_equal(s->channels, 3);
-    return s;
-}
-
 static bf_samples *read_ptfe(void)
 {
     char path[512];
@@ -145,7 +126,7 @@ static void fit_all(bf_samples *s, const char *what)
 static void test_cayman(void **state)
 {
     (void)state;
-    bf_samples *s = read_cornell("cayman.brdf");
+    bf_samples *s = ts_read_cornell_rgb("cayman.brdf");
     fit_all(s, "cayman");
     bf_samples_free(s);
 }
@@ -153,7 +134,7 @@ static void test_cayman(void **state)
 static void test_garnet_red(void **state)
 {
     (void)state;
-    bf_samples *s = read_cornell("garnet_red.brdf");
+    bf_samples *s = ts_read_cornell_rgb("garnet_red.brdf");
     fit_all(s, "garnet_red");
     bf_samples_free(s);
 }

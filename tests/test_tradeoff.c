@@ -81,12 +81,15 @@ static void test_grid_size_and_order(void **state)
     assert_int_equal(t.rows[0].samples, 1000);
     bf_tradeoff_clear(&t);
 
-    /* Empty lists and zero starts are refused. */
+    /* Empty lists and negative starts are refused; 0 is brdfit fit's automatic count. */
     assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 0, big, 1, methods2, 1, res, 1, starts, &err),
                      BF_ERR_ARG);
-    const int zero[] = {0};
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 1, big, 1, methods2, 1, res, 1, zero, &err),
+    const int negative[] = {-1}, automatic[] = {0};
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 1, big, 1, methods2, 1, res, 1, negative, &err),
                      BF_ERR_ARG);
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 1, big, 1, methods2, 1, res, 1, automatic, &err), BF_OK);
+    assert_int_equal(t.rows[0].starts, 0);
+    bf_tradeoff_clear(&t);
 }
 
 static void test_split_disjoint(void **state)

@@ -22,7 +22,14 @@ extern "C" {
 typedef struct bf_fit_options {
     bf_objective_options objective;
     bf_solver_options solver;
-    int starts;          /* >= 1: the data-driven start, then starts-1 seeded random ones */
+    /* The search for the optimum (docs/fitting.md). starts: the starts solved to
+     * convergence, the data-driven one first (1: it alone; 0: automatic, BF_FIT_STARTS to
+     * BF_FIT_STARTS_MAX by the size of the screening set). screen: with more than one
+     * start, the random candidates whose cost on a small subsample (the screening set)
+     * chooses the other starts, which are solved there and the best then on the data; 0:
+     * the other starts are drawn at random and each solved on the data (plain multistart). */
+    int starts;
+    int screen;
     uint64_t seed;       /* multistart (and the solver's stochastic methods) */
     const double *start; /* NULL: data-driven; else a model vector to start from */
     int weighted_metrics; /* 1: the result's metrics use the samples' weights (a scene's
@@ -36,12 +43,22 @@ typedef struct bf_fit_options {
     long presolve;
 } bf_fit_options;
 
+/* The search's numbers (docs/fitting.md says how they were chosen). A start is "at the
+ * best" when its final cost is within BF_FIT_AT_BEST of the best one (relative; search.c
+ * adds a floor for exact fits). */
+#define BF_FIT_STARTS 8            /* automatic starts, at least */
+#define BF_FIT_STARTS_MAX 32       /* and at most */
+#define BF_FIT_SCREEN 64           /* candidates screened by default */
+#define BF_FIT_SCREEN_SAMPLES 1024 /* the screening set: the data, or a subsample of this many */
+#define BF_FIT_SCREEN_WORK 8192    /* automatic starts x screening samples, about */
+#define BF_FIT_AT_BEST 1e-4
 #define BF_FIT_PRESOLVE_SAMPLES 32768
 #define BF_FIT_PRESOLVE_MIN 131072 /* 4 x the presolve: below it a presolve saves too little */
 
 /* The defaults every fitting command starts from (brdfit fit's): log residual, the
- * samples' own weights, Ceres, one start, automatic presolve, seed 0, and a solver
- * thread per online core (results do not depend on the thread count). */
+ * samples' own weights, Ceres, the screened search with automatic starts, automatic
+ * presolve, seed 0, and a solver thread per online core (results do not depend on the
+ * thread count). */
 void bf_fit_options_init(bf_fit_options *o);
 
 /* Accuracy presets (brdfit fit --accuracy): bundles of options measured with brdfit
@@ -49,14 +66,17 @@ void bf_fit_options_init(bf_fit_options *o);
  * what the caller did not set explicitly (the BF_FIT_GIVEN_* bits). */
 typedef enum bf_fit_accuracy {
     BF_ACCURACY_NONE = 0, /* no preset: the options as they are */
-    BF_ACCURACY_FAST,     /* a stratified subsample of BF_ACCURACY_FAST_SUBSAMPLE, Ceres, one start */
-    BF_ACCURACY_BALANCED, /* the defaults: all samples, Ceres, one start */
-    BF_ACCURACY_BEST,     /* all samples, Ceres, BF_ACCURACY_BEST_STARTS starts and up to
+    BF_ACCURACY_FAST,     /* a stratified subsample of BF_ACCURACY_FAST_SUBSAMPLE, Ceres, the
+                             data-driven start alone */
+    BF_ACCURACY_BALANCED, /* the defaults: all samples, Ceres, the screened search */
+    BF_ACCURACY_BEST,     /* all samples, Ceres, BF_ACCURACY_BEST_STARTS starts screened from
+                             BF_ACCURACY_BEST_SCREEN candidates, up to
                              BF_ACCURACY_BEST_ITERATIONS Ceres iterations */
 } bf_fit_accuracy;
 
 #define BF_ACCURACY_FAST_SUBSAMPLE 16000
-#define BF_ACCURACY_BEST_STARTS 4
+#define BF_ACCURACY_BEST_STARTS 64
+#define BF_ACCURACY_BEST_SCREEN 512
 #define BF_ACCURACY_BEST_ITERATIONS 500
 
 /* What the caller set explicitly, for bf_fit_options_apply_accuracy: bits to OR. */
@@ -67,6 +87,7 @@ enum {
     BF_FIT_GIVEN_RESIDUAL = 1u << 3,
     BF_FIT_GIVEN_MAX_ITERATIONS = 1u << 4,
     BF_FIT_GIVEN_SUBSAMPLE = 1u << 5, /* the data's subsample count (bf_prep.subsample) */
+    BF_FIT_GIVEN_SCREEN = 1u << 6,
 };
 
 /* "fast", "balanced", "best" -> *out (BF_ERR_ARG for any other name, NULL included). */
@@ -97,10 +118,19 @@ typedef struct bf_fit_result {
     double *x;              /* best parameters, bf_model_nvalues entries, always finite */
     double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
     unsigned char *fixed;   /* 1 where fixed */
+    /* 1 where a free entry has no effect at the solution (its Jacobian column is zero):
+     * reported once as inactive, and not counted in k (docs/criteria.md). */
+    unsigned char *inactive;
+    /* Per inactive entry: the parameter (bf_model_param index) whose place on a bound
+     * silences it, or -1. */
+    int *inactive_gate;
     bf_metrics metrics;
     bf_solution solution;   /* of the best start (the solve on all samples) */
     bf_presolve_info presolve;
-    int starts;             /* starts run */
+    bf_presolve_info screen; /* the starts' solves on the screening set (samples 0: none) */
+    int starts;             /* starts solved (bf_fit_options.starts; docs/fitting.md) */
+    int starts_at_best;     /* of them, those that ended within BF_FIT_AT_BEST of the best */
+    int candidates;         /* random candidates screened (0: none) */
     size_t samples;         /* samples fitted (metrics.n counts samples x channels) */
     int threads;            /* the solver's thread count, as run */
     uint64_t seed;          /* the multistart seed, as run */
@@ -115,6 +145,12 @@ typedef struct bf_fit_result {
     int nwarnings;
     char warnings[BF_FIT_MAX_WARNINGS][BF_FIT_WARNING_LEN];
 } bf_fit_result;
+
+/* The warning of a fit whose best optimum was reached from one start of several (the
+ * search may have missed a better one), as it begins. */
+#define BF_FIT_WARN_ONE_START "the best optimum was reached from 1 of"
+/* 1 when r has that warning (so also for a result read back from its warnings). */
+int bf_fit_result_unsure(const bf_fit_result *r);
 
 /* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s. Returns BF_OK when a fit
  * ran (check r->ok: a failed fit says so in r->solution.termination, and r->x is the

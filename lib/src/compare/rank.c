@@ -54,7 +54,8 @@ const char *bf_compare_rank_name(bf_compare_rank_by r)
 
 double bf_compare_work(const bf_fit_result *r)
 {
-    return (double)r->presolve.evaluations * (double)r->presolve.samples +
+    return (double)r->screen.evaluations * (double)r->screen.samples +
+           (double)r->presolve.evaluations * (double)r->presolve.samples +
            ((double)r->solution.evaluations + 1.0) * (double)r->samples;
 }
 

@@ -134,6 +134,7 @@ static void model_table(report *r, const bf_compare_material *m)
                 "<th>Pareto k</th><th>Pareto work</th><th>simplest</th><th>parameters</th><th>warnings</th></tr>\n",
             bf_compare_rank_name(c->rank_by), error_name(c), show_rmse ? "<th>RMSE</th>" : "",
             show_log ? "<th>log RMSE</th>" : "");
+    int unsure = 0;
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_fit *f = &m->fits[j];
         fprintf(fp, "<tr%s>", m->simplest == j ? " class=\"chosen\"" : "");
@@ -154,7 +155,14 @@ static void model_table(report *r, const bf_compare_material *m)
             continue;
         }
         fprintf(fp, "<td>%d</td>", f->metrics.k);
-        num(fp, f->error);
+        if (bf_fit_result_unsure(f->result)) {
+            /* The search reached this optimum from one start only (the warning says so). */
+            fprintf(fp, "<td class=\"unsure\" title=\"the best optimum was reached from one start only: a better "
+                        "one may have been missed\">%.5g?</td>", f->error);
+            unsure++;
+        } else {
+            num(fp, f->error);
+        }
         if (show_rmse)
             num(fp, f->metrics.rmse);
         if (show_log)
@@ -194,6 +202,9 @@ static void model_table(report *r, const bf_compare_material *m)
     } else {
         fputs("<p>No model fitted.</p>\n", fp);
     }
+    if (unsure)
+        fputs("<p>? marks a fit whose best optimum the search reached from one start only: a better one may have "
+              "been missed (<code>--accuracy best</code> searches harder).</p>\n", fp);
 }
 
 static int scatter(report *r, int i, const bf_compare_material *m, int by_work)
@@ -292,6 +303,7 @@ static const char css[] =
     "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
     "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
     "tr.chosen td{background:#e6f4e6;font-weight:bold}"
+    "td.unsure{color:#a40}"
     ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
     "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
     "h2{border-bottom:2px solid #ccc;margin-top:1.5em}"

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "diagnostics.h"
+#include "lobe_order.h"
 #include "models/lobes.h"
 
 #define AT_BOUND_REL 1e-9     /* of the parameter's range */
@@ -64,44 +65,125 @@ static void warn_entry(bf_fit_result *r, const char *name, int kind, double x, d
     }
 }
 
-/* Bounds and standard errors per entry. A colour parameter of more than three channels
- * (spectral data) gets one warning per kind of problem, naming how many channels and
- * the first, so that 31 channels do not crowd out the rest. */
+/* Appends text to buf (size), cutting at its end. */
+static void append(char *buf, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void append(char *buf, size_t size, const char *fmt, ...)
+{
+    size_t len = strlen(buf);
+    if (len + 1 >= size)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + len, size - len, fmt, ap);
+    va_end(ap);
+}
+
+/* Entries without effect, one line per parameter that silences them ("clearcoat_gloss
+ * has no effect while clearcoat = 0 is at its lower bound"), or for those nothing
+ * silences ("sheen_tint has no effect on these data"). A silencing parameter's own place
+ * on its bound is said there, once: reported[k] marks its entries for check_entries. */
+static void check_inactive(const bf_fit_result *r, const double *lo, const double *hi, unsigned char *reported,
+                           bf_fit_result *w)
+{
+    const bf_model *m = r->model;
+    const int np = bf_model_nparams(m), C = bf_model_channels(m);
+    if (!r->inactive || !r->inactive_gate)
+        return;
+    for (int g = -1; g < np; g++) {
+        char names[BF_FIT_WARNING_LEN] = "";
+        int count = 0;
+        for (int i = 0; i < np; i++) {
+            const int off = bf_model_param_offset(m, i), n = bf_model_param(m, i)->colour ? C : 1;
+            int in = 0;
+            for (int k = off; k < off + n; k++)
+                in += !r->fixed[k] && r->inactive[k] && r->inactive_gate[k] == g;
+            if (!in)
+                continue;
+            append(names, sizeof names, "%s%s", count ? ", " : "", bf_model_param(m, i)->name);
+            if (in < n) { /* some channels only: name them */
+                append(names, sizeof names, " (channel%s", in > 1 ? "s" : "");
+                int c = 0;
+                for (int k = off; k < off + n; k++)
+                    if (!r->fixed[k] && r->inactive[k] && r->inactive_gate[k] == g)
+                        append(names, sizeof names, "%s%d", c++ ? ", " : " ", k - off);
+                append(names, sizeof names, ")");
+            }
+            count++;
+        }
+        if (!count)
+            continue;
+        if (g < 0) {
+            bf_fit_warn(w, "%s %s no effect on these data (inactive: not counted in k)", names,
+                        count > 1 ? "have" : "has");
+            continue;
+        }
+        const bf_param_info *gp = bf_model_param(m, g);
+        const int off = bf_model_param_offset(m, g), n = gp->colour ? C : 1;
+        char where[96] = "";
+        int lower = 0, upper = 0;
+        for (int k = off; k < off + n; k++) {
+            if (r->fixed[k])
+                continue;
+            const double range = hi[k] - lo[k];
+            if (r->x[k] - lo[k] <= AT_BOUND_REL * range)
+                lower++, reported[k] = 1;
+            else if (hi[k] - r->x[k] <= AT_BOUND_REL * range)
+                upper++, reported[k] = 1;
+        }
+        if (lower + upper == 0)
+            snprintf(where, sizeof where, "while %s has its fitted value", gp->name);
+        else if (n == 1)
+            snprintf(where, sizeof where, "while %s = %.6g is at its %s bound", gp->name, r->x[off],
+                     lower ? "lower" : "upper");
+        else
+            snprintf(where, sizeof where, "while %s is at its %s bound %.6g in %s", gp->name, lower ? "lower" : "upper",
+                     lower ? lo[off] : hi[off], lower + upper == n ? "every channel" : "some channels");
+        bf_fit_warn(w, "%s %s no effect %s (inactive: not counted in k)", names, count > 1 ? "have" : "has", where);
+    }
+}
+
+/* Bounds and standard errors per parameter, one line per parameter and kind of problem:
+ * a single entry by its name and value, several channels of a colour parameter by
+ * their numbers ("rho_d: channels 1, 2 at the lower bound 0"); a spectral parameter (more
+ * than three channels) by how many and the first. Inactive entries and a silencing
+ * parameter's bound are said by check_inactive instead. */
 static void check_entries(const bf_objective *o, bf_fit_result *r)
 {
     const bf_model *m = r->model;
     const int P = bf_model_nvalues(m), C = bf_model_channels(m);
     double *lo = malloc((size_t)P * sizeof *lo), *hi = malloc((size_t)P * sizeof *hi);
-    if (!lo || !hi) {
+    unsigned char *reported = calloc((size_t)P + 1, 1);
+    if (!lo || !hi || !reported) {
         free(lo);
         free(hi);
+        free(reported);
         return;
     }
     bf_objective_bounds(o, lo, hi);
+    check_inactive(r, lo, hi, reported, r);
     char name[64];
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         const int off = bf_model_param_offset(m, i), n = p->colour ? C : 1;
-        if (n <= 3) {
-            for (int k = off; k < off + n; k++)
-                if (!r->fixed[k])
-                    warn_entry(r, bf_model_entry_name(m, k, name, sizeof name),
-                               entry_kind(r->x[k], r->stderr_[k], lo[k], hi[k]), r->x[k], r->stderr_[k], lo[k], hi[k]);
-            continue;
-        }
         int count[ENTRY_KINDS] = {0}, first[ENTRY_KINDS];
-        for (int k = off + n - 1; k >= off; k--)
-            if (!r->fixed[k]) {
-                const int kind = entry_kind(r->x[k], r->stderr_[k], lo[k], hi[k]);
-                count[kind]++;
+        char chans[ENTRY_KINDS][64];
+        for (int kind = 0; kind < ENTRY_KINDS; kind++)
+            chans[kind][0] = '\0';
+        for (int k = off; k < off + n; k++) {
+            if (r->fixed[k] || reported[k] || (r->inactive && r->inactive[k]))
+                continue;
+            const int kind = entry_kind(r->x[k], r->stderr_[k], lo[k], hi[k]);
+            if (count[kind]++ == 0)
                 first[kind] = k;
-            }
+            append(chans[kind], sizeof chans[kind], "%s%d", count[kind] > 1 ? ", " : "", k - off);
+        }
         for (int kind = ENTRY_OK + 1; kind < ENTRY_KINDS; kind++) {
             const int k = first[kind];
+            if (count[kind] == 0)
+                continue;
             if (count[kind] == 1) {
-                warn_entry(r, bf_model_entry_name(m, k, name, sizeof name), kind, r->x[k], r->stderr_[k], lo[k],
-                           hi[k]);
-            } else if (count[kind] > 1) {
+                warn_entry(r, bf_model_entry_name(m, k, name, sizeof name), kind, r->x[k], r->stderr_[k], lo[k], hi[k]);
+            } else if (n > 3) {
                 bf_model_entry_name(m, k, name, sizeof name);
                 if (kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER)
                     bf_fit_warn(r, "%s is at its %s bound %.6g in %d of %d channels (the first %s)", p->name,
@@ -113,11 +195,22 @@ static void check_entries(const bf_objective *o, bf_fit_result *r)
                 else
                     bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)",
                                 p->name, count[kind], n, name, r->x[k], r->stderr_[k]);
+            } else if ((kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER) && count[kind] == n) {
+                bf_fit_warn(r, "%s is at its %s bound %.6g in every channel", p->name,
+                            kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k]);
+            } else if (kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER) {
+                bf_fit_warn(r, "%s: channels %s at the %s bound %.6g", p->name, chans[kind],
+                            kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k]);
+            } else {
+                bf_fit_warn(r, "%s: channels %s not determined by the data (%s)", p->name, chans[kind],
+                            kind == ENTRY_NO_SE ? "no standard error"
+                                                : "standard error larger than the value or half the range");
             }
         }
     }
     free(lo);
     free(hi);
+    free(reported);
 }
 
 /* Pairs of free entries correlated beyond CORRELATED. */
@@ -236,39 +329,6 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
 
 /* ---- Lobe width against the data's sampling ------------------------------------------ */
 
-/* Half width at half maximum in theta_h (radians) of lobe k at theta_d = 10 degrees in
- * the plane of incidence; 0 when it does not fall to half within 80 degrees (a broad
- * lobe). */
-static double lobe_hwhm(const bf_model *m, const double *x, int k)
-{
-    enum { NT = 120 };
-    double th[NT], L[3 * NT], V[3 * NT], S[BF_LOBE_BLOCK];
-    const double td = 10.0 * (M_PI / 180.0);
-    for (int i = 0; i < NT; i++) {
-        th[i] = i == 0 ? 0.0 : 1e-5 * pow(80.0 * (M_PI / 180.0) / 1e-5, (double)(i - 1) / (NT - 2));
-        const double c = cos(th[i]), s = sin(th[i]);
-        const double d[3] = {sin(td), 0.0, cos(td)};
-        L[3 * i] = d[0] * c + d[2] * s, L[3 * i + 1] = 0.0, L[3 * i + 2] = d[2] * c - d[0] * s;
-        V[3 * i] = d[2] * s - d[0] * c, V[3 * i + 1] = 0.0, V[3 * i + 2] = d[2] * c + d[0] * s;
-    }
-    bf_error err;
-    bf_geometry *g = NULL;
-    if (bf_geometry_from_vectors(NT, L, V, &g, &err) != BF_OK)
-        return 0.0;
-    bf_model_lobe_shape(m, x, k, g, 0, NT, S, NULL);
-    bf_geometry_free(g);
-    int p = 0;
-    for (int i = 1; i < NT; i++)
-        if (S[i] > S[p])
-            p = i;
-    if (!(S[p] > 0.0))
-        return 0.0;
-    for (int i = p + 1; i < NT; i++)
-        if (S[i] < 0.5 * S[p])
-            return th[i];
-    return 0.0;
-}
-
 /* Samples above the horizon with theta_h below w. */
 static size_t samples_within(bf_samples *s, double w)
 {
@@ -301,7 +361,7 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
     for (int k = 0; k < P; k++)
         xu[k] = r->x[map ? map[k] : k];
     for (int k = 0; k < lay.lobes; k++) {
-        const double w = lobe_hwhm(um, xu, k);
+        const double w = bf_fit_lobe_hwhm(um, xu, k);
         if (!(w > 0.0))
             continue;
         const size_t n = samples_within(s, w);
@@ -315,6 +375,14 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
 
 /* ---- Everything ------------------------------------------------------------------------ */
 
+int bf_fit_result_unsure(const bf_fit_result *r)
+{
+    for (int w = 0; r && w < r->nwarnings; w++)
+        if (!strncmp(r->warnings[w], BF_FIT_WARN_ONE_START, sizeof BF_FIT_WARN_ONE_START - 1))
+            return 1;
+    return 0;
+}
+
 void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options *opt, const double *corr,
                      bf_fit_result *r)
 {
@@ -325,6 +393,11 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
              strstr(sol->termination, "MAXTIME_REACHED"))
         bf_fit_warn(r, "the solver stopped on its limit after %d iteration%s, before converging",
                     sol->iterations, sol->iterations == 1 ? "" : "s");
+    if (r->ok && r->starts > 1 && r->starts_at_best == 1)
+        bf_fit_warn(r,
+                    BF_FIT_WARN_ONE_START " %d starts: a better one may have been missed (--accuracy best "
+                                          "searches harder)",
+                    r->starts);
     if (opt->solver.loss.kind != BF_LOSS_NONE)
         bf_fit_warn(r, "AIC, AICc and BIC are undefined: a robust loss minimises no Gaussian likelihood");
     check_entries(o, r);

@@ -1,14 +1,6 @@
-/* The fit driver: model, objective, data-driven start, seeded multistart over the
- * chosen back end, then metrics and standard errors at the best solution.
- *
- * Multistart: start 0 is the data-driven start (or the caller's); starts 1 .. N-1 are
- * drawn uniformly within the objective's bounds in its internal space (so uniformly in
- * log for log-scale parameters), from splitmix64 (Steele, Lea & Flood 2014) seeded with
- * the fit's seed, drawing the internal coordinates in order, start after start. Start k
- * gives stochastic back-end methods the seed bf_splitmix64(seed + k + 1)'s first output.
- * Starts run one after another, each solve using the requested threads, so the result
- * is a function of the seed and the thread count alone. The best usable final cost wins;
- * ties go to the earlier start.
+/* The fit driver: model, objective, data-driven start, the search for the optimum
+ * (search.c: the starts, screened or not), then metrics and standard errors at the best
+ * solution.
  *
  * Presolve (bf_fit_options.presolve): on a large data set the starts are solved on a
  * seeded stratified subsample (bf_samples_subsample_mask, seeded with the fit's seed),
@@ -21,29 +13,16 @@
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 
-#include "big_alloc.h"
 #include "diagnostics.h"
+#include "lobe_order.h"
+#include "search.h"
+#include "silence.h"
 #include "../rng.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* One random start: uniform in [lo, hi] per internal coordinate; an unbounded side
- * (not expected from the model tables, but allowed by bf_problem) spans 1 unit (or
- * |z0|) beyond the start. */
-static void random_start(const bf_problem *p, const double *z0, uint64_t *state, double *z)
-{
-    for (int k = 0; k < p->npar; k++) {
-        double span = fabs(z0[k]) > 1.0 ? fabs(z0[k]) : 1.0;
-        double lo = isfinite(p->lo[k]) ? p->lo[k] : z0[k] - span;
-        double hi = isfinite(p->hi[k]) ? p->hi[k] : z0[k] + span;
-        z[k] = lo + bf_uniform01(state) * (hi - lo);
-        if (z[k] > hi) /* rounding */
-            z[k] = hi;
-    }
-}
 
 /* The cost 1/2 sum r^2 at z when nothing is free to solve for (every parameter fixed). */
 static bf_status plain_cost(const bf_problem *p, const double *z, double *cost, bf_error *err)
@@ -89,7 +68,11 @@ static bf_status alloc_result(bf_fit_result *r, int P, bf_error *err)
     r->x = calloc((size_t)P + 1, sizeof *r->x);
     r->stderr_ = calloc((size_t)P + 1, sizeof *r->stderr_);
     r->fixed = calloc((size_t)P + 1, 1);
-    if (!r->x || !r->stderr_ || !r->fixed)
+    r->inactive = calloc((size_t)P + 1, 1);
+    r->inactive_gate = malloc(((size_t)P + 1) * sizeof *r->inactive_gate);
+    for (int k = 0; r->inactive_gate && k < P; k++)
+        r->inactive_gate[k] = -1;
+    if (!r->x || !r->stderr_ || !r->fixed || !r->inactive || !r->inactive_gate)
         return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
     return BF_OK;
 }
@@ -102,22 +85,6 @@ static size_t presolve_samples(const bf_fit_options *o, size_t n)
     if (o->presolve > 0)
         return (size_t)o->presolve < n ? (size_t)o->presolve : 0;
     return n >= BF_FIT_PRESOLVE_MIN ? BF_FIT_PRESOLVE_SAMPLES : 0;
-}
-
-/* The presolve's subsample of s and its objective (same options), or an error. */
-static bf_status presolve_objective(bf_samples *s, size_t pn, const bf_fit_options *o, const bf_model *m,
-                              const bf_objective_options *oo, bf_samples **ps, bf_objective **pobj, bf_error *err)
-{
-    unsigned char *keep = bf_big_malloc(s->n + 1);
-    if (!keep)
-        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the presolve");
-    bf_status rc = bf_samples_subsample_mask(s, pn, o->seed, keep, err);
-    if (rc == BF_OK)
-        rc = bf_samples_copy(s, keep, ps, err);
-    free(keep);
-    if (rc == BF_OK)
-        rc = bf_objective_new(m, *ps, oo, pobj, err);
-    return rc;
 }
 
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
@@ -151,8 +118,11 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     bf_samples *ps = NULL;
     bf_objective *pobj = NULL;
     double *corr = NULL;
+    unsigned char *held = NULL, *hold = NULL;
+    bf_search sr;
+    memset(&sr, 0, sizeof sr);
+    int nsilent = 0;
     const bf_problem *prob = full; /* where the starts are solved */
-    const int starts = o->starts > 1 ? o->starts : 1;
     double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
     double *z0 = malloc(((size_t)nz + 1) * sizeof *z0);
     double *z = malloc(((size_t)nz + 1) * sizeof *z);
@@ -164,7 +134,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     }
     const size_t pn = nz > 0 ? presolve_samples(o, s->n) : 0;
     if (pn > 0) {
-        if ((rc = presolve_objective(s, pn, o, m, &oo, &ps, &pobj, err)) != BF_OK)
+        if ((rc = bf_fit_subsample_objective(s, pn, o->seed, m, &oo, &ps, &pobj, err)) != BF_OK)
             goto done;
         prob = bf_objective_problem(pobj);
     }
@@ -172,7 +142,9 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     /* The start, clamped into the effective bounds and with fixed values applied. */
     if (o->start)
         memcpy(x0, o->start, (size_t)P * sizeof *x0);
-    else if ((rc = bf_fit_initial_guess(m, s, x0, err)) != BF_OK)
+    else if ((rc = bf_fit_initial_guess(m, ps ? ps : s, x0, err)) != BF_OK) /* read off the presolve's subsample
+                                                                               where there is one: the starts
+                                                                               are solved there */
         goto done;
     for (int k = 0; k < P; k++) {
         if (!isfinite(x0[k])) { /* a NaN start would clamp to a bound; say so instead */
@@ -192,42 +164,41 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     int have_best = 0;
     bf_solution sol, first;
     memset(&first, 0, sizeof first);
-    uint64_t draw = o->seed;
-    for (int k = 0; k < starts; k++) {
-        if (k == 0)
-            memcpy(z, z0, (size_t)nz * sizeof *z);
-        else
-            random_start(prob, z0, &draw, z);
-        uint64_t sseed = o->seed + (uint64_t)k + 1;
-        so.seed = bf_splitmix64(&sseed);
-        if (nz == 0)
-            rc = fixed_only(prob, z, &sol, err);
-        else
-            rc = bf_solve(prob, &so, z, &sol, err);
-        if (rc != BF_OK && k == 0)
-            goto done; /* bad options or a back end that cannot run at all */
-        r->starts = k + 1;
-        if (rc != BF_OK) { /* a random start the back end failed on: just not usable */
-            rc = BF_OK;
-            continue;
+    if (nz == 0) {
+        /* Every parameter fixed: one point, nothing to search. */
+        if ((rc = fixed_only(prob, z0, &sol, err)) != BF_OK)
+            goto done;
+        first = r->solution = sol;
+        r->starts = 1;
+        memcpy(zbest, z0, (size_t)nz * sizeof *z);
+        have_best = sol.usable && isfinite(sol.final_cost);
+        r->starts_at_best = have_best;
+    } else {
+        sr = (bf_search){.samples = ps ? ps : s,
+                         .options = o,
+                         .objective_options = &oo,
+                         .objective = pobj ? pobj : obj,
+                         .prob = prob,
+                         .presolved = pobj != NULL,
+                         .z0 = z0,
+                         .z = zbest};
+        if ((rc = bf_fit_search(&sr, err)) != BF_OK)
+            goto done;
+        have_best = sr.have_best;
+        first = sr.first;
+        if (have_best) {
+            r->solution = sr.best;
+            best_seed = sr.best_seed;
         }
-        if (k == 0)
-            first = sol;
+        r->starts = sr.starts;
+        r->starts_at_best = sr.starts_at_best;
+        r->candidates = sr.candidates;
+        r->screen = sr.screen;
         if (pobj) {
-            r->presolve.iterations += sol.iterations;
-            r->presolve.evaluations += sol.evaluations;
-            r->presolve.seconds += sol.seconds;
+            r->presolve.iterations = sr.on_prob.iterations;
+            r->presolve.evaluations = sr.on_prob.evaluations;
+            r->presolve.seconds = sr.on_prob.seconds;
         }
-        for (int j = 0; j < nz && sol.usable; j++)
-            sol.usable = isfinite(z[j]);
-        if (sol.usable && isfinite(sol.final_cost) && (!have_best || sol.final_cost < r->solution.final_cost)) {
-            r->solution = sol;
-            best_seed = so.seed;
-            memcpy(zbest, z, (size_t)nz * sizeof *z);
-            have_best = 1;
-        }
-        if (nz == 0)
-            break; /* every start is the same point */
     }
     if (pobj && have_best) {
         /* The whole set, from the best presolved point. Unless told otherwise it stops at
@@ -240,8 +211,12 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
         so.seed = best_seed;
         if (!(so.function_tolerance > 0.0))
             so.function_tolerance = 1e-9;
+        hold = calloc((size_t)nz + 1, 1);
+        if (hold && bf_fit_search_handover(&sr, z, hold) > 0)
+            so.constant = hold;
         if ((rc = bf_solve(full, &so, z, &sol, err)) != BF_OK)
             goto done;
+        so.constant = o->solver.constant;
         for (int j = 0; j < nz && sol.usable; j++)
             sol.usable = isfinite(z[j]);
         r->solution = sol;
@@ -254,6 +229,9 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     r->ok = have_best;
     if (have_best) {
         bf_objective_to_model(obj, zbest, r->x);
+        /* Lobes numbered narrowest first, whichever start found them (lobe_order.h). */
+        bf_fit_order_lobes(obj, r->x);
+        bf_objective_to_internal(obj, r->x, zbest);
     } else {
         /* No usable start: report the start and why the first solve failed. */
         r->solution = first;
@@ -266,8 +244,34 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     }
     for (int k = 0; k < P; k++)
         r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
+    /* Entries on a bound and entries without effect (silence.h): the standard errors
+     * leave both out, and k the second. */
+    if (have_best && nz > 0) {
+        /* On the screening set where there is one: which entries a bound silences is a
+         * matter of the model, which a thousand samples show as well as all of them. */
+        bf_silence sil;
+        const bf_objective *po = sr.screen_objective ? sr.screen_objective : pobj ? pobj : obj;
+        if ((rc = bf_silence_find(bf_objective_problem(po), po, zbest, &o->solver.loss, o->solver.threads, &sil,
+                                  err)) != BF_OK)
+            goto done;
+        held = malloc(2 * (size_t)nz + 1);
+        if (!held) {
+            bf_silence_free(&sil);
+            rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+            goto done;
+        }
+        for (int j = 0; j < nz; j++) {
+            held[j] = sil.bound[j] != 0 || sil.silent[j];
+            held[nz + j] = sil.silent[j];
+            r->inactive[obj->kidx[j]] = sil.silent[j];
+            r->inactive_gate[obj->kidx[j]] = sil.silent[j] ? sil.gate[j] : -1;
+        }
+        nsilent = sil.nsilent;
+        bf_silence_free(&sil);
+    }
     corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *corr);
-    if ((rc = bf_obj_final(obj, r->x, o->weighted_metrics, nz, &r->metrics, r->stderr_, corr, err)) != BF_OK)
+    if ((rc = bf_obj_final_held(obj, r->x, o->weighted_metrics, nz - nsilent, held, held ? held + nz : NULL,
+                                &r->metrics, r->stderr_, corr, err)) != BF_OK)
         goto done;
     if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
         r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;
@@ -278,6 +282,9 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     bf_fit_diagnose(obj, s, o, corr, r);
 
 done:
+    bf_fit_search_clear(&sr);
+    free(hold);
+    free(held);
     free(corr);
     free(x0);
     free(z0);
@@ -304,5 +311,7 @@ void bf_fit_result_clear(bf_fit_result *r)
     free(r->x);
     free(r->stderr_);
     free(r->fixed);
+    free(r->inactive);
+    free(r->inactive_gate);
     memset(r, 0, sizeof *r);
 }

@@ -218,5 +218,11 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
  * entries) the parameters' correlations, NaN where one of the pair is undetermined. */
 bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics,
                  double *se, double *corr, bf_error *err);
+/* The same with the internal entries flagged in held (nz; NULL: none) left out of the
+ * standard errors (NaN: entries on a bound or without effect), and those in held_corr
+ * out of the correlations (entries without effect). */
+bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
+                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr,
+                            bf_error *err);
 
 #endif

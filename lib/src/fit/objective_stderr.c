@@ -13,7 +13,12 @@
  * eigenvalue counts as null below 1e-12 of the largest (the scaled matrix has unit
  * diagonal, so this is a condition number of 1e12, the limit of double precision for a
  * normal matrix). A parameter the residuals do not depend on at all (zero column) is NaN
- * too. With n <= k there is no estimate of s^2 and every free parameter is NaN.
+ * too. An entry the caller holds for the errors (bf_obj_final_held: on a bound, or
+ * silent) is left out of J^T J, as a solver with that bound active leaves it, and gets
+ * NaN: the others' errors are then those of the parameters the data can move. The
+ * correlations come from J^T J without the entries held for them (silent ones): two
+ * parameters the data hardly tell apart are worth saying so even where one of them ends
+ * on a bound. With n <= k there is no estimate of s^2 and every free parameter is NaN.
  * J^T J comes from the objective's fused pass (fixed chunks added in order), so the
  * result does not depend on the thread count. */
 #include <stdlib.h>
@@ -72,7 +77,8 @@ static void jacobi(double *a, double *v, int k)
 /* se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when corr is not
  * NULL the correlations of each pair of determined entries (nz x nz; NaN where either is
  * undetermined; 1 on the diagonal). work: 2 nz^2 + nz doubles; idx: nz ints. */
-static void covariance(const double *jtj, int nz, double s2, double *se, double *corr, double *work, int *idx)
+static void covariance(const double *jtj, int nz, double s2, const unsigned char *held, double *se, double *corr,
+                       double *work, int *idx)
 {
     for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
         corr[e] = NAN;
@@ -81,7 +87,7 @@ static void covariance(const double *jtj, int nz, double s2, double *se, double 
     for (int j = 0; j < nz; j++) {
         se[j] = NAN;
         d[j] = jtj[j * nz + j];
-        if (d[j] > 0.0 && isfinite(d[j]))
+        if (d[j] > 0.0 && isfinite(d[j]) && !(held && held[j]))
             idx[k++] = j;
     }
     if (k == 0)
@@ -128,8 +134,8 @@ static void covariance(const double *jtj, int nz, double s2, double *se, double 
 
 /* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
  * squared residuals. */
-static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, double *se, double *corr,
-                       bf_error *err)
+static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, const unsigned char *held,
+                             const unsigned char *held_corr, double *se, double *corr, bf_error *err)
 {
     const int nz = o->nz;
     size_t nz2 = (size_t)nz * nz;
@@ -148,7 +154,12 @@ static bf_status stderr_from(const bf_objective *o, const double *jtj, double ss
         for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
             corr[e] = NAN;
     } else {
-        covariance(jtj, nz, ssr / (double)(n - (size_t)nz), sez, corr, work, idx);
+        const double s2 = ssr / (double)(n - (size_t)nz);
+        if (corr && held != held_corr) { /* two masks: the correlations from their own pass */
+            covariance(jtj, nz, s2, held_corr, sez, corr, work, idx);
+            corr = NULL;
+        }
+        covariance(jtj, nz, s2, held, sez, corr, work, idx);
     }
     for (int k = 0; k < nz; k++)
         se[o->kidx[k]] = sez[k];
@@ -161,8 +172,9 @@ done:
 
 /* The pass behind both: J'J of the plain residuals (no loss) with respect to the model
  * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
-static bf_status final_pass(const bf_objective *o, const double *x, int weighted, bf_metric_sums *metrics, double *se,
-                      double *corr, double *wssr, bf_error *err)
+static bf_status final_pass(const bf_objective *o, const double *x, int weighted, const unsigned char *held,
+                            const unsigned char *held_corr, bf_metric_sums *metrics, double *se, double *corr,
+                            double *wssr, bf_error *err)
 {
     int rc = bf_model_check(o->model, x, err);
     if (rc)
@@ -188,7 +200,7 @@ static bf_status final_pass(const bf_objective *o, const double *x, int weighted
         goto done;
     }
     if (nz > 0)
-        rc = stderr_from(o, jtj, ssr, se, corr, err);
+        rc = stderr_from(o, jtj, ssr, held, held_corr, se, corr, err);
     *wssr = ssr;
 done:
     free(ones);
@@ -199,15 +211,22 @@ done:
 bf_status bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
     double wssr;
-    return final_pass(o, x, 0, NULL, se, NULL, &wssr, err);
+    return final_pass(o, x, 0, NULL, NULL, NULL, se, NULL, &wssr, err);
 }
 
 bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
                  double *corr, bf_error *err)
 {
+    return bf_obj_final_held(o, x, weighted, k, NULL, NULL, metrics, se, corr, err);
+}
+
+bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
+                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr,
+                            bf_error *err)
+{
     bf_metric_sums sums;
     double wssr = NAN;
-    int rc = final_pass(o, x, weighted, &sums, se, corr, &wssr, err);
+    int rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, &wssr, err);
     if (rc == BF_OK)
         rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
     if (rc == BF_OK)

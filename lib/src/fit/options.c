@@ -14,42 +14,44 @@ void bf_fit_options_init(bf_fit_options *o)
     o->objective.residual = BF_RESIDUAL_LOG;
     o->objective.use_weights = 1;
     o->solver.backend = BF_BACKEND_CERES;
-    o->starts = 1;
+    o->starts = 0; /* automatic (search.c) */
+    o->screen = BF_FIT_SCREEN;
     /* Results do not depend on the thread count (fixed chunks summed in a fixed order),
      * so every core costs nothing in reproducibility. */
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     o->solver.threads = cores > 0 ? (int)cores : 1;
 }
 
-/* The presets, chosen from brdfit tradeoff runs (the figures are in docs/tradeoff.md,
- * "Accuracy presets": a full synthetic MERL table, the Cornell car paint, NIST PTFE;
- * walter, cook_torrance, cook_torrance:lobes=2):
- *  - fast: a stratified subsample of BF_ACCURACY_FAST_SUBSAMPLE samples, Ceres, one
- *    start. On the MERL table it stayed within 0.2% of the full fit's held-out log RMSE
- *    at 14-32x less time; smaller counts were within tolerance there too, but on the car
- *    paint a 500-sample subsample lost the highlight (3x the error), so the count keeps a
- *    wide margin (about 125 samples per stratum). Data sets at or below it are fitted
- *    whole.
- *  - balanced: brdfit fit's defaults (all samples, Ceres, one start): the best or within
- *    0.2% of the best held-out error on every data set and model measured.
- *  - best: all samples, Ceres, BF_ACCURACY_BEST_STARTS starts and up to
- *    BF_ACCURACY_BEST_ITERATIONS Ceres iterations: two-lobe fits stopped at the default
- *    100 iterations before converging; the extra starts guard against a stalled
- *    data-driven start (none of the measured sets needed them) at 2-17x the time. */
+/* The presets (docs/tradeoff.md, "Accuracy presets"; docs/fitting.md for the search):
+ *  - fast: a stratified subsample of BF_ACCURACY_FAST_SUBSAMPLE samples, Ceres, the
+ *    data-driven start alone (brdfit's default before the screened search). On the MERL
+ *    table it stayed within 0.2% of the full fit's held-out log RMSE at 14-32x less time;
+ *    on the car paint a 500-sample subsample lost the highlight (3x the error), so the
+ *    count keeps a wide margin (about 125 samples per stratum). Data sets at or below it
+ *    are fitted whole. About one fit in ten of the bundled measurements ends in a worse
+ *    optimum than the search finds (docs/fitting.md).
+ *  - balanced: brdfit fit's defaults (all samples, Ceres, the screened search with
+ *    automatic starts).
+ *  - best: all samples, Ceres, the screened search with BF_ACCURACY_BEST_STARTS starts from
+ *    BF_ACCURACY_BEST_SCREEN candidates and up to BF_ACCURACY_BEST_ITERATIONS Ceres
+ *    iterations (two-lobe fits stopped at the default 100 before converging): as
+ *    exhaustive as a fit gets, at 5-40x the time of balanced. */
 typedef struct preset {
     const char *name;
     size_t subsample; /* 0: every sample */
     bf_backend backend;
     const char *algorithm;
-    int starts;
+    int starts; /* 0: automatic */
+    int screen;
     int ceres_iterations; /* 0: the default; NLopt counts evaluations, so left alone */
 } preset;
 
 static const preset presets[] = {
-    [BF_ACCURACY_NONE] = {"", 0, BF_BACKEND_CERES, NULL, 1, 0},
-    [BF_ACCURACY_FAST] = {"fast", BF_ACCURACY_FAST_SUBSAMPLE, BF_BACKEND_CERES, NULL, 1, 0},
-    [BF_ACCURACY_BALANCED] = {"balanced", 0, BF_BACKEND_CERES, NULL, 1, 0},
-    [BF_ACCURACY_BEST] = {"best", 0, BF_BACKEND_CERES, NULL, BF_ACCURACY_BEST_STARTS, BF_ACCURACY_BEST_ITERATIONS},
+    [BF_ACCURACY_NONE] = {"", 0, BF_BACKEND_CERES, NULL, 0, BF_FIT_SCREEN, 0},
+    [BF_ACCURACY_FAST] = {"fast", BF_ACCURACY_FAST_SUBSAMPLE, BF_BACKEND_CERES, NULL, 1, 0, 0},
+    [BF_ACCURACY_BALANCED] = {"balanced", 0, BF_BACKEND_CERES, NULL, 0, BF_FIT_SCREEN, 0},
+    [BF_ACCURACY_BEST] = {"best", 0, BF_BACKEND_CERES, NULL, BF_ACCURACY_BEST_STARTS, BF_ACCURACY_BEST_SCREEN,
+                          BF_ACCURACY_BEST_ITERATIONS},
 };
 #define NPRESETS ((int)(sizeof presets / sizeof presets[0]))
 
@@ -81,6 +83,8 @@ void bf_fit_options_apply_accuracy(bf_fit_options *o, bf_fit_accuracy acc, unsig
     }
     if (!(given & BF_FIT_GIVEN_STARTS))
         o->starts = p->starts;
+    if (!(given & BF_FIT_GIVEN_SCREEN))
+        o->screen = p->screen;
     if (!(given & BF_FIT_GIVEN_MAX_ITERATIONS) && o->solver.backend == BF_BACKEND_CERES)
         o->solver.max_iterations = p->ceres_iterations;
 }

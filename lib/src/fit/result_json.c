@@ -41,14 +41,16 @@ static cJSON *options_json(const bf_model *m)
 
 /* Names of fixed entries: a colour parameter fixed on every channel is its name, one
  * fixed on some channels only lists NAME[c] for those. */
-static cJSON *fixed_names(const bf_fit_result *r)
+/* The parameters whose every entry flags says (a name), or the flagged entries alone
+ * ("rho_d[1]"): the fixed ones, the inactive ones. */
+static cJSON *flagged_names(const bf_fit_result *r, const unsigned char *flags)
 {
     const bf_model *m = r->model;
     int C = bf_model_channels(m);
     cJSON *a = cJSON_CreateArray();
-    for (int i = 0; a && i < bf_model_nparams(m); i++) {
+    for (int i = 0; a && flags && i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        const unsigned char *f = r->fixed + bf_model_param_offset(m, i);
+        const unsigned char *f = flags + bf_model_param_offset(m, i);
         int nc = p->colour ? C : 1, nf = 0;
         for (int c = 0; c < nc; c++)
             nf += f[c] != 0;
@@ -122,7 +124,9 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top
     cJSON_AddItemToObject(o, "metrics", bf_json_metrics(&r->metrics));
 
     cJSON_AddItemToObject(o, "stderr", bf_json_params(m, r->stderr_));
-    cJSON_AddItemToObject(o, "fixed", fixed_names(r));
+    cJSON_AddItemToObject(o, "fixed", flagged_names(r, r->fixed));
+    /* Entries without effect at the solution (not counted in k; the warnings say why). */
+    cJSON_AddItemToObject(o, "inactive", flagged_names(r, r->inactive));
     cJSON *warn = cJSON_AddArrayToObject(o, "warnings");
     for (int w = 0; w < r->nwarnings; w++)
         cJSON_AddItemToArray(warn, cJSON_CreateString(r->warnings[w]));
@@ -139,6 +143,16 @@ static cJSON *result_json(const bf_fit_result *r, const char *data_path, int top
     bf_json_add_number(op, "seconds", s->seconds);
     cJSON_AddNumberToObject(op, "threads", r->threads);
     cJSON_AddNumberToObject(op, "starts", r->starts);
+    cJSON_AddNumberToObject(op, "starts_at_best", r->starts_at_best);
+    if (r->candidates > 0)
+        cJSON_AddNumberToObject(op, "candidates", r->candidates);
+    if (r->screen.samples > 0) { /* the starts' solves on the screening set (fit.h) */
+        cJSON *sc = cJSON_AddObjectToObject(op, "screen");
+        cJSON_AddNumberToObject(sc, "samples", (double)r->screen.samples);
+        cJSON_AddNumberToObject(sc, "iterations", r->screen.iterations);
+        cJSON_AddNumberToObject(sc, "evaluations", r->screen.evaluations);
+        bf_json_add_number(sc, "seconds", r->screen.seconds);
+    }
     if (r->presolve.samples > 0) { /* the starts' solves on a subsample (fit.h) */
         cJSON *pre = cJSON_AddObjectToObject(op, "presolve");
         cJSON_AddNumberToObject(pre, "samples", (double)r->presolve.samples);

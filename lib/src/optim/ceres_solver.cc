@@ -256,8 +256,8 @@ class RoundWatch final : public ceres::IterationCallback {
 public:
     enum Reason { kNone, kBound, kSlow };
     RoundWatch(const double *x, const std::vector<double> &lo, const std::vector<double> &hi,
-               const std::vector<char> &held)
-        : x_(x), lo_(lo), hi_(hi), held_(held)
+               const std::vector<char> &held, bool stall = true)
+        : x_(x), lo_(lo), hi_(hi), held_(held), stall_(stall)
     {
     }
     ceres::CallbackReturnType operator()(const ceres::IterationSummary &it) override
@@ -267,7 +267,7 @@ public:
             if (!held_[k] && (x_[k] == lo_[k] || x_[k] == hi_[k]))
                 on_bound = true;
         streak_ = on_bound ? streak_ + 1 : 0;
-        if (streak_ >= kStallIterations) {
+        if (stall_ && streak_ >= kStallIterations) {
             reason_ = kBound;
             return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         }
@@ -287,6 +287,7 @@ private:
     const double *x_;
     const std::vector<double> &lo_, &hi_;
     const std::vector<char> &held_;
+    bool stall_;
     int streak_ = 0;
     std::vector<double> costs_;
     Reason reason_ = kNone;
@@ -415,13 +416,14 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
     int rounds = 0, iterations = 0;
     double seconds = 0.0, initial_cost = 0.0, final_cost = 0.0;
     ceres::Solver::Summary sum;
+    bool last_round = false; // after a cycle: one round that no stall ends (below)
     for (const int max_rounds = 2 * np + 2; rounds < max_rounds;) {
         opt.max_num_iterations = max_iterations - iterations;
         opt.max_solver_time_in_seconds = o->max_seconds > 0 ? o->max_seconds - seconds : 1e9;
         if (have_result && (opt.max_num_iterations <= 0 || opt.max_solver_time_in_seconds <= 0))
             break;
         seen.push_back(held);
-        RoundWatch watcher(x, lo, hi, held);
+        RoundWatch watcher(x, lo, hi, held, !last_round);
         opt.callbacks.clear();
         opt.update_state_every_iteration = true;
         opt.callbacks.push_back(&watcher);
@@ -474,9 +476,14 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
         }
         // A set tried already would go round in circles (a parameter that the gradient
         // lets go and the steps bring back): the rounds end, each round having only
-        // lowered the cost.
-        if (std::find(seen.begin(), seen.end(), next) != seen.end())
-            break;
+        // lowered the cost. When a stall ended the round, it ended before converging:
+        // one last round holds what sits on its bounds and runs to convergence (a
+        // parameter that reaches a bound there stays on it, projected).
+        if (last_round || std::find(seen.begin(), seen.end(), next) != seen.end()) {
+            if (last_round || sum.termination_type != ceres::USER_SUCCESS)
+                break;
+            last_round = true;
+        }
         held.swap(next);
     }
     const int evaluations = cost.passes();

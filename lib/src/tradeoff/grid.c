@@ -93,8 +93,8 @@ bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, 
     if (train_n < 1)
         return bf_fail(err, BF_ERR_ARG, "tradeoff: no training sample");
     for (int s = 0; s < nstarts; s++)
-        if (starts[s] < 1)
-            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 1, got %d", starts[s]);
+        if (starts[s] < 0)
+            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 0 (0: automatic), got %d", starts[s]);
     /* Counts >= the training size (and 0) are "all", kept as train_n; sorted, unique. */
     size_t *c = malloc((size_t)ncounts * sizeof *c);
     if (!c)
