@@ -154,7 +154,10 @@ int bf_fit_result_unsure(const bf_fit_result *r);
 
 /* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s. Returns BF_OK when a fit
  * ran (check r->ok: a failed fit says so in r->solution.termination, and r->x is the
- * start, never NaN); errors for bad specs, options or data. */
+ * start, never NaN); errors for bad specs, options or data. o->solver.progress sees every
+ * solve's iterations and o->solver.cancel is read at each of them: a fit cancelled by
+ * either stops at once, with r->ok 0, r->solution.stop BF_STOP_CANCELLED, r->x the start,
+ * no metrics, and bf_fit_write_json refuses it. */
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
 void bf_fit_result_clear(bf_fit_result *r);
 

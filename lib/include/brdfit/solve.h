@@ -128,6 +128,11 @@ bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method
  * into buf; returns the length written. */
 size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *buf, size_t size);
 
+/* Progress of a solve: called after each iteration (Ceres) or each evaluation (NLopt)
+ * with its number and the cost there; a non-zero return cancels the solve (and the fit
+ * it belongs to). Called from the solving thread. */
+typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
+
 typedef struct bf_solver_options {
     bf_backend backend;
     /* Ceres: "lm" (Levenberg-Marquardt, default) or "dogleg". NLopt: LD_LBFGS, LD_SLSQP,
@@ -147,11 +152,32 @@ typedef struct bf_solver_options {
     uint64_t seed;               /* stochastic NLopt methods */
     const unsigned char *constant; /* NULL, or npar flags: hold these parameters at their start */
     int use_constraint;          /* apply problem->constraint where the method supports it */
+    bf_progress_fn progress;     /* NULL, or called as the solve goes (above) */
+    void *progress_user;         /* its first argument */
+    /* NULL, or a flag that another thread (or a signal handler) sets non-zero to cancel:
+     * read at every iteration or evaluation, never written by the library. */
+    const volatile int *cancel;
 } bf_solver_options;
 
 /* The method, the local method and the constraint of o against the registry, before any
  * work: BF_OK, or BF_ERR_ARG with a message listing what would do. */
 bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
+
+/* Why a solve stopped (bf_solution.stop; bf_solution.termination says it for people). */
+typedef enum bf_stop {
+    BF_STOP_CONVERGED = 0, /* a tolerance was met, or nothing was free to move */
+    BF_STOP_ITERATIONS,    /* the iteration limit (NLopt: evaluations) */
+    BF_STOP_TIME,          /* the time limit */
+    BF_STOP_CANCELLED,     /* the progress callback or the cancel flag */
+    BF_STOP_FAILED,        /* the back end failed (the start is kept) */
+} bf_stop;
+
+/* "converged", "iteration_limit", "time_limit", "cancelled", "failed" ("?" out of range). */
+const char *bf_stop_name(bf_stop stop);
+
+/* 1 when the solver options' cancel flag is set or the callback asks to stop (given the
+ * iteration and cost); the back ends' common test. */
+int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost);
 
 typedef struct bf_solution {
     double initial_cost, final_cost; /* 1/2 sum rho(r^2) */
@@ -160,7 +186,8 @@ typedef struct bf_solution {
     double seconds;                  /* wall time */
     char backend[16];                /* "ceres", "nlopt" */
     char algorithm[48];              /* as run, e.g. "levenberg_marquardt", "LD_LBFGS" */
-    char termination[160];           /* why it stopped, one line */
+    bf_stop stop;                    /* why it stopped */
+    char termination[160];           /* why it stopped, one line, for people */
     int usable;                      /* 1: x is a finite solution (converged or hit a limit
                                         with a finite cost); 0: the solve failed */
 } bf_solution;

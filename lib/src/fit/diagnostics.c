@@ -389,10 +389,9 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
     const bf_solution *sol = &r->solution;
     if (!r->ok)
         bf_fit_warn(r, "the fit failed: %s", sol->termination);
-    else if (strstr(sol->termination, "NO_CONVERGENCE") || strstr(sol->termination, "MAXEVAL_REACHED") ||
-             strstr(sol->termination, "MAXTIME_REACHED"))
-        bf_fit_warn(r, "the solver stopped on its limit after %d iteration%s, before converging",
-                    sol->iterations, sol->iterations == 1 ? "" : "s");
+    else if (sol->stop == BF_STOP_ITERATIONS || sol->stop == BF_STOP_TIME)
+        bf_fit_warn(r, "the solver stopped on its limit after %d iteration%s, before converging", sol->iterations,
+                    sol->iterations == 1 ? "" : "s");
     if (r->ok && r->starts > 1 && r->starts_at_best == 1)
         bf_fit_warn(r,
                     BF_FIT_WARN_ONE_START " %d starts: a better one may have been missed (--accuracy best "

@@ -58,6 +58,7 @@ static bf_status fixed_only(const bf_problem *p, const double *z, bf_solution *s
     snprintf(sol->backend, sizeof sol->backend, "none");
     snprintf(sol->algorithm, sizeof sol->algorithm, "none");
     sol->usable = isfinite(cost);
+    sol->stop = sol->usable ? BF_STOP_CONVERGED : BF_STOP_FAILED;
     snprintf(sol->termination, sizeof sol->termination, "%s",
              sol->usable ? "every parameter fixed: nothing to solve" : "every parameter fixed, and the cost is not finite");
     return BF_OK;
@@ -121,7 +122,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     unsigned char *held = NULL, *hold = NULL;
     bf_search sr;
     memset(&sr, 0, sizeof sr);
-    int nsilent = 0;
+    int nsilent = 0, cancelled = 0;
     const bf_problem *prob = full; /* where the starts are solved */
     double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
     double *z0 = malloc(((size_t)nz + 1) * sizeof *z0);
@@ -190,6 +191,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
             r->solution = sr.best;
             best_seed = sr.best_seed;
         }
+        cancelled = sr.cancelled;
         r->starts = sr.starts;
         r->starts_at_best = sr.starts_at_best;
         r->candidates = sr.candidates;
@@ -200,7 +202,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
             r->presolve.seconds = sr.on_prob.seconds;
         }
     }
-    if (pobj && have_best) {
+    if (pobj && have_best && !cancelled) {
         /* The whole set, from the best presolved point. Unless told otherwise it stops at
          * a relative cost change of 1e-9 rather than 1e-10: with the hundreds of
          * thousands of samples a presolve needs, that leaves the parameters within
@@ -217,6 +219,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
         if ((rc = bf_solve(full, &so, z, &sol, err)) != BF_OK)
             goto done;
         so.constant = o->solver.constant;
+        cancelled = sol.stop == BF_STOP_CANCELLED;
         for (int j = 0; j < nz && sol.usable; j++)
             sol.usable = isfinite(z[j]);
         r->solution = sol;
@@ -225,6 +228,26 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
             memcpy(zbest, z, (size_t)nz * sizeof *z);
         else
             first = sol; /* the reason below is the whole set's */
+    }
+    if (cancelled) {
+        /* Cancelled (bf_solver_options.cancel or .progress): no fit. The result holds the
+         * start and says why; no metrics, no warnings but that, and the writers refuse it. */
+        memset(&r->solution, 0, sizeof r->solution);
+        r->solution.stop = BF_STOP_CANCELLED;
+        snprintf(r->solution.backend, sizeof r->solution.backend, "%s", bf_backend_name(o->solver.backend));
+        snprintf(r->solution.termination, sizeof r->solution.termination, "cancelled by the caller");
+        r->solution.initial_cost = r->solution.final_cost = NAN;
+        memcpy(r->x, x0, (size_t)P * sizeof *x0);
+        for (int k = 0; k < P; k++) {
+            r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
+            r->stderr_[k] = NAN;
+        }
+        r->samples = s->n;
+        r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
+        r->seed = o->seed;
+        r->residual = o->objective.residual;
+        bf_fit_warn(r, "the fit was cancelled by the caller: no parameters were fitted");
+        goto done;
     }
     r->ok = have_best;
     if (have_best) {

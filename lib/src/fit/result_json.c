@@ -177,6 +177,8 @@ bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path, const
 {
     if (!r || !r->model || !r->x)
         return bf_fail(err, BF_ERR_ARG, "no fit result to write");
+    if (r->solution.stop == BF_STOP_CANCELLED)
+        return bf_fail(err, BF_ERR_ARG, "the fit was cancelled: no result to write");
     return bf_json_write(result_json(r, data_path, 1), out_path, "the result", err);
 }
 
@@ -191,6 +193,10 @@ bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const cha
         if (!r[i] || !r[i]->model || !r[i]->x) {
             cJSON_Delete(root);
             return bf_fail(err, BF_ERR_ARG, "no fit result to write");
+        }
+        if (r[i]->solution.stop == BF_STOP_CANCELLED) {
+            cJSON_Delete(root);
+            return bf_fail(err, BF_ERR_ARG, "fit %d was cancelled: no results to write", i + 1);
         }
         cJSON_AddItemToArray(fits, result_json(r[i], data_path, 0));
     }

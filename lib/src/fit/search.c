@@ -106,7 +106,7 @@ static void add_counts(bf_presolve_info *c, const bf_solution *sol)
  * solve is not usable. Returns an error only for the first start of a search (bad options
  * or a back end that cannot run); a later start the back end fails on is just unusable. */
 static bf_status solve_start(const bf_problem *p, const bf_fit_options *o, int k, double *z, bf_solution *sol,
-                             double *cost, uint64_t *seed, bf_presolve_info *counts, bf_error *err)
+                             double *cost, uint64_t *seed, bf_presolve_info *counts, int *cancelled, bf_error *err)
 {
     bf_solver_options so = o->solver;
     uint64_t sseed = o->seed + (uint64_t)k + 1;
@@ -118,6 +118,10 @@ static bf_status solve_start(const bf_problem *p, const bf_fit_options *o, int k
     if (rc != BF_OK)
         return k == 0 ? rc : BF_OK;
     add_counts(counts, sol);
+    if (sol->stop == BF_STOP_CANCELLED) {
+        *cancelled = 1; /* its point is not an optimum: the search ends here */
+        return BF_OK;
+    }
     int usable = sol->usable && isfinite(sol->final_cost);
     for (int j = 0; j < p->npar && usable; j++)
         usable = isfinite(z[j]);
@@ -157,7 +161,9 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
             random_start(p, s->z0, &draw, z);
         bf_solution sol;
         uint64_t seed;
-        if ((rc = solve_start(p, s->options, k, z, &sol, &costs[k], &seed, &s->on_prob, err)) != BF_OK)
+        if ((rc = solve_start(p, s->options, k, z, &sol, &costs[k], &seed, &s->on_prob, &s->cancelled, err)) !=
+                BF_OK ||
+            s->cancelled)
             break;
         if (k == 0)
             s->first = sol;
@@ -179,7 +185,8 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
  * on), and solved again; a better optimum replaces *zb and *sb. At most max solves.
  * Returns the solves run. */
 static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *dp, const bf_fit_options *opt, int k0,
-                  double *zb, bf_solution *sb, uint64_t *seed, int max, int places, bf_presolve_info *counts)
+                  double *zb, bf_solution *sb, uint64_t *seed, int max, int places, bf_presolve_info *counts,
+                  int *cancelled)
 {
     const int nz = p->npar;
     const bf_model *m = o->model;
@@ -194,7 +201,7 @@ static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *
     int runs = 0;
     double *z = malloc(((size_t)nz + 1) * sizeof *z);
     const int np = bf_model_nparams(m);
-    for (int i = 0; z && sil.nsilent > 0 && i < np && runs < max; i++) {
+    for (int i = 0; z && sil.nsilent > 0 && i < np && runs < max && !*cancelled; i++) {
         int gates = 0;
         for (int q = 0; q < nz; q++)
             gates += sil.silent[q] && sil.gate[q] == i;
@@ -212,7 +219,7 @@ static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *
             bf_solution sol;
             double cost;
             uint64_t sd;
-            if (solve_start(p, opt, k0 + runs, z, &sol, &cost, &sd, counts, &e2) != BF_OK)
+            if (solve_start(p, opt, k0 + runs, z, &sol, &cost, &sd, counts, cancelled, &e2) != BF_OK || *cancelled)
                 break;
             runs++;
             if (isfinite(cost) && cost < sb->final_cost * (1.0 - DISTINCT)) {
@@ -340,6 +347,10 @@ static bf_status screened(bf_search *s, bf_error *err)
     double *cz = pts + (size_t)(1 + nsw) * nz; /* the candidates */
     uint64_t draw = o->seed;
     for (int j = 0; j < M; j++) {
+        if (o->solver.cancel && *o->solver.cancel) {
+            s->cancelled = 1;
+            goto done;
+        }
         random_start(sp, s->z0, &draw, cz + (size_t)j * nz);
         cand[j].cost = cost_at(sp, &o->solver, cz + (size_t)j * nz);
         cand[j].index = j;
@@ -362,7 +373,8 @@ static bf_status screened(bf_search *s, bf_error *err)
         double *z = pts + (size_t)order[t] * nz;
         bf_solution sol;
         uint64_t seed;
-        if ((rc = solve_start(sp, o, t, z, &sol, &solved[t].cost, &seed, &s->screen, err)) != BF_OK)
+        if ((rc = solve_start(sp, o, t, z, &sol, &solved[t].cost, &seed, &s->screen, &s->cancelled, err)) != BF_OK ||
+            s->cancelled)
             goto done;
         solved[t].index = t; /* ties go to the earlier solve, as consider() keeps them */
         if (t == 0)
@@ -386,7 +398,9 @@ static bf_status screened(bf_search *s, bf_error *err)
         if (sp == prob)
             sb = s->best;
         uint64_t seed = s->best_seed;
-        revive(sp, so, sp, o, n, zb, &sb, &seed, SCREEN_REVIVES, 2, &s->screen);
+        revive(sp, so, sp, o, n, zb, &sb, &seed, SCREEN_REVIVES, 2, &s->screen, &s->cancelled);
+        if (s->cancelled)
+            goto done;
         solved[0].cost = sb.final_cost;
         if (sp == prob)
             consider(s, zb, &sb, sb.final_cost, seed);
@@ -416,14 +430,16 @@ static bf_status screened(bf_search *s, bf_error *err)
         bf_solution sol;
         double cost;
         uint64_t seed;
-        if ((rc = solve_start(prob, o, t < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, err)) != BF_OK)
+        if ((rc = solve_start(prob, o, t < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled, err)) !=
+                BF_OK ||
+            s->cancelled)
             goto done;
         if (t < 0)
             s->first = sol;
         consider(s, zp, &sol, cost, seed);
     }
     if (s->have_best && s->presolved)
-        revive(prob, pobj, sp, o, k, s->z, &s->best, &s->best_seed, PROB_REVIVES, 1, &s->on_prob);
+        revive(prob, pobj, sp, o, k, s->z, &s->best, &s->best_seed, PROB_REVIVES, 1, &s->on_prob, &s->cancelled);
 
 done:
     free(pts);
@@ -491,7 +507,7 @@ bf_status bf_fit_search(bf_search *s, bf_error *err)
 {
     s->screen_objective = NULL;
     s->screen_samples = NULL;
-    s->have_best = 0;
+    s->have_best = s->cancelled = 0;
     s->starts = s->starts_at_best = s->candidates = 0;
     memset(&s->on_prob, 0, sizeof s->on_prob);
     memset(&s->screen, 0, sizeof s->screen);

@@ -251,17 +251,23 @@ constexpr int kStallIterations = 3;
 constexpr int kSlowWindow = 5;
 constexpr double kSlowRelative = 1e-8;
 
-// Watches a round: ends it on a stall at a bound (kBound) or on slow progress (kSlow).
+// Watches a round: ends it on a stall at a bound (kBound) or on slow progress (kSlow), and
+// aborts it when the caller cancels (kCancel: the cancel flag, or the progress callback,
+// which sees the solve's iterations counted over every round).
 class RoundWatch final : public ceres::IterationCallback {
 public:
-    enum Reason { kNone, kBound, kSlow };
+    enum Reason { kNone, kBound, kSlow, kCancel };
     RoundWatch(const double *x, const std::vector<double> &lo, const std::vector<double> &hi,
-               const std::vector<char> &held, bool stall = true)
-        : x_(x), lo_(lo), hi_(hi), held_(held), stall_(stall)
+               const std::vector<char> &held, const bf_solver_options *o, int iterations_before, bool stall = true)
+        : x_(x), lo_(lo), hi_(hi), held_(held), o_(o), before_(iterations_before), stall_(stall)
     {
     }
     ceres::CallbackReturnType operator()(const ceres::IterationSummary &it) override
     {
+        if (bf_solver_cancelled(o_, before_ + it.iteration, it.cost)) {
+            reason_ = kCancel;
+            return ceres::SOLVER_ABORT;
+        }
         bool on_bound = false;
         for (size_t k = 0; k < held_.size(); k++)
             if (!held_[k] && (x_[k] == lo_[k] || x_[k] == hi_[k]))
@@ -287,6 +293,8 @@ private:
     const double *x_;
     const std::vector<double> &lo_, &hi_;
     const std::vector<char> &held_;
+    const bf_solver_options *o_;
+    int before_;
     bool stall_;
     int streak_ = 0;
     std::vector<double> costs_;
@@ -417,13 +425,14 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
     double seconds = 0.0, initial_cost = 0.0, final_cost = 0.0;
     ceres::Solver::Summary sum;
     bool last_round = false; // after a cycle: one round that no stall ends (below)
+    bool cancelled = false, failed = false;
     for (const int max_rounds = 2 * np + 2; rounds < max_rounds;) {
         opt.max_num_iterations = max_iterations - iterations;
         opt.max_solver_time_in_seconds = o->max_seconds > 0 ? o->max_seconds - seconds : 1e9;
         if (have_result && (opt.max_num_iterations <= 0 || opt.max_solver_time_in_seconds <= 0))
             break;
         seen.push_back(held);
-        RoundWatch watcher(x, lo, hi, held, !last_round);
+        RoundWatch watcher(x, lo, hi, held, o, iterations, !last_round);
         opt.callbacks.clear();
         opt.update_state_every_iteration = true;
         opt.callbacks.push_back(&watcher);
@@ -434,11 +443,23 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
         seconds += std::max(0.0, sum.total_time_in_seconds);
         if (rounds == 1)
             initial_cost = sum.initial_cost;
+        if (watcher.reason() == RoundWatch::kCancel) {
+            // Cancelled: the round's last accepted point, if it is one, else the best so far.
+            cancelled = true;
+            if (std::isfinite(sum.final_cost) && all_finite(x, np) && (!have_result || sum.final_cost <= final_cost)) {
+                best.assign(x, x + np);
+                final_cost = sum.final_cost;
+                have_result = true;
+            }
+            std::copy(best.begin(), best.end(), x);
+            break;
+        }
         const bool ended = sum.termination_type == ceres::CONVERGENCE ||
                            sum.termination_type == ceres::NO_CONVERGENCE ||
                            sum.termination_type == ceres::USER_SUCCESS;
         if (!ended || !std::isfinite(sum.final_cost) || !all_finite(x, np)) {
             std::copy(best.begin(), best.end(), x); // never hand out a failed point
+            failed = !have_result;
             break;
         }
         best.assign(x, x + np);
@@ -497,13 +518,26 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
     s->evaluations = evaluations;
     s->seconds = seconds;
     copy_line(s->algorithm, sizeof s->algorithm, alg->as_run);
-    std::string type = sum.termination_type == ceres::USER_SUCCESS
+    std::string type = cancelled ? "CANCELLED"
+                       : sum.termination_type == ceres::USER_SUCCESS
                            ? "NO_CONVERGENCE" // only when the limits ended the rounds
                            : ceres::TerminationTypeToString(sum.termination_type);
     if (rounds > 1)
         type += " (" + std::to_string(rounds) + " active-set rounds)";
-    copy_line(s->termination, sizeof s->termination, type + ": " + sum.message);
+    copy_line(s->termination, sizeof s->termination,
+              cancelled ? type + ": by the caller after " + std::to_string(iterations) + " iterations"
+                        : type + ": " + sum.message);
     s->usable = have_result && std::isfinite(s->final_cost) && all_finite(x, np);
+    // Why it stopped: the limits show as NO_CONVERGENCE (or a round stopped on a stall
+    // when they ended the rounds); which limit, from the counts.
+    if (cancelled)
+        s->stop = BF_STOP_CANCELLED;
+    else if (failed || !s->usable || sum.termination_type == ceres::FAILURE)
+        s->stop = BF_STOP_FAILED;
+    else if (sum.termination_type == ceres::CONVERGENCE)
+        s->stop = BF_STOP_CONVERGED;
+    else
+        s->stop = o->max_seconds > 0 && seconds >= o->max_seconds ? BF_STOP_TIME : BF_STOP_ITERATIONS;
     if (!s->usable && !all_finite(x, np))
         std::copy(best.begin(), best.end(), x);
     return BF_OK;

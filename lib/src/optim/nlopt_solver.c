@@ -58,6 +58,11 @@ typedef struct nl_state {
     int evals, failures;
     double best;
     double *xbest;
+    /* Cancelling (bf_solver_options.cancel and .progress): the running optimizer, stopped
+     * with nlopt_force_stop. */
+    const bf_solver_options *o;
+    nlopt_opt running;
+    int cancelled;
 } nl_state;
 
 /* Cost at the free vector z (and its gradient when grad is not NULL). A failed or
@@ -85,6 +90,10 @@ static double evaluate(nl_state *st, const double *z, double *grad)
     if (cost < st->best) {
         st->best = cost;
         memcpy(st->xbest, z, (size_t)st->nfree * sizeof *z);
+    }
+    if (st->running && !st->cancelled && bf_solver_cancelled(st->o, st->evals, cost)) {
+        st->cancelled = 1;
+        nlopt_force_stop(st->running);
     }
     return cost;
 }
@@ -130,6 +139,7 @@ static int state_init(nl_state *st, const bf_problem *p, const bf_solver_options
 {
     memset(st, 0, sizeof *st);
     st->p = p;
+    st->o = o;
     st->loss = o->loss;
     st->threads = o->threads > 1 ? o->threads : 1;
     st->npar = p->npar;
@@ -241,6 +251,7 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
     if (!isfinite(s->initial_cost)) {
         snprintf(s->termination, sizeof s->termination,
                  "the cost at the start is not finite (the residual function failed or gave NaN/Inf)");
+        s->stop = BF_STOP_FAILED;
         goto done;
     }
     if (nfree == 0) {
@@ -276,7 +287,9 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
     nlopt_srand((unsigned long)o->seed);
     const int evals_before = st.evals;
     double f = HUGE_VAL;
+    st.running = opt;
     const nlopt_result res = nlopt_optimize(opt, z, &f);
+    st.running = NULL;
     const char *nlmsg = nlopt_get_errmsg(opt);
     s->iterations = st.evals - evals_before;
 
@@ -292,7 +305,9 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
         f = st.best;
     }
     const int usable = isfinite(f) && (res > 0 || res == NLOPT_ROUNDOFF_LIMITED || f < s->initial_cost);
-    int w = snprintf(s->termination, sizeof s->termination, "%s", result_text(res));
+    int w = snprintf(s->termination, sizeof s->termination, "%s",
+                     st.cancelled && res == NLOPT_FORCED_STOP ? "NLOPT_FORCED_STOP: cancelled by the caller"
+                                                              : result_text(res));
     if (res < 0 && nlmsg && w > 0 && (size_t)w < sizeof s->termination)
         w += snprintf(s->termination + w, sizeof s->termination - (size_t)w, " (%s)", nlmsg);
     if (st.failures && w > 0 && (size_t)w < sizeof s->termination)
@@ -308,6 +323,11 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
         s->final_cost = f;
     }
     s->usable = usable;
+    s->stop = st.cancelled && res == NLOPT_FORCED_STOP ? BF_STOP_CANCELLED
+              : !usable                                ? BF_STOP_FAILED
+              : res == NLOPT_MAXEVAL_REACHED           ? BF_STOP_ITERATIONS
+              : res == NLOPT_MAXTIME_REACHED           ? BF_STOP_TIME
+                                                       : BF_STOP_CONVERGED;
     nlopt_destroy(lopt);
     nlopt_destroy(opt);
 

@@ -99,6 +99,25 @@ bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
     return BF_OK;
 }
 
+const char *bf_stop_name(bf_stop stop)
+{
+    switch (stop) {
+    case BF_STOP_CONVERGED: return "converged";
+    case BF_STOP_ITERATIONS: return "iteration_limit";
+    case BF_STOP_TIME: return "time_limit";
+    case BF_STOP_CANCELLED: return "cancelled";
+    case BF_STOP_FAILED: return "failed";
+    }
+    return "?";
+}
+
+int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost)
+{
+    if (o->cancel && *o->cancel)
+        return 1;
+    return o->progress && o->progress(o->progress_user, iteration, cost) != 0;
+}
+
 bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {
     bf_solver_options defaults;
@@ -143,6 +162,13 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
     memcpy(start, x, (size_t)n * sizeof *start);
 
     int rc;
+    if (o->cancel && *o->cancel) { /* cancelled before it began: the start, untouched */
+        free(start);
+        s->stop = BF_STOP_CANCELLED;
+        snprintf(s->termination, sizeof s->termination, "cancelled before the solve began");
+        s->initial_cost = s->final_cost = NAN;
+        return BF_OK;
+    }
     switch (o->backend) {
     case BF_BACKEND_CERES:
         rc = bf_solve_ceres(p, o, x, s, err);
@@ -168,6 +194,7 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
                      "the back end returned non-finite parameters; the start is kept");
         }
         s->usable = 0;
+        s->stop = BF_STOP_FAILED;
     } else {
         for (int k = 0; k < n; k++) {
             if (p->lo && x[k] < p->lo[k])
