@@ -1,6 +1,6 @@
 /* Internal: what a model family implements, and the configured model it fills in.
- * Each family lives in its own file and exports one `const bf_family`; registry.c is
- * the only place that lists them all. */
+ * Each family lives in its own file and exports one `const bf_family`;
+ * models/families.def is the only list of them all (registry.c expands it). */
 #ifndef BF_FAMILY_H
 #define BF_FAMILY_H
 
