@@ -383,16 +383,23 @@ void ts_fit_defaults(bf_fit_options *o)
     o->starts = 1;
 }
 
-bf_samples *ts_read_cornell_rgb(const char *name)
+bf_samples *ts_read_data(const char *path)
 {
-    char path[512];
-    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_EXAMPLES, name);
     bf_read_options ro;
     memset(&ro, 0, sizeof ro);
     bf_samples *s = NULL;
     bf_error err;
     if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
         fail_msg("%s", err.msg);
+    return s;
+}
+
+bf_samples *ts_read_cornell_rgb(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/cornell/%s", BRDFIT_EXAMPLES, name);
+    bf_samples *s = ts_read_data(path);
+    bf_error err;
     bf_prep p;
     memset(&p, 0, sizeof p);
     p.color = BF_COLOR_SRGB;

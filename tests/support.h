@@ -88,6 +88,8 @@ void ts_expect_read_error(ts_reader reader, const char *name, const char *text, 
 /* Fit options the fitting tests start from: the library's (bf_fit_options_init) with a
  * linear residual and one solver thread. */
 void ts_fit_defaults(bf_fit_options *o);
+/* A data file read with the default options (format by extension, then content). */
+bf_samples *ts_read_data(const char *path);
 /* A bundled Cornell measurement (examples/cornell/NAME) as linear sRGB, as --rgb reads it. */
 bf_samples *ts_read_cornell_rgb(const char *name);
 /* bf_fit that fails the test on an error or an unusable fit. */

@@ -28,14 +28,7 @@
 
 static bf_samples *read_felt(void)
 {
-    char path[512];
-    snprintf(path, sizeof path, "%s/alta/pink-felt-1d.alta", BRDFIT_TEST_DATA);
-    bf_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    bf_samples *s = NULL;
-    bf_error err;
-    if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
-        fail_msg("%s", err.msg);
+    bf_samples *s = ts_read_data(BRDFIT_TEST_DATA "/alta/pink-felt-1d.alta");
     assert_int_equal(s->n, 90);
     return s;
 }
