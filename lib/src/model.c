@@ -339,6 +339,7 @@ int bf_model_opt(const bf_model *m, const char *key)
 }
 
 const char *bf_model_name(const bf_model *m) { return m->family->info.name; }
+const bf_family_info *bf_model_family(const bf_model *m) { return &m->family->info; }
 const char *bf_model_spec(const bf_model *m) { return m->spec; }
 int bf_model_channels(const bf_model *m) { return m->channels; }
 int bf_model_lobes(const bf_model *m) { return m->lobes; }

@@ -1,8 +1,11 @@
-/* A program built against an installed brdfit (tests/cli_install.sh): C only, the public
- * headers only. Fits Lambert to samples of rho_d = 0.3 made here, prints the fitted
- * albedo and the library's version, and writes a small PNG when given a path (which
- * loads the image module the way any program linked to the library does). */
+/* A program built against an installed brdfit (tests/install/install_test.sh,
+ * tests/package/package_test.sh): C only, the public headers only. Fits Lambert to
+ * samples of rho_d = 0.3 made here, prints the fitted albedo and the library's version,
+ * writes a small PNG when given a path (which loads the image module the way any program
+ * linked to the library does) and, given a folder too, exports the fit to glTF, Blender
+ * and Mitsuba there. */
 #include <brdfit/error.h>
+#include <brdfit/export.h>
 #include <brdfit/fit.h>
 #include <brdfit/image.h>
 #include <brdfit/model.h>
@@ -46,6 +49,27 @@ int main(int argc, char **argv)
     printf("rho_d %.6f\n", rho);
     printf("version %s (headers %s, %d.%d.%d)\n", bf_version(), BRDFIT_VERSION, BRDFIT_VERSION_MAJOR,
            BRDFIT_VERSION_MINOR, BRDFIT_VERSION_PATCH);
+    /* With a folder: the fit exported to every renderer the library knows (converted:
+     * Lambert is none of their native models), into FOLDER/brdfit.NAME. */
+    for (int t = 0; argc > 2 && t < bf_export_target_count(); t++) {
+        const bf_export_target *to = bf_export_target_get(t);
+        bf_export_material e;
+        bf_fit_result conversion;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/brdfit.%s", argv[2], to->name);
+        if (bf_export_check(to, r.model, 0, &err) != BF_OK ||
+            bf_export_prepare(to, r.model, r.x, &e, &conversion, &err) != BF_OK) {
+            fprintf(stderr, "consumer: export to %s: %s\n", to->name, err.msg);
+            return 1;
+        }
+        bf_status rc = bf_export_write(to, &e, path, &err);
+        printf("exported %s (%s, rmse_log %.3g)\n", to->name, e.converted ? "converted" : "exact", e.metrics.rmse_log);
+        bf_fit_result_clear(&conversion);
+        if (rc != BF_OK) {
+            fprintf(stderr, "consumer: export to %s: %s\n", to->name, err.msg);
+            return 1;
+        }
+    }
     bf_fit_result_clear(&r);
     bf_samples_free(s);
     if (!(fabs(rho - RHO) < 1e-6) || strncmp(bf_version(), BRDFIT_VERSION, strlen(BRDFIT_VERSION)) != 0)

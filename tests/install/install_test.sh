@@ -69,15 +69,24 @@ expect_fit() { # $1: what, $2: output file
   grep -qx 'rho_d 0.300000' "$2" && grep -qE "^version ${version//./\\.}( \(git [^)]+\))? \(headers ${version//./\\.}, ${version//./\\.}\)\$" "$2" && ok ||
     bad "$1: unexpected output: $(cat "$2")"
 }
+# The library's export (brdfit/export.h), used by a program: the three renderers' files.
+expect_exports() { # $1: what, $2: folder, $3: the program's output
+  grep -q '"generator":[[:space:]]*"brdfit export"' "$2/brdfit.gltf" 2>/dev/null &&
+    grep -qx 'import bpy' "$2/brdfit.blender" 2>/dev/null && grep -q '<bsdf type="principled">' "$2/brdfit.mitsuba" 2>/dev/null &&
+    [ "$(grep -c '^exported [a-z]* (converted, rmse_log ' "$3")" = 3 ] && ok ||
+    bad "$1: exports: $(ls "$2") $(grep export "$3")"
+}
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 # (a) pkg-config, shared. A .pc file carries no run path: a program of a non-system
 # prefix names one (or LD_LIBRARY_PATH does).
 # shellcheck disable=SC2046,SC2086
 if "$cc" $flags consumer.c -o app_pc $(pkg-config --cflags --libs brdfit) -lm \
      -Wl,-rpath,"$(pkg-config --variable=libdir brdfit)" 2>"$tmp/cc.err"; then
-  ./app_pc "$tmp/pc.png" >"$tmp/pc.out" 2>&1 && expect_fit "pkg-config" "$tmp/pc.out" ||
+  mkdir "$tmp/exports.pc"
+  ./app_pc "$tmp/pc.png" "$tmp/exports.pc" >"$tmp/pc.out" 2>&1 && expect_fit "pkg-config" "$tmp/pc.out" ||
     bad "pkg-config consumer failed: $(cat "$tmp/pc.out")"
   [ -s "$tmp/pc.png" ] && ok || bad "the pkg-config consumer wrote no PNG"
+  expect_exports "pkg-config consumer" "$tmp/exports.pc" "$tmp/pc.out"
   used=$(ldd ./app_pc | sed -n "s/^[[:space:]]*libbrdfit\.so\.$so => \([^ ]*\) .*/\1/p")
   [ -n "$used" ] && [ "$(realpath "$used")" = "$(realpath "$libdir/libbrdfit.so.$so")" ] && ok ||
     bad "app_pc uses '$used', not $libdir/libbrdfit.so.$so"
@@ -101,9 +110,12 @@ fi
 if "$cmake" -S . -B cbuild -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_COMPILER="$cc" -DCMAKE_C_FLAGS="$flags" \
      -DCMAKE_EXE_LINKER_FLAGS="$flags" >"$tmp/cmake.log" 2>&1 &&
    "$cmake" --build cbuild >>"$tmp/cmake.log" 2>&1; then
-  ./cbuild/consumer "$tmp/cmake.png" >"$tmp/cmake.out" 2>&1 && expect_fit "find_package" "$tmp/cmake.out" ||
+  mkdir "$tmp/exports.cmake"
+  ./cbuild/consumer "$tmp/cmake.png" "$tmp/exports.cmake" >"$tmp/cmake.out" 2>&1 &&
+    expect_fit "find_package" "$tmp/cmake.out" ||
     bad "find_package consumer failed: $(cat "$tmp/cmake.out")"
   [ -s "$tmp/cmake.png" ] && ok || bad "the find_package consumer wrote no PNG"
+  expect_exports "find_package consumer" "$tmp/exports.cmake" "$tmp/cmake.out"
   ./cbuild/consumer_static >"$tmp/cs.out" 2>&1 && expect_fit "find_package static" "$tmp/cs.out" ||
     bad "brdfit::brdfit_static consumer failed: $(cat "$tmp/cs.out")"
 else

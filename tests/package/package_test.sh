@@ -130,8 +130,12 @@ expect_consumer() { # $1: what, $2: output
 }
 # shellcheck disable=SC2046
 if cc consumer.c -o app $(pkg-config --cflags --libs brdfit) -lm 2>cc.err; then
-  ./app app.png >app.out 2>&1 && expect_consumer "pkg-config consumer" app.out || bad "pkg-config consumer failed: $(cat app.out)"
+  mkdir exports
+  ./app app.png exports >app.out 2>&1 && expect_consumer "pkg-config consumer" app.out || bad "pkg-config consumer failed: $(cat app.out)"
   [ -s app.png ] && ok || bad "the pkg-config consumer wrote no PNG"
+  # The library's export (brdfit/export.h): glTF, Blender and Mitsuba files from the program.
+  [ -s exports/brdfit.gltf ] && [ -s exports/brdfit.blender ] && [ -s exports/brdfit.mitsuba ] &&
+    [ "$(grep -c '^exported [a-z]* (converted' app.out)" = 3 ] && ok || bad "the consumer's exports: $(ls exports; cat app.out)"
   used=$(ldd ./app | sed -n "s/^[[:space:]]*libbrdfit\.so\.$soversion => \([^ ]*\) .*/\1/p")
   [ -n "$used" ] && [ "$(realpath "$used")" = "$libdir/libbrdfit.so.$version" ] && ok || bad "app uses '$used', not $libdir's library"
 else

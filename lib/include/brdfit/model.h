@@ -87,6 +87,7 @@ bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error 
 void bf_model_free(bf_model *m);
 
 const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
+const bf_family_info *bf_model_family(const bf_model *m); /* its family's description */
 const char *bf_model_spec(const bf_model *m);    /* canonical spec with every option */
 const char *bf_model_option(const bf_model *m, const char *key); /* NULL if none */
 int bf_model_channels(const bf_model *m);

@@ -263,10 +263,7 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
 {
     const int C = bf_model_channels(m);
     /* An isotropic model's albedo does not depend on the azimuth of L. */
-    int aniso = 1;
-    for (int i = 0; i < bf_family_count(); i++)
-        if (!strcmp(bf_family_get(i)->name, bf_model_name(m)))
-            aniso = bf_family_get(i)->anisotropic;
+    const int aniso = bf_model_family(m)->anisotropic;
     const int nphi_i = aniso ? ALB_NPHI_I : 1;
     const size_t nh = (size_t)ALB_NU * ALB_NPHI;
     double u[ALB_NU], wu[ALB_NU];

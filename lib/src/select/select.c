@@ -58,14 +58,6 @@ int bf_select_default_candidates(int channels, const char ***specs)
     return n;
 }
 
-static int family_anisotropic(const char *name)
-{
-    for (int i = 0; i < bf_family_count(); i++)
-        if (!strcmp(bf_family_get(i)->name, name))
-            return bf_family_get(i)->anisotropic;
-    return 0;
-}
-
 /* A colour parameter besides the first (the diffuse colour) makes the highlight
  * coloured; with one channel there is no colour to speak of. */
 static int coloured_specular(const bf_model *m)
@@ -106,7 +98,7 @@ bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int chan
             return BF_ERR_ARG;
         }
         c->k = bf_model_nvalues(m);
-        c->anisotropic = family_anisotropic(bf_model_name(m));
+        c->anisotropic = bf_model_family(m)->anisotropic;
         c->lobes = bf_model_lobes(m);
         c->coloured_specular = coloured_specular(m);
         c->error = c->criterion = c->cv_error = NAN;

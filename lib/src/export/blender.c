@@ -7,7 +7,7 @@
 #include <stdio.h>
 
 #include "brdfit/io.h"
-#include "export.h"
+#include "export_impl.h"
 
 static void put(FILE *fp, const char *socket, double v)
 {
@@ -15,7 +15,7 @@ static void put(FILE *fp, const char *socket, double v)
     fprintf(fp, "bsdf.inputs[\"%s\"].default_value = %s\n", socket, bf_format_double(v, buf, sizeof buf));
 }
 
-void export_write_blender(const export_material *e, FILE *fp)
+bf_status bf_export_write_blender(const bf_export_material *e, FILE *fp, bf_error *err)
 {
     char b[3][40];
     fprintf(fp, "# Written by brdfit export: a Blender 3.4 Principled BSDF (Cycles, GGX).\n");
@@ -23,7 +23,7 @@ void export_write_blender(const export_material *e, FILE *fp)
     fprintf(fp, "# Source model: %s (%s)\n", e->source, e->converted ? "converted" : "exact");
     if (e->converted) {
         fputs("# ", fp);
-        export_conversion_note(e, fp);
+        bf_export_conversion_note(e, fp);
         fputc('\n', fp);
     }
     fprintf(fp, "import bpy\n\nPREVIEW = True\n\n");
@@ -31,19 +31,19 @@ void export_write_blender(const export_material *e, FILE *fp)
     fprintf(fp, "bsdf = mat.node_tree.nodes[\"Principled BSDF\"]\n");
     fprintf(fp, "bsdf.distribution = \"GGX\"\n");
     fprintf(fp, "bsdf.inputs[\"Base Color\"].default_value = (%s, %s, %s, 1.0)\n",
-            bf_format_double(export_param(e, "base_color", 0), b[0], sizeof b[0]),
-            bf_format_double(export_param(e, "base_color", 1), b[1], sizeof b[1]),
-            bf_format_double(export_param(e, "base_color", 2), b[2], sizeof b[2]));
+            bf_format_double(bf_export_param(e, "base_color", 0), b[0], sizeof b[0]),
+            bf_format_double(bf_export_param(e, "base_color", 1), b[1], sizeof b[1]),
+            bf_format_double(bf_export_param(e, "base_color", 2), b[2], sizeof b[2]));
     put(fp, "Subsurface", 0.0);
-    put(fp, "Metallic", export_param(e, "metallic", 0));
-    put(fp, "Specular", export_param(e, "specular", 0));
-    put(fp, "Specular Tint", export_param(e, "specular_tint", 0));
-    put(fp, "Roughness", export_param(e, "roughness", 0));
+    put(fp, "Metallic", bf_export_param(e, "metallic", 0));
+    put(fp, "Specular", bf_export_param(e, "specular", 0));
+    put(fp, "Specular Tint", bf_export_param(e, "specular_tint", 0));
+    put(fp, "Roughness", bf_export_param(e, "roughness", 0));
     put(fp, "Anisotropic", 0.0);
-    put(fp, "Sheen", export_param(e, "sheen", 0));
-    put(fp, "Sheen Tint", export_param(e, "sheen_tint", 0));
-    put(fp, "Clearcoat", export_param(e, "clearcoat", 0));
-    put(fp, "Clearcoat Roughness", export_param(e, "clearcoat_roughness", 0));
+    put(fp, "Sheen", bf_export_param(e, "sheen", 0));
+    put(fp, "Sheen Tint", bf_export_param(e, "sheen_tint", 0));
+    put(fp, "Clearcoat", bf_export_param(e, "clearcoat", 0));
+    put(fp, "Clearcoat Roughness", bf_export_param(e, "clearcoat_roughness", 0));
     put(fp, "Transmission", 0.0);
     fputs("\nif PREVIEW:\n"
           "    for ob in list(bpy.data.objects):\n"
@@ -73,4 +73,6 @@ void export_write_blender(const export_material *e, FILE *fp)
           "    scene.cycles.samples = 256\n"
           "    scene.view_settings.view_transform = \"Standard\"\n",
           fp);
+    (void)err;
+    return BF_OK;
 }

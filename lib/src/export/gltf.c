@@ -10,7 +10,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "export.h"
+#include "export_impl.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -131,22 +131,22 @@ static cJSON *accessor(int view_index, int type_code, int count, const char *typ
     return a;
 }
 
-static cJSON *material(const export_material *e)
+static cJSON *material(const bf_export_material *e)
 {
-    double base[4] = {export_param(e, "base_color", 0), export_param(e, "base_color", 1),
-                      export_param(e, "base_color", 2), 1.0};
-    double scol[3] = {export_param(e, "specular_color", 0), export_param(e, "specular_color", 1),
-                      export_param(e, "specular_color", 2)};
+    double base[4] = {bf_export_param(e, "base_color", 0), bf_export_param(e, "base_color", 1),
+                      bf_export_param(e, "base_color", 2), 1.0};
+    double scol[3] = {bf_export_param(e, "specular_color", 0), bf_export_param(e, "specular_color", 1),
+                      bf_export_param(e, "specular_color", 2)};
     cJSON *mat = cJSON_CreateObject(), *pbr = cJSON_CreateObject(), *ext = cJSON_CreateObject();
     cJSON *spec = cJSON_CreateObject(), *ior = cJSON_CreateObject();
     cJSON_AddStringToObject(mat, "name", "brdfit");
     cJSON_AddItemToObject(pbr, "baseColorFactor", num_array(base, 4));
-    cJSON_AddNumberToObject(pbr, "metallicFactor", export_param(e, "metallic", 0));
-    cJSON_AddNumberToObject(pbr, "roughnessFactor", export_param(e, "roughness", 0));
+    cJSON_AddNumberToObject(pbr, "metallicFactor", bf_export_param(e, "metallic", 0));
+    cJSON_AddNumberToObject(pbr, "roughnessFactor", bf_export_param(e, "roughness", 0));
     cJSON_AddItemToObject(mat, "pbrMetallicRoughness", pbr);
-    cJSON_AddNumberToObject(spec, "specularFactor", export_param(e, "specular", 0));
+    cJSON_AddNumberToObject(spec, "specularFactor", bf_export_param(e, "specular", 0));
     cJSON_AddItemToObject(spec, "specularColorFactor", num_array(scol, 3));
-    cJSON_AddNumberToObject(ior, "ior", export_param(e, "ior", 0));
+    cJSON_AddNumberToObject(ior, "ior", bf_export_param(e, "ior", 0));
     cJSON_AddItemToObject(ext, "KHR_materials_specular", spec);
     cJSON_AddItemToObject(ext, "KHR_materials_ior", ior);
     cJSON_AddItemToObject(mat, "extensions", ext);
@@ -154,7 +154,7 @@ static cJSON *material(const export_material *e)
 }
 
 /* asset.extras.brdfit: where the material came from and, for a conversion, its error. */
-static cJSON *provenance(const export_material *e)
+static cJSON *provenance(const bf_export_material *e)
 {
     cJSON *b = cJSON_CreateObject();
     cJSON_AddStringToObject(b, "source_model", e->source);
@@ -174,7 +174,7 @@ static cJSON *provenance(const export_material *e)
     return extras;
 }
 
-static cJSON *document(const export_material *e, const unsigned char *buf, const float mn[3], const float mx[3])
+static cJSON *document(const bf_export_material *e, const unsigned char *buf, const float mn[3], const float mx[3])
 {
     const int total = IDX_BYTES + 2 * POS_BYTES;
     cJSON *doc = cJSON_CreateObject();
@@ -238,11 +238,11 @@ static cJSON *document(const export_material *e, const unsigned char *buf, const
     return uri ? doc : (cJSON_Delete(doc), NULL);
 }
 
-int export_write_gltf(const export_material *e, FILE *fp)
+bf_status bf_export_write_gltf(const bf_export_material *e, FILE *fp, bf_error *err)
 {
     unsigned char *buf = malloc(IDX_BYTES + 2 * POS_BYTES);
     if (!buf)
-        return -1;
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the glTF document");
     float mn[3], mx[3];
     build_sphere(buf, mn, mx);
     cJSON *doc = document(e, buf, mn, mx);
@@ -250,9 +250,9 @@ int export_write_gltf(const export_material *e, FILE *fp)
     char *text = doc ? cJSON_Print(doc) : NULL;
     cJSON_Delete(doc);
     if (!text)
-        return -1;
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the glTF document");
     fputs(text, fp);
     fputc('\n', fp);
     free(text);
-    return 0;
+    return BF_OK;
 }

@@ -1,0 +1,146 @@
+/* Export (brdfit/export.h): the targets, the check, the conversion fit and the atomic
+ * write. The writers are gltf.c, blender.c and mitsuba.c. */
+#include "brdfit/export.h"
+
+#include <string.h>
+
+#include "brdfit/io.h"
+#include "brdfit/samples.h"
+
+#include "export_impl.h"
+
+static const bf_export_target targets[] = {
+    {"gltf", "gltf", "glTF 2.0 (.gltf with a sphere)", bf_export_write_gltf},
+    {"blender", "blender_principled", "Blender 3.4 (a Python script)", bf_export_write_blender},
+    {"mitsuba", "mitsuba_principled", "Mitsuba 3 (scene XML)", bf_export_write_mitsuba},
+};
+enum { NTARGETS = sizeof targets / sizeof targets[0] };
+
+int bf_export_target_count(void) { return NTARGETS; }
+
+const bf_export_target *bf_export_target_get(int i) { return i >= 0 && i < NTARGETS ? &targets[i] : NULL; }
+
+const bf_export_target *bf_export_target_find(const char *name)
+{
+    for (int i = 0; name && i < NTARGETS; i++)
+        if (!strcmp(name, targets[i].name))
+            return &targets[i];
+    return NULL;
+}
+
+double bf_export_param(const bf_export_material *e, const char *name, int c)
+{
+    int i = bf_model_find_param(e->model, name);
+    const bf_param_info *p = bf_model_param(e->model, i);
+    int off = bf_model_param_offset(e->model, i);
+    return p->colour && bf_model_channels(e->model) > 1 ? e->x[off + c] : e->x[off];
+}
+
+void bf_export_conversion_note(const bf_export_material *e, FILE *fp)
+{
+    fprintf(fp, "conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, rmse_rel %.6g, "
+                "max_err %.6g (1/sr)",
+            e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log, e->metrics.rmse_rel,
+            e->metrics.max_err);
+}
+
+static int anisotropic(const bf_model *m)
+{
+    return bf_model_family(m)->anisotropic;
+}
+
+bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int convert_any, bf_error *err)
+{
+    if (!t || !src)
+        return bf_fail(err, BF_ERR_ARG, "export: no target or no model");
+    const int C = bf_model_channels(src);
+    if (C != 1 && C != 3)
+        return bf_fail(err, BF_ERR_ARG, "%d channels; a renderer's colour needs 1 (grey) or 3 (RGB)", C);
+    if (strcmp(bf_model_name(src), t->model) != 0 && !convert_any) {
+        const int aniso = anisotropic(src), multi = bf_model_lobes(src) > 1;
+        if (aniso || multi)
+            return bf_fail(err, BF_ERR_ARG, "%s is %s; %s holds one isotropic lobe (--convert fits it anyway)",
+                           bf_model_spec(src), aniso ? "anisotropic" : "multi-lobe", t->model);
+    }
+    return BF_OK;
+}
+
+/* The grid the conversion fits on, with the source's values. Isotropic sources need only
+ * phi_i = 0. */
+static bf_status source_samples(const bf_model *src, const double *xs, bf_samples **out, bf_error *err)
+{
+    enum { NT = 18, NPO = 36 };
+    const int npi = anisotropic(src) ? 6 : 1;
+    size_t n = (size_t)NT * NT * NPO * (size_t)npi, i = 0;
+    bf_samples *s = NULL;
+    const bf_geometry *g = NULL;
+    bf_status rc = bf_samples_new(n, bf_model_channels(src), &s, err);
+    if (rc != BF_OK)
+        return rc;
+    for (int a = 0; a < npi; a++)
+        for (int ti = 0; ti < NT; ti++)
+            for (int to = 0; to < NT; to++)
+                for (int po = 0; po < NPO; po++, i++) {
+                    s->theta_i[i] = 2.5 + 5.0 * ti;
+                    s->phi_i[i] = 30.0 * a;
+                    s->theta_o[i] = 2.5 + 5.0 * to;
+                    s->phi_o[i] = 10.0 * po;
+                }
+    if ((rc = bf_samples_geometry(s, &g, err)) != BF_OK) {
+        bf_samples_free(s);
+        return rc;
+    }
+    bf_model_eval(src, xs, g, s->value, NULL);
+    *out = s;
+    return BF_OK;
+}
+
+bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
+                            bf_fit_result *fit, bf_error *err)
+{
+    memset(e, 0, sizeof *e);
+    memset(fit, 0, sizeof *fit);
+    if (!t || !src || !xs)
+        return bf_fail(err, BF_ERR_ARG, "export: no target, model or parameters");
+    e->model = src;
+    e->x = xs;
+    e->source = bf_model_spec(src);
+    if (!strcmp(bf_model_name(src), t->model))
+        return BF_OK; /* the target's own model: exact */
+    bf_samples *s = NULL;
+    bf_status rc = source_samples(src, xs, &s, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_fit_options o;
+    bf_fit_options_init(&o);
+    o.starts = 4; /* the native models have several basins (metallic against specular) */
+    bf_error ferr;
+    rc = bf_fit(s, t->model, &o, fit, &ferr);
+    e->directions = s->n;
+    bf_samples_free(s);
+    if (rc != BF_OK || !fit->ok) {
+        bf_fit_result_clear(fit);
+        return bf_fail(err, rc != BF_OK ? rc : BF_ERR_RANGE, "converting %s to %s: %s", bf_model_spec(src), t->model,
+                       rc != BF_OK ? ferr.msg : "the fit found no usable solution");
+    }
+    e->model = fit->model;
+    e->x = fit->x;
+    e->converted = 1;
+    e->metrics = fit->metrics;
+    return BF_OK;
+}
+
+bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err)
+{
+    if (!t || !e || !e->model || !e->x)
+        return bf_fail(err, BF_ERR_ARG, "export: no target or no material");
+    bf_outfile out;
+    bf_status rc = bf_outfile_open(&out, path, err);
+    if (rc != BF_OK)
+        return rc;
+    if ((rc = t->write(e, out.fp, err)) != BF_OK) {
+        bf_outfile_abort(&out);
+        return rc;
+    }
+    return bf_outfile_commit(&out, err);
+}
