@@ -26,24 +26,13 @@
 #include <string.h>
 #include <strings.h>
 
-/* NLopt's constant for each NLopt method of the registry (methods.c), which says what
- * each can do. */
-static const struct {
-    const char *name;
-    nlopt_algorithm alg;
-} nl_algs[] = {
-    {"LD_LBFGS", NLOPT_LD_LBFGS},       {"LD_SLSQP", NLOPT_LD_SLSQP},       {"LD_MMA", NLOPT_LD_MMA},
-    {"LN_BOBYQA", NLOPT_LN_BOBYQA},     {"LN_COBYLA", NLOPT_LN_COBYLA},     {"LN_NELDERMEAD", NLOPT_LN_NELDERMEAD},
-    {"LN_SBPLX", NLOPT_LN_SBPLX},       {"GN_DIRECT_L", NLOPT_GN_DIRECT_L}, {"GN_CRS2_LM", NLOPT_GN_CRS2_LM},
-    {"GN_ISRES", NLOPT_GN_ISRES},       {"G_MLSL_LDS", NLOPT_G_MLSL_LDS},
-};
-
+/* NLopt's constant for a method of the registry (methods.c holds the names, which are
+ * NLopt's own: NLopt maps them back). NLOPT_NUM_ALGORITHMS for a registry entry NLopt
+ * does not know: caught by a test. */
 static nlopt_algorithm nl_of(const bf_method_info *m)
 {
-    for (size_t i = 0; i < sizeof nl_algs / sizeof nl_algs[0]; i++)
-        if (!strcmp(m->name, nl_algs[i].name))
-            return nl_algs[i].alg;
-    return NLOPT_NUM_ALGORITHMS; /* a registry entry without a constant: caught by a test */
+    nlopt_algorithm a = nlopt_algorithm_from_string(m->name);
+    return (int)a < 0 ? NLOPT_NUM_ALGORITHMS : a;
 }
 
 typedef struct nl_state {
