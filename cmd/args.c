@@ -7,24 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd)
-{
-    const char *a = argv[*i];
-    size_t k = 0;
-    while (k < n && strcmp(a, valued[k]))
-        k++;
-    if (k == n) {
-        fprintf(stderr, "%s: unknown option '%s' (see %s --help)\n", cmd, a, cmd);
-        return NULL;
-    }
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "%s: %s needs a value\n", cmd, a);
-        return NULL;
-    }
-    return argv[++*i];
-}
 
 int args_int(const char *s, long lo, long hi, long *out)
 {
@@ -91,11 +73,4 @@ int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, 
         return 0;
     fprintf(stderr, "%s: %s\n", cmd, err.msg);
     return rc == BF_ERR_ARG ? 2 : 1;
-}
-
-double args_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

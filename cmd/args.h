@@ -6,11 +6,6 @@
 
 #include "brdfit/io.h"
 
-/* argv[*i] is an option the shared parsers did not take: when it is one of the n names
- * in valued, returns its value and advances *i past it; otherwise NULL after printing
- * "CMD: unknown option 'X' (see CMD --help)" or "CMD: X needs a value" (bad usage). */
-const char *args_value(int argc, char **argv, int *i, const char *const *valued, size_t n, const char *cmd);
-
 /* Strict numbers for option values: the whole text, no sign or space before an integer,
  * no leading space or trailing junk on a number; 1 and *out set when s is one in
  * [lo, hi], else 0 (the caller prints the usage error). ' 5', '+5', '5x', '' are not. */
@@ -28,8 +23,5 @@ int args_size(const char *s, int lo, int hi, int *w, int *h);
  * input or as another output), 1 for an output that cannot be written. */
 int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
                        int noutputs);
-
-/* Monotonic seconds, for progress and wall times (never for results). */
-double args_now(void);
 
 #endif

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "args.h"
+#include "brdfit/clock.h"
 #include "batch_db.h"
 #include "batch_run.h"
 #include "interrupt.h"
@@ -15,7 +16,7 @@ static void show_progress(const batch_run *r)
 {
     if (!r->tty || cli_quiet())
         return;
-    double el = args_now() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
+    double el = bf_now_seconds() - r->t0, eta = r->done ? el / r->done * (r->total - r->done) : NAN;
     fprintf(stderr, "\r%s: %d/%d items, %d failed", BATCH_CMD, r->done, r->total, r->bad);
     if (isfinite(eta))
         fprintf(stderr, ", ETA %.0f s", eta);

@@ -1,15 +1,18 @@
 /* The command-line grammar and the texts made from the option tables (cli.h). */
 #include "cli.h"
 
+#include "args.h"
+
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Options every command takes, listed last in --help. */
+/* Options every command takes, listed last in --help; the parser itself acts on them
+ * (common_option), so they are bound to no command's variable. */
 static const cli_option common[] = {
-    {"--help", 'h', NULL, "this help, then exit", NULL},
-    {"--quiet", 'q', NULL, "no progress or summaries on the terminal (errors still)", NULL},
-    {"--verbose", 'v', NULL, "say what is read and done, on stderr", NULL},
+    {"--help", 'h', NULL, "this help, then exit", NULL, .kind = CLI_UNBOUND},
+    {"--quiet", 'q', NULL, "no progress or summaries on the terminal (errors still)", NULL, .kind = CLI_UNBOUND},
+    {"--verbose", 'v', NULL, "say what is read and done, on stderr", NULL, .kind = CLI_UNBOUND},
 };
 static const cli_group common_group = CLI_GROUP("common", common);
 
@@ -56,37 +59,36 @@ int cli_group_has(const cli_group *g, const char *name)
 
 /* The option with this long name (with its dashes, up to len) or short letter; the
  * common options (help, quiet, verbose) only when common. */
-static const cli_option *find_in(const cli_command *c, const char *name, size_t len, char letter, int common)
+static const cli_option *find_in(const cli_command *c, const char *name, size_t len, char letter, int common,
+                                 int *group)
 {
     for (int g = common ? -1 : 0; g < c->ngroups; g++) {
         const cli_group *grp = g < 0 ? &common_group : c->groups[g];
         for (int k = 0; k < grp->n; k++) {
             const cli_option *o = &grp->options[k];
-            if (name ? strlen(o->name) == len && !strncmp(o->name, name, len) : o->short_name == letter)
+            if (name ? strlen(o->name) == len && !strncmp(o->name, name, len) : o->short_name == letter) {
+                *group = g;
                 return o;
+            }
         }
     }
     return NULL;
 }
 
-static const cli_option *find(const cli_command *c, const char *name, size_t len, char letter)
-{
-    return find_in(c, name, len, letter, 1);
-}
-
 const cli_option *cli_find(const cli_command *c, const char *name, size_t len)
 {
-    return find(c, name, len, 0);
+    int g;
+    return find_in(c, name, len, 0, 1, &g);
 }
 
-static int push(cli_args *a, const char *name, const char *value)
+/* One more option (o, in group g) or operand (o NULL) of the command line. */
+static int push(cli_args *a, const cli_option *o, int g, const char *value)
 {
     cli_arg *v = realloc(a->v, (size_t)(a->n + 1) * sizeof *v);
     if (!v)
         return 0;
     a->v = v;
-    a->v[a->n].name = name;
-    a->v[a->n].value = value;
+    a->v[a->n] = (cli_arg){o ? o->name : NULL, value, o, o ? g : -1};
     a->n++;
     return 1;
 }
@@ -120,7 +122,7 @@ static int parse(const cli_command *c, int argc, char **argv, int first, cli_arg
     for (int i = first; i < argc; i++) {
         const char *s = argv[i];
         if (!options || s[0] != '-' || !s[1]) { /* an operand, "-" included */
-            if (!push(a, NULL, s))
+            if (!push(a, NULL, -1, s))
                 goto nomem;
             continue;
         }
@@ -131,7 +133,8 @@ static int parse(const cli_command *c, int argc, char **argv, int first, cli_arg
         if (s[1] == '-') { /* --name, --name=value, --name value */
             const char *eq = strchr(s, '=');
             size_t len = eq ? (size_t)(eq - s) : strlen(s);
-            const cli_option *o = find_in(c, s, len, 0, !where);
+            int g;
+            const cli_option *o = find_in(c, s, len, 0, !where, &g);
             if (!o) {
                 fprintf(stderr, "%s: unknown option '%.*s'%s\n", title, (int)(len > 64 ? 64 : len), s, see);
                 goto usage;
@@ -148,13 +151,14 @@ static int parse(const cli_command *c, int argc, char **argv, int first, cli_arg
                 }
                 value = argv[++i];
             }
-            if (!common_option(o, &help) && !push(a, o->name, value))
+            if (!common_option(o, &help) && !push(a, o, g, value))
                 goto nomem;
             continue;
         }
         /* -x, -xVALUE, -x VALUE, and flags bundled: -qv */
         for (const char *p = s + 1; *p; p++) {
-            const cli_option *o = find_in(c, NULL, 0, *p, !where);
+            int g;
+            const cli_option *o = find_in(c, NULL, 0, *p, !where, &g);
             if (!o) {
                 if (p == s + 1)
                     fprintf(stderr, "%s: unknown option '-%c'%s\n", title, *p, see);
@@ -173,7 +177,7 @@ static int parse(const cli_command *c, int argc, char **argv, int first, cli_arg
                     goto usage;
                 }
             }
-            if (!common_option(o, &help) && !push(a, o->name, value))
+            if (!common_option(o, &help) && !push(a, o, g, value))
                 goto nomem;
             if (o->arg)
                 break;
@@ -200,6 +204,109 @@ int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a)
 int cli_parse_words(const cli_command *c, int n, char **words, cli_args *a, const char *where)
 {
     return parse(c, n, words, 0, a, where);
+}
+
+/* ---- Taking options into their variables ------------------------------------------ */
+
+/* The integer and number kinds: the value in range, or the one-line error. */
+static int take_number(void *var, const cli_option *o, const char *v, const char *cmd)
+{
+    char what[96];
+    if (o->kind == CLI_INT) {
+        long n;
+        if (args_int(v, (long)o->lo, (long)o->hi, &n)) {
+            *(int *)var = (int)n;
+            return 0;
+        }
+        if (!o->what)
+            snprintf(what, sizeof what, "an integer from %ld to %ld", (long)o->lo, (long)o->hi);
+    } else {
+        double d;
+        if (args_number(v, o->lo, o->hi, &d)) {
+            *(double *)var = d;
+            return 0;
+        }
+        if (!o->what)
+            snprintf(what, sizeof what, "a number from %g to %g", o->lo, o->hi);
+    }
+    fprintf(stderr, "%s: %s needs %s, got '%s'\n", cmd, o->name, o->what ? o->what : what, v);
+    return -1;
+}
+
+static int take_one(void *target, const cli_group *g, const cli_option *o, const char *v, const char *cmd)
+{
+    char *var = (char *)target + o->at;
+    int rc = 0;
+    switch (o->kind) {
+    case CLI_FLAG:
+        *(int *)var = (int)o->lo;
+        break;
+    case CLI_STRING:
+        *(const char **)var = v;
+        break;
+    case CLI_INT:
+    case CLI_NUMBER:
+        rc = take_number(var, o, v, cmd);
+        break;
+    case CLI_CALL:
+        rc = o->take(target, o, v, cmd);
+        break;
+    default:
+        fprintf(stderr, "%s: internal error: option %s is not bound to a variable\n", cmd, o->name);
+        return -1;
+    }
+    if (rc == 0 && o->given && g->given_at)
+        *(unsigned *)((char *)target + g->given_at - 1) |= o->given;
+    return rc;
+}
+
+int cli_take(const cli_command *c, void *const *targets, int ntargets, const cli_args *a,
+             int (*operand)(void *ctx, const char *value, const char *cmd), void *ctx, const char *cmd)
+{
+    if (ntargets != c->ngroups) {
+        fprintf(stderr, "%s: internal error: %d option targets for %d groups\n", cmd, ntargets, c->ngroups);
+        return -1;
+    }
+    for (int i = 0; i < a->n; i++) {
+        const cli_arg *x = &a->v[i];
+        if (!x->option) {
+            if (!operand) {
+                fprintf(stderr, "%s: unexpected operand '%s'\n", cmd, x->value);
+                return -1;
+            }
+            if (operand(ctx, x->value, cmd) != 0)
+                return -1;
+        } else if (take_one(targets[x->group], c->groups[x->group], x->option, x->value, cmd) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int cli_group_take(const cli_group *g, void *target, const char *name, const char *value, const char *cmd)
+{
+    for (int k = 0; k < g->n; k++)
+        if (!strcmp(g->options[k].name, name))
+            return take_one(target, g, &g->options[k], value, cmd) == 0 ? 1 : -1;
+    return 0;
+}
+
+int cli_check_bound(const cli_command *c)
+{
+    char title[64];
+    for (int g = 0; g < c->ngroups; g++)
+        for (int k = 0; k < c->groups[g]->n; k++) {
+            const cli_option *o = &c->groups[g]->options[k];
+            int ok = o->kind == CLI_FLAG || o->kind == CLI_STRING || o->kind == CLI_INT || o->kind == CLI_NUMBER ||
+                     (o->kind == CLI_CALL && o->take);
+            /* A flag has no value to read and an option with a value is not a flag. */
+            if (!ok || (o->kind == CLI_FLAG) != (o->arg == NULL)) {
+                fprintf(stderr, "%s: option %s is not bound to a variable of its kind (cli.h)\n",
+                        cli_title(c, title, sizeof title), o->name);
+                return -1;
+            }
+        }
+    return 0;
 }
 
 void cli_args_free(cli_args *a)

@@ -9,9 +9,29 @@
 #ifndef BRDFIT_CLI_H
 #define BRDFIT_CLI_H
 
+#include <stddef.h>
 #include <stdio.h>
 
-typedef struct cli_option {
+/* Options are bound to their variables (after git's parse-options): each entry says where
+ * its value goes, in the struct its group fills (the group's "target", given to
+ * cli_take), and how it is read, so an option added to a table cannot silently mean
+ * something else; brdfit-doc refuses a table with an unbound option at build time. */
+typedef enum cli_kind {
+    CLI_UNBOUND = 0, /* never in a finished table */
+    CLI_FLAG,        /* an int set to .lo */
+    CLI_STRING,      /* a const char *: the value as given (checked where it is used) */
+    CLI_INT,         /* an int: an integer in [.lo, .hi] (args_int's strict digits) */
+    CLI_NUMBER,      /* a double: a number in [.lo, .hi] */
+    CLI_CALL,        /* .take reads it */
+} cli_kind;
+
+typedef struct cli_option cli_option;
+
+/* Takes option o's value (NULL for a flag) into target, the group's struct: 0, or -1
+ * after a one-line error starting with cmd. */
+typedef int (*cli_take_fn)(void *target, const cli_option *o, const char *value, const char *cmd);
+
+struct cli_option {
     const char *name; /* long form with its dashes: "--model" */
     char short_name;  /* 'm', or 0 */
     const char *arg;  /* the value's name in help ("FILE", "N|all"); NULL for a flag */
@@ -20,15 +40,34 @@ typedef struct cli_option {
      * generator names from a registry ("model", "method", "local_method"), or choices
      * "a|b|c" (when NULL, taken from arg if it lists choices). */
     const char *complete;
-} cli_option;
+    /* The binding (CLI_* macros below). */
+    cli_kind kind;
+    size_t at;        /* offset of the variable in the target */
+    double lo, hi;    /* CLI_INT, CLI_NUMBER: the range; CLI_FLAG: lo is the value */
+    const char *what; /* CLI_INT, CLI_NUMBER: the range for the error ("degrees in (0, 90]");
+                         NULL: "an integer from LO to HI" */
+    cli_take_fn take; /* CLI_CALL */
+    unsigned given;   /* bits or'ed into the target's "given" word when taken (CLI_GROUP_GIVEN) */
+};
+
+/* The bindings, after an entry's five descriptive fields: TYPE is the target struct. */
+#define CLI_SETS(TYPE, FIELD, VALUE) .kind = CLI_FLAG, .at = offsetof(TYPE, FIELD), .lo = (VALUE)
+#define CLI_STRING_AT(TYPE, FIELD) .kind = CLI_STRING, .at = offsetof(TYPE, FIELD)
+#define CLI_INT_AT(TYPE, FIELD, LO, HI) .kind = CLI_INT, .at = offsetof(TYPE, FIELD), .lo = (LO), .hi = (HI)
+#define CLI_NUMBER_AT(TYPE, FIELD, LO, HI, WHAT)                                                                        \
+    .kind = CLI_NUMBER, .at = offsetof(TYPE, FIELD), .lo = (LO), .hi = (HI), .what = (WHAT)
+#define CLI_CALLS(FN) .kind = CLI_CALL, .take = (FN)
 
 typedef struct cli_group {
     const char *title; /* "reading", "fitting", ...; NULL: the command's own */
     const cli_option *options;
     int n;
+    size_t given_at; /* 1 + offset of an unsigned "given" word in the target; 0: none */
 } cli_group;
 
-#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0])}
+#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0]), 0}
+#define CLI_GROUP_GIVEN(title, table, TYPE, FIELD)                                                                     \
+    {title, table, (int)(sizeof table / sizeof table[0]), 1 + offsetof(TYPE, FIELD)}
 
 typedef struct cli_command {
     const char *tool;     /* "brdfit" or "brdfit-synth" */
@@ -46,6 +85,8 @@ typedef struct cli_command {
 typedef struct cli_arg {
     const char *name;  /* the option's long form ("--model"), or NULL for an operand */
     const char *value; /* the option's value (NULL for a flag), or the operand */
+    const cli_option *option; /* its entry (NULL for an operand) */
+    int group;                /* its group's index in the command's groups */
 } cli_arg;
 
 typedef struct cli_args {
@@ -65,6 +106,24 @@ int cli_parse(const cli_command *c, int argc, char **argv, cli_args *a);
  * 2"). CLI_OK, or CLI_USAGE after one line on stderr. */
 int cli_parse_words(const cli_command *c, int n, char **words, cli_args *a, const char *where);
 void cli_args_free(cli_args *a);
+
+#define CLI_COUNT(array) ((int)(sizeof(array) / sizeof(array)[0]))
+
+/* Takes the parsed options of c into their variables, in command-line order:
+ * targets[g] is the struct c->groups[g] fills (groups may share one; ntargets must be
+ * c->ngroups, so a table and its targets cannot drift apart); each operand goes
+ * to operand(ctx, value, cmd) (NULL: operands are bad usage). Messages start with cmd.
+ * 0, or -1 after a one-line error (the caller exits 2). */
+int cli_take(const cli_command *c, void *const *targets, int ntargets, const cli_args *a,
+             int (*operand)(void *ctx, const char *value, const char *cmd), void *ctx, const char *cmd);
+
+/* One option, by long name, if group g has it: taken into target (g's struct) as
+ * cli_take would; 1 when taken, 0 when g has no such option, -1 after a one-line error. */
+int cli_group_take(const cli_group *g, void *target, const char *name, const char *value, const char *cmd);
+
+/* 0 when every option of c is bound; otherwise -1 after naming the first that is not
+ * (brdfit-doc checks every command at build time). */
+int cli_check_bound(const cli_command *c);
 
 /* The option of c (or a common one) whose long form is name[0..len-1], or NULL. */
 const cli_option *cli_find(const cli_command *c, const char *name, size_t len);

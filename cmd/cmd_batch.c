@@ -35,6 +35,7 @@
 #include <unistd.h>
 
 #include "args.h"
+#include "brdfit/clock.h"
 #include "batch_db.h"
 #include "batch_manifest.h"
 #ifdef BRDFIT_HAVE_MPI
@@ -213,7 +214,7 @@ static int batch(const batch_args *a, const batch_manifest *m, int nproc)
         batch_db_close(db);
         return status;
     }
-    r.db = db, r.total = n, r.t0 = args_now();
+    r.db = db, r.total = n, r.t0 = bf_now_seconds();
     struct sigaction old;
     interrupt_catch(&old); /* SIGINT, or a database failure (interrupt_raise): no new fit */
     cli_note(cmd, "%d items to run into %s", n, a->output);

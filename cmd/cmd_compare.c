@@ -59,6 +59,7 @@
 #include "brdfit/formats.h"
 #include "brdfit/render.h"
 #include "args.h"
+#include "brdfit/clock.h"
 #include "cli.h"
 #include "commands.h"
 #include "compare_print.h"
@@ -362,7 +363,7 @@ static void progress_bar(const progress_state *ps, int done, int total)
     for (int k = 0; k < 30; k++)
         bar[k] = k < w ? '#' : '.';
     bar[30] = '\0';
-    double el = args_now() - ps->t0, eta = done ? el / done * (total - done) : NAN;
+    double el = bf_now_seconds() - ps->t0, eta = done ? el / done * (total - done) : NAN;
     fprintf(stderr, "\r%s: [%s] %d/%d fits", cmd, bar, done, total);
     if (isfinite(eta))
         fprintf(stderr, ", ETA %.0f s   ", eta);
@@ -396,7 +397,7 @@ static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int
  * after an error. */
 static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *samples)
 {
-    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = args_now()};
+    progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = bf_now_seconds()};
     bf_compare_run_options ro = {.jobs = a->jobs, .progress = cli_quiet() ? NULL : progress, .ctx = &ps,
                                  .cancel = &interrupt_flag};
     struct sigaction old;

@@ -41,13 +41,36 @@ static const char cmd[] = "brdfit fit";
 
 #define MAX_MODELS 64
 
+/* What the command line asked for, and what the run holds (freed by run_free). */
+typedef struct fit_run {
+    data_options dopt;
+    fit_options fopt;
+    char *specs[MAX_MODELS];
+    int nmodels;
+    const char *data, *out_path;
+    bf_samples *s;
+    bf_fit_result results[MAX_MODELS];
+    int nres;
+} fit_run;
+
+static int take_model(void *target, const cli_option *o, const char *v, const char *c)
+{
+    fit_run *f = target;
+    (void)o;
+    int k = fit_options_split_models(v, f->specs, f->nmodels, MAX_MODELS, c);
+    if (k < 0)
+        return -1;
+    f->nmodels = k;
+    return 0;
+}
+
 static const cli_option own[] = {
     {"--model", 'm', "SPECS",
      "models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
      "(a comma starts a new model where a model name follows; repeatable)",
-     "model"},
+     "model", CLI_CALLS(take_model)},
     {"--output", 'o', "FILE", "result JSON (one model: a parameter file; several: {\"fits\": [...]});\n- for standard output",
-     "file"},
+     "file", CLI_STRING_AT(fit_run, out_path)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
@@ -101,43 +124,17 @@ static void summary(FILE *out, const bf_fit_result *r)
         fprintf(out, "  warning: %s\n", r->warnings[w]);
 }
 
-/* What the command line asked for, and what the run holds (freed by run_free). */
-typedef struct fit_run {
-    data_options dopt;
-    fit_options fopt;
-    char *specs[MAX_MODELS];
-    int nmodels;
-    const char *data, *out_path;
-    bf_samples *s;
-    bf_fit_result results[MAX_MODELS];
-    int nres;
-} fit_run;
+static int take_data(void *f, const char *v, const char *c)
+{
+    return data_options_take_file(&((fit_run *)f)->data, v, c);
+}
 
-/* Takes the parsed command line into f: 0, or -1 after a one-line error. */
+/* Takes the parsed command line into f (the targets follow the groups): 0, or -1 after a
+ * one-line error. */
 static int take_args(fit_run *f, const cli_args *args)
 {
-    for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name, *v = args->v[i].value;
-        if (!a) {
-            if (data_options_take_file(&f->data, v, cmd) < 0)
-                return -1;
-            continue;
-        }
-        int d = fit_options_parse_with_data(&f->fopt, &f->dopt, a, v, cmd);
-        if (d < 0)
-            return -1;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--output")) {
-            f->out_path = v;
-        } else { /* --model */
-            int k = fit_options_split_models(v, f->specs, f->nmodels, MAX_MODELS, cmd);
-            if (k < 0)
-                return -1;
-            f->nmodels = k;
-        }
-    }
-    return 0;
+    void *const targets[] = {f, &f->fopt, &f->fopt, &f->fopt, &f->dopt, &f->dopt};
+    return cli_take(&cli_fit, targets, CLI_COUNT(targets), args, take_data, f, cmd);
 }
 
 /* Bad usage is found before any data is read: what is missing, the model specs, the

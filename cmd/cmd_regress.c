@@ -27,6 +27,7 @@
 #include "brdfit/regress.h"
 #include "brdfit/scene.h"
 #include "args.h"
+#include "brdfit/clock.h"
 #include "cli.h"
 #include "commands.h"
 #include "data_options.h"
@@ -168,7 +169,7 @@ static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_r
     const bf_regress_case *cs = &b->cases[c];
     char prefix[1024], msg[1200];
     snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->data_line, cs->name);
-    double t0 = args_now();
+    double t0 = bf_now_seconds();
     bf_samples *s = data_options_load(&cr->dopt, cs->data_path, NULL, prefix);
     int rc;
     if (!s) {
@@ -182,7 +183,7 @@ static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_r
         rc = bf_regress_check(b, c, r, out, err);
     }
     bf_samples_free(s);
-    out->seconds = args_now() - t0;
+    out->seconds = bf_now_seconds() - t0;
     return rc;
 }
 

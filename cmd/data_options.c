@@ -8,40 +8,13 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const cli_option reading[] = {
-    {"--format", 0, "csv|merl|cornell|alta|rgl|mbsdf", "file format (default: by extension, then content)", NULL},
-    {"--grid", 0, "merl|uniform:N|FILE", "evaluate an RGL .bsdf or .mbsdf file at these directions\n"
-                                         "instead of its measured points (docs/formats.md)", NULL},
-    {"--angles", 0, "TI,PI,TO,PO", "CSV angle column names (default theta_i,phi_i,theta_o,phi_o)", NULL},
-    {"--radians", 0, NULL, "CSV angles are in radians (default degrees)", NULL},
-    {"--values", 0, "COL,...", "CSV value columns (default: all but angles and weight)", NULL},
-    {"--weight", 0, "COL", "CSV weight column (default: 'weight' if present)", NULL},
-};
-static const cli_option preprocessing[] = {
-    {"--channels", 0, "NAME|INDEX,...", "keep these channels, in this order", NULL},
-    {"--rgb", 0, NULL, "spectral data to linear sRGB (CIE 1931 2 deg, D65; --color srgb)", NULL},
-    {"--color", 0, "srgb|acescg|xyz", "spectral data to this colour space (docs/colour.md)", NULL},
-    {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb, or of --luminance on spectra (default d65)", NULL},
-    {"--rgb-bands", 0, NULL, "spectral data to three band means (600-700, 500-600,\n"
-                             "400-500 nm; not colorimetric: the old --rgb)", NULL},
-    {"--luminance", 0, NULL, "spectral (CIE Y) or RGB (Rec. 709) data to one channel", NULL},
-    {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL},
-    {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL},
-    {"--subsample", 0, "N|all", "seeded stratified subsample to N samples (all: every one)", NULL},
-    {"--seed", 0, "K", "seeds the subsample, the multistart and anything else random (default 0)", NULL},
-    {"--scene", 0, "FILE", "keep and weight the samples a scene's lights and views use\n"
-                           "(JSON; README \"Scenes\"); error is reported over them", "file"},
-};
-const cli_group data_options_reading = CLI_GROUP("reading", reading);
-const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
-
 /* What spectral data becomes: --rgb, --color, --rgb-bands and --luminance each choose
- * it, so two of them exclude each other (--rgb with --color srgb repeats one choice).
- * Returns 1, or -1 after the error. */
+ * it, so two of them exclude each other (--rgb with --color srgb repeats one choice). */
 static int set_spectral(data_options *o, const char *opt, bf_color color, const char *cmd)
 {
     const char *prev = o->spectral_opt;
@@ -57,28 +30,74 @@ static int set_spectral(data_options *o, const char *opt, bf_color color, const 
         o->prep.to_bands = 1;
     else
         o->prep.to_luminance = 1;
-    return 1;
-}
-
-/* The flags: 1 when a was one of them, -1 after an error, 0 when it is not a flag. */
-static int parse_flag(data_options *o, const char *a, const char *cmd)
-{
-    if (!strcmp(a, "--radians")) {
-        o->read.csv.radians = 1;
-        return 1;
-    }
-    if (!strcmp(a, "--rgb"))
-        return set_spectral(o, "--rgb", BF_COLOR_SRGB, cmd);
-    if (!strcmp(a, "--rgb-bands"))
-        return set_spectral(o, "--rgb-bands", BF_COLOR_NONE, cmd);
-    if (!strcmp(a, "--luminance"))
-        return set_spectral(o, "--luminance", BF_COLOR_NONE, cmd);
     return 0;
 }
 
-/* --angles TI,PI,TO,PO: four names, kept in o->angles_buf. */
-static int parse_angles(data_options *o, const char *v, const char *cmd)
+static int take_rgb(void *o, const cli_option *opt, const char *v, const char *cmd)
 {
+    (void)v;
+    return set_spectral(o, opt->name, BF_COLOR_SRGB, cmd);
+}
+
+/* --rgb-bands and --luminance. */
+static int take_reduction(void *o, const cli_option *opt, const char *v, const char *cmd)
+{
+    (void)v;
+    return set_spectral(o, opt->name, BF_COLOR_NONE, cmd);
+}
+
+static int take_color(void *o, const cli_option *opt, const char *v, const char *cmd)
+{
+    int k = bf_color_from_name(v);
+    if (k < 0) {
+        fprintf(stderr, "%s: %s takes srgb, acescg or xyz, got '%s'\n", cmd, opt->name, v);
+        return -1;
+    }
+    return set_spectral(o, opt->name, (bf_color)k, cmd);
+}
+
+static int take_illuminant(void *target, const cli_option *opt, const char *v, const char *cmd)
+{
+    int k = bf_illuminant_from_name(v);
+    if (k < 0) {
+        fprintf(stderr, "%s: %s takes d65, e, a or d50, got '%s'\n", cmd, opt->name, v);
+        return -1;
+    }
+    ((data_options *)target)->prep.illuminant = (bf_illuminant)k;
+    return 0;
+}
+
+static int take_format(void *target, const cli_option *opt, const char *v, const char *cmd)
+{
+    (void)opt;
+    int f = bf_format_from_name(v);
+    if (f < 0) {
+        fprintf(stderr, "%s: unknown format '%s' (csv, merl, cornell, alta, rgl, mbsdf)\n", cmd, v);
+        return -1;
+    }
+    ((data_options *)target)->read.format = (bf_format)f;
+    return 0;
+}
+
+static int take_negative(void *target, const cli_option *opt, const char *v, const char *cmd)
+{
+    static const char *const names[] = {"keep", "drop", "clamp"};
+    static const bf_negative modes[] = {BF_NEGATIVE_KEEP, BF_NEGATIVE_DROP, BF_NEGATIVE_CLAMP};
+    (void)opt;
+    for (int k = 0; k < 3; k++)
+        if (!strcmp(v, names[k])) {
+            ((data_options *)target)->prep.negative = modes[k];
+            return 0;
+        }
+    fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
+    return -1;
+}
+
+/* --angles TI,PI,TO,PO: four names, kept in o->angles_buf. */
+static int take_angles(void *target, const cli_option *opt, const char *v, const char *cmd)
+{
+    data_options *o = target;
+    (void)opt;
     snprintf(o->angles_buf, sizeof o->angles_buf, "%s", v);
     char *p = o->angles_buf;
     for (int k = 0; k < 4; k++) {
@@ -93,107 +112,87 @@ static int parse_angles(data_options *o, const char *v, const char *cmd)
             p = comma + 1;
         }
     }
-    return 1;
+    return 0;
 }
 
 /* --seed: any unsigned 64-bit integer, digits only. */
-static int parse_seed(data_options *o, const char *v, const char *cmd)
+static int take_seed(void *target, const cli_option *opt, const char *v, const char *cmd)
 {
     char *end;
+    (void)opt;
     errno = 0;
     unsigned long long n = isdigit((unsigned char)*v) ? strtoull(v, &end, 10) : 0;
     if (!isdigit((unsigned char)*v) || *end || errno) {
         fprintf(stderr, "%s: --seed needs an integer from 0 to 18446744073709551615, got '%s'\n", cmd, v);
         return -1;
     }
-    o->prep.seed = (uint64_t)n;
-    return 1;
+    ((data_options *)target)->prep.seed = (uint64_t)n;
+    return 0;
 }
 
 /* --subsample: a count, or "all" (over a preset's); 0 is not a count. */
-static int parse_subsample(data_options *o, const char *v, const char *cmd)
+static int take_subsample(void *target, const cli_option *opt, const char *v, const char *cmd)
 {
+    data_options *o = target;
     long n = 0;
+    (void)opt;
     if (strcmp(v, "all") && !args_int(v, 1, 1000000000000L, &n)) {
         fprintf(stderr, "%s: --subsample needs a sample count of at least 1 or 'all', got '%s'\n", cmd, v);
         return -1;
     }
     o->prep.subsample = (size_t)n; /* 0: every sample */
     o->subsample_given = 1;
-    return 1;
+    return 0;
 }
 
-/* --color, --illuminant, --format, --max-theta and --negative: a value from a fixed set or range. */
-static int parse_choice(data_options *o, const char *a, const char *v, const char *cmd)
-{
-    double d;
-    int is_color = !strcmp(a, "--color");
-    if (is_color || !strcmp(a, "--illuminant")) {
-        int k = is_color ? bf_color_from_name(v) : bf_illuminant_from_name(v);
-        if (k < 0) {
-            fprintf(stderr, "%s: %s takes %s, got '%s'\n", cmd, a, is_color ? "srgb, acescg or xyz" : "d65, e, a or d50",
-                    v);
-            return -1;
-        }
-        if (is_color)
-            return set_spectral(o, "--color", (bf_color)k, cmd);
-        o->prep.illuminant = (bf_illuminant)k;
-        return 1;
-    }
-    if (!strcmp(a, "--format")) {
-        int f = bf_format_from_name(v);
-        if (f < 0) {
-            fprintf(stderr, "%s: unknown format '%s' (csv, merl, cornell, alta, rgl, mbsdf)\n", cmd, v);
-            return -1;
-        }
-        o->read.format = (bf_format)f;
-    } else if (!strcmp(a, "--max-theta")) {
-        if (!args_number(v, 0.0, 90.0, &d) || !(d > 0.0)) {
-            fprintf(stderr, "%s: --max-theta needs degrees in (0, 90], got '%s'\n", cmd, v);
-            return -1;
-        }
-        o->prep.max_theta = d;
-    } else { /* --negative */
-        static const char *const names[] = {"keep", "drop", "clamp"};
-        static const bf_negative modes[] = {BF_NEGATIVE_KEEP, BF_NEGATIVE_DROP, BF_NEGATIVE_CLAMP};
-        for (int k = 0; k < 3; k++)
-            if (!strcmp(v, names[k])) {
-                o->prep.negative = modes[k];
-                return 1;
-            }
-        fprintf(stderr, "%s: --negative takes keep, drop or clamp, got '%s'\n", cmd, v);
-        return -1;
-    }
-    return 1;
-}
+/* The names (--values, --weight, --grid, --channels, --scene) are kept as given and
+ * checked when the data is read. */
+static const cli_option reading[] = {
+    {"--format", 0, "csv|merl|cornell|alta|rgl|mbsdf", "file format (default: by extension, then content)", NULL,
+     CLI_CALLS(take_format)},
+    {"--grid", 0, "merl|uniform:N|FILE", "evaluate an RGL .bsdf or .mbsdf file at these directions\n"
+                                         "instead of its measured points (docs/formats.md)", NULL,
+     CLI_STRING_AT(data_options, read.grid)},
+    {"--angles", 0, "TI,PI,TO,PO", "CSV angle column names (default theta_i,phi_i,theta_o,phi_o)", NULL,
+     CLI_CALLS(take_angles)},
+    {"--radians", 0, NULL, "CSV angles are in radians (default degrees)", NULL,
+     CLI_SETS(data_options, read.csv.radians, 1)},
+    {"--values", 0, "COL,...", "CSV value columns (default: all but angles and weight)", NULL,
+     CLI_STRING_AT(data_options, read.csv.channels)},
+    {"--weight", 0, "COL", "CSV weight column (default: 'weight' if present)", NULL,
+     CLI_STRING_AT(data_options, read.csv.weight_col)},
+};
+static const cli_option preprocessing[] = {
+    {"--channels", 0, "NAME|INDEX,...", "keep these channels, in this order", NULL,
+     CLI_STRING_AT(data_options, prep.channels)},
+    {"--rgb", 0, NULL, "spectral data to linear sRGB (CIE 1931 2 deg, D65; --color srgb)", NULL, CLI_CALLS(take_rgb)},
+    {"--color", 0, "srgb|acescg|xyz", "spectral data to this colour space (docs/colour.md)", NULL,
+     CLI_CALLS(take_color)},
+    {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb, or of --luminance on spectra (default d65)", NULL,
+     CLI_CALLS(take_illuminant)},
+    {"--rgb-bands", 0, NULL, "spectral data to three band means (600-700, 500-600,\n"
+                             "400-500 nm; not colorimetric: the old --rgb)", NULL, CLI_CALLS(take_reduction)},
+    {"--luminance", 0, NULL, "spectral (CIE Y) or RGB (Rec. 709) data to one channel", NULL,
+     CLI_CALLS(take_reduction)},
+    {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL,
+     CLI_NUMBER_AT(data_options, prep.max_theta, DBL_TRUE_MIN, 90.0, "degrees in (0, 90]")},
+    {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL,
+     CLI_CALLS(take_negative)},
+    {"--subsample", 0, "N|all", "seeded stratified subsample to N samples (all: every one)", NULL,
+     CLI_CALLS(take_subsample)},
+    {"--seed", 0, "K", "seeds the subsample, the multistart and anything else random (default 0)", NULL,
+     CLI_CALLS(take_seed)},
+    {"--scene", 0, "FILE", "keep and weight the samples a scene's lights and views use\n"
+                           "(JSON; README \"Scenes\"); error is reported over them", "file",
+     CLI_STRING_AT(data_options, scene)},
+};
+const cli_group data_options_reading = CLI_GROUP("reading", reading);
+const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
 
 int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd)
 {
-    if (!cli_group_has(&data_options_reading, a) && !cli_group_has(&data_options_preprocessing, a))
-        return 0;
-    int f = parse_flag(o, a, cmd);
-    if (f != 0)
-        return f;
-    if (!strcmp(a, "--angles"))
-        return parse_angles(o, v, cmd);
-    if (!strcmp(a, "--seed"))
-        return parse_seed(o, v, cmd);
-    if (!strcmp(a, "--subsample"))
-        return parse_subsample(o, v, cmd);
-    /* The names: kept as given, checked when the data is read. */
-    if (!strcmp(a, "--values"))
-        o->read.csv.channels = v;
-    else if (!strcmp(a, "--weight"))
-        o->read.csv.weight_col = v;
-    else if (!strcmp(a, "--grid"))
-        o->read.grid = v;
-    else if (!strcmp(a, "--scene"))
-        o->scene = v;
-    else if (!strcmp(a, "--channels"))
-        o->prep.channels = v;
-    else
-        return parse_choice(o, a, v, cmd);
-    return 1;
+    int r = cli_group_take(&data_options_reading, o, a, v, cmd);
+    return r ? r : cli_group_take(&data_options_preprocessing, o, a, v, cmd);
 }
 
 int data_options_take_file(const char **data, const char *v, const char *cmd)

@@ -103,6 +103,13 @@ int main(int argc, char **argv)
     FILE *fp = open_out(dir, "man1", "brdfit.1");
     overview(version, fp);
     close_out(fp);
+    /* Every option of every command bound to its variable: a table that is not fails the
+     * build here. */
+    int unbound = cli_check_bound(&cli_synth);
+    for (int i = 0; i < ncommands; i++)
+        unbound |= cli_check_bound(commands[i].cli);
+    if (unbound)
+        return 1;
     const cli_command *cmds[64];
     for (int i = 0; i < ncommands; i++) {
         char name[64];

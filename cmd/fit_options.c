@@ -12,35 +12,135 @@
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
+static int take_residual(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    bf_error err;
+    (void)o;
+    if (bf_residual_parse(v, &((fit_options *)target)->fit.objective.residual, &err) != BF_OK) {
+        fprintf(stderr, "%s: --residual: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int take_loss(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    bf_error err;
+    (void)o;
+    if (bf_loss_parse(v, &((fit_options *)target)->fit.solver.loss, &err) != BF_OK) {
+        fprintf(stderr, "%s: --loss: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* --fix NAME=VALUE or --bound NAME=LO:HI: one more override. */
+static int take_override(void *target, int fix, const char *v, const char *cmd)
+{
+    fit_options *o = target;
+    bf_error err;
+    if (o->noverrides >= FIT_OPTIONS_MAX_OVERRIDES) {
+        fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, FIT_OPTIONS_MAX_OVERRIDES);
+        return -1;
+    }
+    bf_override *ov = &o->overrides[o->noverrides];
+    int rc = fix ? bf_override_parse_fix(v, ov, &err) : bf_override_parse_bound(v, ov, &err);
+    if (rc != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, fix ? "--fix" : "--bound", err.msg);
+        return -1;
+    }
+    o->noverrides++;
+    return 0;
+}
+
+static int take_fix(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    (void)o;
+    return take_override(target, 1, v, cmd);
+}
+
+static int take_bound(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    (void)o;
+    return take_override(target, 0, v, cmd);
+}
+
+static int take_backend(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    (void)o;
+    if (bf_backend_parse(v, &((fit_options *)target)->fit.solver.backend, NULL) != BF_OK) {
+        fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
+        return -1;
+    }
+    return 0;
+}
+
+/* --presolve N|off. */
+static int take_presolve(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    long n = -1; /* off */
+    (void)o;
+    if (strcmp(v, "off") && !args_int(v, 64, 1000000000, &n)) {
+        fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
+        return -1;
+    }
+    ((fit_options *)target)->fit.presolve = n;
+    return 0;
+}
+
+/* The counts' limits: beyond these a run would take days or a thread per core many
+ * times over, which is never what was meant. Options an --accuracy preset gives way to
+ * carry their BF_FIT_GIVEN_* bit (bf_fit_options_apply_accuracy). */
 static const cli_option fitting[] = {
-    {"--residual", 0, "linear|cosine|log|cbrt|relative", "residual form (default log)", NULL},
+    {"--residual", 0, "linear|cosine|log|cbrt|relative", "residual form (default log)", NULL, CLI_CALLS(take_residual),
+     .given = BF_FIT_GIVEN_RESIDUAL},
     {"--loss", 0, "none|huber|cauchy|soft_l1|arctan[:SCALE]", "robust loss (default none)",
-     "none|huber|cauchy|soft_l1|arctan"},
-    {"--fix", 0, "NAME=VALUE", "hold a parameter (NAME or NAME[c]) at VALUE (repeatable)", NULL},
-    {"--bound", 0, "NAME=LO:HI", "narrow a parameter's bounds (repeatable)", NULL},
-    {"--solid-angle", 0, NULL, "weight MERL cells by their solid angle", NULL},
-    {"--no-weights", 0, NULL, "ignore the samples' own weights", NULL},
-    {"--constrain-energy", 0, NULL, "energy conservation as a constraint (the methods that take one:\nbrdfit methods)", NULL},
+     "none|huber|cauchy|soft_l1|arctan", CLI_CALLS(take_loss)},
+    {"--fix", 0, "NAME=VALUE", "hold a parameter (NAME or NAME[c]) at VALUE (repeatable)", NULL,
+     CLI_CALLS(take_fix)},
+    {"--bound", 0, "NAME=LO:HI", "narrow a parameter's bounds (repeatable)", NULL, CLI_CALLS(take_bound)},
+    {"--solid-angle", 0, NULL, "weight MERL cells by their solid angle", NULL,
+     CLI_SETS(fit_options, fit.objective.solid_angle, 1)},
+    {"--no-weights", 0, NULL, "ignore the samples' own weights", NULL,
+     CLI_SETS(fit_options, fit.objective.use_weights, 0)},
+    {"--constrain-energy", 0, NULL, "energy conservation as a constraint (the methods that take one:\nbrdfit methods)",
+     NULL, CLI_SETS(fit_options, fit.solver.use_constraint, 1)},
 };
 static const cli_option optimizer[] = {
-    {"--backend", 0, "ceres|nlopt", "(default ceres)", NULL},
+    {"--backend", 0, "ceres|nlopt", "(default ceres)", NULL, CLI_CALLS(take_backend), .given = BF_FIT_GIVEN_BACKEND},
     {"--algorithm", 0, "NAME", "a method of the back end (default: the back end's own);\n"
-                               "brdfit methods lists them with what each can do", "method"},
-    {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "local_method"},
-    {"--max-iterations", 0, "N", "(default: ceres 100 iterations, nlopt 2000 evaluations)", NULL},
+                               "brdfit methods lists them with what each can do", "method",
+     CLI_STRING_AT(fit_options, fit.solver.algorithm), .given = BF_FIT_GIVEN_ALGORITHM},
+    {"--local", 0, "NAME", "local method of G_MLSL_LDS (default LD_LBFGS)", "local_method",
+     CLI_STRING_AT(fit_options, fit.solver.local_algorithm)},
+    {"--max-iterations", 0, "N", "(default: ceres 100 iterations, nlopt 2000 evaluations)", NULL,
+     CLI_INT_AT(fit_options, fit.solver.max_iterations, 1, 10000000), .given = BF_FIT_GIVEN_MAX_ITERATIONS},
     {"--starts", 0, "N", "starts solved to convergence, the data-driven one first (default:\n"
-                         "automatic, " STR(BF_FIT_STARTS) " to " STR(BF_FIT_STARTS_MAX) " by the data's size; 1: it alone)", NULL},
+                         "automatic, " STR(BF_FIT_STARTS) " to " STR(BF_FIT_STARTS_MAX) " by the data's size; 1: it alone)", NULL,
+     CLI_INT_AT(fit_options, fit.starts, 1, FIT_OPTIONS_MAX_STARTS), .given = BF_FIT_GIVEN_STARTS},
     {"--screen", 0, "M", "random candidates whose cost on a small subsample chooses the\n"
                          "other starts, solved there first (default " STR(BF_FIT_SCREEN) "; 0: the other starts\n"
-                         "are drawn at random and solved on all samples)", NULL},
+                         "are drawn at random and solved on all samples)", NULL,
+     CLI_INT_AT(fit_options, fit.screen, 0, FIT_OPTIONS_MAX_STARTS), .given = BF_FIT_GIVEN_SCREEN},
     {"--presolve", 0, "N|off",
      "solve the starts on a seeded stratified subsample of N samples\nfirst (default: " STR(
          BF_FIT_PRESOLVE_SAMPLES) " for data of " STR(BF_FIT_PRESOLVE_MIN) " samples and more)",
-     "off"},
-    {"--threads", 0, "N", "(default: every core; results do not depend on it)", NULL},
+     "off", CLI_CALLS(take_presolve)},
+    {"--threads", 0, "N", "(default: every core; results do not depend on it)", NULL,
+     CLI_INT_AT(fit_options, fit.solver.threads, 1, FIT_OPTIONS_MAX_THREADS)},
 };
-const cli_group fit_options_fitting = CLI_GROUP("fitting", fitting);
-const cli_group fit_options_optimizer = CLI_GROUP("optimizer", optimizer);
+const cli_group fit_options_fitting = CLI_GROUP_GIVEN("fitting", fitting, fit_options, given);
+const cli_group fit_options_optimizer = CLI_GROUP_GIVEN("optimizer", optimizer, fit_options, given);
+
+static int take_accuracy(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    (void)o;
+    if (bf_fit_accuracy_parse(v, &((fit_options *)target)->accuracy, NULL) != BF_OK) {
+        fprintf(stderr, "%s: --accuracy takes fast, balanced or best, got '%s'\n", cmd, v);
+        return -1;
+    }
+    return 0;
+}
 
 /* The numbers are the library's (brdfit/fit.h), which says why they were chosen. */
 static const cli_option accuracy[] = {
@@ -51,19 +151,13 @@ static const cli_option accuracy[] = {
      "--screen " STR(BF_FIT_SCREEN) ")\n"
      "best: all samples, --backend ceres --starts " STR(BF_ACCURACY_BEST_STARTS) " --screen " STR(
          BF_ACCURACY_BEST_SCREEN) "\n--max-iterations " STR(BF_ACCURACY_BEST_ITERATIONS),
-     NULL},
+     NULL, CLI_CALLS(take_accuracy)},
 };
 const cli_group fit_options_accuracy = CLI_GROUP("accuracy", accuracy);
 
 int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd)
 {
-    if (strcmp(a, "--accuracy"))
-        return 0;
-    if (bf_fit_accuracy_parse(v, &o->accuracy, NULL) != BF_OK) {
-        fprintf(stderr, "%s: --accuracy takes fast, balanced or best, got '%s'\n", cmd, v);
-        return -1;
-    }
-    return 1;
+    return cli_group_take(&fit_options_accuracy, o, a, v, cmd);
 }
 
 void fit_options_init(fit_options *o)
@@ -82,126 +176,10 @@ void fit_options_finish(fit_options *o, data_options *d)
     o->fit.objective.noverrides = o->noverrides;
 }
 
-/* The most an integer option may ask for: beyond these a run would take days or a
- * thread per core many times over, which is never what was meant. */
-static long int_limit(const char *opt)
-{
-    if (!strcmp(opt, "--threads"))
-        return FIT_OPTIONS_MAX_THREADS;
-    if (!strcmp(opt, "--starts") || !strcmp(opt, "--screen"))
-        return FIT_OPTIONS_MAX_STARTS;
-    return 10000000; /* --max-iterations */
-}
-
-/* The flags: 1 when a was one of them (and is now set). */
-static int parse_flag(fit_options *o, const char *a)
-{
-    if (!strcmp(a, "--solid-angle"))
-        o->fit.objective.solid_angle = 1;
-    else if (!strcmp(a, "--no-weights"))
-        o->fit.objective.use_weights = 0;
-    else if (!strcmp(a, "--constrain-energy"))
-        o->fit.solver.use_constraint = 1;
-    else
-        return 0;
-    return 1;
-}
-
-/* The options an --accuracy preset gives way to (bf_fit_options_apply_accuracy). */
-static unsigned given_bit(const char *a)
-{
-    return !strcmp(a, "--residual")         ? BF_FIT_GIVEN_RESIDUAL
-           : !strcmp(a, "--backend")        ? BF_FIT_GIVEN_BACKEND
-           : !strcmp(a, "--algorithm")      ? BF_FIT_GIVEN_ALGORITHM
-           : !strcmp(a, "--starts")         ? BF_FIT_GIVEN_STARTS
-           : !strcmp(a, "--screen")         ? BF_FIT_GIVEN_SCREEN
-           : !strcmp(a, "--max-iterations") ? BF_FIT_GIVEN_MAX_ITERATIONS
-                                            : 0u;
-}
-
-/* --fix NAME=VALUE or --bound NAME=LO:HI: one more override. */
-static int parse_override(fit_options *o, const char *a, const char *v, const char *cmd)
-{
-    bf_error err;
-    if (o->noverrides >= FIT_OPTIONS_MAX_OVERRIDES) {
-        fprintf(stderr, "%s: more than %d --fix/--bound options\n", cmd, FIT_OPTIONS_MAX_OVERRIDES);
-        return -1;
-    }
-    bf_override *ov = &o->overrides[o->noverrides];
-    int rc = a[2] == 'f' ? bf_override_parse_fix(v, ov, &err) : bf_override_parse_bound(v, ov, &err);
-    if (rc != BF_OK) {
-        fprintf(stderr, "%s: %s: %s\n", cmd, a, err.msg);
-        return -1;
-    }
-    o->noverrides++;
-    return 1;
-}
-
-/* The counts: --presolve N|off, --max-iterations, --starts, --screen, --threads. */
-static int parse_integer(fit_options *o, const char *a, const char *v, const char *cmd)
-{
-    long n;
-    if (!strcmp(a, "--presolve")) {
-        if (!strcmp(v, "off")) {
-            o->fit.presolve = -1;
-            return 1;
-        }
-        if (!args_int(v, 64, 1000000000, &n)) {
-            fprintf(stderr, "%s: --presolve needs a sample count of at least 64 or 'off', got '%s'\n", cmd, v);
-            return -1;
-        }
-        o->fit.presolve = n;
-        return 1;
-    }
-    const long least = strcmp(a, "--screen") ? 1 : 0;
-    if (!args_int(v, least, int_limit(a), &n)) {
-        fprintf(stderr, "%s: %s needs an integer from %ld to %ld, got '%s'\n", cmd, a, least, int_limit(a), v);
-        return -1;
-    }
-    if (!strcmp(a, "--max-iterations"))
-        o->fit.solver.max_iterations = (int)n;
-    else if (!strcmp(a, "--starts"))
-        o->fit.starts = (int)n;
-    else if (!strcmp(a, "--screen"))
-        o->fit.screen = (int)n;
-    else /* --threads */
-        o->fit.solver.threads = (int)n;
-    return 1;
-}
-
 int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd)
 {
-    bf_error err;
-    if (!cli_group_has(&fit_options_fitting, a) && !cli_group_has(&fit_options_optimizer, a))
-        return 0;
-    if (parse_flag(o, a))
-        return 1;
-    o->given |= given_bit(a);
-    if (!strcmp(a, "--residual")) {
-        if (bf_residual_parse(v, &o->fit.objective.residual, &err) != BF_OK) {
-            fprintf(stderr, "%s: --residual: %s\n", cmd, err.msg);
-            return -1;
-        }
-    } else if (!strcmp(a, "--loss")) {
-        if (bf_loss_parse(v, &o->fit.solver.loss, &err) != BF_OK) {
-            fprintf(stderr, "%s: --loss: %s\n", cmd, err.msg);
-            return -1;
-        }
-    } else if (!strcmp(a, "--fix") || !strcmp(a, "--bound")) {
-        return parse_override(o, a, v, cmd);
-    } else if (!strcmp(a, "--backend")) {
-        if (bf_backend_parse(v, &o->fit.solver.backend, NULL) != BF_OK) {
-            fprintf(stderr, "%s: --backend takes ceres or nlopt, got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--algorithm")) {
-        o->fit.solver.algorithm = v;
-    } else if (!strcmp(a, "--local")) {
-        o->fit.solver.local_algorithm = v;
-    } else {
-        return parse_integer(o, a, v, cmd);
-    }
-    return 1;
+    int r = cli_group_take(&fit_options_fitting, o, a, v, cmd);
+    return r ? r : cli_group_take(&fit_options_optimizer, o, a, v, cmd);
 }
 
 int fit_options_parse_with_data(fit_options *o, data_options *d, const char *a, const char *v, const char *cmd)

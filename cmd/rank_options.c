@@ -7,16 +7,29 @@
 #include <stdlib.h>
 #include <string.h>
 
+static int take_rank(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    bf_error err;
+    (void)o;
+    if (bf_compare_rank_parse(v, &((rank_options *)target)->rank_by, &err) != BF_OK) {
+        fprintf(stderr, "%s: --rank: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
 /* The default ranking differs (compare: bic, select: error), hence two tables. */
-#define RANK_HELP(def)                                                                                        \
-    "what to rank by (default " def "): a criterion of each fit's\n"                                          \
-    "likelihood (docs/criteria.md), the cross-validated error of\n"                                           \
+#define RANK_HELP(def)                                                                                                 \
+    "what to rank by (default " def "): a criterion of each fit's\n"                                                  \
+    "likelihood (docs/criteria.md), the cross-validated error of\n"                                                   \
     "the fitted objective, or the --error metric"
-#define RANK_TABLE(def)                                                                                       \
-    {                                                                                                         \
-        {"--rank", 0, "bic|aic|aicc|cv|error", RANK_HELP(def), NULL},                                         \
-            {"--folds", 0, "K", "folds of --rank cv (default 5, 2 to 20; K more fits per model)", NULL},     \
-            {"--timing", 0, NULL, "wall times in the outputs too (then runs differ)", NULL},                 \
+#define RANK_TABLE(def)                                                                                                \
+    {                                                                                                                  \
+        {"--rank", 0, "bic|aic|aicc|cv|error", RANK_HELP(def), NULL, CLI_CALLS(take_rank)},                           \
+            {"--folds", 0, "K", "folds of --rank cv (default 5, 2 to 20; K more fits per model)", NULL,                \
+             CLI_INT_AT(rank_options, folds, 2, BF_CV_MAX_FOLDS)},                                                     \
+            {"--timing", 0, NULL, "wall times in the outputs too (then runs differ)", NULL,                            \
+             CLI_SETS(rank_options, timing, 1)},                                                                       \
     }
 static const cli_option rank_bic[] = RANK_TABLE("bic"), rank_error[] = RANK_TABLE("error");
 const cli_group rank_options_bic = CLI_GROUP("ranking", rank_bic);
@@ -31,27 +44,7 @@ void rank_options_init(rank_options *r, bf_compare_rank_by rank_by)
 
 int rank_options_parse(rank_options *r, const char *a, const char *v, const char *cmd)
 {
-    if (!strcmp(a, "--timing")) {
-        r->timing = 1;
-        return 1;
-    }
-    if (strcmp(a, "--rank") && strcmp(a, "--folds"))
-        return 0;
-    if (!strcmp(a, "--rank")) {
-        bf_error err;
-        if (bf_compare_rank_parse(v, &r->rank_by, &err) != BF_OK) {
-            fprintf(stderr, "%s: --rank: %s\n", cmd, err.msg);
-            return -1;
-        }
-        return 1;
-    }
-    long n;
-    if (!args_int(v, 2, BF_CV_MAX_FOLDS, &n)) {
-        fprintf(stderr, "%s: --folds needs an integer from 2 to %d, got '%s'\n", cmd, BF_CV_MAX_FOLDS, v);
-        return -1;
-    }
-    r->folds = (int)n;
-    return 1;
+    return cli_group_take(&rank_options_bic, r, a, v, cmd); /* the same bindings as rank_options_error */
 }
 
 int rank_options_check(const rank_options *r, const bf_fit_options *fit, const char *cmd)

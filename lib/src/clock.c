@@ -1,5 +1,5 @@
-/* The library's clock (rng.h). */
-#include "rng.h"
+/* The library's clock (brdfit/clock.h). */
+#include "brdfit/clock.h"
 
 #include <time.h>
 

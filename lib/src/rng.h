@@ -1,4 +1,4 @@
-/* Internal: the library's one random generator and one clock.
+/* Internal: the library's one random generator (its clock: brdfit/clock.h).
  *
  * splitmix64 (Steele, Lea and Flood 2014): one 64-bit state, every seed (0 included)
  * gives a full-period, well-mixed stream; subsampling, multistart, folds and the
@@ -22,9 +22,5 @@ static inline double bf_uniform01(uint64_t *state)
 {
     return (double)(bf_splitmix64(state) >> 11) * 0x1.0p-53;
 }
-
-/* Monotonic wall time in seconds (for the wall-time fields only: nothing is decided by
- * it). */
-double bf_now_seconds(void);
 
 #endif

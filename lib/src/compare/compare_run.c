@@ -22,7 +22,7 @@
 
 #include "brdfit/compare.h"
 #include "parallel.h"
-#include "../rng.h"
+#include "brdfit/clock.h"
 
 typedef struct run {
     bf_compare *c;

@@ -17,7 +17,7 @@
 #include "lobe_order.h"
 #include "search.h"
 #include "silence.h"
-#include "../rng.h"
+#include "brdfit/clock.h"
 
 #include <math.h>
 #include <stdio.h>

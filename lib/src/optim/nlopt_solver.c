@@ -17,7 +17,7 @@
  * per process): concurrent solves in one process must not rely on each other's seeds. */
 #include "brdfit/solve.h"
 #include "backends.h"
-#include "../rng.h"
+#include "brdfit/clock.h"
 
 #include <math.h>
 #include <nlopt.h>

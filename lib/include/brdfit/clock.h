@@ -1,0 +1,10 @@
+/* The clock of every wall-time field (bf_fit_result.seconds, bf_solution.seconds, the
+ * compare and batch timings): for measuring and progress only, never for deciding, so
+ * results stay the same bytes on any machine. */
+#ifndef BRDFIT_CLOCK_H
+#define BRDFIT_CLOCK_H
+
+/* Monotonic wall time in seconds from an arbitrary origin (CLOCK_MONOTONIC). */
+double bf_now_seconds(void);
+
+#endif
