@@ -1,9 +1,9 @@
 /* Reading a batch manifest (batch_manifest.h).
  *
  * Decisions:
- *  - The options are parsed by the tables fit and compare use (cli_parse, then
- *    data_options_parse, fit_options_parse, rank_options_parse), so a manifest takes
- *    exactly their names and values and refuses what they refuse.
+ *  - The options are parsed by the tables fit and compare use (cli_parse_words, then
+ *    cli_take into the structs they bind), so a manifest takes exactly their names and
+ *    values and refuses what they refuse.
  *  - --threads in a manifest is accepted but is not what a run uses when brdfit batch
  *    is given its own --threads (results do not depend on it, fit.h).
  *  - The identity hash is over the canonical text (cJSON's unformatted print), so
@@ -19,13 +19,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
 #include "batch_list.h"
 #include "cli.h"
 
+static int take_error(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    bf_error err;
+    (void)o;
+    if (bf_compare_metric_parse(v, &((batch_manifest *)target)->metric, &err) != BF_OK) {
+        fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
 static const cli_option own[] = {
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "as brdfit compare", NULL},
-    {"--tolerance", 0, "T", "as brdfit compare", NULL},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "as brdfit compare", NULL, CLI_CALLS(take_error)},
+    {"--tolerance", 0, "T", "as brdfit compare", NULL,
+     CLI_NUMBER_AT(batch_manifest, tolerance, 0.0, HUGE_VAL, "a number >= 0")},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const shared_groups[] = {&own_group, &rank_options_bic, &fit_options_fitting,
@@ -94,10 +105,19 @@ static int words_of(const cJSON *a, int extra, char ***out, const char *what, co
     return k;
 }
 
-/* Words parsed by grammar c: every one an option; each handed to take. 0, or -1 after an
- * error, whose message starts "cmd: where". */
-static int parse_words(const cli_command *c, char **words, int n, int (*take)(void *, const char *, const char *),
-                       void *ctx, const char *where, const char *cmd)
+/* A word that is not an option; ctx: the message's prefix. */
+static int not_an_option(void *ctx, const char *value, const char *cmd)
+{
+    (void)cmd;
+    fprintf(stderr, "%s: '%s' is not an option (one data file per material)\n", (const char *)ctx, value);
+    return -1;
+}
+
+/* Words parsed by grammar c: every one an option, taken into targets[g] for c's group g.
+ * 0, or -1 after an error, whose message starts "cmd: where" (the grammar's) or "cmd"
+ * (a value's, as the option parsers say it). */
+static int parse_words(const cli_command *c, void *const *targets, int ntargets, char **words, int n, const char *where,
+                       const char *cmd)
 {
     char prefix[700];
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
@@ -112,53 +132,10 @@ static int parse_words(const cli_command *c, char **words, int n, int (*take)(vo
     }
     cli_args args = {0};
     int rc = cli_parse_words(c, n, words, &args, prefix) == CLI_OK ? 0 : -1;
-    for (int i = 0; rc == 0 && i < args.n; i++) {
-        if (!args.v[i].name) {
-            fprintf(stderr, "%s: '%s' is not an option (one data file per material)\n", prefix, args.v[i].value);
-            rc = -1;
-        } else if (take(ctx, args.v[i].name, args.v[i].value) <= 0) {
-            rc = -1;
-        }
-    }
+    if (rc == 0)
+        rc = cli_take(c, targets, ntargets, &args, not_an_option, prefix, cmd);
     cli_args_free(&args);
     return rc;
-}
-
-typedef struct take_ctx {
-    batch_manifest *m;
-    data_options *d;
-    const char *cmd;
-} take_ctx;
-
-/* One shared option: 1 taken, -1 after an error (an option the tables declare is always
- * taken by one of the parsers). */
-static int take_shared(void *p, const char *name, const char *v)
-{
-    take_ctx *t = p;
-    bf_error err;
-    int d = data_options_parse(&t->m->dopt, name, v, t->cmd);
-    if (d == 0)
-        d = fit_options_parse(&t->m->fopt, name, v, t->cmd);
-    if (d == 0)
-        d = rank_options_parse(&t->m->ro, name, v, t->cmd);
-    if (d != 0)
-        return d;
-    if (!strcmp(name, "--error")) {
-        if (bf_compare_metric_parse(v, &t->m->metric, &err) != BF_OK) {
-            fprintf(stderr, "%s: --error: %s\n", t->cmd, err.msg);
-            return -1;
-        }
-    } else if (!args_number(v, 0.0, HUGE_VAL, &t->m->tolerance)) {
-        fprintf(stderr, "%s: --tolerance needs a number >= 0, got '%s'\n", t->cmd, v);
-        return -1;
-    }
-    return 1;
-}
-
-static int take_data(void *p, const char *name, const char *v)
-{
-    take_ctx *t = p;
-    return data_options_parse(t->d, name, v, t->cmd);
 }
 
 /* The whole file, NUL-terminated (malloc'd); NULL after an error. A manifest beyond
@@ -290,14 +267,14 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
         }
     char prefix[600]; /* the parsers' messages name the manifest: "brdfit batch: FILE" */
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
-    take_ctx t = {m, NULL, prefix};
+    void *const targets[] = {m, &m->ro, &m->fopt, &m->fopt, &m->dopt, &m->dopt}; /* shared_groups' structs */
     char opts_where[32] = "\"options\"";
     if (m->lines)
         snprintf(opts_where, sizeof opts_where, "line %d", m->lines[0]);
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(m->root, "materials");
     if ((m->nwords = words_of(cJSON_GetObjectItemCaseSensitive(m->root, "options"), 0, &m->words, "\"options\"", where,
                               cmd)) < 0 ||
-        parse_words(&shared_cli, m->words, m->nwords, take_shared, &t, opts_where, prefix) < 0 ||
+        parse_words(&shared_cli, targets, CLI_COUNT(targets), m->words, m->nwords, opts_where, prefix) < 0 ||
         rank_options_check(&m->ro, &m->fopt.fit, prefix) < 0 ||
         read_models(m, cJSON_GetObjectItemCaseSensitive(m->root, "models"), where, cmd) < 0)
         return -1;
@@ -353,13 +330,14 @@ int batch_manifest_read(const char *path, const char *text, batch_manifest *m, c
 int batch_manifest_data_options(const batch_manifest *m, int i, data_options *out, const char *cmd)
 {
     *out = m->dopt;
-    take_ctx t = {NULL, out, cmd};
+    void *const targets[] = {out, out}; /* material_groups' structs */
     char where[64];
     if (m->lines)
         snprintf(where, sizeof where, "line %d", m->lines[i + 1]);
     else
         snprintf(where, sizeof where, "material %d", i + 1);
-    return parse_words(&material_cli, m->materials[i].words, m->materials[i].nwords, take_data, &t, where, cmd);
+    return parse_words(&material_cli, targets, CLI_COUNT(targets), m->materials[i].words, m->materials[i].nwords, where,
+                       cmd);
 }
 
 char *batch_manifest_item_options(const batch_manifest *m, int material, int model)

@@ -49,14 +49,6 @@ const char *cli_title(const cli_command *c, char *buf, size_t len)
     return buf;
 }
 
-int cli_group_has(const cli_group *g, const char *name)
-{
-    for (int k = 0; k < g->n; k++)
-        if (!strcmp(g->options[k].name, name))
-            return 1;
-    return 0;
-}
-
 /* The option with this long name (with its dashes, up to len) or short letter; the
  * common options (help, quiet, verbose) only when common. */
 static const cli_option *find_in(const cli_command *c, const char *name, size_t len, char letter, int common,
@@ -299,8 +291,9 @@ int cli_check_bound(const cli_command *c)
             const cli_option *o = &c->groups[g]->options[k];
             int ok = o->kind == CLI_FLAG || o->kind == CLI_STRING || o->kind == CLI_INT || o->kind == CLI_NUMBER ||
                      (o->kind == CLI_CALL && o->take);
-            /* A flag has no value to read and an option with a value is not a flag. */
-            if (!ok || (o->kind == CLI_FLAG) != (o->arg == NULL)) {
+            /* A flag binding has no value to read; an option without a value is a flag
+             * or a callback (which reads none). */
+            if (!ok || (o->kind == CLI_FLAG && o->arg) || (!o->arg && o->kind != CLI_FLAG && o->kind != CLI_CALL)) {
                 fprintf(stderr, "%s: option %s is not bound to a variable of its kind (cli.h)\n",
                         cli_title(c, title, sizeof title), o->name);
                 return -1;

@@ -128,9 +128,6 @@ int cli_check_bound(const cli_command *c);
 /* The option of c (or a common one) whose long form is name[0..len-1], or NULL. */
 const cli_option *cli_find(const cli_command *c, const char *name, size_t len);
 
-/* 1 when the group declares the option of this long name ("--format"). */
-int cli_group_has(const cli_group *g, const char *name);
-
 /* The command's full name for messages: "brdfit fit", "brdfit-synth". */
 const char *cli_title(const cli_command *c, char *buf, size_t len);
 

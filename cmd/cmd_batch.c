@@ -48,13 +48,63 @@
 
 static const char cmd[] = BATCH_CMD;
 
+static int take_redo(void *target, const cli_option *o, const char *v, const char *c)
+{
+    batch_args *a = target;
+    (void)o;
+    if (strcmp(v, "failed") && strcmp(v, "all")) {
+        fprintf(stderr, "%s: --redo needs failed or all, got '%s'\n", c, v);
+        return -1;
+    }
+    a->redo_failed = 1;
+    a->redo_all = !strcmp(v, "all");
+    return 0;
+}
+
+static int take_shard(void *target, const cli_option *o, const char *v, const char *c)
+{
+    batch_args *a = target;
+    char *end;
+    (void)o;
+    long i = strtol(v, &end, 10), n = *end == '/' ? strtol(end + 1, &end, 10) : 0;
+    if (*end || n < 1 || n > 100000 || i < 1 || i > n) {
+        fprintf(stderr, "%s: --shard needs I/N with 1 <= I <= N, got '%s'\n", c, v);
+        return -1;
+    }
+    a->shard = (int)i;
+    a->nshards = (int)n;
+    return 0;
+}
+
+static int take_jobs(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    return args_jobs(c, v, &((batch_args *)target)->jobs);
+}
+
+/* --threads: a long (0 stands for "as the manifest says"), so not CLI_INT_AT's int. */
+static int take_threads(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    if (!args_int(v, 1, FIT_OPTIONS_MAX_THREADS, &((batch_args *)target)->threads)) {
+        fprintf(stderr, "%s: --threads needs an integer from 1 to %d, got '%s'\n", c, FIT_OPTIONS_MAX_THREADS, v);
+        return -1;
+    }
+    return 0;
+}
+
 static const cli_option own[] = {
-    {"--output", 'o', "FILE", "the results database (SQLite; made if absent, resumed if it is this\n"
-                              "manifest's)", "file"},
-    {"--redo", 0, "failed|all", "run these finished items again (failed: failed and error ones)", NULL},
-    {"--shard", 0, "I/N", "run only share I of N of the items (job arrays; brdfit merge joins them)", NULL},
-    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL},
-    {"--threads", 0, "N", "solver threads in all (default: every core; results do not depend on it)", NULL},
+    {"--output", 'o', "FILE",
+     "the results database (SQLite; made if absent, resumed if it is this\n"
+     "manifest's)",
+     "file", CLI_STRING_AT(batch_args, output)},
+    {"--redo", 0, "failed|all", "run these finished items again (failed: failed and error ones)", NULL,
+     CLI_CALLS(take_redo)},
+    {"--shard", 0, "I/N", "run only share I of N of the items (job arrays; brdfit merge joins them)", NULL,
+     CLI_CALLS(take_shard)},
+    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL, CLI_CALLS(take_jobs)},
+    {"--threads", 0, "N", "solver threads in all (default: every core; results do not depend on it)", NULL,
+     CLI_CALLS(take_threads)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -68,40 +118,14 @@ const cli_command cli_batch = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-static int parse_shard(batch_args *a, const char *v)
+static int take_manifest(void *ctx, const char *v, const char *c)
 {
-    char *end;
-    long i = strtol(v, &end, 10), n = *end == '/' ? strtol(end + 1, &end, 10) : 0;
-    if (*end || n < 1 || n > 100000 || i < 1 || i > n) {
-        fprintf(stderr, "%s: --shard needs I/N with 1 <= I <= N, got '%s'\n", cmd, v);
+    batch_args *a = ctx;
+    if (a->manifest) {
+        fprintf(stderr, "%s: one manifest only (got '%s' and '%s')\n", c, a->manifest, v);
         return -1;
     }
-    a->shard = (int)i;
-    a->nshards = (int)n;
-    return 0;
-}
-
-static int parse_own(batch_args *a, const char *name, const char *v)
-{
-    if (!strcmp(name, "--output")) {
-        a->output = v;
-    } else if (!strcmp(name, "--redo")) {
-        if (strcmp(v, "failed") && strcmp(v, "all")) {
-            fprintf(stderr, "%s: --redo needs failed or all, got '%s'\n", cmd, v);
-            return -1;
-        }
-        a->redo_failed = 1;
-        a->redo_all = !strcmp(v, "all");
-    } else if (!strcmp(name, "--shard")) {
-        return parse_shard(a, v);
-    } else if (!strcmp(name, "--jobs")) {
-        return args_jobs(cmd, v, &a->jobs);
-    } else { /* --threads */
-        if (!args_int(v, 1, FIT_OPTIONS_MAX_THREADS, &a->threads)) {
-            fprintf(stderr, "%s: --threads needs an integer from 1 to %d, got '%s'\n", cmd, FIT_OPTIONS_MAX_THREADS, v);
-            return -1;
-        }
-    }
+    a->manifest = v;
     return 0;
 }
 
@@ -113,18 +137,9 @@ static int parse(batch_args *a, int argc, char **argv)
     int p = cli_parse(&cli_batch, argc, argv, &a->args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < a->args.n; i++) {
-        const char *name = a->args.v[i].name, *v = a->args.v[i].value;
-        if (!name) {
-            if (a->manifest) {
-                fprintf(stderr, "%s: one manifest only (got '%s' and '%s')\n", cmd, a->manifest, v);
-                return 2;
-            }
-            a->manifest = v;
-        } else if (parse_own(a, name, v) < 0) {
-            return 2;
-        }
-    }
+    void *const targets[] = {a};
+    if (cli_take(&cli_batch, targets, CLI_COUNT(targets), &a->args, take_manifest, a, cmd) < 0)
+        return 2;
     if (!a->manifest || !a->output) {
         fprintf(stderr, "%s: %s (see brdfit batch --help)\n", cmd,
                 !a->manifest ? "a manifest is required" : "-o RESULTS.db is required");

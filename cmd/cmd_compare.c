@@ -72,34 +72,6 @@ static const char cmd[] = "brdfit compare";
 
 #define MAX_MODELS 128
 
-static const cli_option own[] = {
-    {"--model", 'm', "SPECS", "models to compare (as brdfit fit; repeatable), or all: every\n"
-                              "registered model with its default options", "model"},
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "error for the Pareto fronts and the tolerance\n"
-                                                       "(default rmse_log; with --rank cv the cross-validated error)",
-     NULL},
-    {"--tolerance", 0, "T", "relative: the simplest model with error <= best * (1 + T)\nis chosen (default 0.05)",
-     NULL},
-    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL},
-    {"--json", 0, "FILE", "everything, machine-readable (stable keys; - for standard output)", "file"},
-    {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file"},
-    {"--html", 0, "DIR", "a report to read in a browser: DIR/index.html and its images\n"
-                         "(an existing DIR is replaced only if it is a previous report)", "dir"},
-    {"--plot-format", 0, "png|svg|pdf", "the report's plots: embedded as PNG (default) or SVG; pdf\n"
-                                        "embeds PNG; a PDF of each plot is linked whatever the format", NULL},
-};
-static const cli_group own_group = CLI_GROUP(NULL, own);
-static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
-const cli_command cli_compare = {
-    "brdfit", "compare", "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
-    "fit many models to many materials and rank them",
-    "Fits every model to every data file, ranks the models per material and across materials (by an information "
-    "criterion, cross-validated error or plain error), marks the Pareto fronts of error against free parameters and "
-    "fitting work, and writes the tables and a report. Ctrl-C stops starting new fits and writes what finished "
-    "(exit 130).",
-    "file", groups, sizeof groups / sizeof groups[0],
-};
-
 /* The command line, parsed. data points into args (kept until the end). */
 typedef struct compare_args {
     cli_args args;
@@ -116,6 +88,80 @@ typedef struct compare_args {
     char *command_line;    /* as typed, for the report (NULL when out of memory) */
     char *data_opts;       /* the data options given, for the report */
 } compare_args;
+
+static int take_model(void *target, const cli_option *o, const char *v, const char *c)
+{
+    compare_args *a = target;
+    (void)o;
+    if (!strcmp(v, "all")) {
+        a->all = 1;
+        return 0;
+    }
+    int k = fit_options_split_models(v, a->specs, a->nmodels, MAX_MODELS, c);
+    if (k < 0)
+        return -1;
+    a->nmodels = k;
+    return 0;
+}
+
+static int take_error(void *target, const cli_option *o, const char *v, const char *c)
+{
+    bf_error err;
+    (void)o;
+    if (bf_compare_metric_parse(v, &((compare_args *)target)->metric, &err) != BF_OK) {
+        fprintf(stderr, "%s: --error: %s\n", c, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int take_jobs(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    return args_jobs(c, v, &((compare_args *)target)->jobs);
+}
+
+static int take_plot_format(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    if (!(((compare_args *)target)->plot_format = bf_plot_format_parse(v))) {
+        fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", c, v);
+        return -1;
+    }
+    return 0;
+}
+
+static const cli_option own[] = {
+    {"--model", 'm', "SPECS", "models to compare (as brdfit fit; repeatable), or all: every\n"
+                              "registered model with its default options", "model", CLI_CALLS(take_model)},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "error for the Pareto fronts and the tolerance\n"
+                                                       "(default rmse_log; with --rank cv the cross-validated error)",
+     NULL, CLI_CALLS(take_error)},
+    {"--tolerance", 0, "T", "relative: the simplest model with error <= best * (1 + T)\nis chosen (default 0.05)",
+     NULL, CLI_NUMBER_AT(compare_args, tolerance, 0.0, HUGE_VAL, "a number >= 0 (relative, 0.05 = 5%)")},
+    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL, CLI_CALLS(take_jobs)},
+    {"--json", 0, "FILE", "everything, machine-readable (stable keys; - for standard output)", "file",
+     CLI_STRING_AT(compare_args, json_path)},
+    {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file",
+     CLI_STRING_AT(compare_args, csv_path)},
+    {"--html", 0, "DIR", "a report to read in a browser: DIR/index.html and its images\n"
+                         "(an existing DIR is replaced only if it is a previous report)", "dir",
+     CLI_STRING_AT(compare_args, html_dir)},
+    {"--plot-format", 0, "png|svg|pdf", "the report's plots: embedded as PNG (default) or SVG; pdf\n"
+                                        "embeds PNG; a PDF of each plot is linked whatever the format", NULL,
+     CLI_CALLS(take_plot_format)},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_compare = {
+    "brdfit", "compare", "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
+    "fit many models to many materials and rank them",
+    "Fits every model to every data file, ranks the models per material and across materials (by an information "
+    "criterion, cross-validated error or plain error), marks the Pareto fronts of error against free parameters and "
+    "fitting work, and writes the tables and a report. Ctrl-C stops starting new fits and writes what finished "
+    "(exit 130).",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
 
 static void compare_args_free(compare_args *a)
 {
@@ -158,46 +204,6 @@ static void append_word(char **text, const char *word)
     *at = '\0';
 }
 
-/* One of this command's own options; 0, or -1 after a one-line error. */
-static int parse_own(compare_args *a, const char *name, const char *v)
-{
-    bf_error err;
-    if (!strcmp(name, "--model")) {
-        if (!strcmp(v, "all")) {
-            a->all = 1;
-            return 0;
-        }
-        int k = fit_options_split_models(v, a->specs, a->nmodels, MAX_MODELS, cmd);
-        if (k < 0)
-            return -1;
-        a->nmodels = k;
-    } else if (!strcmp(name, "--error")) {
-        if (bf_compare_metric_parse(v, &a->metric, &err) != BF_OK) {
-            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-            return -1;
-        }
-    } else if (!strcmp(name, "--tolerance")) {
-        if (!args_number(v, 0.0, HUGE_VAL, &a->tolerance)) {
-            fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(name, "--jobs")) {
-        return args_jobs(cmd, v, &a->jobs);
-    } else if (!strcmp(name, "--json")) {
-        a->json_path = v;
-    } else if (!strcmp(name, "--html")) {
-        a->html_dir = v;
-    } else if (!strcmp(name, "--plot-format")) {
-        if (!(a->plot_format = bf_plot_format_parse(v))) {
-            fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else { /* --csv */
-        a->csv_path = v;
-    }
-    return 0;
-}
-
 /* -m all: every registered family, after the models named. 0, or -1 after an error. */
 static int add_all_models(compare_args *a)
 {
@@ -212,6 +218,15 @@ static int add_all_models(compare_args *a)
         }
         a->nmodels++;
     }
+    return 0;
+}
+
+/* A data file operand (data has room for every word of the command line). */
+static int take_data(void *ctx, const char *v, const char *c)
+{
+    compare_args *a = ctx;
+    (void)c;
+    a->data[a->ndata++] = v;
     return 0;
 }
 
@@ -246,24 +261,17 @@ static int parse(compare_args *a, int argc, char **argv)
         opts &= strcmp(w, "--") != 0;
         append_word(&a->command_line, w);
     }
-    for (int i = 0; i < a->args.n; i++) {
-        const char *name = a->args.v[i].name, *v = a->args.v[i].value;
-        if (!name) {
-            a->data[a->ndata++] = v;
-            continue;
+    void *const targets[] = {a, &a->ro, &a->fopt, &a->fopt, &a->dopt, &a->dopt};
+    if (cli_take(&cli_compare, targets, CLI_COUNT(targets), &a->args, take_data, a, cmd) < 0)
+        return 2;
+    for (int i = 0; i < a->args.n; i++) { /* for the report: how the data was read */
+        const cli_arg *x = &a->args.v[i];
+        const cli_group *g = x->option ? groups[x->group] : NULL;
+        if (g == &data_options_reading || g == &data_options_preprocessing) {
+            append_word(&a->data_opts, x->name);
+            if (x->value)
+                append_word(&a->data_opts, x->value);
         }
-        int d = data_options_parse(&a->dopt, name, v, cmd);
-        if (d > 0) { /* for the report: how the data was read */
-            append_word(&a->data_opts, name);
-            if (v)
-                append_word(&a->data_opts, v);
-        }
-        if (d == 0)
-            d = fit_options_parse(&a->fopt, name, v, cmd);
-        if (d == 0)
-            d = rank_options_parse(&a->ro, name, v, cmd);
-        if (d < 0 || (d == 0 && parse_own(a, name, v) < 0))
-            return 2;
     }
     return add_all_models(a) < 0 ? 2 : -1;
 }

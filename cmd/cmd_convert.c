@@ -10,8 +10,27 @@
 #include "commands.h"
 #include "data_options.h"
 
+/* What the command line asked for. */
+typedef struct convert_args {
+    data_options dopt;
+    const char *paths[2]; /* IN, OUT */
+    int npaths;
+    bf_format to;
+} convert_args;
+
+static int take_to(void *target, const cli_option *o, const char *v, const char *cmd)
+{
+    (void)o;
+    if (strcmp(v, "csv") && strcmp(v, "merl")) {
+        fprintf(stderr, "%s: --to takes csv or merl, got '%s'\n", cmd, v);
+        return -1;
+    }
+    ((convert_args *)target)->to = v[0] == 'c' ? BF_FORMAT_CSV : BF_FORMAT_MERL;
+    return 0;
+}
+
 static const cli_option own[] = {
-    {"--to", 0, "csv|merl", "output format (default: by OUT's extension, .csv or .binary)", NULL},
+    {"--to", 0, "csv|merl", "output format (default: by OUT's extension, .csv or .binary)", NULL, CLI_CALLS(take_to)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &data_options_reading, &data_options_preprocessing};
@@ -24,38 +43,34 @@ const cli_command cli_convert = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
+/* The operands: IN, then OUT. */
+static int take_path(void *ctx, const char *v, const char *cmd)
+{
+    convert_args *c = ctx;
+    if (c->npaths == 2) {
+        fprintf(stderr, "%s: too many arguments ('%s')\n", cmd, v);
+        return -1;
+    }
+    c->paths[c->npaths++] = v;
+    return 0;
+}
+
 int cmd_convert(int argc, char **argv)
 {
-    data_options opt = {0};
-    const char *paths[2] = {NULL, NULL};
-    bf_format to = BF_FORMAT_AUTO;
-    int npaths = 0;
+    convert_args c = {.to = BF_FORMAT_AUTO};
     cli_args args;
     int p = cli_parse(&cli_convert, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        int r = a ? data_options_parse(&opt, a, v, "brdfit convert") : 0;
-        if (r < 0)
-            goto usage;
-        if (r > 0)
-            continue;
-        if (a) { /* --to */
-            if (strcmp(v, "csv") && strcmp(v, "merl")) {
-                fprintf(stderr, "brdfit convert: --to takes csv or merl, got '%s'\n", v);
-                goto usage;
-            }
-            to = v[0] == 'c' ? BF_FORMAT_CSV : BF_FORMAT_MERL;
-        } else if (npaths < 2) {
-            paths[npaths++] = v;
-        } else {
-            fprintf(stderr, "brdfit convert: too many arguments ('%s')\n", v);
-            goto usage;
-        }
-    }
+    void *const targets[] = {&c, &c.dopt, &c.dopt};
+    int bad = cli_take(&cli_convert, targets, CLI_COUNT(targets), &args, take_path, &c, "brdfit convert");
     cli_args_free(&args);
-    if (npaths != 2) {
+    if (bad)
+        return 2;
+    data_options *opt = &c.dopt;
+    const char *const *paths = c.paths;
+    bf_format to = c.to;
+    if (c.npaths != 2) {
         fprintf(stderr, "brdfit convert: needs IN and OUT (see brdfit convert --help)\n");
         return 2;
     }
@@ -64,15 +79,15 @@ int cmd_convert(int argc, char **argv)
         return 2;
     }
     /* Never over the input (under any name), and a writable output before reading. */
-    const bf_path_use in[] = {{"input", paths[0]}, {"--scene file", opt.scene}}, out[] = {{"output", paths[1]}};
-    int bad = args_check_outputs("brdfit convert", in, 2, out, 1);
+    const bf_path_use in[] = {{"input", paths[0]}, {"--scene file", opt->scene}}, out[] = {{"output", paths[1]}};
+    bad = args_check_outputs("brdfit convert", in, 2, out, 1);
     if (bad)
         return bad;
     /* A MERL table written back keeps the bytes of the cells it does not change. */
-    opt.read.keep_origin = to == BF_FORMAT_MERL;
+    opt->read.keep_origin = to == BF_FORMAT_MERL;
     bf_prep_report rep;
     data_scene_report scene;
-    bf_samples *s = data_options_load_scene(&opt, paths[0], &rep, &scene, "brdfit convert");
+    bf_samples *s = data_options_load_scene(opt, paths[0], &rep, &scene, "brdfit convert");
     if (!s)
         return 1;
     bf_error err;
@@ -86,7 +101,4 @@ int cmd_convert(int argc, char **argv)
                rep.above_max_theta, scene.in - scene.kept, rep.subsampled_out);
     bf_samples_free(s);
     return rc == BF_OK ? 0 : 1;
-usage:
-    cli_args_free(&args);
-    return 2;
 }

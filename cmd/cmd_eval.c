@@ -3,7 +3,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
@@ -14,11 +13,18 @@
 
 static const char *const angle_cols[4] = {"theta_i", "phi_i", "theta_o", "phi_o"};
 
+/* What the command line asked for. */
+typedef struct eval_args {
+    const char *params_path, *dirs_path, *out_path;
+} eval_args;
+
 static const cli_option own[] = {
-    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
+    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file",
+     CLI_STRING_AT(eval_args, params_path)},
     {"--dirs", 0, "FILE", "CSV of direction pairs: theta_i,phi_i,theta_o,phi_o in degrees (- for standard input)",
-     "file"},
-    {"--output", 'o', "FILE", "the values as CSV (default and -: standard output)", "file"},
+     "file", CLI_STRING_AT(eval_args, dirs_path)},
+    {"--output", 'o', "FILE", "the values as CSV (default and -: standard output)", "file",
+     CLI_STRING_AT(eval_args, out_path)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -58,19 +64,21 @@ static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const 
     }
 }
 
-/* Takes the parsed command line: 0, or 2 after a one-line error. */
-static int take_args(const cli_args *args, const char **params_path, const char **dirs_path, const char **out_path)
+/* The command takes no operands. */
+static int take_operand(void *ctx, const char *v, const char *c)
 {
-    for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name;
-        if (!a) {
-            fprintf(stderr, "brdfit eval: unexpected argument '%s' (see brdfit eval --help)\n", args->v[i].value);
-            return 2;
-        }
-        const char **dst = !strcmp(a, "--params") ? params_path : !strcmp(a, "--dirs") ? dirs_path : out_path;
-        *dst = args->v[i].value;
-    }
-    if (!*params_path || !*dirs_path) {
+    (void)ctx;
+    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
+    return -1;
+}
+
+/* Takes the parsed command line into a: 0, or 2 after a one-line error. */
+static int take_args(const cli_args *args, eval_args *a)
+{
+    void *const targets[] = {a};
+    if (cli_take(&cli_eval, targets, CLI_COUNT(targets), args, take_operand, NULL, "brdfit eval") < 0)
+        return 2;
+    if (!a->params_path || !a->dirs_path) {
         fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");
         return 2;
     }
@@ -139,15 +147,16 @@ static int write_output(const char *out_path, const bf_csv *t, const int *col, i
 
 int cmd_eval(int argc, char **argv)
 {
-    const char *params_path = NULL, *dirs_path = NULL, *out_path = NULL;
+    eval_args a = {NULL, NULL, NULL};
     cli_args args;
     int p = cli_parse(&cli_eval, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    int bad = take_args(&args, &params_path, &dirs_path, &out_path);
+    int bad = take_args(&args, &a);
     cli_args_free(&args);
     if (bad)
         return bad;
+    const char *params_path = a.params_path, *dirs_path = a.dirs_path, *out_path = a.out_path;
     const bf_path_use in[] = {{"--params file", params_path}, {"--dirs file", dirs_path}}, outs[] = {{"-o", out_path}};
     if ((bad = args_check_outputs("brdfit eval", in, 2, outs, 1)) != 0)
         return bad;

@@ -11,13 +11,20 @@
 #include "cli.h"
 #include "commands.h"
 
+/* What the command line asked for (the target is looked up after parsing). */
+typedef struct export_args {
+    const char *in, *to_name, *out_path;
+    int convert;
+} export_args;
+
 static const cli_option own[] = {
     {"--to", 0, "gltf|blender|mitsuba",
-     "the renderer: glTF 2.0 (.gltf with a sphere), Blender 3.4 (a Python script) or\nMitsuba 3 (scene XML)",
-     NULL},
-    {"--output", 'o', "FILE", "the file (default and -: standard output)", "file"},
+     "the renderer: glTF 2.0 (.gltf with a sphere), Blender 3.4 (a Python script) or\nMitsuba 3 (scene XML)", NULL,
+     CLI_STRING_AT(export_args, to_name)},
+    {"--output", 'o', "FILE", "the file (default and -: standard output)", "file",
+     CLI_STRING_AT(export_args, out_path)},
     {"--convert", 0, NULL, "convert an anisotropic or multi-lobe source too (the target holds one isotropic\n"
-                           "lobe: the conversion error says what is lost)", NULL},
+                           "lobe: the conversion error says what is lost)", NULL, CLI_SETS(export_args, convert, 1)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -31,33 +38,30 @@ const cli_command cli_export = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-/* Takes the parsed command line: 0, or 2 after a one-line error. */
-static int take_args(const cli_args *args, const char **in, const bf_export_target **to, const char **out,
-                     int *convert)
+/* The operand: the one result file. */
+static int take_in(void *ctx, const char *v, const char *c)
 {
-    const char *to_name = NULL;
-    for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name, *v = args->v[i].value;
-        if (!a) {
-            if (*in) {
-                fprintf(stderr, "brdfit export: one result file, not '%s' too (see brdfit export --help)\n", v);
-                return 2;
-            }
-            *in = v;
-        } else if (!strcmp(a, "--to")) {
-            to_name = v;
-        } else if (!strcmp(a, "--output")) {
-            *out = v;
-        } else if (!strcmp(a, "--convert")) {
-            *convert = 1;
-        }
+    export_args *a = ctx;
+    if (a->in) {
+        fprintf(stderr, "%s: one result file, not '%s' too (see brdfit export --help)\n", c, v);
+        return -1;
     }
-    if (!*in || !to_name) {
+    a->in = v;
+    return 0;
+}
+
+/* Takes the parsed command line into a and the target: 0, or 2 after a one-line error. */
+static int take_args(const cli_args *args, export_args *a, const bf_export_target **to)
+{
+    void *const targets[] = {a};
+    if (cli_take(&cli_export, targets, CLI_COUNT(targets), args, take_in, a, "brdfit export") < 0)
+        return 2;
+    if (!a->in || !a->to_name) {
         fprintf(stderr, "brdfit export: a result file and --to are required (see brdfit export --help)\n");
         return 2;
     }
-    if (!(*to = bf_export_target_find(to_name))) {
-        fprintf(stderr, "brdfit export: --to '%s': not a target (gltf, blender, mitsuba)\n", to_name);
+    if (!(*to = bf_export_target_find(a->to_name))) {
+        fprintf(stderr, "brdfit export: --to '%s': not a target (gltf, blender, mitsuba)\n", a->to_name);
         return 2;
     }
     return 0;
@@ -65,17 +69,17 @@ static int take_args(const cli_args *args, const char **in, const bf_export_targ
 
 int cmd_export(int argc, char **argv)
 {
-    const char *in = NULL, *out_path = NULL;
+    export_args a = {NULL, NULL, NULL, 0};
     const bf_export_target *to = NULL;
-    int want_convert = 0;
     cli_args args;
     int p = cli_parse(&cli_export, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    int bad = take_args(&args, &in, &to, &out_path, &want_convert);
+    int bad = take_args(&args, &a, &to);
     cli_args_free(&args);
     if (bad)
         return bad;
+    const char *in = a.in, *out_path = a.out_path;
     const bf_path_use ins[] = {{"result file", in}}, outs[] = {{"-o", out_path}};
     if ((bad = args_check_outputs("brdfit export", ins, 1, outs, 1)) != 0)
         return bad;
@@ -91,7 +95,7 @@ int cmd_export(int argc, char **argv)
         fprintf(stderr, "brdfit export: %s\n", err.msg);
         goto done;
     }
-    if (bf_export_check(to, src, want_convert, &err) != BF_OK) {
+    if (bf_export_check(to, src, a.convert, &err) != BF_OK) {
         fprintf(stderr, "brdfit export: %s: %s\n", in, err.msg);
         goto done;
     }

@@ -148,8 +148,15 @@ static void print_text(const char *path, const bf_samples *s, const data_options
     }
 }
 
+/* What the command line asked for. */
+typedef struct info_args {
+    data_options dopt;
+    const char *path;
+    int json;
+} info_args;
+
 static const cli_option own[] = {
-    {"--json", 0, NULL, "the same as JSON", NULL},
+    {"--json", 0, NULL, "the same as JSON", NULL, CLI_SETS(info_args, json, 1)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &data_options_reading, &data_options_preprocessing};
@@ -160,43 +167,40 @@ const cli_command cli_info = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
+/* The operand: the one data file. */
+static int take_path(void *ctx, const char *v, const char *c)
+{
+    info_args *a = ctx;
+    if (a->path) {
+        fprintf(stderr, "%s: one data file at a time ('%s' and '%s')\n", c, a->path, v);
+        return -1;
+    }
+    a->path = v;
+    return 0;
+}
+
 int cmd_info(int argc, char **argv)
 {
-    data_options o;
-    memset(&o, 0, sizeof o);
-    const char *path = NULL;
-    int json = 0;
+    info_args a;
+    memset(&a, 0, sizeof a);
     cli_args args;
     int p = cli_parse(&cli_info, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < args.n; i++) {
-        const char *a = args.v[i].name, *v = args.v[i].value;
-        int used = a ? data_options_parse(&o, a, v, cmd) : 0;
-        if (used < 0) {
-            cli_args_free(&args);
-            return 2;
-        }
-        if (used)
-            continue;
-        if (a) { /* --json */
-            json = 1;
-        } else if (path) {
-            fprintf(stderr, "%s: one data file at a time ('%s' and '%s')\n", cmd, path, v);
-            cli_args_free(&args);
-            return 2;
-        } else {
-            path = v;
-        }
-    }
+    void *const targets[] = {&a, &a.dopt, &a.dopt};
+    int bad = cli_take(&cli_info, targets, CLI_COUNT(targets), &args, take_path, &a, cmd);
     cli_args_free(&args);
+    if (bad)
+        return 2;
+    const data_options *o = &a.dopt;
+    const char *path = a.path;
     if (!path) {
         fprintf(stderr, "%s: no data file (usage: brdfit info DATA [data options] [--json])\n", cmd);
         return 2;
     }
     bf_prep_report report;
     data_scene_report scene;
-    bf_samples *s = data_options_load_scene(&o, path, &report, &scene, cmd);
+    bf_samples *s = data_options_load_scene(o, path, &report, &scene, cmd);
     if (!s)
         return 1;
     bf_samples_info info;
@@ -206,10 +210,10 @@ int cmd_info(int argc, char **argv)
         bf_samples_free(s);
         return 1;
     }
-    if (json)
-        print_json(path, s, &o, &report, &scene, &info);
+    if (a.json)
+        print_json(path, s, o, &report, &scene, &info);
     else
-        print_text(path, s, &o, &report, &scene, &info);
+        print_text(path, s, o, &report, &scene, &info);
     bf_samples_info_clear(&info);
     bf_samples_free(s);
     return 0;

@@ -24,8 +24,15 @@
 
 static const char cmd[] = "brdfit merge";
 
+/* What the command line asked for: the databases in command-line order. */
+typedef struct merge_args {
+    const char *out;
+    const char **inputs; /* room for every argument */
+    int n;
+} merge_args;
+
 static const cli_option own[] = {
-    {"--output", 'o', "FILE", "the merged database (must not exist)", "file"},
+    {"--output", 'o', "FILE", "the merged database (must not exist)", "file", CLI_STRING_AT(merge_args, out)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -64,25 +71,32 @@ static int merge(const char *const *inputs, int n, const char *out)
     return 0;
 }
 
+/* Each operand, in order: a database to merge. */
+static int take_input(void *ctx, const char *v, const char *c)
+{
+    merge_args *a = ctx;
+    (void)c;
+    a->inputs[a->n++] = v;
+    return 0;
+}
+
 int cmd_merge(int argc, char **argv)
 {
     cli_args args;
     int p = cli_parse(&cli_merge, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    const char *out = NULL;
-    const char **inputs = calloc((size_t)argc, sizeof *inputs);
-    int n = 0, status = 0;
-    if (!inputs) {
+    merge_args a = {NULL, calloc((size_t)argc, sizeof *a.inputs), 0};
+    void *const targets[] = {&a};
+    int status = 0;
+    if (!a.inputs) {
         fprintf(stderr, "%s: out of memory\n", cmd);
         status = 1;
+    } else if (cli_take(&cli_merge, targets, CLI_COUNT(targets), &args, take_input, &a, cmd) < 0) {
+        status = 2;
     }
-    for (int i = 0; inputs && i < args.n; i++) {
-        if (args.v[i].name)
-            out = args.v[i].value;
-        else
-            inputs[n++] = args.v[i].value;
-    }
+    const char *out = a.out, **inputs = a.inputs;
+    const int n = a.n;
     if (status == 0 && (n == 0 || !out)) {
         fprintf(stderr, "%s: %s (see brdfit merge --help)\n", cmd,
                 n == 0 ? "at least one database to merge is required" : "-o ALL.db is required");

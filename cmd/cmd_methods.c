@@ -9,8 +9,12 @@
 #include "cli.h"
 #include "commands.h"
 
+typedef struct methods_args {
+    int json;
+} methods_args;
+
 static const cli_option own[] = {
-    {"--json", 0, NULL, "the same as JSON", NULL},
+    {"--json", 0, NULL, "the same as JSON", NULL, CLI_SETS(methods_args, json, 1)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -66,23 +70,27 @@ static void print_text(void)
     }
 }
 
+/* The command takes no operands. */
+static int take_operand(void *ctx, const char *v, const char *c)
+{
+    (void)ctx;
+    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
+    return -1;
+}
+
 int cmd_methods(int argc, char **argv)
 {
+    methods_args m = {0};
     cli_args args;
     int p = cli_parse(&cli_methods, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    int json = 0;
-    for (int i = 0; i < args.n; i++) {
-        if (!args.v[i].name) {
-            fprintf(stderr, "brdfit methods: unexpected argument '%s' (see brdfit methods --help)\n", args.v[i].value);
-            cli_args_free(&args);
-            return 2;
-        }
-        json = 1;
-    }
+    void *const targets[] = {&m};
+    int bad = cli_take(&cli_methods, targets, CLI_COUNT(targets), &args, take_operand, NULL, "brdfit methods");
     cli_args_free(&args);
-    if (json)
+    if (bad)
+        return 2;
+    if (m.json)
         print_json();
     else
         print_text();

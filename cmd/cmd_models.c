@@ -2,7 +2,6 @@
 #include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "brdfit/model.h"
 #include "cli.h"
@@ -122,9 +121,15 @@ static void print_text(const bf_family_info *fi)
     bf_model_free(m3);
 }
 
+typedef struct models_args {
+    int json, names;
+} models_args;
+
 static const cli_option own[] = {
-    {"--json", 0, NULL, "the same as JSON: parameters with bounds, defaults, scales; options", NULL},
-    {"--names", 0, NULL, "the model names alone, one a line (for scripts and completion)", NULL},
+    {"--json", 0, NULL, "the same as JSON: parameters with bounds, defaults, scales; options", NULL,
+     CLI_SETS(models_args, json, 1)},
+    {"--names", 0, NULL, "the model names alone, one a line (for scripts and completion)", NULL,
+     CLI_SETS(models_args, names, 1)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -135,32 +140,36 @@ const cli_command cli_models = {
     NULL, groups, sizeof groups / sizeof groups[0],
 };
 
+/* The command takes no operands. */
+static int take_operand(void *ctx, const char *v, const char *c)
+{
+    (void)ctx;
+    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
+    return -1;
+}
+
 int cmd_models(int argc, char **argv)
 {
     cli_args args;
     int p = cli_parse(&cli_models, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    int json = 0, names = 0;
-    for (int i = 0; i < args.n; i++) {
-        if (!args.v[i].name) {
-            fprintf(stderr, "brdfit models: unexpected argument '%s' (see brdfit models --help)\n", args.v[i].value);
-            cli_args_free(&args);
-            return 2;
-        }
-        *(strcmp(args.v[i].name, "--json") ? &names : &json) = 1;
-    }
+    models_args a = {0, 0};
+    void *const targets[] = {&a};
+    int bad = cli_take(&cli_models, targets, CLI_COUNT(targets), &args, take_operand, NULL, "brdfit models");
     cli_args_free(&args);
-    if (json && names) {
+    if (bad)
+        return 2;
+    if (a.json && a.names) {
         fprintf(stderr, "brdfit models: --json and --names exclude each other\n");
         return 2;
     }
-    if (names) {
+    if (a.names) {
         for (int f = 0; f < bf_family_count(); f++)
             puts(bf_family_get(f)->name);
         return 0;
     }
-    if (!json) {
+    if (!a.json) {
         for (int f = 0; f < bf_family_count(); f++)
             print_text(bf_family_get(f));
         printf("All models: option mono=specular|all|NAME[+NAME...] ties colour parameters across channels\n"

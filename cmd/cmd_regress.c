@@ -2,8 +2,8 @@
  * re-runs the fits a baseline lists and compares them with its expected values.
  *
  * Decisions:
- *  - Each case's "options" are brdfit fit's data and fit options, parsed by the same
- *    functions as brdfit fit; --threads defaults to 1 (not every core) so results are
+ *  - Each case's "options" are brdfit fit's data and fit options, taken by the same
+ *    tables as brdfit fit; --threads defaults to 1 (not every core) so results are
  *    identical across machines. -m and -o have no place there: the case's "model" names
  *    the model and the baseline is the output.
  *  - Everything that can be checked before fitting is: every case's options, model and
@@ -37,12 +37,34 @@ static const char cmd[] = "brdfit regress";
 
 #define MAX_SELECTED 256
 
+/* The command line, parsed (the strings point into argv). */
+typedef struct regress_args {
+    const char *path, *junit;
+    const char *selected[MAX_SELECTED];
+    int nselected, update;
+} regress_args;
+
+static int take_case(void *target, const cli_option *o, const char *v, const char *c)
+{
+    regress_args *a = target;
+    (void)o;
+    if (a->nselected >= MAX_SELECTED) {
+        fprintf(stderr, "%s: more than %d --case options\n", c, MAX_SELECTED);
+        return -1;
+    }
+    a->selected[a->nselected++] = v;
+    return 0;
+}
+
 static const cli_option own[] = {
-    {"--update", 0, NULL, "run every case and rewrite the baseline with the values obtained\n"
-                          "(names, data, options and tolerances kept; nothing written if a case\n"
-                          "cannot run)", NULL},
-    {"--junit", 0, "FILE", "JUnit XML report for CI systems (- for standard output)", "file"},
-    {"--case", 0, "NAME", "run only this case (repeatable)", NULL},
+    {"--update", 0, NULL,
+     "run every case and rewrite the baseline with the values obtained\n"
+     "(names, data, options and tolerances kept; nothing written if a case\n"
+     "cannot run)",
+     NULL, CLI_SETS(regress_args, update, 1)},
+    {"--junit", 0, "FILE", "JUnit XML report for CI systems (- for standard output)", "file",
+     CLI_STRING_AT(regress_args, junit)},
+    {"--case", 0, "NAME", "run only this case (repeatable)", NULL, CLI_CALLS(take_case)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -104,6 +126,8 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
             }
         }
     }
+    void *const targets[] = {&r->fopt, &r->fopt, &r->fopt, &r->dopt, &r->dopt}; /* case_groups' structs */
+    _Static_assert(CLI_COUNT(targets) == CLI_COUNT(case_groups), "a target for each group");
     for (int i = 0; i < r->argc; i++) {
         /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
         char prefix[1024];
@@ -133,11 +157,9 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
         } else if (eq) {
             v = eq + 1;
         }
-        int d = data_options_parse(&r->dopt, o->name, v, prefix);
-        if (d == 0)
-            d = fit_options_parse(&r->fopt, o->name, v, prefix);
-        if (d == 0)
-            d = fit_options_parse_accuracy(&r->fopt, o->name, v, prefix);
+        int d = 0; /* o is in one group: taken into its struct */
+        for (int g = 0; !d && g < CLI_COUNT(case_groups); g++)
+            d = cli_group_take(case_groups[g], targets[g], o->name, v, prefix);
         if (d <= 0)
             return 2;
     }
@@ -220,12 +242,16 @@ static void print_lines(char *const *lines, int n)
         printf("%s\n", lines[i]);
 }
 
-/* The command line, parsed (the strings point into argv). */
-typedef struct regress_args {
-    const char *path, *junit;
-    const char *selected[MAX_SELECTED];
-    int nselected, update;
-} regress_args;
+static int take_baseline(void *ctx, const char *v, const char *c)
+{
+    regress_args *a = ctx;
+    if (a->path) {
+        fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", c, a->path, v);
+        return -1;
+    }
+    a->path = v;
+    return 0;
+}
 
 /* Returns -1 to go on, else the exit status (0 after --help). */
 static int parse(regress_args *a, int argc, char **argv)
@@ -235,25 +261,8 @@ static int parse(regress_args *a, int argc, char **argv)
     int p = cli_parse(&cli_regress, argc, argv, &args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    int status = -1;
-    for (int i = 0; status < 0 && i < args.n; i++) {
-        const char *name = args.v[i].name, *v = args.v[i].value;
-        if (!name && a->path) {
-            fprintf(stderr, "%s: one baseline only, got '%s' and '%s'\n", cmd, a->path, v);
-            status = 2;
-        } else if (!name) {
-            a->path = v;
-        } else if (!strcmp(name, "--update")) {
-            a->update = 1;
-        } else if (!strcmp(name, "--junit")) {
-            a->junit = v;
-        } else if (a->nselected >= MAX_SELECTED) {
-            fprintf(stderr, "%s: more than %d --case options\n", cmd, MAX_SELECTED);
-            status = 2;
-        } else {
-            a->selected[a->nselected++] = v;
-        }
-    }
+    void *const targets[] = {a};
+    int status = cli_take(&cli_regress, targets, CLI_COUNT(targets), &args, take_baseline, a, cmd) < 0 ? 2 : -1;
     cli_args_free(&args);
     if (status < 0 && !a->path) {
         fprintf(stderr, "%s: a baseline file is required (see brdfit regress --help)\n", cmd);

@@ -39,41 +39,6 @@ static const char cmd[] = "brdfit render";
 
 #define MAX_LIGHTS 16
 
-static const cli_option modes[] = {
-    {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL},
-    {"--half-diff", 0, NULL, "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards)\n"
-                             "at a fixed phi_d; as .svg or .pdf a figure with axes and a colour bar", NULL},
-};
-static const cli_option own[] = {
-    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file"},
-    {"--output", 'o', "FILE", "the image: .png or .exr; slices .png, .svg or .pdf (- for standard\n"
-                              "output, with --to)", "file"},
-    {"--to", 0, "png|exr|svg|pdf", "format (default: by the output's extension; svg and pdf for\n"
-                                   "--slice, exr for images)", NULL},
-    {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL},
-    {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL},
-    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, half-diff plots 480x400;\n"
-                           "points for SVG and PDF)", NULL},
-    {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL},
-    {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL},
-    {"--decades", 0, "D", "range of the log mapping (default 4)", NULL},
-    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60; with --data, the\n"
-                                  "measured incidences nearest those)", NULL},
-    {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file"},
-    {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL},
-    {"--phi-d", 0, "D", "half-diff: phi_d in degrees (default 90)", NULL},
-};
-static const cli_group mode_group = CLI_GROUP("modes (default: a lit sphere of the model)", modes);
-static const cli_group own_group = CLI_GROUP(NULL, own);
-static const cli_group *const groups[] = {&mode_group, &own_group, &data_options_reading, &data_options_preprocessing};
-const cli_command cli_render = {
-    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|.exr|.svg|.pdf",
-    "render pictures of a model or a MERL table",
-    "A lit sphere or a half-diff image as PNG (tone mapped) or EXR (linear values), or in-plane slices with "
-    "measured samples overlaid as a plot (PNG, SVG or PDF).",
-    NULL, groups, sizeof groups / sizeof groups[0],
-};
-
 static int parse_double(const char *s, double *out)
 {
     return args_number(s, -HUGE_VAL, HUGE_VAL, out);
@@ -157,75 +122,137 @@ static int parse_tonemap(const char *v)
            : !strcmp(v, "log") ? BF_TONEMAP_LOG : -2;
 }
 
-/* One of render's own valued options: 1 when the value is good, 0 when it is not (the
- * caller says so), -1 after an error of its own. */
-static int take_value(render_args *r, const char *a, const char *v)
+/* A value render cannot take: the same line for every option. */
+static int bad_value(const cli_option *o, const char *v, const char *c)
 {
-    if (!strcmp(a, "--params"))
-        r->params = v;
-    else if (!strcmp(a, "--data"))
-        r->data = v;
-    else if (!strcmp(a, "--output"))
-        r->out_path = v;
-    else if (!strcmp(a, "--to"))
-        return (r->to = !strcmp(v, "png") ? TO_PNG : !strcmp(v, "exr") ? TO_EXR : !strcmp(v, "svg") ? TO_SVG
-                        : !strcmp(v, "pdf") ? TO_PDF : 0) != 0;
-    else if (!strcmp(a, "--light")) {
-        if (r->nlights >= MAX_LIGHTS) {
-            fprintf(stderr, "%s: at most %d lights\n", cmd, MAX_LIGHTS);
-            return -1;
-        }
-        return parse_dir(v, &r->lights[r->nlights++]);
-    } else if (!strcmp(a, "--view"))
-        return parse_dir(v, &r->view);
-    else if (!strcmp(a, "--size"))
-        return parse_size(v, &r->width, &r->height);
-    else if (!strcmp(a, "--exposure"))
-        return parse_double(v, &r->exposure) && r->exposure > 0.0;
-    else if (!strcmp(a, "--decades"))
-        return parse_double(v, &r->decades) && r->decades > 0.0;
-    else if (!strcmp(a, "--plane-tol"))
-        return parse_double(v, &r->plane_tol) && r->plane_tol >= 0.0;
-    else if (!strcmp(a, "--phi-d"))
-        return parse_double(v, &r->phi_d);
-    else if (!strcmp(a, "--tonemap"))
-        return (r->tonemap = parse_tonemap(v)) != -2;
-    else if (!strcmp(a, "--incidence"))
-        return (r->incidence_given = 1) && parse_incidence(v, r);
-    return 1;
+    fprintf(stderr, "%s: bad value '%s' for %s\n", c, v, o->name);
+    return -1;
+}
+
+static int take_to(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    r->to = !strcmp(v, "png") ? TO_PNG : !strcmp(v, "exr") ? TO_EXR : !strcmp(v, "svg") ? TO_SVG
+            : !strcmp(v, "pdf") ? TO_PDF : 0;
+    return r->to ? 0 : bad_value(o, v, c);
+}
+
+static int take_light(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    if (r->nlights >= MAX_LIGHTS) {
+        fprintf(stderr, "%s: at most %d lights\n", c, MAX_LIGHTS);
+        return -1;
+    }
+    return parse_dir(v, &r->lights[r->nlights++]) ? 0 : bad_value(o, v, c);
+}
+
+static int take_view(void *target, const cli_option *o, const char *v, const char *c)
+{
+    return parse_dir(v, &((render_args *)target)->view) ? 0 : bad_value(o, v, c);
+}
+
+static int take_size(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    return parse_size(v, &r->width, &r->height) ? 0 : bad_value(o, v, c);
+}
+
+/* --exposure and --decades: a number above 0. */
+static int take_positive(double *d, const cli_option *o, const char *v, const char *c)
+{
+    return parse_double(v, d) && *d > 0.0 ? 0 : bad_value(o, v, c);
+}
+
+static int take_exposure(void *target, const cli_option *o, const char *v, const char *c)
+{
+    return take_positive(&((render_args *)target)->exposure, o, v, c);
+}
+
+static int take_decades(void *target, const cli_option *o, const char *v, const char *c)
+{
+    return take_positive(&((render_args *)target)->decades, o, v, c);
+}
+
+static int take_plane_tol(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    return parse_double(v, &r->plane_tol) && r->plane_tol >= 0.0 ? 0 : bad_value(o, v, c);
+}
+
+static int take_phi_d(void *target, const cli_option *o, const char *v, const char *c)
+{
+    return parse_double(v, &((render_args *)target)->phi_d) ? 0 : bad_value(o, v, c);
+}
+
+static int take_tonemap(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    return (r->tonemap = parse_tonemap(v)) != -2 ? 0 : bad_value(o, v, c);
+}
+
+static int take_incidence(void *target, const cli_option *o, const char *v, const char *c)
+{
+    render_args *r = target;
+    r->incidence_given = 1;
+    return parse_incidence(v, r) ? 0 : bad_value(o, v, c);
+}
+
+static const cli_option modes[] = {
+    {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL,
+     CLI_SETS(render_args, slice, 1)},
+    {"--half-diff", 0, NULL, "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards)\n"
+                             "at a fixed phi_d; as .svg or .pdf a figure with axes and a colour bar", NULL,
+     CLI_SETS(render_args, halfdiff, 1)},
+};
+static const cli_option own[] = {
+    {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file",
+     CLI_STRING_AT(render_args, params)},
+    {"--output", 'o', "FILE", "the image: .png or .exr; slices .png, .svg or .pdf (- for standard\n"
+                              "output, with --to)", "file", CLI_STRING_AT(render_args, out_path)},
+    {"--to", 0, "png|exr|svg|pdf", "format (default: by the output's extension; svg and pdf for\n"
+                                   "--slice, exr for images)", NULL, CLI_CALLS(take_to)},
+    {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL, CLI_CALLS(take_light)},
+    {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL,
+     CLI_CALLS(take_view)},
+    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, half-diff plots 480x400;\n"
+                           "points for SVG and PDF)", NULL, CLI_CALLS(take_size)},
+    {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL, CLI_CALLS(take_exposure)},
+    {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL,
+     CLI_CALLS(take_tonemap)},
+    {"--decades", 0, "D", "range of the log mapping (default 4)", NULL, CLI_CALLS(take_decades)},
+    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60; with --data, the\n"
+                                  "measured incidences nearest those)", NULL, CLI_CALLS(take_incidence)},
+    {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file",
+     CLI_STRING_AT(render_args, data)},
+    {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL,
+     CLI_CALLS(take_plane_tol)},
+    {"--phi-d", 0, "D", "half-diff: phi_d in degrees (default 90)", NULL, CLI_CALLS(take_phi_d)},
+};
+static const cli_group mode_group = CLI_GROUP("modes (default: a lit sphere of the model)", modes);
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&mode_group, &own_group, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_render = {
+    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|.exr|.svg|.pdf",
+    "render pictures of a model or a MERL table",
+    "A lit sphere or a half-diff image as PNG (tone mapped) or EXR (linear values), or in-plane slices with "
+    "measured samples overlaid as a plot (PNG, SVG or PDF).",
+    NULL, groups, sizeof groups / sizeof groups[0],
+};
+
+/* The command takes no operands. */
+static int take_operand(void *ctx, const char *v, const char *c)
+{
+    (void)ctx;
+    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
+    return -1;
 }
 
 /* Takes the parsed command line into r: 0, or -1 after a one-line error. */
 static int take_args(render_args *r, const cli_args *args)
 {
-    for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name, *v = args->v[i].value;
-        if (!a) {
-            fprintf(stderr, "%s: unexpected argument '%s' (see brdfit render --help)\n", cmd, v);
-            return -1;
-        }
-        if (!strcmp(a, "--slice")) {
-            r->slice = 1;
-            continue;
-        }
-        if (!strcmp(a, "--half-diff")) {
-            r->halfdiff = 1;
-            continue;
-        }
-        int d = data_options_parse(&r->dopt, a, v, cmd);
-        if (d < 0)
-            return -1;
-        if (d > 0)
-            continue;
-        int ok = take_value(r, a, v);
-        if (ok < 0)
-            return -1;
-        if (!ok) {
-            fprintf(stderr, "%s: bad value '%s' for %s\n", cmd, v, a);
-            return -1;
-        }
-    }
-    return 0;
+    void *const targets[] = {r, r, &r->dopt, &r->dopt};
+    return cli_take(&cli_render, targets, CLI_COUNT(targets), args, take_operand, NULL, cmd);
 }
 
 /* Which inputs the mode needs, and the image's format: 0, or 2 after a one-line error

@@ -28,12 +28,30 @@
 
 static const char cmd[] = "brdfit report";
 
+typedef struct report_args {
+    cli_args args;
+    const char *db, *json_path, *csv_path, *html_dir;
+    int plot_format;
+} report_args;
+
+static int take_plot_format(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    if (!(((report_args *)target)->plot_format = bf_plot_format_parse(v))) {
+        fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", c, v);
+        return -1;
+    }
+    return 0;
+}
+
 static const cli_option own[] = {
-    {"--json", 0, "FILE", "everything, machine-readable (as brdfit compare; - for standard output)", "file"},
-    {"--csv", 0, "FILE", "one row per material x model (as brdfit compare; - for standard output)", "file"},
+    {"--json", 0, "FILE", "everything, machine-readable (as brdfit compare; - for standard output)", "file",
+     CLI_STRING_AT(report_args, json_path)},
+    {"--csv", 0, "FILE", "one row per material x model (as brdfit compare; - for standard output)", "file",
+     CLI_STRING_AT(report_args, csv_path)},
     {"--html", 0, "DIR", "a report to read in a browser (as brdfit compare, without the\n"
-                         "measurement's overlays)", "dir"},
-    {"--plot-format", 0, "png|svg|pdf", "the report's plots (as brdfit compare)", NULL},
+                         "measurement's overlays)", "dir", CLI_STRING_AT(report_args, html_dir)},
+    {"--plot-format", 0, "png|svg|pdf", "the report's plots (as brdfit compare)", NULL, CLI_CALLS(take_plot_format)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -46,11 +64,17 @@ const cli_command cli_report = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-typedef struct report_args {
-    cli_args args;
-    const char *db, *json_path, *csv_path, *html_dir;
-    int plot_format;
-} report_args;
+/* The operand: the one database. */
+static int take_db(void *ctx, const char *v, const char *c)
+{
+    report_args *a = ctx;
+    if (a->db) {
+        fprintf(stderr, "%s: one database only (brdfit merge joins several)\n", c);
+        return -1;
+    }
+    a->db = v;
+    return 0;
+}
 
 static int parse(report_args *a, int argc, char **argv)
 {
@@ -58,25 +82,9 @@ static int parse(report_args *a, int argc, char **argv)
     int p = cli_parse(&cli_report, argc, argv, &a->args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    for (int i = 0; i < a->args.n; i++) {
-        const char *name = a->args.v[i].name, *v = a->args.v[i].value;
-        if (!name) {
-            if (a->db) {
-                fprintf(stderr, "%s: one database only (brdfit merge joins several)\n", cmd);
-                return 2;
-            }
-            a->db = v;
-        } else if (!strcmp(name, "--json")) {
-            a->json_path = v;
-        } else if (!strcmp(name, "--csv")) {
-            a->csv_path = v;
-        } else if (!strcmp(name, "--html")) {
-            a->html_dir = v;
-        } else if (!(a->plot_format = bf_plot_format_parse(v))) {
-            fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", cmd, v);
-            return 2;
-        }
-    }
+    void *const targets[] = {a};
+    if (cli_take(&cli_report, targets, CLI_COUNT(targets), &a->args, take_db, a, cmd) < 0)
+        return 2;
     if (!a->db) {
         fprintf(stderr, "%s: a results database is required (see brdfit report --help)\n", cmd);
         return 2;

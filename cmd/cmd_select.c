@@ -45,19 +45,69 @@ static const char cmd[] = "brdfit select";
 
 #define MAX_MODELS 128
 
+/* What the command line asked for, and what the run holds (freed by run_free). */
+typedef struct select_run {
+    data_options dopt;
+    fit_options fopt;
+    rank_options ro;
+    char *specs[MAX_MODELS];
+    int nmodels, jobs;
+    double tolerance, abs_tolerance;
+    bf_compare_metric metric;
+    const char *data, *json_path, *out_path;
+    const char **defaults;
+    bf_samples *s;
+    bf_select sel;
+} select_run;
+
+/* --models and --model, the same option. */
+static int take_models(void *target, const cli_option *o, const char *v, const char *c)
+{
+    select_run *r = target;
+    (void)o;
+    int k = fit_options_split_models(v, r->specs, r->nmodels, MAX_MODELS, c);
+    if (k < 0)
+        return -1;
+    r->nmodels = k;
+    return 0;
+}
+
+static int take_error(void *target, const cli_option *o, const char *v, const char *c)
+{
+    bf_error err;
+    (void)o;
+    if (bf_compare_metric_parse(v, &((select_run *)target)->metric, &err) != BF_OK) {
+        fprintf(stderr, "%s: --error: %s\n", c, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int take_jobs(void *target, const cli_option *o, const char *v, const char *c)
+{
+    (void)o;
+    return args_jobs(c, v, &((select_run *)target)->jobs);
+}
+
 static const cli_option own[] = {
     {"--models", 'm', "SPECS", "candidates (as brdfit fit; repeatable); default: diffuse models,\n"
                                "one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
-                               "data each with mono=specular (a white highlight)", "model"},
-    {"--model", 0, "SPECS", "the same as --models", "model"},
+                               "data each with mono=specular (a white highlight)", "model", CLI_CALLS(take_models)},
+    {"--model", 0, "SPECS", "the same as --models", "model", CLI_CALLS(take_models)},
     {"--tolerance", 0, "T", "relative: candidates with error <= best * (1 + T) + A qualify\n"
                             "(default 0.05); the one with the fewest free parameters is chosen,\n"
-                            "then isotropic, one lobe, monochrome highlight, lower error", NULL},
-    {"--abs-tolerance", 0, "A", "absolute part of the tolerance (default 1e-6)", NULL},
-    {"--jobs", 0, "N", "candidates fitted at once (default 1); each gets --threads / N threads", NULL},
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "the error compared (default rmse_log)", NULL},
-    {"--json", 0, "FILE", "every candidate and the choice, machine-readable (- for standard output)", "file"},
-    {"--output", 'o', "FILE", "the chosen model's fit result (a parameter file; - for standard output)", "file"},
+                            "then isotropic, one lobe, monochrome highlight, lower error", NULL,
+     CLI_NUMBER_AT(select_run, tolerance, 0.0, HUGE_VAL, "a number >= 0")},
+    {"--abs-tolerance", 0, "A", "absolute part of the tolerance (default 1e-6)", NULL,
+     CLI_NUMBER_AT(select_run, abs_tolerance, 0.0, HUGE_VAL, "a number >= 0")},
+    {"--jobs", 0, "N", "candidates fitted at once (default 1); each gets --threads / N threads", NULL,
+     CLI_CALLS(take_jobs)},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "the error compared (default rmse_log)", NULL,
+     CLI_CALLS(take_error)},
+    {"--json", 0, "FILE", "every candidate and the choice, machine-readable (- for standard output)", "file",
+     CLI_STRING_AT(select_run, json_path)},
+    {"--output", 'o', "FILE", "the chosen model's fit result (a parameter file; - for standard output)", "file",
+     CLI_STRING_AT(select_run, out_path)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &rank_options_error, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
@@ -132,67 +182,17 @@ static void table(FILE *out, const bf_select *s)
     }
 }
 
-/* What the command line asked for, and what the run holds (freed by run_free). */
-typedef struct select_run {
-    data_options dopt;
-    fit_options fopt;
-    rank_options ro;
-    char *specs[MAX_MODELS];
-    int nmodels, jobs;
-    double tolerance, abs_tolerance;
-    bf_compare_metric metric;
-    const char *data, *json_path, *out_path;
-    const char **defaults;
-    bf_samples *s;
-    bf_select sel;
-} select_run;
-
-/* One of select's own options: 0, or -1 after a one-line error. */
-static int take_own(select_run *r, const char *a, const char *v)
+static int take_data(void *r, const char *v, const char *c)
 {
-    bf_error err;
-    if (!strcmp(a, "--model") || !strcmp(a, "--models")) {
-        int k = fit_options_split_models(v, r->specs, r->nmodels, MAX_MODELS, cmd);
-        if (k < 0)
-            return -1;
-        r->nmodels = k;
-    } else if (!strcmp(a, "--tolerance") || !strcmp(a, "--abs-tolerance")) {
-        if (!args_number(v, 0.0, HUGE_VAL, !strcmp(a, "--tolerance") ? &r->tolerance : &r->abs_tolerance)) {
-            fprintf(stderr, "%s: %s needs a number >= 0, got '%s'\n", cmd, a, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--error")) {
-        if (bf_compare_metric_parse(v, &r->metric, &err) != BF_OK) {
-            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-            return -1;
-        }
-    } else if (!strcmp(a, "--jobs")) {
-        return args_jobs(cmd, v, &r->jobs);
-    } else if (!strcmp(a, "--json")) {
-        r->json_path = v;
-    } else { /* --output */
-        r->out_path = v;
-    }
-    return 0;
+    return data_options_take_file(&((select_run *)r)->data, v, c);
 }
 
-/* Takes the parsed command line into r: 0, or -1 after a one-line error. */
+/* Takes the parsed command line into r (the targets follow the groups): 0, or -1 after a
+ * one-line error. */
 static int take_args(select_run *r, const cli_args *args)
 {
-    for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name, *v = args->v[i].value;
-        if (!a) {
-            if (data_options_take_file(&r->data, v, cmd) < 0)
-                return -1;
-            continue;
-        }
-        int d = fit_options_parse_with_data(&r->fopt, &r->dopt, a, v, cmd);
-        if (d == 0)
-            d = rank_options_parse(&r->ro, a, v, cmd);
-        if (d < 0 || (d == 0 && take_own(r, a, v) < 0))
-            return -1;
-    }
-    return 0;
+    void *const targets[] = {r, &r->ro, &r->fopt, &r->fopt, &r->fopt, &r->dopt, &r->dopt};
+    return cli_take(&cli_select, targets, CLI_COUNT(targets), args, take_data, r, cmd);
 }
 
 /* Bad usage is found before any data is read. Returns 0, or the exit status after a

@@ -38,40 +38,6 @@ static const char cmd[] = "brdfit tradeoff";
 
 #define MAX_LIST 64
 
-static const cli_option own[] = {
-    {"--model", 'm', "SPEC", "the model to fit (one)", "model"},
-    {"--samples", 0, "N,...|all", "training sample counts (default 1000,4000,16000,64000,all;\n"
-                                  "'k' suffix: thousands); counts >= the training set are 'all'", NULL},
-    {"--methods", 0, "M,...", "ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
-                              "(LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
-                              "--algorithm setting if given, else ceres,LD_LBFGS", NULL},
-    {"--residuals", 0, "R,...", "residual forms (default: --residual, log)", NULL},
-    {"--starts-list", 0, "N|auto,...", "start counts (brdfit fit --starts; auto: its automatic\ncount; default: --starts, or auto)", NULL},
-    {"--test-fraction", 0, "F", "held-out share of the samples, seeded random (default 0.2)", NULL},
-    {"--cost", 0, "work|seconds", "what a setting costs: sample evaluations (default; the same on\n"
-                                  "every machine) or wall time (varies from run to run)", NULL},
-    {"--timing", 0, NULL, "wall times in the table and the files too", NULL},
-    {"--repeats", 0, "N", "fit each setting N times, keep the least time (default 1)", NULL},
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "test error to judge by (default rmse_log)", NULL},
-    {"--tolerance", 0, "T", "recommend the cheapest setting with test error <= best * (1 + T)\n(default 0.05)",
-     NULL},
-    {"--json", 0, "FILE", "the table, machine-readable (stable keys; - for standard output)", "file"},
-    {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file"},
-    {"--plot", 0, "FILE.png|.svg|.pdf", "test error against the cost with the Pareto front (format by\n"
-                                        "the extension)", "file"},
-    {"--plot-size", 0, "WxH", "pixels (PNG) or points (SVG, PDF); default 640x400", NULL},
-};
-static const cli_group own_group = CLI_GROUP(NULL, own);
-static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
-const cli_command cli_tradeoff = {
-    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png|.svg|.pdf]",
-    "measure fitting cost against accuracy",
-    "Fits one model to a training share of DATA under every combination of sample count, method, residual and "
-    "start count, measures each fit's error on the held-out samples, and recommends the cheapest setting within "
-    "the tolerance of the best.",
-    "file", groups, sizeof groups / sizeof groups[0],
-};
-
 /* Splits a comma list into at most MAX_LIST items (pointers into buf). */
 static int split_list(char *buf, char **items, const char *opt)
 {
@@ -154,14 +120,11 @@ static void append_arg(char *buf, size_t size, const char *arg)
     snprintf(buf + len, size - len, plain ? " %s" : " '%s'", arg);
 }
 
-/* The fit options each row sets itself (fit_args), left out of the repeated base ones. */
-static int row_sets(const char *opt)
+/* The fit options each row sets itself (fit_args), left out of the repeated base ones:
+ * known by what they set (the BF_FIT_GIVEN_* bit fit_options.c binds them with). */
+static int row_sets(const cli_option *o)
 {
-    static const char *const set[] = {"--backend", "--algorithm", "--residual", "--starts"};
-    for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
-        if (!strcmp(opt, set[k]))
-            return 1;
-    return 0;
+    return (o->given & (BF_FIT_GIVEN_BACKEND | BF_FIT_GIVEN_ALGORITHM | BF_FIT_GIVEN_RESIDUAL | BF_FIT_GIVEN_STARTS)) != 0;
 }
 
 static void print_table(FILE *out, const bf_tradeoff *t)
@@ -213,7 +176,7 @@ typedef struct tradeoff_run {
     char *specs[2];
     int nspecs;
     const char *data, *json_path, *csv_path, *plot_path;
-    const char *lists[NLISTS]; /* as given; NULL: the default (split_lists) */
+    const char *lists[NLISTS]; /* as given, split and checked once every option is in; NULL: the default */
     double test_fraction, tolerance;
     int repeats, plot_w, plot_h, timing;
     bf_tradeoff_cost cost;
@@ -244,103 +207,148 @@ static void run_init(tradeoff_run *r)
 }
 
 /* -m: exactly one model (a later -m replaces an earlier one). */
-static int take_model(tradeoff_run *r, const char *v)
+static int take_model(void *target, const cli_option *o, const char *v, const char *c)
 {
+    tradeoff_run *r = target;
+    (void)o;
     for (int k = 0; k < r->nspecs; k++)
         free(r->specs[k]);
-    if ((r->nspecs = fit_options_split_models(v, r->specs, 0, 2, cmd)) < 0) {
+    if ((r->nspecs = fit_options_split_models(v, r->specs, 0, 2, c)) < 0) {
         r->nspecs = 0;
         return -1;
     }
     if (r->nspecs != 1) {
-        fprintf(stderr, "%s: -m takes one model, got '%s'\n", cmd, v);
+        fprintf(stderr, "%s: -m takes one model, got '%s'\n", c, v);
         return -1;
     }
     return 0;
 }
 
-/* One of tradeoff's own valued options: 0, or -1 after a one-line error. */
-static int take_own(tradeoff_run *r, const char *a, const char *v)
+static int take_cost(void *target, const cli_option *o, const char *v, const char *c)
 {
-    bf_error err;
-    long n;
-    for (int l = 0; l < NLISTS; l++)
-        if (!strcmp(a, list_names[l])) {
-            r->lists[l] = v; /* split and checked once every option is in */
-            return 0;
-        }
-    if (!strcmp(a, "--model"))
-        return take_model(r, v);
-    if (!strcmp(a, "--cost")) {
-        if (strcmp(v, "work") && strcmp(v, "seconds")) {
-            fprintf(stderr, "%s: --cost needs work or seconds, got '%s'\n", cmd, v);
-            return -1;
-        }
-        r->cost = !strcmp(v, "work") ? BF_TRADEOFF_COST_WORK : BF_TRADEOFF_COST_SECONDS;
-    } else if (!strcmp(a, "--test-fraction")) {
-        if (!args_number(v, 0.0, 1.0, &r->test_fraction) || !(r->test_fraction > 0.0 && r->test_fraction < 1.0)) {
-            fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--repeats")) {
-        if (!parse_count(v, 1000, &n)) {
-            fprintf(stderr, "%s: --repeats needs an integer from 1 to 1000, got '%s'\n", cmd, v);
-            return -1;
-        }
-        r->repeats = (int)n;
-    } else if (!strcmp(a, "--error")) {
-        if (bf_compare_metric_parse(v, &r->metric, &err) != BF_OK) {
-            fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-            return -1;
-        }
-    } else if (!strcmp(a, "--tolerance")) {
-        if (!args_number(v, 0.0, HUGE_VAL, &r->tolerance)) {
-            fprintf(stderr, "%s: --tolerance needs a number >= 0 (relative, 0.05 = 5%%), got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--plot-size")) {
-        if (!strchr(v, 'x') || !args_size(v, 40, 8192, &r->plot_w, &r->plot_h)) {
-            fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", cmd, v);
-            return -1;
-        }
-    } else if (!strcmp(a, "--json")) {
-        r->json_path = v;
-    } else if (!strcmp(a, "--csv")) {
-        r->csv_path = v;
-    } else { /* --plot */
-        r->plot_path = v;
+    (void)o;
+    if (strcmp(v, "work") && strcmp(v, "seconds")) {
+        fprintf(stderr, "%s: --cost needs work or seconds, got '%s'\n", c, v);
+        return -1;
+    }
+    ((tradeoff_run *)target)->cost = !strcmp(v, "work") ? BF_TRADEOFF_COST_WORK : BF_TRADEOFF_COST_SECONDS;
+    return 0;
+}
+
+/* A number strictly between 0 and 1, which CLI_NUMBER_AT's closed range cannot say. */
+static int take_test_fraction(void *target, const cli_option *o, const char *v, const char *c)
+{
+    double *f = &((tradeoff_run *)target)->test_fraction;
+    (void)o;
+    if (!args_number(v, 0.0, 1.0, f) || !(*f > 0.0 && *f < 1.0)) {
+        fprintf(stderr, "%s: --test-fraction needs a number between 0 and 1 (exclusive), got '%s'\n", c, v);
+        return -1;
     }
     return 0;
 }
 
-/* Takes the parsed command line into r: 0, or -1 after a one-line error. */
+/* A count with the k suffix (parse_count), which CLI_INT_AT does not take. */
+static int take_repeats(void *target, const cli_option *o, const char *v, const char *c)
+{
+    long n;
+    (void)o;
+    if (!parse_count(v, 1000, &n)) {
+        fprintf(stderr, "%s: --repeats needs an integer from 1 to 1000, got '%s'\n", c, v);
+        return -1;
+    }
+    ((tradeoff_run *)target)->repeats = (int)n;
+    return 0;
+}
+
+static int take_error(void *target, const cli_option *o, const char *v, const char *c)
+{
+    bf_error err;
+    (void)o;
+    if (bf_compare_metric_parse(v, &((tradeoff_run *)target)->metric, &err) != BF_OK) {
+        fprintf(stderr, "%s: --error: %s\n", c, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int take_plot_size(void *target, const cli_option *o, const char *v, const char *c)
+{
+    tradeoff_run *r = target;
+    (void)o;
+    if (!strchr(v, 'x') || !args_size(v, 40, 8192, &r->plot_w, &r->plot_h)) {
+        fprintf(stderr, "%s: --plot-size needs WxH, each 40 to 8192, got '%s'\n", c, v);
+        return -1;
+    }
+    return 0;
+}
+
+static const cli_option own[] = {
+    {"--model", 'm', "SPEC", "the model to fit (one)", "model", CLI_CALLS(take_model)},
+    {"--samples", 0, "N,...|all", "training sample counts (default 1000,4000,16000,64000,all;\n"
+                                  "'k' suffix: thousands); counts >= the training set are 'all'", NULL,
+     CLI_STRING_AT(tradeoff_run, lists[L_SAMPLES])},
+    {"--methods", 0, "M,...", "ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
+                              "(LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
+                              "--algorithm setting if given, else ceres,LD_LBFGS", NULL,
+     CLI_STRING_AT(tradeoff_run, lists[L_METHODS])},
+    {"--residuals", 0, "R,...", "residual forms (default: --residual, log)", NULL,
+     CLI_STRING_AT(tradeoff_run, lists[L_RESIDUALS])},
+    {"--starts-list", 0, "N|auto,...", "start counts (brdfit fit --starts; auto: its automatic\ncount; default: --starts, or auto)", NULL,
+     CLI_STRING_AT(tradeoff_run, lists[L_STARTS])},
+    {"--test-fraction", 0, "F", "held-out share of the samples, seeded random (default 0.2)", NULL,
+     CLI_CALLS(take_test_fraction)},
+    {"--cost", 0, "work|seconds", "what a setting costs: sample evaluations (default; the same on\n"
+                                  "every machine) or wall time (varies from run to run)", NULL,
+     CLI_CALLS(take_cost)},
+    {"--timing", 0, NULL, "wall times in the table and the files too", NULL,
+     CLI_SETS(tradeoff_run, timing, 1)},
+    {"--repeats", 0, "N", "fit each setting N times, keep the least time (default 1)", NULL,
+     CLI_CALLS(take_repeats)},
+    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "test error to judge by (default rmse_log)", NULL,
+     CLI_CALLS(take_error)},
+    {"--tolerance", 0, "T", "recommend the cheapest setting with test error <= best * (1 + T)\n(default 0.05)",
+     NULL, CLI_NUMBER_AT(tradeoff_run, tolerance, 0.0, HUGE_VAL, "a number >= 0 (relative, 0.05 = 5%)")},
+    {"--json", 0, "FILE", "the table, machine-readable (stable keys; - for standard output)", "file",
+     CLI_STRING_AT(tradeoff_run, json_path)},
+    {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file",
+     CLI_STRING_AT(tradeoff_run, csv_path)},
+    {"--plot", 0, "FILE.png|.svg|.pdf", "test error against the cost with the Pareto front (format by\n"
+                                        "the extension)", "file",
+     CLI_STRING_AT(tradeoff_run, plot_path)},
+    {"--plot-size", 0, "WxH", "pixels (PNG) or points (SVG, PDF); default 640x400", NULL,
+     CLI_CALLS(take_plot_size)},
+};
+static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+const cli_command cli_tradeoff = {
+    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png|.svg|.pdf]",
+    "measure fitting cost against accuracy",
+    "Fits one model to a training share of DATA under every combination of sample count, method, residual and "
+    "start count, measures each fit's error on the held-out samples, and recommends the cheapest setting within "
+    "the tolerance of the best.",
+    "file", groups, sizeof groups / sizeof groups[0],
+};
+
+static int take_data(void *r, const char *v, const char *c)
+{
+    return data_options_take_file(&((tradeoff_run *)r)->data, v, c);
+}
+
+/* Takes the parsed command line into r (the targets follow the groups): 0, or -1 after a
+ * one-line error. */
 static int take_args(tradeoff_run *r, const cli_args *args)
 {
+    void *const targets[] = {r, &r->fopt, &r->fopt, &r->dopt, &r->dopt};
+    if (cli_take(&cli_tradeoff, targets, CLI_COUNT(targets), args, take_data, r, cmd) < 0)
+        return -1;
+    /* The data options and the base fit setting are repeated in the recommended command. */
     for (int i = 0; i < args->n; i++) {
-        const char *a = args->v[i].name, *v = args->v[i].value;
-        if (!a) {
-            if (data_options_take_file(&r->data, v, cmd) < 0)
-                return -1;
+        const cli_arg *x = &args->v[i];
+        if (!x->option || groups[x->group] == &own_group || row_sets(x->option))
             continue;
-        }
-        int d = data_options_parse(&r->dopt, a, v, cmd);
-        /* Data options and the base fit setting are repeated in the recommended command. */
-        int repeat = d > 0;
-        if (d == 0 && (d = fit_options_parse(&r->fopt, a, v, cmd)) > 0 && !row_sets(a))
-            repeat = 1;
-        if (repeat) {
-            append_arg(r->data_args, sizeof r->data_args, a);
-            if (v)
-                append_arg(r->data_args, sizeof r->data_args, v);
-        }
-        if (d < 0)
-            return -1;
-        if (d > 0)
-            continue;
-        if (!strcmp(a, "--timing"))
-            r->timing = 1;
-        else if (take_own(r, a, v) < 0)
-            return -1;
+        append_arg(r->data_args, sizeof r->data_args, x->name);
+        if (x->value)
+            append_arg(r->data_args, sizeof r->data_args, x->value);
     }
     return 0;
 }

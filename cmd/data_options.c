@@ -15,7 +15,7 @@
 
 /* What spectral data becomes: --rgb, --color, --rgb-bands and --luminance each choose
  * it, so two of them exclude each other (--rgb with --color srgb repeats one choice). */
-static int set_spectral(data_options *o, const char *opt, bf_color color, const char *cmd)
+static int set_spectral(data_options *o, const char *opt, bf_color color, int *reduction, const char *cmd)
 {
     const char *prev = o->spectral_opt;
     int same = prev && color != BF_COLOR_NONE && o->prep.color == color;
@@ -26,24 +26,29 @@ static int set_spectral(data_options *o, const char *opt, bf_color color, const 
     o->spectral_opt = opt;
     if (color != BF_COLOR_NONE)
         o->prep.color = color;
-    else if (!strcmp(opt, "--rgb-bands"))
-        o->prep.to_bands = 1;
     else
-        o->prep.to_luminance = 1;
+        *reduction = 1;
     return 0;
 }
 
 static int take_rgb(void *o, const cli_option *opt, const char *v, const char *cmd)
 {
     (void)v;
-    return set_spectral(o, opt->name, BF_COLOR_SRGB, cmd);
+    return set_spectral(o, opt->name, BF_COLOR_SRGB, NULL, cmd);
 }
 
-/* --rgb-bands and --luminance. */
-static int take_reduction(void *o, const cli_option *opt, const char *v, const char *cmd)
+static int take_bands(void *target, const cli_option *opt, const char *v, const char *cmd)
 {
+    data_options *o = target;
     (void)v;
-    return set_spectral(o, opt->name, BF_COLOR_NONE, cmd);
+    return set_spectral(o, opt->name, BF_COLOR_NONE, &o->prep.to_bands, cmd);
+}
+
+static int take_luminance(void *target, const cli_option *opt, const char *v, const char *cmd)
+{
+    data_options *o = target;
+    (void)v;
+    return set_spectral(o, opt->name, BF_COLOR_NONE, &o->prep.to_luminance, cmd);
 }
 
 static int take_color(void *o, const cli_option *opt, const char *v, const char *cmd)
@@ -53,7 +58,7 @@ static int take_color(void *o, const cli_option *opt, const char *v, const char 
         fprintf(stderr, "%s: %s takes srgb, acescg or xyz, got '%s'\n", cmd, opt->name, v);
         return -1;
     }
-    return set_spectral(o, opt->name, (bf_color)k, cmd);
+    return set_spectral(o, opt->name, (bf_color)k, NULL, cmd);
 }
 
 static int take_illuminant(void *target, const cli_option *opt, const char *v, const char *cmd)
@@ -171,9 +176,9 @@ static const cli_option preprocessing[] = {
     {"--illuminant", 0, "d65|e|a|d50", "illuminant of --color/--rgb, or of --luminance on spectra (default d65)", NULL,
      CLI_CALLS(take_illuminant)},
     {"--rgb-bands", 0, NULL, "spectral data to three band means (600-700, 500-600,\n"
-                             "400-500 nm; not colorimetric: the old --rgb)", NULL, CLI_CALLS(take_reduction)},
+                             "400-500 nm; not colorimetric: the old --rgb)", NULL, CLI_CALLS(take_bands)},
     {"--luminance", 0, NULL, "spectral (CIE Y) or RGB (Rec. 709) data to one channel", NULL,
-     CLI_CALLS(take_reduction)},
+     CLI_CALLS(take_luminance)},
     {"--max-theta", 0, "DEG", "drop samples with theta_i or theta_o above DEG", NULL,
      CLI_NUMBER_AT(data_options, prep.max_theta, DBL_TRUE_MIN, 90.0, "degrees in (0, 90]")},
     {"--negative", 0, "keep|drop|clamp", "negative values (default keep: they are data)", NULL,
@@ -188,12 +193,6 @@ static const cli_option preprocessing[] = {
 };
 const cli_group data_options_reading = CLI_GROUP("reading", reading);
 const cli_group data_options_preprocessing = CLI_GROUP("preprocessing", preprocessing);
-
-int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd)
-{
-    int r = cli_group_take(&data_options_reading, o, a, v, cmd);
-    return r ? r : cli_group_take(&data_options_preprocessing, o, a, v, cmd);
-}
 
 int data_options_take_file(const char **data, const char *v, const char *cmd)
 {

@@ -25,13 +25,9 @@ typedef struct data_scene_report {
     size_t in, kept;
 } data_scene_report;
 
-/* The options, for a command's tables (cli.h): how to read, what to do to the samples. */
+/* The options, for a command's tables (cli.h): how to read, what to do to the samples.
+ * Both are bound to a data_options: its cli_take target. */
 extern const cli_group data_options_reading, data_options_preprocessing;
-
-/* If option a (its long form, "--format") is one of the data options, takes it and its
- * value v and returns 1; returns 0 if it is not one; -1 after printing a one-line error
- * (prefix: cmd). */
-int data_options_parse(data_options *o, const char *a, const char *v, const char *cmd);
 
 /* The data file operand v: taken into *data when it is the first; a second is bad
  * usage (returns -1 after printing the one-line error, prefix cmd); 0 otherwise. */

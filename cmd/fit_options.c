@@ -155,11 +155,6 @@ static const cli_option accuracy[] = {
 };
 const cli_group fit_options_accuracy = CLI_GROUP("accuracy", accuracy);
 
-int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd)
-{
-    return cli_group_take(&fit_options_accuracy, o, a, v, cmd);
-}
-
 void fit_options_init(fit_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -174,22 +169,6 @@ void fit_options_finish(fit_options *o, data_options *d)
     bf_fit_options_apply_accuracy(&o->fit, o->accuracy, given, &d->prep.subsample);
     o->fit.objective.overrides = o->overrides;
     o->fit.objective.noverrides = o->noverrides;
-}
-
-int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd)
-{
-    int r = cli_group_take(&fit_options_fitting, o, a, v, cmd);
-    return r ? r : cli_group_take(&fit_options_optimizer, o, a, v, cmd);
-}
-
-int fit_options_parse_with_data(fit_options *o, data_options *d, const char *a, const char *v, const char *cmd)
-{
-    int r = data_options_parse(d, a, v, cmd);
-    if (r == 0)
-        r = fit_options_parse(o, a, v, cmd);
-    if (r == 0)
-        r = fit_options_parse_accuracy(o, a, v, cmd);
-    return r;
 }
 
 static int starts_model(const char *tok, size_t len)

@@ -19,26 +19,12 @@ typedef struct fit_options {
 } fit_options;
 
 /* The options, for a command's tables (cli.h): --accuracy (fit, select, regress), the
- * objective and the optimizer (every command that fits). */
+ * objective and the optimizer (every command that fits). All three are bound to a
+ * fit_options: its cli_take target. */
 extern const cli_group fit_options_accuracy, fit_options_fitting, fit_options_optimizer;
-
-/* If option a (long form) is --accuracy, takes its value v and returns 1; 0 if it is
- * not; -1 after printing a one-line error. Kept out of fit_options_parse: compare and
- * tradeoff do not take it (fit_options_finish applies it). */
-int fit_options_parse_accuracy(fit_options *o, const char *a, const char *v, const char *cmd);
 
 /* brdfit fit's defaults (bf_fit_options_init), no overrides, no preset. */
 void fit_options_init(fit_options *o);
-
-/* If option a (long form, "--residual") is one of the fitting or optimizer options,
- * takes it and its value v and returns 1; returns 0 if it is not one; -1 after printing a
- * one-line error (prefix: cmd). */
-int fit_options_parse(fit_options *o, const char *a, const char *v, const char *cmd);
-
-/* The data options, then the fitting and optimizer options, then --accuracy (for
- * commands that take all three: fit, select): 1 when one took a, 0 when none did, -1
- * after its one-line error. */
-int fit_options_parse_with_data(fit_options *o, data_options *d, const char *a, const char *v, const char *cmd);
 
 /* After parsing (so order on the line is moot): points the fit options at the
  * overrides, takes the data options' seed, fills in the --accuracy preset where the user

@@ -42,11 +42,6 @@ void rank_options_init(rank_options *r, bf_compare_rank_by rank_by)
     r->timing = 0;
 }
 
-int rank_options_parse(rank_options *r, const char *a, const char *v, const char *cmd)
-{
-    return cli_group_take(&rank_options_bic, r, a, v, cmd); /* the same bindings as rank_options_error */
-}
-
 int rank_options_check(const rank_options *r, const bf_fit_options *fit, const char *cmd)
 {
     if (fit->solver.loss.kind != BF_LOSS_NONE && r->rank_by != BF_RANK_CV && r->rank_by != BF_RANK_ERROR) {

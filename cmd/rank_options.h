@@ -16,14 +16,11 @@ typedef struct rank_options {
 } rank_options;
 
 /* The options, for a command's tables (cli.h), with the command's default ranking in
- * the help (compare: bic, select: error). */
+ * the help (compare: bic, select: error). Both are bound to a rank_options: its
+ * cli_take target. */
 extern const cli_group rank_options_bic, rank_options_error;
 
 void rank_options_init(rank_options *r, bf_compare_rank_by rank_by);
-
-/* If option a (long form) is one of the options, takes it and its value v and returns 1;
- * 0 if it is not one; -1 after printing a one-line error (prefix: cmd). */
-int rank_options_parse(rank_options *r, const char *a, const char *v, const char *cmd);
 
 /* After parsing: a criterion needs a likelihood, and a robust loss has none
  * (metrics.h). Returns 0, or -1 after a one-line error saying so. */

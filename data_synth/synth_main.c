@@ -81,12 +81,6 @@ static int parse_list(const char *s, double *v, int max)
     }
 }
 
-typedef struct synth_args {
-    const char *params, *out, *pattern, *count, *noise, *noise_model, *counts, *outliers,
-        *seed, *incidence, *step;
-    int clamp;
-} synth_args;
-
 /* Where the samples go: --count for the patterns that take one, --incidence and --step
  * for gonio. Returns 0, or 2 after a usage message. */
 static int build_directions(const synth_args *a, bf_synth_options *o, double *incidence)
@@ -206,37 +200,21 @@ static int build_options(const synth_args *a, bf_synth_options *o, double *incid
     return 0;
 }
 
-/* Takes the parsed command line into a (each valued option once) and checks that the
- * required ones are there. Returns 0, or 2 after a usage message. */
+/* brdfit-synth takes no operands: a stray word is bad usage, said as its other errors are. */
+static int take_operand(void *ctx, const char *value, const char *cmd)
+{
+    (void)ctx, (void)cmd;
+    usage_error("unexpected argument '%s'", value);
+    return -1;
+}
+
+/* Takes the parsed command line into a (each valued option once: synth_cli.c) and checks
+ * that the required ones are there. Returns 0, or 2 after a usage message. */
 static int take_args(const cli_args *args, synth_args *a)
 {
-    static const struct {
-        const char *name;
-        size_t off;
-    } valued[] = {
-        {"--params", offsetof(synth_args, params)},     {"--output", offsetof(synth_args, out)},
-        {"--pattern", offsetof(synth_args, pattern)},   {"--count", offsetof(synth_args, count)},
-        {"--noise", offsetof(synth_args, noise)},       {"--noise-model", offsetof(synth_args, noise_model)},
-        {"--counts", offsetof(synth_args, counts)},     {"--outliers", offsetof(synth_args, outliers)},
-        {"--seed", offsetof(synth_args, seed)},         {"--incidence", offsetof(synth_args, incidence)},
-        {"--step", offsetof(synth_args, step)},
-    };
-    for (int i = 0; i < args->n; i++) {
-        const char *arg = args->v[i].name;
-        if (!arg)
-            return usage_error("unexpected argument '%s'", args->v[i].value);
-        if (!strcmp(arg, "--clamp")) {
-            a->clamp = 1;
-            continue;
-        }
-        size_t k = 0;
-        while (strcmp(arg, valued[k].name)) /* cli_parse let through only the table's options */
-            k++;
-        const char **dst = (const char **)((char *)a + valued[k].off);
-        if (*dst)
-            return usage_error("%s given twice", arg);
-        *dst = args->v[i].value;
-    }
+    void *const targets[] = {a, a};
+    if (cli_take(&cli_synth, targets, CLI_COUNT(targets), args, take_operand, NULL, PROG) < 0)
+        return 2;
     if (!a->params)
         return usage_error("--params P.json is required");
     if (!a->pattern)
