@@ -21,7 +21,7 @@ What it measures
     solve-time ratio and the relative difference of the two log RMSEs (warning > 1%).
     Bad input (missing file, not a MERL table, brdfit failing): one line, exit 1.
 
-The fit, identical on both sides (lib/src/models/microfacet.c, fit/objective.c,
+The fit, identical on both sides (lib/src/core/models/microfacet.c, fit/objective.c,
 fit/parametrisation.c, io/merl.c, samples_prep.c, geometry.c, merl_cells.c):
   - Data: every MERL cell whose three raw values are >= 0, at its centre direction,
     value = raw * (1, 1.15, 1.66) / 1500. Directions go the way brdfit takes them: cell

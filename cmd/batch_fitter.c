@@ -12,7 +12,7 @@
  *  - The child has a process group of its own, so a terminal's ^C reaches the parent
  *    only, which passes SIGINT on once: the child then starts no new fit and sends the
  *    rows of the running ones (a second ^C ends the parent, and the child with it).
- *  - The library's thread pool is fork-safe (lib/src/parallel.c); the child never calls
+ *  - The library's thread pool is fork-safe (lib/src/core/base/parallel.c); the child never calls
  *    MPI and leaves with _exit, so neither MPI's nor stdio's exit handlers run twice.
  *  - Rows come back as batch_row_pack bytes (bit-exact doubles) over a Unix socket
  *    (send with MSG_NOSIGNAL: a dead child is an error to handle, not a SIGPIPE).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Plots as a reader gets them (Cairo: lib/src/plot): render --slice, tradeoff --plot and
+# Plots as a reader gets them (Cairo: lib/src/report/plot): render --slice, tradeoff --plot and
 # the compare report's figures as PNG (the size asked for), SVG (well-formed, the size in
 # points) and PDF (pdftoppm renders it; pdftotext finds the title, the axis titles, tick
 # labels that match the data and the legend's names); the slices of one material share

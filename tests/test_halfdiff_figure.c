@@ -1,4 +1,4 @@
-/* Half/difference figures (lib/src/render/halfdiff_figure.c) and the data-chosen
+/* Half/difference figures (lib/src/report/render/halfdiff_figure.c) and the data-chosen
  * exposure: a model against itself differs by exactly 0 everywhere and shows exactly
  * the scale's white centre; the signed difference says which side is brighter; the
  * shared log scale comes from the measurement; a sphere's exposure is its percentile. */

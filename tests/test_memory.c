@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "big_alloc.h"
+#include "base/big_alloc.h"
 #include "brdfit/limits.h"
 
 static void test_parse_bytes(void **state)

@@ -19,7 +19,7 @@
 
 #include <cmocka.h>
 
-#include "parallel.h"
+#include "base/parallel.h"
 
 /* ---- Counting chunks ----------------------------------------------------------------- */
 

@@ -1,4 +1,4 @@
-/* The plot module (lib/src/plot): ranges that never collapse, 1-2-5 and decade ticks
+/* The plot module (lib/src/report/plot): ranges that never collapse, 1-2-5 and decade ticks
  * with their labels, the layout (legend entries, ticks matching the data), the scatter
  * with its Pareto front and labels, and the encoded files (PNG size, SVG and PDF
  * headers, no file on failure). */

@@ -183,8 +183,9 @@ bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, in
  * outgoing hemisphere, over incidences 5 .. 85 degrees (and four azimuths for an
  * anisotropic model) and channels: the value, where (degrees) and which channel. The
  * integral runs over the half vector, dense near the mirror direction, so a narrow lobe
- * is resolved. 0, or -1 when out of memory. */
-int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel);
+ * is resolved. BF_OK, or BF_ERR_NOMEM. */
+bf_status bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel,
+                            bf_error *err);
 
 /* A data-driven start for any model: diffuse level from off-specular samples, lobe
  * weight and width from the samples near the specular peak, every other parameter at

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "big_alloc.h"
+#include "base/big_alloc.h"
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 #include "objective_impl.h"
@@ -57,7 +57,7 @@ bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, in
         free(keep);
         return bf_fail(err, BF_ERR_NOMEM, "cross-validation: out of memory for %zu samples", s->n);
     }
-    int rc = bf_samples_folds(s, folds, seed, fold, err);
+    bf_status rc = bf_samples_folds(s, folds, seed, fold, err);
     double wssr = 0.0, wsum = 0.0;
     for (int k = 0; k < folds && rc == BF_OK; k++) {
         out->fold_error[k] = NAN;

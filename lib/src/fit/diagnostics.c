@@ -259,7 +259,8 @@ static void gauss_legendre(int n, double *x, double *w)
     }
 }
 
-int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel)
+bf_status bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel,
+                            bf_error *err)
 {
     const int C = bf_model_channels(m);
     /* An isotropic model's albedo does not depend on the azimuth of L. */
@@ -272,15 +273,15 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
     double *wt = malloc(nh * sizeof *wt), *f = malloc(nh * (size_t)C * sizeof *f);
     if (!L || !V || !wt || !f) {
         free(L), free(V), free(wt), free(f);
-        return -1;
+        return bf_fail(err, BF_ERR_NOMEM, "albedo: out of memory");
     }
     *albedo = -INFINITY;
     *theta_deg = 0.0;
     *channel = 0;
-    int rc = 0;
-    for (int t = 0; t < ALB_NTHETA && rc == 0; t++) {
+    bf_status rc = BF_OK;
+    for (int t = 0; t < ALB_NTHETA && rc == BF_OK; t++) {
         const double ti = (t + 0.5) / ALB_NTHETA * (M_PI / 2); /* 5 .. 85 degrees */
-        for (int pi_i = 0; pi_i < nphi_i && rc == 0; pi_i++) {
+        for (int pi_i = 0; pi_i < nphi_i && rc == BF_OK; pi_i++) {
             const double pli = pi_i * (M_PI / 2) / ALB_NPHI_I; /* azimuths for anisotropic lobes */
             const double l[3] = {sin(ti) * cos(pli), sin(ti) * sin(pli), cos(ti)};
             size_t n = 0;
@@ -300,12 +301,9 @@ int bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double
                     n++;
                 }
             }
-            bf_error err;
             bf_geometry *g = NULL;
-            if (bf_geometry_from_vectors(n, L, V, &g, &err) != BF_OK) {
-                rc = -1;
+            if ((rc = bf_geometry_from_vectors(n, L, V, &g, err)) != BF_OK)
                 break;
-            }
             bf_model_eval(m, x, g, f, NULL);
             bf_geometry_free(g);
             for (int c = 0; c < C; c++) {
@@ -400,7 +398,7 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
     check_correlations(o, corr, r);
     double a, t;
     int c;
-    if (bf_fit_max_albedo(r->model, r->x, &a, &t, &c) == 0 && a > ALBEDO_LIMIT) {
+    if (bf_fit_max_albedo(r->model, r->x, &a, &t, &c, NULL) == BF_OK && a > ALBEDO_LIMIT) {
         char ch[40] = "";
         if (bf_model_channels(r->model) > 1)
             snprintf(ch, sizeof ch, " in channel %d", c);

@@ -50,7 +50,7 @@ static bf_status fixed_only(const bf_problem *p, const double *z, bf_solution *s
 {
     memset(sol, 0, sizeof *sol);
     double cost = NAN;
-    int rc = plain_cost(p, z, &cost, err);
+    bf_status rc = plain_cost(p, z, &cost, err);
     if (rc != BF_OK)
         return rc;
     sol->initial_cost = sol->final_cost = cost;
@@ -88,6 +88,126 @@ static size_t presolve_samples(const bf_fit_options *o, size_t n)
     return n >= BF_FIT_PRESOLVE_MIN ? BF_FIT_PRESOLVE_SAMPLES : 0;
 }
 
+/* The start in model space (x0, clamped into the effective bounds lo..hi, fixed values
+ * applied) and internal space (z0): the caller's, or the data-driven one read off
+ * `from`. Clamped in model space (fixed entries have lo = hi), so that a failed fit
+ * reports exactly this start rather than its round trip through the internal scale. */
+static bf_status start_point(const bf_fit_options *o, const bf_objective *obj, bf_samples *from, double *x0, double *z0,
+                             double *lo, double *hi, bf_error *err)
+{
+    const bf_model *m = obj->model;
+    const int P = bf_model_nvalues(m);
+    bf_status rc;
+    if (o->start)
+        memcpy(x0, o->start, (size_t)P * sizeof *x0);
+    else if ((rc = bf_fit_initial_guess(m, from, x0, err)) != BF_OK)
+        return rc;
+    for (int k = 0; k < P; k++)
+        if (!isfinite(x0[k])) /* a NaN start would clamp to a bound; say so instead */
+            return bf_fail(err, BF_ERR_RANGE, "fit: start value %d is not finite", k);
+    bf_objective_bounds(obj, lo, hi);
+    for (int k = 0; k < P; k++)
+        x0[k] = x0[k] < lo[k] ? lo[k] : x0[k] > hi[k] ? hi[k] : x0[k];
+    bf_objective_to_internal(obj, x0, z0);
+    return BF_OK;
+}
+
+/* Cancelled (bf_solver_options.cancel or .progress): no fit. The result holds the start
+ * x0 and says why; no metrics, no warnings but that, and the writers refuse it. */
+static void cancelled_result(bf_fit_result *r, const bf_fit_options *o, const bf_objective *obj, const double *x0,
+                             size_t n)
+{
+    const int P = bf_model_nvalues(r->model);
+    memset(&r->solution, 0, sizeof r->solution);
+    r->solution.stop = BF_STOP_CANCELLED;
+    snprintf(r->solution.backend, sizeof r->solution.backend, "%s", bf_backend_name(o->solver.backend));
+    snprintf(r->solution.termination, sizeof r->solution.termination, "cancelled by the caller");
+    r->solution.initial_cost = r->solution.final_cost = NAN;
+    memcpy(r->x, x0, (size_t)P * sizeof *x0);
+    for (int k = 0; k < P; k++) {
+        r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
+        r->stderr_[k] = NAN;
+    }
+    r->samples = n;
+    r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
+    r->seed = o->seed;
+    r->residual = o->objective.residual;
+    bf_fit_warn(r, "the fit was cancelled by the caller: no parameters were fitted");
+}
+
+/* Entries on a bound and entries without effect at the optimum zbest (silence.h), found
+ * on objective po: the standard errors leave both out, and k the second. *held gets
+ * 2 nz flags (held, then silent; malloc'd), r the inactive entries, *nsilent their
+ * count. */
+static bf_status held_entries(const bf_objective *po, const bf_objective *obj, const double *zbest,
+                              const bf_fit_options *o, bf_fit_result *r, unsigned char **held, int *nsilent,
+                              bf_error *err)
+{
+    const int nz = bf_objective_nz(obj);
+    bf_silence sil;
+    bf_status rc = bf_silence_find(bf_objective_problem(po), po, zbest, &o->solver.loss, o->solver.threads, &sil, err);
+    if (rc != BF_OK)
+        return rc;
+    unsigned char *h = malloc(2 * (size_t)nz + 1);
+    if (!h) {
+        bf_silence_free(&sil);
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    }
+    for (int j = 0; j < nz; j++) {
+        h[j] = sil.bound[j] != 0 || sil.silent[j];
+        h[nz + j] = sil.silent[j];
+        r->inactive[obj->kidx[j]] = sil.silent[j];
+        r->inactive_gate[obj->kidx[j]] = sil.silent[j] ? sil.gate[j] : -1;
+    }
+    *nsilent = sil.nsilent;
+    *held = h;
+    bf_silence_free(&sil);
+    return BF_OK;
+}
+
+/* What the search did, for the result (the presolve's solves when it ran on one). */
+static void search_figures(bf_fit_result *r, const bf_search *sr)
+{
+    r->starts = sr->starts;
+    r->starts_at_best = sr->starts_at_best;
+    r->candidates = sr->candidates;
+    r->screen = sr->screen;
+    if (sr->presolved) {
+        r->presolve.iterations = sr->on_prob.iterations;
+        r->presolve.evaluations = sr->on_prob.evaluations;
+        r->presolve.seconds = sr->on_prob.seconds;
+    }
+}
+
+/* The whole set, from the best presolved point zbest, which becomes the solution's point
+ * when it is usable (z: scratch of nz). Unless told otherwise it stops at a relative cost
+ * change of 1e-9 rather than 1e-10: with the hundreds of thousands of samples a presolve
+ * needs, that leaves the parameters within sqrt(1e-9 n) (0.06 for a MERL table's 3.3 M
+ * residuals) of their standard errors of the optimum, and saves a pass over all of them.
+ * Entries the hand-over holds (search.h) stay where the presolve left them. */
+static bf_status solve_whole_set(const bf_problem *full, const bf_fit_options *o, bf_search *sr, uint64_t seed,
+                                 double *z, double *zbest, bf_solution *sol, bf_error *err)
+{
+    const int nz = full->npar; /* the free entries */
+    bf_solver_options so = o->solver;
+    memcpy(z, zbest, (size_t)nz * sizeof *z);
+    so.seed = seed;
+    if (!(so.function_tolerance > 0.0))
+        so.function_tolerance = 1e-9;
+    unsigned char *hold = calloc((size_t)nz + 1, 1);
+    if (hold && bf_fit_search_handover(sr, z, hold) > 0)
+        so.constant = hold;
+    bf_status rc = bf_solve(full, &so, z, sol, err);
+    free(hold);
+    if (rc != BF_OK)
+        return rc;
+    for (int j = 0; j < nz && sol->usable; j++)
+        sol->usable = isfinite(z[j]);
+    if (sol->usable && isfinite(sol->final_cost))
+        memcpy(zbest, z, (size_t)nz * sizeof *z);
+    return BF_OK;
+}
+
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
     double t0 = bf_now_seconds();
@@ -119,7 +239,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     bf_samples *ps = NULL;
     bf_objective *pobj = NULL;
     double *corr = NULL;
-    unsigned char *held = NULL, *hold = NULL;
+    unsigned char *held = NULL;
     bf_search sr;
     memset(&sr, 0, sizeof sr);
     int nsilent = 0, cancelled = 0;
@@ -140,27 +260,11 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
         prob = bf_objective_problem(pobj);
     }
 
-    /* The start, clamped into the effective bounds and with fixed values applied. */
-    if (o->start)
-        memcpy(x0, o->start, (size_t)P * sizeof *x0);
-    else if ((rc = bf_fit_initial_guess(m, ps ? ps : s, x0, err)) != BF_OK) /* read off the presolve's subsample
-                                                                               where there is one: the starts
-                                                                               are solved there */
+    /* The start is read off the presolve's subsample where there is one: the starts are
+     * solved there. */
+    if ((rc = start_point(o, obj, ps ? ps : s, x0, z0, lo, hi, err)) != BF_OK)
         goto done;
-    for (int k = 0; k < P; k++) {
-        if (!isfinite(x0[k])) { /* a NaN start would clamp to a bound; say so instead */
-            rc = bf_fail(err, BF_ERR_RANGE, "fit: start value %d is not finite", k);
-            goto done;
-        }
-    }
-    /* Clamped in model space (fixed entries have lo = hi), so that a failed fit reports
-     * exactly this start rather than its round trip through the internal scale. */
-    bf_objective_bounds(obj, lo, hi);
-    for (int k = 0; k < P; k++)
-        x0[k] = x0[k] < lo[k] ? lo[k] : x0[k] > hi[k] ? hi[k] : x0[k];
-    bf_objective_to_internal(obj, x0, z0);
 
-    bf_solver_options so = o->solver;
     uint64_t best_seed = 0;
     int have_best = 0;
     bf_solution sol, first;
@@ -192,61 +296,20 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
             best_seed = sr.best_seed;
         }
         cancelled = sr.cancelled;
-        r->starts = sr.starts;
-        r->starts_at_best = sr.starts_at_best;
-        r->candidates = sr.candidates;
-        r->screen = sr.screen;
-        if (pobj) {
-            r->presolve.iterations = sr.on_prob.iterations;
-            r->presolve.evaluations = sr.on_prob.evaluations;
-            r->presolve.seconds = sr.on_prob.seconds;
-        }
+        search_figures(r, &sr);
     }
     if (pobj && have_best && !cancelled) {
-        /* The whole set, from the best presolved point. Unless told otherwise it stops at
-         * a relative cost change of 1e-9 rather than 1e-10: with the hundreds of
-         * thousands of samples a presolve needs, that leaves the parameters within
-         * sqrt(1e-9 n) (0.06 for a MERL table's 3.3 M residuals) of their standard errors
-         * of the optimum, and saves a pass over all of them. */
         r->presolve.samples = pn;
-        memcpy(z, zbest, (size_t)nz * sizeof *z);
-        so.seed = best_seed;
-        if (!(so.function_tolerance > 0.0))
-            so.function_tolerance = 1e-9;
-        hold = calloc((size_t)nz + 1, 1);
-        if (hold && bf_fit_search_handover(&sr, z, hold) > 0)
-            so.constant = hold;
-        if ((rc = bf_solve(full, &so, z, &sol, err)) != BF_OK)
+        if ((rc = solve_whole_set(full, o, &sr, best_seed, z, zbest, &sol, err)) != BF_OK)
             goto done;
-        so.constant = o->solver.constant;
         cancelled = sol.stop == BF_STOP_CANCELLED;
-        for (int j = 0; j < nz && sol.usable; j++)
-            sol.usable = isfinite(z[j]);
         r->solution = sol;
         have_best = sol.usable && isfinite(sol.final_cost);
-        if (have_best)
-            memcpy(zbest, z, (size_t)nz * sizeof *z);
-        else
+        if (!have_best)
             first = sol; /* the reason below is the whole set's */
     }
     if (cancelled) {
-        /* Cancelled (bf_solver_options.cancel or .progress): no fit. The result holds the
-         * start and says why; no metrics, no warnings but that, and the writers refuse it. */
-        memset(&r->solution, 0, sizeof r->solution);
-        r->solution.stop = BF_STOP_CANCELLED;
-        snprintf(r->solution.backend, sizeof r->solution.backend, "%s", bf_backend_name(o->solver.backend));
-        snprintf(r->solution.termination, sizeof r->solution.termination, "cancelled by the caller");
-        r->solution.initial_cost = r->solution.final_cost = NAN;
-        memcpy(r->x, x0, (size_t)P * sizeof *x0);
-        for (int k = 0; k < P; k++) {
-            r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
-            r->stderr_[k] = NAN;
-        }
-        r->samples = s->n;
-        r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
-        r->seed = o->seed;
-        r->residual = o->objective.residual;
-        bf_fit_warn(r, "the fit was cancelled by the caller: no parameters were fitted");
+        cancelled_result(r, o, obj, x0, s->n);
         goto done;
     }
     r->ok = have_best;
@@ -269,29 +332,11 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
         r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
     /* Entries on a bound and entries without effect (silence.h): the standard errors
      * leave both out, and k the second. */
-    if (have_best && nz > 0) {
-        /* On the screening set where there is one: which entries a bound silences is a
-         * matter of the model, which a thousand samples show as well as all of them. */
-        bf_silence sil;
-        const bf_objective *po = sr.screen_objective ? sr.screen_objective : pobj ? pobj : obj;
-        if ((rc = bf_silence_find(bf_objective_problem(po), po, zbest, &o->solver.loss, o->solver.threads, &sil,
-                                  err)) != BF_OK)
-            goto done;
-        held = malloc(2 * (size_t)nz + 1);
-        if (!held) {
-            bf_silence_free(&sil);
-            rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
-            goto done;
-        }
-        for (int j = 0; j < nz; j++) {
-            held[j] = sil.bound[j] != 0 || sil.silent[j];
-            held[nz + j] = sil.silent[j];
-            r->inactive[obj->kidx[j]] = sil.silent[j];
-            r->inactive_gate[obj->kidx[j]] = sil.silent[j] ? sil.gate[j] : -1;
-        }
-        nsilent = sil.nsilent;
-        bf_silence_free(&sil);
-    }
+    /* On the screening set where there is one: which entries a bound silences is a matter
+     * of the model, which a thousand samples show as well as all of them. */
+    const bf_objective *po = sr.screen_objective ? sr.screen_objective : pobj ? pobj : obj;
+    if (have_best && nz > 0 && (rc = held_entries(po, obj, zbest, o, r, &held, &nsilent, err)) != BF_OK)
+        goto done;
     corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *corr);
     if ((rc = bf_obj_final_held(obj, r->x, o->weighted_metrics, nz - nsilent, held, held ? held + nz : NULL,
                                 &r->metrics, r->stderr_, corr, err)) != BF_OK)
@@ -306,7 +351,6 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
 
 done:
     bf_fit_search_clear(&sr);
-    free(hold);
     free(held);
     free(corr);
     free(x0);

@@ -36,7 +36,7 @@
  *     every value clamped inside its bounds (open bounds: just inside). */
 #include "brdfit/fit.h"
 
-#include "big_alloc.h"
+#include "base/big_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -294,96 +294,90 @@ static double scan_widths(const bf_model *m, double *x, double h, const bf_geome
     return fit_at_width(m, x, best_h, g, y, xs, f1, over);
 }
 
-bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
-{
-    const int C = bf_model_channels(m), P = bf_model_nvalues(m), np = bf_model_nparams(m);
-    if (C != s->channels)
-        return bf_fail(err, BF_ERR_ARG, "model %s has %d channels, the samples %d", bf_model_spec(m), C,
-                       s->channels);
-    bf_model_defaults(m, x);
+/* What the steps share: the model, the samples, the start being built, and each
+ * sample's class. */
+typedef struct start {
+    const bf_model *m;
+    const bf_samples *s;
     const bf_geometry *g;
-    bf_status rc = bf_samples_geometry(s, &g, err);
-    if (rc != BF_OK)
-        return rc;
+    double *x;
+    int C, np;
+    size_t n, nvalid, nfar;
+    unsigned char *code; /* per sample: INVALID, or its theta_h bin | FAR */
+    size_t cnt[NBINS];   /* valid samples per theta_h bin */
+} start;
 
-    size_t n = s->n, nvalid = 0, nfar = 0;
-    unsigned char *code = bf_big_malloc(n + 1);
-    double *q = malloc((QUANTILE_CAP + 1) * sizeof *q);
-    double *diffuse = calloc((size_t)C, sizeof *diffuse);
-    double *xs = malloc((size_t)P * sizeof *xs + 1), *xb = malloc((size_t)P * sizeof *xb + 1);
-    double *xk = malloc((size_t)P * sizeof *xk + 1);
-    double *ev = NULL, *f1 = NULL;
-    bf_geometry *sg = NULL;
-    if (!code || !q || !diffuse || !xs || !xb || !xk) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
-        goto done;
-    }
+/* Each sample's class: invalid (geometry or a non-finite value), or its theta_h bin and
+ * whether it is far from the specular direction. */
+static void classify(start *st)
+{
+    const int C = st->C;
     bf_geometry_block gb;
-    for (size_t ib = 0; ib < n; ib += BF_GEOMETRY_BLOCK) {
-        size_t cnt = n - ib < BF_GEOMETRY_BLOCK ? n - ib : BF_GEOMETRY_BLOCK;
-        const bf_geometry *gv = bf_geometry_view(g, ib, cnt, &gb);
+    for (size_t ib = 0; ib < st->n; ib += BF_GEOMETRY_BLOCK) {
+        size_t cnt = st->n - ib < BF_GEOMETRY_BLOCK ? st->n - ib : BF_GEOMETRY_BLOCK;
+        const bf_geometry *gv = bf_geometry_view(st->g, ib, cnt, &gb);
         double last_s2 = NAN, last_hz = NAN, th = 0.0;
-        for (size_t q = 0; q < cnt; q++) {
-            size_t i = ib + q;
-            int ok = bf_geometry_valid(gv, q);
+        for (size_t j = 0; j < cnt; j++) {
+            size_t i = ib + j;
+            int ok = bf_geometry_valid(gv, j);
             for (int c = 0; c < C && ok; c++)
-                ok = isfinite(s->value[i * C + c]);
+                ok = isfinite(st->s->value[i * C + c]);
             if (!ok) {
-                code[i] = INVALID;
+                st->code[i] = INVALID;
                 continue;
             }
             /* Samples in a row often share H (a MERL table runs through phi_d). */
-            if (gv->sin2h[q] != last_s2 || gv->hz[q] != last_hz) {
-                last_s2 = gv->sin2h[q], last_hz = gv->hz[q];
+            if (gv->sin2h[j] != last_s2 || gv->hz[j] != last_hz) {
+                last_s2 = gv->sin2h[j], last_hz = gv->hz[j];
                 th = atan2(sqrt(last_s2), last_hz);
             }
             int far = th > DIFFUSE_MIN_THETA_H;
-            code[i] = (unsigned char)(bin_of(th) | (far ? FAR : 0u));
-            nvalid++;
-            nfar += (size_t)far;
+            st->code[i] = (unsigned char)(bin_of(th) | (far ? FAR : 0u));
+            st->nvalid++;
+            st->nfar += (size_t)far;
         }
     }
-    if (nvalid == 0)
-        goto clamp; /* nothing to learn from: defaults */
+}
 
-    /* 1. Diffuse level per channel, from a strided subset of at most QUANTILE_CAP. */
-    const unsigned char far_mask = nfar > 0 ? FAR : 0u; /* none far: every valid sample */
-    size_t pool = nfar > 0 ? nfar : nvalid, stride = (pool + QUANTILE_CAP - 1) / QUANTILE_CAP;
+/* Step 1: the diffuse level per channel, from a strided subset of at most QUANTILE_CAP
+ * samples (q: room for them), into diffuse[] and the diffuse colours of x. */
+static void diffuse_level(start *st, double *q, double *diffuse)
+{
+    const int C = st->C;
+    const unsigned char far_mask = st->nfar > 0 ? FAR : 0u; /* none far: every valid sample */
+    size_t pool = st->nfar > 0 ? st->nfar : st->nvalid, stride = (pool + QUANTILE_CAP - 1) / QUANTILE_CAP;
     for (int c = 0; c < C; c++) {
         size_t k = 0, seen = 0;
-        for (size_t i = 0; i < n && k < QUANTILE_CAP; i++)
-            if (code[i] != INVALID && (code[i] & far_mask) == far_mask && seen++ % stride == 0)
-                q[k++] = s->value[i * C + c] * M_PI;
+        for (size_t i = 0; i < st->n && k < QUANTILE_CAP; i++)
+            if (st->code[i] != INVALID && (st->code[i] & far_mask) == far_mask && seen++ % stride == 0)
+                q[k++] = st->s->value[i * C + c] * M_PI;
         diffuse[c] = select_kth(q, k, (size_t)(0.15 * (double)(k - 1) + 0.5));
     }
-    for (int i = 0; i < np; i++) {
-        if (is_diffuse(bf_model_param(m, i)))
+    for (int i = 0; i < st->np; i++) {
+        if (is_diffuse(bf_model_param(st->m, i)))
             for (int c = 0; c < C; c++)
-                put_channel(m, i, x, c, diffuse[c]);
+                put_channel(st->m, i, st->x, c, diffuse[c]);
     }
-    int has_weight = 0, has_width = 0;
-    for (int i = 0; i < np; i++) {
-        has_weight |= is_weight(bf_model_param(m, i));
-        has_width |= width_of(bf_model_param(m, i)) != W_NONE;
-    }
-    if (!has_weight && !has_width)
-        goto clamp;
+}
 
-    /* 2. Peak of the excess over the diffuse level, in theta_h bins. */
+/* Steps 2 and 3: the peak of the excess over the diffuse level in theta_h groups, and
+ * the half width h beyond it. 1 with *h, or 0 when no lobe is seen. Counts st->cnt. */
+static int peak_width(start *st, const double *diffuse, double *h)
+{
+    const int C = st->C;
     double dmean = 0.0;
     for (int c = 0; c < C; c++)
         dmean += diffuse[c] / (M_PI * C);
     double sum[NBINS] = {0};
-    size_t cnt[NBINS] = {0};
-    for (size_t i = 0; i < n; i++) {
-        if (code[i] == INVALID)
+    for (size_t i = 0; i < st->n; i++) {
+        if (st->code[i] == INVALID)
             continue;
         double v = 0.0;
         for (int c = 0; c < C; c++)
-            v += s->value[i * C + c] / C;
-        int b = code[i] & 0x3f;
+            v += st->s->value[i * C + c] / C;
+        int b = st->code[i] & 0x3f;
         sum[b] += v - dmean;
-        cnt[b]++;
+        st->cnt[b]++;
     }
     /* Bins with few samples merge with the next ones (up to MIN_GROUP samples), so
      * that one sample's geometry (Fresnel, shadowing at grazing) is not a peak. */
@@ -396,7 +390,7 @@ bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_e
             gcnt[ng] = 0;
         }
         gsum[ng] += sum[b];
-        gcnt[ng] += cnt[b];
+        gcnt[ng] += st->cnt[b];
         if (gcnt[ng] >= MIN_GROUP || (b == NBINS - 1 && gcnt[ng] > 0)) {
             double lo_edge = g0 == 0 ? 0.5 * BIN0 : BIN0 * pow(BIN_GROWTH, g0 - 1);
             gt[ng++] = sqrt(lo_edge * BIN0 * pow(BIN_GROWTH, b)); /* geometric centre */
@@ -409,123 +403,184 @@ bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_e
         if (peak < 0 || gsum[k] / gcnt[k] > pk)
             pk = gsum[k] / gcnt[k], peak = k;
     double small = 0.05 * fabs(dmean);
-    if (peak < 0 || !(pk > small) || !(pk > 0.0)) {
-        /* No lobe seen: small weights, default widths. */
-        for (int i = 0; i < np; i++) {
-            const bf_param_info *p = bf_model_param(m, i);
-            if (is_weight(p))
-                for (int c = 0; c < C; c++)
-                    put_channel(m, i, x, c, 0.01);
-        }
-        goto clamp;
-    }
-
-    /* 3. Half width beyond the peak. */
-    double h = 1.0, prev_t = gt[peak], prev_v = pk;
+    if (peak < 0 || !(pk > small) || !(pk > 0.0))
+        return 0;
+    /* Where the group means first fall below half the peak, log-interpolated. */
+    double prev_t = gt[peak], prev_v = pk;
+    *h = 1.0;
     for (int k = peak + 1; k < ng; k++) {
         double v = gsum[k] / gcnt[k], t = gt[k];
         if (v < 0.5 * pk) {
             double f = (prev_v - 0.5 * pk) / (prev_v - v); /* in (0, 1] */
-            h = exp(log(prev_t) + f * (log(t) - log(prev_t)));
+            *h = exp(log(prev_t) + f * (log(t) - log(prev_t)));
             break;
         }
         prev_t = t, prev_v = v;
     }
+    return 1;
+}
 
-    /* 4. Shape samples: the bins nearest the peak direction, up to SHAPE_CAP / 2 (the
-     * last bin taken with a stride), and a strided subset of the others, up to
-     * SHAPE_CAP / 2, which pins the diffuse level. */
+/* No lobe seen: small weights (their widths stay at the defaults). */
+static void small_weights(start *st)
+{
+    for (int i = 0; i < st->np; i++)
+        if (is_weight(bf_model_param(st->m, i)))
+            for (int c = 0; c < st->C; c++)
+                put_channel(st->m, i, st->x, c, 0.01);
+}
+
+/* Step 4's samples: the bins nearest the peak direction, up to SHAPE_CAP / 2 (the last
+ * bin taken with a stride), and a strided subset of the others, up to SHAPE_CAP / 2,
+ * which pins the diffuse level. Their directions go into L (room for 6 (SHAPE_CAP + 2)),
+ * their values into ev, and their geometry into *sg (NULL when there is none). */
+static bf_status shape_samples(const start *st, double *L, double *ev, bf_geometry **sg, bf_error *err)
+{
+    const int C = st->C;
     const size_t half = SHAPE_CAP / 2;
     size_t take = 0, last_stride = 1;
     int last = -1;
     for (int b = 0; b < NBINS; b++) {
-        if (take + cnt[b] <= half) {
-            take += cnt[b], last = b;
+        if (take + st->cnt[b] <= half) {
+            take += st->cnt[b], last = b;
             continue;
         }
         size_t room = half - take;
-        last_stride = room ? (cnt[b] + room - 1) / room : cnt[b] + 1;
+        last_stride = room ? (st->cnt[b] + room - 1) / room : st->cnt[b] + 1;
         last = b;
         break;
     }
     size_t rest = 0;
     for (int b = last + 1; b < NBINS; b++)
-        rest += cnt[b];
+        rest += st->cnt[b];
     size_t rest_stride = rest > half ? (rest + half - 1) / half : 1;
-    size_t ns = 0;
-    double *L = malloc(6 * (SHAPE_CAP + 2) * sizeof *L);
-    ev = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *ev);
-    f1 = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *f1);
-    if (!L || !ev || !f1) {
-        free(L);
-        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
-        goto done;
-    }
     double *V = L + 3 * (SHAPE_CAP + 2);
-    size_t in_last = 0, in_rest = 0;
-    for (size_t i = 0; i < n && ns < SHAPE_CAP; i++) {
-        if (code[i] == INVALID)
+    size_t ns = 0, in_last = 0, in_rest = 0;
+    bf_geometry_block gb;
+    for (size_t i = 0; i < st->n && ns < SHAPE_CAP; i++) {
+        if (st->code[i] == INVALID)
             continue;
-        int b = code[i] & 0x3f;
+        int b = st->code[i] & 0x3f;
         if (b == last ? in_last++ % last_stride != 0 : b > last && in_rest++ % rest_stride != 0)
             continue;
-        const bf_geometry *gv = bf_geometry_view(g, i, 1, &gb);
+        const bf_geometry *gv = bf_geometry_view(st->g, i, 1, &gb);
         L[3 * ns] = gv->lx[0], L[3 * ns + 1] = gv->ly[0], L[3 * ns + 2] = gv->lz[0];
         V[3 * ns] = gv->vx[0], V[3 * ns + 1] = gv->vy[0], V[3 * ns + 2] = gv->vz[0];
         for (int c = 0; c < C; c++)
-            ev[ns * C + c] = s->value[i * C + c];
+            ev[ns * C + c] = st->s->value[i * C + c];
         ns++;
     }
-    rc = ns ? bf_geometry_from_vectors(ns, L, V, &sg, err) : BF_OK;
-    free(L);
-    if (!sg) /* failed, or no sample to scan */
-        goto clamp;
-    /* Width scan (see scan_widths). A lobe that needs a weight above its bound with f0
-     * at its default (a metal, or a highlight brighter than f0 = 0.04 allows) gets f0
-     * raised by that factor and another scan, kept while it fits better (4 at most). */
-    if (has_weight) {
-        double over, ssr0 = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
-        int has_f0 = 0;
-        for (int i = 0; i < np; i++)
-            has_f0 |= bf_model_param(m, i)->role == BF_ROLE_F0;
-        for (int pass = 0; pass < 4 && over > 1.0 && has_f0; pass++) {
-            memcpy(xk, x, (size_t)P * sizeof *xk);
-            for (int i = 0; i < np; i++) {
-                const bf_param_info *p = bf_model_param(m, i);
-                if (p->role == BF_ROLE_F0) /* every channel of a colour one (a conductor's r) */
-                    for (int c = 0; c < (p->colour ? C : 1); c++) {
-                        double *v = x + bf_model_param_offset(m, i) + c;
-                        *v = clamp_param(p, *v * over);
-                    }
-            }
-            double ssr = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
-            if (!(ssr < ssr0)) {
-                memcpy(x, xk, (size_t)P * sizeof *xk);
-                break;
-            }
-            ssr0 = ssr;
-        }
-    } else {
-        set_widths(m, x, h);
-    }
+    return ns ? bf_geometry_from_vectors(ns, L, V, sg, err) : BF_OK;
+}
 
-clamp:
-    /* 5. Inside the bounds. */
-    for (int i = 0; i < np; i++) {
+/* The width scan (scan_widths). A lobe that needs a weight above its bound with f0 at its
+ * default (a metal, or a highlight brighter than f0 = 0.04 allows) gets f0 raised by that
+ * factor and another scan, kept while it fits better (4 at most). xs, xb, xk: scratch of
+ * the model's length. */
+static void scan_raising_f0(const start *st, double h, const bf_geometry *sg, const double *ev, double *xs, double *xb,
+                            double *xk, double *f1)
+{
+    const bf_model *m = st->m;
+    double *x = st->x;
+    const size_t P = (size_t)bf_model_nvalues(m);
+    double over, ssr0 = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+    int has_f0 = 0;
+    for (int i = 0; i < st->np; i++)
+        has_f0 |= bf_model_param(m, i)->role == BF_ROLE_F0;
+    for (int pass = 0; pass < 4 && over > 1.0 && has_f0; pass++) {
+        memcpy(xk, x, P * sizeof *xk);
+        for (int i = 0; i < st->np; i++) {
+            const bf_param_info *p = bf_model_param(m, i);
+            if (p->role == BF_ROLE_F0) /* every channel of a colour one (a conductor's r) */
+                for (int c = 0; c < (p->colour ? st->C : 1); c++) {
+                    double *v = x + bf_model_param_offset(m, i) + c;
+                    *v = clamp_param(p, *v * over);
+                }
+        }
+        double ssr = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+        if (!(ssr < ssr0)) {
+            memcpy(x, xk, P * sizeof *xk);
+            break;
+        }
+        ssr0 = ssr;
+    }
+}
+
+/* Step 5: every value inside its bounds. */
+static void clamp_all(const bf_model *m, double *x)
+{
+    const int C = bf_model_channels(m);
+    for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         for (int c = 0; c < (p->colour ? C : 1); c++) {
             double *v = x + bf_model_param_offset(m, i) + c;
             *v = clamp_param(p, *v);
         }
     }
+}
+
+bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_error *err)
+{
+    const int C = bf_model_channels(m), P = bf_model_nvalues(m), np = bf_model_nparams(m);
+    if (C != s->channels)
+        return bf_fail(err, BF_ERR_ARG, "model %s has %d channels, the samples %d", bf_model_spec(m), C, s->channels);
+    bf_model_defaults(m, x);
+    start st = {.m = m, .s = s, .x = x, .C = C, .np = np, .n = s->n};
+    bf_status rc = bf_samples_geometry(s, &st.g, err);
+    if (rc != BF_OK)
+        return rc;
+
+    st.code = bf_big_malloc(s->n + 1);
+    double *q = malloc((QUANTILE_CAP + 1) * sizeof *q);
+    double *diffuse = calloc((size_t)C, sizeof *diffuse);
+    double *xs = malloc((size_t)P * sizeof *xs + 1), *xb = malloc((size_t)P * sizeof *xb + 1);
+    double *xk = malloc((size_t)P * sizeof *xk + 1);
+    double *L = NULL, *ev = NULL, *f1 = NULL;
+    bf_geometry *sg = NULL;
+    if (!st.code || !q || !diffuse || !xs || !xb || !xk) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
+        goto done;
+    }
+    classify(&st);
+    if (st.nvalid == 0)
+        goto clamp; /* nothing to learn from: defaults */
+    diffuse_level(&st, q, diffuse);
+    int has_weight = 0, has_width = 0;
+    for (int i = 0; i < np; i++) {
+        has_weight |= is_weight(bf_model_param(m, i));
+        has_width |= width_of(bf_model_param(m, i)) != W_NONE;
+    }
+    if (!has_weight && !has_width)
+        goto clamp;
+    double h;
+    if (!peak_width(&st, diffuse, &h)) {
+        small_weights(&st);
+        goto clamp;
+    }
+    L = malloc(6 * (SHAPE_CAP + 2) * sizeof *L);
+    ev = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *ev);
+    f1 = malloc((SHAPE_CAP + 2) * (size_t)C * sizeof *f1);
+    if (!L || !ev || !f1) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "initial guess: out of memory");
+        goto done;
+    }
+    rc = shape_samples(&st, L, ev, &sg, err);
+    if (!sg) /* failed, or no sample to scan */
+        goto clamp;
+    if (has_weight)
+        scan_raising_f0(&st, h, sg, ev, xs, xb, xk, f1);
+    else
+        set_widths(m, x, h);
+clamp:
+    clamp_all(m, x);
 done:
     bf_geometry_free(sg);
-    free(code);
+    free(st.code);
     free(q);
     free(diffuse);
     free(xs);
     free(xb);
     free(xk);
+    free(L);
     free(ev);
     free(f1);
     return rc;

@@ -15,7 +15,7 @@
 
 #include "brdfit/metrics.h"
 #include "metrics_impl.h"
-#include "parallel.h"
+#include "base/parallel.h"
 
 /* Sums over one chunk of samples, combined in chunk order afterwards. */
 typedef struct partial {

@@ -19,9 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "big_alloc.h"
+#include "base/big_alloc.h"
 #include "objective_impl.h"
-#include "parallel.h"
+#include "base/parallel.h"
 
 /* Model-gradient scratch per block of samples: about 128 KiB whatever C and P are, and
  * at most one geometry block (generated geometries are made a block at a time). */
@@ -267,7 +267,7 @@ static bf_status setup_weights(bf_objective *o, const bf_objective_options *opt,
     for (size_t i = 0; i < o->n; i++)
         o->sw[i] = 1.0;
     if (opt->solid_angle) {
-        int rc = bf_obj_solid_angle_weights(s, o->geom, o->sw, err);
+        bf_status rc = bf_obj_solid_angle_weights(s, o->geom, o->sw, err);
         if (rc)
             return rc;
     }

@@ -23,7 +23,7 @@
 #include "metrics_impl.h"
 #include "models/lobes.h"
 #include "objective_impl.h"
-#include "parallel.h"
+#include "base/parallel.h"
 
 enum { NORMAL_CHUNK = BF_METRIC_CHUNK }; /* samples: the metrics' chunks (metrics_impl.h) */
 #define BLOCK_DOUBLES 16384   /* gradient scratch of the generic path: about 128 KiB */

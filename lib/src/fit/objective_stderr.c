@@ -142,7 +142,7 @@ static bf_status stderr_from(const bf_objective *o, const double *jtj, double ss
     double *sez = malloc((size_t)nz * sizeof *sez);
     double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
     int *idx = malloc((size_t)nz * sizeof *idx);
-    int rc = BF_OK;
+    bf_status rc = BF_OK;
     if (!sez || !work || !idx) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
@@ -176,7 +176,7 @@ static bf_status final_pass(const bf_objective *o, const double *x, int weighted
                             const unsigned char *held_corr, bf_metric_sums *metrics, double *se, double *corr,
                             double *wssr, bf_error *err)
 {
-    int rc = bf_model_check(o->model, x, err);
+    bf_status rc = bf_model_check(o->model, x, err);
     if (rc)
         return rc;
     const int nz = o->nz;
@@ -226,7 +226,7 @@ bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted
 {
     bf_metric_sums sums;
     double wssr = NAN;
-    int rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, &wssr, err);
+    bf_status rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, &wssr, err);
     if (rc == BF_OK)
         rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
     if (rc == BF_OK)

@@ -67,7 +67,7 @@ static int parse_number(const char *s, const char *e, int allow_inf, double *v)
 bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err)
 {
     const char *rest;
-    int rc;
+    bf_status rc;
     if (!text)
         return bf_fail(err, BF_ERR_ARG, "fix: no text");
     memset(out, 0, sizeof *out);
@@ -83,7 +83,7 @@ bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *er
 bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err)
 {
     const char *rest;
-    int rc;
+    bf_status rc;
     if (!text)
         return bf_fail(err, BF_ERR_ARG, "bound: no text");
     memset(out, 0, sizeof *out);
@@ -174,7 +174,7 @@ bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override 
             return bf_fail(err, BF_ERR_ARG, "%s %s: channel %d out of range (the data have %d channel%s)", what, tgt,
                            ov->channel, channels, channels == 1 ? "" : "s");
         double lo, hi;
-        int rc = override_interval(ov, p, &lo, &hi, err);
+        bf_status rc = override_interval(ov, p, &lo, &hi, err);
         if (rc != BF_OK)
             return rc;
         /* Two overrides of one entry: the later would silently win. */
@@ -194,7 +194,7 @@ bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override 
 bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int nov, bf_error *err)
 {
     const bf_model *m = o->model;
-    int rc = bf_overrides_check(m, o->C, ovs, nov, err);
+    bf_status rc = bf_overrides_check(m, o->C, ovs, nov, err);
     if (rc != BF_OK)
         return rc;
     int np = bf_model_nparams(m);

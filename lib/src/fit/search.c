@@ -40,9 +40,9 @@
 
 #include "brdfit/prep.h"
 
-#include "big_alloc.h"
+#include "base/big_alloc.h"
 #include "silence.h"
-#include "../rng.h"
+#include "base/rng.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,0 +1,86 @@
+/* Shared JSON output helpers (see json_out.h). */
+#include "json_out.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "brdfit/formats.h"
+#include "brdfit/io.h"
+#include "brdfit/version.h"
+
+/* The text itself (bf_format_double, which reads back exactly): cJSON prints %1.15g
+ * whenever that reads back within a relative DBL_EPSILON, which loses the last bit of
+ * about one double in five (found by fuzz/fuzz_params.c: a result file read back). */
+cJSON *bf_json_number(double v)
+{
+    char buf[40];
+    return isfinite(v) ? cJSON_CreateRaw(bf_format_double(v, buf, sizeof buf)) : cJSON_CreateNull();
+}
+
+void bf_json_add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, bf_json_number(v)); }
+
+void bf_json_add_string(cJSON *o, const char *key, const char *s)
+{
+    cJSON_AddItemToObject(o, key, s ? cJSON_CreateString(s) : cJSON_CreateNull());
+}
+
+void bf_json_add_version(cJSON *o) { bf_json_add_string(o, "brdfit_version", bf_version()); }
+
+cJSON *bf_json_params(const bf_model *m, const double *x)
+{
+    if (!m || !x)
+        return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    int C = bf_model_channels(m);
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        const double *v = x + bf_model_param_offset(m, i);
+        if (p->colour) {
+            cJSON *a = cJSON_CreateArray();
+            for (int c = 0; c < C; c++)
+                cJSON_AddItemToArray(a, bf_json_number(v[c]));
+            cJSON_AddItemToObject(o, p->name, a);
+        } else {
+            bf_json_add_number(o, p->name, v[0]);
+        }
+    }
+    return o;
+}
+
+cJSON *bf_json_metrics(const bf_metrics *m)
+{
+    cJSON *o = cJSON_CreateObject();
+    bf_json_add_number(o, "rmse", m->rmse);
+    bf_json_add_number(o, "rmse_cos", m->rmse_cos);
+    bf_json_add_number(o, "rmse_log", m->rmse_log);
+    bf_json_add_number(o, "rmse_rel", m->rmse_rel);
+    bf_json_add_number(o, "max_err", m->max_err);
+    cJSON_AddNumberToObject(o, "n", (double)m->n);
+    cJSON_AddNumberToObject(o, "k", m->k);
+    cJSON_AddBoolToObject(o, "weighted", m->weighted);
+    /* The criteria of the fit's own likelihood (metrics.h); null where undefined. */
+    bf_json_add_number(o, "loglik", m->loglik);
+    bf_json_add_number(o, "aic", m->aic);
+    bf_json_add_number(o, "aicc", m->aicc);
+    bf_json_add_number(o, "bic", m->bic);
+    cJSON_AddNumberToObject(o, "criteria_n", (double)m->crit_n);
+    return o;
+}
+
+bf_status bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err)
+{
+    const char *name = path ? path : "-";
+    char *text = root ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    if (!text)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing %s", name, what);
+    bf_outfile f;
+    bf_status rc = bf_outfile_open(&f, path, err);
+    if (rc == BF_OK) {
+        fputs(text, f.fp);
+        fputc('\n', f.fp);
+        rc = bf_outfile_commit(&f, err); /* checks every write */
+    }
+    cJSON_free(text);
+    return rc;
+}

@@ -1,0 +1,215 @@
+/* Half/difference images as figures: see halfdiff_figure.h. */
+#include "render/halfdiff_figure.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/render.h"
+
+/* Colour maps as anchor colours, linearly interpolated between evenly spaced anchors. */
+static void interpolate(const unsigned char (*anchor)[3], int n, double t, unsigned char rgb[3])
+{
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    double u = t * (n - 1);
+    int k = (int)floor(u);
+    if (k >= n - 1)
+        k = n - 2;
+    double f = u - k;
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (unsigned char)lround((1.0 - f) * anchor[k][c] + f * anchor[k + 1][c]);
+}
+
+void halfdiff_sequential(double t, unsigned char rgb[3])
+{
+    /* viridis at 0, 1/8, ..., 1: dark to light, readable in grey and by most
+     * colour-blind readers. */
+    static const unsigned char v[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},
+                                          {44, 113, 142}, {33, 144, 141}, {39, 173, 129},
+                                          {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
+    interpolate(v, 9, isnan(t) ? 0.0 : t, rgb);
+}
+
+void halfdiff_diverging(double t, unsigned char rgb[3])
+{
+    static const unsigned char d[7][3] = {{33, 102, 172}, {103, 169, 207}, {209, 229, 240}, {255, 255, 255},
+                                          {253, 219, 199}, {239, 138, 98},  {178, 24, 43}};
+    if (isnan(t)) {
+        rgb[0] = rgb[1] = rgb[2] = HALFDIFF_NONE;
+        return;
+    }
+    if (t == 0.0) { /* the centre exactly: equal values are white, whatever rounding does */
+        rgb[0] = rgb[1] = rgb[2] = 255;
+        return;
+    }
+    interpolate(d, 7, 0.5 * (t + 1.0), rgb);
+}
+
+void halfdiff_mean(const float *rgb, size_t n, double *out)
+{
+    for (size_t p = 0; p < n; p++)
+        out[p] = ((double)rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int halfdiff_log_range(const double *v, size_t n, double percentile, double decades, double *log10_lo,
+                       double *log10_hi)
+{
+    double *pos = malloc((n ? n : 1) * sizeof *pos);
+    if (!pos)
+        return -1;
+    size_t m = 0;
+    for (size_t p = 0; p < n; p++)
+        if (v[p] > 0.0 && isfinite(v[p]))
+            pos[m++] = v[p];
+    if (!m) {
+        free(pos);
+        return -1;
+    }
+    qsort(pos, m, sizeof *pos, cmp_double);
+    size_t k = (size_t)floor(fmin(fmax(percentile, 0.0), 100.0) / 100.0 * (double)(m - 1) + 0.5);
+    *log10_hi = log10(pos[k]);
+    *log10_lo = *log10_hi - decades;
+    free(pos);
+    return 0;
+}
+
+void halfdiff_log2_ratio(const double *model, const double *measured, size_t n, double *out)
+{
+    for (size_t p = 0; p < n; p++)
+        out[p] = !(measured[p] > 0.0) ? NAN : model[p] > 0.0 ? log2(model[p] / measured[p]) : -INFINITY;
+}
+
+/* Ticks of theta_h on the sqrt axis (x = sqrt(theta_h / 90)), labelled in degrees. */
+static int theta_h_axis(plot *p)
+{
+    static const double deg[] = {0, 2, 5, 10, 20, 45, 90};
+    static const char *const label[] = {"0\xc2\xb0", "2\xc2\xb0", "5\xc2\xb0", "10\xc2\xb0", "20\xc2\xb0", "45\xc2\xb0",
+                                        "90\xc2\xb0"};
+    double at[7];
+    for (int i = 0; i < 7; i++)
+        at[i] = sqrt(deg[i] / 90.0);
+    if (plot_axis(p, PLOT_X, "half angle \xce\xb8_{h} (\xe2\x88\x9a scale)", 0) < 0 ||
+        plot_axis(p, PLOT_Y, "difference angle \xce\xb8_{d} (\xc2\xb0)", 0) < 0 ||
+        plot_axis_ticks(p, PLOT_X, 7, at, label) < 0)
+        return -1;
+    plot_axis_range(p, PLOT_X, 0.0, 1.0);
+    plot_axis_range(p, PLOT_Y, 0.0, 90.0);
+    plot_axis_step(p, PLOT_Y, 15.0);
+    return 0;
+}
+
+/* colour(v) for every pixel, rows flipped so that theta_d grows upwards. */
+static unsigned char *raster(const double *v, int w, int h, void (*colour)(double, double, double, unsigned char *),
+                             double a, double b)
+{
+    unsigned char *px = malloc((size_t)w * (size_t)h * 3);
+    for (int j = 0; px && j < h; j++)
+        for (int i = 0; i < w; i++)
+            colour(v[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], a, b, px + 3 * ((size_t)j * (size_t)w + (size_t)i));
+    return px;
+}
+
+static void value_colour(double v, double lo, double hi, unsigned char *rgb)
+{
+    if (!(v > 0.0)) { /* no value (or 0: nothing to put on a log scale) */
+        rgb[0] = rgb[1] = rgb[2] = HALFDIFF_NONE;
+        return;
+    }
+    halfdiff_sequential((log10(v) - lo) / (hi - lo), rgb);
+}
+
+static void ratio_colour(double r, double span, double unused, unsigned char *rgb)
+{
+    (void)unused;
+    halfdiff_diverging(isnan(r) ? NAN : r / span, rgb);
+}
+
+void halfdiff_ratio_raster(const double *r, int w, int h, double span, unsigned char *rgb)
+{
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            ratio_colour(r[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], span, 0.0,
+                         rgb + 3 * ((size_t)j * (size_t)w + (size_t)i));
+}
+
+/* The figure around a raster, with its colour bar. */
+static plot *figure(const char *title, unsigned char *px, int w, int h, const char *bar, double lo, double hi, int log,
+                    const unsigned char lut[PLOT_LUT][3])
+{
+    plot *p = plot_new(title);
+    if (!p || !px || theta_h_axis(p) < 0 || plot_raster(p, w, h, px) < 0 ||
+        plot_colour_bar(p, bar, lo, hi, log, lut) < 0) {
+        plot_free(p);
+        p = NULL;
+    }
+    free(px);
+    return p;
+}
+
+plot *halfdiff_value_figure(const double *v, int w, int h, const char *title, double log10_lo, double log10_hi)
+{
+    unsigned char lut[PLOT_LUT][3];
+    for (int k = 0; k < PLOT_LUT; k++)
+        halfdiff_sequential((double)k / (PLOT_LUT - 1), lut[k]);
+    return figure(title, raster(v, w, h, value_colour, log10_lo, log10_hi), w, h, "BRDF f (sr^{-1})",
+                  pow(10.0, log10_lo), pow(10.0, log10_hi), 1, lut);
+}
+
+plot *halfdiff_ratio_figure(const double *r, int w, int h, const char *title, double span)
+{
+    unsigned char lut[PLOT_LUT][3];
+    for (int k = 0; k < PLOT_LUT; k++)
+        halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, lut[k]);
+    return figure(title, raster(r, w, h, ratio_colour, span, 0.0), w, h, "log_{2}(model / measured)", -span, span, 0,
+                  lut);
+}
+
+bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
+                            int width, int height, const char *path, int format, bf_error *err)
+{
+    enum { PX = 180 }; /* two columns and rows per MERL cell */
+    int fmt = format ? format : bf_plot_format_of(path);
+    if (!fmt)
+        return bf_fail(err, BF_ERR_ARG, "%s: unknown plot format (.png, .svg or .pdf)", path ? path : "-");
+    if (!(decades > 0.0))
+        return bf_fail(err, BF_ERR_ARG, "half/difference plot: decades must be > 0");
+    const size_t npx = (size_t)PX * PX;
+    float *rgb = malloc(3 * npx * sizeof *rgb);
+    double *v = malloc(npx * sizeof *v);
+    if (!rgb || !v) {
+        free(rgb);
+        free(v);
+        return bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+    }
+    bf_status rc = m ? bf_render_halfdiff_model(m, x, PX, PX, phi_d, rgb, err)
+                     : bf_render_halfdiff_merl(merl, PX, PX, phi_d, rgb, err);
+    double lo, hi;
+    if (rc == BF_OK) {
+        halfdiff_mean(rgb, npx, v);
+        if (halfdiff_log_range(v, npx, 99.0, decades, &lo, &hi) < 0) {
+            lo = -decades; /* nothing positive: every cell shows as no value */
+            hi = 0.0;
+        }
+        char title[512];
+        snprintf(title, sizeof title, "\xce\xb8_{h} \xc3\x97 \xce\xb8_{d} of %s at \xcf\x86_{d} = %g\xc2\xb0",
+                 m ? bf_model_spec(m) : "the measurement", phi_d);
+        plot *p = halfdiff_value_figure(v, PX, PX, title, lo, hi);
+        if (!p)
+            rc = bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+        else if (plot_note(p, "mean of the channels; scale: the 99th percentile and down; grey: no value") < 0)
+            rc = bf_fail(err, BF_ERR_NOMEM, "half/difference plot: out of memory");
+        if (rc == BF_OK)
+            rc = plot_write(p, path, (bf_plot_format)fmt, width, height, err);
+        plot_free(p);
+    }
+    free(rgb);
+    free(v);
+    return rc;
+}

@@ -1,0 +1,150 @@
+/* The tradeoff grid: methods, the train/test split and the rows in their order.
+ *
+ * Decisions:
+ *  - The test set is a uniform random subset (not stratified): it then has the same
+ *    angular density as the data, so its error is the error a user of the whole data set
+ *    would see. The training subsamples are stratified (bf_samples_prep), as
+ *    `brdfit fit --subsample` does, so a tradeoff row is exactly what fit would run.
+ *  - Sample counts at or above the training size are the same setting as "all": one row. */
+#include "brdfit/tradeoff.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdfit/prep.h"
+#include "base/rng.h"
+
+/* ---- Methods ------------------------------------------------------------------- */
+
+bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
+{
+    bf_backend backend;
+    const bf_method_info *m;
+    if (bf_method_parse(text, &backend, &m, err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_solver_options o = *so;
+    o.backend = backend;
+    o.algorithm = m->name;
+    if (bf_solver_options_check(&o, err) != BF_OK)
+        return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, err ? err->msg : "");
+    *so = o;
+    return BF_OK;
+}
+
+/* ---- Train / test split -------------------------------------------------------- */
+
+bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+                      bf_samples **test, bf_error *err)
+{
+    *train = *test = NULL;
+    if (!(fraction > 0.0 && fraction < 1.0))
+        return bf_fail(err, BF_ERR_ARG, "test fraction must be in (0, 1), got %g", fraction);
+    const size_t n = s->n;
+    if (n < 2)
+        return bf_fail(err, BF_ERR_ARG, "%zu sample%s: too few to hold any out for testing", n,
+                       n == 1 ? "" : "s");
+    double want = floor((double)n * fraction + 0.5);
+    size_t k = want < 1.0 ? 1 : want > (double)(n - 1) ? n - 1 : (size_t)want;
+    unsigned char *mask = malloc(n + 1);
+    if (!mask)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for the train/test split");
+    /* Selection sampling (Knuth, TAOCP 3.4.2 Algorithm S): exactly k of n, uniformly; the
+     * stream is set apart from the subsampling one by a constant. */
+    uint64_t state = seed ^ 0x5465737453706c74ull;
+    size_t need = k;
+    for (size_t i = 0; i < n; i++) {
+        double u = (double)(bf_splitmix64(&state) >> 11) * 0x1.0p-53;
+        mask[i] = (double)(n - i) * u < (double)need;
+        need -= mask[i];
+    }
+    *train = NULL;
+    bf_status rc = bf_samples_copy(s, mask, test, err);
+    for (size_t i = 0; i < n; i++)
+        mask[i] = !mask[i];
+    if (rc == BF_OK && (rc = bf_samples_copy(s, mask, train, err)) != BF_OK) {
+        bf_samples_free(*test);
+        *test = NULL;
+    }
+    free(mask);
+    return rc;
+}
+
+/* ---- Grid ---------------------------------------------------------------------- */
+
+static int cmp_size(const void *a, const void *b)
+{
+    size_t x = *(const size_t *)a, y = *(const size_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+                     const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
+                     const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
+{
+    memset(t, 0, sizeof *t);
+    t->best = t->recommended = -1;
+    t->repeats = 1;
+    t->tolerance = 0.05;
+    t->metric = BF_CMP_RMSE_LOG;
+    t->train_n = train_n;
+    if (ncounts < 1 || nmethods < 1 || nresiduals < 1 || nstarts < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: every list (samples, methods, residuals, starts) needs an entry");
+    if (train_n < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: no training sample");
+    for (int s = 0; s < nstarts; s++)
+        if (starts[s] < 0)
+            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 0 (0: automatic), got %d", starts[s]);
+    /* Counts >= the training size (and 0) are "all", kept as train_n; sorted, unique. */
+    size_t *c = malloc((size_t)ncounts * sizeof *c);
+    if (!c)
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    for (int k = 0; k < ncounts; k++)
+        c[k] = counts[k] == 0 || counts[k] >= train_n ? train_n : counts[k];
+    qsort(c, (size_t)ncounts, sizeof *c, cmp_size);
+    int nc = 0;
+    for (int k = 0; k < ncounts; k++)
+        if (nc == 0 || c[k] != c[nc - 1])
+            c[nc++] = c[k];
+    size_t rows = (size_t)nc * (size_t)nmethods * (size_t)nresiduals * (size_t)nstarts;
+    if (rows > BF_TRADEOFF_MAX_ROWS) {
+        free(c);
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows,
+                       BF_TRADEOFF_MAX_ROWS);
+    }
+    t->data = strdup(data ? data : "");
+    t->model = strdup(model ? model : "");
+    t->rows = calloc(rows, sizeof *t->rows);
+    if (!t->data || !t->model || !t->rows) {
+        free(c);
+        bf_tradeoff_clear(t);
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    }
+    t->nrows = (int)rows;
+    int i = 0;
+    for (int a = 0; a < nc; a++)
+        for (int m = 0; m < nmethods; m++)
+            for (int r = 0; r < nresiduals; r++)
+                for (int s = 0; s < nstarts; s++) {
+                    bf_tradeoff_row *row = &t->rows[i++];
+                    row->samples = c[a];
+                    row->all = c[a] == train_n;
+                    row->method = methods[m];
+                    row->residual = residuals[r];
+                    row->starts = starts[s];
+                    row->error = NAN;
+                }
+    free(c);
+    return BF_OK;
+}
+
+void bf_tradeoff_clear(bf_tradeoff *t)
+{
+    free(t->data);
+    free(t->model);
+    for (int i = 0; t->rows && i < t->nrows; i++)
+        free(t->rows[i].warnings);
+    free(t->rows);
+    memset(t, 0, sizeof *t);
+    t->best = t->recommended = -1;
+}
