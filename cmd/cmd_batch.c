@@ -36,12 +36,12 @@
 
 #include "args.h"
 #include "brdfit/clock.h"
-#include "batch_db.h"
-#include "batch_manifest.h"
+#include "batch/batch_db.h"
+#include "batch/batch_manifest.h"
 #ifdef BRDFIT_HAVE_MPI
-#include "batch_mpi.h"
+#include "batch/batch_mpi.h"
 #endif
-#include "batch_run.h"
+#include "batch/batch_run.h"
 #include "cli.h"
 #include "commands.h"
 #include "interrupt.h"

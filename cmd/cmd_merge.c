@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "args.h"
-#include "batch_db.h"
+#include "batch/batch_db.h"
 #include "cli.h"
 #include "commands.h"
 

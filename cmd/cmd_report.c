@@ -19,8 +19,8 @@
 #include <string.h>
 
 #include "args.h"
-#include "batch_db.h"
-#include "batch_manifest.h"
+#include "batch/batch_db.h"
+#include "batch/batch_manifest.h"
 #include "brdfit/render.h"
 #include "cli.h"
 #include "commands.h"

@@ -1,4 +1,4 @@
-/* brdfit batch manifests, JSON and plain list (cmd/batch_manifest.c, cmd/batch_list.c):
+/* brdfit batch manifests, JSON and plain list (cmd/batch/batch_manifest.c, cmd/batch/batch_list.c):
  * read; when one is accepted, its canonical JSON, which the results database stores and
  * brdfit report and merge read back, must read back as the same manifest: the same
  * identity, models, options and materials (paths as resolved against the folder). */
@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch_manifest.h"
+#include "batch/batch_manifest.h"
 #include "fuzz_common.h"
 
 /* a, a path resolved against folder dir (with its '/'), is b as stored: b itself when
