@@ -263,7 +263,7 @@ int cli_take(const cli_command *c, void *const *targets, int ntargets, const cli
         const cli_arg *x = &a->v[i];
         if (!x->option) {
             if (!operand) {
-                fprintf(stderr, "%s: unexpected operand '%s'\n", cmd, x->value);
+                fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", cmd, x->value, cmd);
                 return -1;
             }
             if (operand(ctx, x->value, cmd) != 0)

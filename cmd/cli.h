@@ -112,7 +112,8 @@ void cli_args_free(cli_args *a);
 /* Takes the parsed options of c into their variables, in command-line order:
  * targets[g] is the struct c->groups[g] fills (groups may share one; ntargets must be
  * c->ngroups, so a table and its targets cannot drift apart); each operand goes
- * to operand(ctx, value, cmd) (NULL: operands are bad usage). Messages start with cmd.
+ * to operand(ctx, value, cmd) (NULL: the command takes none, and one is bad usage:
+ * "CMD: unexpected argument 'X' (see CMD --help)"). Messages start with cmd.
  * 0, or -1 after a one-line error (the caller exits 2). */
 int cli_take(const cli_command *c, void *const *targets, int ntargets, const cli_args *a,
              int (*operand)(void *ctx, const char *value, const char *cmd), void *ctx, const char *cmd);

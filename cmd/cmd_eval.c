@@ -64,19 +64,12 @@ static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const 
     }
 }
 
-/* The command takes no operands. */
-static int take_operand(void *ctx, const char *v, const char *c)
-{
-    (void)ctx;
-    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
-    return -1;
-}
 
 /* Takes the parsed command line into a: 0, or 2 after a one-line error. */
 static int take_args(const cli_args *args, eval_args *a)
 {
     void *const targets[] = {a};
-    if (cli_take(&cli_eval, targets, CLI_COUNT(targets), args, take_operand, NULL, "brdfit eval") < 0)
+    if (cli_take(&cli_eval, targets, CLI_COUNT(targets), args, NULL, NULL, "brdfit eval") < 0)
         return 2;
     if (!a->params_path || !a->dirs_path) {
         fprintf(stderr, "brdfit eval: --params and --dirs are required (see brdfit eval --help)\n");

@@ -70,13 +70,6 @@ static void print_text(void)
     }
 }
 
-/* The command takes no operands. */
-static int take_operand(void *ctx, const char *v, const char *c)
-{
-    (void)ctx;
-    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
-    return -1;
-}
 
 int cmd_methods(int argc, char **argv)
 {
@@ -86,7 +79,7 @@ int cmd_methods(int argc, char **argv)
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
     void *const targets[] = {&m};
-    int bad = cli_take(&cli_methods, targets, CLI_COUNT(targets), &args, take_operand, NULL, "brdfit methods");
+    int bad = cli_take(&cli_methods, targets, CLI_COUNT(targets), &args, NULL, NULL, "brdfit methods");
     cli_args_free(&args);
     if (bad)
         return 2;

@@ -140,13 +140,6 @@ const cli_command cli_models = {
     NULL, groups, sizeof groups / sizeof groups[0],
 };
 
-/* The command takes no operands. */
-static int take_operand(void *ctx, const char *v, const char *c)
-{
-    (void)ctx;
-    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
-    return -1;
-}
 
 int cmd_models(int argc, char **argv)
 {
@@ -156,7 +149,7 @@ int cmd_models(int argc, char **argv)
         return p == CLI_EXIT ? 0 : 2;
     models_args a = {0, 0};
     void *const targets[] = {&a};
-    int bad = cli_take(&cli_models, targets, CLI_COUNT(targets), &args, take_operand, NULL, "brdfit models");
+    int bad = cli_take(&cli_models, targets, CLI_COUNT(targets), &args, NULL, NULL, "brdfit models");
     cli_args_free(&args);
     if (bad)
         return 2;

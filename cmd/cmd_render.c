@@ -240,19 +240,12 @@ const cli_command cli_render = {
     NULL, groups, sizeof groups / sizeof groups[0],
 };
 
-/* The command takes no operands. */
-static int take_operand(void *ctx, const char *v, const char *c)
-{
-    (void)ctx;
-    fprintf(stderr, "%s: unexpected argument '%s' (see %s --help)\n", c, v, c);
-    return -1;
-}
 
 /* Takes the parsed command line into r: 0, or -1 after a one-line error. */
 static int take_args(render_args *r, const cli_args *args)
 {
     void *const targets[] = {r, r, &r->dopt, &r->dopt};
-    return cli_take(&cli_render, targets, CLI_COUNT(targets), args, take_operand, NULL, cmd);
+    return cli_take(&cli_render, targets, CLI_COUNT(targets), args, NULL, NULL, cmd);
 }
 
 /* Which inputs the mode needs, and the image's format: 0, or 2 after a one-line error
