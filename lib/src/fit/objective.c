@@ -120,10 +120,10 @@ static int problem_eval(void *ctx, const double *z, size_t r0, size_t r1, double
     double stack[256], *x, *colscale;
     if (with_model_vector(o, z, &x, &colscale, stack, 256))
         return -1;
-    int rc = bf_obj_eval_x(o, x, r0, r1, res, jac, o->nz, o->kidx, colscale);
+    int bad = bf_obj_eval_x(o, x, r0, r1, res, jac, o->nz, o->kidx, colscale); /* solve.h: 0 or -1 */
     if (x != stack)
         free(x);
-    return rc;
+    return bad;
 }
 
 /* The problem's fused pass (solve.h). */
@@ -134,10 +134,10 @@ static int problem_normal(void *ctx, const double *z, const bf_loss *loss, int t
     double stack[256], *x, *colscale;
     if (with_model_vector(o, z, &x, &colscale, stack, 256))
         return -1;
-    int rc = bf_obj_normal_x(o, x, loss, threads, o->nz, o->kidx, colscale, ssq, jtr, jtj);
+    int bad = bf_obj_normal_x(o, x, loss, threads, o->nz, o->kidx, colscale, ssq, jtr, jtj); /* solve.h: 0 or -1 */
     if (x != stack)
         free(x);
-    return rc;
+    return bad;
 }
 
 /* Energy conservation as c(z) <= 0: c = max over channels of the sum of that channel's

@@ -407,14 +407,14 @@ static void normal_chunk(void *ctx, size_t c)
         memset(mbuf.cs, 0, (i1 - i0) * sizeof *mbuf.cs);
         ms = &mbuf;
     }
-    int rc = j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms)
-                          : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
-    if (rc == 0 && ms)
+    int bad = j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms)
+                           : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
+    if (!bad && ms)
         bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
                         j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
                         j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C);
     bf_obj_ws_put(j->o, ws);
-    if (rc)
+    if (bad)
         j->failed = 1; /* written only as 1, by any thread */
 }
 
@@ -448,7 +448,7 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
         ftj = jtj ? bf_obj_ws_buf(ws, BF_WS_FTJ, (size_t)PM * (size_t)PM * sizeof *ftj) : NULL;
     }
     j.mweight = weighted ? o->samples->scene_weight : NULL;
-    int rc = -1;
+    int bad = -1;
     if (!ws || !xu || !j.part || !sum || (metrics && !j.msum) || (j.want_jac && !ftr) || (jtj && !ftj))
         goto done;
     /* Zeroed as the pass's calloc did: the chunks add into their parts. */
@@ -494,10 +494,10 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
     for (int a = 0; jtj && a < ncols; a++)
         for (int b = 0; b < ncols; b++)
             jtj[a * ncols + b] = ftj[(size_t)cols[a] * (size_t)PM + (size_t)cols[b]] * colscale[a] * colscale[b];
-    rc = 0;
+    bad = 0;
 done:
     if (xu != xs)
         free(xu);
     bf_obj_ws_put(o, ws);
-    return rc;
+    return bad;
 }

@@ -51,10 +51,10 @@ static ssize_t sink_write(void *cookie, const char *buf, size_t n)
 static int sink_close(void *cookie)
 {
     struct bf_out_sink *k = cookie;
-    int rc = close(k->fd);
-    if (rc != 0 && !k->err)
+    int r = close(k->fd);
+    if (r != 0 && !k->err)
         k->err = errno;
-    return rc;
+    return r;
 }
 
 static void reset(bf_outfile *o)
