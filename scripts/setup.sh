@@ -8,10 +8,12 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 fail() { echo "setup.sh: $*" >&2; exit 1; }
 
-# To build brdfit: the compilers, CMake and the libraries it links.
+# To build brdfit: the compilers, CMake and the libraries it links; for its Python package
+# (python/, docs/python.md), Debian's Python with cffi, NumPy and setuptools.
 build=(build-essential cmake pkg-config git
   libceres-dev libnlopt-dev libopenimageio-dev libcjson-dev libsqlite3-dev libxml2-dev
-  libcairo2-dev fonts-dejavu-core libopenmpi-dev openmpi-bin libcmocka-dev)
+  libcairo2-dev fonts-dejavu-core libopenmpi-dev openmpi-bin libcmocka-dev
+  python3-dev python3-cffi python3-numpy python3-setuptools)
 # To test it (tests only: brdfit needs none of these at run time):
 #  - jq, openimageio-tools (iinfo, oiiotool), libxml2-utils (xmllint), poppler-utils
 #    (pdftotext, pdftoppm, pdfinfo), sqlite3 (the shell): the command-line tests read
@@ -25,10 +27,13 @@ build=(build-essential cmake pkg-config git
 #    of examples/slurm (tests/cli_batch_slurm.sh);
 #  - clang and libclang-rt-14-dev (libFuzzer, the sanitizer runtimes): scripts/fuzz.sh;
 #  - debhelper and lintian: scripts/package.sh builds and checks the Debian packages,
-#    which tests/package/package_test.sh installs with apt-get and removes again.
+#    which tests/package/package_test.sh installs with apt-get and removes again;
+#  - python3-pytest, python3-hypothesis, python3-matplotlib (the example), python3-venv
+#    and python3-pip (the pip route into a virtual environment): the Python package's
+#    tests (python/tests).
 tests=(jq openimageio-tools libxml2-utils poppler-utils sqlite3 man-db groff-base procps
   python3 python3-numpy blender slurmctld slurmd slurm-client munge clang libclang-rt-14-dev
-  debhelper lintian)
+  debhelper lintian python3-pytest python3-hypothesis python3-matplotlib python3-venv python3-pip)
 
 $SUDO apt-get update -qq || fail "apt-get update failed"
 if ! out=$($SUDO apt-get install -y -qq --no-install-recommends "${build[@]}" "${tests[@]}" 2>&1); then

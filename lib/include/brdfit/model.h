@@ -73,6 +73,10 @@ typedef struct bf_family_info {
 
 int bf_family_count(void);
 const bf_family_info *bf_family_get(int i);
+/* Every family with its parameters (bounds, defaults, scales, roles), options and sizes,
+ * as the JSON text `brdfit models --json` prints; malloc'd (free it), NULL when out of
+ * memory. */
+char *bf_models_json(void);
 
 typedef struct bf_model bf_model;
 

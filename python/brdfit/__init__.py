@@ -1,0 +1,12 @@
+"""brdfit: fit parametric BRDF models to measured reflectance, from Python and NumPy.
+
+The same library as the `brdfit` command, with the same results: Model (evaluate any
+model and its analytic gradient), read and Samples (data in), fit, compare and export.
+Options are keyword arguments named as the command line's ("--max-theta" is max_theta).
+docs/python.md walks through it."""
+from ._api import (CompareResult, Error, FitResult, Model, Samples, UsageError, compare, export, fit, models, read,
+                   version)
+
+__version__ = version().split(" ")[0]
+__all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "models", "read",
+           "fit", "compare", "export", "version"]

@@ -1,0 +1,23 @@
+"""Builds the package into a folder (the CMake target brdfit_python: build/python), so
+that `PYTHONPATH=build/python /usr/bin/python3 -c "import brdfit"` works without
+installing: the extension compiled against the headers and shared library named by
+BRDFIT_INCLUDE_DIRS and BRDFIT_LIBRARY_DIRS (brdfit/_build.py), and the package's Python
+files copied beside it.
+
+    python3 build_inplace.py OUTDIR
+"""
+import os
+import shutil
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+out = os.path.abspath(sys.argv[1])
+sys.path.insert(0, os.path.join(here, "brdfit"))
+import _build  # noqa: E402  (the builder lives inside the package, as setup.py names it)
+
+pkg = os.path.join(out, "brdfit")
+os.makedirs(pkg, exist_ok=True)
+_build.ffibuilder.compile(tmpdir=out, verbose=False)
+for name in sorted(os.listdir(os.path.join(here, "brdfit"))):
+    if name.endswith(".py") or name == "py.typed":
+        shutil.copy2(os.path.join(here, "brdfit", name), os.path.join(pkg, name))
