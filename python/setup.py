@@ -6,6 +6,17 @@ import re
 import subprocess
 
 from setuptools import setup
+from setuptools.command.build_ext import build_ext
+
+
+class BuildAlways(build_ext):
+    """pip builds in python/build, where an extension of an earlier build would count as up
+    to date although it was linked against another libbrdfit (another BRDFIT_PREFIX, its
+    run path): always compile it again (a few seconds)."""
+
+    def finalize_options(self):
+        super().finalize_options()
+        self.force = True
 
 
 def _version():
@@ -33,6 +44,7 @@ setup(
     setup_requires=["cffi"],
     install_requires=["cffi", "numpy"],
     cffi_modules=["brdfit/_build.py:ffibuilder"],
+    cmdclass={"build_ext": BuildAlways},
     python_requires=">=3.9",
     zip_safe=False,
 )

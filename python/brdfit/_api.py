@@ -29,6 +29,9 @@ class Error(Exception):
 class UsageError(Error, ValueError):
     """Bad usage (a bad option, model spec or argument): also a ValueError."""
 
+    def __init__(self, message: str, code: str = "arg"):
+        super().__init__(message, code)
+
 
 _CODES = {lib.BF_ERR_ARG: "arg", lib.BF_ERR_IO: "io", lib.BF_ERR_PARSE: "parse", lib.BF_ERR_RANGE: "range",
           lib.BF_ERR_NOMEM: "nomem"}
@@ -73,18 +76,18 @@ def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]]) 
     try:
         arr = np.asarray(a)
     except Exception as e:  # ragged lists and the like
-        raise ValueError("%s: not an array of numbers (%s)" % (name, e)) from None
+        raise UsageError("%s: not an array of numbers (%s)" % (name, e)) from None
     if arr.dtype == np.bool_ or not (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)):
-        raise ValueError("%s: needs numbers (an integer or float array), got dtype %s" % (name, arr.dtype))
+        raise UsageError("%s: needs numbers (an integer or float array), got dtype %s" % (name, arr.dtype))
     for shape in ndim_shapes:
         if arr.ndim == len(shape) and all(w is None or w == h for w, h in zip(shape, arr.shape)):
             break
     else:
         want = " or ".join("(%s)" % ", ".join("n" if w is None else str(w) for w in s) for s in ndim_shapes)
-        raise ValueError("%s: needs shape %s, got %s" % (name, want, arr.shape))
+        raise UsageError("%s: needs shape %s, got %s" % (name, want, arr.shape))
     out = np.ascontiguousarray(arr, dtype=np.float64)
     if not np.all(np.isfinite(out)):
-        raise ValueError("%s: has NaN or infinite values" % name)
+        raise UsageError("%s: has NaN or infinite values" % name)
     return out
 
 
@@ -92,7 +95,7 @@ def _directions(name: str, a: Any) -> np.ndarray:
     v = _array(name, a, [(None, 3), (3,)]).reshape(-1, 3)
     norm = np.linalg.norm(v, axis=1)
     if np.any(norm == 0.0):
-        raise ValueError("%s: has a zero vector (directions are unit vectors)" % name)
+        raise UsageError("%s: has a zero vector (directions are unit vectors)" % name)
     return np.ascontiguousarray(v / norm[:, None])
 
 
@@ -119,9 +122,9 @@ class Model:
 
     def __init__(self, spec: str, channels: int = 1, params: Optional[Mapping[str, Any]] = None):
         if not isinstance(spec, str):
-            raise ValueError("spec: needs a model spec (a string), got %r" % (spec,))
+            raise UsageError("spec: needs a model spec (a string), got %r" % (spec,))
         if isinstance(channels, bool) or not isinstance(channels, (int, np.integer)) or not 1 <= channels <= 1024:
-            raise ValueError("channels: needs an integer from 1 to 1024, got %r" % (channels,))
+            raise UsageError("channels: needs an integer from 1 to 1024, got %r" % (channels,))
         err = ffi.new("bf_error *")
         out = ffi.new("bf_model **")
         _check(lib.bf_model_new(spec.encode(), int(channels), out, err), err)
@@ -191,12 +194,12 @@ class Model:
         if params is None:
             return x
         if not isinstance(params, Mapping):
-            raise ValueError("params: needs a dict of parameter name -> value, got %s" % type(params).__name__)
+            raise UsageError("params: needs a dict of parameter name -> value, got %s" % type(params).__name__)
         C = self.channels
         for key, value in params.items():
             i = lib.bf_model_find_param(self._m, str(key).encode()) if isinstance(key, str) else -1
             if i < 0:
-                raise ValueError("params: %s has no parameter %r (it has %s)" % (self.spec, key,
+                raise UsageError("params: %s has no parameter %r (it has %s)" % (self.spec, key,
                                                                                   ", ".join(self.param_names)))
             o = lib.bf_model_param_offset(self._m, i)
             n = C if self._colour(i) else 1
@@ -214,7 +217,7 @@ class Model:
         gradient=True also the analytic Jacobian, (n, channels, len(value_names))."""
         L, V = _directions("wi", wi), _directions("wo", wo)
         if L.shape[0] != V.shape[0]:
-            raise ValueError("wi and wo: need the same number of directions, got %d and %d" % (L.shape[0], V.shape[0]))
+            raise UsageError("wi and wo: need the same number of directions, got %d and %d" % (L.shape[0], V.shape[0]))
         if self._params is not None:
             base = self._dict(self._params)
             base.update(params or {})
@@ -260,6 +263,8 @@ class Samples:
 
     def __init__(self, wi: Any, wo: Any, values: Any, weights: Any = None):
         L, V = _directions("wi", wi), _directions("wo", wo)
+        if L.shape[0] != V.shape[0]:
+            raise UsageError("wo: needs as many directions as wi (%d), got %d" % (L.shape[0], V.shape[0]))
         ti, pi_ = _angles_of(L)
         to, po = _angles_of(V)
         self._init(ti, pi_, to, po, values, weights, "wi")
@@ -273,7 +278,7 @@ class Samples:
         arrs = [_array(nm, a, [(None,), ()]).reshape(-1)
                 for nm, a in (("theta_i", theta_i), ("phi_i", phi_i), ("theta_o", theta_o), ("phi_o", phi_o))]
         if len({a.size for a in arrs}) != 1:
-            raise ValueError("theta_i, phi_i, theta_o, phi_o: need the same length, got %s" % [a.size for a in arrs])
+            raise UsageError("theta_i, phi_i, theta_o, phi_o: need the same length, got %s" % [a.size for a in arrs])
         if not degrees:
             arrs = [np.degrees(a) for a in arrs]
         s._init(*arrs, values, weights, "theta_i")
@@ -285,10 +290,10 @@ class Samples:
         vals = vals.reshape(n, -1)
         C = vals.shape[1]
         if C < 1:
-            raise ValueError("values: needs at least one channel")
+            raise UsageError("values: needs at least one channel")
         w = None if weights is None else _array("weights", weights, [(n,)])
         if w is not None and np.any(w < 0):
-            raise ValueError("weights: must be >= 0")
+            raise UsageError("weights: must be >= 0")
         err = ffi.new("bf_error *")
         out = ffi.new("bf_samples **")
         _check(lib.bf_samples_new(n, C, out, err), err)
@@ -524,7 +529,7 @@ def read(path: Union[str, os.PathLike], **data_options: Any) -> Samples:
     ("keep", "drop", "clamp"), subsample (N or "all"), seed, scene (a scene file)."""
     path = os.fspath(path)
     if not isinstance(path, str):
-        raise ValueError("path: needs a file name, got %r" % (path,))
+        raise UsageError("path: needs a file name, got %r" % (path,))
     keep = _Keep()
     opts = dict(data_options)
     ro, prep, scene = _data_options(opts, keep)
@@ -674,7 +679,7 @@ class _Run:
 
     def __init__(self, progress: Optional[Callable[[int, float], Any]]):
         if progress is not None and not callable(progress):
-            raise ValueError("progress: needs a callable (iteration, cost) -> bool, got %r" % (progress,))
+            raise UsageError("progress: needs a callable (iteration, cost) -> bool, got %r" % (progress,))
         self.progress = progress
         self.cancel = ffi.new("int *", 0)
         self.error: Optional[BaseException] = None
@@ -770,7 +775,7 @@ def _samples_arg(samples: Any, opts: Dict[str, Any], what: str) -> "Samples":
         if "seed" in opts:
             data["seed"] = opts["seed"]
         return read(samples, **data)
-    raise ValueError("%s: needs brdfit.Samples or a data file name, got %s" % (what, type(samples).__name__))
+    raise UsageError("%s: needs brdfit.Samples or a data file name, got %s" % (what, type(samples).__name__))
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int, float], Any]] = None,
@@ -786,7 +791,7 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
     s = _samples_arg(samples, opts, "samples")
     spec = model.spec if isinstance(model, Model) else model
     if not isinstance(spec, str):
-        raise ValueError("model: needs a model spec or brdfit.Model, got %r" % (model,))
+        raise UsageError("model: needs a model spec or brdfit.Model, got %r" % (model,))
     keep = _Keep()
     fo = _FitOptions(opts, keep)
     _no_extra(opts, "fit")
@@ -841,17 +846,17 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[str]], prog
     fit options of brdfit.fit (and, for file names, the data options)."""
     opts = dict(options)
     if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
-        raise ValueError("samples_list: needs a list of brdfit.Samples (or data file names)")
+        raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
     sets = [_samples_arg(x, dict(opts), "samples_list[%d]" % i) for i, x in enumerate(samples_list)]
     for k in [k for k in DATA_OPTIONS if k in opts and k not in ("seed", "subsample")]:
         opts.pop(k)
     if not sets:
-        raise ValueError("samples_list: needs at least one sample set")
+        raise UsageError("samples_list: needs at least one sample set")
     if isinstance(models, str):
         models = [m["name"] for m in globals()["models"]()] if models == "all" else [models]
     specs = [m.spec if isinstance(m, Model) else m for m in models]
     if not specs or not all(isinstance(m, str) for m in specs):
-        raise ValueError("models: needs a list of model specs")
+        raise UsageError("models: needs a list of model specs")
     err = ffi.new("bf_error *")
     c = ffi.new("bf_compare *")
     rank = opts.pop("rank", None)
@@ -920,7 +925,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
         elif isinstance(result, (str, os.PathLike)):
             src_path = os.fspath(result)
         else:
-            raise ValueError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
+            raise UsageError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
         m = ffi.new("bf_model **")
         x = ffi.new("double **")
         _check(lib.bf_params_read(src_path.encode(), m, x, err), err)
