@@ -95,8 +95,9 @@ char *bf_models_json(void)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON *arr = cJSON_AddArrayToObject(root, "models");
-    cJSON_AddStringToObject(root, "mono", "every model accepts mono=specular|all|NAME[+NAME...]: the named colour "
-                                          "parameters take one value for all channels");
+    cJSON_AddStringToObject(root, "mono",
+                            "every model accepts mono=specular|all|NAME[+NAME...]: the named colour "
+                            "parameters take one value for all channels");
     int ok = arr != NULL;
     for (int f = 0; ok && f < bf_family_count(); f++) {
         cJSON *o = family_json(bf_family_get(f));
