@@ -6,11 +6,6 @@
 #include "cli.h"
 #include "commands.h"
 
-static const char *scale_name(bf_scale s)
-{
-    return s == BF_SCALE_LOG ? "log" : s == BF_SCALE_LOG1P ? "log1p" : "linear";
-}
-
 static void print_text(const bf_family_info *fi)
 {
     bf_model *m1 = NULL, *m3 = NULL;
