@@ -352,15 +352,12 @@ class Samples:
     def angles(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """theta_i, phi_i, theta_o, phi_o in degrees (copies)."""
         n = self.n
-        if self._s.theta_i != ffi.NULL:
-            return tuple(np.array(_view(self, p, (n,))) for p in (self._s.theta_i, self._s.phi_i, self._s.theta_o,
-                                                                    self._s.phi_o))
-        out = np.empty((4, n))  # MERL cells: directions computed per sample
-        d = ffi.new("double[4]")
-        for i in range(n):
-            lib.bf_samples_direction(self._s, i, d)
-            out[:, i] = list(d)
-        return out[0], out[1], out[2], out[3]
+        if n == 0:
+            return tuple(np.zeros(0) for _ in range(4))
+        buf = np.empty(4 * n)  # MERL cells: the library computes them here
+        d = ffi.new("const double *[4]")
+        lib.bf_samples_angle_block(self._s, 0, n, ffi.from_buffer("double[]", buf), d)
+        return tuple(np.array(_view(buf, d[k], (n,))) for k in range(4))
 
     @property
     def wi(self) -> np.ndarray:

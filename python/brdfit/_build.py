@@ -55,7 +55,7 @@ bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err
 void bf_samples_free(bf_samples *s);
 bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
 bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
-void bf_samples_direction(const bf_samples *s, size_t i, double dir[4]);
+void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4]);
 bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
 bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
 
