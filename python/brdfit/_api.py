@@ -832,13 +832,26 @@ class CompareResult:
         return self._text
 
 
+def _split_models(text: str) -> List[str]:
+    """A -m list as the command line splits it: a comma starts a new model only where the
+    next token has no '=' or has a ':' of its own, so option lists stay whole
+    ("microfacet:D=ggx,G=smith_ggx,walter" is two models)."""
+    specs: List[str] = []
+    for tok in text.split(","):
+        if specs and "=" in tok and ":" not in tok:
+            specs[-1] += "," + tok
+        else:
+            specs.append(tok)
+    return specs
+
+
 COMPARE_OPTIONS = ("rank", "folds", "timing", "error", "tolerance", "jobs")
 
 
 def compare(samples_list: Sequence[Any], models: Union[str, Sequence[str]], progress=None,
             **options: Any) -> CompareResult:
     """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
-    list of specs (or "all"); options: rank ("bic", "aic", "aicc", "cv", "error"), folds,
+    list of specs, or one string as -m takes it ("lambert,walter", "all"); options: rank ("bic", "aic", "aicc", "cv", "error"), folds,
     timing, error ("rmse", "rmse_log", "rmse_cos", "rmse_rel"), tolerance, jobs, and the
     fit options of brdfit.fit (and, for file names, the data options)."""
     opts = dict(options)
@@ -850,7 +863,7 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[str]], prog
     if not sets:
         raise UsageError("samples_list: needs at least one sample set")
     if isinstance(models, str):
-        models = [m["name"] for m in globals()["models"]()] if models == "all" else [models]
+        models = [m["name"] for m in globals()["models"]()] if models == "all" else _split_models(models)
     specs = [m.spec if isinstance(m, Model) else m for m in models]
     if not specs or not all(isinstance(m, str) for m in specs):
         raise UsageError("models: needs a list of model specs")

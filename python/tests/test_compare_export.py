@@ -61,6 +61,15 @@ def test_compare_ranking_options_equal_cli(tmp_path):
     _check_rows(c.rows, want)
 
 
+def test_compare_takes_a_model_list_as_m_does(tmp_path):
+    models = ["lambert", "microfacet:D=ggx,G=smith_ggx", "walter"]
+    text, _ = _cli_compare(tmp_path, [CAYMAN], models, "--rgb", "--starts", "1")
+    s = brdfit.read(str(CAYMAN), rgb=True)
+    c = brdfit.compare([s], ",".join(models), starts=1)
+    assert normalize_json_text(c.to_json()) == normalize_json_text(text)
+    assert [r["spec"].split(":")[0] for r in c.rows] == ["lambert", "microfacet", "walter"]
+
+
 def test_compare_rows_hold_the_fits(tmp_path):
     c = brdfit.compare([brdfit.read(str(CAYMAN), rgb=True, subsample=400)], ["lambert", "ward_iso"], starts=1)
     j = json.loads(c.to_json())
