@@ -74,3 +74,34 @@ int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, 
     fprintf(stderr, "%s: %s\n", cmd, err.msg);
     return rc == BF_ERR_ARG ? 2 : 1;
 }
+
+/* Appends " word" to *text (a growing string; left as it was when out of memory), quoted
+ * for a shell when it holds anything but plain characters. */
+void args_append_word(char **text, const char *word)
+{
+    int plain = *word != '\0';
+    for (const char *c = word; *c; c++)
+        plain &= !!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./,:=+@%", *c);
+    size_t old = *text ? strlen(*text) : 0, add = 4 * strlen(word) + 4;
+    char *t = realloc(*text, old + add);
+    if (!t)
+        return;
+    *text = t;
+    char *at = t + old;
+    if (old)
+        *at++ = ' ';
+    if (plain) {
+        strcpy(at, word);
+        return;
+    }
+    *at++ = '\'';
+    for (const char *c = word; *c; c++) {
+        if (*c == '\'') {
+            memcpy(at, "'\\''", 4);
+            at += 4;
+        } else
+            *at++ = *c;
+    }
+    *at++ = '\'';
+    *at = '\0';
+}

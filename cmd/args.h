@@ -24,4 +24,9 @@ int args_size(const char *s, int lo, int hi, int *w, int *h);
 int args_check_outputs(const char *cmd, const bf_path_use *inputs, int ninputs, const bf_path_use *outputs,
                        int noutputs);
 
+/* Appends " word" to *text (a growing string; left as it was when out of memory), quoted
+ * for a shell when it holds anything but plain characters: the command line as typed,
+ * for the outputs that record it. */
+void args_append_word(char **text, const char *word);
+
 #endif

@@ -173,36 +173,6 @@ static void compare_args_free(compare_args *a)
     free(a->data_opts);
 }
 
-/* Appends " word" to *text (a growing string; left as it was when out of memory), quoted
- * for a shell when it holds anything but plain characters. */
-static void append_word(char **text, const char *word)
-{
-    int plain = *word != '\0';
-    for (const char *c = word; *c; c++)
-        plain &= !!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./,:=+@%", *c);
-    size_t old = *text ? strlen(*text) : 0, add = 4 * strlen(word) + 4;
-    char *t = realloc(*text, old + add);
-    if (!t)
-        return;
-    *text = t;
-    char *at = t + old;
-    if (old)
-        *at++ = ' ';
-    if (plain) {
-        strcpy(at, word);
-        return;
-    }
-    *at++ = '\'';
-    for (const char *c = word; *c; c++) {
-        if (*c == '\'') {
-            memcpy(at, "'\\''", 4);
-            at += 4;
-        } else
-            *at++ = *c;
-    }
-    *at++ = '\'';
-    *at = '\0';
-}
 
 /* -m all: every registered family, after the models named. 0, or -1 after an error. */
 static int add_all_models(compare_args *a)
@@ -247,7 +217,7 @@ static int parse(compare_args *a, int argc, char **argv)
     int p = cli_parse(&cli_compare, argc, argv, &a->args);
     if (p != CLI_OK)
         return p == CLI_EXIT ? 0 : 2;
-    append_word(&a->command_line, "brdfit");
+    args_append_word(&a->command_line, "brdfit");
     for (int i = 0, opts = 1; i < argc; i++) {
         /* --jobs and --threads change no result: left out, the report is the same bytes
          * whatever they are. */
@@ -259,7 +229,7 @@ static int parse(compare_args *a, int argc, char **argv)
         if (opts && (!strncmp(w, "--jobs=", 7) || !strncmp(w, "--threads=", 10)))
             continue;
         opts &= strcmp(w, "--") != 0;
-        append_word(&a->command_line, w);
+        args_append_word(&a->command_line, w);
     }
     void *const targets[] = {a, &a->ro, &a->fopt, &a->fopt, &a->dopt, &a->dopt};
     if (cli_take(&cli_compare, targets, CLI_COUNT(targets), &a->args, take_data, a, cmd) < 0)
@@ -268,9 +238,9 @@ static int parse(compare_args *a, int argc, char **argv)
         const cli_arg *x = &a->args.v[i];
         const cli_group *g = x->option ? groups[x->group] : NULL;
         if (g == &data_options_reading || g == &data_options_preprocessing) {
-            append_word(&a->data_opts, x->name);
+            args_append_word(&a->data_opts, x->name);
             if (x->value)
-                append_word(&a->data_opts, x->value);
+                args_append_word(&a->data_opts, x->value);
         }
     }
     return add_all_models(a) < 0 ? 2 : -1;

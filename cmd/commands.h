@@ -6,7 +6,7 @@
 #include "cli.h"
 
 extern const cli_command cli_models, cli_methods, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
-    cli_select, cli_regress, cli_export, cli_batch, cli_report, cli_merge;
+    cli_select, cli_regress, cli_export, cli_batch, cli_report, cli_merge, cli_fit_images, cli_merge_images;
 
 int cmd_models(int argc, char **argv);
 int cmd_methods(int argc, char **argv);
@@ -23,6 +23,8 @@ int cmd_export(int argc, char **argv);
 int cmd_batch(int argc, char **argv);
 int cmd_report(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
+int cmd_fit_images(int argc, char **argv);
+int cmd_merge_images(int argc, char **argv);
 
 /* The subcommands in the order brdfit --help lists them (command_list.c). */
 typedef struct command {

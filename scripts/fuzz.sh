@@ -8,10 +8,11 @@
 #
 #   scripts/fuzz.sh [TARGET|all] [SECONDS]     (default: all, 10 seconds each)
 #   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest
+#            stack diligent
 #   FUZZ_RUNS=N runs each target for N executions instead of SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest)
+all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest stack diligent)
 target=${1:-all}
 seconds=${2:-10}
 if [ "$target" = all ]; then
@@ -71,13 +72,17 @@ for t in "${targets[@]}"; do
     # closed for the target (libFuzzer keeps its own reports and the sanitizers').
     quiet=()
     [ "$t" = manifest ] && quiet=(-close_fd_mask=2)
+    # The dictionary: the target's, or its family's (csv_map: csv.dict); the DiLiGenT
+    # folders share the stack files' (image names, numbers).
+    dict=fuzz/dict/${t%_*}.dict
+    [ "$t" = diligent ] && dict=fuzz/dict/stack.dict
     limit=(-max_total_time="$seconds")
     [ -n "${FUZZ_RUNS:-}" ] && limit=(-runs="$FUZZ_RUNS")
     log=$build/fuzz_$t.log
     echo "fuzz $t: ${FUZZ_RUNS:+$FUZZ_RUNS runs}${FUZZ_RUNS:-$seconds s} ..."
     start=$(date +%s)
     if "$build/fuzz/fuzz_$t" "${limit[@]}" "${quiet[@]}" -max_len=$max_len -timeout=$timeout -rss_limit_mb=4096 \
-        -use_value_profile=1 -print_final_stats=1 -dict=fuzz/dict/"${t%_*}".dict -artifact_prefix="$findings/" \
+        -use_value_profile=1 -print_final_stats=1 -dict="$dict" -artifact_prefix="$findings/" \
         "$corpus" "$seeds" >"$log" 2>&1; then
         result="no findings"
     else

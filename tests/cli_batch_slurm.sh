@@ -3,8 +3,9 @@
 # installs them): a one-node cluster of this machine's own, started in the test's folder
 # on ports of its own, runs the example job scripts of examples/slurm as a user would
 # submit them: the job array (3 shards, one database each) and the merge job that waits
-# for it (--dependency), whose result has the rows of a one-process run; and the MPI job
-# (srun --mpi=pmix, 3 tasks), the same rows again. Needs root (CI runs as root): slurmd
+# for it (--dependency), whose result has the rows of a one-process run; the MPI job
+# (srun --mpi=pmix, 3 tasks), the same rows again; and fit-images as an array of 3 tiles
+# with its merge job, whose maps are those of a one-process fit. Needs root (CI runs as root): slurmd
 # starts the jobs' processes.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
@@ -117,4 +118,23 @@ wait_job "$job" && ok || bad "the MPI job did not finish in 3 minutes"
 # the database (locked by another batch) and the job would have failed.
 [ "$(job_state "$job")" = "JobState=COMPLETED ExitCode=0:0 " ] && ok || bad "MPI job: $(job_state "$job")"
 [ ! -s "slurm-$job.out" ] && ok || bad "MPI job not quiet: $(head -c 600 "slurm-$job.out")"
+
+# --- fit-images: an array of tiles and the merge that waits for it -------------------------------
+need idiff openimageio-tools; need jq jq
+[ -x "$MAKE_STACK" ] || { bad "make_stack (the fifth argument) is missing"; finish; exit 1; }
+"$MAKE_STACK" --model walter --params 'rho_d=0.5:0.35:0.2,rho_s=0.3:0.3:0.3,alpha=0.15,f0=0.04' --shape sphere \
+  --size 40 --lights ring12 --noise 0.005 -o stack >/dev/null 2>"$tmp/err" || bad "make_stack: $(cat "$tmp/err")"
+"$BRDFIT" fit-images stack -m walter -o whole -q || bad "one-process fit-images"
+fa=$(sbatch --parsable --array=1-3 --cpus-per-task=1 "$examples/fit_images_array.sh" stack walter tiles 2>"$tmp/err") ||
+  bad "sbatch of the fit-images array: $(cat "$tmp/err")"
+fm=$(sbatch --parsable --dependency=afterok:"$fa" "$examples/fit_images_merge.sh" tiles merged 2>"$tmp/err") ||
+  bad "sbatch of the fit-images merge: $(cat "$tmp/err")"
+wait_job "$fa" && wait_job "$fm" && ok || bad "the fit-images jobs did not finish in 3 minutes"
+[ "$(job_state "$fm")" = "JobState=COMPLETED ExitCode=0:0 " ] && ok ||
+  bad "fit-images array: $(job_state "$fa"), merge: $(job_state "$fm"): $(cat slurm-*.out | tail -5)"
+[ "$(ls tiles)" = "$(printf 'tile_1\ntile_2\ntile_3')" ] && ok || bad "tiles: $(ls tiles)"
+for f in normals.exr rho_d.exr alpha.exr error.exr; do
+  idiff -q "whole/$f" "merged/$f" >/dev/null 2>&1 && ok || bad "merged $f differs from the one-process fit"
+done
+[ "$(jq .counts merged/fit.json)" = "$(jq .counts whole/fit.json)" ] && ok || bad "merged counts differ"
 finish

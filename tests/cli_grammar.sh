@@ -13,7 +13,7 @@ awk 'BEGIN { print "theta_i,phi_i,theta_o,phi_o,value"; for (i = 0; i < 400; i++
 
 # --- help ---------------------------------------------------------------------------------
 commands=$("$BRDFIT" --help | awk '/^  [a-z]/ { print $1 }' | grep -v '^help$')
-[ "$(echo "$commands" | wc -l)" = 15 ] && ok || bad "brdfit --help lists: $commands"
+[ "$(echo "$commands" | wc -l)" = 17 ] && ok || bad "brdfit --help lists: $commands"
 for c in $commands; do
   "$BRDFIT" "$c" --help >"$tmp/h1" 2>&1 && "$BRDFIT" "$c" -h >"$tmp/h2" 2>&1 && "$BRDFIT" help "$c" >"$tmp/h3" 2>&1 &&
     head -1 "$tmp/h1" | grep -q "^usage: brdfit $c " && cmp -s "$tmp/h1" "$tmp/h2" && cmp -s "$tmp/h1" "$tmp/h3" &&
@@ -23,7 +23,7 @@ for c in $commands; do
     ok || bad "$c --no-such-option: $(cat "$tmp/err")"
   # A man page per command that man renders without complaint.
   MANWIDTH=80 man -l "$doc/man1/brdfit-$c.1" >"$tmp/man" 2>"$tmp/man.err" && [ ! -s "$tmp/man.err" ] &&
-    grep -q "brdfit-$c - " "$tmp/man" && ok || bad "man page of $c: $(head -3 "$tmp/man.err")"
+    grep -Eq "brdfit-$c +- " "$tmp/man" && ok || bad "man page of $c: $(head -3 "$tmp/man.err")"
 done
 "$BRDFIT" help >/dev/null && ok || bad "brdfit help"
 "$BRDFIT" help nope >/dev/null 2>&1; [ $? = 2 ] && ok || bad "brdfit help nope: not exit 2"

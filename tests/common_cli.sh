@@ -1,11 +1,14 @@
 # Sourced by every command-line test with the arguments ctest passes: the brdfit binary,
-# tests/data, the brdfit-synth binary, the image module's directory. Gives BRDFIT, DATA,
-# SYNTH, PLUGIN_DIR, a temporary directory $tmp removed at exit, ok / bad counters, and
-# finish for the closing line and status.
+# tests/data, the brdfit-synth binary, the image module's directory, and the test tools
+# make_stack and normal_error (tests/CMakeLists.txt). Gives BRDFIT, DATA, SYNTH,
+# PLUGIN_DIR, MAKE_STACK, NORMAL_ERROR, a temporary directory $tmp removed at exit, ok /
+# bad counters, and finish for the closing line and status.
 BRDFIT=$1
 DATA=$2
 SYNTH=${3:-}
 PLUGIN_DIR=${4:-}
+MAKE_STACK=${5:-}
+NORMAL_ERROR=${6:-}
 tmp=$(mktemp -d)
 trap 'chmod -R u+w "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
 pass=0

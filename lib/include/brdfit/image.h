@@ -45,8 +45,37 @@ bf_status bf_image_write_rgb_as(const char *path, int format, int width, int hei
 bf_status bf_image_read(const char *path, bf_image *img, bf_error *err);
 void bf_image_clear(bf_image *img);
 
+/* What a file holds, without reading its pixels: size, channels, and how its values are
+ * stored (bits 8 or 16 for integer formats, 16 or 32 with is_float for half and float). */
+typedef struct bf_image_spec {
+    int width, height, channels;
+    int bits;
+    int is_float;
+} bf_image_spec;
+bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
+
+/* Reads rows [y0, y1) of any image OpenImageIO reads (0 <= y0 < y1 <= height), every
+ * channel as float, as bf_image_read does (integer formats as code / max code, e.g. a
+ * 16-bit PNG's codes / 65535, no colour conversion): img->height is y1 - y0. Reading
+ * bands of a large image keeps memory to the band. */
+bf_status bf_image_read_rows(const char *path, int y0, int y1, bf_image *img, bf_error *err);
+
+/* Writing flags for bf_image_write. */
+enum {
+    BF_IMAGE_CODES = 1u << 0, /* PNG: values are codes in [0, 1], written without the sRGB
+                                 encoding (normal maps, data textures) */
+    BF_IMAGE_16BIT = 1u << 1, /* PNG: 16-bit codes instead of 8 */
+};
+/* Writes width * height pixels of 1, 3 or 4 channels (EXR channels Y, RGB or RGBA), as
+ * bf_image_write_rgb_as does for RGB: .exr linear float; .png clamped to [0, 1], sRGB-
+ * encoded unless BF_IMAGE_CODES, rounded to 8 or (BF_IMAGE_16BIT) 16 bits. */
+bf_status bf_image_write(const char *path, int format, int width, int height, int channels, const float *pixels,
+                         unsigned flags, bf_error *err);
+
 /* The sRGB transfer function (linear [0, 1] -> encoded [0, 1]) the PNG writer applies. */
 float bf_srgb_encode(float linear);
+/* Its inverse (encoded [0, 1] -> linear), for 8-bit photographs. */
+float bf_srgb_decode(float encoded);
 
 #ifdef __cplusplus
 }

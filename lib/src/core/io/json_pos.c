@@ -102,3 +102,24 @@ int bf_json_line_of_path(const char *text, const char *path)
     }
     return bf_json_line(text, at);
 }
+
+bf_status bf_json_parse_failure(const char *text, const char *end, const char *path, bf_error *err)
+{
+    /* Quote the line where cJSON stopped (it may stop just past the culprit). */
+    char near[48] = "";
+    const char *pos = end ? end : text, *b = pos;
+    while (b > text && b[-1] != '\n' && pos - b < 40)
+        b--;
+    while (*b == ' ' || *b == '\t')
+        b++;
+    size_t k = 0;
+    while (k < sizeof near - 1 && b[k] && b[k] != '\n' && b[k] != '\r')
+        k++;
+    memcpy(near, b, k);
+    near[k] = '\0';
+    size_t line = (size_t)bf_json_line(text, pos);
+    if (!k && !*pos)
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON: unexpected end of file", path, line);
+    return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON in or just before '%s'", path, line,
+                   k ? near : "?");
+}

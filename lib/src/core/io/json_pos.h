@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "brdfit/error.h"
+
 /* Past spaces, tabs and line ends. */
 const char *bf_json_skip_ws(const char *p);
 /* Past the value that starts at p (after any white space). */
@@ -21,4 +23,8 @@ int bf_json_line(const char *text, const char *pos);
  * elements by number) in text; the deepest value found when the path ends early. */
 int bf_json_line_of_path(const char *text, const char *path);
 
+/* The error for text that cJSON could not parse, end where it stopped: "PATH:LINE:
+ * malformed JSON in or just before '...'" (the line quoted), or "... unexpected end of
+ * file". Returns BF_ERR_PARSE. */
+bf_status bf_json_parse_failure(const char *text, const char *end, const char *path, bf_error *err);
 #endif

@@ -170,9 +170,12 @@ bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *
             *out = NULL;
             return bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", s->n);
         }
-        /* The four angle arrays are one block of 4n (bf_samples_new). */
-        for (size_t k = 0; k < 4 * s->n; k++)
-            rad[k] = s->theta_i[k] * (M_PI / 180.0);
+        /* Each array by its own pointer: a caller that lowered n after bf_samples_new
+         * leaves them apart by the old n. */
+        const double *deg[4] = {s->theta_i, s->phi_i, s->theta_o, s->phi_o};
+        for (size_t a = 0; a < 4; a++)
+            for (size_t k = 0; k < s->n; k++)
+                rad[a * s->n + k] = deg[a][k] * (M_PI / 180.0);
         rc = bf_geometry_from_angles(s->n, rad, rad + s->n, rad + 2 * s->n, rad + 3 * s->n, &s->geom, err);
         free(rad);
     }

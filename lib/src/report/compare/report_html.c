@@ -5,8 +5,8 @@
  * Decisions:
  *  - The folder is built under a registered temporary sibling (DIR.tmp.XXXXXX, removed
  *    by a fatal signal too), every file through bf_outfile (writes checked, synced),
- *    and renamed into place at the end: a failed run leaves no report and no partial
- *    folder, and an old report stays whole until the new one replaces it.
+ *    and renamed into place at the end (io/out_folder.h): a failed run leaves no report
+ *    and no partial folder, and an old report stays whole until the new one replaces it.
  *  - An existing DIR is replaced only when it holds BF_REPORT_MARKER (a previous report)
  *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
  *  - Plots (error against k and against work, slices, half/difference images) are Cairo
@@ -16,29 +16,19 @@
  *    the tool's version; each model's row holds its fitted parameters and warnings. The
  *    error column is not repeated under its metric's own name.
  *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
-#define _GNU_SOURCE /* renameat2 */
 #include "brdfit/compare.h"
 
-#include <errno.h>
-#include <fcntl.h>
-#include <ftw.h>
 #include <math.h>
-#include <pthread.h>
-#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <dirent.h>
 
 #include "brdfit/image.h"
 #include "brdfit/io.h"
 #include "brdfit/render.h"
 #include "brdfit/version.h"
-#include "io/out_target.h"
-#include "io/temp_registry.h"
+#include "io/out_folder.h"
 #include "compare/report.h"
 #include "plot/scatter.h"
 
@@ -369,121 +359,17 @@ static bf_status page(report *r)
     return BF_OK;
 }
 
-static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *f)
-{
-    (void)st;
-    (void)flag;
-    (void)f;
-    return remove(path);
-}
-
-static void remove_tree(const char *path)
-{
-    nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
-}
-
-/* 1: DIR may be replaced (a previous report, or empty); 0: it may not; -1: not there. */
-static int replaceable(const char *dir)
-{
-    struct stat st;
-    if (lstat(dir, &st) != 0)
-        return errno == ENOENT ? -1 : 0;
-    if (!S_ISDIR(st.st_mode))
-        return 0;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, BF_REPORT_MARKER);
-    if (access(path, F_OK) == 0)
-        return 1;
-    DIR *d = opendir(dir);
-    if (!d)
-        return 0;
-    struct dirent *e;
-    int empty = 1;
-    while (empty && (e = readdir(d)))
-        empty = !strcmp(e->d_name, ".") || !strcmp(e->d_name, "..");
-    closedir(d);
-    return empty;
-}
-
 bf_status bf_compare_html_check(const char *dir, bf_error *err)
 {
-    if (!dir || !*dir)
-        return bf_fail(err, BF_ERR_ARG, "report folder: empty name");
-    if (replaceable(dir) == 0)
-        return bf_fail(err, BF_ERR_IO, "%s: exists and is not a brdfit report (no %s): not replacing it", dir,
-                       BF_REPORT_MARKER);
-    /* The report is built beside DIR and renamed there: the parent must take it. */
-    size_t len = strlen(dir);
-    while (len > 1 && dir[len - 1] == '/')
-        len--;
-    char *target = strndup(dir, len), *parent = target ? out_dirname(target) : NULL;
-    bf_status rc = BF_OK;
-    if (!parent)
-        rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", dir);
-    else if (access(parent, W_OK | X_OK) != 0)
-        rc = bf_fail(err, BF_ERR_IO, "%s: cannot write in the folder %s: %s", dir, parent, strerror(errno));
-    free(target);
-    free(parent);
-    return rc;
+    return bf_out_folder_check(dir, BF_REPORT_MARKER, "report", err);
 }
 
-/* A report file (the marker, index.html) through bf_outfile: every write checked. */
-static bf_status open_in(report *r, bf_outfile *o, const char *name)
+/* A report file (index.html) through bf_outfile: every write checked. */
+static bf_status open_in(const bf_out_folder *f, bf_outfile *o, const char *name, bf_error *err)
 {
     char path[4200];
-    if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
-        return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
-    return bf_outfile_open(o, path, r->err);
-}
-
-/* Puts the finished folder tmp at target. An old report there is exchanged with it in
- * one step where the file system can (RENAME_EXCHANGE: the old one is then at tmp, still
- * registered, and removed by the caller); otherwise it is moved aside to a registered
- * temporary and the new one renamed in, with fatal signals held off between the two
- * renames so that target is never left missing. *aside: where the old report went. */
-static bf_status swap_in(const char *tmp, const char *target, int had, char **aside, int *aside_handle, bf_error *err)
-{
-    *aside = NULL;
-    if (had != 1)
-        return rename(tmp, target) == 0
-                   ? BF_OK
-                   : bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
-    if (renameat2(AT_FDCWD, tmp, AT_FDCWD, target, RENAME_EXCHANGE) == 0)
-        return BF_OK;
-    if (bf_temp_create(target, 1, 0700, aside, aside_handle) < 0)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
-    sigset_t all, old;
-    sigfillset(&all);
-    pthread_sigmask(SIG_BLOCK, &all, &old);
-    bf_status rc = BF_OK;
-    if (rename(target, *aside) != 0)
-        rc = bf_fail(err, BF_ERR_IO, "%s: cannot move the previous report aside: %s", target, strerror(errno));
-    else if (rename(tmp, target) != 0) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: cannot rename the report into place: %s", target, strerror(errno));
-        if (rename(*aside, target) != 0) {
-            /* The old report stays at *aside; the message above stands. */
-        }
-    }
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
-    if (rc != BF_OK) {
-        rmdir(*aside);
-        bf_temp_forget(*aside_handle);
-        free(*aside);
-        *aside = NULL;
-    }
-    return rc;
-}
-
-/* A message about a file in the folder being built names it as the report will have it:
- * "DIR/index.html", not "DIR.tmp.XXXXXX/index.html". */
-static void name_target(bf_error *err, const char *tmp, const char *target)
-{
-    char *at = err ? strstr(err->msg, tmp) : NULL;
-    if (!at)
-        return;
-    char rest[sizeof err->msg];
-    snprintf(rest, sizeof rest, "%s", at + strlen(tmp));
-    snprintf(at, sizeof err->msg - (size_t)(at - err->msg), "%s%s", target, rest);
+    bf_status rc = bf_out_folder_path(f, name, path, sizeof path, err);
+    return rc == BF_OK ? bf_outfile_open(o, path, err) : rc;
 }
 
 bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
@@ -496,30 +382,17 @@ bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *
 {
     if (!c || !o)
         return bf_fail(err, BF_ERR_ARG, "report: no comparison");
-    bf_status rc = bf_compare_html_check(dir, err);
+    /* Checked, built under a registered temporary sibling holding the marker. */
+    bf_out_folder f;
+    bf_status rc = bf_out_folder_begin(&f, dir, BF_REPORT_MARKER, "report",
+                                       "brdfit compare report: this folder is replaced by the next report written here\n",
+                                       err);
     if (rc != BF_OK)
         return rc;
-    char target[4000];
-    size_t len = strlen(dir);
-    while (len > 1 && dir[len - 1] == '/')
-        len--;
-    if (len >= sizeof target)
-        return bf_fail(err, BF_ERR_ARG, "%s: path too long", dir);
-    memcpy(target, dir, len);
-    target[len] = '\0';
-    /* Registered, so a fatal signal removes it with whatever it holds. */
-    char *tmp = NULL;
-    int handle = -1;
-    if (bf_temp_create(target, 1, 0777, &tmp, &handle) < 0)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot create the report folder: %s", target, strerror(errno));
 
-    report r = {c, o, tmp, NULL, err};
-    bf_outfile mk, index;
-    if (rc == BF_OK && (rc = open_in(&r, &mk, BF_REPORT_MARKER)) == BF_OK) {
-        fputs("brdfit compare report: this folder is replaced by the next report written here\n", mk.fp);
-        rc = bf_outfile_commit(&mk, err);
-    }
-    if (rc == BF_OK && (rc = open_in(&r, &index, "index.html")) == BF_OK) {
+    report r = {c, o, f.tmp, NULL, err};
+    bf_outfile index;
+    if ((rc = open_in(&f, &index, "index.html", err)) == BF_OK) {
         r.fp = index.fp;
         rc = page(&r);
         if (rc == BF_OK)
@@ -527,25 +400,6 @@ bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *
         else
             bf_outfile_abort(&index);
     }
-
-    /* Into place; an old report is removed only once the new one is in. */
-    int had = rc == BF_OK ? replaceable(target) : -1;
-    if (rc == BF_OK && had == 0)
-        rc = bf_fail(err, BF_ERR_IO, "%s: appeared while the report was written and is not a brdfit report", target);
-    char *aside = NULL;
-    int aside_handle = -1;
-    if (rc == BF_OK && (rc = swap_in(tmp, target, had, &aside, &aside_handle, err)) == BF_OK)
-        out_sync_folder(target);
-    if (rc != BF_OK || had == 1)
-        remove_tree(tmp); /* the failed report, or the old one exchanged out */
-    if (rc != BF_OK)
-        name_target(err, tmp, target);
-    bf_temp_forget(handle);
-    free(tmp);
-    if (aside) {
-        remove_tree(aside);
-        bf_temp_forget(aside_handle);
-        free(aside);
-    }
-    return rc;
+    /* Into place (an old report is removed only once the new one is in), or removed. */
+    return bf_out_folder_end(&f, rc, err);
 }

@@ -11,6 +11,7 @@
 #include <cjson/cJSON.h>
 
 #include "export_impl.h"
+#include "gltf_doc.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -23,21 +24,6 @@ enum { NTRI = 2 * SEGMENTS * (RINGS - 1) };
 enum { IDX_BYTES = NTRI * 3 * 2, POS_BYTES = NVERT * 12 };
 _Static_assert(IDX_BYTES % 4 == 0, "float data must stay 4-byte aligned");
 _Static_assert(NVERT <= 65535, "indices are unsigned short");
-
-static void put_u16(unsigned char *p, unsigned v)
-{
-    p[0] = (unsigned char)(v & 0xff);
-    p[1] = (unsigned char)(v >> 8);
-}
-
-/* Little-endian IEEE float, as glTF stores it, whatever the host's byte order. */
-static void put_f32(unsigned char *p, float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, 4);
-    for (int k = 0; k < 4; k++)
-        p[k] = (unsigned char)(u >> (8 * k));
-}
 
 /* Unit sphere, Y up: indices, then positions, then normals (equal to the positions).
  * Triangles wind counter-clockwise seen from outside. min/max: the positions' bounds,
@@ -59,8 +45,8 @@ static void build_sphere(unsigned char *buf, float mn[3], float mx[3])
             float p[3] = {(float)(st * sp), (float)ct, (float)(st * cp)};
             int v = r * (SEGMENTS + 1) + s;
             for (int k = 0; k < 3; k++) {
-                put_f32(pos + 12 * v + 4 * k, p[k]);
-                put_f32(nrm + 12 * v + 4 * k, p[k]);
+                bf_gltf_put_f32(pos + 12 * v + 4 * k, p[k]);
+                bf_gltf_put_f32(nrm + 12 * v + 4 * k, p[k]);
                 mn[k] = p[k] < mn[k] ? p[k] : mn[k];
                 mx[k] = p[k] > mx[k] ? p[k] : mx[k];
             }
@@ -75,60 +61,10 @@ static void build_sphere(unsigned char *buf, float mn[3], float mx[3])
                 if ((h == 0 && r == RINGS - 1) || (h == 1 && r == 0))
                     continue; /* collapses onto a pole */
                 for (int k = 0; k < 3; k++)
-                    put_u16(idx + 2 * (3 * t + k), tri[h][k]);
+                    bf_gltf_put_u16(idx + 2 * (3 * t + k), tri[h][k]);
                 t++;
             }
         }
-}
-
-static char *base64_uri(const unsigned char *p, size_t n)
-{
-    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    static const char head[] = "data:application/octet-stream;base64,";
-    size_t hl = sizeof head - 1;
-    char *out = malloc(hl + 4 * ((n + 2) / 3) + 1);
-    if (!out)
-        return NULL;
-    memcpy(out, head, hl);
-    char *o = out + hl;
-    for (size_t i = 0; i < n; i += 3) {
-        uint32_t v = (uint32_t)p[i] << 16 | (i + 1 < n ? (uint32_t)p[i + 1] << 8 : 0) | (i + 2 < n ? p[i + 2] : 0);
-        *o++ = tab[v >> 18 & 63];
-        *o++ = tab[v >> 12 & 63];
-        *o++ = i + 1 < n ? tab[v >> 6 & 63] : '=';
-        *o++ = i + 2 < n ? tab[v & 63] : '=';
-    }
-    *o = '\0';
-    return out;
-}
-
-/* A JSON array of n numbers. */
-static cJSON *num_array(const double *v, int n)
-{
-    cJSON *a = cJSON_CreateArray();
-    for (int k = 0; a && k < n; k++)
-        cJSON_AddItemToArray(a, cJSON_CreateNumber(v[k]));
-    return a;
-}
-
-static cJSON *view(int offset, int length, int target)
-{
-    cJSON *v = cJSON_CreateObject();
-    cJSON_AddNumberToObject(v, "buffer", 0);
-    cJSON_AddNumberToObject(v, "byteOffset", offset);
-    cJSON_AddNumberToObject(v, "byteLength", length);
-    cJSON_AddNumberToObject(v, "target", target);
-    return v;
-}
-
-static cJSON *accessor(int view_index, int type_code, int count, const char *type)
-{
-    cJSON *a = cJSON_CreateObject();
-    cJSON_AddNumberToObject(a, "bufferView", view_index);
-    cJSON_AddNumberToObject(a, "componentType", type_code);
-    cJSON_AddNumberToObject(a, "count", count);
-    cJSON_AddStringToObject(a, "type", type);
-    return a;
 }
 
 static cJSON *material(const bf_export_material *e)
@@ -140,12 +76,12 @@ static cJSON *material(const bf_export_material *e)
     cJSON *mat = cJSON_CreateObject(), *pbr = cJSON_CreateObject(), *ext = cJSON_CreateObject();
     cJSON *spec = cJSON_CreateObject(), *ior = cJSON_CreateObject();
     cJSON_AddStringToObject(mat, "name", "brdfit");
-    cJSON_AddItemToObject(pbr, "baseColorFactor", num_array(base, 4));
+    cJSON_AddItemToObject(pbr, "baseColorFactor", bf_gltf_num_array(base, 4));
     cJSON_AddNumberToObject(pbr, "metallicFactor", bf_export_param(e, "metallic", 0));
     cJSON_AddNumberToObject(pbr, "roughnessFactor", bf_export_param(e, "roughness", 0));
     cJSON_AddItemToObject(mat, "pbrMetallicRoughness", pbr);
     cJSON_AddNumberToObject(spec, "specularFactor", bf_export_param(e, "specular", 0));
-    cJSON_AddItemToObject(spec, "specularColorFactor", num_array(scol, 3));
+    cJSON_AddItemToObject(spec, "specularColorFactor", bf_gltf_num_array(scol, 3));
     cJSON_AddNumberToObject(ior, "ior", bf_export_param(e, "ior", 0));
     cJSON_AddItemToObject(ext, "KHR_materials_specular", spec);
     cJSON_AddItemToObject(ext, "KHR_materials_ior", ior);
@@ -189,7 +125,7 @@ static cJSON *document(const bf_export_material *e, const unsigned char *buf, co
 
     cJSON *scene = cJSON_CreateObject(), *node = cJSON_CreateObject();
     const double zero = 0.0;
-    cJSON_AddItemToObject(scene, "nodes", num_array(&zero, 1));
+    cJSON_AddItemToObject(scene, "nodes", bf_gltf_num_array(&zero, 1));
     cJSON_AddItemToObject(doc, "scenes", cJSON_CreateArray());
     cJSON_AddItemToArray(cJSON_GetObjectItem(doc, "scenes"), scene);
     cJSON_AddStringToObject(node, "name", "sphere");
@@ -213,22 +149,22 @@ static cJSON *document(const bf_export_material *e, const unsigned char *buf, co
 
     /* 34963: ELEMENT_ARRAY_BUFFER, 34962: ARRAY_BUFFER; 5123 unsigned short, 5126 float. */
     cJSON *views = cJSON_CreateArray(), *accs = cJSON_CreateArray();
-    cJSON_AddItemToArray(views, view(0, IDX_BYTES, 34963));
-    cJSON_AddItemToArray(views, view(IDX_BYTES, POS_BYTES, 34962));
-    cJSON_AddItemToArray(views, view(IDX_BYTES + POS_BYTES, POS_BYTES, 34962));
+    cJSON_AddItemToArray(views, bf_gltf_view(0, IDX_BYTES, 34963));
+    cJSON_AddItemToArray(views, bf_gltf_view(IDX_BYTES, POS_BYTES, 34962));
+    cJSON_AddItemToArray(views, bf_gltf_view(IDX_BYTES + POS_BYTES, POS_BYTES, 34962));
     cJSON_AddItemToObject(doc, "bufferViews", views);
-    cJSON_AddItemToArray(accs, accessor(0, 5123, NTRI * 3, "SCALAR"));
-    cJSON *posacc = accessor(1, 5126, NVERT, "VEC3");
+    cJSON_AddItemToArray(accs, bf_gltf_accessor(0, 5123, NTRI * 3, "SCALAR"));
+    cJSON *posacc = bf_gltf_accessor(1, 5126, NVERT, "VEC3");
     const double dmn[3] = {mn[0], mn[1], mn[2]}, dmx[3] = {mx[0], mx[1], mx[2]};
-    cJSON_AddItemToObject(posacc, "min", num_array(dmn, 3));
-    cJSON_AddItemToObject(posacc, "max", num_array(dmx, 3));
+    cJSON_AddItemToObject(posacc, "min", bf_gltf_num_array(dmn, 3));
+    cJSON_AddItemToObject(posacc, "max", bf_gltf_num_array(dmx, 3));
     cJSON_AddItemToArray(accs, posacc);
-    cJSON_AddItemToArray(accs, accessor(2, 5126, NVERT, "VEC3"));
+    cJSON_AddItemToArray(accs, bf_gltf_accessor(2, 5126, NVERT, "VEC3"));
     cJSON_AddItemToObject(doc, "accessors", accs);
 
     cJSON *buffer = cJSON_CreateObject();
     cJSON_AddNumberToObject(buffer, "byteLength", total);
-    char *uri = base64_uri(buf, (size_t)total);
+    char *uri = bf_gltf_base64_uri(buf, (size_t)total);
     if (uri) {
         cJSON_AddStringToObject(buffer, "uri", uri);
         free(uri);

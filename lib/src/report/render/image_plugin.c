@@ -72,10 +72,10 @@ static int load_from(const char *path)
         set_error("%s", e ? e : path);
         return 0;
     }
+    /* The version first, so that a stale module (whose entry points differ) is named as
+     * one rather than as missing some. */
     bf_oiio_abi_fn abi = (bf_oiio_abi_fn)dlsym(h, "bf_oiio_abi");
-    plugin.encode_rgb = (bf_oiio_encode_rgb_fn)dlsym(h, "bf_oiio_encode_rgb");
-    plugin.read = (bf_oiio_read_fn)dlsym(h, "bf_oiio_read");
-    if (!abi || !plugin.encode_rgb || !plugin.read) {
+    if (!abi) {
         set_error("%s: missing entry points", path);
         dlclose(h);
         return 0;
@@ -83,6 +83,15 @@ static int load_from(const char *path)
     int version = abi();
     if (version != BF_IMAGE_PLUGIN_ABI) {
         set_error("%s: interface version %d, want %d", path, version, BF_IMAGE_PLUGIN_ABI);
+        dlclose(h);
+        return 0;
+    }
+    plugin.encode = (bf_oiio_encode_fn)dlsym(h, "bf_oiio_encode");
+    plugin.read = (bf_oiio_read_fn)dlsym(h, "bf_oiio_read");
+    plugin.read_rows = (bf_oiio_read_rows_fn)dlsym(h, "bf_oiio_read_rows");
+    plugin.info = (bf_oiio_info_fn)dlsym(h, "bf_oiio_info");
+    if (!plugin.encode || !plugin.read || !plugin.read_rows || !plugin.info) {
+        set_error("%s: missing entry points", path);
         dlclose(h);
         return 0;
     }

@@ -1,0 +1,47 @@
+/* Internal: the state of one bf_photo_fit run, shared by photo_fit.c (bands and pixels)
+ * and photo_start.c (start, clusters, shared entries). */
+#ifndef BF_PHOTO_FIT_IMPL_H
+#define BF_PHOTO_FIT_IMPL_H
+
+#include "photo_impl.h"
+
+typedef struct photo_run {
+    const bf_stack *s;
+    const bf_photo_options *o;
+    const char *spec;
+    bf_model *model;
+    int P, K, C, threads;
+    double scale;
+    double lo[PHOTO_MAX_PARAMS], hi[PHOTO_MAX_PARAMS];
+    bf_scale pscale[PHOTO_MAX_PARAMS];
+    unsigned char pixel_free[PHOTO_MAX_PARAMS]; /* entries each pixel fits */
+    int nshared;
+    int shared[PHOTO_MAX_PARAMS];
+    const float *given_normals; /* BF_NORMALS_FILE: width*height*3, world frame */
+    /* Per cluster: the start (P each) and the mean robust albedo (C each). */
+    int nclusters;
+    double *start, *centroid, *cluster_albedo;
+    /* Scratch for single-threaded steps (K*3, K*C). */
+    double *lbuf, *ebuf;
+} photo_run;
+
+/* The normal a pixel starts from when normals are given or flat (world frame); n is left
+ * as it is when they are fitted. */
+void photo_given_normal(const photo_run *run, int x, int y, double n[3]);
+
+size_t photo_subsample(const unsigned char *mask, size_t npix_total, int y0, int y1, int width, size_t max,
+                       int32_t **out);
+void photo_start_lambert(photo_run *run, const photo_band *b, double *normal, double *albedo);
+double photo_auto_scale(const double *albedo, size_t n, int C);
+int photo_nearest(const double *centroids, int k, const double *a, int C);
+void photo_kmeans(const double *albedo, size_t n, int C, int k, uint64_t seed, double *centroids, int *label);
+bf_status photo_cluster_start(photo_run *run, const photo_band *b, const double *normal, const int *label, int cl,
+                              double *x, bf_error *err);
+/* The shared entries (run->start's, per cluster) and the subsample's pixels (x: P each,
+ * normal: 3 each, world) fitted jointly (photo_joint.c). */
+void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, double *x, double *normal);
+/* The pixel's start: its cluster's, with the diffuse colour scaled by the pixel's albedo
+ * against the cluster's mean. */
+void photo_pixel_start(const photo_run *run, int cluster, const double *albedo, double *x);
+
+#endif
