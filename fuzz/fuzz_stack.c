@@ -34,10 +34,14 @@ static const struct scratch_image {
     int width, height, channels, exr;
     unsigned flags;
 } scratch_images[] = {
-    {"a.png", W, H, 3, 0, BF_IMAGE_16BIT},    {"b.png", W, H, 3, 0, BF_IMAGE_16BIT},
-    {"c.png", W, H, 3, 0, BF_IMAGE_16BIT},    {"d.png", W, H, 4, 0, BF_IMAGE_16BIT},
-    {"e.png", W, H, 3, 0, 0},                 {"f.exr", W, H, 3, 1, 0},
-    {"g.png", W, H, 1, 0, BF_IMAGE_16BIT},    {"m.png", W, H, 1, 0, 0},
+    {"a.png", W, H, 3, 0, BF_IMAGE_16BIT},
+    {"b.png", W, H, 3, 0, BF_IMAGE_16BIT},
+    {"c.png", W, H, 3, 0, BF_IMAGE_16BIT},
+    {"d.png", W, H, 4, 0, BF_IMAGE_16BIT},
+    {"e.png", W, H, 3, 0, 0},
+    {"f.exr", W, H, 3, 1, 0},
+    {"g.png", W, H, 1, 0, BF_IMAGE_16BIT},
+    {"m.png", W, H, 1, 0, 0},
     {"big.png", W + 1, H - 1, 3, 0, BF_IMAGE_16BIT},
 };
 enum { NSCRATCH = sizeof scratch_images / sizeof scratch_images[0] };
@@ -105,8 +109,8 @@ static void check_stack(const bf_stack *s)
             fuzz_fail("%s, in the stack read, does not read: %s", file, err.msg);
         if (sp.width != s->width || sp.height != s->height)
             fuzz_fail("%s: %dx%d pixels in a stack of %dx%d", file, sp.width, sp.height, s->width, s->height);
-        if (k < s->nimages && ((sp.channels == 1 ? 1 : 3) != s->channels || sp.channels > 4 ||
-                               sp.bits != s->bits || sp.is_float != s->is_float))
+        if (k < s->nimages && ((sp.channels == 1 ? 1 : 3) != s->channels || sp.channels > 4 || sp.bits != s->bits ||
+                               sp.is_float != s->is_float))
             fuzz_fail("%s: %d channels, %d-bit %s, in a stack of %d channels, %d-bit %s", file, sp.channels, sp.bits,
                       sp.is_float ? "float" : "integer", s->channels, s->bits, s->is_float ? "float" : "integer");
     }
@@ -124,8 +128,8 @@ static void check_stack(const bf_stack *s)
     if (cam->type == BF_CAMERA_ORTHOGRAPHIC ? !(cam->pixel_size > 0.0 && isfinite(cam->pixel_size))
                                             : !(cam->fx > 0.0 && cam->fy > 0.0 && isfinite(cam->fx) &&
                                                 isfinite(cam->fy) && isfinite(cam->cx) && isfinite(cam->cy)))
-        fuzz_fail("camera type %d: pixel size %g, fx %g, fy %g, cx %g, cy %g", (int)cam->type, cam->pixel_size,
-                  cam->fx, cam->fy, cam->cx, cam->cy);
+        fuzz_fail("camera type %d: pixel size %g, fx %g, fy %g, cx %g, cy %g", (int)cam->type, cam->pixel_size, cam->fx,
+                  cam->fy, cam->cx, cam->cy);
 }
 
 #ifndef FUZZ_STACK_COMMON_ONLY
