@@ -2,7 +2,9 @@
 # Fit diagnostics where users see them: the Disney fit of the spectral Cornell garnet
 # paint (undetermined parameters, parameters at bounds, 31 channels in one warning),
 # ward_iso on a synthetic Walter MERL table (a diffuse colour pinned at 0), and the
-# same warnings in compare's text, JSON and CSV and in a clean fit's absence of them.
+# same warnings in compare's text, JSON and CSV and in a clean fit's absence of them; in the
+# HTML report several warnings of a fit collapse to their count (expandable), one stays
+# as it is.
 set -u
 source "$(dirname "$0")/common_cli.sh" "$@"
 need jq jq
@@ -43,4 +45,20 @@ else
   bad "MERL compare: $(cat "$tmp/out")"
 fi
 
+
+# The HTML report: the RGL paper's Disney fit (several warnings) collapsed to its count,
+# every warning inside; the walter fit of the same material (one) as it is.
+if "$BRDFIT" compare "$EX/rgl/paper_white_rgb.bsdf" -m walter,disney --quiet --json "$tmp/r.json" --html "$tmp/r" \
+     >"$tmp/out" 2>&1; then
+  nd=$(jq '.materials[0].fits[1].warnings | length' "$tmp/r.json")
+  nw=$(jq '.materials[0].fits[0].warnings | length' "$tmp/r.json")
+  [ "$nd" -gt 1 ] && grep -q "<details><summary>$nd warnings</summary>" "$tmp/r/index.html" && ok ||
+    bad "report: disney's $nd warnings not collapsed: $(grep -o '<td class="warn">.\{0,80\}' "$tmp/r/index.html")"
+  [ "$(grep -o '<details>' "$tmp/r/index.html" | wc -l)" = "$(jq '[.materials[0].fits[] | select((.warnings | length) > 1)] | length' "$tmp/r.json")" ] &&
+    ok || bad "report: a <details> per fit with several warnings"
+  [ "$nw" != 1 ] || grep -q "<td class=\"warn\">$(jq -r '.materials[0].fits[0].warnings[0]' "$tmp/r.json" | sed 's/[][\.*^$]/\\&/g')</td>" "$tmp/r/index.html" && ok ||
+    bad "report: walter's one warning not shown as it is"
+else
+  bad "RGL compare --html: $(cat "$tmp/out")"
+fi
 finish

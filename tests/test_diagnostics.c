@@ -161,6 +161,28 @@ static void test_correlated(void **state)
     assert_false(walter_warns(x, 1500, 0, 0, "uncorrelated", "correlated", NULL));
 }
 
+/* The same in three channels: every channel of rho_s with f0 and with each other, one
+ * warning per pair of parameters (not six lines, one per pair of entries). */
+static void test_correlated_channels(void **state)
+{
+    (void)state;
+    const double x[8] = {0.3, 0.35, 0.4, 0.5, 0.5, 0.5, 0.3, 0.2};
+    bf_samples *s = samples_of("walter", 3, x, 1500, 30, 0);
+    bf_fit_options o;
+    ts_fit_defaults(&o);
+    bf_fit_result r;
+    fit(s, "walter", &o, &r);
+    print_warnings("correlated channels", &r);
+    int correlated = 0;
+    for (int i = 0; i < r.nwarnings; i++)
+        correlated += strstr(r.warnings[i], "correlated") != NULL;
+    assert_non_null(warning(&r, "rho_s and f0 are correlated in 3 channels (r up to -"));
+    assert_non_null(warning(&r, "rho_s: its channels are correlated with each other (3 pairs, r up to "));
+    assert_int_equal(correlated, 2);
+    bf_fit_result_clear(&r);
+    bf_samples_free(s);
+}
+
 /* A bright diffuse and a strong highlight together reflect more than they receive. */
 static void test_albedo(void **state)
 {
@@ -233,10 +255,11 @@ static void test_limit_and_loss(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_clean_fit),     cmocka_unit_test(test_bound),
-        cmocka_unit_test(test_undetermined),  cmocka_unit_test(test_correlated),
-        cmocka_unit_test(test_albedo),        cmocka_unit_test(test_albedo_quadrature),
-        cmocka_unit_test(test_lobe_width),    cmocka_unit_test(test_limit_and_loss),
+        cmocka_unit_test(test_clean_fit),           cmocka_unit_test(test_bound),
+        cmocka_unit_test(test_undetermined),        cmocka_unit_test(test_correlated),
+        cmocka_unit_test(test_correlated_channels), cmocka_unit_test(test_albedo),
+        cmocka_unit_test(test_albedo_quadrature),   cmocka_unit_test(test_lobe_width),
+        cmocka_unit_test(test_limit_and_loss),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -20,9 +20,9 @@
 #include "lobe_order.h"
 #include "models/lobes.h"
 
-#define AT_BOUND_REL 1e-9     /* of the parameter's range */
+#define AT_BOUND_REL 1e-9 /* of the parameter's range */
 #define CORRELATED 0.999
-#define ALBEDO_LIMIT 1.001    /* above 1 by more than the quadrature's error */
+#define ALBEDO_LIMIT 1.001 /* above 1 by more than the quadrature's error */
 #define LOBE_MIN_SAMPLES 10
 
 void bf_fit_warn(bf_fit_result *r, const char *fmt, ...)
@@ -190,11 +190,13 @@ static void check_entries(const bf_objective *o, bf_fit_result *r)
                                 kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k],
                                 count[kind], n, name);
                 else if (kind == ENTRY_NO_SE)
-                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (no standard error; "
-                                "%s = %.6g)", p->name, count[kind], n, name, r->x[k]);
+                    bf_fit_warn(r,
+                                "%s is not determined by the data in %d of %d channels (no standard error; "
+                                "%s = %.6g)",
+                                p->name, count[kind], n, name, r->x[k]);
                 else
-                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)",
-                                p->name, count[kind], n, name, r->x[k], r->stderr_[k]);
+                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)", p->name,
+                                count[kind], n, name, r->x[k], r->stderr_[k]);
             } else if ((kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER) && count[kind] == n) {
                 bf_fit_warn(r, "%s is at its %s bound %.6g in every channel", p->name,
                             kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k]);
@@ -213,19 +215,72 @@ static void check_entries(const bf_objective *o, bf_fit_result *r)
     free(reported);
 }
 
-/* Pairs of free entries correlated beyond CORRELATED. */
+/* Pairs of free entries correlated beyond CORRELATED, one warning per pair of parameters
+ * (a colour parameter's channels are one parameter): "rho_s and f0 are correlated in 3
+ * channels", not three lines; a single pair of entries is named as it is. */
+static int param_of_entry(const bf_model *m, int k)
+{
+    for (int i = bf_model_nparams(m) - 1; i >= 0; i--)
+        if (bf_model_param_offset(m, i) <= k)
+            return i;
+    return 0;
+}
+
 static void check_correlations(const bf_objective *o, const double *corr, bf_fit_result *r)
 {
-    char name[64], other[64];
-    for (int a = 0; corr && a < o->nz; a++)
+    const bf_model *m = r->model;
+    const int np = bf_model_nparams(m);
+    int *count = calloc((size_t)np * (size_t)np, sizeof *count),
+        *first = malloc((size_t)np * (size_t)np * 2 * sizeof *first);
+    double *worst = calloc((size_t)np * (size_t)np, sizeof *worst);
+    if (!count || !first || !worst || !corr) {
+        free(count);
+        free(first);
+        free(worst);
+        return;
+    }
+    /* Per pair of parameters (the lower index first), the count of correlated entry pairs,
+     * the first of them, and the largest correlation in magnitude (with its sign). */
+    for (int a = 0; a < o->nz; a++)
         for (int b = 0; b < a; b++) {
             const double c = corr[a * o->nz + b];
             if (!(fabs(c) > CORRELATED))
                 continue;
-            bf_model_entry_name(r->model, o->kidx[a], name, sizeof name);
-            bf_model_entry_name(r->model, o->kidx[b], other, sizeof other);
-            bf_fit_warn(r, "%s and %s are correlated (r = %.4f): the data hardly tell them apart", other, name, c);
+            int pa = param_of_entry(m, o->kidx[a]), pb = param_of_entry(m, o->kidx[b]);
+            int lo = pa < pb ? pa : pb, hi = pa < pb ? pb : pa, at = lo * np + hi;
+            if (count[at]++ == 0) {
+                first[2 * at] = o->kidx[b];
+                first[2 * at + 1] = o->kidx[a];
+            }
+            if (fabs(c) > fabs(worst[at]))
+                worst[at] = c;
         }
+    char name[64], other[64];
+    for (int pa = 0; pa < np; pa++)
+        for (int pb = pa; pb < np; pb++) {
+            const int at = pa * np + pb;
+            if (!count[at])
+                continue;
+            if (count[at] == 1) {
+                bf_model_entry_name(m, first[2 * at], other, sizeof other);
+                bf_model_entry_name(m, first[2 * at + 1], name, sizeof name);
+                bf_fit_warn(r, "%s and %s are correlated (r = %.4f): the data hardly tell them apart", other, name,
+                            worst[at]);
+            } else if (pa == pb) {
+                bf_fit_warn(r,
+                            "%s: its channels are correlated with each other (%d pairs, r up to %.4f): the data "
+                            "hardly tell them apart",
+                            bf_model_param(m, pa)->name, count[at], worst[at]);
+            } else {
+                const int colours = bf_model_param(m, pa)->colour + bf_model_param(m, pb)->colour;
+                bf_fit_warn(r, "%s and %s are correlated in %d %s (r up to %.4f): the data hardly tell them apart",
+                            bf_model_param(m, pa)->name, bf_model_param(m, pb)->name, count[at],
+                            colours == 1 ? "channels" : "pairs of channels", worst[at]);
+            }
+        }
+    free(count);
+    free(first);
+    free(worst);
 }
 
 /* ---- Albedo ---------------------------------------------------------------------------
@@ -361,7 +416,8 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
             continue;
         const size_t n = samples_within(s, w);
         if (n < LOBE_MIN_SAMPLES)
-            bf_fit_warn(r, "lobe %d is %.3g deg wide (half width at half maximum in theta_h), and only %zu "
+            bf_fit_warn(r,
+                        "lobe %d is %.3g deg wide (half width at half maximum in theta_h), and only %zu "
                         "sample%s within it: the data do not resolve the highlight",
                         k + 1, w * (180.0 / M_PI), n, n == 1 ? " lies" : "s lie");
     }
@@ -402,8 +458,10 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
         char ch[40] = "";
         if (bf_model_channels(r->model) > 1)
             snprintf(ch, sizeof ch, " in channel %d", c);
-        bf_fit_warn(r, "the albedo reaches %.4g at theta_i = %.0f deg%s: the fitted BRDF reflects more light than it "
-                    "receives", a, t, ch);
+        bf_fit_warn(r,
+                    "the albedo reaches %.4g at theta_i = %.0f deg%s: the fitted BRDF reflects more light than it "
+                    "receives",
+                    a, t, ch);
     }
     check_lobes(s, r);
 }

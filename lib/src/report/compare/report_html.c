@@ -172,12 +172,17 @@ static void model_table(report *r, const bf_compare_material *m)
             report_esc(fp, bf_model_entry_name(res->model, k, name, sizeof name));
             fprintf(fp, "&nbsp;%.6g%s", res->x[k], k + 1 < bf_model_nvalues(res->model) ? "<br>" : "");
         }
+        /* What to doubt: one warning as it is; several collapsed to their count, opened on
+         * a click, so the column stays as narrow as the numbers. */
         fputs("</td><td class=\"warn\">", fp);
-        for (int w = 0; res && w < res->nwarnings; w++) {
+        const int nw = res ? res->nwarnings : 0;
+        if (nw > 1)
+            fprintf(fp, "<details><summary>%d warnings</summary>", nw);
+        for (int w = 0; w < nw; w++) {
             report_esc(fp, res->warnings[w]);
-            fputs(w + 1 < res->nwarnings ? "<br>" : "", fp);
+            fputs(w + 1 < nw ? "<br>" : "", fp);
         }
-        fputs("</td></tr>\n", fp);
+        fputs(nw > 1 ? "</details></td></tr>\n" : "</td></tr>\n", fp);
     }
     fputs("</table>\n", fp);
     if (m->simplest >= 0) {
@@ -292,6 +297,7 @@ static const char css[] =
     "th{background:#eee}td.spec{text-align:left;font-family:monospace}"
     "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
     "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
+    "td.warn summary{cursor:pointer;white-space:nowrap}"
     "tr.chosen td{background:#e6f4e6;font-weight:bold}"
     "td.unsure{color:#a40}"
     ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
