@@ -401,14 +401,26 @@ static void print_results(const compare_args *a, const bf_compare *c)
     compare_print_tables(stdout, c);
 }
 
-/* Material i's MERL table as read, whole, when the fits had a subsample of it (for the
- * report's pictures of the measurement; NULL when not needed). *failed: 1 after a
- * one-line error. */
+/* The measurement of material i on every MERL cell, for the report's pictures of it (NULL
+ * when the samples already are that, or the format cannot give it): a MERL table read
+ * whole when the fits had a subsample of it; an RGL .bsdf or NVIDIA .mbsdf file
+ * evaluated at the MERL cell centres (--grid merl), read with the same options as the
+ * data, subsample and scene aside. *failed: 1 after a one-line error. */
 static bf_samples *whole_table(const compare_args *a, bf_samples *const *samples, int i, int *failed)
 {
     bf_samples *t = NULL;
     bf_error err;
     *failed = 0;
+    bf_format f = a->dopt.read.format != BF_FORMAT_AUTO ? a->dopt.read.format : bf_format_by_extension(a->data[i]);
+    if (!samples[i]->merl && (f == BF_FORMAT_RGL || f == BF_FORMAT_MBSDF)) {
+        data_options d = a->dopt;
+        d.read.grid = "merl";
+        d.prep.subsample = 0;
+        d.scene = NULL;
+        if (!(t = data_options_load(&d, a->data[i], NULL, cmd)))
+            *failed = 1;
+        return t;
+    }
     if (!samples[i]->merl || a->dopt.prep.subsample == 0)
         return NULL;
     if (bf_samples_read_merl(a->data[i], 0, &t, &err) != BF_OK) {

@@ -47,7 +47,9 @@ fi
 
 
 # The HTML report: the RGL paper's Disney fit (several warnings) collapsed to its count,
-# every warning inside; the walter fit of the same material (one) as it is.
+# every warning inside; the walter fit of the same material (one) as it is; and pictures
+# of the measurement, the .bsdf evaluated on the MERL cells (a measured sphere and
+# half/difference image beside the models').
 if "$BRDFIT" compare "$EX/rgl/paper_white_rgb.bsdf" -m walter,disney --quiet --json "$tmp/r.json" --html "$tmp/r" \
      >"$tmp/out" 2>&1; then
   nd=$(jq '.materials[0].fits[1].warnings | length' "$tmp/r.json")
@@ -56,6 +58,9 @@ if "$BRDFIT" compare "$EX/rgl/paper_white_rgb.bsdf" -m walter,disney --quiet --j
     bad "report: disney's $nd warnings not collapsed: $(grep -o '<td class="warn">.\{0,80\}' "$tmp/r/index.html")"
   [ "$(grep -o '<details>' "$tmp/r/index.html" | wc -l)" = "$(jq '[.materials[0].fits[] | select((.warnings | length) > 1)] | length' "$tmp/r.json")" ] &&
     ok || bad "report: a <details> per fit with several warnings"
+  [ -s "$tmp/r/m1-sphere-measured.png" ] && [ -s "$tmp/r/m1-hd-measured.png" ] &&
+    grep -q 'src="m1-sphere-measured.png"' "$tmp/r/index.html" && ok ||
+    bad "report: no picture of the RGL measurement: $(ls "$tmp/r")"
   [ "$nw" != 1 ] || grep -q "<td class=\"warn\">$(jq -r '.materials[0].fits[0].warnings[0]' "$tmp/r.json" | sed 's/[][\.*^$]/\\&/g')</td>" "$tmp/r/index.html" && ok ||
     bad "report: walter's one warning not shown as it is"
 else

@@ -48,6 +48,9 @@ typedef struct bf_read_options {
 bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
 int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf": a bf_format; -1 if unknown */
 const char *bf_format_name(bf_format f);
+/* The format a path's extension names for reading (.csv, .binary, .brdf, .alta, .bsdf,
+ * .mbsdf, any case); BF_FORMAT_AUTO if none (bf_samples_read then looks at the content). */
+bf_format bf_format_by_extension(const char *path);
 /* The format a path's extension names for writing (csv, binary); BF_FORMAT_AUTO if none. */
 bf_format bf_format_for_writing(const char *path);
 

@@ -1,5 +1,5 @@
 /* Format names and file extensions, shared by the reader and writer dispatch. */
-#include "formats.h"
+#include "brdfit/formats.h"
 
 #include <string.h>
 #include <strings.h>

@@ -2,7 +2,6 @@
  * by content. */
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
-#include "formats.h"
 
 #include <ctype.h>
 #include <errno.h>
