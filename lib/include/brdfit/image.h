@@ -4,7 +4,8 @@
  * that use no images never load OpenImageIO); it is looked for in $BRDFIT_PLUGIN_DIR if
  * set, else beside the executable as installed, the build tree, the install directory.
  * If it cannot be loaded, those calls fail with BF_ERR_IO ("image support ... could not
- * be loaded: ..."). bf_image_format_of, bf_srgb_encode and bf_image_clear need no module.
+ * be loaded: ..."). bf_image_format_of, bf_srgb_encode, bf_srgb_decode and
+ * bf_image_clear need no module.
  * Status codes and ownership follow brdfit/error.h.
  */
 #ifndef BRDFIT_IMAGE_H

@@ -663,7 +663,7 @@ static bf_status fit_bands(photo_run *run, const unsigned char *mask, bf_photo_r
             b = first; /* the start's band is this band: already read and scaled */
         } else {
             int32_t *pix = NULL;
-            size_t np = photo_subsample(mask, 0, y, y1, s->width, (size_t)-1 / 2, &pix);
+            size_t np = photo_subsample(mask, y, y1, s->width, (size_t)-1 / 2, &pix);
             if (np == (size_t)-1)
                 return bf_fail(err, BF_ERR_NOMEM, "out of memory");
             rc = photo_band_load(s, pix, np, y, y1, run->threads, &band, err);
@@ -823,7 +823,7 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
             all += mask[i] != 0;
         size_t bytes = o->band_bytes ? o->band_bytes : DEFAULT_BAND_BYTES;
         int whole = r->y0 == 0 && r->y1 == s->height && next_band(&run, mask, 0, s->height, bytes) >= s->height;
-        size_t ns = photo_subsample(mask, 0, 0, s->height, s->width, whole ? all : START_PIXELS, &sub);
+        size_t ns = photo_subsample(mask, 0, s->height, s->width, whole ? all : START_PIXELS, &sub);
         if (ns == (size_t)-1)
             rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
         else if (!ns)

@@ -29,8 +29,9 @@ typedef struct photo_run {
  * as it is when they are fitted. */
 void photo_given_normal(const photo_run *run, int x, int y, double n[3]);
 
-size_t photo_subsample(const unsigned char *mask, size_t npix_total, int y0, int y1, int width, size_t max,
-                       int32_t **out);
+/* Every stride-th masked pixel of rows [y0, y1), at most max of them (y*width + x,
+ * malloc'd into *out): their count, or (size_t)-1 when out of memory. */
+size_t photo_subsample(const unsigned char *mask, int y0, int y1, int width, size_t max, int32_t **out);
 void photo_start_lambert(photo_run *run, const photo_band *b, double *normal, double *albedo);
 double photo_auto_scale(const double *albedo, size_t n, int C);
 int photo_nearest(const double *centroids, int k, const double *a, int C);

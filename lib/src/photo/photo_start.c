@@ -23,13 +23,11 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-size_t photo_subsample(const unsigned char *mask, size_t npix_total, int y0, int y1, int width, size_t max,
-                       int32_t **out)
+size_t photo_subsample(const unsigned char *mask, int y0, int y1, int width, size_t max, int32_t **out)
 {
     size_t n = 0, from = (size_t)y0 * (size_t)width, to = (size_t)y1 * (size_t)width;
     for (size_t i = from; i < to; i++)
         n += mask[i] != 0;
-    (void)npix_total;
     size_t stride = n > max ? (n + max - 1) / max : 1, m = 0, seen = 0;
     *out = malloc(((n + stride - 1) / stride + 1) * sizeof **out);
     if (!*out)
