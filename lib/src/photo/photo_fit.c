@@ -210,23 +210,18 @@ static void solve_sub_chunk(void *ctx, size_t p)
     photo_run *run = j->run;
     const bf_stack *s = run->s;
     int K = run->K, C = run->C;
-    photo_scratch *w = photo_scratch_new(K, C, run->P);
-    double *l = malloc((size_t)K * 3 * sizeof *l), *e = malloc((size_t)K * (size_t)C * sizeof *e);
-    if (w && l && e) {
-        photo_lights pl = {l, e, {0}};
+    photo_buffers bb;
+    if (photo_buffers_new(run, &bb)) {
+        photo_lights pl = {bb.l, bb.e, {0}};
         photo_lights_at(s, j->b->pixel[p] % s->width, j->b->pixel[p] / s->width, &pl);
-        photo_problem pr = {
-            run->model, K,       C,           run->P,        run->pixel_free, run->o->normals == BF_NORMALS_FIT,
-            run->lo,    run->hi, run->pscale, MAX_ITERATIONS};
+        photo_problem pr = photo_run_problem(run, MAX_ITERATIONS);
         double *x = j->x + p * (size_t)run->P;
         for (int i = 0; i < run->nshared; i++)
             x[run->shared[i]] = run->start[(size_t)j->label[p] * (size_t)run->P + (size_t)run->shared[i]];
         photo_pixel_out po;
-        photo_solve_pixel(&pr, j->b->v + p * (size_t)K * (size_t)C, &pl, x, j->normal + 3 * p, w, &po);
+        photo_solve_pixel(&pr, j->b->v + p * (size_t)K * (size_t)C, &pl, x, j->normal + 3 * p, bb.w, &po);
     }
-    photo_scratch_free(w);
-    free(l);
-    free(e);
+    photo_buffers_free(&bb);
 }
 
 /* Every stride-th pixel of b (at most max), copied; kc values per pixel. */
@@ -350,34 +345,28 @@ typedef struct pixel_job {
     int cancelled;
 } pixel_job;
 
-/* One thread's buffers for a chunk. */
-typedef struct chunk_buf {
-    photo_scratch *w;
-    double *l, *e, *pred;
-} chunk_buf;
-
-static int chunk_buf_new(const photo_run *run, chunk_buf *cb)
+int photo_buffers_new(const photo_run *run, photo_buffers *b)
 {
-    cb->w = photo_scratch_new(run->K, run->C, run->P);
-    cb->l = malloc((size_t)run->K * 3 * sizeof *cb->l);
-    cb->e = malloc((size_t)run->K * (size_t)run->C * sizeof *cb->e);
-    cb->pred = malloc((size_t)run->K * (size_t)run->C * sizeof *cb->pred);
-    return cb->w && cb->l && cb->e && cb->pred;
+    b->w = photo_scratch_new(run->K, run->C, run->P);
+    b->l = malloc((size_t)run->K * 3 * sizeof *b->l);
+    b->e = malloc((size_t)run->K * (size_t)run->C * sizeof *b->e);
+    b->pred = malloc((size_t)run->K * (size_t)run->C * sizeof *b->pred);
+    return b->w && b->l && b->e && b->pred;
 }
 
-static void chunk_buf_free(chunk_buf *cb)
+void photo_buffers_free(photo_buffers *b)
 {
-    photo_scratch_free(cb->w);
-    free(cb->l);
-    free(cb->e);
-    free(cb->pred);
+    photo_scratch_free(b->w);
+    free(b->l);
+    free(b->e);
+    free(b->pred);
 }
 
-static photo_problem problem_of(const photo_run *run)
+photo_problem photo_run_problem(const photo_run *run, int max_iterations)
 {
     photo_problem pr = {
         run->model, run->K,  run->C,      run->P,        run->pixel_free, run->o->normals == BF_NORMALS_FIT,
-        run->lo,    run->hi, run->pscale, MAX_ITERATIONS};
+        run->lo,    run->hi, run->pscale, max_iterations};
     return pr;
 }
 
@@ -400,9 +389,9 @@ static void solve_chunk(void *ctx, size_t ci)
     int K = run->K, C = run->C, P = run->P;
     size_t p0, p1;
     chunk_range(j, ci, &p0, &p1);
-    chunk_buf cb;
-    photo_problem pr = problem_of(run);
-    if (chunk_buf_new(run, &cb)) {
+    photo_buffers cb;
+    photo_problem pr = photo_run_problem(run, MAX_ITERATIONS);
+    if (photo_buffers_new(run, &cb)) {
         photo_lights pl = {cb.l, cb.e, {0}};
         for (size_t p = p0; p < p1; p++) {
             int px = j->b->pixel[p] % s->width, py = j->b->pixel[p] / s->width;
@@ -423,7 +412,7 @@ static void solve_chunk(void *ctx, size_t ci)
     } else
         for (size_t p = p0; p < p1; p++)
             j->first.out[p].ok = 0, j->first.cost[p] = INFINITY;
-    chunk_buf_free(&cb);
+    photo_buffers_free(&cb);
     atomic_fetch_add(&j->done, p1 - p0);
     if (run->o->progress && pthread_equal(pthread_self(), j->caller))
         run->o->progress(run->o->progress_ctx, (double)atomic_load(&j->done));
@@ -460,12 +449,12 @@ static void restart_chunk(void *ctx, size_t ci)
     }
     if (run->o->normals != BF_NORMALS_FIT || (run->o->cancel && *run->o->cancel))
         return;
-    chunk_buf cb;
-    if (!chunk_buf_new(run, &cb)) {
-        chunk_buf_free(&cb);
+    photo_buffers cb;
+    if (!photo_buffers_new(run, &cb)) {
+        photo_buffers_free(&cb);
         return;
     }
-    photo_problem pr = problem_of(run);
+    photo_problem pr = photo_run_problem(run, MAX_ITERATIONS);
     photo_lights pl = {cb.l, cb.e, {0}};
     const int32_t *pix = j->b->pixel;
     for (size_t p = p0; p < p1; p++) {
@@ -511,7 +500,7 @@ static void restart_chunk(void *ctx, size_t ci)
         }
         g->out[p].restarted = 1;
     }
-    chunk_buf_free(&cb);
+    photo_buffers_free(&cb);
 }
 
 /* Pass 3: the outputs of every pixel, the Lambertian baseline, the counts and the relit
@@ -526,13 +515,13 @@ static void output_chunk(void *ctx, size_t ci)
     size_t p0, p1;
     chunk_range(j, ci, &p0, &p1);
     chunk_sums *cs = &j->sums[ci];
-    chunk_buf cb;
-    if (!chunk_buf_new(run, &cb)) {
+    photo_buffers cb;
+    if (!photo_buffers_new(run, &cb)) {
         cs->counts.failed += p1 - p0;
-        chunk_buf_free(&cb);
+        photo_buffers_free(&cb);
         return;
     }
-    photo_problem pr = problem_of(run);
+    photo_problem pr = photo_run_problem(run, MAX_ITERATIONS);
     photo_lights pl = {cb.l, cb.e, {0}};
     const band_solution *g = &j->final;
     for (size_t p = p0; p < p1; p++) {
@@ -594,7 +583,7 @@ static void output_chunk(void *ctx, size_t ci)
             r->cluster[at] = g->cluster[p];
         r->mask[at] = 1;
     }
-    chunk_buf_free(&cb);
+    photo_buffers_free(&cb);
 }
 
 static void band_solution_free(band_solution *b)

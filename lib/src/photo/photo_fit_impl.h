@@ -25,6 +25,17 @@ typedef struct photo_run {
     double *lbuf, *ebuf;
 } photo_run;
 
+/* One thread's buffers for a run's pixels: the solve's scratch, each image's light (K*3)
+ * and irradiance (K*C), the predictions (K*C). photo_buffers_free takes a half-made one. */
+typedef struct photo_buffers {
+    photo_scratch *w;
+    double *l, *e, *pred;
+} photo_buffers;
+int photo_buffers_new(const photo_run *run, photo_buffers *b);
+void photo_buffers_free(photo_buffers *b);
+/* The run's per-pixel problem, solves of at most max_iterations. */
+photo_problem photo_run_problem(const photo_run *run, int max_iterations);
+
 /* The normal a pixel starts from when normals are given or flat (world frame); n is left
  * as it is when they are fitted. */
 void photo_given_normal(const photo_run *run, int x, int y, double n[3]);

@@ -47,34 +47,6 @@ static void range(const joint *j, size_t c, size_t *p0, size_t *p1)
     *p1 = *p0 + JOINT_CHUNK < j->b->npix ? *p0 + JOINT_CHUNK : j->b->npix;
 }
 
-static photo_problem problem(const photo_run *run)
-{
-    photo_problem pr = {run->model, run->K,  run->C,      run->P, run->pixel_free, run->o->normals == BF_NORMALS_FIT,
-                        run->lo,    run->hi, run->pscale, 1};
-    return pr;
-}
-
-/* Buffers of one chunk's thread. */
-typedef struct bufs {
-    photo_scratch *w;
-    double *l, *e;
-} bufs;
-
-static int bufs_new(const photo_run *run, bufs *b)
-{
-    b->w = photo_scratch_new(run->K, run->C, run->P);
-    b->l = malloc((size_t)run->K * 3 * sizeof *b->l);
-    b->e = malloc((size_t)run->K * (size_t)run->C * sizeof *b->e);
-    return b->w && b->l && b->e;
-}
-
-static void bufs_free(bufs *b)
-{
-    photo_scratch_free(b->w);
-    free(b->l);
-    free(b->e);
-}
-
 /* J'J, J'r and the cost of every pixel of a chunk at the current point. */
 static void sums_chunk(void *ctx, size_t c)
 {
@@ -83,12 +55,12 @@ static void sums_chunk(void *ctx, size_t c)
     const bf_stack *s = run->s;
     size_t p0, p1;
     range(j, c, &p0, &p1);
-    bufs bb;
-    photo_problem pr = problem(run);
-    if (!bufs_new(run, &bb)) {
+    photo_buffers bb;
+    photo_problem pr = photo_run_problem(run, 1);
+    if (!photo_buffers_new(run, &bb)) {
         for (size_t p = p0; p < p1; p++)
             j->bad[p] = 1, j->cost[p] = 0.0;
-        bufs_free(&bb);
+        photo_buffers_free(&bb);
         return;
     }
     photo_lights pl = {bb.l, bb.e, {0}};
@@ -98,7 +70,7 @@ static void sums_chunk(void *ctx, size_t c)
                          j->n + 3 * p, run->shared, j->ns, bb.w, j->A + p * (size_t)j->m * (size_t)j->m,
                          j->g + p * (size_t)j->m, &j->cost[p]);
     }
-    bufs_free(&bb);
+    photo_buffers_free(&bb);
 }
 
 /* The pixels' damped blocks eliminated: the chunk's part of S and r for each cluster. */
@@ -159,12 +131,12 @@ static void step_chunk(void *ctx, size_t c)
     int np = j->np, ns = j->ns, P = run->P;
     size_t p0, p1;
     range(j, c, &p0, &p1);
-    bufs bb;
-    photo_problem pr = problem(run);
-    if (!bufs_new(run, &bb)) {
+    photo_buffers bb;
+    photo_problem pr = photo_run_problem(run, 1);
+    if (!photo_buffers_new(run, &bb)) {
         for (size_t p = p0; p < p1; p++)
             j->tcost[p] = INFINITY;
-        bufs_free(&bb);
+        photo_buffers_free(&bb);
         return;
     }
     photo_lights pl = {bb.l, bb.e, {0}};
@@ -186,7 +158,7 @@ static void step_chunk(void *ctx, size_t c)
         photo_lights_at(s, j->b->pixel[p] % s->width, j->b->pixel[p] / s->width, &pl);
         j->tcost[p] = photo_cost(&pr, j->b->v + p * (size_t)run->K * (size_t)run->C, &pl, tx, tn, bb.w);
     }
-    bufs_free(&bb);
+    photo_buffers_free(&bb);
 }
 
 static double total(const double *c, size_t n)
@@ -224,7 +196,7 @@ void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, d
     double *S = malloc(sz * sizeof *S), *ds = malloc((size_t)nc * (size_t)ns * sizeof *ds);
     j.trial_shared = malloc((size_t)nc * (size_t)ns * sizeof *j.trial_shared);
     j.ds = ds;
-    photo_problem pr = problem(run);
+    photo_problem pr = photo_run_problem(run, 1);
     if (j.tx && j.tn && j.A && j.g && j.cost && j.L && j.Y && j.z && j.tcost && j.bad && j.S && S && ds &&
         j.trial_shared) {
         bf_parallel_for(j.nchunks, run->threads, sums_chunk, &j);
