@@ -3,11 +3,14 @@
  *     shared (--share), the mask and the rows (a tile's band).
  *  2. The start (photo_start.c) on an evenly spread subsample of the pixels: robust
  *     Lambertian normals and albedos, the automatic scale, the clusters, each cluster's
- *     model fit pooled over its pixels, and the shared entries' rounds.
+ *     model fit pooled over its pixels, and the shared entries' joint solve
+ *     (photo_joint.c).
  *  3. The pixels, band by band (as many rows as keep the band's samples within
- *     band_bytes), in fixed chunks on every thread: the Lambertian baseline, the pixel's
- *     solve (photo_solve.c), its outputs, and per chunk the sums of the relit errors,
- *     added in chunk order so the result does not depend on the thread count. */
+ *     band_bytes), in fixed chunks on every thread and three passes: each pixel's solve
+ *     (photo_solve.c), the restarts of pixels that stand apart from their row
+ *     neighbours, then the outputs, the Lambertian baseline and per chunk the sums of
+ *     the relit errors, added in chunk order so the result does not depend on the
+ *     thread count. */
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>

@@ -4,8 +4,8 @@
  *    the material clusters (k-means on the albedo, seeded k-means++);
  *  - per cluster, the model fitted by bf_fit to the subsample's pixels pooled as BRDF
  *    samples at their normals: the start of every pixel of the cluster;
- *  - with shared entries, rounds of per-pixel solves (shared entries fixed) and
- *    Levenberg-Marquardt steps of the shared entries over the cluster's pixels. */
+ *  - with shared entries, their joint solve with the subsample's pixels (photo_joint.c,
+ *    called from photo_fit.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
