@@ -148,7 +148,7 @@ static const cli_option own[] = {
                          "(an existing DIR is replaced only if it is a previous report)", "dir",
      CLI_STRING_AT(compare_args, html_dir)},
     {"--plot-format", 0, "png|svg|pdf", "the report's plots: embedded as PNG (default) or SVG; pdf\n"
-                                        "embeds PNG; a PDF of each plot is linked whatever the format", NULL,
+                                        "embeds PNG and writes a PDF of each plot, linked", NULL,
      CLI_CALLS(take_plot_format)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);

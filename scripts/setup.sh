@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs everything brdfit needs to build, test and package, from Debian packages (and
-# the glTF validator from npm). Checked on a fresh Debian 12 root (docs/releasing.md says
+# the glTF validator and puppeteer-core from npm). Checked on a fresh Debian 12 root (docs/releasing.md says
 # how): a tool a test uses and this script does not install is a bug of this script.
 set -euo pipefail
 SUDO=""
@@ -12,7 +12,7 @@ fail() { echo "setup.sh: $*" >&2; exit 1; }
 # (python/, docs/python.md), Debian's Python with cffi, NumPy and setuptools.
 build=(build-essential cmake pkg-config git
   libceres-dev libnlopt-dev libopenimageio-dev libcjson-dev libsqlite3-dev libxml2-dev
-  libcairo2-dev fonts-dejavu-core libopenmpi-dev openmpi-bin libcmocka-dev
+  libcairo2-dev zlib1g-dev fonts-dejavu-core libopenmpi-dev openmpi-bin libcmocka-dev
   python3-dev python3-cffi python3-numpy python3-setuptools)
 # To test it (tests only: brdfit needs none of these at run time):
 #  - jq, openimageio-tools (iinfo, oiiotool), libxml2-utils (xmllint), poppler-utils
@@ -30,10 +30,11 @@ build=(build-essential cmake pkg-config git
 #    which tests/package/package_test.sh installs with apt-get and removes again;
 #  - python3-pytest, python3-hypothesis, python3-matplotlib (the example), python3-venv
 #    and python3-pip (the pip route into a virtual environment): the Python package's
-#    tests (python/tests).
+#    tests (python/tests);
+#  - chromium: the report viewer's test (tests/browser) drives it headless.
 tests=(jq openimageio-tools libxml2-utils poppler-utils sqlite3 man-db groff-base procps
   python3 python3-numpy blender slurmctld slurmd slurm-client munge clang libclang-rt-14-dev
-  debhelper lintian python3-pytest python3-hypothesis python3-matplotlib python3-venv python3-pip)
+  debhelper lintian python3-pytest python3-hypothesis python3-matplotlib python3-venv python3-pip chromium)
 
 $SUDO apt-get update -qq || fail "apt-get update failed"
 if ! out=$($SUDO apt-get install -y -qq --no-install-recommends "${build[@]}" "${tests[@]}" 2>&1); then
@@ -46,10 +47,12 @@ fi
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null || fail "apt-get install nodejs npm failed"
 fi
-# The Khronos glTF validator (tests/cli_export.sh checks brdfit export's .gltf with it),
-# pinned, into the checkout's ignored tools/ folder: a test dependency only.
+# Test dependencies only, pinned, into the checkout's ignored tools/ folder: the Khronos
+# glTF validator (tests/cli_export.sh checks brdfit export's .gltf with it) and
+# puppeteer-core (tests/browser drives Debian's Chromium with it; it downloads no browser).
 root=$(cd "$(dirname "$0")/.." && pwd)
-if ! out=$(npm install --no-audit --no-fund --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 2>&1); then
+if ! out=$(npm install --no-audit --no-fund --prefix "$root/tools" gltf-validator@2.0.0-dev.3.10 \
+  puppeteer-core@24.43.1 2>&1); then
   echo "$out" | tail -n 20 >&2
-  fail "npm install gltf-validator failed (above: npm's last lines)"
+  fail "npm install gltf-validator puppeteer-core failed (above: npm's last lines)"
 fi

@@ -117,8 +117,10 @@ else
   bad "tradeoff --plot failed: $(cat "$tmp/err")"
 fi
 
-# --- compare --html: PNG embedded, PDF beside it; model names on the points; shared y ------
-if "$BRDFIT" compare "$tmp/w.csv" -m lambert -m walter --quiet --html "$tmp/r" >/dev/null 2>"$tmp/err"; then
+# --- compare --html --plot-format pdf: PNG embedded, PDF beside it; model names on the
+# points; shared y ------------------------------------------------------------------------
+if "$BRDFIT" compare "$tmp/w.csv" -m lambert -m walter --quiet --plot-format pdf --html "$tmp/r" >/dev/null \
+     2>"$tmp/err"; then
   for f in m1-k m1-work m1-slice-1 m1-slice-2; do
     [ -s "$tmp/r/$f.png" ] && [ -s "$tmp/r/$f.pdf" ] && ok || bad "report: $f.png / .pdf missing"
     grep -q "href=\"$f.pdf\"" "$tmp/r/index.html" && ok || bad "report: no link to $f.pdf"

@@ -128,6 +128,102 @@ static void test_shared_scale(void **state)
     free(b);
 }
 
+/* Half/difference angles of direction pairs: the mirror direction has theta_h 0 and
+ * theta_d the incidence; the retro direction (L = V) theta_d 0 and theta_h the
+ * incidence; phi does not matter for either. */
+static void test_angles(void **state)
+{
+    (void)state;
+    double th, td;
+    const double mirror[4] = {30.0, 10.0, 30.0, 190.0}, retro[4] = {40.0, 75.0, 40.0, 75.0};
+    halfdiff_angles(mirror, &th, &td);
+    ts_assert_near(th, 0.0, 0.0, 1e-9, "mirror theta_h");
+    ts_assert_near(td, 30.0, 1e-12, 1e-9, "mirror theta_d");
+    halfdiff_angles(retro, &th, &td);
+    ts_assert_near(th, 40.0, 1e-12, 1e-9, "retro theta_h");
+    ts_assert_near(td, 0.0, 0.0, 1e-6, "retro theta_d");
+    /* Normal incidence, viewed at 60 degrees: H halfway, 30 degrees from each. */
+    const double tilt[4] = {0.0, 0.0, 60.0, 0.0};
+    halfdiff_angles(tilt, &th, &td);
+    ts_assert_near(th, 30.0, 1e-12, 1e-9, "tilt theta_h");
+    ts_assert_near(td, 30.0, 1e-12, 1e-9, "tilt theta_d");
+}
+
+/* The drawing order: NaN keys left out, ascending, equal keys by index. */
+static void test_point_order(void **state)
+{
+    (void)state;
+    const double key[6] = {3.0, NAN, 1.0, 3.0, 2.0, 1.0};
+    size_t idx[6];
+    assert_int_equal(halfdiff_point_order(6, key, idx), 5);
+    const size_t want[5] = {2, 5, 4, 0, 3};
+    for (int i = 0; i < 5; i++)
+        assert_int_equal(idx[i], want[i]);
+    assert_int_equal(halfdiff_point_order(0, key, idx), 0);
+}
+
+/* Scattered samples as points: the table figures' axes and colour bar, one marker per
+ * sample with a value, brightest last (on top), each in the colour the scale gives; the
+ * differences with the worst misfit last and an exact match white. No samples: an empty
+ * figure, not a crash. */
+static void test_points(void **state)
+{
+    (void)state;
+    const double th[5] = {0.0, 10.0, 45.0, 80.0, 20.0}, td[5] = {0.0, 30.0, 60.0, 90.0, 5.0};
+    const double v[5] = {1.0, 0.01, 0.0, 0.1, 1e-9}; /* 0: no value, left out */
+    plot *p = halfdiff_value_points(5, th, td, v, "points", -4.0, 0.0);
+    assert_non_null(p);
+    assert_int_equal(plot_nseries(p), 1);
+    const plot_series *s = plot_series_at(p, 0);
+    assert_int_equal(s->n, 4);
+    assert_non_null(s->colours);
+    /* Ascending values: 1e-9 (below the scale: its bottom colour), 0.01, 0.1, 1. */
+    const double want_x[4] = {sqrt(20.0 / 90.0), sqrt(10.0 / 90.0), sqrt(80.0 / 90.0), 0.0};
+    const double want_y[4] = {5.0, 30.0, 90.0, 0.0}, want_t[4] = {0.0, 0.5, 0.75, 1.0};
+    for (int i = 0; i < 4; i++) {
+        ts_assert_near(s->x[i], want_x[i], 1e-12, 1e-12, "point x");
+        ts_assert_near(s->y[i], want_y[i], 1e-12, 1e-12, "point y");
+        unsigned char c[3];
+        halfdiff_sequential(want_t[i], c);
+        assert_memory_equal(s->colours + 3 * i, c, 3);
+    }
+    plot_layout l;
+    assert_int_equal(plot_layout_compute(p, 340, 280, &l), 0);
+    assert_int_equal(l.colour_bar, 1);
+    /* The axes cover 0..90 with a margin, so points on an edge show whole. */
+    assert_true(l.axis[PLOT_Y].lo < 0.0 && l.axis[PLOT_Y].hi > 90.0);
+    assert_true(l.axis[PLOT_X].lo < 0.0 && l.axis[PLOT_X].hi > 1.0);
+    unsigned char *png;
+    size_t len;
+    bf_error err;
+    assert_int_equal(plot_encode(p, BF_PLOT_PNG, 340, 280, &png, &len, &err), BF_OK);
+    assert_true(len > 1000);
+    free(png);
+    plot_free(p);
+
+    const double r[5] = {0.5, -3.0, NAN, 0.0, -0.25};
+    p = halfdiff_ratio_points(5, th, td, r, "ratios", 2.0);
+    assert_non_null(p);
+    s = plot_series_at(p, 0);
+    assert_int_equal(s->n, 4);
+    ts_assert_near(s->y[0], 90.0, 0, 1e-12, "exact match first"); /* |r| 0 */
+    ts_assert_near(s->y[3], 30.0, 0, 1e-12, "worst misfit last"); /* |r| 3 */
+    assert_int_equal(s->colours[0], 255);
+    assert_int_equal(s->colours[1], 255);
+    assert_int_equal(s->colours[2], 255);
+    unsigned char c[3];
+    halfdiff_diverging(-1.0, c); /* saturated blue: the model far too dark */
+    assert_memory_equal(s->colours + 9, c, 3);
+    plot_free(p);
+
+    p = halfdiff_value_points(0, th, td, v, "none", -4.0, 0.0);
+    assert_non_null(p);
+    assert_int_equal(plot_series_at(p, 0)->n, 0);
+    assert_int_equal(plot_encode(p, BF_PLOT_PNG, 340, 280, &png, &len, &err), BF_OK);
+    free(png);
+    plot_free(p);
+}
+
 /* The exposure: 1 / the percentile of the brightest channel of the lit pixels. */
 static void test_exposure(void **state)
 {
@@ -152,6 +248,9 @@ int main(void)
         cmocka_unit_test(test_signed_difference),
         cmocka_unit_test(test_shared_scale),
         cmocka_unit_test(test_exposure),
+        cmocka_unit_test(test_angles),
+        cmocka_unit_test(test_point_order),
+        cmocka_unit_test(test_points),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -203,8 +203,8 @@ typedef struct bf_report_options {
                                    whole, for the pictures of the measurement when the
                                    samples are a subsample of them */
     int format;                 /* bf_plot_format (render.h) of the embedded plots: PNG
-                                   (0 too) or SVG; PDF embeds PNG. A PDF of every plot is
-                                   written and linked whatever the format */
+                                   (0 too) or SVG; PDF embeds PNG and writes a PDF of
+                                   every plot beside it, linked */
     const char *command_line;   /* the command that made the report, shown as given */
     const char *data_options;   /* how the data was read and prepared, shown */
     const char *scene;          /* the scene file the errors are over, or NULL */

@@ -11,7 +11,8 @@
  *    or is empty; anything else is refused, so a typo cannot wipe a user's folder.
  *  - Plots (error against k and against work, slices, half/difference images) are Cairo
  *    figures (plot/plot.h) with axes, ticks, legends and colour bars, embedded as PNG or
- *    SVG (bf_report_options.format), each with a PDF beside it (linked).
+ *    SVG (bf_report_options.format); with format PDF, PNG with a PDF of each beside it
+ *    (linked).
  *  - The page says how it was made: the command line, the data options, the scene and
  *    the tool's version; each model's row holds its fitted parameters and warnings. The
  *    error column is not repeated under its metric's own name.
@@ -75,11 +76,14 @@ bf_status report_image(report *r, const char *name, int w, int h, const float *r
 
 bf_status report_figure(report *r, const char *name, const plot *p, int w, int h, const char *alt)
 {
-    /* SVG stays sharp when zoomed; PNG is what any viewer shows; the PDF is for papers. */
+    /* SVG stays sharp when zoomed; PNG is what any viewer shows; the PDF is for papers,
+     * written only when asked for (format PDF): a PDF of every figure about doubles a
+     * report's size. */
     const char *shown = r->o->format == BF_PLOT_SVG ? "svg" : "png";
     const bf_plot_format fmt[2] = {r->o->format == BF_PLOT_SVG ? BF_PLOT_SVG : BF_PLOT_PNG, BF_PLOT_PDF};
+    const int with_pdf = r->o->format == BF_PLOT_PDF;
     char path[4096];
-    for (int f = 0; f < 2; f++) {
+    for (int f = 0; f < 1 + with_pdf; f++) {
         if (snprintf(path, sizeof path, "%s/%s.%s", r->tmp, name, f ? "pdf" : shown) >= (int)sizeof path)
             return bf_fail(r->err, BF_ERR_ARG, "%s: path too long", r->tmp);
         bf_status rc = plot_write(p, path, fmt[f], w, h, r->err);
@@ -88,7 +92,9 @@ bf_status report_figure(report *r, const char *name, const plot *p, int w, int h
     }
     fprintf(r->fp, "<img src=\"%s.%s\" width=\"%d\" height=\"%d\" alt=\"", name, shown, w, h);
     report_esc(r->fp, alt);
-    fprintf(r->fp, "\"><br><a class=\"pdf\" href=\"%s.pdf\">PDF</a>", name);
+    fputs("\">", r->fp);
+    if (with_pdf)
+        fprintf(r->fp, "<br><a class=\"pdf\" href=\"%s.pdf\">PDF</a>", name);
     return BF_OK;
 }
 
@@ -110,7 +116,7 @@ static const char *error_name(const bf_compare *c)
     return c->rank_by == BF_RANK_CV ? "cross-validated error" : bf_compare_metric_name(c->metric);
 }
 
-static void model_table(report *r, const bf_compare_material *m)
+static void model_table(report *r, int i, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -119,9 +125,10 @@ static void model_table(report *r, const bf_compare_material *m)
     const int ranked_by_cv = c->rank_by == BF_RANK_CV;
     const int show_rmse = ranked_by_cv || c->metric != BF_CMP_RMSE;
     const int show_log = ranked_by_cv || c->metric != BF_CMP_RMSE_LOG;
-    fprintf(fp, "<table>\n<tr><th>rank (%s)</th><th>model</th><th>k</th><th>%s</th>%s%s"
-                "<th>AIC</th><th>AICc</th><th>BIC</th><th>CV error</th><th>work (M sample evaluations)</th>"
-                "<th>Pareto k</th><th>Pareto work</th><th>simplest</th><th>parameters</th><th>warnings</th></tr>\n",
+    fprintf(fp,
+            "<table>\n<tr><th>rank (%s)</th><th>model</th><th>k</th><th>%s</th>%s%s"
+            "<th>AIC</th><th>AICc</th><th>BIC</th><th>CV error</th><th>work (M sample evaluations)</th>"
+            "<th>Pareto k</th><th>Pareto work</th><th>simplest</th><th>parameters</th><th>warnings</th></tr>\n",
             bf_compare_rank_name(c->rank_by), error_name(c), show_rmse ? "<th>RMSE</th>" : "",
             show_log ? "<th>log RMSE</th>" : "");
     int unsure = 0;
@@ -132,9 +139,12 @@ static void model_table(report *r, const bf_compare_material *m)
             fprintf(fp, "<td>%d</td>", f->rank);
         else
             fputs("<td>&ndash;</td>", fp);
+        /* A ranked model's name links to its view in the material's viewer. */
         fputs("<td class=\"spec\">", fp);
+        if (f->rank)
+            fprintf(fp, "<a href=\"#m%d-view-%d\">", i + 1, j + 1);
         report_esc(fp, c->models[j]);
-        fputs("</td>", fp);
+        fputs(f->rank ? "</a></td>" : "</td>", fp);
         if (!f->rank) {
             fprintf(fp, "<td colspan=\"%d\">%s", 12 + show_rmse + show_log, bf_compare_state_name(f->state));
             if (f->state == BF_CMP_ERROR) {
@@ -147,8 +157,10 @@ static void model_table(report *r, const bf_compare_material *m)
         fprintf(fp, "<td>%d</td>", f->metrics.k);
         if (bf_fit_result_unsure(f->result)) {
             /* The search reached this optimum from one start only (the warning says so). */
-            fprintf(fp, "<td class=\"unsure\" title=\"the best optimum was reached from one start only: a better "
-                        "one may have been missed\">%.5g?</td>", f->error);
+            fprintf(fp,
+                    "<td class=\"unsure\" title=\"the best optimum was reached from one start only: a better "
+                    "one may have been missed\">%.5g?</td>",
+                    f->error);
             unsure++;
         } else {
             num(fp, f->error);
@@ -199,7 +211,8 @@ static void model_table(report *r, const bf_compare_material *m)
     }
     if (unsure)
         fputs("<p>? marks a fit whose best optimum the search reached from one start only: a better one may have "
-              "been missed (<code>--accuracy best</code> searches harder).</p>\n", fp);
+              "been missed (<code>--accuracy best</code> searches harder).</p>\n",
+              fp);
 }
 
 static bf_status scatter(report *r, int i, const bf_compare_material *m, int by_work)
@@ -261,8 +274,9 @@ static bf_status scatter(report *r, int i, const bf_compare_material *m, int by_
     free(x);
     if (rc != BF_OK)
         return rc;
-    fprintf(r->fp, "<figcaption>%s (y, %s axis) against %s (x, %s axis); the Pareto front joins the models no "
-                   "other beats in both</figcaption></figure>\n",
+    fprintf(r->fp,
+            "<figcaption>%s (y, %s axis) against %s (x, %s axis); the Pareto front joins the models no "
+            "other beats in both</figcaption></figure>\n",
             error_name(c), log_y ? "log" : "linear", by_work ? "fitting work" : "free parameters k",
             by_work ? "log" : "linear");
     return BF_OK;
@@ -272,9 +286,10 @@ static void summary(report *r)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
-    fprintf(fp, "<h2 id=\"summary\">Summary over %d materials</h2>\n<table class=\"summary\">\n<tr><th>model</th>"
-                "<th>materials ranked</th><th>mean rank (%s)</th><th>mean BIC rank</th><th>mean AIC rank</th>"
-                "<th>mean %s</th><th>chosen simplest</th></tr>\n",
+    fprintf(fp,
+            "<h2 id=\"summary\">Summary over %d materials</h2>\n<table class=\"summary\">\n<tr><th>model</th>"
+            "<th>materials ranked</th><th>mean rank (%s)</th><th>mean BIC rank</th><th>mean AIC rank</th>"
+            "<th>mean %s</th><th>chosen simplest</th></tr>\n",
             c->nmaterials, bf_compare_rank_name(c->rank_by), error_name(c));
     for (int j = 0; j < c->nmodels; j++) {
         const bf_compare_summary *s = &c->summary[j];
@@ -290,20 +305,22 @@ static void summary(report *r)
     fputs("</table>\n", fp);
 }
 
-static const char css[] =
-    "body{font-family:sans-serif;margin:1.5em;color:#222;max-width:1200px}"
-    "table{border-collapse:collapse;margin:.5em 0}"
-    "th,td{border:1px solid #bbb;padding:.2em .5em;text-align:right;font-size:90%}"
-    "th{background:#eee}td.spec{text-align:left;font-family:monospace}"
-    "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
-    "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
-    "td.warn summary{cursor:pointer;white-space:nowrap}"
-    "tr.chosen td{background:#e6f4e6;font-weight:bold}"
-    "td.unsure{color:#a40}"
-    ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
-    "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
-    "h2{border-bottom:2px solid #ccc;margin-top:1.5em}"
-    "table.made th,table.made td{text-align:left}";
+static const char css[] = "body{font-family:sans-serif;margin:1.5em;color:#222;max-width:1200px}"
+                          "table{border-collapse:collapse;margin:.5em 0}"
+                          "th,td{border:1px solid #bbb;padding:.2em .5em;text-align:right;font-size:90%}"
+                          "th{background:#eee}td.spec{text-align:left;font-family:monospace}"
+                          "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
+                          "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
+                          "td.warn summary{cursor:pointer;white-space:nowrap}"
+                          "tr.chosen td{background:#e6f4e6;font-weight:bold}"
+                          "td.unsure{color:#a40}"
+                          ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
+                          "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
+                          "h2{border-bottom:2px solid #ccc;margin-top:1.5em}"
+                          "table.made th,table.made td{text-align:left}"
+                          ".brdfit-viewer canvas{border:1px solid #ccc}.brdfit-viewer canvas.sphere{cursor:crosshair}"
+                          ".brdfit-viewer .nosphere{width:160px;height:160px;font-size:75%;background:#f4f4f4}"
+                          "pre.readout{font-size:80%;min-width:20em;margin:0}p.hdtext{font-size:80%;max-width:560px}";
 
 /* How the report was made, so that it can be made again. */
 static void how_made(report *r)
@@ -334,9 +351,11 @@ static bf_status page(report *r)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
-    fprintf(fp, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                "<title>brdfit comparison</title>\n<style>%s</style>\n</head>\n<body>\n"
-                "<h1>brdfit comparison: %d material%s, %d model%s</h1>\n",
+    fprintf(fp,
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            "<title>brdfit comparison</title>\n<style>%s</style>\n<script src=\"viewer.js\"></script>\n"
+            "</head>\n<body>\n"
+            "<h1>brdfit comparison: %d material%s, %d model%s</h1>\n",
             css, c->nmaterials, c->nmaterials == 1 ? "" : "s", c->nmodels, c->nmodels == 1 ? "" : "s");
     fprintf(fp, "<p>Error: %s; tolerance %g%%", bf_compare_metric_name(c->metric), 100.0 * c->tolerance);
     if (c->residual)
@@ -350,15 +369,20 @@ static bf_status page(report *r)
         fprintf(fp, "<h2 id=\"m%d\">", i + 1);
         report_esc(fp, m->data);
         fprintf(fp, "</h2>\n<p>%zu samples, %d channel%s.</p>\n", m->samples, m->channels, m->channels == 1 ? "" : "s");
-        model_table(r, m);
+        model_table(r, i, m);
         fputs("<div class=\"row\">\n", fp);
         bf_status rc;
         if ((rc = scatter(r, i, m, 0)) != BF_OK || (rc = scatter(r, i, m, 1)) != BF_OK)
             return rc;
         fputs("</div>\n", fp);
-        if ((rc = report_pictures(r, i, m)) != BF_OK)
+        const char *why;
+        const bf_samples *table = report_measured_table(r, i, &why);
+        if ((rc = report_viewer(r, i, m, table, why)) != BF_OK || (rc = report_pictures(r, i, m)) != BF_OK)
             return rc;
     }
+    bf_status rc = report_viewer_code(r);
+    if (rc != BF_OK)
+        return rc;
     fputs("<footer><p>Written by brdfit ", fp);
     report_esc(fp, bf_version());
     fputs(".</p></footer>\n</body>\n</html>\n", fp);
@@ -390,9 +414,9 @@ bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *
         return bf_fail(err, BF_ERR_ARG, "report: no comparison");
     /* Checked, built under a registered temporary sibling holding the marker. */
     bf_out_folder f;
-    bf_status rc = bf_out_folder_begin(&f, dir, BF_REPORT_MARKER, "report",
-                                       "brdfit compare report: this folder is replaced by the next report written here\n",
-                                       err);
+    bf_status rc =
+        bf_out_folder_begin(&f, dir, BF_REPORT_MARKER, "report",
+                            "brdfit compare report: this folder is replaced by the next report written here\n", err);
     if (rc != BF_OK)
         return rc;
 

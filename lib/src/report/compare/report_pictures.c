@@ -10,9 +10,11 @@
  *  - Slices are cut at the incidence angles the data has nearest 0, 30 and 60 degrees.
  *  - Differences are signed, log2(model / measured), on a diverging scale whose white
  *    centre is 0: blue where the model is too dark, red where it is too bright.
- *  - The measurement is drawn only from a whole MERL table (the table as read when the
- *    fits used a subsample of it); when it cannot be, the report says so and why,
- *    rather than draw scattered cells.
+ *  - The measurement is drawn as images only from a whole MERL table (the table as read
+ *    when the fits used a subsample of it). Scattered samples (Cornell, ALTA, CSV, a
+ *    MERL subsample) have no sphere, and the report says why; their half/difference
+ *    figures show each sample as a point (every phi_d together), and each model's log2
+ *    ratio at those samples, at most HD_POINTS of them (every k-th).
  *  - Sizes are small (spheres 160x160, slices 440x330, half/difference 340x280) so a
  *    report over many fits stays quick. */
 #include <math.h>
@@ -26,6 +28,9 @@
 #include "render/slices.h"
 
 enum { SPHERE = 160, SLICE_W = 440, SLICE_H = 330, HD_W = 340, HD_H = 280, HD_PX = 180 };
+/* Scattered samples drawn as points at most: more only overplot at this size (and make
+ * the SVG and PDF heavy), so every k-th is drawn. */
+enum { HD_POINTS = 4000 };
 
 #define SPHERE_PERCENTILE 99.0
 #define HD_DECADES 4.0
@@ -39,8 +44,8 @@ static int dense(const bf_samples *t)
     return t && t->merl && t->n >= (size_t)BF_MERL_CELLS / 4;
 }
 
-/* The measurement to draw pictures of, or NULL with *why saying why there is none. */
-static const bf_samples *measured_table(const report *r, int i, const char **why)
+/* report.h */
+const bf_samples *report_measured_table(const report *r, int i, const char **why)
 {
     const bf_samples *s = r->o->samples ? r->o->samples[i] : NULL;
     const bf_samples *t = r->o->tables && r->o->tables[i] ? r->o->tables[i] : s;
@@ -193,8 +198,9 @@ static bf_status spheres(report *r, int i, const bf_compare_material *m, const b
     return rc;
 }
 
-/* A half/difference figure written and embedded with its caption. */
-static bf_status hd_figure(report *r, plot *p, const char *name, const char *alt, const char *caption)
+/* A half/difference figure written and embedded with its caption (text), and more
+ * (HTML, or NULL) on a line under it. */
+static bf_status hd_figure(report *r, plot *p, const char *name, const char *alt, const char *caption, const char *more)
 {
     if (!p)
         return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
@@ -204,8 +210,133 @@ static bf_status hd_figure(report *r, plot *p, const char *name, const char *alt
     if (rc == BF_OK) {
         fputs("<figcaption>", r->fp);
         report_esc(r->fp, caption);
+        if (more)
+            fprintf(r->fp, "<br>%s", more);
         fputs("</figcaption></figure>\n", r->fp);
     }
+    return rc;
+}
+
+/* The suffix of an ordinal number: 1st, 2nd, 3rd, 4th, 11th, 22nd. */
+static const char *ordinal(size_t k)
+{
+    if (k % 100 / 10 == 1)
+        return "th";
+    return k % 10 == 1 ? "st" : k % 10 == 2 ? "nd" : k % 10 == 3 ? "rd" : "th";
+}
+
+/* The mean of sample p's channels; 0 (no value) below the horizon. */
+static double sample_mean(const bf_samples *s, const bf_geometry *g, size_t p)
+{
+    if (!bf_geometry_valid_at(g, p))
+        return 0.0;
+    double sum = 0.0;
+    for (int ch = 0; ch < s->channels; ch++)
+        sum += s->value[p * (size_t)s->channels + (size_t)ch];
+    return sum / s->channels;
+}
+
+/* No whole table, but samples: each a point at its (theta_h, theta_d), every phi_d
+ * together, the measurement on the table figures' log scale (from the samples' values),
+ * then each ranked model's log2 ratio at the same samples. Every k-th sample only when
+ * there are more than HD_POINTS (deterministic, and quick however many there are). */
+static bf_status halfdiff_points(report *r, int i, const bf_compare_material *m, bf_samples *s, const char *why)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    const bf_geometry *g = NULL;
+    bf_status rc = bf_samples_geometry(s, &g, r->err);
+    if (rc != BF_OK)
+        return rc;
+    const size_t n = s->n, k = (n + HD_POINTS - 1) / HD_POINTS, cnt = (n + k - 1) / k;
+    double *all = malloc(n * sizeof *all), *buf = malloc(5 * cnt * sizeof *buf);
+    if (!all || !buf) {
+        free(all);
+        free(buf);
+        return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
+    }
+    double *th = buf, *td = buf + cnt, *meas = buf + 2 * cnt, *model = buf + 3 * cnt, *ratio = buf + 4 * cnt;
+    for (size_t p = 0; p < n; p++)
+        all[p] = sample_mean(s, g, p);
+    /* The scale from every sample, drawn or not: thinning does not move it. */
+    double lo, hi;
+    if (halfdiff_log_range(all, n, HD_PERCENTILE, HD_DECADES, &lo, &hi) < 0) {
+        free(all);
+        free(buf);
+        fputs("<p>Not drawn: no measured sample above the horizon has a value above 0 (", fp);
+        report_esc(fp, why);
+        fputs(").</p>\n", fp);
+        return BF_OK;
+    }
+    size_t drawn = 0;
+    for (size_t q = 0; q < cnt; q++) {
+        double dir[4];
+        bf_samples_direction(s, q * k, dir);
+        halfdiff_angles(dir, &th[q], &td[q]);
+        meas[q] = all[q * k];
+        drawn += meas[q] > 0.0 && isfinite(th[q]);
+    }
+    free(all);
+    fputs("<p>The measurement is not drawn as an image: ", fp);
+    report_esc(fp, why);
+    fprintf(fp,
+            ". Its samples are drawn as points instead, each at its &theta;<sub>h</sub> (x, on the square-root "
+            "scale MERL tables use) and &theta;<sub>d</sub> (y), every &phi;<sub>d</sub> together (samples at "
+            "different &phi;<sub>d</sub> may fall on one place; grey: no sample there); the mean of the channels "
+            "on a log colour scale, 10<sup>%.2f</sup> to 10<sup>%.2f</sup> sr<sup>&minus;1</sup> (%g decades down "
+            "from the samples' %g<sup>th</sup> percentile; brighter samples show as the top colour), darkest "
+            "drawn first. Differences: log<sub>2</sub>(model / measured) at each sample, white where equal, red "
+            "where the model is brighter, blue where darker, saturating at a factor of %g, the largest drawn "
+            "last. ",
+            lo, hi, HD_DECADES, HD_PERCENTILE, pow(2.0, HD_SPAN));
+    if (k > 1)
+        fprintf(fp, "Every %zu<sup>%s</sup> sample is drawn: %zu of %zu.</p>\n", k, ordinal(k), drawn, n);
+    else if (drawn < n)
+        fprintf(fp, "%zu of %zu samples drawn (the others have no value above 0 or lie below the horizon).</p>\n",
+                drawn, n);
+    else
+        fprintf(fp, "All %zu samples drawn.</p>\n", n);
+    char name[64], title[512], caption[600], more[256];
+    fputs("<div class=\"row\">\n", fp);
+    snprintf(name, sizeof name, "m%d-hd-measured", i + 1);
+    snprintf(title, sizeof title, "%s: measured samples", report_base_name(m->data));
+    if (k > 1)
+        snprintf(more, sizeof more,
+                 "%zu samples as points (every %zu<sup>%s</sup> of %zu), every &phi;<sub>d</sub> together", drawn, k,
+                 ordinal(k), n);
+    else
+        snprintf(more, sizeof more, "%zu samples as points, every &phi;<sub>d</sub> together", drawn);
+    rc = hd_figure(r, halfdiff_value_points(cnt, th, td, meas, title, lo, hi), name, "measured samples", "measured",
+                   more);
+    for (int j = 0; j < c->nmodels && rc == BF_OK; j++) {
+        const bf_fit_result *res = report_fitted(&m->fits[j]);
+        if (!res)
+            continue;
+        /* The model at the drawn samples only, the mean of its channels (the data's, as
+         * fitted). */
+        const int C = bf_model_channels(res->model);
+        double *val = malloc((size_t)C * sizeof *val);
+        if (!val) {
+            rc = bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
+            break;
+        }
+        for (size_t q = 0; q < cnt; q++) {
+            bf_model_eval_range(res->model, res->x, g, q * k, q * k + 1, val, NULL);
+            double sum = 0.0;
+            for (int ch = 0; ch < C; ch++)
+                sum += val[ch];
+            model[q] = sum / C;
+        }
+        free(val);
+        halfdiff_log2_ratio(model, meas, cnt, ratio);
+        snprintf(name, sizeof name, "m%d-hd-diff-%d", i + 1, j + 1);
+        snprintf(title, sizeof title, "%s vs measured", c->models[j]);
+        snprintf(caption, sizeof caption, "log2(%s / measured)", c->models[j]);
+        rc = hd_figure(r, halfdiff_ratio_points(cnt, th, td, ratio, title, HD_SPAN), name, caption, caption,
+                       "at the same samples");
+    }
+    fputs("</div>\n", fp);
+    free(buf);
     return rc;
 }
 
@@ -214,9 +345,12 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
     fputs("<h3>Half/difference images</h3>\n", fp);
+    bf_samples *s = r->o->samples ? r->o->samples[i] : NULL;
+    if (!table && s && s->n)
+        return halfdiff_points(r, i, m, s, why);
     if (!table) {
         fputs("<p>Not drawn: ", fp);
-        report_esc(fp, why);
+        report_esc(fp, why ? why : "there are no measured samples");
         fputs(".</p>\n", fp);
         return BF_OK;
     }
@@ -238,7 +372,7 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
         char name[64], title[512];
         snprintf(name, sizeof name, "m%d-hd-measured", i + 1);
         snprintf(title, sizeof title, "%s: measured", report_base_name(m->data));
-        rc = hd_figure(r, halfdiff_value_figure(meas, HD_PX, HD_PX, title, lo, hi), name, "measured", "measured");
+        rc = hd_figure(r, halfdiff_value_figure(meas, HD_PX, HD_PX, title, lo, hi), name, "measured", "measured", NULL);
         fputs("</div>\n", fp);
     }
     for (int j = 0; j < c->nmodels && rc == BF_OK; j++) {
@@ -253,13 +387,14 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
         fputs("<div class=\"row\">\n", fp);
         snprintf(name, sizeof name, "m%d-hd-model-%d", i + 1, j + 1);
         snprintf(title, sizeof title, "%s", c->models[j]);
-        rc = hd_figure(r, halfdiff_value_figure(model, HD_PX, HD_PX, title, lo, hi), name, c->models[j], c->models[j]);
+        rc = hd_figure(r, halfdiff_value_figure(model, HD_PX, HD_PX, title, lo, hi), name, c->models[j], c->models[j],
+                       NULL);
         if (rc != BF_OK)
             break;
         snprintf(name, sizeof name, "m%d-hd-diff-%d", i + 1, j + 1);
         snprintf(title, sizeof title, "%s vs measured", c->models[j]);
         snprintf(caption, sizeof caption, "log2(%s / measured)", c->models[j]);
-        rc = hd_figure(r, halfdiff_ratio_figure(ratio, HD_PX, HD_PX, title, HD_SPAN), name, caption, caption);
+        rc = hd_figure(r, halfdiff_ratio_figure(ratio, HD_PX, HD_PX, title, HD_SPAN), name, caption, caption, NULL);
         fputs("</div>\n", fp);
     }
     free(rgb);
@@ -270,7 +405,7 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
 bf_status report_pictures(report *r, int i, const bf_compare_material *m)
 {
     const char *why;
-    const bf_samples *table = measured_table(r, i, &why);
+    const bf_samples *table = report_measured_table(r, i, &why);
     bf_status rc = slices(r, i, m);
     if (rc == BF_OK)
         rc = spheres(r, i, m, table, why);

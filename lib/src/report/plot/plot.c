@@ -40,6 +40,7 @@ static void series_free(plot_series *s)
         for (size_t i = 0; i < s->n; i++)
             free(s->labels[i]);
     free(s->labels);
+    free(s->colours);
     free(s->name);
     free(s->x);
     free(s);
@@ -168,6 +169,17 @@ int plot_point_labels(plot_series *s, const char *const *labels)
     for (size_t i = 0; i < s->n; i++)
         if (labels[i] && !(s->labels[i] = text_dup(labels[i])))
             return -1;
+    return 0;
+}
+
+int plot_point_colours(plot_series *s, const unsigned char *rgb)
+{
+    unsigned char *c = malloc(3 * (s->n ? s->n : 1));
+    if (!c)
+        return -1;
+    memcpy(c, rgb, 3 * s->n);
+    free(s->colours);
+    s->colours = c;
     return 0;
 }
 

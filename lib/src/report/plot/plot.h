@@ -49,6 +49,8 @@ typedef struct plot_series {
     size_t n;
     double *x, *y;
     char **labels;       /* n point labels (NULL entries: none), or NULL */
+    unsigned char *colours; /* n RGB byte triples, one per marker (plot_point_colours), or
+                               NULL: rgb for every marker */
 } plot_series;
 
 typedef struct plot plot;
@@ -106,6 +108,10 @@ int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, c
 plot_series *plot_add(plot *p, const char *name, plot_style style, size_t n, const double *x, const double *y);
 /* Point labels (copied; entries may be NULL): 0, or -1 when out of memory. */
 int plot_point_labels(plot_series *s, const char *const *labels);
+/* A colour per marker (3 * n RGB bytes, copied), in place of rgb: values shown as
+ * coloured points against a colour bar. Markers are drawn in the series' order, the
+ * last on top. 0, or -1 when out of memory. */
+int plot_point_colours(plot_series *s, const unsigned char *rgb);
 /* A faint guide line across the plot area at value v of the axis. */
 int plot_guide(plot *p, int axis, double v, const double rgb[3]);
 /* A line of text under the plot area (markup). */

@@ -81,9 +81,14 @@ static void draw_series(cairo_t *cr, const plot_layout *l, const plot_series *s,
     }
     if (s->style & PLOT_MARKERS)
         for (size_t i = 0; i < s->n; i++)
-            if (plot_drawable(l, s->x[i], s->y[i]))
+            if (plot_drawable(l, s->x[i], s->y[i])) {
+                if (s->colours) {
+                    const unsigned char *c = s->colours + 3 * i;
+                    cairo_set_source_rgba(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, s->alpha);
+                }
                 marker(cr, s->marker, plot_map(l, PLOT_X, s->x[i]), plot_map(l, PLOT_Y, s->y[i]),
                        0.28 * l->font * s->marker_size, lw);
+            }
 }
 
 typedef struct rect {

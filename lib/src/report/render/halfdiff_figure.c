@@ -153,22 +153,169 @@ static plot *figure(const char *title, unsigned char *px, int w, int h, const ch
     return p;
 }
 
+#define VALUE_BAR "BRDF f (sr^{-1})"
+#define RATIO_BAR "log_{2}(model / measured)"
+
+static void value_lut(unsigned char lut[PLOT_LUT][3])
+{
+    for (int k = 0; k < PLOT_LUT; k++)
+        halfdiff_sequential((double)k / (PLOT_LUT - 1), lut[k]);
+}
+
+static void ratio_lut(unsigned char lut[PLOT_LUT][3])
+{
+    for (int k = 0; k < PLOT_LUT; k++)
+        halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, lut[k]);
+}
+
 plot *halfdiff_value_figure(const double *v, int w, int h, const char *title, double log10_lo, double log10_hi)
 {
     unsigned char lut[PLOT_LUT][3];
-    for (int k = 0; k < PLOT_LUT; k++)
-        halfdiff_sequential((double)k / (PLOT_LUT - 1), lut[k]);
-    return figure(title, raster(v, w, h, value_colour, log10_lo, log10_hi), w, h, "BRDF f (sr^{-1})",
-                  pow(10.0, log10_lo), pow(10.0, log10_hi), 1, lut);
+    value_lut(lut);
+    return figure(title, raster(v, w, h, value_colour, log10_lo, log10_hi), w, h, VALUE_BAR, pow(10.0, log10_lo),
+                  pow(10.0, log10_hi), 1, lut);
 }
 
 plot *halfdiff_ratio_figure(const double *r, int w, int h, const char *title, double span)
 {
     unsigned char lut[PLOT_LUT][3];
-    for (int k = 0; k < PLOT_LUT; k++)
-        halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, lut[k]);
-    return figure(title, raster(r, w, h, ratio_colour, span, 0.0), w, h, "log_{2}(model / measured)", -span, span, 0,
-                  lut);
+    ratio_lut(lut);
+    return figure(title, raster(r, w, h, ratio_colour, span, 0.0), w, h, RATIO_BAR, -span, span, 0, lut);
+}
+
+void halfdiff_angles(const double dir[4], double *theta_h, double *theta_d)
+{
+    const double rad = M_PI / 180.0;
+    double L[3] = {sin(dir[0] * rad) * cos(dir[1] * rad), sin(dir[0] * rad) * sin(dir[1] * rad), cos(dir[0] * rad)};
+    double V[3] = {sin(dir[2] * rad) * cos(dir[3] * rad), sin(dir[2] * rad) * sin(dir[3] * rad), cos(dir[2] * rad)};
+    double H[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+    if (!(H[0] * H[0] + H[1] * H[1] + H[2] * H[2] > 1e-24)) {
+        *theta_h = *theta_d = NAN;
+        return;
+    }
+    /* atan2 rather than acos: exact near the mirror direction, where acos(hz) loses
+     * theta_h, and the sqrt axis stretches small theta_h most. */
+    *theta_h = atan2(hypot(H[0], H[1]), H[2]) / rad;
+    /* The angle between L and H from both its sine and cosine: exact near 0 too. */
+    double cx = L[1] * H[2] - L[2] * H[1], cy = L[2] * H[0] - L[0] * H[2], cz = L[0] * H[1] - L[1] * H[0];
+    *theta_d = atan2(sqrt(cx * cx + cy * cy + cz * cz), L[0] * H[0] + L[1] * H[1] + L[2] * H[2]) / rad;
+}
+
+typedef struct keyed {
+    double key;
+    size_t i;
+} keyed;
+
+static int cmp_keyed(const void *a, const void *b)
+{
+    const keyed *x = a, *y = b;
+    if (x->key != y->key)
+        return x->key < y->key ? -1 : 1;
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+size_t halfdiff_point_order(size_t n, const double *key, size_t *idx)
+{
+    keyed *k = malloc((n ? n : 1) * sizeof *k);
+    size_t m = 0;
+    if (!k) { /* out of memory: by index, which is deterministic too */
+        for (size_t p = 0; p < n; p++)
+            if (!isnan(key[p]))
+                idx[m++] = p;
+        return m;
+    }
+    for (size_t p = 0; p < n; p++)
+        if (!isnan(key[p]))
+            k[m++] = (keyed){key[p], p};
+    qsort(k, m, sizeof *k, cmp_keyed);
+    for (size_t p = 0; p < m; p++)
+        idx[p] = k[p].i;
+    free(k);
+    return m;
+}
+
+/* The points figure: the table figure's axes and colour bar over a one-cell grey raster
+ * (no sample there), and one marker per sample, coloured by colour(v[i], a, b), drawn in
+ * order of key (NaN: left out). */
+static plot *points(size_t n, const double *th, const double *td, const double *v, const double *key,
+                    void (*colour)(double, double, double, unsigned char *), double a, double b, const char *title,
+                    const char *bar, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3])
+{
+    size_t *idx = malloc((n ? n : 1) * sizeof *idx);
+    double *xy = malloc(2 * (n ? n : 1) * sizeof *xy);
+    unsigned char *rgb = malloc(3 * (n ? n : 1)), *grey = malloc(3);
+    plot *p = NULL;
+    if (idx && xy && rgb && grey) {
+        grey[0] = grey[1] = grey[2] = HALFDIFF_NONE;
+        p = figure(title, grey, 1, 1, bar, lo, hi, log, lut);
+        grey = NULL; /* figure took it */
+    }
+    if (p) {
+        /* A little beyond 0..90: samples on an edge (theta_d 0, theta_h 0 or 90, as 1-D
+         * slices have) show whole rather than half hidden under the frame. */
+        plot_axis_range(p, PLOT_X, -0.02, 1.02);
+        plot_axis_range(p, PLOT_Y, -2.0, 92.0);
+        size_t m = halfdiff_point_order(n, key, idx);
+        double *x = xy, *y = xy + m;
+        for (size_t k = 0; k < m; k++) {
+            size_t i = idx[k];
+            x[k] = sqrt(fmin(fmax(th[i], 0.0), 90.0) / 90.0);
+            y[k] = fmin(fmax(td[i], 0.0), 90.0);
+            colour(v[i], a, b, rgb + 3 * k);
+        }
+        plot_series *s = plot_add(p, NULL, PLOT_MARKERS, m, x, y);
+        if (s) {
+            /* Full size (5 px across at 340x280) when few, smaller as they get many,
+             * so that a few thousand still show as points rather than a blot. */
+            s->marker_size = m > 400 ? fmax(0.4, sqrt(400.0 / (double)m)) : 1.0;
+        }
+        if (!s || plot_point_colours(s, rgb) < 0) {
+            plot_free(p);
+            p = NULL;
+        }
+    }
+    free(idx);
+    free(xy);
+    free(rgb);
+    free(grey);
+    return p;
+}
+
+/* Whether sample i has a place on the axes. */
+static int placeable(const double *th, const double *td, size_t i)
+{
+    return isfinite(th[i]) && isfinite(td[i]);
+}
+
+plot *halfdiff_value_points(size_t n, const double *theta_h, const double *theta_d, const double *v, const char *title,
+                            double log10_lo, double log10_hi)
+{
+    double *key = malloc((n ? n : 1) * sizeof *key);
+    if (!key)
+        return NULL;
+    for (size_t i = 0; i < n; i++)
+        key[i] = placeable(theta_h, theta_d, i) && v[i] > 0.0 && isfinite(v[i]) ? v[i] : NAN;
+    unsigned char lut[PLOT_LUT][3];
+    value_lut(lut);
+    plot *p = points(n, theta_h, theta_d, v, key, value_colour, log10_lo, log10_hi, title, VALUE_BAR,
+                     pow(10.0, log10_lo), pow(10.0, log10_hi), 1, lut);
+    free(key);
+    return p;
+}
+
+plot *halfdiff_ratio_points(size_t n, const double *theta_h, const double *theta_d, const double *r, const char *title,
+                            double span)
+{
+    double *key = malloc((n ? n : 1) * sizeof *key);
+    if (!key)
+        return NULL;
+    for (size_t i = 0; i < n; i++)
+        key[i] = placeable(theta_h, theta_d, i) && !isnan(r[i]) ? fabs(r[i]) : NAN;
+    unsigned char lut[PLOT_LUT][3];
+    ratio_lut(lut);
+    plot *p = points(n, theta_h, theta_d, r, key, ratio_colour, span, 0.0, title, RATIO_BAR, -span, span, 0, lut);
+    free(key);
+    return p;
 }
 
 bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
