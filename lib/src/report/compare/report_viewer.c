@@ -7,9 +7,10 @@
  * Decisions:
  *  - Data files are scripts calling brdfitViewer.add(JSON), not JSON fetched by the
  *    page: browsers refuse fetch() on file:// but load <script src> there.
- *  - Scattered measurements (Cornell, ALTA, CSV) are shown as their samples, at most
- *    VIEWER_POINTS of them (every k-th, so the same data gives the same file), angles in
- *    hundredths of a degree, values as the tables' log codes. */
+ *  - Scattered measurements (Cornell, ALTA, CSV; a MERL subsample whose table is not at
+ *    hand) are shown as their samples, at most VIEWER_POINTS of them (every k-th, so the
+ *    same data gives the same file), angles in hundredths of a degree, values as the
+ *    tables' log codes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -116,7 +117,7 @@ static bf_status add_measured(report *r, cJSON *o, int i, const bf_samples *tabl
     if (table) {
         if ((rc = viewer_table_merl(table, v, r->err)) == BF_OK)
             rc = add_table(r, m, v);
-    } else if (s && !s->merl && s->n > 0) {
+    } else if (s && s->n > 0) {
         rc = add_points(r, m, s);
     } else {
         cJSON_AddStringToObject(m, "why", why ? why : "no measured data was given to the report");
@@ -146,9 +147,11 @@ bf_status report_viewer(report *r, int i, const bf_compare_material *m, const bf
         if (!res)
             continue;
         cJSON *e = cJSON_CreateObject();
-        if (!e)
-            return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
-        cJSON_AddItemToArray(models, e);
+        if (!e || !cJSON_AddItemToArray(models, e)) {
+            cJSON_Delete(e);
+            rc = bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
+            break;
+        }
         cJSON_AddStringToObject(e, "name", c->models[j]);
         cJSON_AddNumberToObject(e, "index", j + 1);
         cJSON_AddNumberToObject(e, "rank", m->fits[j].rank);
