@@ -1,8 +1,8 @@
 /* The report viewer's tables (lib/src/report/compare/viewer_table.c): the grid's nodes,
  * a model tabulated at them (the model's own values, none below the horizon), a MERL
- * table's cells picked at them, and the stored codes decoded as viewer.js decodes them
- * (zlib inflate, byte planes, running sums, log codes) give the values back within half
- * a code step. */
+ * table's cells interpolated at them, and the stored codes decoded as viewer.js decodes
+ * them (zlib inflate, byte planes, running sums, log codes) give the values back within
+ * half a code step. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -157,15 +157,16 @@ static void test_special_values(void **state)
     cJSON_Delete(o);
 }
 
-/* A MERL table's cells at the nodes: each node gets the cell MERL's lookup picks. */
+/* A MERL table's cells at the nodes: interpolated between the centres, phi_d periodic. */
 static void test_merl(void **state)
 {
     (void)state;
     bf_samples *s;
     bf_error err;
-    const size_t n = 5;
+    const size_t n = BF_MERL_PD;
     assert_int_equal(bf_samples_new_cells(n, 3, &s, &err), BF_OK);
-    /* Cells at theta_h index 0 (the peak column), theta_d index 0, phi_d 0..4. */
+    /* The cells at theta_h index 0 (the peak column) and theta_d index 0, every phi_d: a
+     * ramp 10 + k in phi_d's index k (channel c adds c). */
     for (size_t q = 0; q < n; q++) {
         s->merl->cell[q] = (int32_t)q;
         for (int c = 0; c < 3; c++)
@@ -173,11 +174,14 @@ static void test_merl(void **state)
     }
     double *v = malloc(3 * VIEWER_NODES * sizeof *v);
     assert_int_equal(viewer_table_merl(s, v, &err), BF_OK);
-    /* Node (0, 0, 0): theta_h 0, theta_d 0, phi_d 0 is cell 0. */
-    assert_float_equal(v[0], 10.0, 0.0);
-    assert_float_equal(v[VIEWER_NODES], 11.0, 0.0);
-    assert_float_equal(v[2 * VIEWER_NODES], 12.0, 0.0);
-    /* A node whose cell was not read has no value. */
+    /* Node (0, 0, 0): phi_d 0 lies half way between the centres of cells 179 and 0 (phi_d
+     * repeats every 180 degrees). */
+    assert_float_equal(v[0], (10.0 + 189.0) / 2, 1e-9);
+    assert_float_equal(v[2 * VIEWER_NODES], (12.0 + 191.0) / 2, 1e-9);
+    /* Node (0, 0, 1): phi_d 90/11 degrees, 7.68 cells from cell 0's centre. */
+    const double w = 90.0 / (VIEWER_NP - 1) - 0.5;
+    assert_float_equal(v[VIEWER_NH * VIEWER_ND], 10.0 + w, 1e-9);
+    /* A node whose cells were not read has no value. */
     assert_true(isnan(v[VIEWER_NH / 2]));
     free(v);
     bf_samples_free(s);

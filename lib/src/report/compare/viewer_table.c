@@ -69,12 +69,22 @@ bf_status viewer_table_model(const bf_model *m, const double *x, double *v, bf_e
     return rc;
 }
 
+/* Continuous cell index of a centre-sampled axis: lower cell and weight of the upper. */
+static int cell_pair(double t, int n, double *f)
+{
+    double u = t * n - 0.5;
+    int i0 = (int)floor(u);
+    i0 = i0 < 0 ? 0 : i0 > n - 2 ? n - 2 : i0;
+    *f = fmin(fmax(u - i0, 0.0), 1.0);
+    return i0;
+}
+
 bf_status viewer_table_merl(const bf_samples *s, double *v, bf_error *err)
 {
     const size_t n = VIEWER_NODES;
     const int C = s->channels;
     int32_t *sample_of = malloc((size_t)BF_MERL_CELLS * sizeof *sample_of);
-    double *c = malloc((size_t)C * sizeof *c);
+    double *c = malloc(2 * (size_t)C * sizeof *c), *acc = c ? c + C : NULL;
     if (!sample_of || !c) {
         free(sample_of);
         free(c);
@@ -87,20 +97,35 @@ bf_status viewer_table_merl(const bf_samples *s, double *v, bf_error *err)
             sample_of[s->merl->cell[q]] = (int32_t)q;
     for (size_t q = 0; q < n; q++) {
         int i, j, k;
-        double th, td, pd;
+        double th, td, pd, fu, fv;
         node_of(q, &i, &j, &k);
         viewer_node_angles(i, j, k, &th, &td, &pd);
-        /* MERL's lookup: floor of the index, theta_h on its square-root scale. */
-        int ih = (int)floor(sqrt(th / (M_PI / 2)) * BF_MERL_TH), jd = (int)floor(td / (M_PI / 2) * BF_MERL_TD);
-        int kd = (int)floor(pd / M_PI * BF_MERL_PD);
-        ih = ih < BF_MERL_TH ? ih : BF_MERL_TH - 1;
-        jd = jd < BF_MERL_TD ? jd : BF_MERL_TD - 1;
-        kd = kd < BF_MERL_PD ? kd : BF_MERL_PD - 1;
-        int32_t smp = sample_of[kd + jd * BF_MERL_PD + ih * BF_MERL_PD * BF_MERL_TD];
-        double rgb[3] = {NAN, NAN, NAN};
-        if (smp >= 0) {
+        /* Trilinear between the cell centres (theta_h on MERL's square-root scale, phi_d
+         * periodic over 180 degrees by reciprocity), cells without a value left out: the
+         * nearest cell alone would err by half a cell where the highlight falls off. */
+        const int i0 = cell_pair(sqrt(th / (M_PI / 2)), BF_MERL_TH, &fu),
+                  j0 = cell_pair(td / (M_PI / 2), BF_MERL_TD, &fv);
+        const double w = pd / M_PI * BF_MERL_PD - 0.5, fw = w - floor(w);
+        const int k0 = ((int)floor(w) + BF_MERL_PD) % BF_MERL_PD;
+        double ws = 0.0;
+        memset(acc, 0, (size_t)C * sizeof *acc);
+        for (int corner = 0; corner < 8; corner++) {
+            const int di = corner & 1, dj = corner >> 1 & 1, dk = corner >> 2;
+            const double wt = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv) * (dk ? fw : 1 - fw);
+            const int32_t smp =
+                wt > 0.0
+                    ? sample_of[(k0 + dk) % BF_MERL_PD + (j0 + dj) * BF_MERL_PD + (i0 + di) * BF_MERL_PD * BF_MERL_TD]
+                    : -1;
+            if (smp < 0)
+                continue;
             for (int ch = 0; ch < C; ch++)
-                c[ch] = s->value[(size_t)smp * (size_t)C + (size_t)ch];
+                acc[ch] += wt * s->value[(size_t)smp * (size_t)C + (size_t)ch];
+            ws += wt;
+        }
+        double rgb[3] = {NAN, NAN, NAN};
+        if (ws > 1e-9) {
+            for (int ch = 0; ch < C; ch++)
+                c[ch] = acc[ch] / ws;
             bf_channels_to_rgb(c, C, rgb);
         }
         for (int ch = 0; ch < 3; ch++)

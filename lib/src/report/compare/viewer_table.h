@@ -28,7 +28,8 @@ void viewer_node_angles(int i, int j, int k, double *theta_h, double *theta_d, d
 
 /* 3 * VIEWER_NODES values, channel-major ([c][k][j][i], i fastest). */
 bf_status viewer_table_model(const bf_model *m, const double *x, double *v, bf_error *err);
-/* From samples addressed by MERL cells: at each node the cell MERL's own lookup picks. */
+/* From samples addressed by MERL cells: at each node, interpolated between the centres of
+ * the cells around it that have a value. */
 bf_status viewer_table_merl(const bf_samples *merl, double *v, bf_error *err);
 
 /* Values as a JSON object {"lo": [3], "step": [3], "data": "data:...;base64,..."}: per
