@@ -4,7 +4,7 @@
  * disk: nothing is fetched, the tables are inflated by the browser's DecompressionStream.
  * docs/report.md describes the page, the tables and window.brdfitViewer.
  *
- * Written for brdfit; licence: that of brdfit. */
+ * brdfit's own code, no third-party script; its licence is brdfit's (debian/copyright). */
 (function () {
   'use strict';
   const HALF_PI = Math.PI / 2;
