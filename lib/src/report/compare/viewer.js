@@ -431,24 +431,24 @@
     const at = (s, th, td) => mean3(lookup(s.values, m.grid, th, td, HALF_PI));
     const left = m.ui.hdLeft.getContext('2d'), right = m.ui.hdRight.getContext('2d');
     if (meas || !m.points) {
-      const base = meas || model;
+      /* Without a measurement (brdfit report) the best-ranked model is the reference. */
+      const base = meas || m.sources.filter((s) => s.kind === 'model').sort((a, b) => a.rank - b.rank)[0];
+      if (!base) { m.ui.hdText.textContent = 'No model was fitted.'; return; }
+      const baseName = meas ? 'measured' : base.name;
       const vals = [];
       for (let x = 0; x < HD; x += 2) for (let y = 0; y < HD; y += 2) vals.push(at(base, ...hdAngles(x, y)));
       const [lo, hi] = logRange(vals);
       const valueColour = (v) => Number.isNaN(v) ? NONE : v <= 0 ? VIRIDIS[0] : ramp(VIRIDIS, (Math.log10(v) - lo) / (hi - lo));
       left.putImageData(hdImage(m, (th, td) => valueColour(at(base, th, td))), 0, 0);
-      if (model && meas)
+      if (model)
         right.putImageData(hdImage(m, (th, td) => {
-          const a = at(model, th, td), b = at(meas, th, td);
+          const a = at(model, th, td), b = at(base, th, td);
           if (!(b > 0) || Number.isNaN(a)) return NONE;
           return ramp(RDBU, 0.5 + 0.5 * clamp(Math.log2(Math.max(a, 1e-30) / b) / HD_SPAN, -1, 1));
         }), 0, 0);
-      else if (model)
-        right.putImageData(hdImage(m, (th, td) => valueColour(at(model, th, td))), 0, 0);
-      m.ui.hdText.textContent = (meas ? 'Left: the measurement' : `Left: ${base.name} (no measurement)`) +
+      m.ui.hdText.textContent = (meas ? 'Left: the measurement' : `Left: ${base.name}, the best-ranked model (no measurement)`) +
         `, \u03c6d 90\u00b0, log colour 10^${lo.toFixed(2)} to 10^${hi.toFixed(2)} 1/sr. Right: ` +
-        (meas ? `log2(${model ? model.name : '-'} / measured), white equal, red brighter, blue darker, saturating at a factor of ${Math.pow(2, HD_SPAN)}.`
-              : `${model ? model.name : '-'} on the same scale.`);
+        `log2(${model ? model.name : '-'} / ${baseName}), white equal, red brighter, blue darker, saturating at a factor of ${Math.pow(2, HD_SPAN)}.`;
       return;
     }
     /* Scattered samples: each a point at its (theta_h, theta_d), every phi_d. */
