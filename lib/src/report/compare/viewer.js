@@ -11,6 +11,8 @@
   const SPHERE = 160;       /* sphere canvases, pixels */
   const SLICE_W = 440, SLICE_H = 300;
   const HD = 180;           /* half/difference images, pixels */
+  const HD_OX = 34, HD_OY = 6;                   /* the image's place in its canvas ... */
+  const HD_CW = HD + HD_OX + 8, HD_CH = HD + 62; /* ... which has room for axes and a colour bar */
   const HD_DECADES = 4;     /* the value images' colour range below the 99th percentile */
   const HD_SPAN = 2;        /* log2 ratios saturate at a factor of 4 */
   const SLICE_DECADES = 6;  /* the slice's log axis spans at most this below its top */
@@ -425,6 +427,45 @@
     return halfDiff(UP, L, V);
   }
 
+  /* Axes (theta_h ticks on the square-root scale, theta_d up) and a colour bar from
+   * `tab` labelled a and b at its ends, around the image. */
+  function hdFrame(ctx, tab, a, b, title) {
+    ctx.fillStyle = '#333';
+    ctx.strokeStyle = '#333';
+    ctx.font = '10px sans-serif';
+    ctx.strokeRect(HD_OX - 0.5, HD_OY - 0.5, HD + 1, HD + 1);
+    for (const t of [0, 2, 10, 25, 45, 90]) {
+      const x = HD_OX + Math.sqrt(t / 90) * HD;
+      ctx.fillRect(x, HD_OY + HD, 1, 4);
+      ctx.fillText(`${t}`, x - 4, HD_OY + HD + 14);
+    }
+    ctx.fillText('\u03b8h (\u00b0)', HD_OX + HD / 2 - 12, HD_OY + HD + 25);
+    for (const t of [0, 30, 60, 90]) {
+      const y = HD_OY + HD - t / 90 * HD;
+      ctx.fillRect(HD_OX - 4, y, 4, 1);
+      ctx.fillText(`${t}`, HD_OX - 18, y + 4);
+    }
+    ctx.save();
+    ctx.translate(9, HD_OY + HD / 2 + 10);
+    ctx.rotate(-Math.PI / 2);
+    ctx.fillText('\u03b8d (\u00b0)', 0, 0);
+    ctx.restore();
+    const y = HD_OY + HD + 32;
+    for (let x = 0; x < HD; x++) {
+      ctx.fillStyle = `rgb(${ramp(tab, x / (HD - 1)).join(',')})`;
+      ctx.fillRect(HD_OX + x, y, 1, 8);
+    }
+    ctx.fillStyle = '#333';
+    ctx.fillText(a, HD_OX, y + 19);
+    ctx.fillText(b, HD_OX + HD - ctx.measureText(b).width, y + 19);
+    ctx.fillText(title, HD_OX + HD / 2 - ctx.measureText(title).width / 2, y + 19);
+  }
+
+  function hdClear(ctx) {
+    ctx.fillStyle = '#fff';
+    ctx.fillRect(0, 0, HD_CW, HD_CH);
+  }
+
   function drawHalfDiff(m) {
     const meas = m.sources.find((s) => s.kind === 'measured' && s.values);
     const model = m.sources.find((s) => s.kind === 'model' && String(s.index) === m.ui.hdSelect.value);
@@ -439,13 +480,18 @@
       for (let x = 0; x < HD; x += 2) for (let y = 0; y < HD; y += 2) vals.push(at(base, ...hdAngles(x, y)));
       const [lo, hi] = logRange(vals);
       const valueColour = (v) => Number.isNaN(v) ? NONE : v <= 0 ? VIRIDIS[0] : ramp(VIRIDIS, (Math.log10(v) - lo) / (hi - lo));
-      left.putImageData(hdImage(m, (th, td) => valueColour(at(base, th, td))), 0, 0);
-      if (model)
+      hdClear(left);
+      hdClear(right);
+      left.putImageData(hdImage(m, (th, td) => valueColour(at(base, th, td))), HD_OX, HD_OY);
+      hdFrame(left, VIRIDIS, `1e${lo.toFixed(1)}`, `1e${hi.toFixed(1)}`, 'f (1/sr)');
+      if (model) {
         right.putImageData(hdImage(m, (th, td) => {
           const a = at(model, th, td), b = at(base, th, td);
           if (!(b > 0) || Number.isNaN(a)) return NONE;
           return ramp(RDBU, 0.5 + 0.5 * clamp(Math.log2(Math.max(a, 1e-30) / b) / HD_SPAN, -1, 1));
-        }), 0, 0);
+        }), HD_OX, HD_OY);
+        hdFrame(right, RDBU, `-${HD_SPAN}`, `+${HD_SPAN}`, `log2(${model.name} / ${baseName})`);
+      }
       m.ui.hdText.textContent = (meas ? 'Left: the measurement' : `Left: ${base.name}, the best-ranked model (no measurement)`) +
         `, \u03c6d 90\u00b0, log colour 10^${lo.toFixed(2)} to 10^${hi.toFixed(2)} 1/sr. Right: ` +
         `log2(${model ? model.name : '-'} / ${baseName}), white equal, red brighter, blue darker, saturating at a factor of ${Math.pow(2, HD_SPAN)}.`;
@@ -455,19 +501,21 @@
     const p = m.points, n = p.n, vals = [];
     for (let q = 0; q < n; q++) vals.push((p.values[q] + p.values[n + q] + p.values[2 * n + q]) / 3);
     const [lo, hi] = logRange(vals);
-    for (const ctx of [left, right]) { ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, HD, HD); }
+    for (const ctx of [left, right]) { hdClear(ctx); ctx.fillStyle = '#eee'; ctx.fillRect(HD_OX, HD_OY, HD, HD); }
     for (let q = 0; q < n; q++) {
       const a = pointHD(m, q);
       if (!a) continue;
       const [x, y] = hdPixel(a[0], a[1]), v = vals[q];
       left.fillStyle = `rgb(${(v > 0 ? ramp(VIRIDIS, (Math.log10(v) - lo) / (hi - lo)) : VIRIDIS[0]).join(',')})`;
-      left.fillRect(x - 1, y - 1, 3, 3);
+      left.fillRect(HD_OX + x - 1, HD_OY + y - 1, 3, 3);
       if (model && v > 0) {
         const mv = mean3(lookup(model.values, m.grid, a[0], a[1], a[2]));
         right.fillStyle = `rgb(${ramp(RDBU, 0.5 + 0.5 * clamp(Math.log2(Math.max(mv, 1e-30) / v) / HD_SPAN, -1, 1)).join(',')})`;
-        right.fillRect(x - 1, y - 1, 3, 3);
+        right.fillRect(HD_OX + x - 1, HD_OY + y - 1, 3, 3);
       }
     }
+    hdFrame(left, VIRIDIS, `1e${lo.toFixed(1)}`, `1e${hi.toFixed(1)}`, 'f (1/sr)');
+    if (model) hdFrame(right, RDBU, `-${HD_SPAN}`, `+${HD_SPAN}`, `log2(${model.name} / measured)`);
     m.ui.hdText.textContent = `Left: the ${n} measured samples shown (of ${p.of}) at their \u03b8h, \u03b8d (every \u03c6d), ` +
       `log colour 10^${lo.toFixed(2)} to 10^${hi.toFixed(2)} 1/sr. Right: log2(${model ? model.name : '-'} / measured) at each ` +
       `sample, red brighter, blue darker, saturating at a factor of ${Math.pow(2, HD_SPAN)}.`;
@@ -516,8 +564,8 @@
     ui.readout = el('pre', {class: 'readout'});
     ui.hdSelect = el('select', {'aria-label': 'model'});
     for (const s of m.sources) if (s.kind === 'model') ui.hdSelect.append(el('option', {value: String(s.index)}, s.name));
-    ui.hdLeft = el('canvas', {width: String(HD), height: String(HD), class: 'hd'});
-    ui.hdRight = el('canvas', {width: String(HD), height: String(HD), class: 'hd'});
+    ui.hdLeft = el('canvas', {width: String(HD_CW), height: String(HD_CH), class: 'hd'});
+    ui.hdRight = el('canvas', {width: String(HD_CW), height: String(HD_CH), class: 'hd'});
     ui.hdText = el('p', {class: 'hdtext'});
     root.append(head, toggles, row,
                 el('p', {}, 'Slice at incidence ', ui.slider, ' ', ui.sliceText),
