@@ -1,6 +1,7 @@
-# cmake -DIN=FILE -DOUT=FILE.c -DNAME=symbol -P embed.cmake: FILE's bytes as a C array
-# (NAME, and NAME_size), so a text file ships inside the library (the report viewer's
-# viewer.js) without a string literal's length limit or an install path to find it by.
+# cmake -DIN=FILE -DOUT=FILE.c -DNAME=symbol -P embed.cmake: FILE's bytes as a C array,
+# NAME, followed by a NUL so that a text file is a string (NAME_size: the bytes without
+# it). A text file (the report viewer's viewer.js) ships inside the library this way,
+# without a string literal's length limit or an install path to find it by.
 file(READ ${IN} hex HEX)
 string(LENGTH "${hex}" n)
 math(EXPR size "${n} / 2")
