@@ -154,12 +154,18 @@ int main(int argc, char **argv)
         repeats = 1;
 
     bf_error err;
-    bf_fit_options fo;
-    memset(&fo, 0, sizeof fo);
-    if (bf_residual_parse(residual, &fo.objective.residual, &err) != BF_OK)
+    bf_options *fo = NULL;
+    char threads_text[32];
+    snprintf(threads_text, sizeof threads_text, "%d", threads);
+    if (bf_options_new(BF_TASK_FIT, &fo, &err) != BF_OK || bf_options_set(fo, "starts", "1", &err) != BF_OK ||
+        bf_options_set(fo, "threads", threads_text, &err) != BF_OK)
+        die("options", &err);
+    if (bf_options_set(fo, "residual", residual, &err) != BF_OK)
         die("--residual", &err);
-    fo.starts = 1;
-    fo.solver.threads = threads;
+    bf_objective_options oo;
+    memset(&oo, 0, sizeof oo);
+    if (bf_residual_parse(residual, &oo.residual, &err) != BF_OK)
+        die("--residual", &err);
 
     double t0 = now();
     bf_samples *s = NULL;
@@ -187,8 +193,8 @@ int main(int argc, char **argv)
     const int ia = bf_model_param_offset(m, bf_model_find_param(m, "alpha"));
     ts = now() - ts;
     double t_pass, t_cost, t_metrics, t_stderr;
-    fo.objective.threads = threads;
-    time_parts(s, &fo.objective, threads, &t_pass, &t_cost, &t_metrics, &t_stderr, &err);
+    oo.threads = threads;
+    time_parts(s, &oo, threads, &t_pass, &t_cost, &t_metrics, &t_stderr, &err);
     printf("data-driven start %.3f s (alpha %.4g); %d thread%s: fused pass (cost, J'r, J'J) %.4f s, "
            "cost alone %.4f s, metrics %.4f s, standard errors %.4f s\n", ts, x0[ia], threads,
            threads == 1 ? "" : "s", t_pass, t_cost, t_metrics, t_stderr);
@@ -198,13 +204,14 @@ int main(int argc, char **argv)
     char list[256];
     snprintf(list, sizeof list, "%s", methods);
     for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
-        fo.solver.backend = strcmp(tok, "ceres") ? BF_BACKEND_NLOPT : BF_BACKEND_CERES;
-        fo.solver.algorithm = strcmp(tok, "ceres") ? tok : NULL;
+        if (bf_options_set(fo, "backend", strcmp(tok, "ceres") ? "nlopt" : "ceres", &err) != BF_OK ||
+            (strcmp(tok, "ceres") ? bf_options_set(fo, "algorithm", tok, &err) : bf_options_reset(fo, "algorithm", &err)) != BF_OK)
+            die(tok, &err);
         double best_fit = 1e30, best_solve = 1e30, best_cpu = 1e30;
         bf_fit_result r;
         for (int rep = 0; rep < repeats; rep++) {
             double c0 = cpu_now();
-            if (bf_fit(s, SPEC, &fo, &r, &err) != BF_OK)
+            if (bf_fit(s, SPEC, fo, &r, &err) != BF_OK)
                 die(tok, &err);
             best_cpu = fmin(best_cpu, cpu_now() - c0);
             best_fit = fmin(best_fit, r.seconds);
@@ -221,5 +228,6 @@ int main(int argc, char **argv)
     }
     bf_model_free(m);
     bf_samples_free(s);
+    bf_options_free(fo);
     return 0;
 }

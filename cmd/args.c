@@ -1,6 +1,8 @@
 /* Command-line helpers every subcommand shares (see args.h). */
 #include "args.h"
 
+#include "brdfit/tool.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -10,16 +12,7 @@
 
 int args_int(const char *s, long lo, long hi, long *out)
 {
-    /* strtol alone accepts leading spaces and signs: digits only. */
-    if (!s || !isdigit((unsigned char)s[0]))
-        return 0;
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (*end || errno || v < lo || v > hi)
-        return 0;
-    *out = v;
-    return 1;
+    return bf_parse_long(s, lo, hi, out);
 }
 
 int args_jobs(const char *cmd, const char *v, int *jobs)
@@ -35,15 +28,7 @@ int args_jobs(const char *cmd, const char *v, int *jobs)
 
 int args_number(const char *s, double lo, double hi, double *out)
 {
-    if (!s || !*s || isspace((unsigned char)s[0]))
-        return 0;
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (*end || errno || !isfinite(v) || v < lo || v > hi)
-        return 0;
-    *out = v;
-    return 1;
+    return bf_parse_number(s, lo, hi, out);
 }
 
 int args_size(const char *s, int lo, int hi, int *w, int *h)

@@ -16,6 +16,84 @@ static const cli_option common[] = {
 };
 static const cli_group common_group = CLI_GROUP("common", common);
 
+/* ---- Entries from the library's table ------------------------------------------------ */
+
+/* Library options take their arg, help and completion from the library's table; these
+ * are the groups' resolved entries, made once per group for the process. */
+typedef struct resolved {
+    const cli_group *g;
+    cli_option *v;
+    int n;
+} resolved;
+static resolved resolved_groups[64];
+static int nresolved;
+
+/* "--max-theta" for the library's "max_theta" (kept for the process). */
+static const char *long_name(const char *keyword)
+{
+    size_t n = strlen(keyword);
+    char *s = malloc(n + 3);
+    if (!s)
+        return keyword;
+    s[0] = s[1] = '-';
+    for (size_t k = 0; k <= n; k++)
+        s[k + 2] = keyword[k] == '_' ? '-' : keyword[k];
+    return s;
+}
+
+static void fill_from_library(cli_option *o, const bf_option *d)
+{
+    o->arg = d->arg;
+    o->help = d->help;
+    o->complete = d->complete;
+    o->kind = CLI_LIBRARY;
+}
+
+/* Group g's entries: its table, with library entries filled in, or the library group's. */
+static const cli_option *entries(const cli_group *g, int *n)
+{
+    int lib = g->library != NULL;
+    for (int k = 0; !lib && k < g->n; k++)
+        lib = g->options[k].kind == CLI_LIBRARY;
+    if (!lib) {
+        *n = g->n;
+        return g->options;
+    }
+    for (int i = 0; i < nresolved; i++)
+        if (resolved_groups[i].g == g) {
+            *n = resolved_groups[i].n;
+            return resolved_groups[i].v;
+        }
+    int count = g->n;
+    for (int i = 0; g->library && i < bf_option_count(); i++)
+        count++;
+    cli_option *v = calloc((size_t)(count ? count : 1), sizeof *v);
+    if (!v || nresolved == (int)(sizeof resolved_groups / sizeof resolved_groups[0])) {
+        free(v);
+        *n = 0;
+        return NULL;
+    }
+    int m = 0;
+    for (int k = 0; k < g->n; k++) {
+        v[m] = g->options[k];
+        const bf_option *d = v[m].kind == CLI_LIBRARY ? bf_option_find(v[m].name, g->task) : NULL;
+        if (d)
+            fill_from_library(&v[m], d);
+        m++;
+    }
+    for (int i = 0; g->library && i < bf_option_count(); i++) {
+        const bf_option *d = bf_option_get(i);
+        if (strcmp(d->group, g->library) || (g->task && !(d->tasks & g->task)) || bf_option_find(d->name, g->task) != d)
+            continue;
+        v[m] = (cli_option){long_name(d->name), 0, NULL, NULL, NULL, .kind = CLI_LIBRARY};
+        fill_from_library(&v[m], d);
+        m++;
+    }
+    resolved_groups[nresolved++] = (resolved){g, v, m};
+    *n = m;
+    return v;
+}
+
 static int verbosity = 1;
 
 int cli_verbose(void)
@@ -56,8 +134,10 @@ static const cli_option *find_in(const cli_command *c, const char *name, size_t 
 {
     for (int g = common ? -1 : 0; g < c->ngroups; g++) {
         const cli_group *grp = g < 0 ? &common_group : c->groups[g];
-        for (int k = 0; k < grp->n; k++) {
-            const cli_option *o = &grp->options[k];
+        int n;
+        const cli_option *v = entries(grp, &n);
+        for (int k = 0; k < n; k++) {
+            const cli_option *o = &v[k];
             if (name ? strlen(o->name) == len && !strncmp(o->name, name, len) : o->short_name == letter) {
                 *group = g;
                 return o;
@@ -229,7 +309,14 @@ static int take_one(void *target, const cli_group *g, const cli_option *o, const
 {
     char *var = (char *)target + o->at;
     int rc = 0;
+    bf_error err;
     switch (o->kind) {
+    case CLI_LIBRARY:
+        if (bf_options_set(*(bf_options **)((char *)target + g->options_at), o->name, v, &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            rc = -1;
+        }
+        break;
     case CLI_FLAG:
         *(int *)var = (int)o->lo;
         break;
@@ -247,8 +334,6 @@ static int take_one(void *target, const cli_group *g, const cli_option *o, const
         fprintf(stderr, "%s: internal error: option %s is not bound to a variable\n", cmd, o->name);
         return -1;
     }
-    if (rc == 0 && o->given && g->given_at)
-        *(unsigned *)((char *)target + g->given_at - 1) |= o->given;
     return rc;
 }
 
@@ -277,28 +362,34 @@ int cli_take(const cli_command *c, void *const *targets, int ntargets, const cli
 
 int cli_group_take(const cli_group *g, void *target, const char *name, const char *value, const char *cmd)
 {
-    for (int k = 0; k < g->n; k++)
-        if (!strcmp(g->options[k].name, name))
-            return take_one(target, g, &g->options[k], value, cmd) == 0 ? 1 : -1;
+    int n;
+    const cli_option *v = entries(g, &n);
+    for (int k = 0; k < n; k++)
+        if (!strcmp(v[k].name, name))
+            return take_one(target, g, &v[k], value, cmd) == 0 ? 1 : -1;
     return 0;
 }
 
 int cli_check_bound(const cli_command *c)
 {
     char title[64];
-    for (int g = 0; g < c->ngroups; g++)
-        for (int k = 0; k < c->groups[g]->n; k++) {
-            const cli_option *o = &c->groups[g]->options[k];
+    for (int g = 0; g < c->ngroups; g++) {
+        int n;
+        const cli_option *v = entries(c->groups[g], &n);
+        for (int k = 0; k < n; k++) {
+            const cli_option *o = &v[k];
             int ok = o->kind == CLI_FLAG || o->kind == CLI_STRING || o->kind == CLI_INT || o->kind == CLI_NUMBER ||
-                     (o->kind == CLI_CALL && o->take);
+                     (o->kind == CLI_CALL && o->take) || (o->kind == CLI_LIBRARY && o->help);
             /* A flag binding has no value to read; an option without a value is a flag
              * or a callback (which reads none). */
-            if (!ok || (o->kind == CLI_FLAG && o->arg) || (!o->arg && o->kind != CLI_FLAG && o->kind != CLI_CALL)) {
+            if (!ok || (o->kind == CLI_FLAG && o->arg) ||
+                (!o->arg && o->kind != CLI_FLAG && o->kind != CLI_CALL && o->kind != CLI_LIBRARY)) {
                 fprintf(stderr, "%s: option %s is not bound to a variable of its kind (cli.h)\n",
                         cli_title(c, title, sizeof title), o->name);
                 return -1;
             }
         }
+    }
     return 0;
 }
 
@@ -336,9 +427,11 @@ static void help_option(const cli_option *o, FILE *out)
 
 static void help_group(const cli_group *g, FILE *out)
 {
+    int n;
+    const cli_option *v = entries(g, &n);
     fprintf(out, "%s:\n", g->title ? g->title : "options");
-    for (int k = 0; k < g->n; k++)
-        help_option(&g->options[k], out);
+    for (int k = 0; k < n; k++)
+        help_option(&v[k], out);
 }
 
 /* Paragraphs filled to width columns (words never split). */
@@ -422,8 +515,10 @@ static void man_options(const cli_command *c, FILE *out)
         fputs(".SS ", out);
         roff(grp->title ? grp->title : "options", out, 0);
         fputc('\n', out);
-        for (int k = 0; k < grp->n; k++) {
-            const cli_option *o = &grp->options[k];
+        int n;
+        const cli_option *v = entries(grp, &n);
+        for (int k = 0; k < n; k++) {
+            const cli_option *o = &v[k];
             fputs(".TP\n", out);
             if (o->short_name)
                 fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
@@ -533,8 +628,10 @@ static void completion_arms(const cli_command *c, const char *(*words_of)(const 
     fprintf(out, "%scase $prev in\n", indent);
     for (int g = 0; g <= c->ngroups; g++) {
         const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
-        for (int k = 0; k < grp->n; k++) {
-            const cli_option *o = &grp->options[k];
+        int n;
+        const cli_option *v = entries(grp, &n);
+        for (int k = 0; k < n; k++) {
+            const cli_option *o = &v[k];
             if (!o->arg)
                 continue;
             const char *kind = value_kind(o);
@@ -558,10 +655,12 @@ static void completion_arms(const cli_command *c, const char *(*words_of)(const 
     fprintf(out, "%sesac\n%sif [[ $cur == -* ]]; then\n%s    COMPREPLY=($(compgen -W \"", indent, indent, indent);
     for (int g = 0; g <= c->ngroups; g++) {
         const cli_group *grp = g < c->ngroups ? c->groups[g] : &common_group;
-        for (int k = 0; k < grp->n; k++) {
-            fprintf(out, "%s%s", g || k ? " " : "", grp->options[k].name);
-            if (grp->options[k].short_name)
-                fprintf(out, " -%c", grp->options[k].short_name);
+        int n;
+        const cli_option *v = entries(grp, &n);
+        for (int k = 0; k < n; k++) {
+            fprintf(out, "%s%s", g || k ? " " : "", v[k].name);
+            if (v[k].short_name)
+                fprintf(out, " -%c", v[k].short_name);
         }
     }
     fprintf(out, "\" -- \"$cur\"))\n%selse\n%s    COMPREPLY=($(compgen %s -- \"$cur\"))\n%sfi\n", indent, indent,

@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "brdfit/options.h"
+
 /* Options are bound to their variables (after git's parse-options): each entry says where
  * its value goes, in the struct its group fills (the group's "target", given to
  * cli_take), and how it is read, so an option added to a table cannot silently mean
@@ -23,6 +25,9 @@ typedef enum cli_kind {
     CLI_INT,         /* an int: an integer in [.lo, .hi] (args_int's strict digits) */
     CLI_NUMBER,      /* a double: a number in [.lo, .hi] */
     CLI_CALL,        /* .take reads it */
+    CLI_LIBRARY,     /* a run option of the library (brdfit/options.h): declared there, by
+                        name, with its value's name, help and completion, and set there
+                        (bf_options_set) into the bf_options the group points at */
 } cli_kind;
 
 typedef struct cli_option cli_option;
@@ -47,7 +52,6 @@ struct cli_option {
     const char *what; /* CLI_INT, CLI_NUMBER: the range for the error ("degrees in (0, 90]");
                          NULL: "an integer from LO to HI" */
     cli_take_fn take; /* CLI_CALL */
-    unsigned given;   /* bits or'ed into the target's "given" word when taken (CLI_GROUP_GIVEN) */
 };
 
 /* The bindings, after an entry's five descriptive fields: TYPE is the target struct. */
@@ -57,17 +61,29 @@ struct cli_option {
 #define CLI_NUMBER_AT(TYPE, FIELD, LO, HI, WHAT)                                                                        \
     .kind = CLI_NUMBER, .at = offsetof(TYPE, FIELD), .lo = (LO), .hi = (HI), .what = (WHAT)
 #define CLI_CALLS(FN) .kind = CLI_CALL, .take = (FN)
+/* A library run option in a command's own table, by its command-line name: the rest of
+ * its entry comes from the library's table, for the group's task. */
+#define CLI_LIB(NAME) {NAME, 0, NULL, NULL, NULL, .kind = CLI_LIBRARY}
 
 typedef struct cli_group {
     const char *title; /* "reading", "fitting", ...; NULL: the command's own */
     const cli_option *options;
     int n;
-    size_t given_at; /* 1 + offset of an unsigned "given" word in the target; 0: none */
+    /* Library options (brdfit/options.h). library: a group of the library's table, whose
+     * options (those task takes; 0: any) make this group's entries, in the library's
+     * order. CLI_LIB entries and such a group take their values into the bf_options
+     * pointed at by the bf_options * at offset options_at in the group's target. */
+    const char *library;
+    unsigned task;
+    size_t options_at;
 } cli_group;
 
-#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0]), 0}
-#define CLI_GROUP_GIVEN(title, table, TYPE, FIELD)                                                                     \
-    {title, table, (int)(sizeof table / sizeof table[0]), 1 + offsetof(TYPE, FIELD)}
+#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0]), NULL, 0, 0}
+/* A group with CLI_LIB entries: TYPE's FIELD is the bf_options * they are set into. */
+#define CLI_GROUP_OPTIONS(title, table, task, TYPE, FIELD)                                                             \
+    {title, table, (int)(sizeof table / sizeof table[0]), NULL, task, offsetof(TYPE, FIELD)}
+/* The library's group NAME (under that title) for task: its target is a bf_options *. */
+#define CLI_LIBRARY_GROUP(NAME, task) {NAME, NULL, 0, NAME, task, 0}
 
 typedef struct cli_command {
     const char *tool;     /* "brdfit" or "brdfit-synth" */

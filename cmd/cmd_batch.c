@@ -82,12 +82,14 @@ static int take_jobs(void *target, const cli_option *o, const char *v, const cha
     return args_jobs(c, v, &((batch_args *)target)->jobs);
 }
 
-/* --threads: a long (0 stands for "as the manifest says"), so not CLI_INT_AT's int. */
+/* --threads: a long (0 stands for "as the manifest says"), so not CLI_INT_AT's int; its
+ * range is the fit option's. */
 static int take_threads(void *target, const cli_option *o, const char *v, const char *c)
 {
     (void)o;
-    if (!args_int(v, 1, FIT_OPTIONS_MAX_THREADS, &((batch_args *)target)->threads)) {
-        fprintf(stderr, "%s: --threads needs an integer from 1 to %d, got '%s'\n", c, FIT_OPTIONS_MAX_THREADS, v);
+    const bf_option *d = bf_option_find("threads", BF_TASK_COMPARE);
+    if (!args_int(v, (long)d->lo, (long)d->hi, &((batch_args *)target)->threads)) {
+        fprintf(stderr, "%s: --threads needs %s, got '%s'\n", c, d->range ? d->range : "an integer from 1 to 1024", v);
         return -1;
     }
     return 0;

@@ -75,15 +75,11 @@ static const char cmd[] = "brdfit compare";
 /* The command line, parsed. data points into args (kept until the end). */
 typedef struct compare_args {
     cli_args args;
-    data_options dopt;
-    fit_options fopt;
-    rank_options ro;
+    bf_options *o;
     char *specs[MAX_MODELS];
     const char **data;
-    int nmodels, ndata, jobs, all;
+    int nmodels, ndata, all;
     const char *json_path, *csv_path, *html_dir;
-    bf_compare_metric metric;
-    double tolerance;
     int plot_format;       /* --plot-format: a bf_plot_format */
     char *command_line;    /* as typed, for the report (NULL when out of memory) */
     char *data_opts;       /* the data options given, for the report */
@@ -104,23 +100,6 @@ static int take_model(void *target, const cli_option *o, const char *v, const ch
     return 0;
 }
 
-static int take_error(void *target, const cli_option *o, const char *v, const char *c)
-{
-    bf_error err;
-    (void)o;
-    if (bf_compare_metric_parse(v, &((compare_args *)target)->metric, &err) != BF_OK) {
-        fprintf(stderr, "%s: --error: %s\n", c, err.msg);
-        return -1;
-    }
-    return 0;
-}
-
-static int take_jobs(void *target, const cli_option *o, const char *v, const char *c)
-{
-    (void)o;
-    return args_jobs(c, v, &((compare_args *)target)->jobs);
-}
-
 static int take_plot_format(void *target, const cli_option *o, const char *v, const char *c)
 {
     (void)o;
@@ -134,12 +113,9 @@ static int take_plot_format(void *target, const cli_option *o, const char *v, co
 static const cli_option own[] = {
     {"--model", 'm', "SPECS", "models to compare (as brdfit fit; repeatable), or all: every\n"
                               "registered model with its default options", "model", CLI_CALLS(take_model)},
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "error for the Pareto fronts and the tolerance\n"
-                                                       "(default rmse_log; with --rank cv the cross-validated error)",
-     NULL, CLI_CALLS(take_error)},
-    {"--tolerance", 0, "T", "relative: the simplest model with error <= best * (1 + T)\nis chosen (default 0.05)",
-     NULL, CLI_NUMBER_AT(compare_args, tolerance, 0.0, HUGE_VAL, "a number >= 0 (relative, 0.05 = 5%)")},
-    {"--jobs", 0, "N", "fits run at once (default 1); each gets --threads / N threads", NULL, CLI_CALLS(take_jobs)},
+    CLI_LIB("--error"),
+    CLI_LIB("--tolerance"),
+    CLI_LIB("--jobs"),
     {"--json", 0, "FILE", "everything, machine-readable (stable keys; - for standard output)", "file",
      CLI_STRING_AT(compare_args, json_path)},
     {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file",
@@ -151,7 +127,7 @@ static const cli_option own[] = {
                                         "embeds PNG and writes a PDF of each plot, linked", NULL,
      CLI_CALLS(take_plot_format)},
 };
-static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_COMPARE, compare_args, o);
 static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_compare = {
     "brdfit", "compare", "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
@@ -171,6 +147,7 @@ static void compare_args_free(compare_args *a)
     free(a->data);
     free(a->command_line);
     free(a->data_opts);
+    bf_options_free(a->o);
 }
 
 
@@ -205,11 +182,8 @@ static int take_data(void *ctx, const char *v, const char *c)
 static int parse(compare_args *a, int argc, char **argv)
 {
     memset(a, 0, sizeof *a);
-    fit_options_init(&a->fopt);
-    rank_options_init(&a->ro, BF_RANK_BIC);
-    a->jobs = 1;
-    a->metric = BF_CMP_RMSE_LOG;
-    a->tolerance = 0.05;
+    if (!(a->o = cmd_options_new(BF_TASK_COMPARE, cmd)))
+        return 1;
     if (!(a->data = calloc((size_t)argc, sizeof *a->data))) {
         fprintf(stderr, "%s: out of memory\n", cmd);
         return 1;
@@ -231,7 +205,7 @@ static int parse(compare_args *a, int argc, char **argv)
         opts &= strcmp(w, "--") != 0;
         args_append_word(&a->command_line, w);
     }
-    void *const targets[] = {a, &a->ro, &a->fopt, &a->fopt, &a->dopt, &a->dopt};
+    void *const targets[] = {a, &a->o, &a->o, &a->o, &a->o, &a->o};
     if (cli_take(&cli_compare, targets, CLI_COUNT(targets), &a->args, take_data, a, cmd) < 0)
         return 2;
     for (int i = 0; i < a->args.n; i++) { /* for the report: how the data was read */
@@ -261,10 +235,8 @@ static int check(compare_args *a)
         fprintf(stderr, "%s: --html %s\n", cmd, err.msg);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
-    if (rank_options_check(&a->ro, &a->fopt.fit, cmd) < 0 ||
-        fit_options_check_models(&a->fopt, a->specs, a->nmodels, cmd) < 0)
+    if (fit_options_check(a->o, a->specs, a->nmodels, cmd) < 0)
         return 2;
-    fit_options_finish(&a->fopt, &a->dopt);
     /* The outputs: never over an input, writable. */
     bf_path_use *inputs = calloc((size_t)a->ndata + 1, sizeof *inputs);
     if (!inputs) {
@@ -273,7 +245,8 @@ static int check(compare_args *a)
     }
     for (int i = 0; i < a->ndata; i++)
         inputs[i] = (bf_path_use){"data file", a->data[i]};
-    inputs[a->ndata] = (bf_path_use){"--scene file", a->dopt.scene};
+    char scene[4096];
+    inputs[a->ndata] = (bf_path_use){"--scene file", data_options_scene(a->o, scene, sizeof scene)};
     const bf_path_use out[] = {{"--json", a->json_path}, {"--csv", a->csv_path}};
     int status = args_check_outputs(cmd, inputs, a->ndata + 1, out, 2);
     free(inputs);
@@ -288,12 +261,10 @@ static int setup(const compare_args *a, bf_compare *c)
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
-    c->metric = a->metric;
-    c->rank_by = a->ro.rank_by;
-    c->folds = a->ro.rank_by == BF_RANK_CV ? a->ro.folds : 0;
-    c->timing = a->ro.timing;
-    c->tolerance = a->tolerance;
-    c->residual = bf_residual_name(a->fopt.fit.objective.residual);
+    if (bf_compare_set_options(c, a->o, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 1;
+    }
     return 0;
 }
 
@@ -316,7 +287,7 @@ static bf_samples **load(const compare_args *a)
     for (int i = 0; i < a->ndata; i++) {
         bf_error err;
         const bf_geometry *g;
-        if (!(samples[i] = data_options_load(&a->dopt, a->data[i], NULL, cmd)) ||
+        if (!(samples[i] = data_options_load(a->o, a->data[i], NULL, NULL, cmd)) ||
             bf_samples_geometry(samples[i], &g, &err) != BF_OK) {
             if (samples[i])
                 fprintf(stderr, "%s: %s: %s\n", cmd, a->data[i], err.msg);
@@ -350,9 +321,9 @@ static void progress_bar(const progress_state *ps, int done, int total)
 }
 
 /* bf_compare_progress: called once per finished fit, one call at a time. */
-static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int total)
+static void progress(void *user, const bf_compare *c, int i, int j, int done, int total)
 {
-    const progress_state *ps = ctx;
+    const progress_state *ps = user;
     if (ps->tty) {
         progress_bar(ps, done, total);
     } else {
@@ -376,12 +347,12 @@ static void progress(void *ctx, const bf_compare *c, int i, int j, int done, int
 static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *samples)
 {
     progress_state ps = {.tty = isatty(STDERR_FILENO), .t0 = bf_now_seconds()};
-    bf_compare_run_options ro = {.jobs = a->jobs, .progress = cli_quiet() ? NULL : progress, .ctx = &ps,
-                                 .cancel = &interrupt_flag};
     struct sigaction old;
     interrupt_catch(&old);
+    bf_options_set_cancel(a->o, NULL, &interrupt_flag);
     bf_error err;
-    int rc = bf_compare_run(c, samples, &a->fopt.fit, &ro, &err);
+    int rc = bf_compare_run(c, samples, a->o, cli_quiet() ? NULL : progress, &ps, &err);
+    bf_options_set_cancel(a->o, NULL, NULL);
     interrupt_release(&old);
     if (rc != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -395,9 +366,9 @@ static int run_fits(const compare_args *a, bf_compare *c, bf_samples *const *sam
 /* The tables on stdout: per material, then across them. */
 static void print_results(const compare_args *a, const bf_compare *c)
 {
-    if (data_options_has_scene(&a->dopt))
-        printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n",
-               a->dopt.scene);
+    char scene[4096];
+    if (data_options_scene(a->o, scene, sizeof scene))
+        printf("scene %s: errors and criteria over the scene's directions, weighted as it weighs them\n", scene);
     compare_print_tables(stdout, c);
 }
 
@@ -410,18 +381,23 @@ static bf_samples *whole_table(const compare_args *a, bf_samples *const *samples
 {
     bf_samples *t = NULL;
     bf_error err;
+    char format[32], subsample[32];
     *failed = 0;
-    bf_format f = a->dopt.read.format != BF_FORMAT_AUTO ? a->dopt.read.format : bf_format_by_extension(a->data[i]);
+    bf_options_get(a->o, "format", format, sizeof format, NULL);
+    bf_options_get(a->o, "subsample", subsample, sizeof subsample, NULL);
+    bf_format f = *format ? (bf_format)bf_format_from_name(format) : bf_format_by_extension(a->data[i]);
     if (!samples[i]->merl && (f == BF_FORMAT_RGL || f == BF_FORMAT_MBSDF)) {
-        data_options d = a->dopt;
-        d.read.grid = "merl";
-        d.prep.subsample = 0;
-        d.scene = NULL;
-        if (!(t = data_options_load(&d, a->data[i], NULL, cmd)))
+        bf_options *d = NULL;
+        if (bf_options_copy(a->o, &d, &err) != BF_OK || bf_options_set(d, "grid", "merl", &err) != BF_OK ||
+            bf_options_set(d, "subsample", "all", &err) != BF_OK || bf_options_reset(d, "scene", &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
             *failed = 1;
+        } else if (!(t = data_options_load(d, a->data[i], NULL, NULL, cmd)))
+            *failed = 1;
+        bf_options_free(d);
         return t;
     }
-    if (!samples[i]->merl || a->dopt.prep.subsample == 0)
+    if (!samples[i]->merl || !strcmp(subsample, "all"))
         return NULL;
     if (bf_samples_read_merl(a->data[i], 0, &t, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -442,8 +418,9 @@ static int write_report(const compare_args *a, const bf_compare *c, bf_samples *
     int failed = 0;
     for (int i = 0; i < a->ndata && !failed; i++)
         tables[i] = whole_table(a, samples, i, &failed);
+    char scene[4096];
     bf_report_options o = {samples, tables, a->plot_format, a->command_line, a->data_opts,
-                           data_options_has_scene(&a->dopt) ? a->dopt.scene : NULL};
+                           data_options_scene(a->o, scene, sizeof scene)};
     bf_error err;
     if (!failed && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);

@@ -12,7 +12,7 @@
 
 /* What the command line asked for. */
 typedef struct convert_args {
-    data_options dopt;
+    bf_options *o;
     const char *paths[2]; /* IN, OUT */
     int npaths;
     bf_format to;
@@ -55,22 +55,12 @@ static int take_path(void *ctx, const char *v, const char *cmd)
     return 0;
 }
 
-int cmd_convert(int argc, char **argv)
+/* After parsing: checks, reads, writes; the exit status. */
+static int convert(convert_args *c)
 {
-    convert_args c = {.to = BF_FORMAT_AUTO};
-    cli_args args;
-    int p = cli_parse(&cli_convert, argc, argv, &args);
-    if (p != CLI_OK)
-        return p == CLI_EXIT ? 0 : 2;
-    void *const targets[] = {&c, &c.dopt, &c.dopt};
-    int bad = cli_take(&cli_convert, targets, CLI_COUNT(targets), &args, take_path, &c, "brdfit convert");
-    cli_args_free(&args);
-    if (bad)
-        return 2;
-    data_options *opt = &c.dopt;
-    const char *const *paths = c.paths;
-    bf_format to = c.to;
-    if (c.npaths != 2) {
+    const char *const *paths = c->paths;
+    bf_format to = c->to;
+    if (c->npaths != 2) {
         fprintf(stderr, "brdfit convert: needs IN and OUT (see brdfit convert --help)\n");
         return 2;
     }
@@ -79,15 +69,16 @@ int cmd_convert(int argc, char **argv)
         return 2;
     }
     /* Never over the input (under any name), and a writable output before reading. */
-    const bf_path_use in[] = {{"input", paths[0]}, {"--scene file", opt->scene}}, out[] = {{"output", paths[1]}};
-    bad = args_check_outputs("brdfit convert", in, 2, out, 1);
+    char scene[4096];
+    const bf_path_use in[] = {{"input", paths[0]}, {"--scene file", data_options_scene(c->o, scene, sizeof scene)}},
+                      out[] = {{"output", paths[1]}};
+    int bad = args_check_outputs("brdfit convert", in, 2, out, 1);
     if (bad)
         return bad;
     /* A MERL table written back keeps the bytes of the cells it does not change. */
-    opt->read.keep_origin = to == BF_FORMAT_MERL;
-    bf_prep_report rep;
-    data_scene_report scene;
-    bf_samples *s = data_options_load_scene(opt, paths[0], &rep, &scene, "brdfit convert");
+    bf_options_keep_origin(c->o, to == BF_FORMAT_MERL);
+    bf_load_report rep;
+    bf_samples *s = data_options_load(c->o, paths[0], &rep, NULL, "brdfit convert");
     if (!s)
         return 1;
     bf_error err;
@@ -98,7 +89,26 @@ int cmd_convert(int argc, char **argv)
         fprintf(strcmp(paths[1], "-") ? stdout : stderr, "%s: %zu samples, %d channels (read %zu; dropped %zu below the horizon, %zu non-finite, "
                "%zu above max theta, %zu outside the scene, %zu by subsampling)\n",
                paths[1], s->n, s->channels, rep.read, rep.below_horizon, rep.nonfinite,
-               rep.above_max_theta, scene.in - scene.kept, rep.subsampled_out);
+               rep.above_max_theta, rep.scene_in - rep.scene_kept, rep.subsampled_out);
     bf_samples_free(s);
     return rc == BF_OK ? 0 : 1;
+}
+
+int cmd_convert(int argc, char **argv)
+{
+    convert_args c = {.to = BF_FORMAT_AUTO};
+    if (!(c.o = cmd_options_new(BF_TASK_READ, "brdfit convert")))
+        return 1;
+    cli_args args;
+    int p = cli_parse(&cli_convert, argc, argv, &args);
+    if (p != CLI_OK) {
+        bf_options_free(c.o);
+        return p == CLI_EXIT ? 0 : 2;
+    }
+    void *const targets[] = {&c, &c.o, &c.o};
+    int bad = cli_take(&cli_convert, targets, CLI_COUNT(targets), &args, take_path, &c, "brdfit convert");
+    cli_args_free(&args);
+    int status = bad ? 2 : convert(&c);
+    bf_options_free(c.o);
+    return status;
 }

@@ -14,10 +14,9 @@
  *  - -o with one model writes the result object (a parameter file for brdfit eval);
  *    with several, {"fits": [result, ...]}, which eval does not take. A failed fit is
  *    still written (ok: false, the start as parameters) and the exit status is 1.
- *  - --accuracy fast|balanced|best is a bundle of options (brdfit/fit.h,
- *    bf_fit_options_apply_accuracy); options the
- *    user gives win whatever their order. The fast preset's subsample reaches the data
- *    options here, after parsing, and only when no --subsample was given.
+ *  - --accuracy fast|balanced|best is a bundle of options (the library's option table,
+ *    brdfit/options.h); options the user gives win whatever their order, the fast
+ *    preset's subsample included.
  *  - -o is checked before the data is read (args_check_outputs): the same file as the
  *    data or the scene under any name is refused (exit 2), an unwritable one fails
  *    (exit 1) before any fit.
@@ -43,8 +42,7 @@ static const char cmd[] = "brdfit fit";
 
 /* What the command line asked for, and what the run holds (freed by run_free). */
 typedef struct fit_run {
-    data_options dopt;
-    fit_options fopt;
+    bf_options *o;
     char *specs[MAX_MODELS];
     int nmodels;
     const char *data, *out_path;
@@ -133,7 +131,7 @@ static int take_data(void *f, const char *v, const char *c)
  * one-line error. */
 static int take_args(fit_run *f, const cli_args *args)
 {
-    void *const targets[] = {f, &f->fopt, &f->fopt, &f->fopt, &f->dopt, &f->dopt};
+    void *const targets[] = {f, &f->o, &f->o, &f->o, &f->o, &f->o};
     return cli_take(&cli_fit, targets, CLI_COUNT(targets), args, take_data, f, cmd);
 }
 
@@ -146,11 +144,11 @@ static int check_usage(fit_run *f)
                 !f->data ? "a data file is required" : "-m MODEL is required");
         return 2;
     }
-    if (fit_options_check_models(&f->fopt, f->specs, f->nmodels, cmd) < 0)
+    if (fit_options_check(f->o, f->specs, f->nmodels, cmd) < 0)
         return 2;
-    /* After the models: the preset's subsample must reach the data options. */
-    fit_options_finish(&f->fopt, &f->dopt);
-    const bf_path_use in[] = {{"data file", f->data}, {"--scene file", f->dopt.scene}}, out[] = {{"-o", f->out_path}};
+    char scene[4096];
+    const bf_path_use in[] = {{"data file", f->data}, {"--scene file", data_options_scene(f->o, scene, sizeof scene)}},
+                      out[] = {{"-o", f->out_path}};
     return args_check_outputs(cmd, in, 2, out, 1);
 }
 
@@ -162,7 +160,7 @@ static int fit_models(fit_run *f, FILE *info, int *all_ok)
     for (int k = 0; k < f->nmodels; k++) {
         cli_note(cmd, "fitting %s", f->specs[k]);
         bf_fit_result *r = &f->results[f->nres];
-        int rc = bf_fit(f->s, f->specs[k], &f->fopt.fit, r, &err);
+        int rc = bf_fit(f->s, f->specs[k], f->o, r, &err);
         if (rc != BF_OK) {
             fprintf(stderr, "%s: %s: %s\n", cmd, f->specs[k], err.msg);
             return rc == BF_ERR_ARG ? 2 : 1;
@@ -197,7 +195,7 @@ static int write_results(const fit_run *f)
 /* Reads the data, fits, writes: the exit status. */
 static int run(fit_run *f)
 {
-    if (!(f->s = data_options_load(&f->dopt, f->data, NULL, cmd)))
+    if (!(f->s = data_options_load(f->o, f->data, NULL, NULL, cmd)))
         return 1;
     /* The summary goes to stdout unless the result does. */
     FILE *info = f->out_path && !strcmp(f->out_path, "-") ? stderr : stdout;
@@ -218,17 +216,21 @@ static void run_free(fit_run *f)
     for (int k = 0; k < f->nmodels; k++)
         free(f->specs[k]);
     bf_samples_free(f->s);
+    bf_options_free(f->o);
 }
 
 int cmd_fit(int argc, char **argv)
 {
     fit_run f;
     memset(&f, 0, sizeof f);
-    fit_options_init(&f.fopt);
+    if (!(f.o = cmd_options_new(BF_TASK_FIT, cmd)))
+        return 1;
     cli_args args;
     int p = cli_parse(&cli_fit, argc, argv, &args);
-    if (p != CLI_OK)
+    if (p != CLI_OK) {
+        run_free(&f);
         return p == CLI_EXIT ? 0 : 2;
+    }
     int status = take_args(&f, &args) < 0 ? 2 : check_usage(&f);
     if (status == 0)
         status = run(&f);

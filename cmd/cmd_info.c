@@ -6,16 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "brdfit/load.h"
 #include "brdfit/prep.h"
 #include "commands.h"
 #include "data_options.h"
 
 static const char cmd[] = "brdfit info";
-
-static const char *negative_action(bf_negative n)
-{
-    return n == BF_NEGATIVE_DROP ? "drop" : n == BF_NEGATIVE_CLAMP ? "clamp" : "keep";
-}
 
 static cJSON *range_json(bf_range r)
 {
@@ -25,10 +21,14 @@ static cJSON *range_json(bf_range r)
     return o;
 }
 
-static void print_json(const char *path, const bf_samples *s, const data_options *o, const bf_prep_report *r,
-                       const data_scene_report *sr, const bf_samples_info *info)
+/* What the options said, for the outputs. */
+typedef struct asked {
+    char negative[16], scene[4096], subsample[32];
+} asked;
+
+static void print_json(const char *path, const bf_samples *s, const asked *o, const bf_load_report *r,
+                       const bf_samples_info *info)
 {
-    const bf_prep *p = &o->prep;
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "file", path);
     cJSON_AddNumberToObject(root, "samples_read", (double)r->read);
@@ -47,15 +47,15 @@ static void print_json(const char *path, const bf_samples *s, const data_options
     cJSON_AddNumberToObject(prep, "nonfinite", (double)r->nonfinite);
     cJSON_AddNumberToObject(prep, "above_max_theta", (double)r->above_max_theta);
     cJSON_AddNumberToObject(prep, "negative", (double)r->negative);
-    cJSON_AddStringToObject(prep, "negative_action", negative_action(p->negative));
+    cJSON_AddStringToObject(prep, "negative_action", o->negative);
     cJSON_AddNumberToObject(prep, "subsampled_out", (double)r->subsampled_out);
     cJSON_AddNumberToObject(prep, "kept", (double)r->kept);
-    if (o->scene) {
+    if (r->scene) {
         /* The scene runs after the drops and before subsampling. */
         cJSON *sc = cJSON_AddObjectToObject(root, "scene");
         cJSON_AddStringToObject(sc, "file", o->scene);
-        cJSON_AddNumberToObject(sc, "samples_in", (double)sr->in);
-        cJSON_AddNumberToObject(sc, "kept", (double)sr->kept);
+        cJSON_AddNumberToObject(sc, "samples_in", (double)r->scene_in);
+        cJSON_AddNumberToObject(sc, "kept", (double)r->scene_kept);
     } else {
         cJSON_AddNullToObject(root, "scene");
     }
@@ -103,10 +103,9 @@ static void print_channel_names(const bf_samples *s)
     }
 }
 
-static void print_text(const char *path, const bf_samples *s, const data_options *o, const bf_prep_report *r,
-                       const data_scene_report *sr, const bf_samples_info *info)
+static void print_text(const char *path, const bf_samples *s, const asked *o, const bf_load_report *r,
+                       const bf_samples_info *info)
 {
-    const bf_prep *p = &o->prep;
     printf("%s: %zu samples read, %zu used\n", path, r->read, info->n);
     printf("channels: %d (", s->channels);
     print_channel_names(s);
@@ -121,15 +120,15 @@ static void print_text(const char *path, const bf_samples *s, const data_options
     }
     printf("; %s\n", info->weighted ? "weighted per sample" : "unweighted");
 
-    static const char *const done[] = {"kept", "dropped", "clamped to 0"};
+    const char *done = !strcmp(o->negative, "drop") ? "dropped" : !strcmp(o->negative, "clamp") ? "clamped to 0" : "kept";
     printf("preprocessing: dropped %zu below the horizon, %zu with NaN or Inf, %zu above max theta, %zu by "
            "subsampling; %zu with negative values %s\n",
-           r->below_horizon, r->nonfinite, r->above_max_theta, r->subsampled_out, r->negative,
-           done[p->negative]);
-    if (o->scene)
-        printf("scene %s: kept %zu of %zu samples (those its lights and views use)\n", o->scene, sr->kept, sr->in);
-    if (p->subsample > 0 && r->subsampled_out == 0)
-        printf("subsample %zu: all %zu samples kept (no more available)\n", p->subsample, info->n);
+           r->below_horizon, r->nonfinite, r->above_max_theta, r->subsampled_out, r->negative, done);
+    if (r->scene)
+        printf("scene %s: kept %zu of %zu samples (those its lights and views use)\n", o->scene, r->scene_kept,
+               r->scene_in);
+    if (strcmp(o->subsample, "all") && r->subsampled_out == 0)
+        printf("subsample %s: all %zu samples kept (no more available)\n", o->subsample, info->n);
 
     printf("coverage (degrees, samples used):\n");
     const struct { const char *name; bf_range r; } cov[] = {
@@ -150,7 +149,7 @@ static void print_text(const char *path, const bf_samples *s, const data_options
 
 /* What the command line asked for. */
 typedef struct info_args {
-    data_options dopt;
+    bf_options *o;
     const char *path;
     int json;
 } info_args;
@@ -166,6 +165,38 @@ const cli_command cli_info = {
     "options: what a fit of it would see.",
     "file", groups, sizeof groups / sizeof groups[0],
 };
+
+/* Loads the data and prints what it holds: the exit status. */
+static int describe(const info_args *a)
+{
+    const char *path = a->path;
+    if (!path) {
+        fprintf(stderr, "%s: no data file (usage: brdfit info DATA [data options] [--json])\n", cmd);
+        return 2;
+    }
+    bf_load_report report;
+    bf_samples *s = data_options_load(a->o, path, &report, NULL, cmd);
+    if (!s)
+        return 1;
+    asked o;
+    bf_options_get(a->o, "negative", o.negative, sizeof o.negative, NULL);
+    bf_options_get(a->o, "scene", o.scene, sizeof o.scene, NULL);
+    bf_options_get(a->o, "subsample", o.subsample, sizeof o.subsample, NULL);
+    bf_samples_info info;
+    bf_error err;
+    if (bf_samples_describe(s, &info, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
+        bf_samples_free(s);
+        return 1;
+    }
+    if (a->json)
+        print_json(path, s, &o, &report, &info);
+    else
+        print_text(path, s, &o, &report, &info);
+    bf_samples_info_clear(&info);
+    bf_samples_free(s);
+    return 0;
+}
 
 /* The operand: the one data file. */
 static int take_path(void *ctx, const char *v, const char *c)
@@ -183,38 +214,18 @@ int cmd_info(int argc, char **argv)
 {
     info_args a;
     memset(&a, 0, sizeof a);
+    if (!(a.o = cmd_options_new(BF_TASK_READ, cmd)))
+        return 1;
     cli_args args;
     int p = cli_parse(&cli_info, argc, argv, &args);
-    if (p != CLI_OK)
+    if (p != CLI_OK) {
+        bf_options_free(a.o);
         return p == CLI_EXIT ? 0 : 2;
-    void *const targets[] = {&a, &a.dopt, &a.dopt};
+    }
+    void *const targets[] = {&a, &a.o, &a.o};
     int bad = cli_take(&cli_info, targets, CLI_COUNT(targets), &args, take_path, &a, cmd);
     cli_args_free(&args);
-    if (bad)
-        return 2;
-    const data_options *o = &a.dopt;
-    const char *path = a.path;
-    if (!path) {
-        fprintf(stderr, "%s: no data file (usage: brdfit info DATA [data options] [--json])\n", cmd);
-        return 2;
-    }
-    bf_prep_report report;
-    data_scene_report scene;
-    bf_samples *s = data_options_load_scene(o, path, &report, &scene, cmd);
-    if (!s)
-        return 1;
-    bf_samples_info info;
-    bf_error err;
-    if (bf_samples_describe(s, &info, &err) != BF_OK) {
-        fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);
-        bf_samples_free(s);
-        return 1;
-    }
-    if (a.json)
-        print_json(path, s, o, &report, &scene, &info);
-    else
-        print_text(path, s, o, &report, &scene, &info);
-    bf_samples_info_clear(&info);
-    bf_samples_free(s);
-    return 0;
+    int status = bad ? 2 : describe(&a);
+    bf_options_free(a.o);
+    return status;
 }

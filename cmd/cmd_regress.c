@@ -88,8 +88,8 @@ static const cli_command case_options = {"brdfit", "fit", "", "", NULL, NULL, ca
 /* One case's parsed options. The argv holds the baseline's strings, except --scene
  * values, resolved against the baseline's folder (owned). */
 typedef struct case_run {
-    data_options dopt;
-    fit_options fopt;
+    bf_options *o;
+    char scene[4096]; /* the scene file as resolved, or "" */
     char **argv;
     char **owned;
     int argc, nowned;
@@ -101,6 +101,7 @@ static void case_run_free(case_run *r)
         free(r->owned[k]);
     free(r->owned);
     free(r->argv);
+    bf_options_free(r->o);
 }
 
 /* Parses case c's options; 0, or 2 after a one-line error naming the baseline's line. */
@@ -108,8 +109,9 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
 {
     const bf_regress_case *cs = &b->cases[c];
     memset(r, 0, sizeof *r);
-    fit_options_init(&r->fopt);
-    r->fopt.fit.solver.threads = 1;
+    if (!(r->o = cmd_options_new(BF_TASK_FIT, cmd)))
+        return 2;
+    bf_options_set(r->o, "threads", "1", NULL); /* a baseline's default */
     r->argc = cs->noptions;
     r->argv = calloc((size_t)cs->noptions + 1, sizeof *r->argv);
     r->owned = calloc((size_t)cs->noptions + 1, sizeof *r->owned);
@@ -126,7 +128,7 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
             }
         }
     }
-    void *const targets[] = {&r->fopt, &r->fopt, &r->fopt, &r->dopt, &r->dopt}; /* case_groups' structs */
+    void *const targets[] = {&r->o, &r->o, &r->o, &r->o, &r->o}; /* case_groups' targets */
     _Static_assert(CLI_COUNT(targets) == CLI_COUNT(case_groups), "a target for each group");
     for (int i = 0; i < r->argc; i++) {
         /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
@@ -163,9 +165,7 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
         if (d <= 0)
             return 2;
     }
-    /* As brdfit fit does: the preset's subsample unless --subsample was given, and with a
-     * scene the metrics over its directions. */
-    fit_options_finish(&r->fopt, &r->dopt);
+    data_options_scene(r->o, r->scene, sizeof r->scene);
     if (access(cs->data_path, R_OK) != 0) {
         fprintf(stderr, "%s: %s:%d: case '%s': data file '%s': %s\n", cmd, b->path, cs->data_line, cs->name,
                 cs->data_path, strerror(errno));
@@ -174,7 +174,7 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
     /* A bad scene file is a bad baseline too, found before any fit runs. */
     bf_scene *sc = NULL;
     bf_error e;
-    if (r->dopt.scene && bf_scene_read(r->dopt.scene, &sc, &e) != BF_OK) {
+    if (*r->scene && bf_scene_read(r->scene, &sc, &e) != BF_OK) {
         fprintf(stderr, "%s: %s:%d: case '%s': --scene: %s\n", cmd, b->path, cs->data_line, cs->name, e.msg);
         return 2;
     }
@@ -192,12 +192,12 @@ static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_r
     char prefix[1024], msg[1200];
     snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->data_line, cs->name);
     double t0 = bf_now_seconds();
-    bf_samples *s = data_options_load(&cr->dopt, cs->data_path, NULL, prefix);
+    bf_error why;
+    bf_samples *s = data_options_load(cr->o, cs->data_path, NULL, &why, prefix);
     int rc;
     if (!s) {
-        data_options_load_reason(&cr->dopt, cs->data_path, msg, sizeof msg);
-        rc = bf_regress_set_error(out, msg, err);
-    } else if (bf_fit(s, cs->model, &cr->fopt.fit, r, err) != BF_OK) {
+        rc = bf_regress_set_error(out, why.msg, err);
+    } else if (bf_fit(s, cs->model, cr->o, r, err) != BF_OK) {
         fprintf(stderr, "%s: %s:%d: case '%s': %s\n", cmd, b->path, cs->model_line, cs->name, err->msg);
         snprintf(msg, sizeof msg, "%s", err->msg);
         rc = bf_regress_set_error(out, msg, err);
@@ -224,7 +224,7 @@ static int check_outputs(const bf_regress_baseline *b, const case_run *runs, con
     in[nin++] = (bf_path_use){"baseline", path};
     for (int c = 0; c < b->ncases; c++) {
         in[nin++] = (bf_path_use){"data file", b->cases[c].data_path};
-        in[nin++] = (bf_path_use){"--scene file", runs[c].dopt.scene};
+        in[nin++] = (bf_path_use){"--scene file", *runs[c].scene ? runs[c].scene : NULL};
     }
     /* --update rewrites the baseline in place, as intended: it is an input, and checked
      * for writing on its own. */

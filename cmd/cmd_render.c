@@ -88,7 +88,7 @@ static int to_of(const char *path)
 
 /* What the command line asked for. */
 typedef struct render_args {
-    data_options dopt;
+    bf_options *o;
     const char *params, *data, *out_path;
     bf_dir lights[MAX_LIGHTS], view;
     int nlights, slice, halfdiff, width, height;
@@ -244,7 +244,7 @@ const cli_command cli_render = {
 /* Takes the parsed command line into r: 0, or -1 after a one-line error. */
 static int take_args(render_args *r, const cli_args *args)
 {
-    void *const targets[] = {r, r, &r->dopt, &r->dopt};
+    void *const targets[] = {r, r, &r->o, &r->o};
     return cli_take(&cli_render, targets, CLI_COUNT(targets), args, NULL, NULL, cmd);
 }
 
@@ -308,7 +308,10 @@ static int settle(render_args *r, int fmt)
         r->lights[r->nlights++] = (bf_dir){45.0, 0.0};
     if (!image_fits(r->width, r->height))
         return 1; /* the request is well formed; this machine cannot hold it */
-    const bf_path_use in[] = {{"--params file", r->params}, {"--data file", r->data}, {"--scene file", r->dopt.scene}},
+    char scene[4096];
+    const bf_path_use in[] = {{"--params file", r->params},
+                              {"--data file", r->data},
+                              {"--scene file", data_options_scene(r->o, scene, sizeof scene)}},
                       out[] = {{"-o", r->out_path}};
     return args_check_outputs(cmd, in, 3, out, 1);
 }
@@ -324,7 +327,7 @@ static int load_inputs(const render_args *r, bf_model **m, double **x, bf_sample
     if (!r->data)
         return 0;
     if (!r->halfdiff)
-        return (*s = data_options_load(&r->dopt, r->data, NULL, cmd)) ? 0 : -1;
+        return (*s = data_options_load(r->o, r->data, NULL, NULL, cmd)) ? 0 : -1;
     /* Cells as read: preprocessing would reshape the table. */
     if (bf_samples_read_merl(r->data, 0, s, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -428,14 +431,19 @@ int cmd_render(int argc, char **argv)
 {
     render_args r;
     render_args_init(&r);
+    if (!(r.o = cmd_options_new(BF_TASK_READ, cmd)))
+        return 1;
     cli_args args;
     int p = cli_parse(&cli_render, argc, argv, &args);
-    if (p != CLI_OK)
+    if (p != CLI_OK) {
+        bf_options_free(r.o);
         return p == CLI_EXIT ? 0 : 2;
+    }
     int bad = take_args(&r, &args) < 0 ? 2 : 0;
     cli_args_free(&args);
     int fmt = 0;
-    if (bad || (bad = check_mode(&r, &fmt)) != 0 || (bad = settle(&r, fmt)) != 0)
-        return bad;
-    return render(&r, fmt);
+    if (!bad && (bad = check_mode(&r, &fmt)) == 0 && (bad = settle(&r, fmt)) == 0)
+        bad = render(&r, fmt);
+    bf_options_free(r.o);
+    return bad;
 }

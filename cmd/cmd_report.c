@@ -143,12 +143,10 @@ static int load(batch_db *db, bf_compare *c)
         fprintf(stderr, "%s: %s\n", cmd, c->materials ? "out of memory" : err.msg);
         goto done;
     }
-    c->metric = m.metric;
-    c->rank_by = m.ro.rank_by;
-    c->folds = m.ro.rank_by == BF_RANK_CV ? m.ro.folds : 0;
-    c->timing = m.ro.timing;
-    c->tolerance = m.tolerance;
-    c->residual = bf_residual_name(m.fopt.fit.objective.residual);
+    if (bf_compare_set_options(c, m.o, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        goto done;
+    }
     if (batch_db_rows(db, fill, c, &err) != BF_OK) {
         fprintf(stderr, "%s: %s: %s\n", cmd, "reading the results", err.msg);
         goto done;

@@ -47,13 +47,9 @@ static const char cmd[] = "brdfit select";
 
 /* What the command line asked for, and what the run holds (freed by run_free). */
 typedef struct select_run {
-    data_options dopt;
-    fit_options fopt;
-    rank_options ro;
+    bf_options *o;
     char *specs[MAX_MODELS];
-    int nmodels, jobs;
-    double tolerance, abs_tolerance;
-    bf_compare_metric metric;
+    int nmodels;
     const char *data, *json_path, *out_path;
     const char **defaults;
     bf_samples *s;
@@ -72,44 +68,21 @@ static int take_models(void *target, const cli_option *o, const char *v, const c
     return 0;
 }
 
-static int take_error(void *target, const cli_option *o, const char *v, const char *c)
-{
-    bf_error err;
-    (void)o;
-    if (bf_compare_metric_parse(v, &((select_run *)target)->metric, &err) != BF_OK) {
-        fprintf(stderr, "%s: --error: %s\n", c, err.msg);
-        return -1;
-    }
-    return 0;
-}
-
-static int take_jobs(void *target, const cli_option *o, const char *v, const char *c)
-{
-    (void)o;
-    return args_jobs(c, v, &((select_run *)target)->jobs);
-}
-
 static const cli_option own[] = {
     {"--models", 'm', "SPECS", "candidates (as brdfit fit; repeatable); default: diffuse models,\n"
                                "one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
                                "data each with mono=specular (a white highlight)", "model", CLI_CALLS(take_models)},
     {"--model", 0, "SPECS", "the same as --models", "model", CLI_CALLS(take_models)},
-    {"--tolerance", 0, "T", "relative: candidates with error <= best * (1 + T) + A qualify\n"
-                            "(default 0.05); the one with the fewest free parameters is chosen,\n"
-                            "then isotropic, one lobe, monochrome highlight, lower error", NULL,
-     CLI_NUMBER_AT(select_run, tolerance, 0.0, HUGE_VAL, "a number >= 0")},
-    {"--abs-tolerance", 0, "A", "absolute part of the tolerance (default 1e-6)", NULL,
-     CLI_NUMBER_AT(select_run, abs_tolerance, 0.0, HUGE_VAL, "a number >= 0")},
-    {"--jobs", 0, "N", "candidates fitted at once (default 1); each gets --threads / N threads", NULL,
-     CLI_CALLS(take_jobs)},
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "the error compared (default rmse_log)", NULL,
-     CLI_CALLS(take_error)},
+    CLI_LIB("--tolerance"),
+    CLI_LIB("--abs-tolerance"),
+    CLI_LIB("--jobs"),
+    CLI_LIB("--error"),
     {"--json", 0, "FILE", "every candidate and the choice, machine-readable (- for standard output)", "file",
      CLI_STRING_AT(select_run, json_path)},
     {"--output", 'o', "FILE", "the chosen model's fit result (a parameter file; - for standard output)", "file",
      CLI_STRING_AT(select_run, out_path)},
 };
-static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_SELECT, select_run, o);
 static const cli_group *const groups[] = {&own_group, &rank_options_error, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_select = {
     "brdfit", "select", "DATA [-m MODEL,...] [--tolerance T] [--scene SCENE.json] [options]",
@@ -120,9 +93,9 @@ const cli_command cli_select = {
     "file", groups, sizeof groups / sizeof groups[0],
 };
 
-static void progress(void *ctx, const bf_select *s, int i, int done)
+static void progress(void *user, const bf_select *s, int i, int done)
 {
-    (void)ctx;
+    (void)user;
     const bf_select_candidate *c = &s->c[i];
     if (c->state == BF_CMP_ERROR)
         fprintf(stderr, "[%d/%d] %s: %s\n", done, s->n, c->spec, c->message);
@@ -191,7 +164,7 @@ static int take_data(void *r, const char *v, const char *c)
  * one-line error. */
 static int take_args(select_run *r, const cli_args *args)
 {
-    void *const targets[] = {r, &r->ro, &r->fopt, &r->fopt, &r->fopt, &r->dopt, &r->dopt};
+    void *const targets[] = {r, &r->o, &r->o, &r->o, &r->o, &r->o, &r->o};
     return cli_take(&cli_select, targets, CLI_COUNT(targets), args, take_data, r, cmd);
 }
 
@@ -203,14 +176,10 @@ static int check_usage(select_run *r)
         fprintf(stderr, "%s: a data file is required (see brdfit select --help)\n", cmd);
         return 2;
     }
-    if (rank_options_check(&r->ro, &r->fopt.fit, cmd) < 0)
+    if (fit_options_check(r->o, r->specs, r->nmodels, cmd) < 0)
         return 2;
-    if (fit_options_check_models(&r->fopt, r->specs, r->nmodels, cmd) < 0)
-        return 2;
-    /* With a scene, error is reported over the scene's directions; --accuracy fast's
-     * subsample is drawn inside the scene. */
-    fit_options_finish(&r->fopt, &r->dopt);
-    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", r->dopt.scene}},
+    char scene[4096];
+    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", data_options_scene(r->o, scene, sizeof scene)}},
                       out[] = {{"--json", r->json_path}, {"-o", r->out_path}};
     return args_check_outputs(cmd, in, 2, out, 2);
 }
@@ -229,15 +198,11 @@ static int fit_candidates(select_run *r)
         }
         list = r->defaults;
     }
-    if (bf_select_init(&r->sel, n, list, r->s->channels, r->metric, r->tolerance, r->abs_tolerance, &err) !=
-        BF_OK) {
+    if (bf_select_init(&r->sel, n, list, r->s->channels, r->o, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
-    r->sel.rank_by = r->ro.rank_by;
-    r->sel.folds = r->ro.folds;
-    r->sel.timing = r->ro.timing;
-    if (bf_select_run(&r->sel, r->s, &r->fopt.fit, r->jobs, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
+    if (bf_select_run(&r->sel, r->s, r->o, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
@@ -270,25 +235,24 @@ static void run_free(select_run *r)
     for (int k = 0; k < r->nmodels; k++)
         free(r->specs[k]);
     bf_samples_free(r->s);
+    bf_options_free(r->o);
 }
 
 int cmd_select(int argc, char **argv)
 {
     select_run r;
     memset(&r, 0, sizeof r);
-    fit_options_init(&r.fopt);
-    rank_options_init(&r.ro, BF_RANK_ERROR);
-    r.tolerance = 0.05;
-    r.abs_tolerance = 1e-6;
-    r.metric = BF_CMP_RMSE_LOG;
-    r.jobs = 1;
+    if (!(r.o = cmd_options_new(BF_TASK_SELECT, cmd)))
+        return 1;
     cli_args args;
     int p = cli_parse(&cli_select, argc, argv, &args);
-    if (p != CLI_OK)
+    if (p != CLI_OK) {
+        run_free(&r);
         return p == CLI_EXIT ? 0 : 2;
+    }
     int status = take_args(&r, &args) < 0 ? 2 : check_usage(&r);
     if (status == 0)
-        status = !(r.s = data_options_load(&r.dopt, r.data, NULL, cmd)) ? 1 : fit_candidates(&r);
+        status = !(r.s = data_options_load(r.o, r.data, NULL, NULL, cmd)) ? 1 : fit_candidates(&r);
     if (status == 0)
         status = report(&r);
     cli_args_free(&args);

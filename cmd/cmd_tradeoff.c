@@ -82,12 +82,12 @@ static int parse_count(const char *s, long hi, long *out)
 
 /* The base setting as a --methods item: "ceres" for its default, "ceres:dogleg", or the
  * NLopt method's name. */
-static const char *method_of(const bf_solver_options *so, char *buf, size_t size)
+static const char *method_of(bf_backend backend, const char *algorithm, char *buf, size_t size)
 {
-    const bf_method_info *m = bf_method_find(so->backend, so->algorithm);
+    const bf_method_info *m = bf_method_find(backend, algorithm);
     if (!m) /* checked before; the default keeps the message to the checker */
-        m = bf_method_default(so->backend);
-    if (so->backend == BF_BACKEND_CERES)
+        m = bf_method_default(backend);
+    if (backend == BF_BACKEND_CERES)
         snprintf(buf, size, "ceres%s%s", m->caps & BF_METHOD_DEFAULT ? "" : ":", m->caps & BF_METHOD_DEFAULT ? "" : m->name);
     else
         snprintf(buf, size, "%s", m->name);
@@ -120,11 +120,11 @@ static void append_arg(char *buf, size_t size, const char *arg)
     snprintf(buf + len, size - len, plain ? " %s" : " '%s'", arg);
 }
 
-/* The fit options each row sets itself (fit_args), left out of the repeated base ones:
- * known by what they set (the BF_FIT_GIVEN_* bit fit_options.c binds them with). */
+/* The fit options each row sets itself (fit_args), left out of the repeated base ones. */
 static int row_sets(const cli_option *o)
 {
-    return (o->given & (BF_FIT_GIVEN_BACKEND | BF_FIT_GIVEN_ALGORITHM | BF_FIT_GIVEN_RESIDUAL | BF_FIT_GIVEN_STARTS)) != 0;
+    return !strcmp(o->name, "--backend") || !strcmp(o->name, "--algorithm") || !strcmp(o->name, "--residual") ||
+           !strcmp(o->name, "--starts");
 }
 
 static void print_table(FILE *out, const bf_tradeoff *t)
@@ -171,8 +171,7 @@ static const char *const list_names[NLISTS] = {"--samples", "--methods", "--resi
 
 /* What the command line asked for, and what the run holds (freed by run_free). */
 typedef struct tradeoff_run {
-    data_options dopt;
-    fit_options fopt;
+    bf_options *o;
     char *specs[2];
     int nspecs;
     const char *data, *json_path, *csv_path, *plot_path;
@@ -195,7 +194,7 @@ typedef struct tradeoff_run {
 static void run_init(tradeoff_run *r)
 {
     memset(r, 0, sizeof *r);
-    fit_options_init(&r->fopt);
+    r->o = cmd_options_new(BF_TASK_FIT, cmd);
     r->lists[L_SAMPLES] = "1000,4000,16000,64000,all";
     r->test_fraction = 0.2;
     r->tolerance = 0.05;
@@ -338,7 +337,7 @@ static int take_data(void *r, const char *v, const char *c)
  * one-line error. */
 static int take_args(tradeoff_run *r, const cli_args *args)
 {
-    void *const targets[] = {r, &r->fopt, &r->fopt, &r->dopt, &r->dopt};
+    void *const targets[] = {r, &r->o, &r->o, &r->o, &r->o};
     if (cli_take(&cli_tradeoff, targets, CLI_COUNT(targets), args, take_data, r, cmd) < 0)
         return -1;
     /* The data options and the base fit setting are repeated in the recommended command. */
@@ -369,26 +368,29 @@ static int check_args(tradeoff_run *r)
         fprintf(stderr, "%s: --plot needs a file name\n", cmd);
         return -1;
     }
-    return fit_options_check_models(&r->fopt, r->specs, 1, cmd);
+    return fit_options_check(r->o, r->specs, 1, cmd);
 }
 
 /* Each list as given or by default, split into items: 0, or -1 after the error. The
- * defaults follow the base setting, so they are taken after fit_options_finish. */
+ * defaults follow the base setting (the library's values of the options). */
 static int split_lists(tradeoff_run *r)
 {
-    const bf_fit_options *fo = &r->fopt.fit;
-    char starts_default[16], method[64];
-    if (fo->starts > 0)
-        snprintf(starts_default, sizeof starts_default, "%d", fo->starts);
-    else
-        snprintf(starts_default, sizeof starts_default, "auto");
+    char starts_default[32], method[64], starts[32], backend_name[32], algorithm[128], residual[32];
+    bf_backend backend = BF_BACKEND_CERES;
+    bf_options_get(r->o, "starts", starts, sizeof starts, NULL);
+    bf_options_get(r->o, "backend", backend_name, sizeof backend_name, NULL);
+    bf_options_get(r->o, "algorithm", algorithm, sizeof algorithm, NULL);
+    bf_options_get(r->o, "residual", residual, sizeof residual, NULL);
+    bf_backend_parse(backend_name, &backend, NULL);
+    snprintf(starts_default, sizeof starts_default, "%s", atoi(starts) > 0 ? starts : "auto");
     const char *lists[NLISTS];
     memcpy(lists, r->lists, sizeof lists);
     if (!lists[L_METHODS])
-        lists[L_METHODS] = fo->solver.backend != BF_BACKEND_CERES || fo->solver.algorithm ? method_of(&fo->solver, method, sizeof method)
-                                                                                           : "ceres,LD_LBFGS";
+        lists[L_METHODS] = backend != BF_BACKEND_CERES || *algorithm
+                               ? method_of(backend, *algorithm ? algorithm : NULL, method, sizeof method)
+                               : "ceres,LD_LBFGS";
     if (!lists[L_RESIDUALS])
-        lists[L_RESIDUALS] = bf_residual_name(fo->objective.residual);
+        lists[L_RESIDUALS] = residual;
     if (!lists[L_STARTS])
         lists[L_STARTS] = starts_default;
     for (int l = 0; l < NLISTS; l++) {
@@ -420,8 +422,7 @@ static int parse_lists(tradeoff_run *r)
         }
     }
     for (int k = 0; k < r->nitems[L_METHODS]; k++) {
-        bf_solver_options so = r->fopt.fit.solver;
-        if (bf_tradeoff_method_apply(r->items[L_METHODS][k], &so, &err) != BF_OK) {
+        if (bf_tradeoff_method_check(r->items[L_METHODS][k], r->o, &err) != BF_OK) {
             fprintf(stderr, "%s: --methods: %s\n", cmd, err.msg);
             return -1;
         }
@@ -456,11 +457,10 @@ static int check_usage(tradeoff_run *r)
 {
     if (check_args(r) < 0)
         return 2;
-    /* With a scene, errors are measured over the scene's directions, weighted by it. */
-    fit_options_finish(&r->fopt, &r->dopt);
     if (split_lists(r) < 0 || parse_lists(r) < 0)
         return 2;
-    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", r->dopt.scene}},
+    char scene[4096];
+    const bf_path_use in[] = {{"data file", r->data}, {"--scene file", data_options_scene(r->o, scene, sizeof scene)}},
                       out[] = {{"--json", r->json_path}, {"--csv", r->csv_path}, {"--plot", r->plot_path}};
     return args_check_outputs(cmd, in, 2, out, 3);
 }
@@ -471,10 +471,13 @@ static int load(tradeoff_run *r)
 {
     bf_error err;
     bf_tradeoff *t = &r->t;
-    bf_samples *all = data_options_load(&r->dopt, r->data, NULL, cmd);
+    bf_samples *all = data_options_load(r->o, r->data, NULL, NULL, cmd);
     if (!all)
         return 1;
-    if (bf_tradeoff_split(all, r->test_fraction, r->dopt.prep.seed, &r->train, &r->test, &err) != BF_OK) {
+    char seed_text[32];
+    bf_options_get(r->o, "seed", seed_text, sizeof seed_text, NULL);
+    const uint64_t seed = strtoull(seed_text, NULL, 10);
+    if (bf_tradeoff_split(all, r->test_fraction, seed, &r->train, &r->test, &err) != BF_OK) {
         fprintf(stderr, "%s: %s: %s\n", cmd, r->data, err.msg);
         bf_samples_free(all);
         return 1;
@@ -490,7 +493,7 @@ static int load(tradeoff_run *r)
     t->test_n = r->test->n;
     t->channels = all->channels;
     t->test_fraction = r->test_fraction;
-    t->seed = r->dopt.prep.seed;
+    t->seed = seed;
     t->repeats = r->repeats;
     t->metric = r->metric;
     t->tolerance = r->tolerance;
@@ -521,7 +524,7 @@ static int run_rows(tradeoff_run *r, int *all_ok)
 {
     bf_error err;
     for (int i = 0; i < r->t.nrows; i++) {
-        if (bf_tradeoff_run_row(&r->t, i, r->train, r->test, &r->fopt.fit, &err) == BF_ERR_NOMEM) {
+        if (bf_tradeoff_run_row(&r->t, i, r->train, r->test, r->o, &err) == BF_ERR_NOMEM) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             return -1;
         }
@@ -597,16 +600,21 @@ static void run_free(tradeoff_run *r)
         free(r->specs[k]);
     for (int l = 0; l < NLISTS; l++)
         free(r->bufs[l]);
+    bf_options_free(r->o);
 }
 
 int cmd_tradeoff(int argc, char **argv)
 {
     tradeoff_run r;
     run_init(&r);
+    if (!r.o)
+        return 1;
     cli_args args;
     int p = cli_parse(&cli_tradeoff, argc, argv, &args);
-    if (p != CLI_OK)
+    if (p != CLI_OK) {
+        run_free(&r);
         return p == CLI_EXIT ? 0 : 2;
+    }
     int all_ok = 1, status = take_args(&r, &args) < 0 ? 2 : check_usage(&r);
     if (status == 0)
         status = load(&r);

@@ -51,7 +51,7 @@ int main(int argc, char **argv)
     bf_remove_temporaries_on_signals();
     const char *memory = getenv("BRDFIT_MEMORY");
     size_t bytes;
-    if (memory && *memory && !bf_parse_bytes(memory, &bytes)) {
+    if (memory && *memory && bf_bytes_parse(memory, &bytes, NULL) != BF_OK) {
         fprintf(stderr, "brdfit: BRDFIT_MEMORY='%.40s' is not a byte count (such as 4G, 512M or 1000000)\n", memory);
         return 2;
     }

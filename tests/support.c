@@ -383,6 +383,24 @@ void ts_fit_defaults(bf_fit_options *o)
     o->starts = 1;
 }
 
+bf_options *ts_options(bf_task task, const char *words)
+{
+    bf_options *o = NULL;
+    bf_error err;
+    if (bf_options_new(task, &o, &err) != BF_OK)
+        fail_msg("%s", err.msg);
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", words ? words : "");
+    char *save = NULL;
+    for (char *w = strtok_r(buf, " ", &save); w; w = strtok_r(NULL, " ", &save)) {
+        const bf_option *d = bf_option_find(w, task);
+        const char *value = d && d->type != BF_OPTION_FLAG ? strtok_r(NULL, " ", &save) : NULL;
+        if (bf_options_set(o, w, value, &err) != BF_OK)
+            fail_msg("%s", err.msg);
+    }
+    return o;
+}
+
 bf_samples *ts_read_data(const char *path)
 {
     bf_read_options ro;
@@ -412,7 +430,7 @@ bf_samples *ts_read_cornell_rgb(const char *name)
 void ts_fit_ok(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
 {
     bf_error err;
-    if (bf_fit(s, spec, o, r, &err) != BF_OK)
+    if (bf_fit_with(s, spec, o, r, &err) != BF_OK)
         fail_msg("bf_fit %s: %s", spec, err.msg);
     if (!r->ok)
         fail_msg("fit %s failed: %s", spec, r->solution.termination);

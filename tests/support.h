@@ -9,6 +9,7 @@
 #include "brdfit/geometry.h"
 #include "brdfit/model.h"
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 #include "brdfit/samples.h"
 
 #ifndef M_PI
@@ -90,6 +91,9 @@ void ts_expect_read_error(ts_reader reader, const char *name, const char *text, 
 void ts_fit_defaults(bf_fit_options *o);
 /* A data file read with the default options (format by extension, then content). */
 bf_samples *ts_read_data(const char *path);
+/* Run options for task from command-line words ("--rank cv --folds 3 --rgb"), each one
+ * asserted to be taken (free with bf_options_free). NULL or "": the defaults. */
+bf_options *ts_options(bf_task task, const char *words);
 /* A bundled Cornell measurement (examples/cornell/NAME) as linear sRGB, as --rgb reads it. */
 bf_samples *ts_read_cornell_rgb(const char *name);
 /* bf_fit that fails the test on an error or an unusable fit. */

@@ -69,7 +69,7 @@ static void fit_watched(bf_samples *s, bf_backend backend, watch *w, bf_fit_resu
     o.solver.progress_user = w;
     o.solver.cancel = &w->flag;
     bf_error err;
-    if (bf_fit(s, backend == BF_BACKEND_CERES ? "disney" : "walter", &o, r, &err) != BF_OK)
+    if (bf_fit_with(s, backend == BF_BACKEND_CERES ? "disney" : "walter", &o, r, &err) != BF_OK)
         fail_msg("bf_fit: %s", err.msg);
 }
 

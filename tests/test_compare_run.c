@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "brdfit/compare.h"
+#include "compare/compare_run.h"
 #include "support.h"
 
 enum { NMAT = 2, NMOD = 3, NFITS = NMAT * NMOD, NPOINTS = 1200 };
@@ -81,9 +82,9 @@ typedef struct calls {
     volatile sig_atomic_t *cancel_after_first; /* set after the first call (NULL: never) */
 } calls;
 
-static void count_calls(void *ctx, const bf_compare *c, int material, int model, int done, int total)
+static void count_calls(void *user, const bf_compare *c, int material, int model, int done, int total)
 {
-    calls *k = ctx;
+    calls *k = user;
     if (total != NFITS || material < 0 || material >= NMAT || model < 0 || model >= NMOD) {
         k->wrong++;
         return;
@@ -105,8 +106,7 @@ static void run(const fixture *f, bf_compare *c, const char *const *specs, int f
     bf_error err;
     assert_int_equal(bf_compare_init(c, NMAT, data_names, NMOD, specs, &err), BF_OK);
     c->folds = folds;
-    bf_compare_run_options ro = {.jobs = jobs, .progress = count_calls, .ctx = k, .cancel = cancel};
-    assert_int_equal(bf_compare_run(c, f->samples, fo, &ro, &err), BF_OK);
+    assert_int_equal(compare_run_with(c, f->samples, fo, jobs, count_calls, k, cancel, &err), BF_OK);
     assert_int_equal(k->wrong, 0);
 }
 
@@ -157,7 +157,7 @@ static void test_jobs_give_identical_results(void **state)
     assert_int_equal(one.materials[1].simplest, three.materials[1].simplest);
     /* A table runs once. */
     bf_error err;
-    assert_int_equal(bf_compare_run(&one, f->samples, &f->fo, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&one, f->samples, &f->fo, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
     bf_compare_clear(&one);
     bf_compare_clear(&three);
 }
@@ -221,9 +221,9 @@ static void test_bad_arguments(void **state)
     bf_error err;
     assert_int_equal(bf_compare_init(&c, NMAT, data_names, NMOD, model_specs, &err), BF_OK);
     bf_samples *none[NMAT] = {f->samples[0], NULL};
-    assert_int_equal(bf_compare_run(&c, none, &f->fo, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&c, none, &f->fo, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "walter.csv"));
-    assert_int_equal(bf_compare_run(&c, f->samples, NULL, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&c, f->samples, NULL, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
     assert_int_equal(bf_compare_count(&c, BF_CMP_NOT_RUN), NFITS);
     bf_compare_clear(&c);
 }

@@ -76,7 +76,7 @@ static void test_cv_error(void **state)
     bf_error err;
     /* exact data: every held-out residual is (almost) zero */
     bf_samples *s = lambert_samples(600, 0.0);
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 4, 1, &cv, &err), BF_OK);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 4, 1, &cv, &err), BF_OK);
     assert_int_equal(cv.folds, 4);
     assert_int_equal(cv.failed, 0);
     assert_true(cv.error >= 0.0 && cv.error < 1e-9);
@@ -88,24 +88,24 @@ static void test_cv_error(void **state)
     ts_fit_ok(s, "lambert", &o, &r);
     const double train = r.metrics.rmse_log;
     bf_fit_result_clear(&r);
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 5, 1, &cv, &err), BF_OK);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 5, 1, &cv, &err), BF_OK);
     printf("  train %.6g, cv %.6g\n", train, cv.error);
     assert_true(cv.error > 0.95 * train && cv.error < 1.2 * train);
     for (int k = 0; k < 5; k++)
         assert_true(isfinite(cv.fold_error[k]) && cv.fold_error[k] > 0.0);
     /* the same bits with more threads; other folds with another seed */
     o.solver.threads = 3;
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 5, 1, &cv2, &err), BF_OK);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 5, 1, &cv2, &err), BF_OK);
     assert_memory_equal(&cv, &cv2, sizeof cv);
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 5, 2, &cv2, &err), BF_OK);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 5, 2, &cv2, &err), BF_OK);
     assert_true(cv2.error != cv.error);
     /* bad arguments */
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 1, 1, &cv, &err), BF_ERR_ARG);
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, BF_CV_MAX_FOLDS + 1, 1, &cv, &err), BF_ERR_ARG);
-    assert_int_equal(bf_fit_cv(s, "no_such_model", &o, 5, 1, &cv, &err), BF_ERR_ARG);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 1, 1, &cv, &err), BF_ERR_ARG);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, BF_CV_MAX_FOLDS + 1, 1, &cv, &err), BF_ERR_ARG);
+    assert_int_equal(bf_fit_cv_with(s, "no_such_model", &o, 5, 1, &cv, &err), BF_ERR_ARG);
     bf_samples_free(s);
     s = lambert_samples(3, 0.0);
-    assert_int_equal(bf_fit_cv(s, "lambert", &o, 5, 1, &cv, &err), BF_ERR_ARG);
+    assert_int_equal(bf_fit_cv_with(s, "lambert", &o, 5, 1, &cv, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "3 samples for 5 folds"));
     bf_samples_free(s);
 }

@@ -68,7 +68,7 @@ static void print_warnings(const char *what, const bf_fit_result *r)
 static void fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r)
 {
     bf_error err;
-    assert_int_equal(bf_fit(s, spec, o, r, &err), BF_OK);
+    assert_int_equal(bf_fit_with(s, spec, o, r, &err), BF_OK);
 }
 
 /* A well-posed fit warns of nothing: walter with a broad lobe, densely sampled. */

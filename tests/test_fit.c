@@ -352,7 +352,7 @@ static void test_impossible_fit(void **state)
     ts_fit_defaults(&o);
     o.starts = 3;
     bf_fit_result r;
-    assert_int_equal(bf_fit(s, "walter", &o, &r, &err), BF_OK);
+    assert_int_equal(bf_fit_with(s, "walter", &o, &r, &err), BF_OK);
     assert_false(r.ok);
     assert_true(r.solution.termination[0] != '\0');
     assert_true(all_finite(r.x, 8));
@@ -360,10 +360,10 @@ static void test_impossible_fit(void **state)
     bf_fit_result_clear(&r);
 
     /* Bad specification and options: errors, not failed fits. */
-    assert_int_not_equal(bf_fit(s, "no_such_model", &o, &r, &err), BF_OK);
+    assert_int_not_equal(bf_fit_with(s, "no_such_model", &o, &r, &err), BF_OK);
     assert_non_null(strstr(err.msg, "no_such_model"));
     o.solver.algorithm = "no_such_method";
-    assert_int_not_equal(bf_fit(s, "walter", &o, &r, &err), BF_OK);
+    assert_int_not_equal(bf_fit_with(s, "walter", &o, &r, &err), BF_OK);
     assert_null(strchr(err.msg, '\n'));
     bf_samples_free(s);
 }
@@ -386,7 +386,7 @@ static void test_result_json_round_trip(void **state)
     o.start = truth; /* the fit moves off the exact truth by rounding: any 17-digit values do */
     bf_fit_result r;
     bf_error err;
-    assert_int_equal(bf_fit(s, spec, &o, &r, &err), BF_OK);
+    assert_int_equal(bf_fit_with(s, spec, &o, &r, &err), BF_OK);
     const char *path = ts_tmp_path("fit.json");
     assert_int_equal(bf_fit_write_json(&r, "data.csv", path, &err), BF_OK);
     bf_model *back = NULL;

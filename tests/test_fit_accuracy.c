@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 
 static void test_defaults(void **state)
 {

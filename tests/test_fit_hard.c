@@ -64,7 +64,7 @@ static bf_samples *stratified(const char *spec, const double *x, size_t n)
 static int fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, const char *what)
 {
     bf_error err;
-    if (bf_fit(s, spec, o, r, &err) != BF_OK)
+    if (bf_fit_with(s, spec, o, r, &err) != BF_OK)
         fail_msg("%s: bf_fit %s: %s", what, spec, err.msg);
     int P = bf_model_nvalues(r->model);
     for (int k = 0; k < P; k++)

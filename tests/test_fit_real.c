@@ -78,7 +78,7 @@ static void fit_all(bf_samples *s, const char *what)
     o.starts = 1;
     bf_fit_result r;
     bf_error err;
-    if (bf_fit(s, "lambert", &o, &r, &err) != BF_OK || !r.ok)
+    if (bf_fit_with(s, "lambert", &o, &r, &err) != BF_OK || !r.ok)
         fail_msg("%s: lambert: %s", what, r.ok ? err.msg : r.solution.termination);
     double lambert = r.metrics.rmse_log;
     if (verbose())
@@ -90,7 +90,7 @@ static void fit_all(bf_samples *s, const char *what)
         const char *spec = bf_family_get(f)->name;
         if (!strcmp(spec, "lambert"))
             continue;
-        if (bf_fit(s, spec, &o, &r, &err) != BF_OK)
+        if (bf_fit_with(s, spec, &o, &r, &err) != BF_OK)
             fail_msg("%s: %s: %s", what, spec, err.msg);
         for (int k = 0; k < bf_model_nvalues(r.model); k++)
             if (!isfinite(r.x[k]))

@@ -17,23 +17,23 @@ static void test_parse_bytes(void **state)
 {
     (void)state;
     size_t v = 0;
-    assert_true(bf_parse_bytes("1000000", &v));
+    assert_int_equal(bf_bytes_parse("1000000", &v, NULL), BF_OK);
     assert_int_equal(v, 1000000);
-    assert_true(bf_parse_bytes("512M", &v));
+    assert_int_equal(bf_bytes_parse("512M", &v, NULL), BF_OK);
     assert_int_equal(v, (size_t)512 << 20);
-    assert_true(bf_parse_bytes("4g", &v));
+    assert_int_equal(bf_bytes_parse("4g", &v, NULL), BF_OK);
     assert_int_equal(v, (size_t)4 << 30);
-    assert_true(bf_parse_bytes("3K", &v));
+    assert_int_equal(bf_bytes_parse("3K", &v, NULL), BF_OK);
     assert_int_equal(v, 3072);
-    assert_true(bf_parse_bytes("2T", &v));
+    assert_int_equal(bf_bytes_parse("2T", &v, NULL), BF_OK);
     assert_int_equal(v, (size_t)2 << 40);
-    assert_true(bf_parse_bytes("0", &v));
+    assert_int_equal(bf_bytes_parse("0", &v, NULL), BF_OK);
     assert_int_equal(v, 0);
     const char *bad[] = {NULL, "", "-3", "+3", " 3", "3 ", "4X", "4GB", "1.5G", "99999999999999999999",
                          "17179869184G"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         v = 7;
-        assert_false(bf_parse_bytes(bad[i], &v));
+        assert_int_equal(bf_bytes_parse(bad[i], &v, NULL), BF_ERR_ARG);
         assert_int_equal(v, 7); /* untouched */
     }
 }

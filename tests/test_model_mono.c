@@ -201,7 +201,7 @@ static void test_fit_recovers_white_highlight(void **state)
     o.solver.backend = BF_BACKEND_CERES;
     o.starts = 1;
     bf_fit_result res;
-    assert_int_equal(bf_fit(s, "walter:mono=specular", &o, &res, &err), BF_OK);
+    assert_int_equal(bf_fit_with(s, "walter:mono=specular", &o, &res, &err), BF_OK);
     assert_true(res.ok);
     assert_int_equal(res.metrics.k, 6);
     const bf_model *m = res.model;

@@ -15,7 +15,17 @@
 
 #include "brdfit/scene.h"
 #include "brdfit/select.h"
+#include "select/select_run.h"
 #include "support.h"
+
+/* Select options from command-line words; the last set made is kept until the next. */
+static const bf_options *ts_select_options(const char *words)
+{
+    static bf_options *last;
+    bf_options_free(last);
+    last = ts_options(BF_TASK_SELECT, words);
+    return last;
+}
 
 /* ---- The order of preference, without fitting ------------------------------------- */
 
@@ -32,7 +42,7 @@ static void test_choose_order(void **state)
                            "walter:lobes=2,mono=specular"};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 5, specs, 3, BF_CMP_RMSE_LOG, 0.05, 0.0, &err), BF_OK);
+    assert_int_equal(bf_select_init(&s, 5, specs, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
     assert_int_equal(s.c[0].k, 8);
     assert_int_equal(s.c[1].k, 6);
     assert_int_equal(s.c[2].k, 7);
@@ -83,7 +93,7 @@ static void test_choose_order(void **state)
 
     /* Nothing fitted: no choice. */
     const char *one[] = {"lambert"};
-    assert_int_equal(bf_select_init(&s, 1, one, 1, BF_CMP_RMSE, 0.05, 0.0, &err), BF_OK);
+    assert_int_equal(bf_select_init(&s, 1, one, 1, ts_select_options("--error rmse --tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
     set_error(&s, 0, BF_CMP_ERROR, NAN);
     bf_select_choose(&s);
     assert_int_equal(s.chosen, -1);
@@ -97,7 +107,7 @@ static int choose_between(const char *a, const char *b, int C, int k)
     const char *specs[] = {a, b};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 2, specs, C, BF_CMP_RMSE_LOG, 0.05, 0.0, &err), BF_OK);
+    assert_int_equal(bf_select_init(&s, 2, specs, C, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
     assert_int_equal(s.c[0].k, k);
     assert_int_equal(s.c[1].k, k);
     set_error(&s, 0, BF_CMP_OK, 0.1);
@@ -126,7 +136,7 @@ static void test_tie_breaks(void **state)
     const char *bad[] = {"walter", "nonesuch"};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 2, bad, 3, BF_CMP_RMSE_LOG, 0.05, 0.0, &err), BF_ERR_ARG);
+    assert_int_equal(bf_select_init(&s, 2, bad, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "nonesuch"));
 }
 
@@ -172,10 +182,10 @@ static const bf_select_candidate *select_on(bf_samples *data, int n, const char 
                                             int weighted)
 {
     bf_error err;
-    assert_int_equal(bf_select_init(s, n, specs, data->channels, BF_CMP_RMSE_LOG, 0.05, 1e-6, &err), BF_OK);
+    assert_int_equal(bf_select_init(s, n, specs, data->channels, ts_select_options("--tolerance 0.05 --abs-tolerance 1e-6"), &err), BF_OK);
     bf_fit_options o = fit_options();
     o.weighted_metrics = weighted;
-    assert_int_equal(bf_select_run(s, data, &o, 1, NULL, NULL, &err), BF_OK);
+    assert_int_equal(select_run_with(s, data, &o, 1, NULL, NULL, NULL, &err), BF_OK);
     assert_true(s->chosen >= 0);
     return &s->c[s->chosen];
 }

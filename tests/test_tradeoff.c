@@ -16,6 +16,7 @@
 
 #include "brdfit/tradeoff.h"
 #include "support.h"
+#include "tradeoff/tradeoff_impl.h"
 
 static const char *const methods2[] = {"ceres", "LD_LBFGS"};
 
@@ -217,12 +218,7 @@ static void test_same_seed_same_errors(void **state)
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1, 2};
     bf_tradeoff t[2];
-    bf_fit_options fo;
-    memset(&fo, 0, sizeof fo);
-    fo.objective.residual = BF_RESIDUAL_LOG;
-    fo.objective.use_weights = 1;
-    fo.solver.threads = 1;
-    fo.starts = 1;
+    bf_options *fo = ts_options(BF_TASK_FIT, "--residual log --threads 1 --starts 1");
     for (int k = 0; k < 2; k++) {
         assert_int_equal(
             bf_tradeoff_init(&t[k], "synthetic", "walter", train->n, 2, counts, 2, methods2, 1, res, 2, starts, &err),
@@ -230,7 +226,7 @@ static void test_same_seed_same_errors(void **state)
         t[k].seed = 11;
         t[k].repeats = 2;
         for (int i = 0; i < t[k].nrows; i++) {
-            assert_int_equal(bf_tradeoff_run_row(&t[k], i, train, test, &fo, &err), BF_OK);
+            assert_int_equal(bf_tradeoff_run_row(&t[k], i, train, test, fo, &err), BF_OK);
             const bf_tradeoff_row *r = &t[k].rows[i];
             assert_true(r->ran && r->ok);
             assert_int_equal(r->train.n, r->all ? train->n : 300);
@@ -249,6 +245,7 @@ static void test_same_seed_same_errors(void **state)
     assert_true(t[0].best >= 0 && t[0].recommended >= 0);
     bf_tradeoff_clear(&t[0]);
     bf_tradeoff_clear(&t[1]);
+    bf_options_free(fo);
     bf_samples_free(train);
     bf_samples_free(test);
     bf_samples_free(s);

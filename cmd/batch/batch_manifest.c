@@ -22,23 +22,8 @@
 #include "batch_list.h"
 #include "cli.h"
 
-static int take_error(void *target, const cli_option *o, const char *v, const char *cmd)
-{
-    bf_error err;
-    (void)o;
-    if (bf_compare_metric_parse(v, &((batch_manifest *)target)->metric, &err) != BF_OK) {
-        fprintf(stderr, "%s: --error: %s\n", cmd, err.msg);
-        return -1;
-    }
-    return 0;
-}
-
-static const cli_option own[] = {
-    {"--error", 0, "rmse|rmse_log|rmse_cos|rmse_rel", "as brdfit compare", NULL, CLI_CALLS(take_error)},
-    {"--tolerance", 0, "T", "as brdfit compare", NULL,
-     CLI_NUMBER_AT(batch_manifest, tolerance, 0.0, HUGE_VAL, "a number >= 0")},
-};
-static const cli_group own_group = CLI_GROUP(NULL, own);
+static const cli_option own[] = {CLI_LIB("--error"), CLI_LIB("--tolerance")};
+static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_COMPARE, batch_manifest, o);
 static const cli_group *const shared_groups[] = {&own_group, &rank_options_bic, &fit_options_fitting,
                                                  &fit_options_optimizer, &data_options_reading,
                                                  &data_options_preprocessing};
@@ -66,6 +51,7 @@ void batch_manifest_clear(batch_manifest *m)
     free(m->text);
     free(m->lines);
     cJSON_Delete(m->root);
+    bf_options_free(m->o);
     memset(m, 0, sizeof *m);
 }
 
@@ -218,10 +204,12 @@ static int read_material(batch_manifest *m, const cJSON *e, const char *dir, bat
         strcat(strcpy(b->scene_word, "--scene="), b->scene);
         b->words[b->nwords++] = b->scene_word;
     }
-    data_options d;
+    bf_options *d = NULL;
     char prefix[600]; /* the parsers' messages name the manifest */
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
-    return batch_manifest_data_options(m, (int)(b - m->materials), &d, prefix);
+    int rc = batch_manifest_options(m, (int)(b - m->materials), &d, prefix);
+    bf_options_free(d);
+    return rc;
 }
 
 static int read_models(batch_manifest *m, const cJSON *models, const char *where, const char *cmd)
@@ -251,7 +239,7 @@ static int read_models(batch_manifest *m, const cJSON *models, const char *where
     }
     char prefix[600];
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
-    return fit_options_check_models(&m->fopt, m->models, m->nmodels, prefix);
+    return fit_options_check(m->o, m->models, m->nmodels, prefix);
 }
 
 static int read_root(batch_manifest *m, const char *dir, const char *where, const char *cmd)
@@ -267,7 +255,7 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
         }
     char prefix[600]; /* the parsers' messages name the manifest: "brdfit batch: FILE" */
     snprintf(prefix, sizeof prefix, "%s: %s", cmd, where);
-    void *const targets[] = {m, &m->ro, &m->fopt, &m->fopt, &m->dopt, &m->dopt}; /* shared_groups' structs */
+    void *const targets[] = {m, &m->o, &m->o, &m->o, &m->o, &m->o}; /* shared_groups' targets */
     char opts_where[32] = "\"options\"";
     if (m->lines)
         snprintf(opts_where, sizeof opts_where, "line %d", m->lines[0]);
@@ -275,7 +263,6 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
     if ((m->nwords = words_of(cJSON_GetObjectItemCaseSensitive(m->root, "options"), 0, &m->words, "\"options\"", where,
                               cmd)) < 0 ||
         parse_words(&shared_cli, targets, CLI_COUNT(targets), m->words, m->nwords, opts_where, prefix) < 0 ||
-        rank_options_check(&m->ro, &m->fopt.fit, prefix) < 0 ||
         read_models(m, cJSON_GetObjectItemCaseSensitive(m->root, "models"), where, cmd) < 0)
         return -1;
     if (!cJSON_IsArray(mats) || cJSON_GetArraySize(mats) == 0) {
@@ -295,10 +282,8 @@ static int read_root(batch_manifest *m, const char *dir, const char *where, cons
 int batch_manifest_read(const char *path, const char *text, batch_manifest *m, const char *cmd)
 {
     memset(m, 0, sizeof *m);
-    fit_options_init(&m->fopt);
-    rank_options_init(&m->ro, BF_RANK_BIC);
-    m->metric = BF_CMP_RMSE_LOG;
-    m->tolerance = 0.05;
+    if (!(m->o = cmd_options_new(BF_TASK_COMPARE, cmd)))
+        return -1;
     char *own_text = NULL;
     if (path) {
         if (!(own_text = read_file(path, cmd)))
@@ -327,10 +312,14 @@ int batch_manifest_read(const char *path, const char *text, batch_manifest *m, c
     return read_root(m, dir, where, cmd);
 }
 
-int batch_manifest_data_options(const batch_manifest *m, int i, data_options *out, const char *cmd)
+int batch_manifest_options(const batch_manifest *m, int i, bf_options **out, const char *cmd)
 {
-    *out = m->dopt;
-    void *const targets[] = {out, out}; /* material_groups' structs */
+    bf_error err;
+    if (bf_options_copy(m->o, out, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return -1;
+    }
+    void *const targets[] = {out, out}; /* material_groups' targets */
     char where[64];
     if (m->lines)
         snprintf(where, sizeof where, "line %d", m->lines[i + 1]);

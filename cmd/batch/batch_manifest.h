@@ -7,9 +7,8 @@
  *                            "scene": "studio.json"}]}
  *
  * or as the plain list batch_list.h describes. Options are command-line words with the
- * names brdfit fit and compare take (parsed by the same tables: data_options.c,
- * fit_options.c, rank_options.c, plus compare's --error and --tolerance); a material's
- * options are data options only. Relative paths are
+ * names brdfit compare takes (parsed by the library's option table, brdfit/options.h,
+ * as compare parses them); a material's options are data options only. Relative paths are
  * relative to the manifest's folder. The identity of a manifest is a hash of its
  * canonical JSON text (whitespace and key spacing do not count). */
 #ifndef BRDFIT_BATCH_MANIFEST_H
@@ -45,12 +44,7 @@ typedef struct batch_manifest {
     int *lines;                 /* a plain list's: the options: line, then each material's
                                    (owned; NULL for JSON), for the messages */
     int nmaterials;
-    /* The shared options, parsed: */
-    data_options dopt;
-    fit_options fopt;
-    rank_options ro;
-    bf_compare_metric metric;   /* --error (default rmse_log) */
-    double tolerance;           /* --tolerance (default 0.05) */
+    bf_options *o;              /* the shared options, parsed (owned) */
 } batch_manifest;
 
 /* Reads and checks the manifest (like data_options.c, this prints its one-line errors,
@@ -61,8 +55,9 @@ typedef struct batch_manifest {
 int batch_manifest_read(const char *path, const char *text, batch_manifest *m, const char *cmd);
 void batch_manifest_clear(batch_manifest *m);
 
-/* Material i's data options: the shared ones, then its own. 0, or -1 after the error. */
-int batch_manifest_data_options(const batch_manifest *m, int i, data_options *out, const char *cmd);
+/* Material i's options: the shared ones, then its own data options, into *out (freed
+ * with bf_options_free). 0, or -1 after the error. */
+int batch_manifest_options(const batch_manifest *m, int i, bf_options **out, const char *cmd);
 
 /* The options one work item ran with, exactly, as a JSON array of words (malloc'd;
  * NULL when out of memory): the shared options, the material's, then -m SPEC. */

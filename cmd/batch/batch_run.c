@@ -94,25 +94,27 @@ void batch_run_error_rows(batch_run *r, const int *models, int n, const char *re
 static void material_load(const batch_run *r, int i, batch_loaded *mt)
 {
     const batch_manifest *m = r->m;
-    data_options dopt;
     mt->i = i;
     mt->s = NULL;
-    if (batch_manifest_data_options(m, i, &dopt, BATCH_CMD) < 0) { /* checked when read: cannot fail */
+    if (batch_manifest_options(m, i, &mt->o, BATCH_CMD) < 0) { /* checked when read: cannot fail */
         snprintf(mt->reason, sizeof mt->reason, "its data options do not parse");
         return;
     }
-    mt->fopt = m->fopt;
-    if (r->a->threads > 0)
-        mt->fopt.fit.solver.threads = (int)r->a->threads;
-    fit_options_finish(&mt->fopt, &dopt);
-    if (!(mt->s = data_options_load(&dopt, m->materials[i].data, NULL, BATCH_CMD)))
-        data_options_load_reason(&dopt, m->materials[i].data, mt->reason, sizeof mt->reason);
+    char threads[32];
+    snprintf(threads, sizeof threads, "%ld", (long)r->a->threads);
+    bf_error err;
+    if (r->a->threads > 0 && bf_options_set(mt->o, "threads", threads, &err) != BF_OK)
+        snprintf(mt->reason, sizeof mt->reason, "%s", err.msg);
+    else if (!(mt->s = data_options_load(mt->o, m->materials[i].data, NULL, &err, BATCH_CMD)))
+        snprintf(mt->reason, sizeof mt->reason, "%s", err.msg);
 }
 
 static void material_release(batch_loaded *mt)
 {
     bf_samples_free(mt->s);
+    bf_options_free(mt->o);
     mt->s = NULL;
+    mt->o = NULL;
     mt->i = -1;
 }
 
@@ -136,9 +138,11 @@ static void material_fit(batch_run *r, batch_loaded *mt, const int *models, int 
     if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
         fail(r, &err);
     } else {
-        c.folds = m->ro.rank_by == BF_RANK_CV ? m->ro.folds : 0;
-        bf_compare_run_options ro = {.jobs = r->a->jobs, .progress = fit_done, .ctx = r, .cancel = &interrupt_flag};
-        if (bf_compare_run(&c, &mt->s, &mt->fopt.fit, &ro, &err) != BF_OK)
+        char jobs[32];
+        snprintf(jobs, sizeof jobs, "%d", r->a->jobs);
+        bf_options_set_cancel(mt->o, NULL, &interrupt_flag);
+        if (bf_options_set(mt->o, "jobs", jobs, &err) != BF_OK ||
+            bf_compare_run(&c, &mt->s, mt->o, fit_done, r, &err) != BF_OK)
             fail(r, &err); /* only before any fit: bad arguments or no memory */
     }
     bf_compare_clear(&c);

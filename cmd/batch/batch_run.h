@@ -54,7 +54,7 @@ void batch_run_lost_twice(batch_run *r, int item, const char *why);
 typedef struct batch_loaded {
     int i;
     bf_samples *s;
-    fit_options fopt;
+    bf_options *o; /* the material's options (owned) */
     char reason[512];
 } batch_loaded;
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import tempfile
 import threading
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
@@ -13,8 +14,8 @@ import numpy as np
 
 from ._brdfit import ffi, lib
 
-__all__ = ["Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "models", "read", "fit",
-           "compare", "export", "version"]
+__all__ = ["Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "models", "options", "read",
+           "fit", "compare", "export", "version"]
 
 
 class Error(Exception):
@@ -33,16 +34,12 @@ class UsageError(Error, ValueError):
         super().__init__(message, code)
 
 
-_CODES = {lib.BF_ERR_ARG: "arg", lib.BF_ERR_IO: "io", lib.BF_ERR_PARSE: "parse", lib.BF_ERR_RANGE: "range",
-          lib.BF_ERR_NOMEM: "nomem"}
-
-
 def _raise(err, what: str = "") -> None:
     msg = ffi.string(err.msg).decode("utf-8", "replace")
     if what:
         msg = "%s: %s" % (what, msg)
     cls = UsageError if err.code == lib.BF_ERR_ARG else Error
-    raise cls(msg, _CODES.get(err.code, "error"))
+    raise cls(msg, ffi.string(lib.bf_status_name(err.code)).decode())
 
 
 def _check(rc: int, err, what: str = "") -> None:
@@ -61,10 +58,7 @@ def models() -> List[Dict[str, Any]]:
     p = lib.bf_models_json()
     if p == ffi.NULL:
         raise MemoryError("brdfit: out of memory")
-    try:
-        return json.loads(ffi.string(p).decode())["models"]
-    finally:
-        lib.free(p)
+    return json.loads(_take_text(p))["models"]
 
 
 # ---- Arrays ------------------------------------------------------------------------
@@ -376,336 +370,243 @@ class Samples:
                                                                 ", from %r" % self.path if self.path else "")
 
 
-# ---- Options ------------------------------------------------------------------------
+# ---- Plain arguments (not options) ---------------------------------------------------------
 
 def _flag(name: str, v: Any) -> bool:
     if not isinstance(v, (bool, np.bool_)):
-        raise UsageError("%s: needs True or False, got %r" % (name, v), "arg")
+        raise UsageError("%s: needs True or False, got %r" % (name, v))
     return bool(v)
 
 
-def _int(name: str, v: Any, lo: int, hi: int) -> int:
-    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)) or not lo <= v <= hi:
-        raise UsageError("%s: needs an integer from %d to %d, got %r" % (name, lo, hi, v), "arg")
-    return int(v)
-
-
-def _number(name: str, v: Any, lo: float, hi: float, open_lo: bool = False) -> float:
-    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)) or \
-            not np.isfinite(v) or not (lo < v if open_lo else lo <= v) or not v <= hi:
-        raise UsageError("%s: needs a number in %s%g, %g], got %r" % (name, "(" if open_lo else "[", lo, hi, v), "arg")
-    return float(v)
-
-
 def _text(name: str, v: Any) -> str:
-    if isinstance(v, (list, tuple)):
-        v = ",".join(str(x) for x in v)
     if not isinstance(v, str):
-        raise UsageError("%s: needs a string, got %r" % (name, v), "arg")
+        raise UsageError("%s: needs a string, got %r" % (name, v))
     return v
 
 
-class _Keep:
-    """C strings handed to option structs, alive as long as the options are."""
+# ---- Options: the library's table -------------------------------------------------------
 
-    def __init__(self):
-        self.items: List[Any] = []
-
-    def s(self, text: str):
-        p = ffi.new("char[]", text.encode())
-        self.items.append(p)
-        return p
+_TASKS = {"read": lib.BF_TASK_READ, "fit": lib.BF_TASK_FIT, "compare": lib.BF_TASK_COMPARE,
+          "select": lib.BF_TASK_SELECT}
 
 
-DATA_OPTIONS = ("format", "grid", "angles", "radians", "values", "weight", "channels", "rgb", "color", "illuminant",
-                "rgb_bands", "luminance", "max_theta", "negative", "subsample", "seed", "scene")
+def _str(p) -> Optional[str]:
+    return None if p == ffi.NULL else ffi.string(p).decode()
 
 
-def _data_options(opts: Dict[str, Any], keep: _Keep):
-    """bf_read_options and bf_prep from the data keywords (they are taken out of opts),
-    and the scene path (or None)."""
-    ro = ffi.new("bf_read_options *")
-    prep = ffi.new("bf_prep *")
-    scene = None
-    spectral = None
-    for key in [k for k in DATA_OPTIONS if k in opts]:
-        v = opts.pop(key)
-        if v is None or v is False and key in ("radians", "rgb", "rgb_bands", "luminance"):
+def _table() -> List[Dict[str, Any]]:
+    """The library's option table (brdfit/options.h), as dicts."""
+    out = []
+    for i in range(lib.bf_option_count()):
+        d = lib.bf_option_get(i)
+        out.append({"name": _str(d.name), "group": _str(d.group), "tasks": d.tasks, "type": int(d.type),
+                    "arg": _str(d.arg), "help": _str(d.help), "default": _str(getattr(d, "def")),
+                    "range": _str(d.range)})
+    return out
+
+
+def options(task: str) -> List[Dict[str, Any]]:
+    """The keyword options a function takes ("read", "fit", "compare" or "select"), as the
+    library declares them: name, group, type, arg, help, default (text, or None for none
+    or automatic) and range (in words, or None)."""
+    if task not in _TASKS:
+        raise UsageError("task: one of %s, got %r" % (", ".join(_TASKS), task))
+    seen = set()
+    out = []
+    for d in _table():
+        if d["tasks"] & _TASKS[task] and d["name"] not in seen:
+            seen.add(d["name"])
+            out.append(d)
+    return out
+
+
+def _keyword_help(text: str) -> str:
+    """Help text with the command line's option names as keywords ("--max-theta" ->
+    max_theta)."""
+    return re.sub(r"--([a-z][a-z-]*)", lambda m: m.group(1).replace("-", "_"), text)
+
+
+def _doc(task: str, groups: Optional[Sequence[str]] = None) -> str:
+    lines = []
+    for d in options(task):
+        if groups is not None and d["group"] not in groups:
             continue
-        if key == "format":
-            f = lib.bf_format_from_name(_text(key, v).encode())
-            if f < 0:
-                raise UsageError("format: unknown format %r (csv, merl, cornell, alta, rgl, mbsdf)" % v, "arg")
-            ro.format = f
-        elif key == "grid":
-            ro.grid = keep.s(_text(key, v))
-        elif key == "angles":
-            names = _text(key, v).split(",")
-            if len(names) != 4 or not all(names):
-                raise UsageError("angles: needs four column names, got %r" % (v,), "arg")
-            for k, nm in enumerate(names):
-                ro.csv.angle_cols[k] = keep.s(nm)
-        elif key == "radians":
-            ro.csv.radians = int(_flag(key, v))
-        elif key == "values":
-            ro.csv.channels = keep.s(_text(key, v))
-        elif key == "weight":
-            ro.csv.weight_col = keep.s(_text(key, v))
-        elif key == "channels":
-            prep.channels = keep.s(_text(key, v))
-        elif key in ("rgb", "color", "rgb_bands", "luminance"):
-            if key == "color":
-                c = lib.bf_color_from_name(_text(key, v).encode())
-                if c < 0:
-                    raise UsageError("color: takes srgb, acescg or xyz, got %r" % (v,), "arg")
-            elif not _flag(key, v):
-                continue
-            else:
-                c = lib.BF_COLOR_SRGB if key == "rgb" else None
-            if spectral and not (c is not None and c == prep.color and spectral in ("rgb", "color")):
-                raise UsageError("%s and %s exclude each other" % (spectral, key), "arg")
-            spectral = key
-            if key == "rgb_bands":
-                prep.to_bands = 1
-            elif key == "luminance":
-                prep.to_luminance = 1
-            else:
-                prep.color = c
-        elif key == "illuminant":
-            k = lib.bf_illuminant_from_name(_text(key, v).encode())
-            if k < 0:
-                raise UsageError("illuminant: takes d65, e, a or d50, got %r" % (v,), "arg")
-            prep.illuminant = k
-        elif key == "max_theta":
-            prep.max_theta = _number(key, v, 0.0, 90.0, open_lo=True)
-        elif key == "negative":
-            modes = {"keep": lib.BF_NEGATIVE_KEEP, "drop": lib.BF_NEGATIVE_DROP, "clamp": lib.BF_NEGATIVE_CLAMP}
-            if v not in modes:
-                raise UsageError("negative: takes keep, drop or clamp, got %r" % (v,), "arg")
-            prep.negative = modes[v]
-        elif key == "subsample":
-            prep.subsample = 0 if v == "all" else _int(key, v, 1, 10 ** 12)
-        elif key == "seed":
-            prep.seed = _int(key, v, 0, 2 ** 64 - 1)
-        elif key == "scene":
-            scene = _text(key, v)
-    return ro, prep, scene
+        head = "  %s=%s" % (d["name"], d["arg"] or "True")
+        body = _keyword_help(d["help"] or "").replace("\n", " ")
+        lines.append("%-28s %s" % (head, body))
+    return "\n".join(lines)
 
 
-def _prepare(s, prep, scene: Optional[str], path: str) -> None:
-    """Preprocessing, then the scene, then the subsample (so subsample=N gives N samples
-    inside the scene), as the command line does."""
-    err = ffi.new("bf_error *")
-    sub = prep.subsample
-    if scene:
-        prep.subsample = 0
-    _check(lib.bf_samples_prep(s, prep, ffi.NULL, err), err, path)
-    if scene:
-        sc = ffi.new("bf_scene **")
-        _check(lib.bf_scene_read(scene.encode(), sc, err), err)
-        try:
-            _check(lib.bf_scene_apply(sc[0], s, ffi.NULL, err), err, "%s: scene %s" % (path, scene))
-        finally:
-            lib.bf_scene_free(sc[0])
-        p2 = ffi.new("bf_prep *")
-        p2.subsample, p2.seed = sub, prep.seed
-        _check(lib.bf_samples_prep(s, p2, ffi.NULL, err), err, path)
+def _value_texts(d, name: str, v: Any) -> List[Optional[str]]:
+    """A keyword's value as the texts the library takes (Python types to text only: the
+    library checks and refuses)."""
+    if int(d.type) == lib.BF_OPTION_LIST:
+        if isinstance(v, str):
+            return [v]
+        if isinstance(v, Mapping):
+            out: List[Optional[str]] = []
+            for k, x in v.items():
+                if name == "bound" and isinstance(x, (tuple, list)) and len(x) == 2:
+                    out.append("%s=%s:%s" % (k, _one_text(x[0]), _one_text(x[1])))
+                elif isinstance(x, (tuple, list, np.ndarray)):  # one value per channel
+                    out.extend("%s[%d]=%s" % (k, c, _one_text(xc)) for c, xc in enumerate(x))
+                else:
+                    out.append("%s=%s" % (k, _one_text(x)))
+            return out
+        if isinstance(v, (list, tuple)) and all(isinstance(t, str) for t in v):
+            return list(v)
+        raise UsageError("%s: needs a dict (name -> value) or a list of 'NAME=...' strings, got %r" % (name, v))
+    if isinstance(v, (list, tuple)):
+        return [",".join(_one_text(x) for x in v)]
+    return [_one_text(v)]
 
 
-def _no_extra(opts: Mapping[str, Any], what: str) -> None:
-    if opts:
-        raise UsageError("%s: unknown option%s %s (see help(brdfit.%s))" % (
-            what, "s" if len(opts) > 1 else "", ", ".join(sorted(opts)), what), "arg")
+def _one_text(v: Any) -> str:
+    if isinstance(v, (bool, np.bool_)):
+        return "true" if v else "false"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        return repr(float(v))
+    if isinstance(v, str):
+        if "\0" in v:
+            raise UsageError("%r: a NUL character cannot be in a value" % (v,))
+        return v
+    if isinstance(v, os.PathLike):
+        return _path_text(v)
+    raise UsageError("needs a string, a number or True/False, got %r" % (v,))
 
 
-def read(path: Union[str, os.PathLike], **data_options: Any) -> Samples:
-    """Reads a data file (CSV, MERL .binary, Cornell, ALTA, RGL .bsdf, .mbsdf) and applies the
-    data options, named as on the command line: format, grid ("merl", "uniform:N" or a
-    file), angles ("ti,pi,to,po" or four names), radians, values, weight, channels, rgb,
-    color ("srgb", "acescg", "xyz"), illuminant, rgb_bands, luminance, max_theta, negative
-    ("keep", "drop", "clamp"), subsample (N or "all"), seed, scene (a scene file)."""
-    path = os.fspath(path)
-    if not isinstance(path, str):
-        raise UsageError("path: needs a file name, got %r" % (path,))
-    keep = _Keep()
-    opts = dict(data_options)
-    ro, prep, scene = _data_options(opts, keep)
-    _no_extra(opts, "read")
-    err = ffi.new("bf_error *")
-    out = ffi.new("bf_samples **")
-    _check(lib.bf_samples_read(path.encode(), ro, out, err), err)
-    s = Samples._wrap(out[0], path)
-    _prepare(s._s, prep, scene, path)
+def _path_text(p: Any) -> str:
+    s = os.fsdecode(os.fsencode(p))
+    if "\0" in s:
+        raise UsageError("%r: a NUL character cannot be in a file name" % (p,))
     return s
 
 
-FIT_OPTIONS = ("residual", "loss", "fix", "bound", "solid_angle", "no_weights", "constrain_energy", "backend",
-               "algorithm", "local", "max_iterations", "starts", "screen", "presolve", "threads", "seed", "accuracy",
-               "subsample")
+class _Options:
+    """A set of the library's run options for a task, from keyword arguments: each
+    keyword is set by the library (bf_options_set), which checks it and says what is
+    wrong, naming the keyword."""
 
-
-def _overrides(name: str, v: Any) -> List[str]:
-    """--fix NAME=VALUE / --bound NAME=LO:HI as a dict, a list of such strings, or one string."""
-    if isinstance(v, str):
-        return [v]
-    if isinstance(v, Mapping):
-        out = []
-        for k, x in v.items():
-            if name == "bound":
-                if not isinstance(x, (tuple, list)) or len(x) != 2:
-                    raise UsageError("bound: %s needs (lo, hi), got %r" % (k, x), "arg")
-                out.append("%s=%r:%r" % (k, float(x[0]), float(x[1])))
-            else:
-                out.append("%s=%r" % (k, float(x)))
-        return out
-    if isinstance(v, (list, tuple)) and all(isinstance(t, str) for t in v):
-        return list(v)
-    raise UsageError("%s: needs a dict (name -> value) or a list of 'NAME=...' strings, got %r" % (name, v), "arg")
-
-
-class _FitOptions:
-    """bf_fit_options from the fit keywords (taken out of opts), with --accuracy applied."""
-
-    def __init__(self, opts: Dict[str, Any], keep: _Keep):
-        self.fo = fo = ffi.new("bf_fit_options *")
-        lib.bf_fit_options_init(fo)
+    def __init__(self, task: str, keywords: Mapping[str, Any], what: str):
         err = ffi.new("bf_error *")
-        given = 0
-        accuracy = lib.BF_ACCURACY_NONE
-        self.subsample: Optional[int] = None
-        fixes: List[str] = []
-        bounds: List[str] = []
-        for key in [k for k in FIT_OPTIONS if k in opts]:
-            v = opts.pop(key)
+        out = ffi.new("bf_options **")
+        _check(lib.bf_options_new(_TASKS[task], out, err), err)
+        self.o = ffi.gc(out[0], lib.bf_options_free)
+        lib.bf_options_set_spelling(self.o, lib.BF_SPELL_KEYWORD)
+        self.given = []
+        for name, v in keywords.items():
             if v is None:
                 continue
-            if key == "residual":
-                r = ffi.new("bf_residual *")
-                _check(lib.bf_residual_parse(_text(key, v).encode(), r, err), err, key)
-                fo.objective.residual = r[0]
-                given |= lib.BF_FIT_GIVEN_RESIDUAL
-            elif key == "loss":
-                _check(lib.bf_loss_parse(_text(key, v).encode(), ffi.addressof(fo.solver, "loss"), err), err, key)
-            elif key == "fix":
-                fixes += _overrides(key, v)
-            elif key == "bound":
-                bounds += _overrides(key, v)
-            elif key == "solid_angle":
-                fo.objective.solid_angle = int(_flag(key, v))
-            elif key == "no_weights":
-                fo.objective.use_weights = 0 if _flag(key, v) else 1
-            elif key == "constrain_energy":
-                fo.solver.use_constraint = int(_flag(key, v))
-            elif key == "backend":
-                b = ffi.new("bf_backend *")
-                if lib.bf_backend_parse(_text(key, v).encode(), b, ffi.NULL) != lib.BF_OK:
-                    raise UsageError("backend: takes ceres or nlopt, got %r" % (v,), "arg")
-                fo.solver.backend = b[0]
-                given |= lib.BF_FIT_GIVEN_BACKEND
-            elif key == "algorithm":
-                fo.solver.algorithm = keep.s(_text(key, v))
-                given |= lib.BF_FIT_GIVEN_ALGORITHM
-            elif key == "local":
-                fo.solver.local_algorithm = keep.s(_text(key, v))
-            elif key == "max_iterations":
-                fo.solver.max_iterations = _int(key, v, 1, 10000000)
-                given |= lib.BF_FIT_GIVEN_MAX_ITERATIONS
-            elif key == "starts":
-                fo.starts = _int(key, v, 1, 10000)
-                given |= lib.BF_FIT_GIVEN_STARTS
-            elif key == "screen":
-                fo.screen = _int(key, v, 0, 10000)
-                given |= lib.BF_FIT_GIVEN_SCREEN
-            elif key == "presolve":
-                fo.presolve = -1 if v == "off" else _int(key, v, 64, 1000000000)
-            elif key == "threads":
-                fo.solver.threads = _int(key, v, 1, 1024)
-            elif key == "seed":
-                fo.seed = _int(key, v, 0, 2 ** 64 - 1)
-            elif key == "accuracy":
-                a = ffi.new("bf_fit_accuracy *")
-                if lib.bf_fit_accuracy_parse(_text(key, v).encode(), a, ffi.NULL) != lib.BF_OK:
-                    raise UsageError("accuracy: takes fast, balanced or best, got %r" % (v,), "arg")
-                accuracy = a[0]
-            elif key == "subsample":
-                self.subsample = 0 if v == "all" else _int(key, v, 1, 10 ** 12)
-                given |= lib.BF_FIT_GIVEN_SUBSAMPLE
-        sub = ffi.new("size_t *", 0)
-        lib.bf_fit_options_apply_accuracy(fo, accuracy, given, sub)
-        if self.subsample is None and sub[0] > 0:
-            self.subsample = int(sub[0])
-        n = len(fixes) + len(bounds)
-        self.ov = ffi.new("bf_override[]", max(n, 1))
-        for k, text in enumerate(fixes + bounds):
-            parse = lib.bf_override_parse_fix if k < len(fixes) else lib.bf_override_parse_bound
-            _check(parse(keep.s(text), self.ov + k, err), err, "fix" if k < len(fixes) else "bound")
-        fo.objective.overrides = self.ov
-        fo.objective.noverrides = n
-        _check(lib.bf_solver_options_check(ffi.addressof(fo, "solver"), err), err)
+            d = lib.bf_option_find(name.encode(), _TASKS[task])
+            if d == ffi.NULL:  # the library's message: unknown, or another task's
+                _check(lib.bf_options_set(self.o, name.encode(), ffi.NULL, err), err, what)
+            try:
+                texts = _value_texts(d, name, v)
+            except UsageError as e:
+                raise UsageError("%s: %s" % (name, e.message)) from None
+            for t in texts:
+                _check(lib.bf_options_set(self.o, name.encode(), t.encode() if t is not None else ffi.NULL, err), err,
+                       what)
+            self.given.append((name, _str(d.group)))
 
-    def check_model(self, spec: str, channels: int) -> None:
+    def check(self, specs: Sequence[str] = ()) -> None:
         err = ffi.new("bf_error *")
-        m = ffi.new("bf_model **")
-        _check(lib.bf_model_new(spec.encode(), channels, m, err), err)
-        try:
-            _check(lib.bf_overrides_check(m[0], 0, self.ov, self.fo.objective.noverrides, err), err)
-        finally:
-            lib.bf_model_free(m[0])
+        keep = [ffi.new("char[]", s.encode()) for s in specs]
+        arr = ffi.new("const char *[]", keep) if keep else ffi.NULL
+        _check(lib.bf_options_check_models(self.o, arr, len(keep), err), err)
+        _check(lib.bf_options_check(self.o, err), err)
 
-    def samples(self, s: "Samples") -> "Samples":
-        """s, or its seeded subsample (subsample=, or --accuracy fast's) as a new set."""
-        if not self.subsample:
-            return s
-        err = ffi.new("bf_error *")
-        out = ffi.new("bf_samples **")
-        _check(lib.bf_samples_copy(s._s, ffi.NULL, out, err), err)
-        sub = Samples._wrap(out[0], s.path)
-        p = ffi.new("bf_prep *")
-        p.subsample, p.seed = self.subsample, self.fo.seed
-        _check(lib.bf_samples_prep(sub._s, p, ffi.NULL, err), err, s.path or "samples")
-        return sub
+    def reading_given(self) -> List[str]:
+        return [n for n, g in self.given if g == "reading"]
+
+
+def _load(path: Union[str, os.PathLike], opts: _Options) -> "Samples":
+    p = _path_text(path)
+    err = ffi.new("bf_error *")
+    out = ffi.new("bf_samples **")
+    _check(lib.bf_samples_load(p.encode(), opts.o, out, ffi.NULL, err), err)
+    return Samples._wrap(out[0], p)
+
+
+def read(path: Union[str, os.PathLike], **data_options: Any) -> "Samples":
+    if not isinstance(path, (str, os.PathLike)):
+        raise UsageError("path: needs a file name, got %r" % (path,))
+    return _load(path, _Options("read", data_options, "read"))
+
+
+read.__doc__ = """Reads a data file (CSV, MERL .binary, Cornell, ALTA, RGL .bsdf, .mbsdf) and prepares
+its samples as the command line does (read, preprocess, scene, subsample), with the data
+options as keywords:
+
+""" + _doc("read")
+
+
+def _prepared(x: Any, opts: _Options, what: str) -> "Samples":
+    """Samples for a fit: a file loaded with the options, or a copy of given samples
+    prepared with them (the preprocessing, scene and subsample; bf_samples_prepare)."""
+    if isinstance(x, (str, os.PathLike)):
+        return _load(x, opts)
+    if not isinstance(x, Samples):
+        raise UsageError("%s: needs brdfit.Samples or a data file name, got %s" % (what, type(x).__name__))
+    if opts.reading_given():
+        raise UsageError("%s: %s read a file; these samples are read already" % (
+            what, ", ".join(opts.reading_given())))
+    err = ffi.new("bf_error *")
+    out = ffi.new("bf_samples **")
+    _check(lib.bf_samples_copy(x._s, ffi.NULL, out, err), err)
+    s = Samples._wrap(out[0], x.path)
+    _check(lib.bf_samples_prepare(s._s, opts.o, ffi.NULL, err), err, x.path or what)
+    return s
 
 
 # ---- Running: threads, progress, Ctrl-C -------------------------------------------------
 
 class _Run:
-    """One library call in a worker thread, so that the calling thread stays in Python:
-    Ctrl-C (KeyboardInterrupt) there sets the library's cancel flag and is raised once the
-    call has stopped; the progress callback runs in the worker (with the GIL), and an
-    exception it raises stops the call and is raised here."""
+    """One library call in a worker thread, so that the calling thread stays in Python.
+    An exception there (Ctrl-C's KeyboardInterrupt, a signal handler's TimeoutError) sets
+    the library's cancel flag, and the call's memory stays alive until the call has
+    returned; then the exception is raised. The progress callback runs in the worker (with
+    the GIL); an exception it raises, or True, stops the call."""
 
     def __init__(self, progress: Optional[Callable[[int, float], Any]]):
         if progress is not None and not callable(progress):
             raise UsageError("progress: needs a callable (iteration, cost) -> bool, got %r" % (progress,))
         self.progress = progress
-        self.cancel = ffi.new("int *", 0)
+        self.cancel = ffi.new("bf_cancel_flag *", 0)
         self.error: Optional[BaseException] = None
         self.handle = ffi.new_handle(self)
 
-    def hook(self, solver) -> None:
-        solver.cancel = self.cancel
+    def hook(self, opts: _Options) -> None:
+        lib.bf_options_set_cancel(opts.o, self.cancel, ffi.NULL)
         if self.progress is not None:
-            solver.progress = lib._brdfit_progress
-            solver.progress_user = self.handle
+            lib.bf_options_set_progress(opts.o, lib._brdfit_progress, self.handle)
 
     def __call__(self, fn: Callable[[], Any]) -> Any:
         box: Dict[str, Any] = {}
+        done = threading.Event()
 
         def work():
             try:
                 box["rc"] = fn()
             except BaseException as e:  # surfaced in the calling thread
                 box["exc"] = e
+            finally:
+                done.set()
 
         t = threading.Thread(target=work, name="brdfit", daemon=True)
         t.start()
         interrupted = None
-        while t.is_alive():
+        while True:
             try:
-                t.join(0.05)
-            except KeyboardInterrupt as e:
+                if done.wait(0.05):
+                    break
+            except BaseException as e:  # the call still runs: stop it, wait for it
                 self.cancel[0] = 1
-                interrupted = e
+                if interrupted is None:
+                    interrupted = e
+        t.join()
         if interrupted is not None:
             raise interrupted
         if self.error is not None:
@@ -718,20 +619,27 @@ class _Run:
 @ffi.def_extern()
 def _brdfit_progress(user, iteration, cost):
     run = ffi.from_handle(user)
-    if run.error is not None:
+    if run.error is not None or run.cancel[0]:
         return 1
     try:
-        return 1 if run.progress(int(iteration), float(cost)) else 0
+        stop = bool(run.progress(int(iteration), float(cost)))
     except BaseException as e:
         run.error = e
+        stop = True
+    if stop:  # the whole call stops, not only this solve
+        run.cancel[0] = 1
         return 1
+    return 0
 
 
 # ---- Fitting ------------------------------------------------------------------------
 
-def _read_text(path: str) -> str:
-    with open(path, encoding="utf-8") as f:
-        return f.read()
+def _take_text(p) -> str:
+    """A text the library made (bf_free'd here)."""
+    try:
+        return ffi.string(p).decode("utf-8")
+    finally:
+        lib.bf_free(p)
 
 
 class FitResult:
@@ -748,7 +656,8 @@ class FitResult:
         self.stderr: Dict[str, Any] = self.json.get("stderr", {})
         self.metrics: Dict[str, Any] = self.json.get("metrics", {})
         self.warnings: List[str] = self.json.get("warnings", ["the fit was cancelled"] if cancelled else [])
-        self.model = Model(model.spec, model.channels, params=self.params)
+        self.model = model
+        self.model._params = model._vector(self.params)
 
     @property
     def spec(self) -> str:
@@ -764,56 +673,49 @@ class FitResult:
         return "brdfit.FitResult(%r, ok=%s, rmse_log=%s)" % (self.spec, self.ok, self.metrics.get("rmse_log"))
 
 
-def _samples_arg(samples: Any, opts: Dict[str, Any], what: str) -> "Samples":
-    if isinstance(samples, Samples):
-        return samples
-    if isinstance(samples, (str, os.PathLike)):
-        data = {k: opts.pop(k) for k in list(opts) if k in DATA_OPTIONS and k not in ("seed", "subsample")}
-        if "seed" in opts:
-            data["seed"] = opts["seed"]
-        return read(samples, **data)
-    raise UsageError("%s: needs brdfit.Samples or a data file name, got %s" % (what, type(samples).__name__))
+def _spec_of(model: Any, what: str) -> str:
+    spec = model.spec if isinstance(model, Model) else model
+    if not isinstance(spec, str):
+        raise UsageError("%s: needs a model spec or brdfit.Model, got %r" % (what, model))
+    return spec
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int, float], Any]] = None,
-        **fit_options: Any) -> FitResult:
-    """Fits model (a spec or a Model) to samples (brdfit.Samples, or a file name read with
-    the data options given here). The options are `brdfit fit`'s: residual, loss, fix
-    ({"name": value}), bound ({"name": (lo, hi)}), solid_angle, no_weights,
-    constrain_energy, backend, algorithm, local, max_iterations, starts, screen, presolve
-    (N or "off"), threads, seed, accuracy ("fast", "balanced", "best"), subsample.
-    progress(iteration, cost) is called as the solver goes; returning True stops the fit
-    (the result then says .cancelled). Ctrl-C stops it and raises KeyboardInterrupt."""
-    opts = dict(fit_options)
-    s = _samples_arg(samples, opts, "samples")
-    spec = model.spec if isinstance(model, Model) else model
-    if not isinstance(spec, str):
-        raise UsageError("model: needs a model spec or brdfit.Model, got %r" % (model,))
-    keep = _Keep()
-    fo = _FitOptions(opts, keep)
-    _no_extra(opts, "fit")
-    fo.check_model(spec, s.channels)
-    data = fo.samples(s)
+        **options: Any) -> FitResult:
+    spec = _spec_of(model, "model")
+    opts = _Options("fit", options, "fit")
+    opts.check([spec])
+    data = _prepared(samples, opts, "samples")
     data._ready()
     run = _Run(progress)
-    run.hook(fo.fo.solver)
+    run.hook(opts)
     r = ffi.new("bf_fit_result *")
     err = ffi.new("bf_error *")
-    rc = run(lambda: lib.bf_fit(data._s, spec.encode(), fo.fo, r, err))
-    _check(rc, err, spec)
+    rc = run(lambda: lib.bf_fit(data._s, spec.encode(), opts.o, r, err))
     try:
+        _check(rc, err, spec)
         m = Model._from_ptr(r.model)
         cancelled = r.solution.stop == lib.BF_STOP_CANCELLED
         x = np.array(ffi.unpack(r.x, lib.bf_model_nvalues(r.model)))
         text = None
         if not cancelled:
-            with tempfile.TemporaryDirectory(prefix="brdfit-") as d:
-                out = os.path.join(d, "result.json")
-                _check(lib.bf_fit_write_json(r, s.path.encode() if s.path else ffi.NULL, out.encode(), err), err)
-                text = _read_text(out)
+            out = ffi.new("char **")
+            _check(lib.bf_fit_result_json(r, data.path.encode() if data.path else ffi.NULL, out, err), err)
+            text = _take_text(out[0])
         return FitResult(text, m, bool(r.ok), cancelled, m._dict(x))
     finally:
         lib.bf_fit_result_clear(r)
+
+
+fit.__doc__ = """Fits model (a spec or a Model) to samples (brdfit.Samples, or a data file name), as
+`brdfit fit` does. progress(iteration, cost) is called as the solver goes; returning True
+stops the fit (the result then says .cancelled). Ctrl-C stops it and raises
+KeyboardInterrupt. The options are brdfit fit's, as keywords:
+
+""" + _doc("fit") + """
+
+With brdfit.Samples, the data options other than the reading ones apply to a copy of them
+(preprocessing, scene, subsample)."""
 
 
 # ---- Comparing ----------------------------------------------------------------------
@@ -832,87 +734,63 @@ class CompareResult:
         return self._text
 
 
-def _split_models(text: str) -> List[str]:
-    """A -m list as the command line splits it: a comma starts a new model only where the
-    next token has no '=' or has a ':' of its own, so option lists stay whole
-    ("microfacet:D=ggx,G=smith_ggx,walter" is two models)."""
-    specs: List[str] = []
-    for tok in text.split(","):
-        if specs and "=" in tok and ":" not in tok:
-            specs[-1] += "," + tok
-        else:
-            specs.append(tok)
-    return specs
+def _model_list(models: Any) -> List[str]:
+    """A list of specs, or one string split as -m splits it (bf_model_list_split)."""
+    if isinstance(models, str):
+        err = ffi.new("bf_error *")
+        specs = ffi.new("char ***")
+        n = ffi.new("int *")
+        _check(lib.bf_model_list_split(models.encode(), specs, n, err), err, "models")
+        try:
+            return [ffi.string(specs[0][k]).decode() for k in range(n[0])]
+        finally:
+            lib.bf_free(specs[0])
+    if isinstance(models, Model) or not isinstance(models, Iterable):
+        raise UsageError("models: needs a list of model specs, or one string as -m takes it")
+    out = [_spec_of(m, "models") for m in models]
+    if not out:
+        raise UsageError("models: needs at least one model")
+    return out
 
 
-COMPARE_OPTIONS = ("rank", "folds", "timing", "error", "tolerance", "jobs")
-
-
-def compare(samples_list: Sequence[Any], models: Union[str, Sequence[str]], progress=None,
+def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], progress=None,
             **options: Any) -> CompareResult:
-    """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
-    list of specs, or one string as -m takes it ("lambert,walter", "all"); options: rank ("bic", "aic", "aicc", "cv", "error"), folds,
-    timing, error ("rmse", "rmse_log", "rmse_cos", "rmse_rel"), tolerance, jobs, and the
-    fit options of brdfit.fit (and, for file names, the data options)."""
-    opts = dict(options)
     if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
         raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
-    sets = [_samples_arg(x, dict(opts), "samples_list[%d]" % i) for i, x in enumerate(samples_list)]
-    for k in [k for k in DATA_OPTIONS if k in opts and k not in ("seed", "subsample")]:
-        opts.pop(k)
-    if not sets:
+    samples_list = list(samples_list)
+    if not samples_list:
         raise UsageError("samples_list: needs at least one sample set")
-    if isinstance(models, str):
-        models = [m["name"] for m in globals()["models"]()] if models == "all" else _split_models(models)
-    specs = [m.spec if isinstance(m, Model) else m for m in models]
-    if not specs or not all(isinstance(m, str) for m in specs):
-        raise UsageError("models: needs a list of model specs")
-    err = ffi.new("bf_error *")
-    c = ffi.new("bf_compare *")
-    rank = opts.pop("rank", None)
-    folds = opts.pop("folds", None)
-    timing = opts.pop("timing", False)
-    metric = opts.pop("error", None)
-    tolerance = opts.pop("tolerance", None)
-    jobs = _int("jobs", opts.pop("jobs", 1), 1, 1024)
-    keep = _Keep()
-    fo = _FitOptions(opts, keep)
-    _no_extra(opts, "compare")
-    for spec in specs:
-        fo.check_model(spec, sets[0].channels)
-    data = [fo.samples(s) for s in sets]
+    specs = _model_list(models)
+    opts = _Options("compare", options, "compare")
+    opts.check(specs)
+    data = [_prepared(x, opts, "samples_list[%d]" % i) for i, x in enumerate(samples_list)]
     for d in data:
         d._ready()
-    names = [keep.s(s.path or "samples %d" % i) for i, s in enumerate(sets)]
-    cspecs = [keep.s(m) for m in specs]
-    _check(lib.bf_compare_init(c, len(data), names, len(cspecs), cspecs, err), err)
+    err = ffi.new("bf_error *")
+    c = ffi.new("bf_compare *")
+    keep = [ffi.new("char[]", (d.path or "samples %d" % i).encode()) for i, d in enumerate(data)]
+    cspecs = [ffi.new("char[]", m.encode()) for m in specs]
+    _check(lib.bf_compare_init(c, len(data), keep, len(cspecs), cspecs, err), err)
+    run = _Run(progress)
+    run.hook(opts)
+    ptrs = ffi.new("bf_samples *[]", [d._s for d in data])
     try:
-        c.metric = lib.BF_CMP_RMSE_LOG
-        if metric is not None:
-            _check(lib.bf_compare_metric_parse(_text("error", metric).encode(), ffi.addressof(c, "metric"), err), err,
-                   "error")
-        if rank is not None:
-            _check(lib.bf_compare_rank_parse(_text("rank", rank).encode(), ffi.addressof(c, "rank_by"), err), err,
-                   "rank")
-        c.tolerance = 0.05 if tolerance is None else _number("tolerance", tolerance, 0.0, float("inf"))
-        k = 5 if folds is None else _int("folds", folds, 2, 20)
-        c.folds = k if c.rank_by == lib.BF_RANK_CV else 0  # as brdfit compare: folds only for rank="cv"
-        c.timing = int(_flag("timing", timing))
-        c.residual = lib.bf_residual_name(fo.fo.objective.residual)
-        ro = ffi.new("bf_compare_run_options *")
-        ro.jobs = jobs
-        run = _Run(progress)
-        run.hook(fo.fo.solver)
-        ptrs = ffi.new("bf_samples *[]", [d._s for d in data])
-        rc = run(lambda: lib.bf_compare_run(c, ptrs, fo.fo, ro, err))
+        rc = run(lambda: lib.bf_compare_run(c, ptrs, opts.o, ffi.NULL, ffi.NULL, err))
         _check(rc, err)
         lib.bf_compare_rank(c)
-        with tempfile.TemporaryDirectory(prefix="brdfit-") as d:
-            out = os.path.join(d, "compare.json")
-            _check(lib.bf_compare_write_json(c, out.encode(), err), err)
-            return CompareResult(_read_text(out))
+        out = ffi.new("char **")
+        _check(lib.bf_compare_json(c, out, err), err)
+        return CompareResult(_take_text(out[0]))
     finally:
         lib.bf_compare_clear(c)
+
+
+compare.__doc__ = """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
+list of specs, or one string as -m takes it ("lambert,walter", "all"); samples_list holds
+brdfit.Samples or data file names. progress(iteration, cost) sees every solve; returning
+True stops the comparison. The options are brdfit compare's, as keywords:
+
+""" + _doc("compare")
 
 
 # ---- Export -------------------------------------------------------------------------
@@ -933,7 +811,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
             with open(src_path, "w", encoding="utf-8") as f:
                 f.write(result.to_json())
         elif isinstance(result, (str, os.PathLike)):
-            src_path = os.fspath(result)
+            src_path = _path_text(result)
         else:
             raise UsageError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
         m = ffi.new("bf_model **")
@@ -944,10 +822,13 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
             _check(lib.bf_export_check(t, m[0], int(_flag("convert", convert)), err), err)
             e = ffi.new("bf_export_material *")
             _check(lib.bf_export_prepare(t, m[0], x[0], e, fit_r, err), err)
-            out = os.fspath(path) if path is not None else os.path.join(d, "export.out")
+            out = _path_text(path) if path is not None else os.path.join(d, "export.out")
             _check(lib.bf_export_write(t, e, out.encode(), err), err)
-            return out if path is not None else _read_text(out)
+            if path is not None:
+                return out
+            with open(out, encoding="utf-8") as f:
+                return f.read()
         finally:
             lib.bf_fit_result_clear(fit_r)
             lib.bf_model_free(m[0])
-            lib.free(x[0])
+            lib.bf_free(x[0])

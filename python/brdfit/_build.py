@@ -19,7 +19,8 @@ CDEF = r"""
 typedef enum bf_status { BF_OK = 0, BF_ERR_ARG, BF_ERR_IO, BF_ERR_PARSE, BF_ERR_RANGE, BF_ERR_NOMEM } bf_status;
 typedef struct bf_error { bf_status code; char msg[512]; } bf_error;
 const char *bf_version(void);
-void free(void *);
+const char *bf_status_name(bf_status code);
+void bf_free(void *p);
 
 /* Models (model.h). */
 typedef struct bf_geometry bf_geometry;
@@ -27,6 +28,7 @@ typedef struct bf_model bf_model;
 typedef enum bf_scale { BF_SCALE_LINEAR, BF_SCALE_LOG, BF_SCALE_LOG1P, ... } bf_scale;
 typedef struct bf_param_info { const char *name; int colour; double lo, hi, def; ...; } bf_param_info;
 char *bf_models_json(void);
+bf_status bf_model_list_split(const char *list, char ***specs, int *n, bf_error *err);
 bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);
 void bf_model_free(bf_model *m);
 const char *bf_model_spec(const bf_model *m);
@@ -46,124 +48,94 @@ void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g, dou
 bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out, bf_error *err);
 void bf_geometry_free(bf_geometry *g);
 
-/* Samples (samples.h, formats.h, prep.h, scene.h). */
+/* Samples (samples.h). */
 typedef struct bf_samples {
     size_t n; int channels; char **channel_names; double *wavelength;
     double *theta_i, *phi_i, *theta_o, *phi_o; double *value; double *weight; double *scene_weight; ...;
 } bf_samples;
 bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err);
 void bf_samples_free(bf_samples *s);
-bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
 bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
 void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4]);
 bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
 bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
 
-typedef enum bf_format { BF_FORMAT_AUTO = 0, ... } bf_format;
-typedef struct bf_csv_map { const char *angle_cols[4]; int radians; const char *channels; const char *weight_col; ...; } bf_csv_map;
-typedef struct bf_read_options { bf_format format; bf_csv_map csv; const char *grid; ...; } bf_read_options;
-bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
-int bf_format_from_name(const char *name);
-
-typedef enum bf_color { BF_COLOR_NONE = 0, BF_COLOR_SRGB, ... } bf_color;
-typedef enum bf_illuminant { BF_ILLUMINANT_D65 = 0, ... } bf_illuminant;
-typedef enum bf_negative { BF_NEGATIVE_KEEP = 0, BF_NEGATIVE_DROP, BF_NEGATIVE_CLAMP } bf_negative;
-int bf_color_from_name(const char *name);
-int bf_illuminant_from_name(const char *name);
-typedef struct bf_prep {
-    const char *channels; int to_bands; bf_color color; bf_illuminant illuminant; int to_luminance;
-    double max_theta; bf_negative negative; size_t subsample; uint64_t seed; ...;
-} bf_prep;
-typedef struct bf_prep_report { size_t read, kept; ...; } bf_prep_report;
-bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
-
-typedef struct bf_scene bf_scene;
-bf_status bf_scene_read(const char *path, bf_scene **out, bf_error *err);
-void bf_scene_free(bf_scene *sc);
-bf_status bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err);
-
-/* Fitting (objective.h, solve.h, fit.h). */
-typedef enum bf_residual { BF_RESIDUAL_LINEAR = 0, ... } bf_residual;
-typedef struct bf_override { ...; } bf_override;
-bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
-const char *bf_residual_name(bf_residual r);
-bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
-bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
-bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
-typedef struct bf_objective_options {
-    bf_residual residual; int solid_angle; int use_weights; const bf_override *overrides; int noverrides; ...;
-} bf_objective_options;
-typedef enum bf_loss_kind { BF_LOSS_NONE = 0, ... } bf_loss_kind;
-typedef struct bf_loss { bf_loss_kind kind; ...; } bf_loss;
-bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
-typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
-bf_status bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
+/* Run options (options.h): the table and a set of values. */
+typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8 } bf_task;
+typedef enum bf_option_type { BF_OPTION_FLAG = 0, BF_OPTION_INT, BF_OPTION_NUMBER, BF_OPTION_TEXT, BF_OPTION_CHOICE,
+                              BF_OPTION_LIST, ... } bf_option_type;
+typedef struct bf_option {
+    const char *name; const char *group; unsigned tasks; bf_option_type type; const char *arg; const char *help;
+    const char *complete; const char *choices; const char *def; double lo, hi; const char *range; ...;
+} bf_option;
+int bf_option_count(void);
+const bf_option *bf_option_get(int i);
+const bf_option *bf_option_find(const char *name, unsigned task);
+typedef struct bf_options bf_options;
+typedef enum bf_option_spelling { BF_SPELL_COMMAND_LINE = 0, BF_SPELL_KEYWORD } bf_option_spelling;
+bf_status bf_options_new(bf_task task, bf_options **out, bf_error *err);
+void bf_options_free(bf_options *o);
+void bf_options_set_spelling(bf_options *o, bf_option_spelling spelling);
+bf_status bf_options_set(bf_options *o, const char *name, const char *value, bf_error *err);
+bf_status bf_options_get(const bf_options *o, const char *name, char *buf, size_t size, bf_error *err);
+bf_status bf_options_check(const bf_options *o, bf_error *err);
+bf_status bf_options_check_models(const bf_options *o, const char *const *specs, int n, bf_error *err);
+typedef int... sig_atomic_t;
+typedef sig_atomic_t bf_cancel_flag;
+void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
 typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
-typedef struct bf_solver_options {
-    bf_backend backend; const char *algorithm; const char *local_algorithm; int max_iterations;
-    bf_loss loss; int threads; int use_constraint; bf_progress_fn progress; void *progress_user;
-    const volatile int *cancel; ...;
-} bf_solver_options;
-bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
+void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user);
+
+/* Loading (load.h). */
+typedef struct bf_load_report { size_t size; size_t read; size_t kept; ...; } bf_load_report;
+void bf_load_report_init(bf_load_report *r);
+bf_status bf_samples_load(const char *path, const bf_options *o, bf_samples **out, bf_load_report *report,
+                          bf_error *err);
+bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report *report, bf_error *err);
+
+/* Fitting (solve.h, fit.h). */
 typedef enum bf_stop { BF_STOP_CONVERGED = 0, BF_STOP_ITERATIONS, BF_STOP_TIME, BF_STOP_CANCELLED, BF_STOP_FAILED } bf_stop;
 typedef struct bf_solution { bf_stop stop; ...; } bf_solution;
-typedef enum bf_fit_accuracy { BF_ACCURACY_NONE = 0, ... } bf_fit_accuracy;
-typedef struct bf_fit_options {
-    bf_objective_options objective; bf_solver_options solver; int starts; int screen; uint64_t seed;
-    long presolve; ...;
-} bf_fit_options;
 typedef struct bf_fit_result { bf_model *model; double *x; bf_solution solution; int ok; ...; } bf_fit_result;
-void bf_fit_options_init(bf_fit_options *o);
-bf_status bf_fit_accuracy_parse(const char *name, bf_fit_accuracy *out, bf_error *err);
-void bf_fit_options_apply_accuracy(bf_fit_options *o, bf_fit_accuracy acc, unsigned given, size_t *subsample);
-enum { BF_FIT_GIVEN_BACKEND, BF_FIT_GIVEN_ALGORITHM, BF_FIT_GIVEN_STARTS, BF_FIT_GIVEN_RESIDUAL,
-       BF_FIT_GIVEN_MAX_ITERATIONS, BF_FIT_GIVEN_SUBSAMPLE, BF_FIT_GIVEN_SCREEN, ... };
-bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err);
+bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err);
 void bf_fit_result_clear(bf_fit_result *r);
-bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path, const char *out_path, bf_error *err);
+bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char **out, bf_error *err);
 bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 
 /* Comparison (compare.h). */
-typedef enum bf_compare_metric { BF_CMP_RMSE, BF_CMP_RMSE_LOG, ... } bf_compare_metric;
-typedef enum bf_compare_rank_by { BF_RANK_BIC, BF_RANK_CV, ... } bf_compare_rank_by;
-typedef struct bf_compare {
-    bf_compare_metric metric; bf_compare_rank_by rank_by; int folds; double tolerance; int timing;
-    const char *residual; ...;
-} bf_compare;
-typedef struct bf_compare_run_options { int jobs; ...; } bf_compare_run_options;
-bf_status bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err);
-bf_status bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
+typedef struct bf_compare { int nmaterials, nmodels; int interrupted; ...; } bf_compare;
+typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done, int total);
 bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                           const char *const *models, bf_error *err);
 void bf_compare_clear(bf_compare *c);
-bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
-                         const bf_compare_run_options *ro, bf_error *err);
+bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o, bf_compare_progress progress,
+                         void *user, bf_error *err);
 void bf_compare_rank(bf_compare *c);
-bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
+bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err);
 
 /* Export (export.h). */
 typedef struct bf_export_target { const char *name; const char *model; ...; } bf_export_target;
 typedef struct bf_export_material { int converted; ...; } bf_export_material;
+int bf_export_target_count(void);
+const bf_export_target *bf_export_target_get(int i);
 const bf_export_target *bf_export_target_find(const char *name);
 bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int convert_any, bf_error *err);
 bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err);
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
 
-/* The progress callback, into Python (_progress in brdfit/_core.py). */
+/* The progress callback, into Python (_brdfit_progress in brdfit/_api.py). */
 extern "Python" int _brdfit_progress(void *user, int iteration, double cost);
 """
 
 SOURCE = r"""
-#include <stdlib.h>
 #include "brdfit/compare.h"
 #include "brdfit/export.h"
 #include "brdfit/fit.h"
-#include "brdfit/formats.h"
 #include "brdfit/io.h"
+#include "brdfit/load.h"
 #include "brdfit/model.h"
-#include "brdfit/prep.h"
-#include "brdfit/scene.h"
+#include "brdfit/options.h"
 #include "brdfit/version.h"
 """
 

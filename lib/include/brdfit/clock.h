@@ -4,7 +4,16 @@
 #ifndef BRDFIT_CLOCK_H
 #define BRDFIT_CLOCK_H
 
-/* Monotonic wall time in seconds from an arbitrary origin (CLOCK_MONOTONIC). */
-double bf_now_seconds(void);
+#include "brdfit/api.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Monotonic wall time in seconds from an arbitrary origin (CLOCK_MONOTONIC). */
+BF_API double bf_now_seconds(void);
+
+#ifdef __cplusplus
+}
+#endif
 #endif

@@ -26,11 +26,11 @@ typedef enum bf_illuminant {
 } bf_illuminant;
 
 /* "srgb", "acescg", "xyz" ("none" for BF_COLOR_NONE); "d65", "e", "a", "d50". */
-const char *bf_color_name(bf_color c);
-const char *bf_illuminant_name(bf_illuminant i);
+BF_API const char *bf_color_name(bf_color c);
+BF_API const char *bf_illuminant_name(bf_illuminant i);
 /* The enum value of a name (case-insensitive), -1 for an unknown one. */
-int bf_color_from_name(const char *name);
-int bf_illuminant_from_name(const char *name);
+BF_API int bf_color_from_name(const char *name);
+BF_API int bf_illuminant_from_name(const char *name);
 
 /* The linear map from a reflectance spectrum sampled at n wavelengths (nm, any order,
  * distinct, n >= 2, at least one inside 360-830 nm) to the three outputs of space c:
@@ -40,7 +40,7 @@ int bf_illuminant_from_name(const char *name);
  * illuminant's white) in XYZ and, after Bradford adaptation from the illuminant's
  * white to the space's white, (1, 1, 1) in sRGB and ACEScg. Errors: bad wavelengths,
  * BF_COLOR_NONE. */
-bf_status bf_color_weights(const double *wavelength, int n, bf_color c, bf_illuminant ill, double *w, bf_error *err);
+BF_API bf_status bf_color_weights(const double *wavelength, int n, bf_color c, bf_illuminant ill, double *w, bf_error *err);
 
 #ifdef __cplusplus
 }

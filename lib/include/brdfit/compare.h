@@ -19,12 +19,12 @@
 #ifndef BRDFIT_COMPARE_H
 #define BRDFIT_COMPARE_H
 
-#include <signal.h>
 #include <stddef.h>
 
 #include "brdfit/error.h"
 #include "brdfit/fit.h"
 #include "brdfit/metrics.h"
+#include "brdfit/options.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -38,9 +38,9 @@ typedef enum bf_compare_metric {
     BF_CMP_RMSE_REL,
 } bf_compare_metric;
 
-bf_status bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err);
-const char *bf_compare_metric_name(bf_compare_metric m);
-double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which);
+BF_API bf_status bf_compare_metric_parse(const char *text, bf_compare_metric *out, bf_error *err);
+BF_API const char *bf_compare_metric_name(bf_compare_metric m);
+BF_API double bf_compare_metric_value(const bf_metrics *m, bf_compare_metric which);
 
 typedef enum bf_compare_state {
     BF_CMP_NOT_RUN = 0, /* never started (the run was interrupted) */
@@ -49,7 +49,7 @@ typedef enum bf_compare_state {
     BF_CMP_ERROR,       /* the fit could not run (message says why) */
 } bf_compare_state;
 
-const char *bf_compare_state_name(bf_compare_state s); /* "not_run", "ok", "failed", "error" */
+BF_API const char *bf_compare_state_name(bf_compare_state s); /* "not_run", "ok", "failed", "error" */
 
 /* What the models are ranked by. BIC is the default; CV needs each fit's cv_error
  * (bf_fit_cv), and then the Pareto fronts and the tolerance use it too. */
@@ -61,12 +61,12 @@ typedef enum bf_compare_rank_by {
     BF_RANK_ERROR, /* the error metric (bf_compare.metric) */
 } bf_compare_rank_by;
 
-bf_status bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
-const char *bf_compare_rank_name(bf_compare_rank_by r); /* "bic", "aic", "aicc", "cv", "error" */
+BF_API bf_status bf_compare_rank_parse(const char *text, bf_compare_rank_by *out, bf_error *err);
+BF_API const char *bf_compare_rank_name(bf_compare_rank_by r); /* "bic", "aic", "aicc", "cv", "error" */
 
 /* Sample evaluations of a fit: passes over the samples times their number, presolve
  * and final pass included. Deterministic, unlike its wall time. */
-double bf_compare_work(const bf_fit_result *r);
+BF_API double bf_compare_work(const bf_fit_result *r);
 
 typedef struct bf_compare_fit {
     /* Filled by the caller. */
@@ -124,38 +124,34 @@ typedef struct bf_compare {
 } bf_compare;
 
 /* Allocates the tables (fits zeroed, state NOT_RUN) and copies the names. */
-bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
+BF_API bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                     const char *const *models, bf_error *err);
 /* Frees the tables, and the fit results bf_compare_run made. */
-void bf_compare_clear(bf_compare *c);
+BF_API void bf_compare_clear(bf_compare *c);
 
 /* Called once per fit, when it is done (whatever its state; never for a fit not run):
  * material and model index its slot, done counts the fits done so far (this one
  * included) of total. Calls come from the fitting threads, one at a time (under a
  * lock): the callback may print, and read the filled slots, without locking. */
-typedef void (*bf_compare_progress)(void *ctx, const bf_compare *c, int material, int model, int done,
+typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done,
                                     int total);
 
-typedef struct bf_compare_run_options {
-    int jobs;                        /* fits at once (< 1: 1; capped at the number of fits);
-                                        each fit gets fo->solver.threads / jobs solver
-                                        threads (at least 1); at most 64 run at once */
-    bf_compare_progress progress;    /* NULL: none */
-    void *ctx;                       /* progress's first argument */
-    const volatile sig_atomic_t *cancel; /* NULL, or a flag (a SIGINT handler's): once it
-                                        is non-zero no new fit starts; running fits finish.
-                                        Read from the fitting threads (an atomic load with
-                                        GCC and Clang: a handler should set it with
-                                        __atomic_store_n there) */
-} bf_compare_run_options;
+/* c's ranking from the options o (brdfit/options.h, BF_TASK_COMPARE): the error metric,
+ * what to rank by, the folds (only when ranking by cv), the tolerance, the timing and
+ * the objective's name; bf_compare_run does this itself. */
+BF_API bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *err);
 
 /* Fits every model (c->models) to every material (samples[i] for c->materials[i]) with
- * the options fo, jobs fits at once, and fills each bf_compare_fit (state, metrics,
- * seconds, work, result, message) and each material's samples and channels. With
- * c->folds > 0 every successful fit is also cross-validated (bf_fit_cv, c->folds folds,
- * seed fo->seed) and cv_error filled; a cross-validation that cannot run makes the fit
- * an ERROR. A fit that cannot run is an ERROR with its message; the others go on. After
- * a cancel, fits never started stay NOT_RUN and c->interrupted is 1.
+ * the fitting options of o, its jobs fits at once (each with threads / jobs solver
+ * threads, at least 1; at most 64 at once), and fills each bf_compare_fit (state,
+ * metrics, seconds, work, result, message) and each material's samples and channels.
+ * progress (may be NULL) is called as each fit ends, with user. Ranked by cv, every
+ * successful fit is also cross-validated (bf_fit_cv, the options' folds and seed) and
+ * cv_error filled; a cross-validation that cannot run makes the fit an ERROR. A fit that
+ * cannot run is an ERROR with its message; the others go on. Once the options' finish
+ * flag is set no new fit starts and running ones finish; once their cancel flag is,
+ * running solves stop too (bf_options_set_cancel). After either, fits never started
+ * stay NOT_RUN and c->interrupted is 1.
  * The results depend neither on jobs, nor on the thread count, nor on the order the
  * fits finish in: each fit has its slot. The results are owned by c (bf_compare_clear).
  * Nothing is printed and no signal handler installed: the caller does both, through
@@ -163,30 +159,32 @@ typedef struct bf_compare_run_options {
  * Returns BF_OK when the fits were run (whatever their outcome, interrupted or not);
  * BF_ERR_ARG (bad arguments, or c already run) or BF_ERR_NOMEM before any fit. Call
  * bf_compare_rank after. */
-bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
-                   const bf_compare_run_options *ro, bf_error *err);
+BF_API bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o,
+                                bf_compare_progress progress, void *user, bf_error *err);
 
 /* How many fits of c are in state s. */
-int bf_compare_count(const bf_compare *c, bf_compare_state s);
+BF_API int bf_compare_count(const bf_compare *c, bf_compare_state s);
 
 /* Ranks, Pareto fronts, tolerance, best and simplest per material, and the summary.
  * A fit is ranked when it succeeded and its error and chosen criterion are finite. The
  * best is the lowest error; the simplest model is the one with the fewest free
  * parameters among those within tolerance; ties go to the lower error, then to the
  * earlier model. */
-void bf_compare_rank(bf_compare *c);
+BF_API void bf_compare_rank(bf_compare *c);
 
 /* Pareto front of points (x, y), both smaller-is-better: on[i] = 1 unless some other
  * point is <= in both and < in one. NaN points are never on it nor dominate. */
-void bf_compare_pareto(int n, const double *x, const double *y, int *on);
+BF_API void bf_compare_pareto(int n, const double *x, const double *y, int *on);
 
 /* Outputs through bf_outfile (no partial file on failure; path "-": stdout).
  * JSON: every key always present (null where not applicable); CSV: a header, then one
  * row per material x model in input order, with one column per fitted parameter and
  * channel (the union over the models, "name" or "name[c]"; empty where a model has no
  * such parameter) and the warnings joined by "; ". */
-bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
-bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
+BF_API bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error *err);
+BF_API bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err);
+/* The JSON text bf_compare_write_json writes, into *out (freed with bf_free). */
+BF_API bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err);
 
 /* The HTML report: DIR/index.html and its images and plots (relative links), built in a
  * temporary sibling folder and renamed into place, so a failure leaves nothing. An
@@ -194,7 +192,7 @@ bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *
  * empty; otherwise BF_ERR_IO. samples: nmaterials sets (or NULL) for the overlays.
  * bf_compare_html_check says early (before fitting) whether DIR could be written. */
 #define BF_REPORT_MARKER ".brdfit-report"
-bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
+BF_API bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
 
 /* What else a report can use and say. Every field may be 0 / NULL. */
 typedef struct bf_report_options {
@@ -209,8 +207,8 @@ typedef struct bf_report_options {
     const char *data_options;   /* how the data was read and prepared, shown */
     const char *scene;          /* the scene file the errors are over, or NULL */
 } bf_report_options;
-bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err);
-bf_status bf_compare_html_check(const char *dir, bf_error *err);
+BF_API bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err);
+BF_API bf_status bf_compare_html_check(const char *dir, bf_error *err);
 
 #ifdef __cplusplus
 }

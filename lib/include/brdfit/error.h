@@ -23,6 +23,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "brdfit/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -50,18 +52,28 @@ typedef struct bf_error {
 } bf_error;
 
 /* Sets err (if not NULL) and returns code, so callers can `return bf_fail(...)`. */
-bf_status bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
+BF_API bf_status bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-bf_status bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
+BF_API bf_status bf_failv(bf_error *err, bf_status code, const char *fmt, va_list ap)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 0)))
 #endif
     ;
 
-void bf_error_clear(bf_error *err);
+BF_API void bf_error_clear(bf_error *err);
+
+/* The status's name: "ok", "arg", "io", "parse", "range", "nomem" ("unknown" for any
+ * other value). Stable: front ends map them to their own error types. */
+BF_API const char *bf_status_name(bf_status code);
+
+/* Frees what the library allocated and handed over as plain memory (a text such as
+ * bf_models_json's or bf_fit_result_json's, an array it made): the library's free,
+ * whatever allocator the calling program uses. NULL is allowed. Objects with their own
+ * bf_x_free are freed with that. */
+BF_API void bf_free(void *p);
 
 /* s made safe to print on one terminal line, into buf (size >= 8 bytes): bytes below
  * 0x20, DEL and invalid UTF-8 as \xHH; C1 controls, line separators, bidirectional
@@ -69,10 +81,10 @@ void bf_error_clear(bf_error *err);
  * UTF-8 kept. A run of more than max_token characters
  * without a blank keeps its first and last characters around "..." (0: no limit); the
  * whole is cut to max_chars characters (0: only to size), ending in "...". Returns buf. */
-const char *bf_printable(const char *s, size_t max_token, size_t max_chars, char *buf, size_t size);
+BF_API const char *bf_printable(const char *s, size_t max_token, size_t max_chars, char *buf, size_t size);
 /* All of s escaped as above, nothing shortened (for reports: XML and HTML cannot hold
  * control characters either); malloc'd, NULL when out of memory. */
-char *bf_printable_dup(const char *s);
+BF_API char *bf_printable_dup(const char *s);
 
 #ifdef __cplusplus
 }

@@ -43,28 +43,28 @@ typedef struct bf_export_target {
 } bf_export_target;
 
 /* The targets, in a fixed order; by name (NULL: none of that name). */
-int bf_export_target_count(void);
-const bf_export_target *bf_export_target_get(int i);
-const bf_export_target *bf_export_target_find(const char *name);
+BF_API int bf_export_target_count(void);
+BF_API const bf_export_target *bf_export_target_get(int i);
+BF_API const bf_export_target *bf_export_target_find(const char *name);
 
 /* Whether source model src can go to target t: BF_OK, or BF_ERR_ARG with why (colours of
  * other than 1 or 3 channels; an anisotropic or multi-lobe source unless convert_any: the
  * targets hold one isotropic lobe). */
-bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int convert_any, bf_error *err);
+BF_API bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int convert_any, bf_error *err);
 
 /* Puts (src, xs) into t's native model as *e: the source itself when its family is
  * t->model, else a conversion fit of t->model to src's values (seeded, so the same bytes
  * each time), whose result goes into *fit (clear it with bf_fit_result_clear once *e is no
  * longer used; it is cleared here on an error). Check first with bf_export_check. */
-bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
+BF_API bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err);
 
 /* "conversion over N direction pairs: rmse ..., max_err ... (1/sr)" to fp (no newline). */
-void bf_export_conversion_note(const bf_export_material *e, FILE *fp);
+BF_API void bf_export_conversion_note(const bf_export_material *e, FILE *fp);
 
 /* Writes e with t's writer to path ("-": standard output), atomically (brdfit/io.h's
  * bf_outfile: a failed write leaves no file). */
-bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
+BF_API bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
 
 #ifdef __cplusplus
 }

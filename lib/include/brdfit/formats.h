@@ -45,38 +45,38 @@ typedef struct bf_read_options {
 
 /* Reads any supported format. Errors name the file, the line or byte offset, and the
  * problem. Negative values are kept (they are data); NaN or Inf is an error. */
-bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
-int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf": a bf_format; -1 if unknown */
-const char *bf_format_name(bf_format f);
+BF_API bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
+BF_API int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf": a bf_format; -1 if unknown */
+BF_API const char *bf_format_name(bf_format f);
 /* The format a path's extension names for reading (.csv, .binary, .brdf, .alta, .bsdf,
  * .mbsdf, any case); BF_FORMAT_AUTO if none (bf_samples_read then looks at the content). */
-bf_format bf_format_by_extension(const char *path);
+BF_API bf_format bf_format_by_extension(const char *path);
 /* The format a path's extension names for writing (csv, binary); BF_FORMAT_AUTO if none. */
-bf_format bf_format_for_writing(const char *path);
+BF_API bf_format bf_format_for_writing(const char *path);
 
 /* Per-format readers (bf_samples_read dispatches to them). */
-bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err);
 /* MERL: samples addressed by cells; keep_raw keeps the raw table (bf_merl_origin). */
-bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
-bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
-bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
 /* RGL-EPFL .bsdf (isotropic; RGB: channels r, g, b; spectral: one per wavelength, named
  * by it in nm, s->wavelength set): the BRDF at the measured points (grid NULL) or
  * evaluated at a direction grid (bf_read_options.grid). Anisotropic files are refused. */
-bf_status bf_samples_read_rgl(const char *path, const char *grid, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_rgl(const char *path, const char *grid, bf_samples **out, bf_error *err);
 /* NVIDIA .mbsdf: the reflection table at its cell centres (grid NULL; channels r, g, b
  * or value), or interpolated on a direction grid. A transmission part is checked and
  * left out. */
-bf_status bf_samples_read_mbsdf(const char *path, const char *grid, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_read_mbsdf(const char *path, const char *grid, bf_samples **out, bf_error *err);
 
 /* Writers: the whole file appears only when complete (bf_outfile). CSV: the four angle
  * columns in degrees, one column per channel (its name), then weight if present; values
  * with round-trip precision. MERL: needs 3 channels; every sample must sit at a cell
  * centre (else BF_ERR_ARG naming the first that does not); cells without a sample are
  * written from the raw table when the samples keep one, or as invalid (-1). */
-bf_status bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err);
-bf_status bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err);
-bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
+BF_API bf_status bf_samples_write_csv(const bf_samples *s, const char *path, bf_error *err);
+BF_API bf_status bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err);
+BF_API bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
 
 #ifdef __cplusplus
 }

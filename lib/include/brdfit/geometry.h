@@ -38,20 +38,20 @@ typedef struct bf_geometry {
 /* Angles in radians. A cosine within 1e-15 of zero is taken as exactly zero, so a
  * direction given as exactly 90 degrees lies on the horizon (f = 0) rather than at
  * cos = 6e-17, where 1/(NL NV) factors would dominate a fit. */
-bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
+BF_API bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
                                   const double *theta_o, const double *phi_o, bf_geometry **out,
                                   bf_error *err);
 
 /* L and V as n vectors each, xyz interleaved (3n doubles). They are normalised, and a
  * z within 1e-15 of zero is set to zero (on the horizon), as for angles. */
-bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
+BF_API bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
                                    bf_error *err);
 
 /* The geometry of n MERL cell centres (merl.h's convention), generated on demand from
  * cell[] (not copied: it must outlive the geometry). Every cell must be in range. */
-bf_status bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_geometry **out, bf_error *err);
+BF_API bf_status bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_geometry **out, bf_error *err);
 
-void bf_geometry_free(bf_geometry *g);
+BF_API void bf_geometry_free(bf_geometry *g);
 
 /* 1 when the arrays are stored (they may be read directly), 0 when generated. */
 static inline int bf_geometry_stored(const bf_geometry *g) { return g->cell == NULL; }
@@ -65,11 +65,11 @@ typedef struct bf_geometry_block {
     bf_geometry view;
     double buf[11 * BF_GEOMETRY_BLOCK];
 } bf_geometry_block;
-const bf_geometry *bf_geometry_view(const bf_geometry *g, size_t i0, size_t cnt, bf_geometry_block *b);
+BF_API const bf_geometry *bf_geometry_view(const bf_geometry *g, size_t i0, size_t cnt, bf_geometry_block *b);
 
 /* Valid (above the horizon) for any geometry, one sample at a time; loops over many
  * samples are faster on views with bf_geometry_valid. */
-int bf_geometry_valid_at(const bf_geometry *g, size_t i);
+BF_API int bf_geometry_valid_at(const bf_geometry *g, size_t i);
 
 /* Valid (above the horizon) on a stored geometry or a view. */
 static inline int bf_geometry_valid(const bf_geometry *g, size_t i)

@@ -26,7 +26,7 @@ typedef struct bf_image {
 
 /* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise (BF_IMAGE_*). */
 enum { BF_IMAGE_BY_NAME = 0, BF_IMAGE_PNG = 1, BF_IMAGE_EXR = 2 };
-int bf_image_format_of(const char *path);
+BF_API int bf_image_format_of(const char *path);
 
 /* Writes an RGB float image (width*height*3 values).
  * - .exr: the values as they are (linear, scene-referred), 32-bit float.
@@ -35,16 +35,16 @@ int bf_image_format_of(const char *path);
  * Encoded in memory, then written as bf_outfile writes (io.h): a temporary beside the
  * target renamed into place, so a failed write leaves no file and the old one whole. Errors: BF_ERR_ARG (unknown extension, bad size),
  * BF_ERR_IO naming the file. */
-bf_status bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
+BF_API bf_status bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
 /* The same in a given format (BF_IMAGE_PNG, BF_IMAGE_EXR; BF_IMAGE_BY_NAME: by the
  * extension), for names without one such as "-" (standard output). */
-bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err);
+BF_API bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err);
 
 /* Reads any image OpenImageIO reads, every channel as float: EXR values as stored, PNG
  * values as stored codes / 255 (still sRGB-encoded: no colour conversion). On success
  * img->pixels is malloc'd; free with bf_image_clear. */
-bf_status bf_image_read(const char *path, bf_image *img, bf_error *err);
-void bf_image_clear(bf_image *img);
+BF_API bf_status bf_image_read(const char *path, bf_image *img, bf_error *err);
+BF_API void bf_image_clear(bf_image *img);
 
 /* What a file holds, without reading its pixels: size, channels, and how its values are
  * stored (bits 8 or 16 for integer formats, 16 or 32 with is_float for half and float). */
@@ -53,13 +53,13 @@ typedef struct bf_image_spec {
     int bits;
     int is_float;
 } bf_image_spec;
-bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
+BF_API bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
 
 /* Reads rows [y0, y1) of any image OpenImageIO reads (0 <= y0 < y1 <= height), every
  * channel as float, as bf_image_read does (integer formats as code / max code, e.g. a
  * 16-bit PNG's codes / 65535, no colour conversion): img->height is y1 - y0. Reading
  * bands of a large image keeps memory to the band. */
-bf_status bf_image_read_rows(const char *path, int y0, int y1, bf_image *img, bf_error *err);
+BF_API bf_status bf_image_read_rows(const char *path, int y0, int y1, bf_image *img, bf_error *err);
 
 /* Writing flags for bf_image_write. */
 enum {
@@ -70,13 +70,13 @@ enum {
 /* Writes width * height pixels of 1, 3 or 4 channels (EXR channels Y, RGB or RGBA), as
  * bf_image_write_rgb_as does for RGB: .exr linear float; .png clamped to [0, 1], sRGB-
  * encoded unless BF_IMAGE_CODES, rounded to 8 or (BF_IMAGE_16BIT) 16 bits. */
-bf_status bf_image_write(const char *path, int format, int width, int height, int channels, const float *pixels,
+BF_API bf_status bf_image_write(const char *path, int format, int width, int height, int channels, const float *pixels,
                          unsigned flags, bf_error *err);
 
 /* The sRGB transfer function (linear [0, 1] -> encoded [0, 1]) the PNG writer applies. */
-float bf_srgb_encode(float linear);
+BF_API float bf_srgb_encode(float linear);
 /* Its inverse (encoded [0, 1] -> linear), for 8-bit photographs. */
-float bf_srgb_decode(float encoded);
+BF_API float bf_srgb_decode(float encoded);
 
 #ifdef __cplusplus
 }

@@ -28,9 +28,9 @@ typedef struct bf_csv {
     size_t *line;   /* source line number of each row (for later error messages) */
 } bf_csv;
 
-bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err);
-void bf_csv_free(bf_csv *t);
-int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
+BF_API bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err);
+BF_API void bf_csv_free(bf_csv *t);
+BF_API int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
 
 /* ---- Parameter files: {"model": "walter", "options": {"fresnel": "schlick"},
  * "channels": 3, "params": {"rho_d": [..C..], "alpha": 0.1, ...}}. Every parameter of
@@ -38,7 +38,7 @@ int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
  * parameters, inside its bounds. Other top-level keys are ignored, so a fit result can
  * stand in for a parameter file. On success *model and *x (malloc'd, length
  * bf_model_nvalues) belong to the caller. */
-bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
+BF_API bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 
 /* ---- Outputs that survive failures. bf_outfile_open resolves path: a regular file
  * (symbolic links followed: the file a link points to is replaced, the link stays) is
@@ -62,13 +62,13 @@ typedef struct bf_outfile {
     int handle;               /* the temporary's registration */
 } bf_outfile;
 
-bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
-bf_status bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
-void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temporary */
+BF_API bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
+BF_API bf_status bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
+BF_API void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temporary */
 
 /* Whether bf_outfile_open(path) could write (nothing is created: access() on the
  * folder and the file), so a command can fail before long work. */
-bf_status bf_outfile_check(const char *path, bf_error *err);
+BF_API bf_status bf_outfile_check(const char *path, bf_error *err);
 
 /* One file a command reads or writes, with the option or role that names it in
  * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped). */
@@ -86,7 +86,7 @@ typedef struct bf_path_use {
  *   input and output, destroys nothing;
  * - every output must be writable (bf_outfile_check; BF_ERR_IO).
  * The first problem found is returned, as one line in err. */
-bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
+BF_API bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
                      bf_error *err);
 
 /* Installs a handler for the signals that end a process by default (SIGHUP, SIGINT,
@@ -94,24 +94,24 @@ bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path
  * SIGPROF) that removes every temporary file and report folder still being written,
  * then ends the process by the signal's default action. Signals that are ignored or
  * handled already are left alone. For a program's start, before any thread. */
-void bf_remove_temporaries_on_signals(void);
+BF_API void bf_remove_temporaries_on_signals(void);
 
 /* Shortest decimal text that reads back as exactly v ("%.17g" at most). buf >= 32. */
-const char *bf_format_double(double v, char *buf, size_t size);
+BF_API const char *bf_format_double(double v, char *buf, size_t size);
 
 /* CSV fields for the table writers: text quoted when it holds a comma, quote or line
  * break (RFC 4180); a number as ",v" (bf_format_double), or "," alone when not finite. */
-void bf_csv_put_text(FILE *fp, const char *s);
-void bf_csv_put_number(FILE *fp, double v);
+BF_API void bf_csv_put_text(FILE *fp, const char *s);
+BF_API void bf_csv_put_number(FILE *fp, double v);
 /* n strings, each stride bytes apart from items on (a char [n][stride] array), as ",s"
  * with s the strings joined by "; " (quoted as bf_csv_put_text): one field for a list
  * such as a fit's warnings. */
-void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n);
+BF_API void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n);
 
 /* Opens an input for reading: a file, or standard input for "-" (read whole on the first
  * open and kept, so that it can be opened again: every reader takes "-"). NULL with errno
  * set when it cannot. */
-FILE *bf_input_open(const char *path);
+BF_API FILE *bf_input_open(const char *path);
 
 #ifdef __cplusplus
 }

@@ -6,6 +6,15 @@
 #ifndef BRDFIT_LIMITS_H
 #define BRDFIT_LIMITS_H
 
+#include <stddef.h>
+
+#include "brdfit/api.h"
+#include "brdfit/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Channels of a sample set or a model (wavelengths of a spectral measurement, values of
  * an ALTA row, "channels" of a parameter file). Spectral data at 1 nm from 300 to
  * 2500 nm has 2,201; this leaves room and keeps a model's parameter vector (at most 64
@@ -22,11 +31,14 @@
  * 1 MiB or more that grow with the input (samples, tables, images) are refused beyond it,
  * with a message saying so, rather than taken from memory the kernel would then kill the
  * process for touching. */
-#include <stddef.h>
-size_t bf_memory_available(void);
+BF_API size_t bf_memory_available(void);
 
-/* "123", "512M", "4G": a byte count as BRDFIT_MEMORY takes it, into *out. 0 when s is
- * not one (NULL, empty, signs, spaces, other suffixes, overflow). */
-int bf_parse_bytes(const char *s, size_t *out);
+/* "123", "512M", "4G": a byte count as BRDFIT_MEMORY takes it (K, M, G, T: powers of
+ * 1024, either case), into *out. BF_ERR_ARG when s is not one (NULL, empty, signs,
+ * spaces, other suffixes, overflow). */
+BF_API bf_status bf_bytes_parse(const char *s, size_t *out, bf_error *err);
 
+#ifdef __cplusplus
+}
+#endif
 #endif

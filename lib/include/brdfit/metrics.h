@@ -57,13 +57,13 @@ typedef struct bf_metrics {
 /* The criteria above from N, k, WSSR and sum ln w_i (NaN where undefined: WSSR not
  * finite, N = 0). An exact fit has WSSR / N floored at DBL_MIN so the values stay
  * finite. */
-void bf_metrics_criteria(bf_metrics *m, size_t n, int k, double wssr, double sum_log_w);
+BF_API void bf_metrics_criteria(bf_metrics *m, size_t n, int k, double wssr, double sum_log_w);
 
 /* threads: 0 or 1 for one; the result is the same for any count. */
-bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+BF_API bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                        bf_metrics *out, bf_error *err);
 /* The same; weighted = 1 applies the samples' scene weights (if they have any) as above. */
-bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
+BF_API bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                                 int weighted, bf_metrics *out, bf_error *err);
 
 #ifdef __cplusplus

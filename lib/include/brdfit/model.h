@@ -41,7 +41,7 @@ typedef enum bf_param_role {
 } bf_param_role;
 
 /* "diffuse", "weight", "roughness", ... ("none" for BF_ROLE_NONE). */
-const char *bf_param_role_name(bf_param_role role);
+BF_API const char *bf_param_role_name(bf_param_role role);
 
 typedef struct bf_param_info {
     const char *name;   /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
@@ -71,12 +71,20 @@ typedef struct bf_family_info {
     int anisotropic;
 } bf_family_info;
 
-int bf_family_count(void);
-const bf_family_info *bf_family_get(int i);
+BF_API int bf_family_count(void);
+BF_API const bf_family_info *bf_family_get(int i);
 /* Every family with its parameters (bounds, defaults, scales, roles), options and sizes,
  * as the JSON text `brdfit models --json` prints; malloc'd (free it), NULL when out of
  * memory. */
-char *bf_models_json(void);
+BF_API char *bf_models_json(void);
+
+/* A model list as `brdfit fit -m` takes it, split into specs: a comma starts a new model
+ * only where the next token has no '=' or has a ':' of its own, so option lists stay
+ * whole ("lambert,microfacet:D=ggx,G=smith_ggx,walter" is three models); an entry "all"
+ * stands for every family with its default options, in the order of bf_family_get.
+ * *specs is one block (the n pointers and their texts), freed with bf_free. The specs
+ * are not checked here (bf_model_new does that). BF_ERR_ARG for an empty list or entry. */
+BF_API bf_status bf_model_list_split(const char *list, char ***specs, int *n, bf_error *err);
 
 typedef struct bf_model bf_model;
 
@@ -87,44 +95,44 @@ typedef struct bf_model bf_model;
  * on coloured data costs one parameter instead of C): WHAT is "specular" (every colour
  * parameter but the first, the diffuse colour), "all", or parameter names joined by '+'
  * ("rho_s+rho_s_2"). The canonical spec writes it last. */
-bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);
-void bf_model_free(bf_model *m);
+BF_API bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);
+BF_API void bf_model_free(bf_model *m);
 
-const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
-const bf_family_info *bf_model_family(const bf_model *m); /* its family's description */
-const char *bf_model_spec(const bf_model *m);    /* canonical spec with every option */
-const char *bf_model_option(const bf_model *m, const char *key); /* NULL if none */
-int bf_model_channels(const bf_model *m);
-int bf_model_lobes(const bf_model *m);
-int bf_model_reciprocal(const bf_model *m);
-int bf_model_energy_conserving(const bf_model *m);
+BF_API const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
+BF_API const bf_family_info *bf_model_family(const bf_model *m); /* its family's description */
+BF_API const char *bf_model_spec(const bf_model *m);    /* canonical spec with every option */
+BF_API const char *bf_model_option(const bf_model *m, const char *key); /* NULL if none */
+BF_API int bf_model_channels(const bf_model *m);
+BF_API int bf_model_lobes(const bf_model *m);
+BF_API int bf_model_reciprocal(const bf_model *m);
+BF_API int bf_model_energy_conserving(const bf_model *m);
 
 /* Named parameters (a colour parameter is one entry) and their place in the vector. */
-int bf_model_nparams(const bf_model *m);
-const bf_param_info *bf_model_param(const bf_model *m, int i);
-int bf_model_param_offset(const bf_model *m, int i);
-int bf_model_find_param(const bf_model *m, const char *name); /* -1 if absent */
+BF_API int bf_model_nparams(const bf_model *m);
+BF_API const bf_param_info *bf_model_param(const bf_model *m, int i);
+BF_API int bf_model_param_offset(const bf_model *m, int i);
+BF_API int bf_model_find_param(const bf_model *m, const char *name); /* -1 if absent */
 
 /* The name of model-vector entry k (0 <= k < bf_model_nvalues): "alpha", or "rho_d[c]"
  * for channel c of a colour parameter when the model has several channels (the
  * spelling --fix and --bound take). Returns buf. */
-const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size);
+BF_API const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size);
 
 /* Length P of the model vector: colour_count * C + scalar_count, fixed entries included
  * (the free parameters of a fit are fewer when some are fixed: bf_fit_result). */
-int bf_model_nvalues(const bf_model *m);
-void bf_model_defaults(const bf_model *m, double *x);
+BF_API int bf_model_nvalues(const bf_model *m);
+BF_API void bf_model_defaults(const bf_model *m, double *x);
 /* BF_ERR_RANGE naming the parameter when a value is NaN, Inf or out of bounds. */
-bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err);
+BF_API bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err);
 
 /* values[i*C + c] for every sample i and channel c. grad (NULL: none) is the row-major
  * Jacobian: grad[(i*C + c)*P + k] = d values[i*C + c] / d x[k]. Thread-safe. */
-void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
+BF_API void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
                    double *values, double *grad);
 /* The same for samples [i0, i1) only, for callers that split the work (threads,
  * chunks): outputs start at sample i0, i.e. values[(i - i0)*C + c] and
  * grad[((i - i0)*C + c)*P + k], so a buffer for (i1 - i0) samples suffices. */
-void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
+BF_API void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
                          size_t i0, size_t i1, double *values, double *grad);
 
 #ifdef __cplusplus

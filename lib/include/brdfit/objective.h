@@ -33,8 +33,8 @@ typedef enum bf_residual {
     BF_RESIDUAL_RELATIVE,
 } bf_residual;
 
-bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
-const char *bf_residual_name(bf_residual r);
+BF_API bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
+BF_API const char *bf_residual_name(bf_residual r);
 
 /* --fix NAME=VALUE and --bound NAME=LO:HI. NAME is a parameter name (every channel of a
  * colour parameter) or NAME[c] (channel c only). */
@@ -45,15 +45,15 @@ typedef struct bf_override {
     double value, lo, hi;
 } bf_override;
 
-bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
-bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
+BF_API bf_status bf_override_parse_fix(const char *text, bf_override *out, bf_error *err);
+BF_API bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *err);
 
 /* Checks overrides against model m before any data is read (channels <= 0: the
  * channel count is not known yet, channel indices unchecked): an unknown parameter, a
  * channel index on a scalar, a value or bounds outside the model's bounds, lo >= hi,
  * and two overrides of one entry (--fix alpha with --bound alpha, or two --fix
  * rho_d[1]): BF_ERR_ARG or BF_ERR_RANGE with a one-line message. */
-bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
+BF_API bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
 
 typedef struct bf_objective_options {
     bf_residual residual;
@@ -73,30 +73,30 @@ typedef struct bf_objective bf_objective;
 /* The model's channel count must equal the samples'. Validates overrides (unknown
  * parameter, channel out of range, value or bounds outside the model's bounds, lo >= hi)
  * with one-line errors. Computes the sample geometry if needed. */
-bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
+BF_API bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
                            bf_objective **out, bf_error *err);
-void bf_objective_free(bf_objective *obj);
+BF_API void bf_objective_free(bf_objective *obj);
 
 /* The problem over the internal vector z (free parameters only, in their internal
  * scale). nres = samples * channels. Valid as long as obj lives. */
-const bf_problem *bf_objective_problem(const bf_objective *obj);
-int bf_objective_nz(const bf_objective *obj);
+BF_API const bf_problem *bf_objective_problem(const bf_objective *obj);
+BF_API int bf_objective_nz(const bf_objective *obj);
 
 /* Model vector x (bf_model_nvalues entries) <-> internal z. to_internal clamps x into the
  * effective bounds first; to_model writes every entry of x, fixed ones included. */
-void bf_objective_to_internal(const bf_objective *obj, const double *x, double *z);
-void bf_objective_to_model(const bf_objective *obj, const double *z, double *x);
+BF_API void bf_objective_to_internal(const bf_objective *obj, const double *x, double *z);
+BF_API void bf_objective_to_model(const bf_objective *obj, const double *z, double *x);
 
 /* Effective bounds in model space (after overrides; fixed: lo = hi = value), and which
  * model-vector entries are fixed. */
-void bf_objective_bounds(const bf_objective *obj, double *lo, double *hi);
-int bf_objective_fixed(const bf_objective *obj, int k);
+BF_API void bf_objective_bounds(const bf_objective *obj, double *lo, double *hi);
+BF_API int bf_objective_fixed(const bf_objective *obj, int k);
 
 /* Standard errors of the model parameters at x (model vector), from the Jacobian of
  * the residuals with respect to the model parameters: s^2 (J^T J)^-1 with
  * s^2 = sum r^2 / (n - k). 0 for fixed parameters; NaN where J^T J is singular there
  * (a parameter the data do not determine). */
-bf_status bf_objective_stderr(const bf_objective *obj, const double *x, double *se, bf_error *err);
+BF_API bf_status bf_objective_stderr(const bf_objective *obj, const double *x, double *se, bf_error *err);
 
 #ifdef __cplusplus
 }

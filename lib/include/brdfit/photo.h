@@ -6,12 +6,12 @@
 #ifndef BRDFIT_PHOTO_H
 #define BRDFIT_PHOTO_H
 
-#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "brdfit/error.h"
 #include "brdfit/model.h"
+#include "brdfit/solve.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,8 +61,8 @@ typedef struct bf_stack {
 /* Reads a DiLiGenT folder (a path that is a folder) or a JSON stack file, and the header
  * of every image and of the mask (sizes and channel counts must agree). Errors name the
  * file, the line where there is one, and the problem. */
-bf_status bf_stack_read(const char *path, bf_stack **out, bf_error *err);
-void bf_stack_free(bf_stack *s);
+BF_API bf_status bf_stack_read(const char *path, bf_stack **out, bf_error *err);
+BF_API void bf_stack_free(bf_stack *s);
 
 /* Where the normals come from. */
 typedef enum bf_photo_normals {
@@ -87,10 +87,10 @@ typedef struct bf_photo_options {
     /* Called now and then with the fraction of pixels done (0..1). */
     void (*progress)(void *ctx, double done);
     void *progress_ctx;
-    const volatile sig_atomic_t *cancel; /* non-zero: stop (bf_photo_result.cancelled) */
+    const bf_cancel_flag *cancel; /* non-zero: stop (bf_photo_result.cancelled) */
 } bf_photo_options;
 
-void bf_photo_options_init(bf_photo_options *o);
+BF_API void bf_photo_options_init(bf_photo_options *o);
 
 #define BF_PHOTO_MAX_RELIT 8
 #define BF_PHOTO_MAX_SHARED 32
@@ -145,22 +145,22 @@ typedef struct bf_photo_result {
 
 /* Fits o->model to every pixel of the stack (of the tile). A run stopped by o->cancel
  * returns BF_OK with r->cancelled set (bf_photo_write refuses it). */
-bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_result **out, bf_error *err);
-void bf_photo_result_free(bf_photo_result *r);
+BF_API bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_result **out, bf_error *err);
+BF_API void bf_photo_result_free(bf_photo_result *r);
 
 /* Writes the outputs (docs/images.md) into the folder dir, whole or not at all: an
  * existing dir is replaced only when it is empty or holds a previous run's outputs.
  * command_line (may be NULL) is recorded in fit.json. */
-bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, const char *dir,
+BF_API bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, const char *dir,
                          const char *command_line, bf_error *err);
 /* The outputs of the `--tile I/N` runs of one stack (the folders of tiles 1..N, in any
  * order) merged into the outputs of the whole image in dir, as one run would have
  * written them (the tiles start alike: photo.h's fits of a tile depend on its rows only
  * through the pixels in them). */
-bf_status bf_photo_merge(const char *const *dirs, int n, const char *dir, const char *command_line, bf_error *err);
+BF_API bf_status bf_photo_merge(const char *const *dirs, int n, const char *dir, const char *command_line, bf_error *err);
 
 /* Whether dir could be written (before a long fit). */
-bf_status bf_photo_check_output(const char *dir, bf_error *err);
+BF_API bf_status bf_photo_check_output(const char *dir, bf_error *err);
 
 #ifdef __cplusplus
 }

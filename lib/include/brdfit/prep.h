@@ -52,17 +52,17 @@ typedef struct bf_prep_report {
  * drops the MERL origin. report may be NULL. Errors: unknown channel, to_bands without
  * spectral data, color without a wavelength per channel, to_bands with color, an
  * illuminant without color (or to_luminance on spectra), no sample left. */
-bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
+BF_API bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *report, bf_error *err);
 
 /* The seeded stratified subsample of bf_prep.subsample as a mask: keep[i] = 1 for the
  * N samples chosen (N < s->n), 0 for the others; s is not changed. */
-bf_status bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err);
+BF_API bf_status bf_samples_subsample_mask(const bf_samples *s, size_t N, uint64_t seed, unsigned char *keep, bf_error *err);
 
 /* Seeded folds for K-fold cross-validation (2 <= K <= 255), stratified as the
  * subsample is (theta_h x theta_d strata): each stratum's samples, in order, are dealt
  * to the folds in rounds of K, each round in a fresh random order, so every fold holds
  * a K-th of every stratum (give or take one). fold[i] in [0, K). */
-bf_status bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err);
+BF_API bf_status bf_samples_folds(const bf_samples *s, int K, uint64_t seed, unsigned char *fold, bf_error *err);
 
 /* ---- What a data set holds (brdfit info) --------------------------------------- */
 typedef struct bf_range { double lo, hi; } bf_range;
@@ -77,8 +77,8 @@ typedef struct bf_samples_info {
     int weighted;
 } bf_samples_info;
 
-bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err);
-void bf_samples_info_clear(bf_samples_info *info);
+BF_API bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err);
+BF_API void bf_samples_info_clear(bf_samples_info *info);
 
 #ifdef __cplusplus
 }

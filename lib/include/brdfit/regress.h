@@ -74,29 +74,29 @@ typedef struct bf_regress_baseline {
 } bf_regress_baseline;
 
 /* Metric names a baseline may pin ("n" and "k" are compared like the others). */
-extern const char *const bf_regress_metric_names[];
-extern const int bf_regress_nmetric_names;
+extern BF_API const char *const bf_regress_metric_names[];
+extern BF_API const int bf_regress_nmetric_names;
 
 /* Reads and checks a baseline: structure, types, known keys, unique case names, model
  * specs, tolerances >= 0. Errors name the file and line. bf_regress_parse does the same
  * on text already in memory (path: for messages and the relative-path folder). */
-bf_status bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err);
-bf_status bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err);
-void bf_regress_baseline_free(bf_regress_baseline *b);
+BF_API bf_status bf_regress_load(const char *path, bf_regress_baseline **out, bf_error *err);
+BF_API bf_status bf_regress_parse(const char *text, const char *path, bf_regress_baseline **out, bf_error *err);
+BF_API void bf_regress_baseline_free(bf_regress_baseline *b);
 
 /* path resolved against the baseline's folder (absolute paths unchanged); malloc'd. */
-char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
+BF_API char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
 
 /* Line of a value in the file: JSON path segments separated by '/', array elements by
  * index, e.g. "cases/0/options/3"; the line of the deepest segment found (1 if none). */
-int bf_regress_line(const bf_regress_baseline *b, const char *fmt, ...)
+BF_API int bf_regress_line(const bf_regress_baseline *b, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
 
 /* The tolerance for a quantity of case c; group "params" or "metrics". */
-bf_tolerance bf_regress_tolerance(const bf_regress_baseline *b, int c, const char *group, const char *name);
+BF_API bf_tolerance bf_regress_tolerance(const bf_regress_baseline *b, int c, const char *group, const char *name);
 
 typedef enum bf_regress_status {
     BF_REGRESS_PASS = 0,
@@ -121,28 +121,28 @@ typedef struct bf_regress_outcome {
  * the fit's warnings).
  * Expected ok false passes when the fit failed (values unchecked) and fails when it
  * succeeded. Returns BF_OK unless memory runs out. */
-bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
+BF_API bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
                      bf_error *err);
 /* Marks case c as not runnable with message (status ERROR). */
-bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
-void bf_regress_outcome_clear(bf_regress_outcome *out);
+BF_API bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
+BF_API void bf_regress_outcome_clear(bf_regress_outcome *out);
 
 /* Sets case c's expectations to r in the document: expected.ok; the parameters and
  * metrics the case pins (every one when it pins none of the group, and the model's own
  * names and channel count where they differ). A failed fit (r->ok 0) sets ok false and
  * leaves the values. Appends one line per change to *changes ("params.alpha: 0.12 ->
  * 0.1201"; caller frees each and the array). */
-bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
+BF_API bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
                       bf_error *err);
 /* Writes the document (2-space indent, arrays of scalars on one line, numbers that
  * read back exactly) to path through a temporary file. */
-bf_status bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
+BF_API bf_status bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
 
 /* JUnit XML: <testsuites><testsuite name="brdfit regress" tests failures errors time>,
  * one <testcase name classname=(baseline path) time> per case not skipped, <failure>
  * holding the diff lines, <error> the reason a case could not run, <system-out> the
  * fit's warnings. Written through a temporary file. */
-bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
+BF_API bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
                            bf_error *err);
 
 #ifdef __cplusplus

@@ -42,12 +42,12 @@ typedef struct bf_sphere_options {
     int nlights;           /* >= 1 */
 } bf_sphere_options;
 
-bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
+BF_API bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err);
 /* The same sphere of a measured MERL table (read with its origin): each pixel's pair of
  * directions takes the value of the cell MERL's own lookup picks (half/difference
  * angles, phi_d folded by reciprocity); 0 where that cell is invalid. */
-bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
+BF_API bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
 
 /* ---- Plots -----------------------------------------------------------------------
  * Plots (slices here, compare's and tradeoff's figures) are drawn with Cairo: title,
@@ -57,9 +57,9 @@ bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options 
  * failed write leaves no partial file. */
 typedef enum bf_plot_format { BF_PLOT_BY_NAME = 0, BF_PLOT_PNG = 1, BF_PLOT_SVG, BF_PLOT_PDF } bf_plot_format;
 /* By the name's extension (.png, .svg, .pdf, case-insensitive), 0 otherwise. */
-int bf_plot_format_of(const char *path);
+BF_API int bf_plot_format_of(const char *path);
 /* "png", "svg", "pdf" as --to/--format names take them; 0 otherwise. */
-int bf_plot_format_parse(const char *name);
+BF_API int bf_plot_format_parse(const char *name);
 
 /* What a plot's axes span (data units, not log10) and how many points it drew. */
 typedef struct bf_plot_axes {
@@ -106,15 +106,15 @@ typedef struct bf_slice_range {
 /* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
  * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds
  * BF_SLICE_MAX_INCIDENCE; returns how many (0: no samples, or none below 90). */
-int bf_slice_incidences(const bf_samples *s, const double *want, int nwant, double *out);
+BF_API int bf_slice_incidences(const bf_samples *s, const double *want, int nwant, double *out);
 
 /* The data's extent in log10 f (curves and in-plane samples, limited as above),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
-bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
+BF_API bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
                     double *log10_hi, bf_error *err);
 /* The slice plot written to path ("-": standard output) in format (BF_PLOT_BY_NAME: by
  * the extension); range may be NULL. */
-bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
+BF_API bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
                     bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
@@ -123,9 +123,9 @@ bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_opt
  * Values are f (linear, per channel). From a model, or from a MERL table read with
  * bf_samples_read_merl: the cell containing (theta_h, theta_d, phi_d) (MERL's own
  * lookup), 0 where that cell is invalid or was not read. */
-bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
+BF_API bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
                              double phi_d, float *rgb, bf_error *err);
-bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
+BF_API bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
                             float *rgb, bf_error *err);
 
 /* The same image as a figure (a plot, PNG, SVG or PDF by format or the extension):
@@ -133,25 +133,25 @@ bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height,
  * a log colour scale from the image's 99th percentile down `decades`, a colour bar;
  * cells with no value grey. Of the model m (parameters x), or of the MERL table merl
  * when m is NULL. width x height: the figure, pixels (PNG) or points. */
-bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
+BF_API bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
                             int width, int height, const char *path, int format, bf_error *err);
 
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the
  * difference vector rotated by theta_h about y, V its mirror about H. */
-void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3]);
+BF_API void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3]);
 
 /* ---- Display mapping for 8-bit images ------------------------------------------
  * In place over n floats: CLAMP: exposure * v (the PNG writer clamps to [0, 1]);
  * REINHARD: e/(1 + e) with e = exposure * v; LOG: log10(e) mapped from
  * [log10(max e) - decades, log10(max e)] to [0, 1] (0 for v <= 0), max over the buffer. */
 typedef enum bf_tonemap_mode { BF_TONEMAP_CLAMP = 0, BF_TONEMAP_REINHARD, BF_TONEMAP_LOG } bf_tonemap_mode;
-void bf_tonemap(float *v, size_t n, bf_tonemap_mode mode, double exposure, double decades);
+BF_API void bf_tonemap(float *v, size_t n, bf_tonemap_mode mode, double exposure, double decades);
 
 /* An exposure from the data: 1 / the given percentile (0..100, interpolated) of the
  * brightest channel of the npx RGB pixels that are > 0 (a sphere's background and its
  * unlit side left out), so that CLAMP shows that share of the lit pixels unclipped.
  * 1 when no pixel is > 0; NaN when out of memory. */
-double bf_exposure_percentile(const float *rgb, size_t npx, double percentile);
+BF_API double bf_exposure_percentile(const float *rgb, size_t npx, double percentile);
 
 #ifdef __cplusplus
 }

@@ -39,41 +39,41 @@ typedef struct bf_samples {
 
 /* n samples, C channels; names "value" (C = 1), "r,g,b" (C = 3) or "c0".. otherwise.
  * Arrays are allocated (angles and values zeroed); no weights, wavelengths or origin. */
-bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err);
 /* The same, addressed by MERL cells: s->merl->cell (n, zeroed) instead of angle arrays;
  * no raw table. */
-bf_status bf_samples_new_cells(size_t n, int channels, bf_samples **out, bf_error *err);
-void bf_samples_free(bf_samples *s);
+BF_API bf_status bf_samples_new_cells(size_t n, int channels, bf_samples **out, bf_error *err);
+BF_API void bf_samples_free(bf_samples *s);
 /* Replaces channel c's name (copied). */
-bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
+BF_API bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
 /* Forgets the raw MERL table (the values no longer are that table's); the cells stay,
  * they are the samples' directions. */
-void bf_samples_drop_origin(bf_samples *s);
+BF_API void bf_samples_drop_origin(bf_samples *s);
 
 /* Directions in degrees of samples [i0, i0 + cnt): dir[0..3] point at theta_i, phi_i,
  * theta_o, phi_o of sample i0. With angle arrays they point into them; for MERL cells
  * they are computed into buf (4 * cnt doubles). */
-void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4]);
+BF_API void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4]);
 /* One sample's directions in degrees: theta_i, phi_i, theta_o, phi_o. */
-void bf_samples_direction(const bf_samples *s, size_t i, double dir[4]);
+BF_API void bf_samples_direction(const bf_samples *s, size_t i, double dir[4]);
 /* Adds a weight array, all 1. */
-bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
+BF_API bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
 
 /* The geometry for the current directions (computed on first use, kept until the
  * samples change through bf_samples_keep): stored for angle arrays, generated for MERL
  * cells (geometry.h). *out is NULL only on failure (out of memory, a cell out of range). */
-bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
+BF_API bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
 
 /* Keeps the samples whose keep[i] is non-zero, in order. Drops the geometry; marks the
  * cells of dropped samples invalid (-1) in the raw MERL table, so a table written back
  * has exactly the kept samples. Any change of channels (selection, spectral to RGB) must
  * forget the raw table instead (bf_samples_drop_origin): it no longer describes the data. */
-bf_status bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err);
+BF_API bf_status bf_samples_keep(bf_samples *s, const unsigned char *keep, bf_error *err);
 
 /* A new sample set with the samples of s whose keep[i] is non-zero (keep NULL: all),
  * in order: directions (MERL cells stay cells), values, weights, channel names and
  * wavelengths; no raw MERL table (a copy describes no file) and no geometry yet. */
-bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
+BF_API bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -58,13 +58,13 @@ typedef struct bf_scene {
 
 /* Reads a scene file; errors name the file, the line and the problem (unknown key,
  * wrong type, angle out of range, lo > hi, weight <= 0, radius <= 0). */
-bf_status bf_scene_read(const char *path, bf_scene **out, bf_error *err);
+BF_API bf_status bf_scene_read(const char *path, bf_scene **out, bf_error *err);
 /* The same from text in memory (path names it in messages). */
-bf_status bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error *err);
-void bf_scene_free(bf_scene *sc);
+BF_API bf_status bf_scene_parse(const char *text, const char *path, bf_scene **out, bf_error *err);
+BF_API void bf_scene_free(bf_scene *sc);
 
 /* w[i] >= 0 for each of s's n samples, as above (0: outside the scene). */
-bf_status bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err);
+BF_API bf_status bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_error *err);
 
 /* Restricts s in place to the scene: drops samples of weight 0 and gives the rest their
  * scene weight in s->scene_weight (kept apart from the data's own weights), scaled so
@@ -72,7 +72,7 @@ bf_status bf_scene_weights(const bf_scene *sc, bf_samples *s, double *w, bf_erro
  * weight (a ranges-only scene) no scene weights are added: the scene only selects.
  * kept (may be NULL) gets the count. BF_ERR_ARG when no sample lies in the scene; s is
  * then unchanged. */
-bf_status bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err);
+BF_API bf_status bf_scene_apply(const bf_scene *sc, bf_samples *s, size_t *kept, bf_error *err);
 
 #ifdef __cplusplus
 }

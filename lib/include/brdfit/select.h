@@ -21,6 +21,7 @@
 #include "brdfit/compare.h"
 #include "brdfit/error.h"
 #include "brdfit/fit.h"
+#include "brdfit/options.h"
 #include "brdfit/samples.h"
 
 #ifdef __cplusplus
@@ -54,8 +55,8 @@ typedef struct bf_select {
     int n;
     bf_select_candidate *c;  /* n (owned) */
     bf_compare_metric metric;
-    bf_compare_rank_by rank_by; /* BF_RANK_ERROR from bf_select_init */
-    int folds;               /* of rank_by cv (bf_select_init: 5) */
+    bf_compare_rank_by rank_by; /* the options' rank (default error) */
+    int folds;               /* of rank_by cv (the options' folds) */
     int timing;              /* 1: the JSON carries wall times */
     double tolerance;        /* relative, >= 0 */
     double abs_tolerance;    /* absolute, >= 0: errors this close to the best are equal */
@@ -66,41 +67,45 @@ typedef struct bf_select {
  * isotropic lobe, anisotropic lobes, two lobes; for C > 1 each model with a coloured
  * highlight also with mono=specular. Returns the count and a malloc'd array of static
  * strings (free the array only). */
-int bf_select_default_candidates(int channels, const char ***specs);
+BF_API int bf_select_default_candidates(int channels, const char ***specs);
 
 /* Sets up s for the specs (each checked with bf_model_new: BF_ERR_ARG naming the
- * bad one) and fills each candidate's description. */
-bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
-                   double tolerance, double abs_tolerance, bf_error *err);
-void bf_select_clear(bf_select *s);
+ * bad one) and fills each candidate's description; the error metric, ranking, folds,
+ * tolerances and timing come from o (brdfit/options.h, BF_TASK_SELECT). */
+BF_API bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, const bf_options *o,
+                                bf_error *err);
+BF_API void bf_select_clear(bf_select *s);
 
 /* Called after each candidate's fit (i its index; done of s->n finished), for progress
  * output. Calls never overlap; with jobs > 1 they come in the order the fits finish. */
-typedef void (*bf_select_progress)(void *ctx, const bf_select *s, int i, int done);
+typedef void (*bf_select_progress)(void *user, const bf_select *s, int i, int done);
 
-/* Fits every candidate to data with the options, jobs fits at once (bf_compare_run: each
- * gets o->solver.threads / jobs threads; the results do not depend on jobs), a candidate
- * whose fit cannot run marked ERROR with the message (the others go on); cross-validates
- * each with s->folds folds (seed o->seed) when ranked by cv (a cross-validation that
- * cannot run makes the candidate an ERROR), then bf_select_choose. Returns BF_OK when
- * the candidates were run, whatever their outcome. */
-bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
-                        bf_select_progress progress, void *ctx, bf_error *err);
+/* Fits every candidate to data with the fitting options of o, its jobs fits at once
+ * (bf_compare_run: each gets threads / jobs threads; the results do not depend on jobs),
+ * a candidate whose fit cannot run marked ERROR with the message (the others go on);
+ * cross-validates each with s->folds folds (the options' seed) when ranked by cv (a
+ * cross-validation that cannot run makes the candidate an ERROR), then
+ * bf_select_choose. progress (may be NULL) gets user. Returns BF_OK when the candidates
+ * were run, whatever their outcome. */
+BF_API bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_select_progress progress,
+                               void *user, bf_error *err);
 
 /* From the candidates' states, errors and criteria: error, criterion, rank, within,
  * best (lowest error) and chosen (see the top). Candidates not OK, or whose criterion
  * is not finite, are never ranked, within nor chosen. */
-void bf_select_choose(bf_select *s);
+BF_API void bf_select_choose(bf_select *s);
 
 /* Candidate indices in the order of preference (k, isotropy, lobes, mono, error,
  * index), whatever their state: for tables. order has s->n entries. */
-void bf_select_order(const bf_select *s, int *order);
+BF_API void bf_select_order(const bf_select *s, int *order);
 
 /* JSON: ranking, metric, tolerances, best, chosen, and per candidate (in input order)
  * spec, k, flags, state, error, criterion, rank, work, within, metrics, parameters,
  * standard errors and warnings when fitted (seconds only with s->timing). Through
  * bf_outfile (path "-": stdout). data names the data file in the output. */
-bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err);
+BF_API bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err);
+/* The same text, into *out (freed with bf_free). */
+BF_API bf_status bf_select_json(const bf_select *s, const char *data, char **out, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -6,6 +6,7 @@
 #define BRDFIT_SOLVE_H
 
 #include <math.h>
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -59,10 +60,10 @@ typedef struct bf_loss {
 } bf_loss;
 
 /* Parses "huber:0.1", "cauchy", "none" ... (scale 1 when omitted). */
-bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
+BF_API bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err);
 /* rho(s) and rho'(s); rho' is floored at DBL_MIN, so a residual never loses its weight
  * entirely. */
-double bf_loss_eval(const bf_loss *l, double s, double *d1);
+BF_API double bf_loss_eval(const bf_loss *l, double s, double *d1);
 
 /* The residual every back end minimises in place of r: g = sign(r) sqrt(rho(r^2)), so
  * that 1/2 sum g^2 is the robust cost 1/2 sum rho(r^2) and sum g dg/dx its exact
@@ -87,7 +88,7 @@ static inline double bf_loss_residual(const bf_loss *l, double r, double *dg)
 /* The fused sums of bf_problem.normal for any problem: its own normal when it has one,
  * else built from eval over fixed chunks of residuals on `threads` threads (summed in
  * chunk order, so independent of the thread count). Same contract as normal. */
-int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq,
+BF_API int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq,
                       double *jtr, double *jtj);
 
 typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
@@ -112,26 +113,32 @@ typedef struct bf_method_info {
     const char *summary;
 } bf_method_info;
 
-int bf_method_count(void);
-const bf_method_info *bf_method_get(int i);
-const char *bf_backend_name(bf_backend b); /* "ceres", "nlopt" */
-bf_status bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
+BF_API int bf_method_count(void);
+BF_API const bf_method_info *bf_method_get(int i);
+BF_API const char *bf_backend_name(bf_backend b); /* "ceres", "nlopt" */
+BF_API bf_status bf_backend_parse(const char *text, bf_backend *out, bf_error *err);
 /* The back end's default method. */
-const bf_method_info *bf_method_default(bf_backend backend);
+BF_API const bf_method_info *bf_method_default(bf_backend backend);
 /* A back end's method by name (NULL or "": its default; NLopt names in any case, Ceres'
  * "levenberg_marquardt" for lm); NULL when it has none of that name. */
-const bf_method_info *bf_method_find(bf_backend backend, const char *name);
+BF_API const bf_method_info *bf_method_find(bf_backend backend, const char *name);
 /* "ceres", "ceres:dogleg", "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA": the back end
  * and the method (a back end alone: its default). */
-bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err);
+BF_API bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method_info **method, bf_error *err);
 /* "A, B, C": a back end's methods whose caps hold every bit of need and none of avoid,
  * into buf; returns the length written. */
-size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *buf, size_t size);
+BF_API size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, char *buf, size_t size);
 
 /* Progress of a solve: called after each iteration (Ceres) or each evaluation (NLopt)
  * with its number and the cost there; a non-zero return cancels the solve (and the fit
  * it belongs to). Called from the solving thread. */
 typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
+
+/* A flag a signal handler or another thread sets non-zero to stop work: the one type of
+ * every cancel flag the library reads (it never writes one). Read with an atomic load
+ * where the compiler has one: a handler sets it with an atomic store there, or a plain
+ * one. */
+typedef volatile sig_atomic_t bf_cancel_flag;
 
 typedef struct bf_solver_options {
     bf_backend backend;
@@ -156,12 +163,12 @@ typedef struct bf_solver_options {
     void *progress_user;         /* its first argument */
     /* NULL, or a flag that another thread (or a signal handler) sets non-zero to cancel:
      * read at every iteration or evaluation, never written by the library. */
-    const volatile int *cancel;
+    const bf_cancel_flag *cancel;
 } bf_solver_options;
 
 /* The method, the local method and the constraint of o against the registry, before any
  * work: BF_OK, or BF_ERR_ARG with a message listing what would do. */
-bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
+BF_API bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
 
 /* Why a solve stopped (bf_solution.stop; bf_solution.termination says it for people). */
 typedef enum bf_stop {
@@ -173,11 +180,11 @@ typedef enum bf_stop {
 } bf_stop;
 
 /* "converged", "iteration_limit", "time_limit", "cancelled", "failed" ("?" out of range). */
-const char *bf_stop_name(bf_stop stop);
+BF_API const char *bf_stop_name(bf_stop stop);
 
 /* 1 when the solver options' cancel flag is set or the callback asks to stop (given the
  * iteration and cost); the back ends' common test. */
-int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost);
+BF_API int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost);
 
 typedef struct bf_solution {
     double initial_cost, final_cost; /* 1/2 sum rho(r^2) */
@@ -197,7 +204,7 @@ typedef struct bf_solution {
  * it stopped on a limit (see s->usable and s->termination); an error for bad options
  * (unknown algorithm: the message lists the known ones) or a failed back end. Prints
  * nothing. */
-bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
+BF_API bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -24,6 +24,7 @@
 #include "brdfit/error.h"
 #include "brdfit/fit.h"
 #include "brdfit/metrics.h"
+#include "brdfit/options.h"
 #include "brdfit/render.h"
 #include "brdfit/samples.h"
 
@@ -33,15 +34,15 @@ extern "C" {
 
 /* A method as the command line names it (bf_method_parse: "ceres", "ceres:dogleg",
  * "dogleg", "nlopt", "nlopt:LN_BOBYQA", "LN_BOBYQA" ...), checked against the method
- * registry with so's other settings (bf_solver_options_check). Sets backend and
- * algorithm in so (the registry's name). Unknown names are BF_ERR_ARG. */
-bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err);
+ * registry with the other settings of the options base (bf_solver_options_check).
+ * Unknown names and methods that do not suit are BF_ERR_ARG. */
+BF_API bf_status bf_tradeoff_method_check(const char *text, const bf_options *base, bf_error *err);
 
 /* Splits s into a training and a test set, disjoint, together every sample: the test set
  * is a seeded uniform random subset of exactly round(n * fraction) samples (at least 1,
  * and at least 1 left for training), both in the original order. fraction in (0, 1).
  * Weights and channel names are copied; the MERL origin is not (neither set is a table). */
-bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
+BF_API bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
                       bf_samples **test, bf_error *err);
 
 typedef struct bf_tradeoff_row {
@@ -95,10 +96,10 @@ typedef struct bf_tradeoff {
  * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
  * sorted ascending and deduplicated, so rows run in ascending sample count. Then
  * methods, residuals, starts, in the order given. Every list must be non-empty. */
-bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
+BF_API bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
                      const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
                      const bf_residual *residuals, int nstarts, const int *starts, bf_error *err);
-void bf_tradeoff_clear(bf_tradeoff *t);
+BF_API void bf_tradeoff_clear(bf_tradeoff *t);
 
 /* Runs row i: subsamples train (seeded stratified, bf_prep with t->seed) unless the row is
  * all, fits t->model with base overridden by the row's method, residual and starts,
@@ -106,31 +107,31 @@ void bf_tradeoff_clear(bf_tradeoff *t);
  * fit's time with the least interference), and measures the best fit on train and test
  * (every metric). Returns BF_OK when the row was filled (a fit that could not run says so
  * in row->message and returns its error code too). */
-bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
-                        bf_error *err);
+BF_API bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test,
+                                     const bf_options *base, bf_error *err);
 
 /* error from t->metric on the test set, the Pareto front of (cost, error) over the ok
  * rows, best (lowest error; ties to the cheaper, then the earlier row), within tolerance
  * (error <= best * (1 + tolerance)) and recommended: the cheapest row within tolerance
  * (ties to the lower error, then the earlier row). */
-void bf_tradeoff_rank(bf_tradeoff *t);
+BF_API void bf_tradeoff_rank(bf_tradeoff *t);
 
 /* A row's cost under t->cost (NaN for a row that did not run). */
-double bf_tradeoff_row_cost(const bf_tradeoff *t, const bf_tradeoff_row *r);
-const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
+BF_API double bf_tradeoff_row_cost(const bf_tradeoff *t, const bf_tradeoff_row *r);
+BF_API const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
 
 /* Outputs through bf_outfile (no partial file on failure; "-": stdout). JSON: every key
  * always present (null where not applicable), seconds only with t->timing; CSV: a header
  * and one row per grid row, a seconds column only with t->timing. */
-bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
-bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
+BF_API bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
+BF_API bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
 
 /* Test error (log axis unless some error is 0) against the cost (log axis): every
  * setting, the Pareto front drawn and named, its points labelled #N (the row's number,
  * from 1), the recommended setting ringed; a plot (render.h) of width x height in format
  * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL): what the
  * axes span. */
-bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+BF_API bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
                            bf_plot_axes *axes, bf_error *err);
 
 #ifdef __cplusplus

@@ -11,7 +11,9 @@
 #include "base/big_alloc.h"
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
+#include "fit_impl.h"
 #include "objective_impl.h"
+#include "run_options.h"
 
 /* The held-out samples' sum of w r^2 and sum of w at the model vector x. */
 static bf_status held_out(bf_samples *test, const bf_model *m, const double *x, const bf_fit_options *o, double *wssr,
@@ -39,8 +41,23 @@ static bf_status held_out(bf_samples *test, const bf_model *m, const double *x, 
     return rc;
 }
 
-bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed, bf_cv_result *out,
-              bf_error *err)
+bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o, int folds, bf_cv_result *out,
+                    bf_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->error = NAN;
+    if (!o)
+        return bf_fail(err, BF_ERR_ARG, "cross-validation: no options");
+    bf_status rc = bf_options_check(o, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_fit_options fo;
+    options_fit_get(o, &fo);
+    return bf_fit_cv_with(s, spec, &fo, folds, fo.seed, out, err);
+}
+
+bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed,
+                         bf_cv_result *out, bf_error *err)
 {
     memset(out, 0, sizeof *out);
     out->error = NAN;
@@ -72,7 +89,7 @@ bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_fit_options *o, in
         if (rc != BF_OK)
             break;
         bf_fit_result r;
-        rc = bf_fit(train, spec, o, &r, err);
+        rc = bf_fit_with(train, spec, o, &r, err);
         if (rc == BF_OK) {
             double fw = NAN, fs = NAN;
             if (!r.ok) {

@@ -3,6 +3,7 @@
 #define BF_FIT_DIAGNOSTICS_H
 
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 #include "objective_impl.h"
 
 /* Adds one warning (printf style; cut at the slot's size; past BF_FIT_MAX_WARNINGS the

@@ -13,6 +13,9 @@
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 
+#include "fit_impl.h"
+#include "run_options.h"
+
 #include "diagnostics.h"
 #include "lobe_order.h"
 #include "search.h"
@@ -208,7 +211,22 @@ static bf_status solve_whole_set(const bf_problem *full, const bf_fit_options *o
     return BF_OK;
 }
 
-bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
+bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err)
+{
+    memset(r, 0, sizeof *r);
+    if (!o)
+        return bf_fail(err, BF_ERR_ARG, "fit: no options");
+    if (o->task == BF_TASK_READ)
+        return bf_fail(err, BF_ERR_ARG, "fit: options for reading only (make them for BF_TASK_FIT)");
+    bf_status rc = bf_options_check(o, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_fit_options fo;
+    options_fit_get(o, &fo);
+    return bf_fit_with(s, spec, &fo, r, err);
+}
+
+bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
     double t0 = bf_now_seconds();
     memset(r, 0, sizeof *r);
@@ -338,7 +356,10 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fi
     if (have_best && nz > 0 && (rc = held_entries(po, obj, zbest, o, r, &held, &nsilent, err)) != BF_OK)
         goto done;
     corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *corr);
-    if ((rc = bf_obj_final_held(obj, r->x, o->weighted_metrics, nz - nsilent, held, held ? held + nz : NULL,
+    /* Samples a scene weighted are judged over its directions, as it weighs them,
+     * however they reached the fit. */
+    const int weighted = o->weighted_metrics || s->scene_weight != NULL;
+    if ((rc = bf_obj_final_held(obj, r->x, weighted, nz - nsilent, held, held ? held + nz : NULL,
                                 &r->metrics, r->stderr_, corr, err)) != BF_OK)
         goto done;
     if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 
 void bf_fit_options_init(bf_fit_options *o)
 {

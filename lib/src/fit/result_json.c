@@ -182,6 +182,16 @@ bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path, const
     return bf_json_write(result_json(r, data_path, 1), out_path, "the result", err);
 }
 
+bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char **out, bf_error *err)
+{
+    *out = NULL;
+    if (!r || !r->model || !r->x)
+        return bf_fail(err, BF_ERR_ARG, "no fit result to write");
+    if (r->solution.stop == BF_STOP_CANCELLED)
+        return bf_fail(err, BF_ERR_ARG, "the fit was cancelled: no result to write");
+    return bf_json_text(result_json(r, data_path, 1), "the result", out, err);
+}
+
 bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
                            bf_error *err)
 {

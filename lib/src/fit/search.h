@@ -6,6 +6,7 @@
 #define BF_FIT_SEARCH_H
 
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 #include "objective_impl.h"
 
 typedef struct bf_search {

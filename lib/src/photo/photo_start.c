@@ -13,6 +13,7 @@
 #include "base/parallel.h"
 #include "base/rng.h"
 #include "brdfit/fit.h"
+#include "fit_impl.h"
 #include "photo_fit_impl.h"
 
 #define POOL_PIXELS 512 /* a cluster's pixels pooled for its start, at most */
@@ -206,7 +207,7 @@ bf_status photo_cluster_start(photo_run *run, const photo_band *b, const double 
     fo.solver.threads = run->threads;
     fo.seed = run->o->seed;
     bf_fit_result fr;
-    rc = bf_fit(smp, run->spec, &fo, &fr, err);
+    rc = bf_fit_with(smp, run->spec, &fo, &fr, err);
     if (rc == BF_OK) {
         if (fr.ok)
             memcpy(x, fr.x, (size_t)run->P * sizeof *x);

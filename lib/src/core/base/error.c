@@ -158,6 +158,24 @@ bf_status bf_fail(bf_error *err, bf_status code, const char *fmt, ...)
     return rc;
 }
 
+const char *bf_status_name(bf_status code)
+{
+    switch (code) {
+    case BF_OK: return "ok";
+    case BF_ERR_ARG: return "arg";
+    case BF_ERR_IO: return "io";
+    case BF_ERR_PARSE: return "parse";
+    case BF_ERR_RANGE: return "range";
+    case BF_ERR_NOMEM: return "nomem";
+    }
+    return "unknown";
+}
+
+void bf_free(void *p)
+{
+    free(p);
+}
+
 void bf_error_clear(bf_error *err)
 {
     if (err) {

@@ -16,7 +16,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-int bf_parse_bytes(const char *s, size_t *out)
+/* 1 and *out set when s is a byte count, else 0. */
+static int parse_bytes(const char *s, size_t *out)
 {
     if (!s || !isdigit((unsigned char)*s))
         return 0;
@@ -37,6 +38,13 @@ int bf_parse_bytes(const char *s, size_t *out)
         return 0;
     *out = (size_t)v << shift;
     return 1;
+}
+
+bf_status bf_bytes_parse(const char *s, size_t *out, bf_error *err)
+{
+    if (!parse_bytes(s, out))
+        return bf_fail(err, BF_ERR_ARG, "'%s' is not a byte count (such as 4G, 512M or 1000000)", s ? s : "");
+    return BF_OK;
 }
 
 /* The first number in a file, or 0 when it has none ("max" in cgroup v2). */
@@ -109,7 +117,7 @@ size_t bf_memory_available(void)
     if (getrlimit(RLIMIT_AS, &r) == 0 && r.rlim_cur != RLIM_INFINITY)
         keep_least(&least, r.rlim_cur);
     size_t user;
-    if (bf_parse_bytes(getenv("BRDFIT_MEMORY"), &user))
+    if (parse_bytes(getenv("BRDFIT_MEMORY"), &user))
         keep_least(&least, user);
     return least;
 }

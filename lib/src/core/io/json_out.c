@@ -3,6 +3,8 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
@@ -67,20 +69,37 @@ cJSON *bf_json_metrics(const bf_metrics *m)
     return o;
 }
 
+bf_status bf_json_text(cJSON *root, const char *what, char **out, bf_error *err)
+{
+    char *text = root ? cJSON_Print(root) : NULL;
+    cJSON_Delete(root);
+    *out = NULL;
+    size_t n = text ? strlen(text) : 0;
+    char *s = text ? malloc(n + 2) : NULL; /* plain malloc: the caller frees with bf_free */
+    if (s) {
+        memcpy(s, text, n);
+        s[n] = '\n';
+        s[n + 1] = '\0';
+    }
+    cJSON_free(text);
+    if (!s)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory writing %s", what);
+    *out = s;
+    return BF_OK;
+}
+
 bf_status bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err)
 {
     const char *name = path ? path : "-";
-    char *text = root ? cJSON_Print(root) : NULL;
-    cJSON_Delete(root);
-    if (!text)
+    char *text;
+    if (bf_json_text(root, what, &text, NULL) != BF_OK)
         return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory writing %s", name, what);
     bf_outfile f;
     bf_status rc = bf_outfile_open(&f, path, err);
     if (rc == BF_OK) {
         fputs(text, f.fp);
-        fputc('\n', f.fp);
         rc = bf_outfile_commit(&f, err); /* checks every write */
     }
-    cJSON_free(text);
+    free(text);
     return rc;
 }

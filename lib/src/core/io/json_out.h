@@ -23,6 +23,9 @@ void bf_json_add_version(cJSON *o);
 cJSON *bf_json_params(const bf_model *m, const double *x);
 /* {rmse, rmse_cos, rmse_log, rmse_rel, max_err, n, k, aic, bic}, as in a result file. */
 cJSON *bf_json_metrics(const bf_metrics *m);
+/* root's text (formatted, with a final newline: what bf_json_write writes) into *out
+ * (malloc'd; bf_free), and root deleted. what names the document in messages. */
+bf_status bf_json_text(cJSON *root, const char *what, char **out, bf_error *err);
 /* Prints root (formatted) to path ("-" or NULL: stdout) and deletes it. what names the
  * document in messages ("the comparison"). */
 bf_status bf_json_write(cJSON *root, const char *path, const char *what, bf_error *err);

@@ -109,3 +109,8 @@ bf_status bf_compare_write_json(const bf_compare *c, const char *path, bf_error 
 {
     return bf_json_write(compare_json(c), path, "the comparison", err);
 }
+
+bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err)
+{
+    return bf_json_text(compare_json(c), "the comparison", out, err);
+}

@@ -22,13 +22,17 @@
 
 #include "brdfit/compare.h"
 #include "base/parallel.h"
+#include "compare/compare_run.h"
+#include "run_options.h"
 #include "brdfit/clock.h"
 
 typedef struct run {
     bf_compare *c;
     bf_samples *const *samples;
     bf_fit_options fo; /* the caller's, with the solver threads of one job */
-    const bf_compare_run_options *ro;
+    bf_compare_progress progress;
+    void *user;
+    const bf_cancel_flag *finish, *cancel;
     pthread_mutex_t lock;
     int done, total;
 } run;
@@ -36,7 +40,7 @@ typedef struct run {
 /* The cancel flag, read by every fitting thread while a signal handler may set it: an
  * atomic load where the compiler has one (the handler should store it atomically too:
  * see cmd/cmd_compare.c), else the volatile read. */
-static int cancelled(const volatile sig_atomic_t *flag)
+static int cancelled(const bf_cancel_flag *flag)
 {
 #if defined(__GNUC__)
     return flag && __atomic_load_n(flag, __ATOMIC_RELAXED);
@@ -49,17 +53,17 @@ static int cancelled(const volatile sig_atomic_t *flag)
 static void fit_one(void *arg, size_t chunk)
 {
     run *r = arg;
-    if (cancelled(r->ro->cancel))
+    if (cancelled(r->finish) || cancelled(r->cancel))
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
     bf_fit_result *res = &c->results[idx];
     bf_error err;
     const double t0 = bf_now_seconds();
-    bf_status rc = bf_fit(r->samples[i], c->models[j], &r->fo, res, &err);
+    bf_status rc = bf_fit_with(r->samples[i], c->models[j], &r->fo, res, &err);
     bf_cv_result cv = {.error = NAN};
     if (rc == BF_OK && c->folds > 0 && res->ok) {
-        rc = bf_fit_cv(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
+        rc = bf_fit_cv_with(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
         if (rc != BF_OK)
             bf_fit_result_clear(res);
     }
@@ -79,20 +83,44 @@ static void fit_one(void *arg, size_t chunk)
         snprintf(f->message, sizeof f->message, "%s", err.msg);
     }
     r->done++;
-    if (r->ro->progress)
-        r->ro->progress(r->ro->ctx, c, i, j, r->done, r->total);
+    if (r->progress)
+        r->progress(r->user, c, i, j, r->done, r->total);
     pthread_mutex_unlock(&r->lock);
 }
 
-bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo,
-                   const bf_compare_run_options *ro, bf_error *err)
+bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *err)
 {
-    static const bf_compare_run_options defaults = {.jobs = 1};
+    if (!c || !o)
+        return bf_fail(err, BF_ERR_ARG, "compare: no table or no options");
+    c->metric = o->metric;
+    c->rank_by = o->rank_by;
+    /* Folds only when ranking by the cross-validated error: K more fits per model. */
+    c->folds = options_folds(o);
+    c->timing = o->timing;
+    c->tolerance = o->tolerance;
+    c->residual = bf_residual_name(o->residual);
+    return BF_OK;
+}
+
+bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o, bf_compare_progress progress,
+                         void *user, bf_error *err)
+{
+    bf_status rc = bf_compare_set_options(c, o, err);
+    if (rc == BF_OK)
+        rc = bf_options_check(o, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_fit_options fo;
+    options_fit_get(o, &fo);
+    return compare_run_with(c, samples, &fo, o->jobs, progress, user, o->finish, err);
+}
+
+bf_status compare_run_with(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo, int jobs,
+                           bf_compare_progress progress, void *user, const bf_cancel_flag *finish, bf_error *err)
+{
     bf_error local;
     if (!err)
         err = &local;
-    if (!ro)
-        ro = &defaults;
     if (!c || !c->materials || !samples || !fo)
         return bf_fail(err, BF_ERR_ARG, "compare: no table, samples or fit options");
     if (c->results)
@@ -108,10 +136,17 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_fit
         c->materials[i].samples = samples[i]->n;
         c->materials[i].channels = samples[i]->channels;
     }
-    run r = {.c = c, .samples = samples, .fo = *fo, .ro = ro, .total = c->nmaterials * c->nmodels};
+    run r = {.c = c,
+             .samples = samples,
+             .fo = *fo,
+             .progress = progress,
+             .user = user,
+             .finish = finish,
+             .cancel = fo->solver.cancel,
+             .total = c->nmaterials * c->nmodels};
     if (!(c->results = calloc((size_t)r.total, sizeof *c->results)))
         return bf_fail(err, BF_ERR_NOMEM, "compare: out of memory for %d fits", r.total);
-    int jobs = ro->jobs < 1 ? 1 : ro->jobs > r.total ? r.total : ro->jobs;
+    jobs = jobs < 1 ? 1 : jobs > r.total ? r.total : jobs;
     r.fo.solver.threads = fo->solver.threads / jobs > 1 ? fo->solver.threads / jobs : 1;
     pthread_mutex_init(&r.lock, NULL);
     bf_parallel_for((size_t)r.total, jobs, fit_one, &r);

@@ -2,6 +2,8 @@
  * write. The writers are gltf.c, blender.c and mitsuba.c. */
 #include "brdfit/export.h"
 
+#include "fit_impl.h"
+
 #include <string.h>
 
 #include "brdfit/io.h"
@@ -115,7 +117,7 @@ bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, cons
     bf_fit_options_init(&o);
     o.starts = 4; /* the native models have several basins (metallic against specular) */
     bf_error ferr;
-    rc = bf_fit(s, t->model, &o, fit, &ferr);
+    rc = bf_fit_with(s, t->model, &o, fit, &ferr);
     e->directions = s->n;
     bf_samples_free(s);
     if (rc != BF_OK || !fit->ok) {

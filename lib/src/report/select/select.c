@@ -1,6 +1,11 @@
 /* Model selection: the smallest candidate within tolerance of the best (see select.h). */
 #include "brdfit/select.h"
 
+#include "compare/compare_run.h"
+#include "select/select_run.h"
+#include "fit_impl.h"
+#include "run_options.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -68,23 +73,24 @@ static int coloured_specular(const bf_model *m)
     return bf_model_channels(m) > 1 && colours > 1;
 }
 
-bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, bf_compare_metric metric,
-                   double tolerance, double abs_tolerance, bf_error *err)
+bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, const bf_options *o,
+                         bf_error *err)
 {
     memset(s, 0, sizeof *s);
     s->best = s->chosen = -1;
     if (n < 1)
         return bf_fail(err, BF_ERR_ARG, "select: no candidate models");
-    if (!(tolerance >= 0.0) || !(abs_tolerance >= 0.0))
-        return bf_fail(err, BF_ERR_ARG, "select: tolerances must be >= 0");
+    if (!o)
+        return bf_fail(err, BF_ERR_ARG, "select: no options");
     if (!(s->c = calloc((size_t)n, sizeof *s->c)))
         return bf_fail(err, BF_ERR_NOMEM, "select: out of memory");
     s->n = n;
-    s->metric = metric;
-    s->rank_by = BF_RANK_ERROR;
-    s->folds = 5;
-    s->tolerance = tolerance;
-    s->abs_tolerance = abs_tolerance;
+    s->metric = o->metric;
+    s->rank_by = o->rank_by;
+    s->folds = o->folds;
+    s->timing = o->timing;
+    s->tolerance = o->tolerance;
+    s->abs_tolerance = o->abs_tolerance;
     for (int i = 0; i < n; i++) {
         bf_select_candidate *c = &s->c[i];
         if (strlen(specs[i]) >= sizeof c->spec) {
@@ -123,13 +129,13 @@ void bf_select_clear(bf_select *s)
 typedef struct select_run {
     bf_select *s;
     bf_select_progress progress;
-    void *ctx;
+    void *user;
 } select_run;
 
-static void candidate_done(void *ctx, const bf_compare *c, int material, int j, int done, int total)
+static void candidate_done(void *user, const bf_compare *c, int material, int j, int done, int total)
 {
     (void)material, (void)total;
-    select_run *r = ctx;
+    select_run *r = user;
     bf_select_candidate *cand = &r->s->c[j];
     const bf_compare_fit *f = &c->materials[0].fits[j];
     cand->state = f->state;
@@ -145,11 +151,24 @@ static void candidate_done(void *ctx, const bf_compare *c, int material, int j, 
         cand->cv_error = f->cv_error;
     }
     if (r->progress)
-        r->progress(r->ctx, r->s, j, done);
+        r->progress(r->user, r->s, j, done);
 }
 
-bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
-                        bf_select_progress progress, void *ctx, bf_error *err)
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_select_progress progress, void *user,
+                        bf_error *err)
+{
+    if (!o)
+        return bf_fail(err, BF_ERR_ARG, "select: no options");
+    bf_status rc = bf_options_check(o, err);
+    if (rc != BF_OK)
+        return rc;
+    bf_fit_options fo;
+    options_fit_get(o, &fo);
+    return select_run_with(s, data, &fo, o->jobs, progress, user, o->finish, err);
+}
+
+bf_status select_run_with(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
+                          bf_select_progress progress, void *user, const bf_cancel_flag *finish, bf_error *err)
 {
     const char **specs = malloc((size_t)s->n * sizeof *specs);
     if (!specs)
@@ -163,9 +182,8 @@ bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_fit_options *o,
     if (rc != BF_OK)
         return rc;
     c.folds = s->rank_by == BF_RANK_CV ? s->folds : 0;
-    select_run r = {s, progress, ctx};
-    const bf_compare_run_options ro = {.jobs = jobs, .progress = candidate_done, .ctx = &r};
-    rc = bf_compare_run(&c, &data, o, &ro, err);
+    select_run r = {s, progress, user};
+    rc = compare_run_with(&c, &data, o, jobs, candidate_done, &r, finish, err);
     bf_compare_clear(&c);
     if (rc == BF_OK)
         bf_select_choose(s);
@@ -256,7 +274,7 @@ void bf_select_order(const bf_select *s, int *order)
         }
 }
 
-bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
+static cJSON *select_json(const bf_select *s, const char *data)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "version", 2);
@@ -301,5 +319,15 @@ bf_status bf_select_write_json(const bf_select *s, const char *data, const char 
             cJSON_AddItemToArray(w, cJSON_CreateString(c->result.warnings[k]));
         cJSON_AddItemToArray(list, o);
     }
-    return bf_json_write(root, path, "the selection", err);
+    return root;
+}
+
+bf_status bf_select_write_json(const bf_select *s, const char *data, const char *path, bf_error *err)
+{
+    return bf_json_write(select_json(s, data), path, "the selection", err);
+}
+
+bf_status bf_select_json(const bf_select *s, const char *data, char **out, bf_error *err)
+{
+    return bf_json_text(select_json(s, data), "the selection", out, err);
 }

@@ -14,6 +14,8 @@
 
 #include "brdfit/prep.h"
 #include "base/rng.h"
+#include "run_options.h"
+#include "tradeoff/tradeoff_impl.h"
 
 /* ---- Methods ------------------------------------------------------------------- */
 
@@ -30,6 +32,13 @@ bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_e
         return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, err ? err->msg : "");
     *so = o;
     return BF_OK;
+}
+
+bf_status bf_tradeoff_method_check(const char *text, const bf_options *base, bf_error *err)
+{
+    bf_fit_options f;
+    options_fit_get(base, &f);
+    return bf_tradeoff_method_apply(text, &f.solver, err);
 }
 
 /* ---- Train / test split -------------------------------------------------------- */

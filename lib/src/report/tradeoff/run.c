@@ -10,6 +10,10 @@
  *    work; the metrics come from the first. */
 #include "brdfit/tradeoff.h"
 
+#include "fit_impl.h"
+#include "run_options.h"
+#include "tradeoff/tradeoff_impl.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,8 +27,8 @@ static bf_status row_error(bf_tradeoff_row *row, bf_error *err)
     return err->code;
 }
 
-bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_fit_options *base,
-                        bf_error *err)
+bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_options *base,
+                              bf_error *err)
 {
     bf_error local;
     if (!err)
@@ -42,7 +46,8 @@ bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_sampl
     memset(&row->train, 0, sizeof row->train);
     memset(&row->test, 0, sizeof row->test);
 
-    bf_fit_options o = *base;
+    bf_fit_options o;
+    options_fit_get(base, &o);
     o.objective.residual = row->residual;
     o.starts = row->starts;
     if (bf_tradeoff_method_apply(row->method, &o.solver, err) != BF_OK)
@@ -68,7 +73,7 @@ bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_sampl
     memset(&best, 0, sizeof best);
     for (int k = 0; k < repeats; k++) {
         bf_fit_result r;
-        if ((rc = bf_fit(fit_set, t->model, &o, &r, err)) != BF_OK)
+        if ((rc = bf_fit_with(fit_set, t->model, &o, &r, err)) != BF_OK)
             break;
         if (k == 0) {
             best = r;

@@ -1,0 +1,35 @@
+/* Structs that carry their size (docs/api.md): the caller sets the first member, size,
+ * to the sizeof it was compiled with (bf_x_init); fields are only ever added at the
+ * end, so the library reads or writes the members that lie within that size and no
+ * further, and an older program keeps working with a newer library. */
+#ifndef BRDFIT_SIZED_H
+#define BRDFIT_SIZED_H
+
+#include <stddef.h>
+#include <string.h>
+
+#include "brdfit/error.h"
+
+/* BF_OK when *dst (a struct whose first member is its size) has a size the library can
+ * take: at least the first version's (min: its size then), else BF_ERR_ARG naming what. */
+static inline bf_status bf_sized_check(const void *dst, size_t min, const char *what, bf_error *err)
+{
+    size_t n = *(const size_t *)dst;
+    if (n < min)
+        return bf_fail(err, BF_ERR_ARG, "%s: size %zu is not that of a %s (set it with its init function)", what, n,
+                       what);
+    return BF_OK;
+}
+
+/* Copies the library's whole struct src (lib_size bytes, size first) into dst as far as
+ * dst's own size reaches, dst's size kept. */
+static inline void bf_sized_copy(void *dst, const void *src, size_t lib_size)
+{
+    size_t n = *(const size_t *)dst;
+    if (n > lib_size)
+        n = lib_size;
+    if (n > sizeof(size_t))
+        memcpy((char *)dst + sizeof(size_t), (const char *)src + sizeof(size_t), n - sizeof(size_t));
+}
+
+#endif
