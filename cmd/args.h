@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 
 /* Strict numbers for option values: the whole text, no sign or space before an integer,
  * no leading space or trailing junk on a number; 1 and *out set when s is one in

@@ -103,11 +103,7 @@ static int take_model(void *target, const cli_option *o, const char *v, const ch
 static int take_plot_format(void *target, const cli_option *o, const char *v, const char *c)
 {
     (void)o;
-    if (!(((compare_args *)target)->plot_format = bf_plot_format_parse(v))) {
-        fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", c, v);
-        return -1;
-    }
-    return 0;
+    return compare_plot_format(c, v, &((compare_args *)target)->plot_format);
 }
 
 static const cli_option own[] = {
@@ -385,7 +381,9 @@ static bf_samples *whole_table(const compare_args *a, bf_samples *const *samples
     *failed = 0;
     bf_options_get(a->o, "format", format, sizeof format, NULL);
     bf_options_get(a->o, "subsample", subsample, sizeof subsample, NULL);
-    bf_format f = *format ? (bf_format)bf_format_from_name(format) : bf_format_by_extension(a->data[i]);
+    bf_format f = BF_FORMAT_AUTO;
+    if (!*format || bf_format_parse(format, &f, NULL) != BF_OK)
+        f = bf_format_by_extension(a->data[i]);
     if (!samples[i]->merl && (f == BF_FORMAT_RGL || f == BF_FORMAT_MBSDF)) {
         bf_options *d = NULL;
         if (bf_options_copy(a->o, &d, &err) != BF_OK || bf_options_set(d, "grid", "merl", &err) != BF_OK ||

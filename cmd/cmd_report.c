@@ -37,11 +37,7 @@ typedef struct report_args {
 static int take_plot_format(void *target, const cli_option *o, const char *v, const char *c)
 {
     (void)o;
-    if (!(((report_args *)target)->plot_format = bf_plot_format_parse(v))) {
-        fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", c, v);
-        return -1;
-    }
-    return 0;
+    return compare_plot_format(c, v, &((report_args *)target)->plot_format);
 }
 
 static const cli_option own[] = {

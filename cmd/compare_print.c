@@ -3,6 +3,8 @@
  * to run. */
 #include "compare_print.h"
 
+#include "brdfit/render.h"
+
 static const char *error_name(const bf_compare *c)
 {
     return c->rank_by == BF_RANK_CV ? "cv" : bf_compare_metric_name(c->metric);
@@ -87,5 +89,16 @@ int compare_write_tables(const char *cmd, const bf_compare *c, const char *json_
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
+    return 0;
+}
+
+int compare_plot_format(const char *cmd, const char *v, int *format)
+{
+    bf_plot_format f;
+    if (bf_plot_format_parse(v, &f, NULL) != BF_OK) {
+        fprintf(stderr, "%s: --plot-format needs png, svg or pdf, got '%s'\n", cmd, v);
+        return -1;
+    }
+    *format = (int)f;
     return 0;
 }

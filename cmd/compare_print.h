@@ -1,5 +1,6 @@
 /* The ranking tables brdfit compare prints, shared with brdfit report (which prints
- * them from a batch database): per material, then the summary across materials. */
+ * them from a batch database): per material, then the summary across materials; and
+ * the report's --plot-format, which both take. */
 #ifndef BRDFIT_COMPARE_PRINT_H
 #define BRDFIT_COMPARE_PRINT_H
 
@@ -17,5 +18,9 @@ int compare_write_tables(const char *cmd, const bf_compare *c, const char *json_
 /* The fits of c: all, those never run, those failed or in error (for the closing line
  * and the exit status). */
 void compare_counts(const bf_compare *c, int *total, int *not_run, int *bad);
+
+/* --plot-format png|svg|pdf into *format (a bf_plot_format): 0, or -1 after a one-line
+ * error naming cmd. */
+int compare_plot_format(const char *cmd, const char *v, int *format);
 
 #endif

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 #include "brdfit/limits.h"
 #include "brdfit/version.h"
 #include "commands.h"

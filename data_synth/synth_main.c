@@ -12,6 +12,7 @@
 
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 #include "brdfit/model.h"
 #include "brdfit/samples.h"
 #include "brdfit/version.h"

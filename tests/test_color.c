@@ -202,10 +202,15 @@ static void test_errors_and_names(void **state)
     assert_non_null(strstr(err.msg, "outside the visible"));
     assert_int_equal(bf_color_weights(bad, 2, BF_COLOR_XYZ, BF_ILLUMINANT_D65, w, &err), BF_ERR_ARG);
     assert_int_equal(bf_color_weights(dup, 2, BF_COLOR_NONE, BF_ILLUMINANT_D65, w, &err), BF_ERR_ARG);
-    assert_int_equal(bf_color_from_name("sRGB"), BF_COLOR_SRGB);
-    assert_int_equal(bf_color_from_name("none"), -1);
-    assert_int_equal(bf_illuminant_from_name("A"), BF_ILLUMINANT_A);
-    assert_int_equal(bf_illuminant_from_name("d75"), -1);
+    bf_color c = BF_COLOR_NONE;
+    bf_illuminant ill = BF_ILLUMINANT_D65;
+    assert_int_equal(bf_color_parse("sRGB", &c, &err), BF_OK);
+    assert_int_equal(c, BF_COLOR_SRGB);
+    assert_int_equal(bf_color_parse("none", &c, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "srgb, acescg, xyz"));
+    assert_int_equal(bf_illuminant_parse("A", &ill, &err), BF_OK);
+    assert_int_equal(ill, BF_ILLUMINANT_A);
+    assert_int_equal(bf_illuminant_parse("d75", &ill, &err), BF_ERR_ARG);
     assert_string_equal(bf_color_name(BF_COLOR_ACESCG), "acescg");
     assert_string_equal(bf_illuminant_name(BF_ILLUMINANT_E), "e");
 }

@@ -261,7 +261,9 @@ static void test_dispatch(void **state)
     assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);
     assert_int_equal(s->n, (size_t)NT * NT * NP);
     bf_samples_free(s);
-    assert_int_equal(bf_format_from_name("mbsdf"), BF_FORMAT_MBSDF);
+    bf_format f = BF_FORMAT_AUTO;
+    assert_int_equal(bf_format_parse("mbsdf", &f, NULL), BF_OK);
+    assert_int_equal(f, BF_FORMAT_MBSDF);
     assert_string_equal(bf_format_name(BF_FORMAT_MBSDF), "mbsdf");
 }
 

@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 #include "io/temp_registry.h"
 #include "support.h"
 

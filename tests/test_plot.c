@@ -305,8 +305,10 @@ static void test_formats(void **state)
     assert_int_equal(bf_plot_format_of("a.exr"), 0);
     assert_int_equal(bf_plot_format_of("dir.pdf/a"), 0);
     assert_int_equal(bf_plot_format_of("-"), 0);
-    assert_int_equal(bf_plot_format_parse("svg"), BF_PLOT_SVG);
-    assert_int_equal(bf_plot_format_parse("gif"), 0);
+    bf_plot_format f = BF_PLOT_BY_NAME;
+    assert_int_equal(bf_plot_format_parse("svg", &f, NULL), BF_OK);
+    assert_int_equal(f, BF_PLOT_SVG);
+    assert_int_equal(bf_plot_format_parse("gif", &f, NULL), BF_ERR_ARG);
 }
 
 int main(void)

@@ -275,7 +275,7 @@ static void test_dispatch(void **state)
     assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);
     assert_int_equal(s->n, 7118);
     bf_samples_free(s);
-    o.format = (bf_format)bf_format_from_name("rgl");
+    assert_int_equal(bf_format_parse("rgl", &o.format, NULL), BF_OK);
     assert_int_equal(o.format, BF_FORMAT_RGL);
     o.grid = "uniform:2";
     assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);

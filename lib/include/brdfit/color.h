@@ -28,9 +28,13 @@ typedef enum bf_illuminant {
 /* "srgb", "acescg", "xyz" ("none" for BF_COLOR_NONE); "d65", "e", "a", "d50". */
 BF_API const char *bf_color_name(bf_color c);
 BF_API const char *bf_illuminant_name(bf_illuminant i);
-/* The enum value of a name (case-insensitive), -1 for an unknown one. */
-BF_API int bf_color_from_name(const char *name);
-BF_API int bf_illuminant_from_name(const char *name);
+/* The enum value of a name (case-insensitive) into *out; BF_ERR_ARG with a message
+ * listing the names for an unknown one. */
+BF_API bf_status bf_color_parse(const char *name, bf_color *out, bf_error *err);
+BF_API bf_status bf_illuminant_parse(const char *name, bf_illuminant *out, bf_error *err);
+/* The same, -1 for an unknown name (the parsers above replace them). */
+BF_API BF_DEPRECATED("use bf_color_parse") int bf_color_from_name(const char *name);
+BF_API BF_DEPRECATED("use bf_illuminant_parse") int bf_illuminant_from_name(const char *name);
 
 /* The linear map from a reflectance spectrum sampled at n wavelengths (nm, any order,
  * distinct, n >= 2, at least one inside 360-830 nm) to the three outputs of space c:

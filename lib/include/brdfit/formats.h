@@ -46,7 +46,11 @@ typedef struct bf_read_options {
 /* Reads any supported format. Errors name the file, the line or byte offset, and the
  * problem. Negative values are kept (they are data); NaN or Inf is an error. */
 BF_API bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
-BF_API int bf_format_from_name(const char *name); /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf": a bf_format; -1 if unknown */
+/* "csv", "merl", "cornell", "alta", "rgl", "mbsdf" ("auto": BF_FORMAT_AUTO) into *out;
+ * BF_ERR_ARG with a message listing them for any other name. */
+BF_API bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err);
+/* The same, -1 for an unknown name (bf_format_parse replaces it). */
+BF_API BF_DEPRECATED("use bf_format_parse") int bf_format_from_name(const char *name);
 BF_API const char *bf_format_name(bf_format f);
 /* The format a path's extension names for reading (.csv, .binary, .brdf, .alta, .bsdf,
  * .mbsdf, any case); BF_FORMAT_AUTO if none (bf_samples_read then looks at the content). */

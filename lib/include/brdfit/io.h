@@ -51,7 +51,7 @@ BF_API bf_status bf_params_read(const char *path, bf_model **model, double **x, 
  * back. A folder, an empty name, a missing or unwritable folder or an existing file
  * without write permission fail at open (BF_ERR_ARG for the empty name, else
  * BF_ERR_IO, naming path). path NULL or "-": standard output. Temporaries are
- * registered so that bf_remove_temporaries_on_signals can remove them. */
+ * registered so that bf_remove_temporaries_on_signals (brdfit/tool.h) can remove them. */
 struct bf_out_sink;
 typedef struct bf_outfile {
     FILE *fp;
@@ -70,43 +70,8 @@ BF_API void bf_outfile_abort(bf_outfile *o);                /* closes; removes t
  * folder and the file), so a command can fail before long work. */
 BF_API bf_status bf_outfile_check(const char *path, bf_error *err);
 
-/* One file a command reads or writes, with the option or role that names it in
- * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped). */
-typedef struct bf_path_use {
-    const char *what;
-    const char *path;
-} bf_path_use;
-
-/* The checks a command makes on its outputs before any work:
- * - an empty name is refused (BF_ERR_ARG), and so is "-" (standard output) twice;
- * - an output that is the same regular file as an input or as another output (same
- *   device and inode, whatever the names: ./x, a hard link, a symbolic link; for files
- *   not there yet, the same name in the same folder) is refused (BF_ERR_ARG, naming
- *   both). Devices, FIFOs and terminals may be shared: /dev/null as two outputs, or as
- *   input and output, destroys nothing;
- * - every output must be writable (bf_outfile_check; BF_ERR_IO).
- * The first problem found is returned, as one line in err. */
-BF_API bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
-                     bf_error *err);
-
-/* Installs a handler for the signals that end a process by default (SIGHUP, SIGINT,
- * SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM,
- * SIGPROF) that removes every temporary file and report folder still being written,
- * then ends the process by the signal's default action. Signals that are ignored or
- * handled already are left alone. For a program's start, before any thread. */
-BF_API void bf_remove_temporaries_on_signals(void);
-
 /* Shortest decimal text that reads back as exactly v ("%.17g" at most). buf >= 32. */
 BF_API const char *bf_format_double(double v, char *buf, size_t size);
-
-/* CSV fields for the table writers: text quoted when it holds a comma, quote or line
- * break (RFC 4180); a number as ",v" (bf_format_double), or "," alone when not finite. */
-BF_API void bf_csv_put_text(FILE *fp, const char *s);
-BF_API void bf_csv_put_number(FILE *fp, double v);
-/* n strings, each stride bytes apart from items on (a char [n][stride] array), as ",s"
- * with s the strings joined by "; " (quoted as bf_csv_put_text): one field for a list
- * such as a fit's warnings. */
-BF_API void bf_csv_put_list(FILE *fp, const char *items, size_t stride, int n);
 
 /* Opens an input for reading: a file, or standard input for "-" (read whole on the first
  * open and kept, so that it can be opened again: every reader takes "-"). NULL with errno

@@ -58,8 +58,9 @@ BF_API bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_o
 typedef enum bf_plot_format { BF_PLOT_BY_NAME = 0, BF_PLOT_PNG = 1, BF_PLOT_SVG, BF_PLOT_PDF } bf_plot_format;
 /* By the name's extension (.png, .svg, .pdf, case-insensitive), 0 otherwise. */
 BF_API int bf_plot_format_of(const char *path);
-/* "png", "svg", "pdf" as --to/--format names take them; 0 otherwise. */
-BF_API int bf_plot_format_parse(const char *name);
+/* "png", "svg", "pdf" as --to/--format names take them, into *out; BF_ERR_ARG for any
+ * other name. */
+BF_API bf_status bf_plot_format_parse(const char *name, bf_plot_format *out, bf_error *err);
 
 /* What a plot's axes span (data units, not log10) and how many points it drew. */
 typedef struct bf_plot_axes {

@@ -26,11 +26,7 @@
 static bf_status set_format(bf_options *o, const option_row *r, const char *v, bf_error *err)
 {
     (void)r;
-    int f = v ? bf_format_from_name(v) : -1;
-    if (f < 0)
-        return bf_fail(err, BF_ERR_ARG, "unknown format '%s' (csv, merl, cornell, alta, rgl, mbsdf)", v ? v : "");
-    o->format = (bf_format)f;
-    return BF_OK;
+    return bf_format_parse(v, &o->format, err);
 }
 
 static void get_format(const bf_options *o, const option_row *r, char *buf, size_t size)
@@ -116,10 +112,10 @@ static void get_spectral_flag(const bf_options *o, const option_row *r, char *bu
 static bf_status set_color(bf_options *o, const option_row *r, const char *v, bf_error *err)
 {
     char name[64];
-    int k = v ? bf_color_from_name(v) : -1;
-    if (k < 0)
+    bf_color c;
+    if (bf_color_parse(v, &c, NULL) != BF_OK)
         return bf_fail(err, BF_ERR_ARG, "%s takes srgb, acescg or xyz, got '%s'", SPELL(o, r, name), v ? v : "");
-    return choose_spectral(o, r, (bf_color)k, err);
+    return choose_spectral(o, r, c, err);
 }
 
 static void get_color(const bf_options *o, const option_row *r, char *buf, size_t size)
@@ -131,10 +127,8 @@ static void get_color(const bf_options *o, const option_row *r, char *buf, size_
 static bf_status set_illuminant(bf_options *o, const option_row *r, const char *v, bf_error *err)
 {
     char name[64];
-    int k = v ? bf_illuminant_from_name(v) : -1;
-    if (k < 0)
+    if (bf_illuminant_parse(v, &o->illuminant, NULL) != BF_OK)
         return bf_fail(err, BF_ERR_ARG, "%s takes d65, e, a or d50, got '%s'", SPELL(o, r, name), v ? v : "");
-    o->illuminant = (bf_illuminant)k;
     return BF_OK;
 }
 

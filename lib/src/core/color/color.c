@@ -36,20 +36,36 @@ const char *bf_illuminant_name(bf_illuminant i)
     return (unsigned)i < 4 ? illuminant_names[i] : "unknown";
 }
 
-int bf_color_from_name(const char *name)
+bf_status bf_color_parse(const char *name, bf_color *out, bf_error *err)
 {
     for (int k = 1; name && k < 4; k++)
-        if (!strcasecmp(name, color_names[k]))
-            return k;
-    return -1;
+        if (!strcasecmp(name, color_names[k])) {
+            *out = (bf_color)k;
+            return BF_OK;
+        }
+    return bf_fail(err, BF_ERR_ARG, "unknown colour space '%s' (srgb, acescg, xyz)", name ? name : "");
+}
+
+bf_status bf_illuminant_parse(const char *name, bf_illuminant *out, bf_error *err)
+{
+    for (int k = 0; name && k < 4; k++)
+        if (!strcasecmp(name, illuminant_names[k])) {
+            *out = (bf_illuminant)k;
+            return BF_OK;
+        }
+    return bf_fail(err, BF_ERR_ARG, "unknown illuminant '%s' (d65, e, a, d50)", name ? name : "");
+}
+
+int bf_color_from_name(const char *name)
+{
+    bf_color c;
+    return bf_color_parse(name, &c, NULL) == BF_OK ? (int)c : -1;
 }
 
 int bf_illuminant_from_name(const char *name)
 {
-    for (int k = 0; name && k < 4; k++)
-        if (!strcasecmp(name, illuminant_names[k]))
-            return k;
-    return -1;
+    bf_illuminant i;
+    return bf_illuminant_parse(name, &i, NULL) == BF_OK ? (int)i : -1;
 }
 
 static double illuminant(bf_illuminant ill, const bf_cie_row *r)

@@ -6,12 +6,20 @@
 
 static const char *const format_names[] = {"auto", "csv", "merl", "cornell", "alta", "rgl", "mbsdf"};
 
+bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err)
+{
+    for (int f = 0; name && f < (int)(sizeof format_names / sizeof format_names[0]); f++)
+        if (strcmp(name, format_names[f]) == 0) {
+            *out = (bf_format)f;
+            return BF_OK;
+        }
+    return bf_fail(err, BF_ERR_ARG, "unknown format '%s' (csv, merl, cornell, alta, rgl, mbsdf)", name ? name : "");
+}
+
 int bf_format_from_name(const char *name)
 {
-    for (int f = 0; f < (int)(sizeof format_names / sizeof format_names[0]); f++)
-        if (strcmp(name, format_names[f]) == 0)
-            return f;
-    return -1;
+    bf_format f;
+    return bf_format_parse(name, &f, NULL) == BF_OK ? (int)f : -1;
 }
 
 const char *bf_format_name(bf_format f)

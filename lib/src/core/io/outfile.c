@@ -10,6 +10,7 @@
 #define _GNU_SOURCE /* fopencookie */
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 
 #include "io/out_target.h"
 #include "io/temp_registry.h"

@@ -2,6 +2,7 @@
  * before any work. Files are compared by device and inode, not by name, so "./x",
  * "dir/../x", a hard link and a symbolic link to x are all x. */
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 
 #include "io/out_target.h"
 

@@ -2,6 +2,7 @@
  * an optional weight column. */
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 #include "brdfit/samples.h"
 
 #include <ctype.h>

@@ -10,6 +10,7 @@
 #include "io/temp_registry.h"
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 
 #include <dirent.h>
 #include <errno.h>

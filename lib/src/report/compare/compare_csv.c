@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 
 #define NAME_LEN 64
 

@@ -128,8 +128,12 @@ int bf_plot_format_of(const char *path)
            : !strcasecmp(dot, ".pdf") ? BF_PLOT_PDF : 0;
 }
 
-int bf_plot_format_parse(const char *name)
+bf_status bf_plot_format_parse(const char *name, bf_plot_format *out, bf_error *err)
 {
-    return !name ? 0 : !strcmp(name, "png") ? BF_PLOT_PNG : !strcmp(name, "svg") ? BF_PLOT_SVG
-                                           : !strcmp(name, "pdf") ? BF_PLOT_PDF : 0;
+    bf_plot_format f = !name ? BF_PLOT_BY_NAME : !strcmp(name, "png") ? BF_PLOT_PNG : !strcmp(name, "svg") ? BF_PLOT_SVG
+                                                : !strcmp(name, "pdf") ? BF_PLOT_PDF : BF_PLOT_BY_NAME;
+    if (f == BF_PLOT_BY_NAME)
+        return bf_fail(err, BF_ERR_ARG, "unknown plot format '%s' (png, svg, pdf)", name ? name : "");
+    *out = f;
+    return BF_OK;
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "brdfit/io.h"
+#include "brdfit/tool.h"
 #include "brdfit/render.h"
 #include "io/json_out.h"
 #include "plot/scatter.h"
