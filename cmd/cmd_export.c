@@ -90,6 +90,7 @@ int cmd_export(int argc, char **argv)
     bf_fit_result fit;
     memset(&fit, 0, sizeof fit);
     bf_export_material e;
+    bf_export_material_init(&e);
     int status = 1;
     if (bf_params_read(in, &src, &xs, &err) != BF_OK) {
         fprintf(stderr, "brdfit export: %s\n", err.msg);

@@ -347,7 +347,12 @@ static bf_status draw(render_args *r, int fmt, const bf_model *m, const double *
         if (r->tonemap < 0)
             r->tonemap = BF_TONEMAP_LOG;
     } else {
-        bf_sphere_options so = {r->width, r->view, r->lights, r->nlights};
+        bf_sphere_options so;
+        bf_sphere_options_init(&so);
+        so.resolution = r->width;
+        so.view = r->view;
+        so.lights = r->lights;
+        so.nlights = r->nlights;
         rc = bf_render_sphere(m, x, &so, rgb, err);
     }
     if (rc == BF_OK && fmt == TO_PNG)
@@ -362,8 +367,14 @@ static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, co
 {
     double measured[BF_SLICE_MAX_INCIDENCE];
     int nm = s && !r->incidence_given ? bf_slice_incidences(s, r->incidence, r->nincidence, measured) : 0;
-    bf_slice_options so = {r->width, r->height, nm ? measured : r->incidence, nm ? nm : r->nincidence, s,
-                           r->plane_tol, NULL, 0.0, 0.0};
+    bf_slice_options so;
+    bf_slice_options_init(&so);
+    so.width = r->width;
+    so.height = r->height;
+    so.incidence = nm ? measured : r->incidence;
+    so.nincidence = nm ? nm : r->nincidence;
+    so.samples = s;
+    so.plane_tol = r->plane_tol;
     int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;
     return bf_render_slice(m, x, &so, r->out_path, pf, NULL, err);
 }

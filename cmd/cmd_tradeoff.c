@@ -574,7 +574,7 @@ static int report(tradeoff_run *r)
 {
     bf_error err;
     bf_plot_axes range;
-    memset(&range, 0, sizeof range);
+    bf_plot_axes_init(&range);
     int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->csv_path && !strcmp(r->csv_path, "-"));
     FILE *info = stdout_taken ? stderr : stdout;
     print_table(info, &r->t);

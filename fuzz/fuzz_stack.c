@@ -104,6 +104,7 @@ static void check_stack(const bf_stack *s)
         if (!file)
             continue;
         bf_image_spec sp;
+        bf_image_spec_init(&sp);
         bf_error err;
         if (bf_image_info(file, &sp, &err) != BF_OK)
             fuzz_fail("%s, in the stack read, does not read: %s", file, err.msg);

@@ -25,7 +25,7 @@ batch_manifest() {
 JSON
 }
 # Every column but the wall times, in item order.
-COLS="item,material,model,status,message,spec,samples,channels,n,k,rmse,rmse_log,rmse_cos,rmse_rel,max_err,weighted,crit_n,loglik,aic,aicc,bic,cv,work,params,stderr,warnings,options,tool_version"
+COLS="item,material,model,status,message,spec,samples,channels,n,k,rmse,rmse_log,rmse_cos,rmse_rel,max_err,weighted,crit_n,loglik,aic,aicc,bic,cv,work,params,stderr,warnings,warning_kinds,options,tool_version"
 rows() { sqlite3 "$1" "SELECT $COLS FROM items ORDER BY item"; }
 count() { sqlite3 "$1" "$2"; }
 # Waits (up to 4 s) until database $1 of a running batch has $2 items finished.

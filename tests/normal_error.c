@@ -24,7 +24,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: normal_error A.exr B.exr [MASK]\n");
         return 2;
     }
-    bf_image a, b, m = {0};
+    bf_image a, b, m;
+    bf_image_init(&a);
+    bf_image_init(&b);
+    bf_image_init(&m);
     bf_error err;
     if (bf_image_read(argv[1], &a, &err) != BF_OK || bf_image_read(argv[2], &b, &err) != BF_OK ||
         (argc == 4 && bf_image_read(argv[3], &m, &err) != BF_OK)) {

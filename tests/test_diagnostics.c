@@ -1,8 +1,8 @@
 /* The warnings of a fit (bf_fit_result.warnings), each on data made to trigger it and
  * on data that must not: a parameter at a bound, parameters the data do not determine,
  * a correlated pair, an albedo above 1, a lobe narrower than the sampling, the solver's
- * iteration limit, a robust loss's undefined criteria; and the albedo quadrature itself
- * against known albedos. */
+ * iteration limit, a robust loss's undefined criteria, each with its kind
+ * (bf_warning_kind); and the albedo quadrature itself against known albedos. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -59,6 +59,15 @@ static const char *warning(const bf_fit_result *r, const char *fragment)
     return NULL;
 }
 
+/* The kind of the warning holding fragment, or -1 when none does. */
+static int kind_of(const bf_fit_result *r, const char *fragment)
+{
+    for (int i = 0; i < r->nwarnings; i++)
+        if (strstr(r->warnings[i], fragment))
+            return (int)r->warning_kind[i];
+    return -1;
+}
+
 static void print_warnings(const char *what, const bf_fit_result *r)
 {
     for (int i = 0; i < r->nwarnings; i++)
@@ -103,6 +112,7 @@ static void test_bound(void **state)
     print_warnings("bound", &r);
     const char *w = warning(&r, "rho_d[1] = 0 is at its lower bound 0");
     assert_non_null(w);
+    assert_int_equal(kind_of(&r, "rho_d[1] = 0 is at its lower bound 0"), BF_WARN_AT_BOUND);
     assert_null(warning(&r, "rho_d[0]"));
     assert_null(warning(&r, "rho_d[2]"));
     bf_fit_result_clear(&r);
@@ -125,14 +135,20 @@ static void test_undetermined(void **state)
     assert_true(warning(&r, "alpha = ") || warning(&r, "f0 = "));
     assert_non_null(warning(&r, "not determined by the data"));
     assert_null(warning(&r, "rho_d"));
+    for (int i = 0; i < r.nwarnings; i++) /* each by what it says */
+        assert_int_equal(r.warning_kind[i], strstr(r.warnings[i], "not determined") ? BF_WARN_UNDETERMINED
+                                            : strstr(r.warnings[i], "bound")        ? BF_WARN_AT_BOUND
+                                            : strstr(r.warnings[i], "correlated")   ? BF_WARN_CORRELATED
+                                                                                    : -1);
     bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
 
 /* Fits walter (one channel) to its own values at x over n samples (as samples_of
- * draws them) and returns whether some warning holds each fragment (every one of them;
- * NULL ends the list). */
-static int walter_warns(const double *x, size_t n, double max_theta_d, int spread, const char *what, ...)
+ * draws them) and returns whether some warning of kind `kind` holds each fragment (every
+ * one of them; NULL ends the list). */
+static int walter_warns(const double *x, size_t n, double max_theta_d, int spread, const char *what,
+                        bf_warning_kind kind, ...)
 {
     bf_samples *s = samples_of("walter", 1, x, n, max_theta_d, spread);
     bf_fit_options o;
@@ -142,9 +158,9 @@ static int walter_warns(const double *x, size_t n, double max_theta_d, int sprea
     print_warnings(what, &r);
     int all = 1;
     va_list ap;
-    va_start(ap, what);
+    va_start(ap, kind);
     for (const char *f; (f = va_arg(ap, const char *));)
-        all &= warning(&r, f) != NULL;
+        all &= kind_of(&r, f) == (int)kind;
     va_end(ap);
     bf_fit_result_clear(&r);
     bf_samples_free(s);
@@ -157,8 +173,8 @@ static void test_correlated(void **state)
 {
     (void)state;
     const double x[4] = {0.3, 0.5, 0.3, 0.2};
-    assert_true(walter_warns(x, 1500, 30, 0, "correlated", "rho_s and f0 are correlated", NULL));
-    assert_false(walter_warns(x, 1500, 0, 0, "uncorrelated", "correlated", NULL));
+    assert_true(walter_warns(x, 1500, 30, 0, "correlated", BF_WARN_CORRELATED, "rho_s and f0 are correlated", NULL));
+    assert_false(walter_warns(x, 1500, 0, 0, "uncorrelated", BF_WARN_CORRELATED, "correlated", NULL));
 }
 
 /* The same in three channels: every channel of rho_s with f0 and with each other, one
@@ -179,6 +195,9 @@ static void test_correlated_channels(void **state)
     assert_non_null(warning(&r, "rho_s and f0 are correlated in 3 channels (r up to -"));
     assert_non_null(warning(&r, "rho_s: its channels are correlated with each other (3 pairs, r up to "));
     assert_int_equal(correlated, 2);
+    assert_int_equal(kind_of(&r, "rho_s and f0 are correlated in 3"), BF_WARN_CORRELATED);
+    assert_int_equal(kind_of(&r, "rho_s: its channels are correlated"), BF_WARN_CORRELATED);
+    assert_int_equal(kind_of(&r, "rho_s: channels 0, 1, 2 not determined"), BF_WARN_UNDETERMINED);
     bf_fit_result_clear(&r);
     bf_samples_free(s);
 }
@@ -188,8 +207,8 @@ static void test_albedo(void **state)
 {
     (void)state;
     const double bright[4] = {0.9, 0.9, 0.3, 0.9}, dim[4] = {0.5, 0.3, 0.3, 0.05};
-    assert_true(walter_warns(bright, 2000, 0, 0, "albedo", "the albedo reaches", NULL));
-    assert_false(walter_warns(dim, 2000, 0, 0, "dim", "albedo", NULL));
+    assert_true(walter_warns(bright, 2000, 0, 0, "albedo", BF_WARN_ALBEDO, "the albedo reaches", NULL));
+    assert_false(walter_warns(dim, 2000, 0, 0, "dim", BF_WARN_ALBEDO, "albedo", NULL));
 }
 
 /* The quadrature on known albedos: Lambert's is rho_d; a sharp normalised GGX lobe
@@ -219,8 +238,9 @@ static void test_lobe_width(void **state)
 {
     (void)state;
     const double sharp[4] = {0.3, 0.5, 0.02, 0.05}, broad[4] = {0.3, 0.5, 0.3, 0.05};
-    assert_true(walter_warns(sharp, 2000, 0, 1, "sharp", "lobe 1 is ", "the data do not resolve the highlight", NULL));
-    assert_false(walter_warns(broad, 2000, 0, 1, "broad", "lobe 1", NULL));
+    assert_true(walter_warns(sharp, 2000, 0, 1, "sharp", BF_WARN_NARROW_LOBE, "lobe 1 is ",
+                             "the data do not resolve the highlight", NULL));
+    assert_false(walter_warns(broad, 2000, 0, 1, "broad", BF_WARN_NARROW_LOBE, "lobe 1", NULL));
 }
 
 /* One iteration is not enough; a robust loss leaves the criteria undefined. */
@@ -237,6 +257,7 @@ static void test_limit_and_loss(void **state)
     fit(s, "walter", &o, &r);
     print_warnings("limit", &r);
     assert_non_null(warning(&r, "stopped on its limit after 1 iteration,"));
+    assert_int_equal(kind_of(&r, "stopped on its limit"), BF_WARN_SOLVER_LIMIT);
     assert_null(warning(&r, "robust loss"));
     assert_true(isfinite(r.metrics.bic));
     bf_fit_result_clear(&r);
@@ -246,6 +267,7 @@ static void test_limit_and_loss(void **state)
     fit(s, "walter", &o, &r);
     print_warnings("loss", &r);
     assert_non_null(warning(&r, "AIC, AICc and BIC are undefined: a robust loss"));
+    assert_int_equal(kind_of(&r, "AIC, AICc and BIC are undefined"), BF_WARN_NO_CRITERIA);
     assert_null(warning(&r, "stopped on its limit"));
     assert_true(isnan(r.metrics.bic) && isnan(r.metrics.aic) && isnan(r.metrics.aicc));
     bf_fit_result_clear(&r);

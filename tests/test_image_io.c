@@ -80,6 +80,7 @@ static void assert_same_floats(const float *got, const float *want, size_t n, co
 static void check_info(const char *path, int w, int h, int c, int bits, int is_float)
 {
     bf_image_spec sp;
+    bf_image_spec_init(&sp);
     bf_error err;
     assert_int_equal(bf_image_info(path, &sp, &err), BF_OK);
     assert_int_equal(sp.width, w);
@@ -101,6 +102,7 @@ static void test_png16(void **state)
     assert_int_equal(bf_image_write(path, BF_IMAGE_BY_NAME, w, h, 3, px, BF_IMAGE_CODES | BF_IMAGE_16BIT, &err), BF_OK);
     check_info(path, w, h, 3, 16, 0);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, w);
     assert_int_equal(img.height, h);
@@ -133,6 +135,7 @@ static void test_png8_codes(void **state)
     const long want[8] = {0, 1, 128, 128, 255, 255, 0, 0};
     bf_error err;
     bf_image img;
+    bf_image_init(&img);
     for (int c = 1; c <= 4; c++) {
         if (c == 2)
             continue;
@@ -178,6 +181,7 @@ static void test_exr_channels(void **state)
         assert_string_equal(exr_channels(path, buf, sizeof buf), names[c]);
         check_info(path, w, h, c, 32, 1);
         bf_image img;
+        bf_image_init(&img);
         assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
         assert_int_equal(img.width, w);
         assert_int_equal(img.height, h);
@@ -207,6 +211,7 @@ static void test_rgb_same_bytes(void **state)
     free(db);
     /* 8-bit sRGB PNG: the codes the RGB writer has always written. */
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(a, &img, &err), BF_OK);
     for (int i = 0; i < w * h * 3; i++)
         assert_int_equal(lroundf(img.pixels[i] * 255.0f), lroundf(bf_srgb_encode(px[i]) * 255.0f));
@@ -236,9 +241,11 @@ static void test_read_rows(void **state)
         float *px = make_pixels(w, h, c, pattern);
         assert_int_equal(bf_image_write(path, BF_IMAGE_BY_NAME, w, h, c, px, files[f].flags, &err), BF_OK);
         bf_image all;
+        bf_image_init(&all);
         assert_int_equal(bf_image_read(path, &all, &err), BF_OK);
         for (size_t b = 0; b < sizeof bands / sizeof bands[0]; b++) {
             bf_image band;
+            bf_image_init(&band);
             int y0 = bands[b][0], y1 = bands[b][1];
             assert_int_equal(bf_image_read_rows(path, y0, y1, &band, &err), BF_OK);
             assert_int_equal(band.width, w);
@@ -269,6 +276,7 @@ static void test_errors(void **state)
     const int bad[][2] = {{-1, 2}, {2, 2}, {3, 1}, {0, 7}, {6, 7}, {5, 100}};
     for (size_t b = 0; b < sizeof bad / sizeof bad[0]; b++) {
         bf_image img;
+        bf_image_init(&img);
         err.msg[0] = '\0';
         assert_int_equal(bf_image_read_rows(path, bad[b][0], bad[b][1], &img, &err), BF_ERR_ARG);
         assert_int_equal(err.code, BF_ERR_ARG);
@@ -278,7 +286,9 @@ static void test_errors(void **state)
     }
     const char *missing = ts_tmp_path("missing.png");
     bf_image img;
+    bf_image_init(&img);
     bf_image_spec sp;
+    bf_image_spec_init(&sp);
     assert_int_equal(bf_image_read_rows(missing, 0, 1, &img, &err), BF_ERR_IO);
     assert_null(img.pixels);
     assert_non_null(strstr(err.msg, missing));
@@ -350,6 +360,7 @@ static void *read_bands(void *arg)
         for (int y0 = 0; y0 < j->h; y0 += 5) {
             int y1 = y0 + 5 < j->h ? y0 + 5 : j->h;
             bf_image band;
+            bf_image_init(&band);
             if (bf_image_read_rows(j->path, y0, y1, &band, &err) != BF_OK) {
                 j->failures++;
                 continue;
@@ -379,6 +390,7 @@ static void test_read_rows_threads(void **state)
         snprintf(names[t], sizeof names[t], "%s", path);
         assert_int_equal(bf_image_write(names[t], BF_IMAGE_BY_NAME, w, h, c, px, BF_IMAGE_CODES | BF_IMAGE_16BIT, &err),
                          BF_OK);
+        bf_image_init(&whole[t]);
         assert_int_equal(bf_image_read(names[t], &whole[t], &err), BF_OK);
         jobs[t] = (job){names[t], whole[t].pixels, w, h, c, 0};
         free(px);

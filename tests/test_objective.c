@@ -44,7 +44,7 @@ static void eval_range(const bf_problem *p, const double *z, size_t r0, size_t r
 {
     *res = malloc((r1 - r0 + 1) * sizeof **res);
     *jac = jac ? malloc(((r1 - r0) * (size_t)p->npar + 1) * sizeof **jac) : NULL;
-    assert_int_equal(p->eval(p->ctx, z, r0, r1, *res, jac ? *jac : NULL), 0);
+    assert_int_equal(p->eval(p->user, z, r0, r1, *res, jac ? *jac : NULL), 0);
 }
 
 static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form,
@@ -94,7 +94,7 @@ static void test_forms_values(void **state)
         assert_int_equal(p->npar, 1);
         double x = rho, z, r, J;
         bf_objective_to_internal(obj, &x, &z);
-        assert_int_equal(p->eval(p->ctx, &z, 0, 1, &r, &J), 0);
+        assert_int_equal(p->eval(p->user, &z, 0, 1, &r, &J), 0);
         ts_assert_rel(r, want[k], 1e-14, bf_residual_name(all_forms[k]));
         ts_assert_rel(J, dwant[k], 1e-14, bf_residual_name(all_forms[k]));
         bf_objective_free(obj);
@@ -125,7 +125,7 @@ static void test_forms_extremes(void **state)
         for (int which = 0; which < 2; which++) {
             double x = which ? 0.0 : 1.0, z, r[3], J[3];
             bf_objective_to_internal(obj, &x, &z);
-            assert_int_equal(p->eval(p->ctx, &z, 0, 3, r, J), 0);
+            assert_int_equal(p->eval(p->user, &z, 0, 3, r, J), 0);
             for (int i = 0; i < 3; i++)
                 if (!isfinite(r[i]) || !isfinite(J[i]))
                     fail_msg("%s: residual %d not finite (%g, %g)", bf_residual_name(all_forms[k]), i, r[i], J[i]);
@@ -168,7 +168,7 @@ static void test_weights_and_horizon(void **state)
     assert_int_equal(p->nres, 6);
     double x[2] = {0.3, 0.4}, z[2], r[6], J[12];
     bf_objective_to_internal(obj, x, z);
-    assert_int_equal(p->eval(p->ctx, z, 0, 6, r, J), 0);
+    assert_int_equal(p->eval(p->user, z, 0, 6, r, J), 0);
     ts_assert_rel(r[0], 2.0 * (0.3 / M_PI - 0.05), 1e-15, "weighted r0");
     ts_assert_rel(r[1], 2.0 * (0.4 / M_PI - 0.07), 1e-15, "weighted r1");
     assert_true(r[2] == 0.0 && r[3] == 0.0);
@@ -182,7 +182,7 @@ static void test_weights_and_horizon(void **state)
     o.use_weights = 0;
     bf_objective_new(m, s, &o, &obj, NULL);
     p = bf_objective_problem(obj);
-    assert_int_equal(p->eval(p->ctx, z, 0, 2, r, NULL), 0);
+    assert_int_equal(p->eval(p->user, z, 0, 2, r, NULL), 0);
     ts_assert_rel(r[0], 0.3 / M_PI - 0.05, 1e-15, "unweighted r0");
     bf_objective_free(obj);
     bf_samples_free(s);
@@ -266,9 +266,9 @@ static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
         double h = 1e-6 * fmax(1.0, fabs(z[j]));
         memcpy(zp, z, (size_t)nz * sizeof *z);
         zp[j] = z[j] + h;
-        assert_int_equal(p->eval(p->ctx, zp, r0, r1, rp, NULL), 0);
+        assert_int_equal(p->eval(p->user, zp, r0, r1, rp, NULL), 0);
         zp[j] = z[j] - h;
-        assert_int_equal(p->eval(p->ctx, zp, r0, r1, rm, NULL), 0);
+        assert_int_equal(p->eval(p->user, zp, r0, r1, rm, NULL), 0);
         double colmax = 0.0;
         for (size_t q = 0; q < nr; q++)
             colmax = fmax(colmax, fabs(jac[q * (size_t)nz + (size_t)j]));
@@ -549,13 +549,13 @@ static void test_row_ranges(void **state)
     for (size_t t = 0; t < sizeof ranges / sizeof ranges[0]; t++) {
         size_t r0 = ranges[t][0], r1 = ranges[t][1];
         double *rr = malloc((r1 - r0 + 1) * sizeof *rr), *jj = malloc(((r1 - r0) * (size_t)nz + 1) * sizeof *jj);
-        assert_int_equal(p->eval(p->ctx, z, r0, r1, rr, jj), 0);
+        assert_int_equal(p->eval(p->user, z, r0, r1, rr, jj), 0);
         for (size_t q = r0; q < r1; q++) {
             assert_true(rr[q - r0] == res[q]);
             assert_memory_equal(jj + (q - r0) * (size_t)nz, jac + q * (size_t)nz, (size_t)nz * sizeof *jj);
         }
         /* Residuals only. */
-        assert_int_equal(p->eval(p->ctx, z, r0, r1, rr, NULL), 0);
+        assert_int_equal(p->eval(p->user, z, r0, r1, rr, NULL), 0);
         for (size_t q = r0; q < r1; q++)
             assert_true(rr[q - r0] == res[q]);
         free(rr);
@@ -846,7 +846,7 @@ static void test_solid_angle(void **state)
     const bf_problem *p = bf_objective_problem(obj);
     double x[3] = {1, 1, 1}, z[3], r[3 * 10];
     bf_objective_to_internal(obj, x, z);
-    assert_int_equal(p->eval(p->ctx, z, 0, 3 * n, r, NULL), 0);
+    assert_int_equal(p->eval(p->user, z, 0, 3 * n, r, NULL), 0);
     double w[10], sum = 0, msum = 0;
     for (size_t q = 0; q < n; q++) {
         w[q] = (r[3 * q] * M_PI) * (r[3 * q] * M_PI);
@@ -897,12 +897,12 @@ static void test_constraint(void **state)
     double x[8] = {0.5, 0.2, 0.1, 0.3, 0.7, 0.1, 0.1, 0.5}, z[7], grad[7];
     bf_objective_to_internal(obj, x, z);
     /* sums 0.8, 0.9, 0.2: channel 1 rules, and only rho_d[1] is free there */
-    ts_assert_rel(p->constraint(p->ctx, z, grad), -0.1, 1e-14, "constraint");
+    ts_assert_rel(p->constraint(p->user, z, grad), -0.1, 1e-14, "constraint");
     for (int j = 0; j < 7; j++)
         assert_true(grad[j] == (j == 1 ? 1.0 : 0.0));
     x[3] = 0.9; /* channel 0: 1.4 */
     bf_objective_to_internal(obj, x, z);
-    ts_assert_rel(p->constraint(p->ctx, z, grad), 0.4, 1e-14, "violated");
+    ts_assert_rel(p->constraint(p->user, z, grad), 0.4, 1e-14, "violated");
     for (int j = 0; j < 7; j++)
         assert_true(grad[j] == (j == 0 || j == 3 ? 1.0 : 0.0));
     bf_objective_free(obj);

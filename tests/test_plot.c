@@ -195,6 +195,7 @@ static void test_layout_and_scatter(void **state)
     const char *path = ts_tmp_path("scatter.png");
     assert_int_equal(plot_write(p, path, BF_PLOT_PNG, 300, 200, &err), BF_OK);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, 300);
     assert_int_equal(img.height, 200);
@@ -241,6 +242,7 @@ static void test_legend_lines_equal(void **state)
     const char *path = ts_tmp_path("legend.png");
     assert_int_equal(plot_write(p, path, BF_PLOT_PNG, 503, 377, &err), BF_OK);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     int column = (int)(l.legend_x + 0.6 * l.font + 1.2 * l.font), rows = -1;
     for (int k = 0; k < 5; k++) {

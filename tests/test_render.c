@@ -21,6 +21,35 @@
 
 static float *px(float *rgb, int w, int x, int y) { return rgb + 3 * ((size_t)y * (size_t)w + (size_t)x); }
 
+/* Options as the tests give them, through the init functions (docs/api.md). */
+static bf_sphere_options sphere_options(int n, bf_dir view, const bf_dir *lights, int nlights)
+{
+    bf_sphere_options o;
+    bf_sphere_options_init(&o);
+    o.resolution = n;
+    o.view = view;
+    o.lights = lights;
+    o.nlights = nlights;
+    return o;
+}
+
+static bf_slice_options slice_options(int width, int height, const double *inc, int ninc, bf_samples *s,
+                                      double plane_tol, const char *title, double lo, double hi)
+{
+    bf_slice_options o;
+    bf_slice_options_init(&o);
+    o.width = width;
+    o.height = height;
+    o.incidence = inc;
+    o.nincidence = ninc;
+    o.samples = s;
+    o.plane_tol = plane_tol;
+    o.title = title;
+    o.log10_lo = lo;
+    o.log10_hi = hi;
+    return o;
+}
+
 static void vec_angles(const double v[3], double *theta, double *phi)
 {
     *theta = atan2(sqrt(v[0] * v[0] + v[1] * v[1]), v[2]) / DEG;
@@ -35,13 +64,14 @@ static void test_sphere_lambert_exr(void **state)
     bf_model *m = ts_model("lambert", 3);
     const int N = 65;
     bf_dir light = {0.0, 0.0};
-    bf_sphere_options o = {N, {0.0, 0.0}, &light, 1};
+    bf_sphere_options o = sphere_options(N, (bf_dir){0.0, 0.0}, &light, 1);
     float *rgb = malloc((size_t)N * N * 3 * sizeof *rgb);
     bf_error err;
     assert_int_equal(bf_render_sphere(m, rho, &o, rgb, &err), BF_OK);
     const char *path = ts_tmp_path("lambert.exr");
     assert_int_equal(bf_image_write_rgb(path, N, N, rgb, &err), BF_OK);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, N);
     assert_int_equal(img.height, N);
@@ -71,7 +101,7 @@ static void test_sphere_lighting(void **state)
     float *ab = malloc((size_t)N * N * 3 * sizeof *ab);
     bf_error err;
     bf_dir grazing = {80.0, 0.0}, top = {0.0, 0.0}, both[2] = {{80.0, 0.0}, {0.0, 0.0}};
-    bf_sphere_options o = {N, {0.0, 0.0}, &grazing, 1};
+    bf_sphere_options o = sphere_options(N, (bf_dir){0.0, 0.0}, &grazing, 1);
     assert_int_equal(bf_render_sphere(m, &rho, &o, a, &err), BF_OK);
     /* Light from +x at 80 degrees: the +x limb is brighter than the centre, the -x limb black. */
     assert_true(px(a, N, N - 6, N / 2)[0] > px(a, N, N / 2, N / 2)[0]);
@@ -204,6 +234,7 @@ static void test_slice_lambert(void **state)
     const double rho = 0.5, inc[1] = {30.0};
     bf_error err;
     bf_slice_range r;
+    bf_slice_range_init(&r);
     /* Measured samples: two in the plane (one each side), one out of it, one at another
      * incidence angle. */
     bf_samples *s = NULL;
@@ -216,7 +247,7 @@ static void test_slice_lambert(void **state)
         s->phi_o[q] = ang[q][3];
         s->value[q] = 0.5;
     }
-    bf_slice_options o = {200, 150, inc, 1, s, 2.0, NULL, 0.0, 0.0};
+    bf_slice_options o = slice_options(200, 150, inc, 1, s, 2.0, NULL, 0.0, 0.0);
     plot *p;
     assert_int_equal(slice_plot_build(m, &rho, &o, &p, &r, &err), BF_OK);
     assert_int_equal(r.overlaid, 2);
@@ -253,7 +284,7 @@ static void test_slice_lambert(void **state)
     assert_int_equal(l.nlegend, 2);
     plot_free(p);
     /* A shared range is used as given. */
-    bf_slice_options shared = {200, 150, inc, 1, NULL, 2.0, "mine", -3.0, 1.0};
+    bf_slice_options shared = slice_options(200, 150, inc, 1, NULL, 2.0, "mine", -3.0, 1.0);
     assert_int_equal(slice_plot_build(m, &rho, &shared, &p, &r, &err), BF_OK);
     assert_true(r.log10_lo == -3.0 && r.log10_hi == 1.0);
     plot_free(p);
@@ -294,8 +325,9 @@ static void test_slice_measured(void **state)
 
     bf_model *m = ts_model("lambert", 1);
     const double rho = 0.5;
-    bf_slice_options o = {400, 300, inc, 3, s, 1.0, NULL, 0.0, 0.0};
+    bf_slice_options o = slice_options(400, 300, inc, 3, s, 1.0, NULL, 0.0, 0.0);
     bf_slice_range r;
+    bf_slice_range_init(&r);
     plot *p;
     assert_int_equal(slice_plot_build(m, &rho, &o, &p, &r, &err), BF_OK);
     assert_int_equal(r.overlaid, 3000);
@@ -349,7 +381,8 @@ static void test_slice_peak(void **state)
     const double inc[1] = {40.0};
     bf_error err;
     bf_slice_range r;
-    bf_slice_options o = {361, 240, inc, 1, NULL, 2.0, NULL, 0.0, 0.0};
+    bf_slice_range_init(&r);
+    bf_slice_options o = slice_options(361, 240, inc, 1, NULL, 2.0, NULL, 0.0, 0.0);
     plot *p;
     assert_int_equal(slice_plot_build(m, x, &o, &p, &r, &err), BF_OK);
     int curves = 0;
@@ -375,13 +408,14 @@ static void test_slice_peak(void **state)
     const char *path = ts_tmp_path("slice.png");
     assert_int_equal(bf_render_slice(m, x, &o, path, BF_PLOT_BY_NAME, NULL, &err), BF_OK);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, 361);
     assert_int_equal(img.height, 240);
     bf_image_clear(&img);
     assert_int_equal(bf_render_slice(m, x, &o, ts_tmp_path("slice.gif"), BF_PLOT_BY_NAME, NULL, &err), BF_ERR_ARG);
     assert_int_equal(access(ts_tmp_path("slice.gif"), F_OK), -1);
-    bf_slice_options tiny = {10, 10, inc, 1, NULL, 2.0, NULL, 0.0, 0.0};
+    bf_slice_options tiny = slice_options(10, 10, inc, 1, NULL, 2.0, NULL, 0.0, 0.0);
     assert_int_equal(bf_render_slice(m, x, &tiny, ts_tmp_path("t.png"), BF_PLOT_BY_NAME, NULL, &err), BF_ERR_ARG);
     bf_model_free(m);
 }
@@ -395,6 +429,7 @@ static void test_png_and_errors(void **state)
     const char *path = ts_tmp_path("two.png");
     assert_int_equal(bf_image_write_rgb(path, 2, 1, rgb, &err), BF_OK);
     bf_image img;
+    bf_image_init(&img);
     assert_int_equal(bf_image_read(path, &img, &err), BF_OK);
     assert_int_equal(img.width, 2);
     assert_int_equal(img.height, 1);
@@ -425,6 +460,61 @@ static void test_tonemap(void **state)
     ts_assert_near(w[1], 6.0 / 7.0, 1e-6, 0, "reinhard");
 }
 
+/* Structs the caller allocates carry their size (docs/api.md): the init functions set it
+ * and the defaults; one not set up is refused, naming the struct, before anything else. */
+static void test_sized_structs(void **state)
+{
+    (void)state;
+    bf_error err;
+    bf_sphere_options so;
+    bf_sphere_options_init(&so);
+    assert_true(so.size == sizeof so && so.resolution == 256 && so.nlights == 1);
+    assert_true(so.view.theta == 0.0 && so.lights[0].theta == 45.0 && so.lights[0].phi == 0.0);
+    bf_slice_options sl;
+    bf_slice_options_init(&sl);
+    assert_true(sl.size == sizeof sl && sl.width == 640 && sl.height == 480 && sl.nincidence == 3);
+    assert_true(sl.incidence[0] == 0.0 && sl.incidence[1] == 30.0 && sl.incidence[2] == 60.0);
+    assert_true(sl.plane_tol == 2.0 && !sl.samples && !sl.title && sl.log10_lo == 0.0 && sl.log10_hi == 0.0);
+    bf_model *m = ts_model("lambert", 1);
+    const double rho = 0.5;
+    float rgb[4 * 4 * 3];
+    bf_sphere_options zero_sphere = {0};
+    assert_int_equal(bf_render_sphere(m, &rho, &zero_sphere, rgb, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_sphere_options"));
+    bf_slice_options zero_slice = {0};
+    double lo, hi;
+    assert_int_equal(bf_slice_extent(m, &rho, &zero_slice, &lo, &hi, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_slice_options"));
+    assert_int_equal(bf_render_slice(m, &rho, &zero_slice, ts_tmp_path("z.svg"), BF_PLOT_BY_NAME, NULL, &err),
+                     BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_slice_options"));
+    bf_slice_range zero_range = {0};
+    assert_int_equal(bf_render_slice(m, &rho, &sl, ts_tmp_path("z.svg"), BF_PLOT_BY_NAME, &zero_range, &err),
+                     BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_slice_range"));
+    assert_int_equal(access(ts_tmp_path("z.svg"), F_OK), -1);
+    /* The defaults draw: 640x480 slices at 0, 30 and 60 degrees. */
+    bf_slice_range r;
+    bf_slice_range_init(&r);
+    assert_int_equal(bf_render_slice(m, &rho, &sl, ts_tmp_path("d.svg"), BF_PLOT_BY_NAME, &r, &err), BF_OK);
+    assert_true(r.size == sizeof r && r.log10_lo < log10(rho / M_PI) && r.log10_hi > log10(rho / M_PI));
+    /* Images: refused before the module is needed; clearing an empty one is harmless. */
+    bf_image zero_image = {0};
+    assert_int_equal(bf_image_read(ts_tmp_path("missing.exr"), &zero_image, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_image"));
+    assert_int_equal(bf_image_read_rows(ts_tmp_path("missing.exr"), 0, 1, &zero_image, &err), BF_ERR_ARG);
+    bf_image_clear(&zero_image);
+    bf_image_spec zero_spec = {0};
+    assert_int_equal(bf_image_info(ts_tmp_path("missing.exr"), &zero_spec, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_image_spec"));
+    bf_image img;
+    bf_image_init(&img);
+    bf_image_spec sp;
+    bf_image_spec_init(&sp);
+    assert_true(img.size == sizeof img && !img.pixels && sp.size == sizeof sp && sp.width == 0);
+    bf_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -433,6 +523,7 @@ int main(void)
         cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert), cmocka_unit_test(test_slice_measured),
         cmocka_unit_test(test_slice_peak),         cmocka_unit_test(test_png_and_errors),
         cmocka_unit_test(test_tonemap),
+        cmocka_unit_test(test_sized_structs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -34,7 +34,10 @@ static bf_samples *merl_of(const bf_model *m, const double *x, const char *name)
 static void spheres(const bf_model *m, const double *x, const bf_samples *s, float *a, float *b)
 {
     bf_dir light = {30.0, 0.0};
-    bf_sphere_options o = {SIZE, {0.0, 0.0}, &light, 1};
+    bf_sphere_options o;
+    bf_sphere_options_init(&o);
+    o.resolution = SIZE;
+    o.lights = &light;
     assert_int_equal(bf_render_sphere(m, x, &o, a, NULL), BF_OK);
     assert_int_equal(bf_render_sphere_merl(s, &o, b, NULL), BF_OK);
 }
@@ -96,7 +99,10 @@ static void test_needs_a_table(void **state)
     bf_samples *s = NULL;
     bf_samples_new(3, 3, &s, NULL);
     bf_dir light = {0.0, 0.0};
-    bf_sphere_options o = {8, {0.0, 0.0}, &light, 1};
+    bf_sphere_options o;
+    bf_sphere_options_init(&o);
+    o.resolution = 8;
+    o.lights = &light;
     float img[8 * 8 * 3];
     bf_error err;
     assert_int_equal(bf_render_sphere_merl(s, &o, img, &err), BF_ERR_ARG);

@@ -534,7 +534,18 @@ static void test_fit_weighted_metrics(void **state)
     assert_true(plain.rmse != want.rmse);
     bf_fit_result_clear(&r);
 
+    /* Samples a scene weighted are judged over its directions however the fit was asked
+     * (fit.c): a program that read them with a scene and fits them later gets the
+     * command's numbers. */
     o.weighted_metrics = 0;
+    ts_fit_ok(s, "lambert", &o, &r);
+    assert_int_equal(r.metrics.weighted, 1);
+    assert_metrics_equal(&r.metrics, &want);
+    bf_fit_result_clear(&r);
+
+    /* Without a scene's weights every sample counts alike. */
+    free(s->scene_weight);
+    s->scene_weight = NULL;
     ts_fit_ok(s, "lambert", &o, &r);
     assert_int_equal(r.metrics.weighted, 0);
     assert_int_equal(bf_metrics_compute(r.model, r.x, s, r.metrics.k, 1, &plain, NULL), BF_OK);

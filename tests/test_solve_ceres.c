@@ -91,7 +91,7 @@ static void decay_free(decay *d)
 
 static bf_problem problem(decay *d, const double *lo, const double *hi)
 {
-    bf_problem p = {.nres = d->n, .npar = 2, .lo = lo, .hi = hi, .eval = eval, .ctx = d};
+    bf_problem p = {.nres = d->n, .npar = 2, .lo = lo, .hi = hi, .eval = eval, .user = d};
     return p;
 }
 
@@ -374,7 +374,7 @@ static void test_block_structure(void **state)
     decay *d = decay_new(4000);
     for (size_t i = 0; i < d->n; i++)
         d->y[i] = (i < d->n / 2 ? 2.5 : 3.0) * exp(-0.7 * d->t[i]);
-    bf_problem p = {.nres = d->n, .npar = 3, .eval = eval_channels, .ctx = d};
+    bf_problem p = {.nres = d->n, .npar = 3, .eval = eval_channels, .user = d};
     for (int threads = 1; threads <= 2; threads++) {
         bf_solver_options o = {.threads = threads};
         double x[3] = {1.0, 1e6, 2.0};

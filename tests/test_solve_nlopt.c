@@ -85,7 +85,7 @@ static bf_problem problem_of(curve *c)
     p.lo = LO;
     p.hi = HI;
     p.eval = curve_eval;
-    p.ctx = c;
+    p.user = c;
     return p;
 }
 

@@ -14,7 +14,13 @@
  *    locks, which flock does not touch) and a second writer is refused at once.
  *  - The identity (schema, manifest hash, tool version, shard) is checked on every
  *    open for writing: results of another manifest or version are never mixed in.
- *  - NaN is stored as NULL (SQLite makes it so anyway) and read back as NaN. */
+ *  - NaN is stored as NULL (SQLite makes it so anyway) and read back as NaN.
+ *  - Schema 2 added items.warning_kinds (the warnings' kinds by name, batch_rows.c),
+ *    beside warnings. A schema 1 database is still read (its rows without kinds:
+ *    batch_rows.c, legacy_kind, says what is lost), upgraded in place when batch resumes
+ *    it (ALTER TABLE puts the column last; its finished rows keep no kinds) and merged
+ *    into a schema 2 one. Every statement names its columns, never relies on
+ *    their order, so both layouts are read and merged alike. */
 #include "batch_db.h"
 
 #include <errno.h>
@@ -30,7 +36,8 @@
 
 #include "brdfit/version.h"
 
-#define BATCH_DB_SCHEMA "1"
+#define BATCH_DB_SCHEMA "2"
+#define BATCH_DB_SCHEMA_NO_KINDS "1" /* before items.warning_kinds */
 #define BATCH_DB_BUSY_MS 3000
 
 struct batch_db {
@@ -40,10 +47,11 @@ struct batch_db {
 };
 
 /* The columns that hold a result (all but item, material, model, the timings): what
- * merge compares. */
-#define RESULT_COLUMNS                                                                                            \
+ * merge compares; a schema 1 database has all but the last. */
+#define RESULT_COLUMNS_1                                                                                          \
     "status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, max_err, weighted, "    \
     "crit_n, loglik, aic, aicc, bic, cv, work, params, stderr, warnings, options, tool_version"
+#define RESULT_COLUMNS RESULT_COLUMNS_1 ", warning_kinds"
 
 static const char schema_sql[] =
     "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
@@ -55,7 +63,7 @@ static const char schema_sql[] =
     " message TEXT, spec TEXT, samples INTEGER, channels INTEGER,"
     " n INTEGER, k INTEGER, rmse REAL, rmse_log REAL, rmse_cos REAL, rmse_rel REAL, max_err REAL,"
     " weighted INTEGER, crit_n INTEGER, loglik REAL, aic REAL, aicc REAL, bic REAL, cv REAL, work REAL,"
-    " params TEXT, stderr TEXT, warnings TEXT, options TEXT, tool_version TEXT,"
+    " params TEXT, stderr TEXT, warnings TEXT, warning_kinds TEXT, options TEXT, tool_version TEXT,"
     " seconds REAL, finished_at TEXT);"
     "CREATE VIEW results AS SELECT i.item, m.data, o.spec AS model, i.status, i.k, i.rmse_log, i.bic, i.message"
     " FROM items i JOIN materials m USING(material) JOIN models o USING(model);";
@@ -294,6 +302,16 @@ static bf_status add_pending(batch_db *db, const batch_manifest *m, int shard, i
     return rc;
 }
 
+/* The warning_kinds column of schema 2 added to a schema 1 database, within the caller's
+ * transaction (after every identity check, so a database of another run is untouched). */
+static bf_status upgrade(batch_db *db, bf_error *err)
+{
+    return exec(db,
+                "ALTER TABLE items ADD COLUMN warning_kinds TEXT;"
+                "UPDATE meta SET value = '" BATCH_DB_SCHEMA "' WHERE key = 'schema';",
+                "adding the warning_kinds column", err);
+}
+
 bf_status batch_db_setup(batch_db *db, const batch_manifest *m, int shard, int nshards, bf_error *err)
 {
     char shard_name[48] = "all";
@@ -307,13 +325,20 @@ bf_status batch_db_setup(batch_db *db, const batch_manifest *m, int shard, int n
     if (rc == BF_OK && !yes)
         rc = create(db, m, shard_name, err);
     else if (rc == BF_OK) {
-        rc = same(db, "schema", BATCH_DB_SCHEMA, "another schema", err);
+        char *schema = NULL;
+        rc = batch_db_meta(db, "schema", &schema, err);
+        const int old = rc == BF_OK && !strcmp(schema, BATCH_DB_SCHEMA_NO_KINDS);
+        free(schema);
+        if (rc == BF_OK && !old)
+            rc = same(db, "schema", BATCH_DB_SCHEMA, "another schema", err);
         if (rc == BF_OK)
             rc = same(db, "manifest_hash", m->hash, "another manifest", err);
         if (rc == BF_OK)
             rc = same(db, "tool_version", bf_version(), "another brdfit version", err);
         if (rc == BF_OK)
             rc = same(db, "shard", shard_name, "another --shard", err);
+        if (rc == BF_OK && old)
+            rc = upgrade(db, err);
     }
     if (rc == BF_OK)
         rc = add_pending(db, m, shard, nshards, err);
@@ -333,7 +358,8 @@ bf_status batch_db_redo(batch_db *db, int failed, int all, bf_error *err)
     "UPDATE items SET status = 'pending', message = NULL, spec = NULL, samples = NULL, channels = NULL, "         \
     "n = NULL, k = NULL, rmse = NULL, rmse_log = NULL, rmse_cos = NULL, rmse_rel = NULL, max_err = NULL, "        \
     "weighted = NULL, crit_n = NULL, loglik = NULL, aic = NULL, aicc = NULL, bic = NULL, cv = NULL, work = NULL, " \
-    "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL "
+    "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL, "    \
+    "warning_kinds = NULL "
     return exec(db,
                 all ? PENDING "WHERE status != 'pending'" : PENDING "WHERE status IN ('failed', 'error')",
                 "marking items to redo", err);
@@ -385,7 +411,7 @@ bf_status batch_db_put(batch_db *db, const batch_row *r, bf_error *err)
                            "k = ?, rmse = ?, rmse_log = ?, rmse_cos = ?, rmse_rel = ?, max_err = ?, weighted = ?, "
                            "crit_n = ?, loglik = ?, aic = ?, aicc = ?, bic = ?, cv = ?, work = ?, params = ?, "
                            "stderr = ?, warnings = ?, tool_version = ?, seconds = ?, "
-                           "finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE item = ?",
+                           "finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), warning_kinds = ? WHERE item = ?",
                            &st, err);
     if (rc != BF_OK)
         return rc;
@@ -418,7 +444,9 @@ bf_status batch_db_put(batch_db *db, const batch_row *r, bf_error *err)
         sqlite3_bind_text(st, 23, r->warnings, -1, SQLITE_STATIC);
     sqlite3_bind_text(st, 24, bf_version(), -1, SQLITE_STATIC);
     bind_real(st, 25, r->seconds);
-    sqlite3_bind_int(st, 26, r->item);
+    if (r->warning_kinds)
+        sqlite3_bind_text(st, 26, r->warning_kinds, -1, SQLITE_STATIC);
+    sqlite3_bind_int(st, 27, r->item);
     /* One transaction per item: BEGIN IMMEDIATE so a lock taken meanwhile is waited for
      * (busy timeout) at the start, not found at the commit. */
     rc = exec(db, "BEGIN IMMEDIATE", "starting a transaction", err);
@@ -480,17 +508,28 @@ static void row_of(sqlite3_stmt *st, batch_row *r)
     r->options = text_of(st, 26);
     r->version = (const char *)sqlite3_column_text(st, 27);
     r->seconds = real_of(st, 28);
+    r->warning_kinds = text_of(st, 29);
 }
 
 bf_status batch_db_rows(batch_db *db, bf_status (*each)(void *ctx, const batch_row *r, bf_error *err), void *ctx,
                         bf_error *err)
 {
-    sqlite3_stmt *st;
-    bf_status rc = prepare(db,
-                           "SELECT item, material, model, status, message, spec, samples, channels, n, k, rmse, "
-                           "rmse_log, rmse_cos, rmse_rel, max_err, weighted, crit_n, loglik, aic, aicc, bic, cv, "
-                           "work, params, stderr, warnings, options, tool_version, seconds FROM items ORDER BY item",
-                           &st, err);
+#define ROW_COLUMNS                                                                                               \
+    "item, material, model, status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, " \
+    "max_err, weighted, crit_n, loglik, aic, aicc, bic, cv, work, params, stderr, warnings, options, "            \
+    "tool_version, seconds, "
+    sqlite3_stmt *st = NULL;
+    char *schema = NULL;
+    bf_status rc = batch_db_meta(db, "schema", &schema, err);
+    /* A schema 1 database has no kinds: NULL (batch_rows.c, legacy_kind). */
+    const int old = rc == BF_OK && !strcmp(schema, BATCH_DB_SCHEMA_NO_KINDS);
+    free(schema);
+    if (rc == BF_OK)
+        rc = prepare(db,
+                     old ? "SELECT " ROW_COLUMNS "NULL FROM items ORDER BY item"
+                         : "SELECT " ROW_COLUMNS "warning_kinds FROM items ORDER BY item",
+                     &st, err);
+#undef ROW_COLUMNS
     int step = SQLITE_DONE;
     while (rc == BF_OK && (step = sqlite3_step(st)) == SQLITE_ROW) {
         batch_row r;
@@ -533,12 +572,36 @@ static long long count_of(batch_db *db, const char *sql, bf_error *err)
     return n;
 }
 
-/* Input k (attached as "src"): identity as the output's, then its finished rows. */
-static bf_status merge_one(batch_db *out, const char *input, bf_error *err)
+/* An item's columns in the output, and as taken from an input of schema 2 or 1 (no
+ * kinds: NULL). */
+#define ITEM_COLUMNS "item, material, model, " RESULT_COLUMNS ", seconds, finished_at"
+#define ITEM_COLUMNS_1 "item, material, model, " RESULT_COLUMNS_1 ", NULL, seconds, finished_at"
+
+/* The attached input's schema: 1 for BATCH_DB_SCHEMA_NO_KINDS, 0 for BATCH_DB_SCHEMA;
+ * any other is refused. */
+static bf_status src_schema(batch_db *out, const char *input, int *old, bf_error *err)
 {
-    /* The identity, as the output holds it (the first input's). */
-    static const char *const keys[] = {"schema", "manifest_hash", "tool_version"};
-    for (int k = 0; k < 3; k++) {
+    sqlite3_stmt *st;
+    bf_status rc = prepare(out, "SELECT value FROM src.meta WHERE key = 'schema'", &st, err);
+    if (rc != BF_OK)
+        return rc;
+    const unsigned char *v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_text(st, 0) : NULL;
+    const char *s = v ? (const char *)v : "none";
+    *old = !strcmp(s, BATCH_DB_SCHEMA_NO_KINDS);
+    if (!*old && strcmp(s, BATCH_DB_SCHEMA))
+        rc = bf_fail(err, BF_ERR_ARG, "%s: schema %s, which this brdfit does not read; nothing merged", input, s);
+    sqlite3_finalize(st);
+    return rc;
+}
+
+/* Input k (attached as "src", of schema 1 when old): identity as the output's, then its
+ * finished rows. */
+static bf_status merge_one(batch_db *out, const char *input, int old, bf_error *err)
+{
+    /* The identity, as the output holds it (the first input's; the schema the caller
+     * checks). */
+    static const char *const keys[] = {"manifest_hash", "tool_version"};
+    for (int k = 0; k < 2; k++) {
         char sql[200];
         snprintf(sql, sizeof sql,
                  "SELECT count(*) FROM main.meta a LEFT JOIN src.meta b ON b.key = a.key "
@@ -549,32 +612,33 @@ static bf_status merge_one(batch_db *out, const char *input, bf_error *err)
             return err->code;
         if (n > 0)
             return bf_fail(err, BF_ERR_ARG, "%s: another %s than the first input; nothing merged", input,
-                           k == 0 ? "schema" : k == 1 ? "manifest" : "brdfit version");
+                           k == 0 ? "manifest" : "brdfit version");
     }
-    long long clash = count_of(out,
-                               "SELECT count(*) FROM main.items a JOIN src.items b USING(item) WHERE "
-                               "a.status != 'pending' AND b.status != 'pending' AND "
-                               "(SELECT " RESULT_COLUMNS " FROM main.items WHERE item = a.item) IS NOT "
-                               "(SELECT " RESULT_COLUMNS " FROM src.items WHERE item = a.item)",
-                               err);
+#define CLASH(SRC)                                                                                                \
+    "SELECT count(*) FROM main.items a JOIN src.items b USING(item) WHERE "                                       \
+    "a.status != 'pending' AND b.status != 'pending' AND "                                                        \
+    "(SELECT " RESULT_COLUMNS " FROM main.items WHERE item = a.item) IS NOT "                                     \
+    "(SELECT " SRC " FROM src.items WHERE item = a.item)"
+    long long clash = count_of(out, old ? CLASH(RESULT_COLUMNS_1 ", NULL") : CLASH(RESULT_COLUMNS), err);
+#undef CLASH
     if (clash < 0)
         return err->code;
     if (clash > 0)
         return bf_fail(err, BF_ERR_ARG, "%s: %lld item(s) already merged with other results; nothing merged", input,
                        clash);
     /* Rows the output lacks, then finished rows over its pending ones. */
-    bf_status rc = exec(out, "INSERT OR IGNORE INTO main.items SELECT * FROM src.items", "merging the items", err);
-    if (rc == BF_OK)
-        rc = exec(out,
-                  "REPLACE INTO main.items SELECT * FROM src.items b WHERE b.status != 'pending' AND "
-                  "(SELECT status FROM main.items a WHERE a.item = b.item) = 'pending'",
-                  "merging the items", err);
-    return rc;
+#define COPY(SRC)                                                                                                 \
+    "INSERT OR IGNORE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items;"                           \
+    "REPLACE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items b WHERE b.status != 'pending' AND "   \
+    "(SELECT status FROM main.items a WHERE a.item = b.item) = 'pending'"
+    return exec(out, old ? COPY(ITEM_COLUMNS_1) : COPY(ITEM_COLUMNS), "merging the items", err);
+#undef COPY
 }
 
 bf_status batch_db_merge(batch_db *out, const char *const *inputs, int n, bf_error *err)
 {
     bf_status rc = BF_OK;
+    int first_old = 0; /* the first input's schema: every other has it too */
     for (int k = 0; rc == BF_OK && k < n; k++) {
         /* Each input is checked as batch_db_open checks it before it is attached. */
         batch_db *in;
@@ -594,20 +658,30 @@ bf_status batch_db_merge(batch_db *out, const char *const *inputs, int n, bf_err
                 rc = db_fail(out, err, "attaching an input");
             sqlite3_finalize(st);
         }
-        if (rc != BF_OK)
+        int old = 0;
+        if (rc == BF_OK)
+            rc = src_schema(out, inputs[k], &old, err);
+        if (rc == BF_OK && k == 0)
+            first_old = old;
+        else if (rc == BF_OK && old != first_old)
+            rc = bf_fail(err, BF_ERR_ARG, "%s: another schema than the first input; nothing merged", inputs[k]);
+        if (rc != BF_OK) {
+            sqlite3_exec(out->db, "DETACH src", NULL, NULL, NULL);
             break;
+        }
         rc = exec(out, "BEGIN IMMEDIATE", "starting a transaction", err);
         if (rc == BF_OK && k == 0) /* the first input's identity and names make the output's */
             rc = exec(out, schema_sql, "creating its tables", err);
+        /* The output is of this schema whatever the inputs' (theirs lack only kinds). */
         if (rc == BF_OK && k == 0)
             rc = exec(out,
-                      "INSERT INTO main.meta SELECT key, CASE key WHEN 'shard' THEN 'all' ELSE value END "
-                      "FROM src.meta;"
+                      "INSERT INTO main.meta SELECT key, CASE key WHEN 'shard' THEN 'all' "
+                      "WHEN 'schema' THEN '" BATCH_DB_SCHEMA "' ELSE value END FROM src.meta;"
                       "INSERT INTO main.materials SELECT * FROM src.materials;"
                       "INSERT INTO main.models SELECT * FROM src.models;",
                       "copying the identity", err);
         if (rc == BF_OK)
-            rc = merge_one(out, inputs[k], err);
+            rc = merge_one(out, inputs[k], old, err);
         if (rc == BF_OK)
             rc = exec(out, "COMMIT", "committing", err);
         if (rc != BF_OK)

@@ -34,7 +34,8 @@ static inline int batch_item_in_shard(int item, int shard, int nshards)
 /* Makes a new database the manifest's (tables, identity, the materials and models, a
  * pending row per item of the shard), or checks that an existing one is: same schema,
  * manifest hash, tool version and shard, else BF_ERR_ARG saying which differs (never
- * mixed). Then the items of the shard without a row get a pending one. */
+ * mixed); one of schema 1 (before warning kinds) that passes the other checks is
+ * upgraded to this schema. Then the items of the shard without a row get a pending one. */
 bf_status batch_db_setup(batch_db *db, const batch_manifest *m, int shard, int nshards, bf_error *err);
 
 /* --redo: makes the items in these states pending again (one transaction). */
@@ -60,8 +61,8 @@ bf_status batch_db_material(batch_db *db, int i, char **data, bf_error *err);
 /* Merges the databases inputs[0..n-1] into the new database out (created here):
  * refused (BF_ERR_ARG) unless every input has the same schema, manifest and tool
  * version, and unless an item finished in two inputs has the same result in both
- * (every column but the timings). The merged database is shard "all"; items no input
- * finished stay pending. */
+ * (every column but the timings). The merged database is shard "all", of this schema
+ * (schema 1 inputs give rows without kinds); items no input finished stay pending. */
 bf_status batch_db_merge(batch_db *out, const char *const *inputs, int n, bf_error *err);
 
 #endif

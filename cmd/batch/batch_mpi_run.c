@@ -61,7 +61,7 @@ static void keep_row(void *ctx, batch_row *row)
 {
     worker *w = ctx;
     *w->row = *row;
-    row->spec = row->params = row->stderr_ = row->warnings = row->options = NULL;
+    row->spec = row->params = row->stderr_ = row->warnings = row->options = row->warning_kinds = NULL;
     w->got++;
 }
 

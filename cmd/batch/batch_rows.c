@@ -7,7 +7,11 @@
  *    compare-style output from the database is the same to the byte. JSON has no NaN
  *    or infinity: those are the strings "nan", "inf", "-inf".
  *  - Entries are read back by position, after checking their count against the model
- *    rebuilt from the canonical spec: the names are for people. */
+ *    rebuilt from the canonical spec: the names are for people.
+ *  - Each warning's kind is stored by name (bf_warning_kind_name) in a JSON array of its
+ *    own, beside the texts, so the texts stay the array of strings they always were and
+ *    a report decides on the kinds (bf_fit_result_unsure) without reading the texts; only
+ *    rows stored before kinds were fall back on their texts (legacy_kind). */
 #include "batch_rows.h"
 
 #include <cjson/cJSON.h>
@@ -51,11 +55,13 @@ static char *entries_json(const bf_model *m, const double *v)
     return s;
 }
 
-static char *warnings_json(const bf_fit_result *r)
+/* The warnings' texts, or with kinds 1 their kinds' names, as a JSON array text
+ * (malloc'd; NULL: no memory). */
+static char *warnings_json(const bf_fit_result *r, int kinds)
 {
     cJSON *a = cJSON_CreateArray();
     for (int w = 0; a && w < r->nwarnings; w++)
-        cJSON_AddItemToArray(a, cJSON_CreateString(r->warnings[w]));
+        cJSON_AddItemToArray(a, cJSON_CreateString(kinds ? bf_warning_kind_name(r->warning_kind[w]) : r->warnings[w]));
     char *s = a ? cJSON_PrintUnformatted(a) : NULL;
     cJSON_Delete(a);
     return s;
@@ -68,7 +74,8 @@ void batch_row_clear(batch_row *r)
     free(r->stderr_);
     free(r->warnings);
     free(r->options);
-    r->spec = r->params = r->stderr_ = r->warnings = r->options = NULL;
+    free(r->warning_kinds);
+    r->spec = r->params = r->stderr_ = r->warnings = r->options = r->warning_kinds = NULL;
 }
 
 bf_status batch_row_from_fit(batch_row *r, const bf_compare *c, int j, bf_error *err)
@@ -88,7 +95,8 @@ bf_status batch_row_from_fit(batch_row *r, const bf_compare *c, int j, bf_error 
     if (!res || !res->model)
         return BF_OK;
     if (!(r->spec = strdup(bf_model_spec(res->model))) || !(r->params = entries_json(res->model, res->x)) ||
-        !(r->stderr_ = entries_json(res->model, res->stderr_)) || !(r->warnings = warnings_json(res))) {
+        !(r->stderr_ = entries_json(res->model, res->stderr_)) || !(r->warnings = warnings_json(res, 0)) ||
+        !(r->warning_kinds = warnings_json(res, 1))) {
         batch_row_clear(r);
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for a result row");
     }
@@ -107,14 +115,45 @@ static int entries_read(const char *text, double *v, int n)
     return o && k == n ? 0 : -1;
 }
 
-static int warnings_read(const char *text, bf_fit_result *res)
+/* How the one-start warning began in rows stored without kinds (schema 1), frozen here:
+ * the wording brdfit writes today may change, old databases keep theirs. */
+#define LEGACY_ONE_START "the best optimum was reached from 1 of"
+
+/* The kind of a warning stored without one. Only BF_WARN_ONE_START decides anything a
+ * report shows (bf_fit_result_unsure: compare's "?"), so it alone is recognised, by its
+ * old text, and an old database reports as it did; every other warning is BF_WARN_OTHER,
+ * which loses its kind (at a bound, undetermined ...) but nothing the report decides. */
+static bf_warning_kind legacy_kind(const char *text)
 {
-    cJSON *a = text ? cJSON_Parse(text) : NULL;
-    int ok = cJSON_IsArray(a);
-    for (const cJSON *e = ok ? a->child : NULL; e && res->nwarnings < BF_FIT_MAX_WARNINGS; e = e->next)
-        if (cJSON_IsString(e))
-            snprintf(res->warnings[res->nwarnings++], BF_FIT_WARNING_LEN, "%s", e->valuestring);
+    return strncmp(text, LEGACY_ONE_START, sizeof LEGACY_ONE_START - 1) ? BF_WARN_OTHER : BF_WARN_ONE_START;
+}
+
+/* The texts, and their kinds: one name per text in kinds (an unknown name, from a later
+ * brdfit, is BF_WARN_OTHER), or, for a row stored before kinds were (kinds NULL),
+ * legacy_kind. -1 when either is not such an array. */
+static int warnings_read(const char *text, const char *kinds, bf_fit_result *res)
+{
+    cJSON *a = text ? cJSON_Parse(text) : NULL, *k = kinds ? cJSON_Parse(kinds) : NULL;
+    int ok = cJSON_IsArray(a) && (!kinds || (cJSON_IsArray(k) && cJSON_GetArraySize(k) == cJSON_GetArraySize(a)));
+    const cJSON *kn = ok && k ? k->child : NULL;
+    for (const cJSON *e = ok ? a->child : NULL; e && res->nwarnings < BF_FIT_MAX_WARNINGS; e = e->next) {
+        bf_warning_kind kind = BF_WARN_OTHER;
+        if (kinds) { /* the kind at the text's position */
+            if (!cJSON_IsString(kn)) {
+                ok = 0;
+                break;
+            }
+            if (bf_warning_kind_parse(kn->valuestring, &kind, NULL) != BF_OK)
+                kind = BF_WARN_OTHER;
+            kn = kn->next;
+        }
+        if (!cJSON_IsString(e))
+            continue;
+        res->warning_kind[res->nwarnings] = kinds ? kind : legacy_kind(e->valuestring);
+        snprintf(res->warnings[res->nwarnings++], BF_FIT_WARNING_LEN, "%s", e->valuestring);
+    }
     cJSON_Delete(a);
+    cJSON_Delete(k);
     return ok ? 0 : -1;
 }
 
@@ -142,7 +181,7 @@ bf_status batch_row_to_fit(const batch_row *r, bf_compare_fit *f, bf_fit_result 
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for item %d's result", r->item);
     }
     if (entries_read(r->params, res->x, n) < 0 || entries_read(r->stderr_, res->stderr_, n) < 0 ||
-        warnings_read(r->warnings, res) < 0) {
+        warnings_read(r->warnings, r->warning_kinds, res) < 0) {
         bf_fit_result_clear(res);
         return bf_fail(err, BF_ERR_PARSE, "item %d: its parameters or warnings cannot be read back", r->item);
     }
@@ -190,7 +229,7 @@ static void put_row(packer *k, const batch_row *r)
     for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
         put_f64(k, reals[i]);
     put_text(k, r->message);
-    const char *texts[] = {r->spec, r->params, r->stderr_, r->warnings, r->options};
+    const char *texts[] = {r->spec, r->params, r->stderr_, r->warnings, r->options, r->warning_kinds};
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
         put_text(k, texts[i]);
 }
@@ -275,7 +314,7 @@ bf_status batch_row_unpack(const unsigned char *buf, size_t len, batch_row *r, b
     for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
         *reals[i] = get_f64(&u);
     get_text(&u, r->message, sizeof r->message);
-    char **texts[] = {&r->spec, &r->params, &r->stderr_, &r->warnings, &r->options};
+    char **texts[] = {&r->spec, &r->params, &r->stderr_, &r->warnings, &r->options, &r->warning_kinds};
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
         *texts[i] = get_text(&u, NULL, 0);
     if (u.bad || u.at != len) {

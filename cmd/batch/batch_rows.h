@@ -18,8 +18,10 @@ typedef struct batch_row {
     int channels;
     bf_metrics metrics;
     double cv, work;
-    /* JSON texts (malloc'd, NULL when absent): the canonical spec is plain text. */
-    char *spec, *params, *stderr_, *warnings, *options;
+    /* JSON texts (malloc'd, NULL when absent): the canonical spec is plain text;
+     * warning_kinds the kinds of the warnings, by name, in their order (NULL in a row
+     * stored before kinds were: batch_rows.c reads those from the texts). */
+    char *spec, *params, *stderr_, *warnings, *options, *warning_kinds;
     const char *version;       /* the tool's, as written (borrowed) */
     double seconds;            /* wall time of the fit: a timing, it decides nothing */
 } batch_row;

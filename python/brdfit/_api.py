@@ -501,14 +501,13 @@ class _Options:
                 continue
             d = lib.bf_option_find(name.encode(), _TASKS[task])
             if d == ffi.NULL:  # the library's message: unknown, or another task's
-                _check(lib.bf_options_set(self.o, name.encode(), ffi.NULL, err), err, what)
+                _check(lib.bf_options_set(self.o, name.encode(), ffi.NULL, err), err)
             try:
                 texts = _value_texts(d, name, v)
             except UsageError as e:
                 raise UsageError("%s: %s" % (name, e.message)) from None
             for t in texts:
-                _check(lib.bf_options_set(self.o, name.encode(), t.encode() if t is not None else ffi.NULL, err), err,
-                       what)
+                _check(lib.bf_options_set(self.o, name.encode(), t.encode() if t is not None else ffi.NULL, err), err)
             self.given.append((name, _str(d.group)))
 
     def check(self, specs: Sequence[str] = ()) -> None:
@@ -563,6 +562,10 @@ def _prepared(x: Any, opts: _Options, what: str) -> "Samples":
 
 # ---- Running: threads, progress, Ctrl-C -------------------------------------------------
 
+# How often the calling thread looks up from waiting (Ctrl-C is seen at once regardless).
+_POLL_SECONDS = 0.025
+
+
 class _Run:
     """One library call in a worker thread, so that the calling thread stays in Python.
     An exception there (Ctrl-C's KeyboardInterrupt, a signal handler's TimeoutError) sets
@@ -600,7 +603,7 @@ class _Run:
         interrupted = None
         while True:
             try:
-                if done.wait(0.05):
+                if done.wait(_POLL_SECONDS):
                     break
             except BaseException as e:  # the call still runs: stop it, wait for it
                 self.cancel[0] = 1
@@ -821,6 +824,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
         try:
             _check(lib.bf_export_check(t, m[0], int(_flag("convert", convert)), err), err)
             e = ffi.new("bf_export_material *")
+            lib.bf_export_material_init(e)
             _check(lib.bf_export_prepare(t, m[0], x[0], e, fit_r, err), err)
             out = _path_text(path) if path is not None else os.path.join(d, "export.out")
             _check(lib.bf_export_write(t, e, out.encode(), err), err)

@@ -115,7 +115,8 @@ bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err);
 
 /* Export (export.h). */
 typedef struct bf_export_target { const char *name; const char *model; ...; } bf_export_target;
-typedef struct bf_export_material { int converted; ...; } bf_export_material;
+typedef struct bf_export_material { size_t size; int converted; ...; } bf_export_material;
+void bf_export_material_init(bf_export_material *e);
 int bf_export_target_count(void);
 const bf_export_target *bf_export_target_get(int i);
 const bf_export_target *bf_export_target_find(const char *name);

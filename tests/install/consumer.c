@@ -9,6 +9,7 @@
 #include <brdfit/fit.h>
 #include <brdfit/image.h>
 #include <brdfit/model.h>
+#include <brdfit/options.h>
 #include <brdfit/samples.h>
 #include <brdfit/version.h>
 
@@ -34,13 +35,17 @@ int main(int argc, char **argv)
         s->phi_o[i] = 180.0;
         s->value[i] = RHO / PI;
     }
-    bf_fit_options o;
-    memset(&o, 0, sizeof o);
-    o.objective.residual = BF_RESIDUAL_LINEAR;
-    o.solver.backend = BF_BACKEND_CERES;
-    o.starts = 1;
+    /* Options as text, as a command line gives them. */
+    bf_options *o = NULL;
+    if (bf_options_new(BF_TASK_FIT, &o, &err) != BF_OK || bf_options_set(o, "residual", "linear", &err) != BF_OK ||
+        bf_options_set(o, "backend", "ceres", &err) != BF_OK || bf_options_set(o, "starts", "1", &err) != BF_OK) {
+        fprintf(stderr, "consumer: %s\n", err.msg);
+        return 1;
+    }
     bf_fit_result r;
-    if (bf_fit(s, "lambert", &o, &r, &err) != BF_OK || !r.ok) {
+    bf_status fitted = bf_fit(s, "lambert", o, &r, &err);
+    bf_options_free(o);
+    if (fitted != BF_OK || !r.ok) {
         fprintf(stderr, "consumer: the fit failed: %s\n", r.ok ? err.msg : r.solution.termination);
         return 1;
     }
@@ -54,6 +59,7 @@ int main(int argc, char **argv)
     for (int t = 0; argc > 2 && t < bf_export_target_count(); t++) {
         const bf_export_target *to = bf_export_target_get(t);
         bf_export_material e;
+        bf_export_material_init(&e);
         bf_fit_result conversion;
         char path[1024];
         snprintf(path, sizeof path, "%s/brdfit.%s", argv[2], to->name);

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The Debian packages as a user gets them: builds them (scripts/package.sh: dist/*.deb,
 # lintian without errors), installs them with apt-get, uses what they install (the
-# commands on bundled data, a C program built against the installed headers with
-# pkg-config and with find_package, man pages, completion), checks that every version
-# agrees, then purges them and checks that the machine holds the same packages and none
-# of their files, as before. Needs root (apt-get); refuses to run when a brdfit package is
-# installed already, so that it never removes one it did not install.
+# commands on bundled data, a C program and a C++ program that includes every installed
+# header, built against them with pkg-config and with find_package, man pages,
+# completion), checks that every version agrees, then purges them and checks that the
+# machine holds the same packages and none of their files, as before. Needs root
+# (apt-get); refuses to run when a brdfit package is installed already, so that it never
+# removes one it did not install.
 # Arguments: the release build directory (its brdfit is the reference for the fit).
 set -u
 build=$(cd "${1:?usage: package_test.sh BUILD_DIR}" && pwd)
@@ -23,6 +24,7 @@ need jq jq
 need pkg-config pkg-config
 need cmake cmake
 need cc gcc
+need c++ g++
 need man man-db
 [ "$(id -u)" = 0 ] || { echo "FAIL: the package test installs packages with apt-get: run it as root (CI does)"; exit 1; }
 
@@ -123,10 +125,23 @@ words=$(bash -c 'source /usr/share/bash-completion/completions/brdfit; COMP_WORD
 [ "$words" = "--residual" ] && ok || bad "completion of 'brdfit fit --res': '$words'"
 
 # ---- a program against the installed library ------------------------------------------------
-cp "$src/tests/install/consumer.c" "$src/tests/install/CMakeLists.txt" .
+cp "$src/tests/install/consumer.c" "$src/tests/install/consumer_cxx.cc" "$src/tests/install/CMakeLists.txt" .
 expect_consumer() { # $1: what, $2: output
   grep -qx 'rho_d 0.300000' "$2" && grep -qxF "version $want (headers $version, $version)" "$2" && ok ||
     bad "$1: unexpected output: $(cat "$2")"
+}
+# The C++ program (tests/install/consumer_cxx.cc): exit 0 and a line "header NAME: ok
+# (...)" for every header the -dev package installed.
+expect_cxx() { # $1: what, $2: the program
+  local h missing=""
+  if ! "$2" >cxx.out 2>&1; then
+    bad "$1: failed: $(cat cxx.out)"
+    return
+  fi
+  for h in /usr/include/brdfit/*; do
+    grep -q "^header $(basename "$h"): ok" cxx.out || missing="$missing $(basename "$h")"
+  done
+  [ -z "$missing" ] && ok || bad "$1: no ok line for$missing: $(cat cxx.out)"
 }
 # shellcheck disable=SC2046
 if cc consumer.c -o app $(pkg-config --cflags --libs brdfit) -lm 2>cc.err; then
@@ -142,10 +157,23 @@ else
   bad "cc consumer.c \$(pkg-config --cflags --libs brdfit): $(cat cc.err)"
 fi
 # shellcheck disable=SC2046
+if c++ -std=c++17 -Wall -Wextra -Werror consumer_cxx.cc -o app_cxx $(pkg-config --cflags --libs brdfit) 2>cxx.err; then
+  expect_cxx "pkg-config C++ consumer" ./app_cxx
+else
+  bad "c++ consumer_cxx.cc \$(pkg-config --cflags --libs brdfit): $(cat cxx.err)"
+fi
+# shellcheck disable=SC2046
 if cc consumer.c -o app_static $(pkg-config --cflags brdfit) "$libdir/libbrdfit.a" $(pkg-config --static --libs-only-l brdfit | sed 's/-lbrdfit\b//') -lm 2>cc.err; then
   ./app_static >static.out 2>&1 && expect_consumer "static consumer" static.out || bad "static consumer failed: $(cat static.out)"
 else
   bad "the static consumer did not build: $(head -n 5 cc.err)"
+fi
+# shellcheck disable=SC2046
+if c++ -std=c++17 -Wall -Wextra -Werror consumer_cxx.cc -o app_cxx_static $(pkg-config --cflags brdfit) "$libdir/libbrdfit.a" \
+     $(pkg-config --static --libs-only-l brdfit | sed 's/-lbrdfit\b//') 2>cxx.err; then
+  expect_cxx "static C++ consumer" ./app_cxx_static
+else
+  bad "the static C++ consumer did not build: $(head -n 5 cxx.err)"
 fi
 printf 'cmake_minimum_required(VERSION 3.18)\nproject(v LANGUAGES C)\nfind_package(brdfit REQUIRED)\nmessage(STATUS "brdfit_VERSION=${brdfit_VERSION}")\n' >v.cmake
 mkdir v && cp v.cmake v/CMakeLists.txt
@@ -153,6 +181,8 @@ cmake -S v -B v/build >v.log 2>&1 && grep -q "brdfit_VERSION=$version\$" v.log &
 if cmake -S . -B cbuild >cmake.log 2>&1 && cmake --build cbuild >>cmake.log 2>&1; then
   ./cbuild/consumer >cm.out 2>&1 && expect_consumer "find_package consumer" cm.out || bad "find_package consumer failed: $(cat cm.out)"
   ./cbuild/consumer_static >cms.out 2>&1 && expect_consumer "find_package static consumer" cms.out || bad "brdfit::brdfit_static consumer failed: $(cat cms.out)"
+  expect_cxx "find_package C++ consumer" ./cbuild/consumer_cxx
+  expect_cxx "find_package static C++ consumer" ./cbuild/consumer_cxx_static
 else
   bad "find_package build: $(tail -n 20 cmake.log)"
 fi

@@ -20,8 +20,11 @@
 extern "C" {
 #endif
 
-/* A material in a target's native model. */
+/* A material in a target's native model. Callers set it up with
+ * bf_export_material_init; bf_export_prepare fills what lies within its size
+ * (docs/api.md). */
 typedef struct bf_export_material {
+    size_t size;           /* sizeof, set by bf_export_material_init */
     const bf_model *model; /* the target's native model, 1 or 3 channels (not owned) */
     const double *x;       /* its parameters (not owned) */
     const char *source;    /* the source's model spec (not owned) */
@@ -30,10 +33,14 @@ typedef struct bf_export_material {
     bf_metrics metrics;    /* conversion: the fit's metrics (the source's values as data) */
 } bf_export_material;
 
+/* An empty material (no model) with its size set. */
+BF_API void bf_export_material_init(bf_export_material *e);
+
 /* The direction pairs a conversion fits: theta_i and theta_o 2.5 .. 87.5 by 5 degrees,
  * phi_o 0 .. 350 by 10, and for an anisotropic source phi_i 0 .. 150 by 30. */
 #define BF_EXPORT_PAIRS_ISOTROPIC 11664
 
+/* The library's table (bf_export_target_get): read through the pointer (docs/api.md). */
 typedef struct bf_export_target {
     const char *name;    /* "gltf", "blender", "mitsuba" (brdfit export --to) */
     const char *model;   /* its native model family */
@@ -52,10 +59,11 @@ BF_API const bf_export_target *bf_export_target_find(const char *name);
  * targets hold one isotropic lobe). */
 BF_API bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int convert_any, bf_error *err);
 
-/* Puts (src, xs) into t's native model as *e: the source itself when its family is
- * t->model, else a conversion fit of t->model to src's values (seeded, so the same bytes
- * each time), whose result goes into *fit (clear it with bf_fit_result_clear once *e is no
- * longer used; it is cleared here on an error). Check first with bf_export_check. */
+/* Puts (src, xs) into t's native model as *e (set up by bf_export_material_init): the
+ * source itself when its family is t->model, else a conversion fit of t->model to src's
+ * values (seeded, so the same bytes each time), whose result goes into *fit (clear it
+ * with bf_fit_result_clear once *e is no longer used; it is cleared here on an error).
+ * Check first with bf_export_check. */
 BF_API bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err);
 

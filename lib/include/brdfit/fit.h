@@ -35,6 +35,33 @@ extern "C" {
 #define BF_FIT_MAX_WARNINGS 16
 #define BF_FIT_WARNING_LEN 192
 
+/* What kind of doubt a warning of bf_fit_result says: callers decide on the kind (is the
+ * fit unsure? is a parameter at a bound?), never on the text, which is for people and may
+ * be reworded. Each kind has a stable snake_case name (bf_warning_kind_name) for files
+ * that store kinds; a name never changes meaning, new kinds are added at the end. */
+typedef enum bf_warning_kind {
+    BF_WARN_OTHER = 0,    /* "other": none of these (or a warning read back without a kind) */
+    BF_WARN_AT_BOUND,     /* "at_bound": a free parameter on a bound of its range */
+    BF_WARN_UNDETERMINED, /* "undetermined": no standard error, or a huge one */
+    BF_WARN_CORRELATED,   /* "correlated": parameters correlated beyond 0.999 */
+    BF_WARN_INACTIVE,     /* "inactive": parameters without effect (not counted in k) */
+    BF_WARN_ALBEDO,       /* "albedo_above_one": the fitted BRDF reflects more than it receives */
+    BF_WARN_NARROW_LOBE,  /* "narrow_lobe": a lobe narrower than the data's sampling */
+    BF_WARN_ONE_START,    /* "one_start": the best optimum reached from 1 of several starts */
+    BF_WARN_SOLVER_LIMIT, /* "solver_limit": the solve stopped on its iteration or time limit */
+    BF_WARN_FAILED,       /* "failed": the fit failed (r->ok 0) */
+    BF_WARN_CANCELLED,    /* "cancelled": the fit was cancelled by its caller */
+    BF_WARN_NO_CRITERIA,  /* "criteria_undefined": AIC, AICc, BIC undefined under a robust loss */
+    BF_WARN_TRUNCATED,    /* "truncated": the list was cut at BF_FIT_MAX_WARNINGS */
+    BF_WARN_KINDS         /* the count, not a kind */
+} bf_warning_kind;
+
+/* The kind's stable name ("at_bound"; "unknown" for a value out of range). */
+BF_API const char *bf_warning_kind_name(bf_warning_kind k);
+/* The kind of a name bf_warning_kind_name gives; BF_ERR_ARG (listing the names) for
+ * any other. */
+BF_API bf_status bf_warning_kind_parse(const char *name, bf_warning_kind *out, bf_error *err);
+
 /* What the presolve did (samples 0: none ran). */
 typedef struct bf_presolve_info {
     size_t samples;
@@ -73,12 +100,13 @@ typedef struct bf_fit_result {
      * criteria left undefined by a robust loss. */
     int nwarnings;
     char warnings[BF_FIT_MAX_WARNINGS][BF_FIT_WARNING_LEN];
+    /* The kind of warnings[i] (at the end, so the fields above keep their offsets). */
+    bf_warning_kind warning_kind[BF_FIT_MAX_WARNINGS];
 } bf_fit_result;
 
-/* The warning of a fit whose best optimum was reached from one start of several (the
- * search may have missed a better one), as it begins. */
-#define BF_FIT_WARN_ONE_START "the best optimum was reached from 1 of"
-/* 1 when r has that warning (so also for a result read back from its warnings). */
+/* 1 when r has a BF_WARN_ONE_START warning: its best optimum was reached from one start
+ * of several, so the search may have missed a better one (also for a result read back
+ * with its kinds). */
 BF_API int bf_fit_result_unsure(const bf_fit_result *r);
 
 /* Fits spec ("walter", "microfacet:D=ggx,lobes=2" ...) to s with the fitting options of

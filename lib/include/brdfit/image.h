@@ -4,12 +4,14 @@
  * that use no images never load OpenImageIO); it is looked for in $BRDFIT_PLUGIN_DIR if
  * set, else beside the executable as installed, the build tree, the install directory.
  * If it cannot be loaded, those calls fail with BF_ERR_IO ("image support ... could not
- * be loaded: ..."). bf_image_format_of, bf_srgb_encode, bf_srgb_decode and
- * bf_image_clear need no module.
+ * be loaded: ..."). bf_image_format_of, bf_srgb_encode, bf_srgb_decode, the init
+ * functions and bf_image_clear need no module.
  * Status codes and ownership follow brdfit/error.h.
  */
 #ifndef BRDFIT_IMAGE_H
 #define BRDFIT_IMAGE_H
+
+#include <stddef.h>
 
 #include "brdfit/error.h"
 
@@ -18,11 +20,16 @@ extern "C" {
 #endif
 
 /* An image in memory: width * height pixels, row-major from the top row, channels
- * interleaved (pixels[(y*width + x)*channels + c]). */
+ * interleaved (pixels[(y*width + x)*channels + c]). Callers set it up with
+ * bf_image_init; the readers fill what lies within its size (docs/api.md). */
 typedef struct bf_image {
+    size_t size; /* sizeof, set by bf_image_init */
     int width, height, channels;
     float *pixels;
 } bf_image;
+
+/* An empty image (no pixels) with its size set. */
+BF_API void bf_image_init(bf_image *img);
 
 /* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise (BF_IMAGE_*). */
 enum { BF_IMAGE_BY_NAME = 0, BF_IMAGE_PNG = 1, BF_IMAGE_EXR = 2 };
@@ -41,18 +48,25 @@ BF_API bf_status bf_image_write_rgb(const char *path, int width, int height, con
 BF_API bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err);
 
 /* Reads any image OpenImageIO reads, every channel as float: EXR values as stored, PNG
- * values as stored codes / 255 (still sRGB-encoded: no colour conversion). On success
- * img->pixels is malloc'd; free with bf_image_clear. */
+ * values as stored codes / 255 (still sRGB-encoded: no colour conversion), into img (set
+ * up by bf_image_init; empty on failure). On success img->pixels is malloc'd; free with
+ * bf_image_clear. */
 BF_API bf_status bf_image_read(const char *path, bf_image *img, bf_error *err);
+/* Frees the pixels (NULL after; twice is harmless). img stays set up for another read. */
 BF_API void bf_image_clear(bf_image *img);
 
 /* What a file holds, without reading its pixels: size, channels, and how its values are
- * stored (bits 8 or 16 for integer formats, 16 or 32 with is_float for half and float). */
+ * stored (bits 8 or 16 for integer formats, 16 or 32 with is_float for half and float).
+ * Callers set it up with bf_image_spec_init; bf_image_info fills what lies within its
+ * size (docs/api.md). */
 typedef struct bf_image_spec {
+    size_t size; /* sizeof, set by bf_image_spec_init */
     int width, height, channels;
     int bits;
     int is_float;
 } bf_image_spec;
+/* Zeroes *sp and sets its size. */
+BF_API void bf_image_spec_init(bf_image_spec *sp);
 BF_API bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
 
 /* Reads rows [y0, y1) of any image OpenImageIO reads (0 <= y0 < y1 <= height), every

@@ -17,7 +17,7 @@
 extern "C" {
 #endif
 
-/* One image of a stack and its light. */
+/* One image of a stack and its light. Frozen (docs/api.md): an array element. */
 typedef struct bf_stack_image {
     char *file;    /* as it is opened (the stack's folder prepended) */
     int point;     /* 0: directional light `dir`; 1: point light at `pos` (1/r^2) */
@@ -29,6 +29,7 @@ typedef struct bf_stack_image {
 
 typedef enum bf_stack_camera_type { BF_CAMERA_ORTHOGRAPHIC = 0, BF_CAMERA_PINHOLE } bf_stack_camera_type;
 
+/* Frozen (docs/api.md): embedded in bf_stack. */
 typedef struct bf_stack_camera {
     bf_stack_camera_type type;
     double pixel_size, center[3]; /* orthographic */
@@ -41,6 +42,8 @@ typedef enum bf_transfer { BF_TRANSFER_LINEAR = 0, BF_TRANSFER_SRGB, BF_TRANSFER
 
 typedef enum bf_stack_layout { BF_STACK_DILIGENT = 0, BF_STACK_JSON } bf_stack_layout;
 
+/* Made by bf_stack_read, freed by bf_stack_free: read through the pointer, may gain
+ * fields at the end (docs/api.md). */
 typedef struct bf_stack {
     char *path; /* the folder or JSON file it was read from */
     bf_stack_layout layout;
@@ -71,7 +74,9 @@ typedef enum bf_photo_normals {
     BF_NORMALS_FLAT     /* the sample's plane: the world's +z */
 } bf_photo_normals;
 
+/* Callers set it up with bf_photo_options_init (size: docs/api.md). */
 typedef struct bf_photo_options {
+    size_t size;       /* sizeof, set by bf_photo_options_init */
     const char *model; /* a registry spec */
     bf_photo_normals normals;
     const char *normals_file;   /* BF_NORMALS_FILE */
@@ -90,12 +95,14 @@ typedef struct bf_photo_options {
     const bf_cancel_flag *cancel; /* non-zero: stop (bf_photo_result.cancelled) */
 } bf_photo_options;
 
+/* Sets the size and the defaults: model "walter", 3 relit images, the rest 0. */
 BF_API void bf_photo_options_init(bf_photo_options *o);
 
 #define BF_PHOTO_MAX_RELIT 8
 #define BF_PHOTO_MAX_SHARED 32
 
-/* Counts of samples (pixel x image) and pixels. */
+/* Counts of samples (pixel x image) and pixels. Frozen (docs/api.md): embedded in
+ * bf_photo_result. */
 typedef struct bf_photo_counts {
     size_t pixels;   /* fitted (inside the mask and the tile) */
     size_t masked;   /* pixels outside the mask (in the tile) */
@@ -107,6 +114,8 @@ typedef struct bf_photo_counts {
     size_t invalid; /* NaN or infinite values */
 } bf_photo_counts;
 
+/* Made by bf_photo_fit, freed by bf_photo_result_free: read through the pointer, may
+ * gain fields at the end (docs/api.md). */
 typedef struct bf_photo_result {
     int width, height, channels;
     int y0, y1;             /* the rows fitted (a tile's band; else 0, height) */

@@ -20,7 +20,8 @@
 extern "C" {
 #endif
 
-/* A direction in world space: theta from +z, phi from +x towards +y. */
+/* A direction in world space: theta from +z, phi from +x towards +y. Frozen
+ * (docs/api.md): a small value struct. */
 typedef struct bf_dir {
     double theta, phi;
 } bf_dir;
@@ -34,13 +35,19 @@ typedef struct bf_dir {
  * (world +y where n is within 1e-6 of +-x), bitangent n x t. Each light is directional
  * with intensity 1, from direction L in world space:
  *   radiance = sum_lights f(L_local, V_local) cos(theta_L), V = w,
- * zero where L or V is below the local horizon, and exactly 0 outside the disc. */
+ * zero where L or V is below the local horizon, and exactly 0 outside the disc.
+ * Callers set it up with bf_sphere_options_init (size: docs/api.md). */
 typedef struct bf_sphere_options {
-    int size;              /* image is size x size */
+    size_t size;           /* sizeof, set by bf_sphere_options_init */
+    int resolution;        /* image is resolution x resolution */
     bf_dir view;           /* towards the camera */
     const bf_dir *lights;  /* towards each light */
     int nlights;           /* >= 1 */
 } bf_sphere_options;
+
+/* brdfit render's defaults: 256 x 256, viewed from +z (0, 0), one light at (45, 0)
+ * (lights points to the library's own copy). */
+BF_API void bf_sphere_options_init(bf_sphere_options *o);
 
 BF_API bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err);
@@ -62,12 +69,18 @@ BF_API int bf_plot_format_of(const char *path);
  * other name. */
 BF_API bf_status bf_plot_format_parse(const char *name, bf_plot_format *out, bf_error *err);
 
-/* What a plot's axes span (data units, not log10) and how many points it drew. */
+/* What a plot's axes span (data units, not log10) and how many points it drew.
+ * Callers set it up with bf_plot_axes_init; the library fills what lies within its size
+ * (docs/api.md). */
 typedef struct bf_plot_axes {
+    size_t size; /* sizeof, set by bf_plot_axes_init */
     double x_lo, x_hi, y_lo, y_hi;
     int log_x, log_y;
     int drawn;
 } bf_plot_axes;
+
+/* Zeroes *a and sets its size. */
+BF_API void bf_plot_axes_init(bf_plot_axes *a);
 
 /* ---- In-plane slices -------------------------------------------------------------
  * For each incidence angle theta_i (light at phi_i = 0), f at viewing directions in the
@@ -84,9 +97,11 @@ typedef struct bf_plot_axes {
  * together. Measured samples, when given, are drawn as translucent markers under the
  * curves: those whose theta_i lies within plane_tol of an incidence angle and whose
  * viewing direction lies within plane_tol of the plane of incidence; of an incidence
- * angle with more than 90, one per degree of theta_o (the nearest the degree's centre). */
+ * angle with more than 90, one per degree of theta_o (the nearest the degree's centre).
+ * Callers set the options up with bf_slice_options_init (size: docs/api.md). */
 #define BF_SLICE_MAX_INCIDENCE 16
 typedef struct bf_slice_options {
+    size_t size; /* sizeof, set by bf_slice_options_init */
     int width, height;
     const double *incidence; /* degrees, in [0, 90) */
     int nincidence;          /* 1 .. BF_SLICE_MAX_INCIDENCE */
@@ -97,12 +112,23 @@ typedef struct bf_slice_options {
     double log10_lo, log10_hi; /* the y axis (log10 f) when log10_lo < log10_hi */
 } bf_slice_options;
 
-/* The plot's y range in log10 f, and the samples overlaid (in the plane) and drawn. */
+/* brdfit render --slice's defaults: 640 x 480, incidence 0, 30 and 60 degrees (incidence
+ * points to the library's own copy), no samples, plane_tol 2, the default title, the y
+ * range from the data. */
+BF_API void bf_slice_options_init(bf_slice_options *o);
+
+/* The plot's y range in log10 f, and the samples overlaid (in the plane) and drawn.
+ * Callers set it up with bf_slice_range_init; the library fills what lies within its
+ * size (docs/api.md). */
 typedef struct bf_slice_range {
+    size_t size; /* sizeof, set by bf_slice_range_init */
     double log10_lo, log10_hi;
     size_t overlaid;         /* measured samples in the plane of an incidence angle */
     size_t shown;            /* of those, drawn (dense ones: one per degree of theta_o) */
 } bf_slice_range;
+
+/* Zeroes *r and sets its size. */
+BF_API void bf_slice_range_init(bf_slice_range *r);
 
 /* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
  * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds

@@ -26,11 +26,11 @@ typedef struct bf_problem {
      * jac[(r - r0) * npar + k] = d res[r - r0] / d x[k]. Called concurrently for
      * disjoint ranges (threads), so it must not write shared state. Returns 0, or
      * non-zero to abort the solve. */
-    int (*eval)(void *ctx, const double *x, size_t r0, size_t r1, double *res, double *jac);
-    void *ctx;
+    int (*eval)(void *user, const double *x, size_t r0, size_t r1, double *res, double *jac);
+    void *user; /* every callback's first argument */
     /* Optional inequality constraint c(x) <= 0 with its gradient (grad may be NULL), used
      * by the NLopt methods that accept constraints (LD_SLSQP, LD_MMA, GN_ISRES). */
-    double (*constraint)(void *ctx, const double *x, double *grad);
+    double (*constraint)(void *user, const double *x, double *grad);
     /* Optional fused pass, which every back end prefers to eval: one sweep over all
      * residuals that never stores the Jacobian (a full MERL table has 3.3 M residuals).
      * With each residual r made g = bf_loss_residual(loss, r) and J its Jacobian row (of
@@ -39,7 +39,7 @@ typedef struct bf_problem {
      * depend on `threads` (sum fixed chunks in a fixed order). A non-finite residual or
      * Jacobian entry shows as a non-finite *ssq or diagonal. Returns 0, or non-zero to
      * abort (out of memory). NULL: the back ends build the same sums from eval. */
-    int (*normal)(void *ctx, const double *x, const struct bf_loss *loss, int threads, double *ssq,
+    int (*normal)(void *user, const double *x, const struct bf_loss *loss, int threads, double *ssq,
                   double *jtr, double *jtj);
 } bf_problem;
 

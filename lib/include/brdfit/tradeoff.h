@@ -129,8 +129,8 @@ BF_API bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, b
 /* Test error (log axis unless some error is 0) against the cost (log axis): every
  * setting, the Pareto front drawn and named, its points labelled #N (the row's number,
  * from 1), the recommended setting ringed; a plot (render.h) of width x height in format
- * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL): what the
- * axes span. */
+ * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL; set up by
+ * bf_plot_axes_init): what the axes span. */
 BF_API bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
                            bf_plot_axes *axes, bf_error *err);
 

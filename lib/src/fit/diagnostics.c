@@ -9,7 +9,9 @@
  *  - a lobe narrower than the data's sampling near the specular peak: fewer than
  *    LOBE_MIN_SAMPLES samples within its half width at half maximum in theta_h;
  *  - a solve that stopped on its iteration or time limit, or failed;
- *  - criteria left undefined by a robust loss. */
+ *  - criteria left undefined by a robust loss.
+ * Each warning carries its kind (fit.h, bf_warning_kind): decisions read the kind, never
+ * the text. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -25,16 +27,55 @@
 #define ALBEDO_LIMIT 1.001 /* above 1 by more than the quadrature's error */
 #define LOBE_MIN_SAMPLES 10
 
-void bf_fit_warn(bf_fit_result *r, const char *fmt, ...)
+/* The names of bf_warning_kind, in its order: stored in files, so never renamed. */
+static const char *const kind_names[BF_WARN_KINDS] = {
+    [BF_WARN_OTHER] = "other",
+    [BF_WARN_AT_BOUND] = "at_bound",
+    [BF_WARN_UNDETERMINED] = "undetermined",
+    [BF_WARN_CORRELATED] = "correlated",
+    [BF_WARN_INACTIVE] = "inactive",
+    [BF_WARN_ALBEDO] = "albedo_above_one",
+    [BF_WARN_NARROW_LOBE] = "narrow_lobe",
+    [BF_WARN_ONE_START] = "one_start",
+    [BF_WARN_SOLVER_LIMIT] = "solver_limit",
+    [BF_WARN_FAILED] = "failed",
+    [BF_WARN_CANCELLED] = "cancelled",
+    [BF_WARN_NO_CRITERIA] = "criteria_undefined",
+    [BF_WARN_TRUNCATED] = "truncated",
+};
+
+const char *bf_warning_kind_name(bf_warning_kind k)
+{
+    return (int)k >= 0 && (int)k < BF_WARN_KINDS ? kind_names[k] : "unknown";
+}
+
+bf_status bf_warning_kind_parse(const char *name, bf_warning_kind *out, bf_error *err)
+{
+    char list[320] = "";
+    for (int k = 0; k < BF_WARN_KINDS; k++) {
+        if (name && !strcmp(name, kind_names[k])) {
+            *out = (bf_warning_kind)k;
+            return BF_OK;
+        }
+        size_t len = strlen(list);
+        snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kind_names[k]);
+    }
+    return bf_fail(err, BF_ERR_ARG, "unknown warning kind '%s' (%s)", name ? name : "", list);
+}
+
+void bf_fit_warn(bf_fit_result *r, bf_warning_kind kind, const char *fmt, ...)
 {
     if (r->nwarnings >= BF_FIT_MAX_WARNINGS) {
-        /* The last slot says that more were left out. */
+        /* The last slot says that more were left out (and what it said is lost with its
+         * kind). */
         snprintf(r->warnings[BF_FIT_MAX_WARNINGS - 1], sizeof r->warnings[0], "%s",
                  "more warnings than shown (the list is cut here)");
+        r->warning_kind[BF_FIT_MAX_WARNINGS - 1] = BF_WARN_TRUNCATED;
         return;
     }
     va_list ap;
     va_start(ap, fmt);
+    r->warning_kind[r->nwarnings] = kind;
     vsnprintf(r->warnings[r->nwarnings++], sizeof r->warnings[0], fmt, ap);
     va_end(ap);
 }
@@ -57,10 +98,14 @@ static int entry_kind(double x, double se, double lo, double hi)
 static void warn_entry(bf_fit_result *r, const char *name, int kind, double x, double se, double lo, double hi)
 {
     switch (kind) {
-    case ENTRY_AT_LOWER: bf_fit_warn(r, "%s = %.6g is at its lower bound %.6g", name, x, lo); break;
-    case ENTRY_AT_UPPER: bf_fit_warn(r, "%s = %.6g is at its upper bound %.6g", name, x, hi); break;
-    case ENTRY_NO_SE: bf_fit_warn(r, "%s = %.6g is not determined by the data (no standard error)", name, x); break;
-    case ENTRY_HUGE_SE: bf_fit_warn(r, "%s = %.6g +- %.2g is not determined by the data", name, x, se); break;
+    case ENTRY_AT_LOWER: bf_fit_warn(r, BF_WARN_AT_BOUND, "%s = %.6g is at its lower bound %.6g", name, x, lo); break;
+    case ENTRY_AT_UPPER: bf_fit_warn(r, BF_WARN_AT_BOUND, "%s = %.6g is at its upper bound %.6g", name, x, hi); break;
+    case ENTRY_NO_SE:
+        bf_fit_warn(r, BF_WARN_UNDETERMINED, "%s = %.6g is not determined by the data (no standard error)", name, x);
+        break;
+    case ENTRY_HUGE_SE:
+        bf_fit_warn(r, BF_WARN_UNDETERMINED, "%s = %.6g +- %.2g is not determined by the data", name, x, se);
+        break;
     default: break;
     }
 }
@@ -113,7 +158,7 @@ static void check_inactive(const bf_fit_result *r, const double *lo, const doubl
         if (!count)
             continue;
         if (g < 0) {
-            bf_fit_warn(w, "%s %s no effect on these data (inactive: not counted in k)", names,
+            bf_fit_warn(w, BF_WARN_INACTIVE, "%s %s no effect on these data (inactive: not counted in k)", names,
                         count > 1 ? "have" : "has");
             continue;
         }
@@ -138,7 +183,9 @@ static void check_inactive(const bf_fit_result *r, const double *lo, const doubl
         else
             snprintf(where, sizeof where, "while %s is at its %s bound %.6g in %s", gp->name, lower ? "lower" : "upper",
                      lower ? lo[off] : hi[off], lower + upper == n ? "every channel" : "some channels");
-        bf_fit_warn(w, "%s %s no effect %s (inactive: not counted in k)", names, count > 1 ? "have" : "has", where);
+        /* Inactive, though it may also say where the silencing parameter's bound is. */
+        bf_fit_warn(w, BF_WARN_INACTIVE, "%s %s no effect %s (inactive: not counted in k)", names,
+                    count > 1 ? "have" : "has", where);
     }
 }
 
@@ -186,25 +233,27 @@ static void check_entries(const bf_objective *o, bf_fit_result *r)
             } else if (n > 3) {
                 bf_model_entry_name(m, k, name, sizeof name);
                 if (kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER)
-                    bf_fit_warn(r, "%s is at its %s bound %.6g in %d of %d channels (the first %s)", p->name,
-                                kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k],
-                                count[kind], n, name);
+                    bf_fit_warn(r, BF_WARN_AT_BOUND, "%s is at its %s bound %.6g in %d of %d channels (the first %s)",
+                                p->name, kind == ENTRY_AT_LOWER ? "lower" : "upper",
+                                kind == ENTRY_AT_LOWER ? lo[k] : hi[k], count[kind], n, name);
                 else if (kind == ENTRY_NO_SE)
-                    bf_fit_warn(r,
+                    bf_fit_warn(r, BF_WARN_UNDETERMINED,
                                 "%s is not determined by the data in %d of %d channels (no standard error; "
                                 "%s = %.6g)",
                                 p->name, count[kind], n, name, r->x[k]);
                 else
-                    bf_fit_warn(r, "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)", p->name,
+                    bf_fit_warn(r, BF_WARN_UNDETERMINED,
+                                "%s is not determined by the data in %d of %d channels (%s = %.6g +- %.2g)", p->name,
                                 count[kind], n, name, r->x[k], r->stderr_[k]);
             } else if ((kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER) && count[kind] == n) {
-                bf_fit_warn(r, "%s is at its %s bound %.6g in every channel", p->name,
+                bf_fit_warn(r, BF_WARN_AT_BOUND, "%s is at its %s bound %.6g in every channel", p->name,
                             kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k]);
             } else if (kind == ENTRY_AT_LOWER || kind == ENTRY_AT_UPPER) {
-                bf_fit_warn(r, "%s: channels %s at the %s bound %.6g", p->name, chans[kind],
+                bf_fit_warn(r, BF_WARN_AT_BOUND, "%s: channels %s at the %s bound %.6g", p->name, chans[kind],
                             kind == ENTRY_AT_LOWER ? "lower" : "upper", kind == ENTRY_AT_LOWER ? lo[k] : hi[k]);
             } else {
-                bf_fit_warn(r, "%s: channels %s not determined by the data (%s)", p->name, chans[kind],
+                bf_fit_warn(r, BF_WARN_UNDETERMINED, "%s: channels %s not determined by the data (%s)", p->name,
+                            chans[kind],
                             kind == ENTRY_NO_SE ? "no standard error"
                                                 : "standard error larger than the value or half the range");
             }
@@ -264,16 +313,18 @@ static void check_correlations(const bf_objective *o, const double *corr, bf_fit
             if (count[at] == 1) {
                 bf_model_entry_name(m, first[2 * at], other, sizeof other);
                 bf_model_entry_name(m, first[2 * at + 1], name, sizeof name);
-                bf_fit_warn(r, "%s and %s are correlated (r = %.4f): the data hardly tell them apart", other, name,
+                bf_fit_warn(r, BF_WARN_CORRELATED,
+                            "%s and %s are correlated (r = %.4f): the data hardly tell them apart", other, name,
                             worst[at]);
             } else if (pa == pb) {
-                bf_fit_warn(r,
+                bf_fit_warn(r, BF_WARN_CORRELATED,
                             "%s: its channels are correlated with each other (%d pairs, r up to %.4f): the data "
                             "hardly tell them apart",
                             bf_model_param(m, pa)->name, count[at], worst[at]);
             } else {
                 const int colours = bf_model_param(m, pa)->colour + bf_model_param(m, pb)->colour;
-                bf_fit_warn(r, "%s and %s are correlated in %d %s (r up to %.4f): the data hardly tell them apart",
+                bf_fit_warn(r, BF_WARN_CORRELATED,
+                            "%s and %s are correlated in %d %s (r up to %.4f): the data hardly tell them apart",
                             bf_model_param(m, pa)->name, bf_model_param(m, pb)->name, count[at],
                             colours == 1 ? "channels" : "pairs of channels", worst[at]);
             }
@@ -416,7 +467,7 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
             continue;
         const size_t n = samples_within(s, w);
         if (n < LOBE_MIN_SAMPLES)
-            bf_fit_warn(r,
+            bf_fit_warn(r, BF_WARN_NARROW_LOBE,
                         "lobe %d is %.3g deg wide (half width at half maximum in theta_h), and only %zu "
                         "sample%s within it: the data do not resolve the highlight",
                         k + 1, w * (180.0 / M_PI), n, n == 1 ? " lies" : "s lie");
@@ -429,7 +480,7 @@ static void check_lobes(bf_samples *s, bf_fit_result *r)
 int bf_fit_result_unsure(const bf_fit_result *r)
 {
     for (int w = 0; r && w < r->nwarnings; w++)
-        if (!strncmp(r->warnings[w], BF_FIT_WARN_ONE_START, sizeof BF_FIT_WARN_ONE_START - 1))
+        if (r->warning_kind[w] == BF_WARN_ONE_START)
             return 1;
     return 0;
 }
@@ -439,17 +490,18 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
 {
     const bf_solution *sol = &r->solution;
     if (!r->ok)
-        bf_fit_warn(r, "the fit failed: %s", sol->termination);
+        bf_fit_warn(r, BF_WARN_FAILED, "the fit failed: %s", sol->termination);
     else if (sol->stop == BF_STOP_ITERATIONS || sol->stop == BF_STOP_TIME)
-        bf_fit_warn(r, "the solver stopped on its limit after %d iteration%s, before converging", sol->iterations,
-                    sol->iterations == 1 ? "" : "s");
+        bf_fit_warn(r, BF_WARN_SOLVER_LIMIT, "the solver stopped on its limit after %d iteration%s, before converging",
+                    sol->iterations, sol->iterations == 1 ? "" : "s");
     if (r->ok && r->starts > 1 && r->starts_at_best == 1)
-        bf_fit_warn(r,
-                    BF_FIT_WARN_ONE_START " %d starts: a better one may have been missed (--accuracy best "
-                                          "searches harder)",
+        bf_fit_warn(r, BF_WARN_ONE_START,
+                    "the best optimum was reached from 1 of %d starts: a better one may have been missed "
+                    "(--accuracy best searches harder)",
                     r->starts);
     if (opt->solver.loss.kind != BF_LOSS_NONE)
-        bf_fit_warn(r, "AIC, AICc and BIC are undefined: a robust loss minimises no Gaussian likelihood");
+        bf_fit_warn(r, BF_WARN_NO_CRITERIA,
+                    "AIC, AICc and BIC are undefined: a robust loss minimises no Gaussian likelihood");
     check_entries(o, r);
     check_correlations(o, corr, r);
     double a, t;
@@ -458,7 +510,7 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
         char ch[40] = "";
         if (bf_model_channels(r->model) > 1)
             snprintf(ch, sizeof ch, " in channel %d", c);
-        bf_fit_warn(r,
+        bf_fit_warn(r, BF_WARN_ALBEDO,
                     "the albedo reaches %.4g at theta_i = %.0f deg%s: the fitted BRDF reflects more light than it "
                     "receives",
                     a, t, ch);

@@ -6,9 +6,10 @@
 #include "fit_impl.h"
 #include "objective_impl.h"
 
-/* Adds one warning (printf style; cut at the slot's size; past BF_FIT_MAX_WARNINGS the
- * last slot says that more were left out). */
-void bf_fit_warn(bf_fit_result *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Adds one warning of the given kind (printf style; cut at the slot's size; past
+ * BF_FIT_MAX_WARNINGS the last slot says that more were left out, kind
+ * BF_WARN_TRUNCATED). */
+void bf_fit_warn(bf_fit_result *r, bf_warning_kind kind, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* Every check of diagnostics.c on a finished fit: o its objective, s its samples, corr
  * the free entries' correlations (bf_obj_final; NULL: none). */

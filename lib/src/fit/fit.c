@@ -37,7 +37,7 @@ static bf_status plain_cost(const bf_problem *p, const double *z, double *cost, 
     double c = 0.0;
     for (size_t r0 = 0; r0 < p->nres; r0 += CHUNK) {
         size_t r1 = r0 + CHUNK < p->nres ? r0 + CHUNK : p->nres;
-        if (p->eval(p->ctx, z, r0, r1, r, NULL) != 0) {
+        if (p->eval(p->user, z, r0, r1, r, NULL) != 0) {
             c = NAN;
             break;
         }
@@ -135,7 +135,7 @@ static void cancelled_result(bf_fit_result *r, const bf_fit_options *o, const bf
     r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
     r->seed = o->seed;
     r->residual = o->objective.residual;
-    bf_fit_warn(r, "the fit was cancelled by the caller: no parameters were fitted");
+    bf_fit_warn(r, BF_WARN_CANCELLED, "the fit was cancelled by the caller: no parameters were fitted");
 }
 
 /* Entries on a bound and entries without effect at the optimum zbest (silence.h), found

@@ -454,7 +454,7 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
     o->problem.hi = o->zhi;
     o->problem.eval = problem_eval;
     o->problem.normal = problem_normal;
-    o->problem.ctx = o;
+    o->problem.user = o;
     o->problem.constraint = o->ncolour > 0 ? problem_constraint : NULL;
     *out = o;
     return BF_OK;

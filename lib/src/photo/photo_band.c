@@ -40,6 +40,7 @@ bf_status photo_mask_load(const bf_stack *s, unsigned char **mask, bf_error *err
         return BF_OK;
     }
     bf_image img;
+    bf_image_init(&img);
     bf_status rc = bf_image_read(s->mask, &img, err);
     if (rc != BF_OK) {
         free(m);
@@ -69,6 +70,7 @@ static void load_image(void *ctx, size_t k)
     const bf_stack *s = j->s;
     photo_band *b = j->b;
     bf_image img;
+    bf_image_init(&img);
     j->rc[k] = bf_image_read_rows(s->images[k].file, b->y0, b->y1, &img, &j->errs[k]);
     if (j->rc[k] != BF_OK)
         return;

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "base/parallel.h"
+#include "base/sized.h"
 #include "brdfit/clock.h"
 #include "brdfit/image.h"
 #include "objective_impl.h"
@@ -31,6 +32,7 @@
 void bf_photo_options_init(bf_photo_options *o)
 {
     memset(o, 0, sizeof *o);
+    o->size = sizeof *o;
     o->model = "walter";
     o->relit_images = 3;
 }
@@ -158,6 +160,7 @@ static bf_status load_given_normals(photo_run *run, float **out, bf_error *err)
 {
     const bf_stack *s = run->s;
     bf_image img;
+    bf_image_init(&img);
     bf_status rc = bf_image_read(run->o->normals_file, &img, err);
     if (rc != BF_OK)
         return rc;
@@ -745,6 +748,8 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
 {
     *out = NULL;
     double t0 = bf_now_seconds();
+    if (o && bf_sized_check(o, sizeof *o, "bf_photo_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!s || !o || !o->model)
         return bf_fail(err, BF_ERR_ARG, "fit-images: no stack or model");
     if (o->normals == BF_NORMALS_FILE && !o->normals_file)

@@ -70,6 +70,7 @@ static bf_status copy_rows(const tile *t, const char *name, int W, int H, int ch
     char path[4200];
     snprintf(path, sizeof path, "%s/%s", t->dir, name);
     bf_image img;
+    bf_image_init(&img);
     bf_status rc = bf_image_read(path, &img, err);
     if (rc != BF_OK)
         return rc;
@@ -238,6 +239,7 @@ bf_status bf_photo_merge(const char *const *dirs, int n, const char *out, const 
             snprintf(name, sizeof name, "relit_%03d.exr", r->relit_index[q]);
             snprintf(path, sizeof path, "%s/%s", ti->dir, name);
             bf_image img;
+            bf_image_init(&img);
             if ((rc = bf_image_read(path, &img, err)) != BF_OK)
                 break;
             if (img.width != 2 * W || img.height != H || img.channels < 3)

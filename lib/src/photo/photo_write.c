@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sized.h"
 #include "brdfit/image.h"
 #include "brdfit/version.h"
 #include "io/json_out.h"
@@ -229,6 +230,8 @@ bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_p
 {
     if (!r || !s || !o)
         return bf_fail(err, BF_ERR_ARG, "fit-images: nothing to write");
+    if (bf_sized_check(o, sizeof *o, "bf_photo_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (r->cancelled)
         return bf_fail(err, BF_ERR_ARG, "%s: the fit was cancelled: nothing written", dir);
     bf_out_folder f;

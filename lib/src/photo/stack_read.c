@@ -507,6 +507,7 @@ static bf_status check_images(bf_stack *s, int transfer_given, bf_error *err)
         return bf_fail(err, BF_ERR_PARSE, "%s: %d images: a stack needs at least 3", s->path, s->nimages);
     for (int k = 0; k < s->nimages; k++) {
         bf_image_spec sp;
+        bf_image_spec_init(&sp);
         bf_status rc = bf_image_info(s->images[k].file, &sp, err);
         if (rc != BF_OK)
             return rc;
@@ -533,6 +534,7 @@ static bf_status check_images(bf_stack *s, int transfer_given, bf_error *err)
     }
     if (s->mask) {
         bf_image_spec sp;
+        bf_image_spec_init(&sp);
         bf_status rc = bf_image_info(s->mask, &sp, err);
         if (rc != BF_OK)
             return rc;

@@ -102,7 +102,7 @@ static double nl_constraint(unsigned n, const double *z, double *grad, void *dat
         st->xfull[st->freeidx[j]] = z[j];
     if (grad)
         memset(st->gfull, 0, (size_t)st->npar * sizeof *st->gfull);
-    double c = st->p->constraint(st->p->ctx, st->xfull, grad ? st->gfull : NULL);
+    double c = st->p->constraint(st->p->user, st->xfull, grad ? st->gfull : NULL);
     int ok = isfinite(c);
     if (grad) {
         for (int j = 0; j < st->nfree; j++) {

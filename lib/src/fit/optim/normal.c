@@ -38,7 +38,7 @@ static void chunk_sums(void *ctx, size_t c)
     double *res = malloc((r1 - r0) * sizeof *res);
     double *jac = j->want_jtr ? malloc((r1 - r0) * (size_t)np * sizeof *jac) : NULL;
     double *out = j->part + c * part_size(np);
-    if (!res || (j->want_jtr && !jac) || p->eval(p->ctx, j->x, r0, r1, res, jac) != 0) {
+    if (!res || (j->want_jtr && !jac) || p->eval(p->user, j->x, r0, r1, res, jac) != 0) {
         j->failed = 1;
         free(res);
         free(jac);
@@ -72,7 +72,7 @@ int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss,
                       double *jtr, double *jtj)
 {
     if (p->normal)
-        return p->normal(p->ctx, x, loss, threads, ssq, jtr, jtj);
+        return p->normal(p->user, x, loss, threads, ssq, jtr, jtj);
     const int np = p->npar;
     const size_t rows = chunk_rows(np), nchunks = (p->nres + rows - 1) / rows, ps = part_size(np);
     job j = {p, x, loss, rows, jtr != NULL || jtj != NULL, jtj != NULL, calloc(nchunks * ps + 1, sizeof(double)), 0};

@@ -61,6 +61,19 @@ const bf_samples *report_measured_table(const report *r, int i, const char **why
     return NULL;
 }
 
+/* Every model's slices alike: the panel's size, within 2 degrees of the plane (as the
+ * page says). */
+static void slice_options(bf_slice_options *so, const double *inc, int ninc, bf_samples *s)
+{
+    bf_slice_options_init(so);
+    so->width = SLICE_W;
+    so->height = SLICE_H;
+    so->incidence = inc;
+    so->nincidence = ninc;
+    so->samples = s;
+    so->plane_tol = 2.0;
+}
+
 static bf_status slices(report *r, int i, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
@@ -78,10 +91,11 @@ static bf_status slices(report *r, int i, const bf_compare_material *m)
     double lo = INFINITY, hi = -INFINITY;
     for (int j = 0; j < c->nmodels; j++) {
         const bf_fit_result *res = report_fitted(&m->fits[j]);
-        bf_slice_options so = {SLICE_W, SLICE_H, inc, ninc, s, 2.0, NULL, 0.0, 0.0};
         double a, b;
         if (!res)
             continue;
+        bf_slice_options so;
+        slice_options(&so, inc, ninc, s);
         if ((rc = bf_slice_extent(res->model, res->x, &so, &a, &b, r->err)) != BF_OK)
             return rc;
         lo = fmin(lo, a);
@@ -108,8 +122,13 @@ static bf_status slices(report *r, int i, const bf_compare_material *m)
             continue;
         char title[512], name[64];
         snprintf(title, sizeof title, "%s: %s", report_base_name(m->data), c->models[j]);
-        bf_slice_options so = {SLICE_W, SLICE_H, inc, ninc, s, 2.0, title, lo, hi};
+        bf_slice_options so;
+        slice_options(&so, inc, ninc, s);
+        so.title = title;
+        so.log10_lo = lo;
+        so.log10_hi = hi;
         bf_slice_range sr;
+        bf_slice_range_init(&sr);
         plot *p;
         if ((rc = slice_plot_build(res->model, res->x, &so, &p, &sr, r->err)) != BF_OK)
             return rc;
@@ -139,8 +158,12 @@ static bf_status spheres(report *r, int i, const bf_compare_material *m, const b
     float *buf = malloc(3 * npx * sizeof *buf);
     if (!buf)
         return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
-    bf_dir light = {45.0, 0.0};
-    bf_sphere_options sp = {SPHERE, {0.0, 0.0}, &light, 1};
+    bf_dir light = {45.0, 0.0}; /* as the page says, viewed from above */
+    bf_sphere_options sp;
+    bf_sphere_options_init(&sp);
+    sp.resolution = SPHERE;
+    sp.lights = &light;
+    sp.nlights = 1;
     /* The exposure, from the measurement, else from the best model (the nearest to it). */
     bf_status rc = BF_OK, first = m->best >= 0 && report_fitted(&m->fits[m->best]) ? m->best : -1;
     for (int j = 0; j < c->nmodels && first < 0; j++)

@@ -2,6 +2,7 @@
  * write. The writers are gltf.c, blender.c and mitsuba.c. */
 #include "brdfit/export.h"
 
+#include "base/sized.h"
 #include "fit_impl.h"
 
 #include <string.h>
@@ -28,6 +29,12 @@ const bf_export_target *bf_export_target_find(const char *name)
         if (!strcmp(name, targets[i].name))
             return &targets[i];
     return NULL;
+}
+
+void bf_export_material_init(bf_export_material *e)
+{
+    memset(e, 0, sizeof *e);
+    e->size = sizeof *e;
 }
 
 double bf_export_param(const bf_export_material *e, const char *name, int c)
@@ -97,13 +104,10 @@ static bf_status source_samples(const bf_model *src, const double *xs, bf_sample
     return BF_OK;
 }
 
-bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
-                            bf_fit_result *fit, bf_error *err)
+/* bf_export_prepare's work, into the library's own whole material e. */
+static bf_status prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
+                         bf_fit_result *fit, bf_error *err)
 {
-    memset(e, 0, sizeof *e);
-    memset(fit, 0, sizeof *fit);
-    if (!t || !src || !xs)
-        return bf_fail(err, BF_ERR_ARG, "export: no target, model or parameters");
     e->model = src;
     e->x = xs;
     e->source = bf_model_spec(src);
@@ -132,8 +136,24 @@ bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, cons
     return BF_OK;
 }
 
+bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
+                            bf_fit_result *fit, bf_error *err)
+{
+    memset(fit, 0, sizeof *fit);
+    if (bf_sized_check(e, sizeof *e, "bf_export_material", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_export_material mine;
+    bf_export_material_init(&mine);
+    bf_status rc = !t || !src || !xs ? bf_fail(err, BF_ERR_ARG, "export: no target, model or parameters")
+                                     : prepare(t, src, xs, &mine, fit, err);
+    bf_sized_copy(e, &mine, sizeof mine); /* as far as the caller's size reaches (docs/api.md) */
+    return rc;
+}
+
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err)
 {
+    if (e && bf_sized_check(e, sizeof *e, "bf_export_material", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!t || !e || !e->model || !e->x)
         return bf_fail(err, BF_ERR_ARG, "export: no target or no material");
     bf_outfile out;

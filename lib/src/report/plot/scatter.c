@@ -7,6 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sized.h"
+
+void bf_plot_axes_init(bf_plot_axes *a)
+{
+    memset(a, 0, sizeof *a);
+    a->size = sizeof *a;
+}
+
 plot *plot_scatter(const plot_scatter_spec *sp)
 {
     plot *p = plot_new(sp->title);
@@ -68,17 +76,19 @@ plot *plot_scatter(const plot_scatter_spec *sp)
 
 void plot_scatter_axes(const plot *p, const plot_scatter_spec *sp, int width, int height, bf_plot_axes *axes)
 {
-    memset(axes, 0, sizeof *axes);
+    bf_plot_axes a;
+    bf_plot_axes_init(&a);
     plot_layout l;
     if (plot_layout_compute(p, width, height, &l) == 0) {
-        axes->x_lo = l.axis[PLOT_X].lo;
-        axes->x_hi = l.axis[PLOT_X].hi;
-        axes->y_lo = l.axis[PLOT_Y].lo;
-        axes->y_hi = l.axis[PLOT_Y].hi;
+        a.x_lo = l.axis[PLOT_X].lo;
+        a.x_hi = l.axis[PLOT_X].hi;
+        a.y_lo = l.axis[PLOT_Y].lo;
+        a.y_hi = l.axis[PLOT_Y].hi;
     }
-    axes->log_x = sp->log_x;
-    axes->log_y = sp->log_y;
+    a.log_x = sp->log_x;
+    a.log_y = sp->log_y;
     for (int i = 0; i < sp->n; i++)
-        axes->drawn += isfinite(sp->x[i]) && isfinite(sp->y[i]) && !(sp->log_x && !(sp->x[i] > 0.0)) &&
-                       !(sp->log_y && !(sp->y[i] > 0.0));
+        a.drawn += isfinite(sp->x[i]) && isfinite(sp->y[i]) && !(sp->log_x && !(sp->x[i] > 0.0)) &&
+                   !(sp->log_y && !(sp->y[i] > 0.0));
+    bf_sized_copy(axes, &a, sizeof a); /* as far as the caller's size reaches (docs/api.md) */
 }

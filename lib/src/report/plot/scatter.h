@@ -20,7 +20,8 @@ typedef struct plot_scatter_spec {
 
 /* NULL when out of memory. */
 plot *plot_scatter(const plot_scatter_spec *sp);
-/* The axes the plot gets at width x height, and the points it draws. */
+/* The axes the plot gets at width x height, and the points it draws, into *axes as far
+ * as its size reaches (set by bf_plot_axes_init). */
 void plot_scatter_axes(const plot *p, const plot_scatter_spec *sp, int width, int height, bf_plot_axes *axes);
 
 #endif

@@ -6,6 +6,7 @@
  * good file. */
 #include "brdfit/image.h"
 
+#include "base/sized.h"
 #include "brdfit/io.h"
 #include "render/image_plugin.h"
 
@@ -143,17 +144,44 @@ bf_status bf_image_write(const char *path, int format, int width, int height, in
     return rc;
 }
 
-bf_status bf_image_read(const char *path, bf_image *img, bf_error *err)
+void bf_image_init(bf_image *img)
 {
     memset(img, 0, sizeof *img);
+    img->size = sizeof *img;
+}
+
+void bf_image_spec_init(bf_image_spec *sp)
+{
+    memset(sp, 0, sizeof *sp);
+    sp->size = sizeof *sp;
+}
+
+/* The module fills the library's own struct, copied out as far as the caller's size
+ * reaches (docs/api.md), so it never writes past a caller's older, smaller one. The
+ * caller's is emptied first: empty on every failure. */
+bf_status bf_image_read(const char *path, bf_image *img, bf_error *err)
+{
+    if (bf_sized_check(img, sizeof *img, "bf_image", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_image mine;
+    bf_image_init(&mine);
+    bf_sized_copy(img, &mine, sizeof mine);
     const bf_image_plugin *plugin;
     bf_status rc = bf_image_plugin_get(&plugin, err);
-    return rc != BF_OK ? rc : printable(plugin->read(path, img, err), err);
+    if (rc != BF_OK)
+        return rc;
+    rc = printable(plugin->read(path, &mine, err), err);
+    bf_sized_copy(img, &mine, sizeof mine);
+    return rc;
 }
 
 bf_status bf_image_read_rows(const char *path, int y0, int y1, bf_image *img, bf_error *err)
 {
-    memset(img, 0, sizeof *img);
+    if (bf_sized_check(img, sizeof *img, "bf_image", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_image mine;
+    bf_image_init(&mine);
+    bf_sized_copy(img, &mine, sizeof mine);
     if (!path)
         return bf_fail(err, BF_ERR_ARG, "(null): no image file name");
     /* What the file's height does not decide is checked without the module. */
@@ -161,22 +189,35 @@ bf_status bf_image_read_rows(const char *path, int y0, int y1, bf_image *img, bf
         return bf_fail(err, BF_ERR_ARG, "%s: bad rows %d to %d (want 0 <= first < end)", path, y0, y1);
     const bf_image_plugin *plugin;
     bf_status rc = bf_image_plugin_get(&plugin, err);
-    return rc != BF_OK ? rc : printable(plugin->read_rows(path, y0, y1, img, err), err);
+    if (rc != BF_OK)
+        return rc;
+    rc = printable(plugin->read_rows(path, y0, y1, &mine, err), err);
+    bf_sized_copy(img, &mine, sizeof mine);
+    return rc;
 }
 
 bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err)
 {
-    memset(out, 0, sizeof *out);
+    if (bf_sized_check(out, sizeof *out, "bf_image_spec", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_image_spec mine;
+    bf_image_spec_init(&mine);
+    bf_sized_copy(out, &mine, sizeof mine);
     if (!path)
         return bf_fail(err, BF_ERR_ARG, "(null): no image file name");
     const bf_image_plugin *plugin;
     bf_status rc = bf_image_plugin_get(&plugin, err);
-    return rc != BF_OK ? rc : printable(plugin->info(path, out, err), err);
+    if (rc != BF_OK)
+        return rc;
+    rc = printable(plugin->info(path, &mine, err), err);
+    bf_sized_copy(out, &mine, sizeof mine);
+    return rc;
 }
 
+/* Frees pixels only where img's size reaches it: a zeroed struct (size 0) holds none. */
 void bf_image_clear(bf_image *img)
 {
-    if (img) {
+    if (img && img->size >= offsetof(bf_image, pixels) + sizeof img->pixels) {
         free(img->pixels);
         img->pixels = NULL;
     }

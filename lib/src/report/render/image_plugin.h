@@ -21,8 +21,9 @@ extern "C" {
  * module is refused instead of called wrongly. 2: images are encoded into memory and
  * written by the library (bf_outfile), not by the module. 3: one encoder for 1, 3 or 4
  * channels of 8-bit, 16-bit or float pixels (bf_oiio_encode, replacing
- * bf_oiio_encode_rgb), and bf_oiio_info and bf_oiio_read_rows. */
-#define BF_IMAGE_PLUGIN_ABI 3
+ * bf_oiio_encode_rgb), and bf_oiio_info and bf_oiio_read_rows. 4: bf_image and
+ * bf_image_spec carry their size first (the module fills the library's own). */
+#define BF_IMAGE_PLUGIN_ABI 4
 
 /* "bf_oiio_abi": returns BF_IMAGE_PLUGIN_ABI as the module was built. */
 typedef int (*bf_oiio_abi_fn)(void);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sized.h"
 #include "brdfit/render.h"
 #include "colour.h"
 #include "plot/plot.h"
@@ -21,8 +22,28 @@ static void view_angles(double signed_to, double *to, double *po)
     *po = signed_to >= 0.0 ? 180.0 : 0.0;
 }
 
+void bf_slice_options_init(bf_slice_options *o)
+{
+    static const double incidence[] = {0.0, 30.0, 60.0};
+    memset(o, 0, sizeof *o);
+    o->size = sizeof *o;
+    o->width = 640;
+    o->height = 480;
+    o->incidence = incidence;
+    o->nincidence = 3;
+    o->plane_tol = 2.0;
+}
+
+void bf_slice_range_init(bf_slice_range *r)
+{
+    memset(r, 0, sizeof *r);
+    r->size = sizeof *r;
+}
+
 static bf_status check(const bf_slice_options *o, bf_error *err)
 {
+    if (o && bf_sized_check(o, sizeof *o, "bf_slice_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!o || o->nincidence < 1 || o->nincidence > BF_SLICE_MAX_INCIDENCE || !o->incidence)
         return bf_fail(err, BF_ERR_ARG, "slice plot: 1 to %d incidence angles", BF_SLICE_MAX_INCIDENCE);
     for (int k = 0; k < o->nincidence; k++)
@@ -415,12 +436,10 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
         if (plot_note(p, text) < 0)
             return -1;
     }
-    if (range) {
-        range->log10_lo = lo;
-        range->log10_hi = hi;
-        range->overlaid = d->ns;
-        range->shown = shown;
-    }
+    range->log10_lo = lo;
+    range->log10_hi = hi;
+    range->overlaid = d->ns;
+    range->shown = shown;
     return 0;
 }
 
@@ -428,21 +447,28 @@ bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_op
                      bf_slice_range *range, bf_error *err)
 {
     *out = NULL;
+    if (range && bf_sized_check(range, sizeof *range, "bf_slice_range", err) != BF_OK)
+        return BF_ERR_ARG;
     slice_data d;
     bf_status rc = slice_data_compute(m, x, o, &d, err);
     if (rc != BF_OK)
         return rc;
+    bf_slice_range r;
+    bf_slice_range_init(&r);
     char title[512];
     if (o->title)
         snprintf(title, sizeof title, "%s", o->title);
     else
         snprintf(title, sizeof title, "In-plane slices of %s", bf_model_spec(m));
     plot *p = plot_new(title);
-    if (!p || build(o, &d, p, range) < 0) {
+    if (!p || build(o, &d, p, &r) < 0) {
         plot_free(p);
         rc = bf_fail(err, BF_ERR_NOMEM, "slice plot: out of memory");
-    } else
+    } else {
         *out = p;
+        if (range)
+            bf_sized_copy(range, &r, sizeof r);
+    }
     slice_data_clear(&d);
     return rc;
 }
@@ -450,6 +476,8 @@ bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_op
 bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
                     bf_slice_range *range, bf_error *err)
 {
+    if (o && bf_sized_check(o, sizeof *o, "bf_slice_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!o || o->width < 40 || o->height < 40)
         return bf_fail(err, BF_ERR_ARG, "slice plot: the plot must be at least 40x40");
     int fmt = format ? format : bf_plot_format_of(path);

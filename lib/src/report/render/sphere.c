@@ -4,8 +4,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sized.h"
 #include "brdfit/render.h"
 #include "colour.h"
+
+void bf_sphere_options_init(bf_sphere_options *o)
+{
+    static const bf_dir light = {45.0, 0.0};
+    memset(o, 0, sizeof *o);
+    o->size = sizeof *o;
+    o->resolution = 256;
+    o->lights = &light;
+    o->nlights = 1;
+}
 
 static void dir_vec(bf_dir d, double v[3])
 {
@@ -122,9 +133,11 @@ static size_t band_frames(int N, int j0, int j1, const double *u, const double *
 
 static bf_status render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
-    if (!o || o->size < 1 || o->nlights < 1 || !o->lights)
+    if (o && bf_sized_check(o, sizeof *o, "bf_sphere_options", err) != BF_OK)
+        return BF_ERR_ARG;
+    if (!o || o->resolution < 1 || o->nlights < 1 || !o->lights)
         return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
-    const int N = o->size, C = src->C;
+    const int N = o->resolution, C = src->C;
     const size_t npx = (size_t)N * (size_t)N, nb = (size_t)N * (size_t)(N < BAND ? N : BAND);
     memset(rgb, 0, npx * 3 * sizeof *rgb);
 

@@ -4,6 +4,8 @@
  * by default two runs write the same bytes. */
 #include "brdfit/tradeoff.h"
 
+#include "base/sized.h"
+
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -130,6 +132,8 @@ bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error
 bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
                            bf_plot_axes *axes, bf_error *err)
 {
+    if (axes && bf_sized_check(axes, sizeof *axes, "bf_plot_axes", err) != BF_OK)
+        return BF_ERR_ARG;
     if (width < 40 || height < 40 || width > 8192 || height > 8192)
         return bf_fail(err, BF_ERR_ARG, "plot size %dx%d: each side must be 40 to 8192", width, height);
     int fmt = format ? format : bf_plot_format_of(path);
