@@ -163,7 +163,8 @@ int main(int argc, char **argv)
     if (bf_options_set(fo, "residual", residual, &err) != BF_OK)
         die("--residual", &err);
     bf_objective_options oo;
-    memset(&oo, 0, sizeof oo);
+    bf_objective_options_init(&oo);
+    oo.use_weights = 0; /* unweighted, as the timings so far were taken */
     if (bf_residual_parse(residual, &oo.residual, &err) != BF_OK)
         die("--residual", &err);
 

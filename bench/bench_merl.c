@@ -15,6 +15,7 @@
 
 #include "brdfit/formats.h"
 #include "brdfit/objective.h"
+#include "brdfit/load.h"
 #include "brdfit/prep.h"
 #include "brdfit/samples.h"
 
@@ -81,11 +82,17 @@ int main(int argc, char **argv)
         if (bf_samples_read_merl(in, 0, &s, &err) != BF_OK)
             die("read", &err);
         double t2 = now();
-        bf_prep_report rep;
-        bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
+        bf_options *po = NULL;
+        bf_objective_options oo;
+        bf_objective_options_init(&oo);
+        oo.residual = BF_RESIDUAL_LOG;
+        oo.use_weights = 0; /* unweighted, as the timings so far were taken */
+        oo.threads = 2;
         bf_objective *obj;
-        if (bf_samples_prep(s, NULL, &rep, &err) != BF_OK || bf_objective_new(m, s, &oo, &obj, &err) != BF_OK)
+        if (bf_options_new(BF_TASK_READ, &po, &err) != BF_OK || bf_samples_prepare(s, po, NULL, &err) != BF_OK ||
+            bf_objective_new(m, s, &oo, &obj, &err) != BF_OK)
             die("prepare", &err);
+        bf_options_free(po);
         bf_objective_free(obj);
         double t3 = now();
         if (bf_samples_write_merl(s, out, &err) != BF_OK)

@@ -24,8 +24,7 @@ int main(int argc, char **argv)
     }
     bf_error err;
     bf_samples *s;
-    bf_read_options ro = {0};
-    if (bf_samples_read(argv[1], &ro, &s, &err) != BF_OK) {
+    if (bf_samples_read(argv[1], NULL, &s, &err) != BF_OK) {
         fprintf(stderr, "bench_scene: %s\n", err.msg);
         return 1;
     }

@@ -250,13 +250,14 @@ static int check(compare_args *a)
 }
 
 /* The comparison's table, set up from the options. 0, or 1 after an error. */
-static int setup(const compare_args *a, bf_compare *c)
+static int setup(const compare_args *a, bf_compare **out)
 {
     bf_error err;
-    if (bf_compare_init(c, a->ndata, a->data, a->nmodels, (const char *const *)a->specs, &err) != BF_OK) {
+    if (bf_compare_new(a->ndata, a->data, a->nmodels, (const char *const *)a->specs, out, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
+    bf_compare *c = *out;
     if (bf_compare_set_options(c, a->o, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
@@ -417,8 +418,14 @@ static int write_report(const compare_args *a, const bf_compare *c, bf_samples *
     for (int i = 0; i < a->ndata && !failed; i++)
         tables[i] = whole_table(a, samples, i, &failed);
     char scene[4096];
-    bf_report_options o = {samples, tables, a->plot_format, a->command_line, a->data_opts,
-                           data_options_scene(a->o, scene, sizeof scene)};
+    bf_report_options o;
+    bf_report_options_init(&o);
+    o.samples = samples;
+    o.tables = tables;
+    o.format = a->plot_format;
+    o.command_line = a->command_line;
+    o.data_options = a->data_opts;
+    o.scene = data_options_scene(a->o, scene, sizeof scene);
     bf_error err;
     if (!failed && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -456,23 +463,22 @@ static int outcome(const bf_compare *c)
 /* After parsing: checks, loads, fits, prints and writes; the exit status. */
 static int compare(const compare_args *a)
 {
-    bf_compare cmp;
-    memset(&cmp, 0, sizeof cmp);
+    bf_compare *cmp = NULL;
     bf_samples **samples = NULL;
     int status = setup(a, &cmp);
     if (status == 0 && !(samples = load(a)))
         status = 1;
     if (status == 0)
-        status = run_fits(a, &cmp, samples);
+        status = run_fits(a, cmp, samples);
     if (status == 0) {
-        bf_compare_rank(&cmp);
-        print_results(a, &cmp);
-        status = write_outputs(a, &cmp, samples);
+        bf_compare_rank(cmp);
+        print_results(a, cmp);
+        status = write_outputs(a, cmp, samples);
     }
     if (status == 0)
-        status = outcome(&cmp);
+        status = outcome(cmp);
     free_samples(samples, a->ndata);
-    bf_compare_clear(&cmp);
+    bf_compare_free(cmp);
     return status;
 }
 

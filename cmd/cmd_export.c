@@ -88,7 +88,7 @@ int cmd_export(int argc, char **argv)
     bf_model *src = NULL;
     double *xs = NULL;
     bf_fit_result fit;
-    memset(&fit, 0, sizeof fit);
+    bf_fit_result_init(&fit);
     bf_export_material e;
     bf_export_material_init(&e);
     int status = 1;

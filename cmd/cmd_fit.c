@@ -160,6 +160,7 @@ static int fit_models(fit_run *f, FILE *info, int *all_ok)
     for (int k = 0; k < f->nmodels; k++) {
         cli_note(cmd, "fitting %s", f->specs[k]);
         bf_fit_result *r = &f->results[f->nres];
+        bf_fit_result_init(r);
         int rc = bf_fit(f->s, f->specs[k], f->o, r, &err);
         if (rc != BF_OK) {
             fprintf(stderr, "%s: %s: %s\n", cmd, f->specs[k], err.msg);

@@ -183,6 +183,7 @@ static int describe(const info_args *a)
     bf_options_get(a->o, "scene", o.scene, sizeof o.scene, NULL);
     bf_options_get(a->o, "subsample", o.subsample, sizeof o.subsample, NULL);
     bf_samples_info info;
+    bf_samples_info_init(&info);
     bf_error err;
     if (bf_samples_describe(s, &info, &err) != BF_OK) {
         fprintf(stderr, "%s: %s: %s\n", cmd, path, err.msg);

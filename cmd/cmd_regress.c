@@ -327,7 +327,7 @@ static int run_case(bf_regress_baseline *b, int c, case_run *cr, int update, bf_
 {
     const bf_regress_case *cs = &b->cases[c];
     bf_fit_result r;
-    memset(&r, 0, sizeof r);
+    bf_fit_result_init(&r);
     bf_error err;
     int status = 0;
     if (run(b, c, cr, &r, o, &err) != BF_OK) {
@@ -418,6 +418,8 @@ int cmd_regress(int argc, char **argv)
     const int n = b->ncases;
     case_run *runs = calloc((size_t)n, sizeof *runs);
     bf_regress_outcome *outs = calloc((size_t)n, sizeof *outs);
+    for (int c = 0; outs && c < n; c++)
+        bf_regress_outcome_init(&outs[c]);
     unsigned char *run_it = calloc((size_t)n, 1);
     if (!runs || !outs || !run_it) {
         fprintf(stderr, "%s: out of memory\n", cmd);

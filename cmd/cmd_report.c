@@ -107,12 +107,16 @@ static bf_status fill(void *ctx, const batch_row *r, bf_error *err)
         mat->channels = r->channels;
     }
     const size_t slot = (size_t)r->material * (size_t)c->nmodels + (size_t)r->model;
-    return batch_row_to_fit(r, &mat->fits[r->model], &c->results[slot], err);
+    if (!c->results[slot] && !(c->results[slot] = malloc(sizeof *c->results[slot])))
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for item %d's result", r->item);
+    bf_fit_result_init(c->results[slot]);
+    return batch_row_to_fit(r, &mat->fits[r->model], c->results[slot], err);
 }
 
 /* The comparison from the database: names, options, every row. 0, or 1 after an error. */
-static int load(batch_db *db, bf_compare *c)
+static int load(batch_db *db, bf_compare **out)
 {
+    bf_compare *c = NULL;
     bf_error err;
     char *text = NULL;
     batch_manifest m = {0};
@@ -133,10 +137,10 @@ static int load(batch_db *db, bf_compare *c)
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             goto done;
         }
-    if (bf_compare_init(c, m.nmaterials, (const char *const *)data, m.nmodels, (const char *const *)m.models,
-                        &err) != BF_OK ||
+    if (bf_compare_new(m.nmaterials, (const char *const *)data, m.nmodels, (const char *const *)m.models, &c,
+                       &err) != BF_OK ||
         !(c->results = calloc((size_t)m.nmaterials * (size_t)m.nmodels, sizeof *c->results))) {
-        fprintf(stderr, "%s: %s\n", cmd, c->materials ? "out of memory" : err.msg);
+        fprintf(stderr, "%s: %s\n", cmd, c ? "out of memory" : err.msg);
         goto done;
     }
     if (bf_compare_set_options(c, m.o, &err) != BF_OK) {
@@ -150,6 +154,10 @@ static int load(batch_db *db, bf_compare *c)
     c->interrupted = bf_compare_count(c, BF_CMP_NOT_RUN) > 0;
     status = 0;
 done:
+    if (status == 0)
+        *out = c;
+    else
+        bf_compare_free(c);
     for (int i = 0; data && i < m.nmaterials; i++)
         free(data[i]);
     free(data);
@@ -161,7 +169,9 @@ done:
 static int write_outputs(const report_args *a, const bf_compare *c)
 {
     bf_error err;
-    bf_report_options o = {NULL, NULL, a->plot_format, NULL, NULL, NULL};
+    bf_report_options o;
+    bf_report_options_init(&o);
+    o.format = a->plot_format;
     if (a->html_dir && bf_compare_write_report(c, &o, a->html_dir, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
@@ -187,8 +197,7 @@ int cmd_report(int argc, char **argv)
     if (status < 0) {
         batch_db *db;
         bf_error err;
-        bf_compare c;
-        memset(&c, 0, sizeof c);
+        bf_compare *c = NULL;
         if (batch_db_open(a.db, BATCH_DB_READ, &db, &err) != BF_OK) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             status = 1;
@@ -197,13 +206,13 @@ int cmd_report(int argc, char **argv)
             batch_db_close(db);
         }
         if (status == 0) {
-            bf_compare_rank(&c);
-            compare_print_tables(stdout, &c);
-            status = write_outputs(&a, &c);
+            bf_compare_rank(c);
+            compare_print_tables(stdout, c);
+            status = write_outputs(&a, c);
         }
         if (status == 0)
-            status = outcome(&c);
-        bf_compare_clear(&c);
+            status = outcome(c);
+        bf_compare_free(c);
     }
     cli_args_free(&a.args);
     return status;

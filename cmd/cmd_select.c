@@ -53,7 +53,7 @@ typedef struct select_run {
     const char *data, *json_path, *out_path;
     const char **defaults;
     bf_samples *s;
-    bf_select sel;
+    bf_select *sel;
 } select_run;
 
 /* --models and --model, the same option. */
@@ -100,8 +100,8 @@ static void progress(void *user, const bf_select *s, int i, int done)
     if (c->state == BF_CMP_ERROR)
         fprintf(stderr, "[%d/%d] %s: %s\n", done, s->n, c->spec, c->message);
     else
-        fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", done, s->n, c->spec, c->result.metrics.k,
-                bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result.metrics, s->metric),
+        fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", done, s->n, c->spec, c->result->metrics.k,
+                bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result->metrics, s->metric),
                 c->seconds, c->state == BF_CMP_OK ? "" : " (failed)");
 }
 
@@ -150,8 +150,8 @@ static void table(FILE *out, const bf_select *s)
     }
     for (int i = 0; i < s->n; i++) {
         const bf_select_candidate *c = &s->c[i];
-        for (int w = 0; (c->state == BF_CMP_OK || c->state == BF_CMP_FAILED) && w < c->result.nwarnings; w++)
-            fprintf(out, "warning: %s: %s\n", c->spec, c->result.warnings[w]);
+        for (int w = 0; (c->state == BF_CMP_OK || c->state == BF_CMP_FAILED) && w < c->result->nwarnings; w++)
+            fprintf(out, "warning: %s: %s\n", c->spec, c->result->warnings[w]);
     }
 }
 
@@ -198,11 +198,11 @@ static int fit_candidates(select_run *r)
         }
         list = r->defaults;
     }
-    if (bf_select_init(&r->sel, n, list, r->s->channels, r->o, &err) != BF_OK) {
+    if (bf_select_new(n, list, r->s->channels, r->o, &r->sel, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
-    if (bf_select_run(&r->sel, r->s, r->o, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
+    if (bf_select_run(r->sel, r->s, r->o, cli_quiet() ? NULL : progress, NULL, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
@@ -213,7 +213,7 @@ static int fit_candidates(select_run *r)
 static int report(select_run *r)
 {
     bf_error err;
-    const bf_select *sel = &r->sel;
+    const bf_select *sel = r->sel;
     int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->out_path && !strcmp(r->out_path, "-"));
     table(stdout_taken ? stderr : stdout, sel);
     if (sel->chosen < 0) {
@@ -221,7 +221,7 @@ static int report(select_run *r)
         return 1;
     }
     if ((r->json_path && bf_select_write_json(sel, r->data, r->json_path, &err) != BF_OK) ||
-        (r->out_path && bf_fit_write_json(&sel->c[sel->chosen].result, r->data, r->out_path, &err) != BF_OK)) {
+        (r->out_path && bf_fit_write_json(sel->c[sel->chosen].result, r->data, r->out_path, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1;
     }
@@ -230,7 +230,7 @@ static int report(select_run *r)
 
 static void run_free(select_run *r)
 {
-    bf_select_clear(&r->sel);
+    bf_select_free(r->sel);
     free(r->defaults);
     for (int k = 0; k < r->nmodels; k++)
         free(r->specs[k]);

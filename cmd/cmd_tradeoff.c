@@ -188,7 +188,7 @@ typedef struct tradeoff_run {
     bf_residual residuals[MAX_LIST];
     int starts[MAX_LIST];
     bf_samples *train, *test;
-    bf_tradeoff t;
+    bf_tradeoff *t;
 } tradeoff_run;
 
 static void run_init(tradeoff_run *r)
@@ -470,7 +470,7 @@ static int check_usage(tradeoff_run *r)
 static int load(tradeoff_run *r)
 {
     bf_error err;
-    bf_tradeoff *t = &r->t;
+    bf_tradeoff *t = NULL;
     bf_samples *all = data_options_load(r->o, r->data, NULL, NULL, cmd);
     if (!all)
         return 1;
@@ -482,13 +482,14 @@ static int load(tradeoff_run *r)
         bf_samples_free(all);
         return 1;
     }
-    if (bf_tradeoff_init(t, r->data, r->specs[0], r->train->n, r->nitems[L_SAMPLES], r->sample_counts,
-                         r->nitems[L_METHODS], (const char *const *)r->items[L_METHODS], r->nitems[L_RESIDUALS],
-                         r->residuals, r->nitems[L_STARTS], r->starts, &err) != BF_OK) {
+    if (bf_tradeoff_new(r->data, r->specs[0], r->train->n, r->nitems[L_SAMPLES], r->sample_counts,
+                        r->nitems[L_METHODS], (const char *const *)r->items[L_METHODS], r->nitems[L_RESIDUALS],
+                        r->residuals, r->nitems[L_STARTS], r->starts, &r->t, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         bf_samples_free(all);
         return err.code == BF_ERR_ARG ? 2 : 1;
     }
+    t = r->t;
     t->total = all->n;
     t->test_n = r->test->n;
     t->channels = all->channels;
@@ -523,14 +524,14 @@ static void print_progress(const bf_tradeoff *t, int i)
 static int run_rows(tradeoff_run *r, int *all_ok)
 {
     bf_error err;
-    for (int i = 0; i < r->t.nrows; i++) {
-        if (bf_tradeoff_run_row(&r->t, i, r->train, r->test, r->o, &err) == BF_ERR_NOMEM) {
+    for (int i = 0; i < r->t->nrows; i++) {
+        if (bf_tradeoff_run_row(r->t, i, r->train, r->test, r->o, &err) == BF_ERR_NOMEM) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             return -1;
         }
-        *all_ok &= r->t.rows[i].ran && r->t.rows[i].ok;
+        *all_ok &= r->t->rows[i].ran && r->t->rows[i].ok;
         if (!cli_quiet())
-            print_progress(&r->t, i);
+            print_progress(r->t, i);
     }
     return 0;
 }
@@ -538,7 +539,7 @@ static int run_rows(tradeoff_run *r, int *all_ok)
 /* The recommended setting as a brdfit fit command line (or that none fitted). */
 static void print_recommendation(FILE *info, const tradeoff_run *run)
 {
-    const bf_tradeoff *t = &run->t;
+    const bf_tradeoff *t = run->t;
     if (t->recommended < 0) {
         fprintf(info, "recommended: none (no setting fitted)\n");
         return;
@@ -577,23 +578,23 @@ static int report(tradeoff_run *r)
     bf_plot_axes_init(&range);
     int stdout_taken = (r->json_path && !strcmp(r->json_path, "-")) || (r->csv_path && !strcmp(r->csv_path, "-"));
     FILE *info = stdout_taken ? stderr : stdout;
-    print_table(info, &r->t);
+    print_table(info, r->t);
     print_recommendation(info, r);
     fflush(info);
-    if ((r->json_path && bf_tradeoff_write_json(&r->t, r->json_path, &err) != BF_OK) ||
-        (r->csv_path && bf_tradeoff_write_csv(&r->t, r->csv_path, &err) != BF_OK) ||
-        (r->plot_path && bf_tradeoff_write_plot(&r->t, r->plot_path, BF_PLOT_BY_NAME, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
+    if ((r->json_path && bf_tradeoff_write_json(r->t, r->json_path, &err) != BF_OK) ||
+        (r->csv_path && bf_tradeoff_write_csv(r->t, r->csv_path, &err) != BF_OK) ||
+        (r->plot_path && bf_tradeoff_write_plot(r->t, r->plot_path, BF_PLOT_BY_NAME, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return -1;
     }
     if (r->plot_path)
-        print_plot_axes(info, &r->t, r->plot_path, &range);
+        print_plot_axes(info, r->t, r->plot_path, &range);
     return 0;
 }
 
 static void run_free(tradeoff_run *r)
 {
-    bf_tradeoff_clear(&r->t);
+    bf_tradeoff_free(r->t);
     bf_samples_free(r->train);
     bf_samples_free(r->test);
     for (int k = 0; k < r->nspecs; k++)
@@ -621,11 +622,11 @@ int cmd_tradeoff(int argc, char **argv)
     if (status == 0)
         status = run_rows(&r, &all_ok) < 0 ? 1 : 0;
     if (status == 0) {
-        bf_tradeoff_rank(&r.t);
+        bf_tradeoff_rank(r.t);
         status = report(&r) < 0 ? 1 : 0;
     }
     if (status == 0 && !all_ok)
-        fprintf(stderr, "%s: %s\n", cmd, r.t.recommended >= 0 ? "some settings failed" : "every setting failed");
+        fprintf(stderr, "%s: %s\n", cmd, r.t->recommended >= 0 ? "some settings failed" : "every setting failed");
     if (status == 0)
         status = all_ok ? 0 : 1;
     cli_args_free(&args);

@@ -1,4 +1,5 @@
 /* Scratch files, result checks and the CSV round trip for the harnesses (fuzz_common.h). */
+#include "io/read_options.h"
 #include "fuzz_common.h"
 
 #include <math.h>

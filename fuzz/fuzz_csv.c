@@ -2,6 +2,7 @@
  * every other column a channel) and the round trip through the CSV writer; the bare
  * table reader under them; and the reader chosen by content for a file without a
  * known extension. */
+#include "io/read_options.h"
 #include "fuzz_common.h"
 
 #include "brdfit/formats.h"

@@ -5,6 +5,7 @@
  * (empty: every other column), the weight column (empty: "weight" if present) and
  * anything non-empty for radians. Whatever is read must survive the CSV round trip:
  * value columns named like angle or weight columns are the case that needs care. */
+#include "io/read_options.h"
 #include "fuzz_common.h"
 
 #include <stdlib.h>

@@ -407,7 +407,7 @@ bf_samples *ts_read_data(const char *path)
     memset(&ro, 0, sizeof ro);
     bf_samples *s = NULL;
     bf_error err;
-    if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
+    if (bf_samples_read_with(path, &ro, &s, &err) != BF_OK)
         fail_msg("%s", err.msg);
     return s;
 }

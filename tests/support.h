@@ -10,6 +10,8 @@
 #include "brdfit/model.h"
 #include "brdfit/fit.h"
 #include "fit_impl.h"
+#include "io/read_options.h"
+#include "samples/prep_options.h"
 #include "brdfit/samples.h"
 
 #ifndef M_PI

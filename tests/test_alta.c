@@ -85,7 +85,7 @@ static void test_pink_felt(void **state)
     const char *path = BRDFIT_TEST_DATA "/alta/pink-felt-1d.alta";
     bf_samples *s = NULL;
     bf_error err = {0};
-    if (bf_samples_read(path, NULL, &s, &err) != BF_OK) /* by extension */
+    if (bf_samples_read_with(path, NULL, &s, &err) != BF_OK) /* by extension */
         fail_msg("%s", err.msg);
     assert_int_equal(s->n, 90);
     assert_int_equal(s->channels, 3);

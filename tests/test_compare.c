@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "brdfit/compare.h"
+#include "compare/compare_impl.h"
 #include "support.h"
 
 /* A ranked-to-be fit: k parameters, rmse_log e, the given criteria (AICc = AIC here)

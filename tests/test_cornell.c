@@ -178,12 +178,12 @@ static void test_dispatch(void **state)
     (void)state;
     bf_samples *s = NULL;
     bf_error err = {0};
-    assert_int_equal(bf_samples_read(BRDFIT_TEST_DATA "/cornell/cayman_head20.brdf", NULL, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_with(BRDFIT_TEST_DATA "/cornell/cayman_head20.brdf", NULL, &s, &err), BF_OK);
     assert_int_equal(s->n, 20);
     bf_samples_free(s);
     const char *text = "# no extension\n1\n550\n0.1 0 0.2 3.14 0.5\n";
     ts_write_file(ts_tmp_path("noext"), text, strlen(text));
-    assert_int_equal(bf_samples_read(ts_tmp_path("noext"), NULL, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_with(ts_tmp_path("noext"), NULL, &s, &err), BF_OK);
     assert_int_equal(s->channels, 1);
     assert_string_equal(s->channel_names[0], "550");
     assert_true(s->value[0] == 0.5);

@@ -43,7 +43,7 @@ static bf_samples *read_ptfe(void)
     ro.csv.channels = "f_r11";
     bf_samples *s = NULL;
     bf_error err;
-    if (bf_samples_read(path, &ro, &s, &err) != BF_OK)
+    if (bf_samples_read_with(path, &ro, &s, &err) != BF_OK)
         fail_msg("%s", err.msg);
     bf_prep p;
     memset(&p, 0, sizeof p); /* drops only what cannot be used */
@@ -72,6 +72,8 @@ static void fit_all(bf_samples *s, const char *what)
 {
     bf_fit_options o;
     memset(&o, 0, sizeof o);
+    bf_objective_options_init(&o.objective); /* the embedded structs carry their sizes */
+    bf_solver_options_init(&o.solver);
     o.objective.residual = BF_RESIDUAL_LOG;
     o.objective.use_weights = 1;
     o.solver.backend = BF_BACKEND_CERES;

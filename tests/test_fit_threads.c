@@ -47,7 +47,10 @@ static void test_thread_count_independence(void **state)
     double se_ref[8], se[8];
     for (int threads = 1; threads <= 4; threads++) {
         assert_int_equal(bf_metrics_compute(m, x, s, 8, threads, &mt, NULL), BF_OK);
-        bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = threads};
+        bf_objective_options oo;
+        bf_objective_options_init(&oo);
+        oo.residual = BF_RESIDUAL_LOG;
+        oo.threads = threads;
         bf_objective *obj = NULL;
         bf_objective_new(m, s, &oo, &obj, NULL);
         assert_non_null(obj);

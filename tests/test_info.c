@@ -41,6 +41,7 @@ static void test_describe(void **state)
     for (int k = 0; k < 8; k++)
         s->value[k] = v[k];
     bf_samples_info info;
+    bf_samples_info_init(&info);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_int_equal(info.n, 4);
     assert_int_equal(info.channels, 2);
@@ -79,6 +80,7 @@ static void test_describe_half_angles(void **state)
     s->value[0] = 1;
     double st = sin(40 * DEG), ct = cos(40 * DEG), len = sqrt(2 * st * st + 4 * ct * ct);
     bf_samples_info info;
+    bf_samples_info_init(&info);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_range(info.theta_h, acos(2 * ct / len) / DEG, acos(2 * ct / len) / DEG, "theta_h");
     assert_range(info.theta_d, acos((st * st + 2 * ct * ct) / len) / DEG,
@@ -108,6 +110,7 @@ static void test_describe_nothing_to_cover(void **state)
         s->value[2 * i + 1] = 3.0 * (double)(i + 1);
     }
     bf_samples_info info;
+    bf_samples_info_init(&info);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_int_equal(info.below_horizon, 2);
     assert_int_equal(info.nonfinite, 2);
@@ -139,6 +142,7 @@ static void test_describe_mean_precision(void **state)
         s->value[i] = 0.1 + (i % 2 ? 1e-9 : -1e-9);
     }
     bf_samples_info info;
+    bf_samples_info_init(&info);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     ts_assert_rel(info.mean[0], 0.1, 1e-14, "mean of a million values");
     assert_range(info.value[0], 0.1 - 1e-9, 0.1 + 1e-9, "range");

@@ -258,7 +258,7 @@ static void test_dispatch(void **state)
     bf_read_options o = {0};
     bf_samples *s;
     bf_error err;
-    assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_with(other, &o, &s, &err), BF_OK);
     assert_int_equal(s->n, (size_t)NT * NT * NP);
     bf_samples_free(s);
     bf_format f = BF_FORMAT_AUTO;

@@ -75,7 +75,7 @@ static void test_check(void **state)
     (void)state;
     bf_error err;
     bf_solver_options o;
-    memset(&o, 0, sizeof o);
+    bf_solver_options_init(&o);
     assert_int_equal(bf_solver_options_check(&o, &err), BF_OK); /* ceres, its default */
     o.use_constraint = 1;
     assert_int_equal(bf_solver_options_check(&o, &err), BF_ERR_ARG);
@@ -113,9 +113,15 @@ static void test_every_method_runs(void **state)
     for (int i = 0; i < bf_method_count(); i++) {
         const bf_method_info *m = bf_method_get(i);
         double lo = -10.0, hi = 10.0, x = 3.0;
-        bf_problem p = {.nres = 3, .npar = 1, .lo = &lo, .hi = &hi, .eval = quadratic};
+        bf_problem p;
+        bf_problem_init(&p);
+        p.nres = 3;
+        p.npar = 1;
+        p.lo = &lo;
+        p.hi = &hi;
+        p.eval = quadratic;
         bf_solver_options o;
-        memset(&o, 0, sizeof o);
+        bf_solver_options_init(&o);
         o.backend = m->backend;
         o.algorithm = m->name;
         o.max_iterations = m->caps & BF_METHOD_GLOBAL ? 4000 : 0;
@@ -129,6 +135,55 @@ static void test_every_method_runs(void **state)
     }
 }
 
+/* The solver options and the problem carry their sizes (docs/api.md): init's defaults (a
+ * zeroed struct's), and a struct not set up by its init refused with one line. */
+static void test_sizes(void **state)
+{
+    (void)state;
+    bf_solver_options o;
+    memset(&o, 0xff, sizeof o); /* every field set, not left from a zeroed frame */
+    bf_solver_options_init(&o);
+    assert_int_equal(o.size, sizeof o);
+    assert_int_equal(o.backend, BF_BACKEND_CERES);
+    assert_null(o.algorithm);
+    assert_int_equal(o.max_iterations, 0);
+    assert_int_equal(o.loss.kind, BF_LOSS_NONE);
+    assert_null(o.cancel);
+    bf_problem p;
+    memset(&p, 0xff, sizeof p);
+    bf_problem_init(&p);
+    assert_int_equal(p.size, sizeof p);
+    assert_null(p.eval);
+    assert_null(p.normal);
+
+    double lo = -10.0, hi = 10.0, x = 3.0;
+    p.nres = 3;
+    p.npar = 1;
+    p.lo = &lo;
+    p.hi = &hi;
+    p.eval = quadratic;
+    bf_solution sol;
+    bf_error err;
+    assert_int_equal(bf_solve(&p, NULL, &x, &sol, &err), BF_OK); /* NULL: init's defaults */
+    assert_true(fabs(x - 0.5) < 1e-8);
+
+    o.size = 0;
+    assert_int_equal(bf_solver_options_check(&o, &err), BF_ERR_ARG);
+    assert_string_equal(err.msg,
+                        "bf_solver_options: size 0 is not that of a bf_solver_options (set it with its init function)");
+    x = 3.0;
+    assert_int_equal(bf_solve(&p, &o, &x, &sol, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_solver_options: size 0"));
+    assert_true(x == 3.0); /* nothing ran */
+    o.size = sizeof o;
+    p.size = sizeof p - 1;
+    assert_int_equal(bf_solve(&p, &o, &x, &sol, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_problem: size"));
+    assert_non_null(strstr(err.msg, "(set it with its init function)"));
+    p.size = sizeof p;
+    assert_int_equal(bf_solve(&p, &o, &x, &sol, &err), BF_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -136,6 +191,7 @@ int main(void)
         cmocka_unit_test(test_parse),
         cmocka_unit_test(test_check),
         cmocka_unit_test(test_every_method_runs),
+        cmocka_unit_test(test_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -197,6 +197,8 @@ static void test_fit_recovers_white_highlight(void **state)
 
     bf_fit_options o;
     memset(&o, 0, sizeof o);
+    bf_objective_options_init(&o.objective); /* the embedded structs carry their sizes */
+    bf_solver_options_init(&o.solver);
     o.objective.residual = BF_RESIDUAL_LOG;
     o.solver.backend = BF_BACKEND_CERES;
     o.starts = 1;

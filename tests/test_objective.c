@@ -47,10 +47,23 @@ static void eval_range(const bf_problem *p, const double *z, size_t r0, size_t r
     assert_int_equal(p->eval(p->user, z, r0, r1, *res, jac ? *jac : NULL), 0);
 }
 
+/* The options of these tests: the defaults with form, and the samples' own weights only
+ * where a test asks (the default uses them). */
+static bf_objective_options objective_options(bf_residual form, int use_weights)
+{
+    bf_objective_options o;
+    bf_objective_options_init(&o);
+    o.residual = form;
+    o.use_weights = use_weights;
+    return o;
+}
+
 static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form,
                               const bf_override *ov, int nov)
 {
-    bf_objective_options o = {.residual = form, .overrides = ov, .noverrides = nov};
+    bf_objective_options o = objective_options(form, 0);
+    o.overrides = ov;
+    o.noverrides = nov;
     bf_error err = {0};
     bf_objective *obj = NULL;
     if (bf_objective_new(m, s, &o, &obj, &err) != BF_OK)
@@ -160,7 +173,7 @@ static void test_weights_and_horizon(void **state)
     s->theta_i[1] = 95; /* below the horizon */
     s->weight[0] = 4.0;
     s->weight[2] = 0.25;
-    bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .use_weights = 1};
+    bf_objective_options o = objective_options(BF_RESIDUAL_LINEAR, 1);
     bf_objective *obj = NULL;
     bf_objective_new(m, s, &o, &obj, NULL);
     assert_non_null(obj);
@@ -385,7 +398,9 @@ static void check_normal(const normal_case *nc, uint64_t seed)
     int nov = 0;
     if (nc->fix)
         assert_int_equal(bf_override_parse_fix(nc->fix, &ov[nov++], NULL), BF_OK);
-    bf_objective_options oo = {.residual = nc->form, .overrides = ov, .noverrides = nov, .use_weights = 1};
+    bf_objective_options oo = objective_options(nc->form, 1);
+    oo.overrides = ov;
+    oo.noverrides = nov;
     bf_error err = {0};
     bf_objective *obj = NULL;
     if (bf_objective_new(m, s, &oo, &obj, &err) != BF_OK)
@@ -474,7 +489,8 @@ static void test_final_pass(void **state)
                 for (size_t i = 0; i < n; i++)
                     s->scene_weight[i] = i % 7 ? ts_uniform(&r) : 0.0;
             }
-            bf_objective_options oo = {.residual = BF_RESIDUAL_LOG, .threads = 2};
+            bf_objective_options oo = objective_options(BF_RESIDUAL_LOG, 0);
+            oo.threads = 2;
             bf_objective *obj = NULL;
             bf_objective_new(m, s, &oo, &obj, NULL);
             assert_non_null(obj);
@@ -719,7 +735,9 @@ static void expect_new_error(const char *text, int bound, int code, const char *
         assert_int_equal(bf_override_parse_bound(text, &ov, NULL), BF_OK);
     else
         assert_int_equal(bf_override_parse_fix(text, &ov, NULL), BF_OK);
-    bf_objective_options o = {.overrides = &ov, .noverrides = 1};
+    bf_objective_options o = objective_options(BF_RESIDUAL_LINEAR, 0);
+    o.overrides = &ov;
+    o.noverrides = 1;
     bf_error err = {0};
     bf_objective *bad;
     assert_int_equal(bf_objective_new(m, s, &o, &bad, &err), code);
@@ -752,7 +770,9 @@ static void test_override_validation(void **state)
     assert_int_equal(bf_override_parse_fix("rho_d[1]=0.3", &ov[0], NULL), BF_OK);
     assert_int_equal(bf_override_parse_fix("alpha=0.2", &ov[1], NULL), BF_OK);
     assert_int_equal(bf_override_parse_bound("alpha=1e-4:0.4", &ov[2], NULL), BF_OK);
-    bf_objective_options dup = {.residual = BF_RESIDUAL_LINEAR, .overrides = ov, .noverrides = 3};
+    bf_objective_options dup = objective_options(BF_RESIDUAL_LINEAR, 0);
+    dup.overrides = ov;
+    dup.noverrides = 3;
     bf_error derr = {0};
     bf_objective *bad;
     assert_int_equal(bf_objective_new(m, s, &dup, &bad, &derr), BF_ERR_ARG);
@@ -838,7 +858,8 @@ static void test_solid_angle(void **state)
     for (size_t q = 0; q < n; q++)
         assert_true(bf_geometry_valid(g, q));
     /* Measured 0 and rho_d = 1 (f = 1/pi): the linear residual is sqrt(w) / pi. */
-    bf_objective_options o = {.residual = BF_RESIDUAL_LINEAR, .solid_angle = 1};
+    bf_objective_options o = objective_options(BF_RESIDUAL_LINEAR, 0);
+    o.solid_angle = 1;
     bf_error err = {0};
     bf_objective *obj = NULL;
     if (bf_objective_new(m, s, &o, &obj, &err) != BF_OK)
@@ -1034,6 +1055,65 @@ static void test_stderr_singular(void **state)
     bf_model_free(m);
 }
 
+/* ---- The options carry their size (docs/api.md) ------------------------------------ */
+
+/* A newer program's options: a field the library does not know at their end. */
+typedef struct newer_options {
+    bf_objective_options o;
+    double later;
+} newer_options;
+
+static void test_options_size(void **state)
+{
+    (void)state;
+    bf_objective_options o;
+    memset(&o, 0xff, sizeof o); /* every field set, not left from a zeroed frame */
+    bf_objective_options_init(&o);
+    assert_int_equal(o.size, sizeof o);
+    assert_int_equal(o.residual, BF_RESIDUAL_LINEAR);
+    assert_int_equal(o.use_weights, 1);
+    assert_int_equal(o.solid_angle, 0);
+    assert_null(o.overrides);
+    assert_int_equal(o.noverrides, 0);
+    assert_int_equal(o.threads, 0);
+
+    bf_model *m = ts_model("lambert", 1);
+    bf_samples *s = random_samples(5, 1, 3);
+    bf_objective *obj = NULL;
+    bf_error err = {0};
+    /* Not set up by its init (a zeroed or an older, smaller struct): refused. */
+    const size_t bad[] = {0, sizeof o - 1};
+    for (int k = 0; k < 2; k++) {
+        o.size = bad[k];
+        assert_int_equal(bf_objective_new(m, s, &o, &obj, &err), BF_ERR_ARG);
+        assert_null(obj);
+        char want[160];
+        snprintf(want, sizeof want,
+                 "bf_objective_options: size %zu is not that of a bf_objective_options (set it with its init function)",
+                 bad[k]);
+        assert_string_equal(err.msg, want);
+    }
+    /* A newer program's: the tail this library does not know zeroed, the struct taken. */
+    newer_options nw;
+    memset(&nw, 0xff, sizeof nw);
+    bf_objective_options_init_size(&nw.o, sizeof nw);
+    assert_int_equal(nw.o.size, sizeof nw);
+    assert_int_equal(nw.o.use_weights, 1);
+    assert_true(nw.later == 0.0);
+    assert_int_equal(bf_objective_new(m, s, &nw.o, &obj, &err), BF_OK);
+    bf_objective_free(obj);
+    /* NULL keeps its meaning. */
+    assert_int_equal(bf_objective_new(m, s, NULL, &obj, &err), BF_OK);
+    bf_objective_free(obj);
+    /* The problem it makes carries its size, as bf_solve wants. */
+    bf_objective_options_init(&o);
+    assert_int_equal(bf_objective_new(m, s, &o, &obj, &err), BF_OK);
+    assert_int_equal(bf_objective_problem(obj)->size, sizeof(bf_problem));
+    bf_objective_free(obj);
+    bf_samples_free(s);
+    bf_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1054,6 +1134,7 @@ int main(void)
         cmocka_unit_test(test_stderr_lambert),
         cmocka_unit_test(test_stderr_phong),
         cmocka_unit_test(test_stderr_singular),
+        cmocka_unit_test(test_options_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

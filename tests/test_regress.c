@@ -146,6 +146,7 @@ static bf_regress_status status_of(const char *alpha, const char *f0, const char
     fake f;
     fake_walter(&f);
     bf_regress_outcome o;
+    bf_regress_outcome_init(&o);
     bf_error err;
     assert_int_equal(bf_regress_check(b, c, &f.r, &o, &err), BF_OK);
     bf_regress_status s = o.status;
@@ -203,6 +204,7 @@ static bf_regress_outcome check_text(const char *text, fake *f)
 {
     bf_regress_baseline *b = parse_ok(text);
     bf_regress_outcome o;
+    bf_regress_outcome_init(&o);
     bf_error err;
     assert_int_equal(bf_regress_check(b, 0, &f->r, &o, &err), BF_OK);
     bf_regress_baseline_free(b);
@@ -286,7 +288,8 @@ static void test_junit(void **state)
         " {\"name\": \"skipped\", \"data\": \"x\", \"model\": \"lambert\"}]}");
     bf_regress_outcome o[4];
     bf_error err;
-    memset(o, 0, sizeof o);
+    for (int k = 0; k < 4; k++)
+        bf_regress_outcome_init(&o[k]);
     o[0].seconds = 0.25;
     o[1].status = BF_REGRESS_FAIL;
     o[1].seconds = 0.5;
@@ -362,7 +365,7 @@ static void test_control_characters(void **state)
     bf_regress_baseline *b = parse_ok("{\"brdfit_baseline\": 1, \"cases\": [\n"
                                       " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
     bf_regress_outcome o;
-    memset(&o, 0, sizeof o);
+    bf_regress_outcome_init(&o);
     o.status = BF_REGRESS_FAIL;
     o.lines = calloc(1, sizeof *o.lines);
     o.lines[0] = strdup("  params.\x1b[2J\x01\xff: not a parameter of lambert");
@@ -451,6 +454,7 @@ static void test_update(void **state)
     assert_int_equal(b->cases[1].nmetrics, bf_regress_nmetric_names);
     assert_int_equal(b->cases[1].expect_ok, 1);
     bf_regress_outcome o;
+    bf_regress_outcome_init(&o);
     for (int i = 0; i < 2; i++) {
         assert_int_equal(bf_regress_check(b, i, &f.r, &o, &err), BF_OK);
         assert_int_equal(o.status, BF_REGRESS_PASS);

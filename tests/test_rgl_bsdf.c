@@ -272,19 +272,19 @@ static void test_dispatch(void **state)
     ts_write_file(other, (const char *)bytes, len);
     free(bytes);
     bf_read_options o = {0};
-    assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_with(other, &o, &s, &err), BF_OK);
     assert_int_equal(s->n, 7118);
     bf_samples_free(s);
     assert_int_equal(bf_format_parse("rgl", &o.format, NULL), BF_OK);
     assert_int_equal(o.format, BF_FORMAT_RGL);
     o.grid = "uniform:2";
-    assert_int_equal(bf_samples_read(other, &o, &s, &err), BF_OK);
+    assert_int_equal(bf_samples_read_with(other, &o, &s, &err), BF_OK);
     assert_int_equal(s->n, 8);
     bf_samples_free(s);
     o.format = BF_FORMAT_AUTO;
     const char *csv = ts_tmp_path("d.csv");
     ts_write_file(csv, "theta_i,phi_i,theta_o,phi_o,v\n10,0,10,180,1\n", 44);
-    assert_int_equal(bf_samples_read(csv, &o, &s, &err), BF_ERR_ARG);
+    assert_int_equal(bf_samples_read_with(csv, &o, &s, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "needs a format that can be evaluated anywhere"));
 }
 

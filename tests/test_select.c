@@ -16,6 +16,7 @@
 #include "brdfit/scene.h"
 #include "brdfit/select.h"
 #include "select/select_run.h"
+#include "compare/compare_impl.h"
 #include "support.h"
 
 /* Select options from command-line words; the last set made is kept until the next. */
@@ -32,7 +33,12 @@ static const bf_options *ts_select_options(const char *words)
 static void set_error(bf_select *s, int i, bf_compare_state state, double e)
 {
     s->c[i].state = state;
-    s->c[i].result.metrics.rmse_log = e;
+    if (!s->c[i].result) { /* freed by bf_select_clear, as a fit's would be */
+        s->c[i].result = malloc(sizeof *s->c[i].result);
+        assert_non_null(s->c[i].result);
+        bf_fit_result_init(s->c[i].result);
+    }
+    s->c[i].result->metrics.rmse_log = e;
 }
 
 static void test_choose_order(void **state)
@@ -170,6 +176,8 @@ static bf_fit_options fit_options(void)
 {
     bf_fit_options o;
     memset(&o, 0, sizeof o);
+    bf_objective_options_init(&o.objective); /* the embedded structs carry their sizes */
+    bf_solver_options_init(&o.solver);
     o.objective.residual = BF_RESIDUAL_LOG;
     o.objective.use_weights = 1;
     o.solver.backend = BF_BACKEND_CERES;
@@ -284,7 +292,7 @@ static void test_scene_changes_the_choice(void **state)
     assert_true(kept > 50 && kept < NSAMPLES / 4);
     c = select_on(data, 3, specs, &s, 1);
     assert_string_equal(c->spec, "lambert");
-    assert_int_equal(s.c[0].result.metrics.n, kept * 3);
+    assert_int_equal(s.c[0].result->metrics.n, kept * 3);
     bf_select_clear(&s);
     bf_scene_free(scene);
     bf_samples_free(data);

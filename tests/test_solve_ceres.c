@@ -91,8 +91,23 @@ static void decay_free(decay *d)
 
 static bf_problem problem(decay *d, const double *lo, const double *hi)
 {
-    bf_problem p = {.nres = d->n, .npar = 2, .lo = lo, .hi = hi, .eval = eval, .user = d};
+    bf_problem p;
+    bf_problem_init(&p);
+    p.nres = d->n;
+    p.npar = 2;
+    p.lo = lo;
+    p.hi = hi;
+    p.eval = eval;
+    p.user = d;
     return p;
+}
+
+/* The defaults (a zeroed struct's, its size set). */
+static bf_solver_options solver_options(void)
+{
+    bf_solver_options o;
+    bf_solver_options_init(&o);
+    return o;
 }
 
 static const double LO[2] = {-INFINITY, -INFINITY}, HI[2] = {INFINITY, INFINITY};
@@ -123,7 +138,7 @@ static void test_decay_recovers_parameters(void **state)
     (void)state;
     decay *d = decay_new(50);
     bf_problem p = problem(d, LO, HI);
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     double x[2] = {0.1, 3.0}; /* far off: a 25x too small, b 4x too large */
     bf_solution s;
     solve_ok(&p, &o, x, &s);
@@ -138,7 +153,7 @@ static void test_summary_filled(void **state)
     (void)state;
     decay *d = decay_new(50);
     bf_problem p = problem(d, LO, HI);
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     double x[2] = {1.0, 2.0};
     double want_initial = decay_cost(d, x);
     bf_solution s;
@@ -165,7 +180,8 @@ static void test_iteration_limit(void **state)
     (void)state;
     decay *d = decay_new(50);
     bf_problem p = problem(d, LO, HI);
-    bf_solver_options o = {.max_iterations = 2};
+    bf_solver_options o = solver_options();
+    o.max_iterations = 2;
     double x[2] = {2.0, 1.0};
     bf_solution s;
     solve_ok(&p, &o, x, &s);
@@ -184,7 +200,7 @@ static void test_bounds_active(void **state)
     /* b capped below its true value, a floored above its best value for that cap. */
     const double lo[2] = {0.0, 0.1}, hi[2] = {10.0, 0.5};
     bf_problem p = problem(d, lo, hi);
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     double x[2] = {1.0, 3.0}; /* b outside: clamped to 0.5 before the solve */
     bf_solution s;
     solve_ok(&p, &o, x, &s);
@@ -217,7 +233,8 @@ static void test_constant_parameter(void **state)
     decay *d = decay_new(50);
     bf_problem p = problem(d, LO, HI);
     const unsigned char fixed[2] = {0, 1};
-    bf_solver_options o = {.constant = fixed};
+    bf_solver_options o = solver_options();
+    o.constant = fixed;
     double x[2] = {0.2, 0.6};
     bf_solution s;
     solve_ok(&p, &o, x, &s);
@@ -267,7 +284,7 @@ static void test_robust_losses_ignore_outlier(void **state)
     bf_solution s;
 
     /* Plain least squares is pulled far off. */
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     double x[2] = {0.0, 0.0};
     solve_ok(&p, &o, x, &s);
     assert_true(fabs(x[0] - 1.0) > 0.5);
@@ -304,7 +321,9 @@ static void test_algorithms_and_linear_solvers(void **state)
     const char *lins[] = {"dense_normal_cholesky", "dense_qr", "sparse_normal_cholesky", "cgnr"};
     for (int a = 0; a < 2; a++)
         for (int l = 0; l < 4; l++) {
-            bf_solver_options o = {.algorithm = algs[a], .linear_solver = lins[l]};
+            bf_solver_options o = solver_options();
+            o.algorithm = algs[a];
+            o.linear_solver = lins[l];
             double x[2] = {0.1, 3.0};
             bf_solution s;
             if (a == 1 && strcmp(lins[l], "cgnr") == 0) { /* Ceres: dogleg needs a factorization */
@@ -332,7 +351,8 @@ static void test_threads_same_solution(void **state)
     bf_problem p = problem(d, LO, HI);
     double x1[2] = {0.5, 2.0}, x4[2] = {0.5, 2.0};
     bf_solution s1, s4;
-    bf_solver_options o = {.threads = 1};
+    bf_solver_options o = solver_options();
+    o.threads = 1;
     solve_ok(&p, &o, x1, &s1);
     o.threads = 4;
     solve_ok(&p, &o, x4, &s4);
@@ -374,9 +394,15 @@ static void test_block_structure(void **state)
     decay *d = decay_new(4000);
     for (size_t i = 0; i < d->n; i++)
         d->y[i] = (i < d->n / 2 ? 2.5 : 3.0) * exp(-0.7 * d->t[i]);
-    bf_problem p = {.nres = d->n, .npar = 3, .eval = eval_channels, .user = d};
+    bf_problem p;
+    bf_problem_init(&p);
+    p.nres = d->n;
+    p.npar = 3;
+    p.eval = eval_channels;
+    p.user = d;
     for (int threads = 1; threads <= 2; threads++) {
-        bf_solver_options o = {.threads = threads};
+        bf_solver_options o = solver_options();
+        o.threads = threads;
         double x[3] = {1.0, 1e6, 2.0};
         bf_solution s;
         bf_error err;
@@ -394,7 +420,7 @@ static void test_failing_eval(void **state)
     (void)state;
     decay *d = decay_new(50);
     bf_problem p = problem(d, LO, HI);
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     bf_solution s;
     for (int nan = 0; nan < 2; nan++) {
         d->fail_with_nan = nan;
@@ -429,7 +455,8 @@ static void test_bad_options(void **state)
     bf_solution s;
     bf_error err;
 
-    bf_solver_options o = {.algorithm = "bfgs"};
+    bf_solver_options o = solver_options();
+    o.algorithm = "bfgs";
     assert_int_equal(bf_solve_ceres(&p, &o, x, &s, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "bfgs"));
     assert_non_null(strstr(err.msg, "lm"));
@@ -481,7 +508,7 @@ static void test_prints_nothing(void **state)
     int rc[6];
     bf_error err;
     double x[2] = {0.1, 3.0};
-    bf_solver_options o = {0};
+    bf_solver_options o = solver_options();
     rc[0] = bf_solve_ceres(&p, &o, x, &s[0], &err);
     o.max_iterations = 1;
     o.threads = 2;

@@ -79,7 +79,8 @@ static double LO[2] = {0.0, 0.0}, HI[2] = {10.0, 10.0};
 
 static bf_problem problem_of(curve *c)
 {
-    bf_problem p = {0};
+    bf_problem p;
+    bf_problem_init(&p);
     p.nres = c->n;
     p.npar = 2;
     p.lo = LO;
@@ -92,7 +93,7 @@ static bf_problem problem_of(curve *c)
 static bf_solver_options nlopt_opts(const char *alg)
 {
     bf_solver_options o;
-    memset(&o, 0, sizeof o);
+    bf_solver_options_init(&o);
     o.backend = BF_BACKEND_NLOPT;
     o.algorithm = alg;
     return o;
@@ -192,7 +193,8 @@ static double MLO[1] = {-5.0}, MHI[1] = {10.0};
 
 static bf_problem multi_problem(void)
 {
-    bf_problem p = {0};
+    bf_problem p;
+    bf_problem_init(&p);
     p.nres = 2;
     p.npar = 1;
     p.lo = MLO;

@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "brdfit/tradeoff.h"
+#include "compare/compare_impl.h"
 #include "support.h"
 #include "tradeoff/tradeoff_impl.h"
 
@@ -256,7 +257,7 @@ static void test_methods(void **state)
     (void)state;
     bf_error err;
     bf_solver_options so;
-    memset(&so, 0, sizeof so);
+    bf_solver_options_init(&so);
     assert_int_equal(bf_tradeoff_method_apply("LD_LBFGS", &so, &err), BF_OK);
     assert_int_equal(so.backend, BF_BACKEND_NLOPT);
     assert_string_equal(so.algorithm, "LD_LBFGS");

@@ -159,7 +159,7 @@ static int warnings_read(const char *text, const char *kinds, bf_fit_result *res
 
 bf_status batch_row_to_fit(const batch_row *r, bf_compare_fit *f, bf_fit_result *res, bf_error *err)
 {
-    memset(res, 0, sizeof *res);
+    bf_fit_result_clear(res);
     f->state = r->pending ? BF_CMP_NOT_RUN : r->state;
     f->metrics = r->metrics;
     f->cv_error = r->cv;

@@ -132,20 +132,19 @@ static void material_fit(batch_run *r, batch_loaded *mt, const int *models, int 
     const char *specs[BATCH_MAX_MODELS], *data = m->materials[mt->i].data;
     for (int k = 0; k < n; k++)
         specs[k] = m->models[models[k]];
-    bf_compare c;
+    bf_compare *c = NULL;
     bf_error err;
-    memset(&c, 0, sizeof c);
-    if (bf_compare_init(&c, 1, &data, n, specs, &err) != BF_OK) {
+    if (bf_compare_new(1, &data, n, specs, &c, &err) != BF_OK) {
         fail(r, &err);
     } else {
         char jobs[32];
         snprintf(jobs, sizeof jobs, "%d", r->a->jobs);
         bf_options_set_cancel(mt->o, NULL, &interrupt_flag);
         if (bf_options_set(mt->o, "jobs", jobs, &err) != BF_OK ||
-            bf_compare_run(&c, &mt->s, mt->o, fit_done, r, &err) != BF_OK)
+            bf_compare_run(c, &mt->s, mt->o, fit_done, r, &err) != BF_OK)
             fail(r, &err); /* only before any fit: bad arguments or no memory */
     }
-    bf_compare_clear(&c);
+    bf_compare_free(c);
 }
 
 /* batch_fit_fn: one material's items fitted, the material loaded unless held (and kept

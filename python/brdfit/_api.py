@@ -693,6 +693,7 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
     run = _Run(progress)
     run.hook(opts)
     r = ffi.new("bf_fit_result *")
+    lib.bf_fit_result_init(r)
     err = ffi.new("bf_error *")
     rc = run(lambda: lib.bf_fit(data._s, spec.encode(), opts.o, r, err))
     try:
@@ -770,10 +771,11 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], prog
     for d in data:
         d._ready()
     err = ffi.new("bf_error *")
-    c = ffi.new("bf_compare *")
+    out = ffi.new("bf_compare **")
     keep = [ffi.new("char[]", (d.path or "samples %d" % i).encode()) for i, d in enumerate(data)]
     cspecs = [ffi.new("char[]", m.encode()) for m in specs]
-    _check(lib.bf_compare_init(c, len(data), keep, len(cspecs), cspecs, err), err)
+    _check(lib.bf_compare_new(len(data), keep, len(cspecs), cspecs, out, err), err)
+    c = out[0]
     run = _Run(progress)
     run.hook(opts)
     ptrs = ffi.new("bf_samples *[]", [d._s for d in data])
@@ -781,11 +783,11 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], prog
         rc = run(lambda: lib.bf_compare_run(c, ptrs, opts.o, ffi.NULL, ffi.NULL, err))
         _check(rc, err)
         lib.bf_compare_rank(c)
-        out = ffi.new("char **")
-        _check(lib.bf_compare_json(c, out, err), err)
-        return CompareResult(_take_text(out[0]))
+        text = ffi.new("char **")
+        _check(lib.bf_compare_json(c, text, err), err)
+        return CompareResult(_take_text(text[0]))
     finally:
-        lib.bf_compare_clear(c)
+        lib.bf_compare_free(c)
 
 
 compare.__doc__ = """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
@@ -821,6 +823,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
         x = ffi.new("double **")
         _check(lib.bf_params_read(src_path.encode(), m, x, err), err)
         fit_r = ffi.new("bf_fit_result *")
+        lib.bf_fit_result_init(fit_r)
         try:
             _check(lib.bf_export_check(t, m[0], int(_flag("convert", convert)), err), err)
             e = ffi.new("bf_export_material *")

@@ -96,7 +96,8 @@ bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report 
 /* Fitting (solve.h, fit.h). */
 typedef enum bf_stop { BF_STOP_CONVERGED = 0, BF_STOP_ITERATIONS, BF_STOP_TIME, BF_STOP_CANCELLED, BF_STOP_FAILED } bf_stop;
 typedef struct bf_solution { bf_stop stop; ...; } bf_solution;
-typedef struct bf_fit_result { bf_model *model; double *x; bf_solution solution; int ok; ...; } bf_fit_result;
+typedef struct bf_fit_result { size_t size; bf_model *model; double *x; bf_solution solution; int ok; ...; } bf_fit_result;
+void bf_fit_result_init(bf_fit_result *r);
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err);
 void bf_fit_result_clear(bf_fit_result *r);
 bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char **out, bf_error *err);
@@ -105,9 +106,9 @@ bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_erro
 /* Comparison (compare.h). */
 typedef struct bf_compare { int nmaterials, nmodels; int interrupted; ...; } bf_compare;
 typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done, int total);
-bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
-                          const char *const *models, bf_error *err);
-void bf_compare_clear(bf_compare *c);
+bf_status bf_compare_new(int nmaterials, const char *const *data, int nmodels, const char *const *models,
+                         bf_compare **out, bf_error *err);
+void bf_compare_free(bf_compare *c);
 bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o, bf_compare_progress progress,
                          void *user, bf_error *err);
 void bf_compare_rank(bf_compare *c);

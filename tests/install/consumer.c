@@ -43,6 +43,7 @@ int main(int argc, char **argv)
         return 1;
     }
     bf_fit_result r;
+    bf_fit_result_init(&r);
     bf_status fitted = bf_fit(s, "lambert", o, &r, &err);
     bf_options_free(o);
     if (fitted != BF_OK || !r.ok) {
@@ -61,6 +62,7 @@ int main(int argc, char **argv)
         bf_export_material e;
         bf_export_material_init(&e);
         bf_fit_result conversion;
+        bf_fit_result_init(&conversion);
         char path[1024];
         snprintf(path, sizeof path, "%s/brdfit.%s", argv[2], to->name);
         if (bf_export_check(to, r.model, 0, &err) != BF_OK ||

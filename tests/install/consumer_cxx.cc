@@ -367,7 +367,7 @@ bool check_photo(std::string &value)
 
 bool check_prep(std::string &value)
 {
-    // Four samples, one below the horizon: a zeroed bf_prep drops only that one.
+    // Four samples, one below the horizon: bf_samples_describe counts it.
     bf_samples *s = nullptr;
     bf_error err;
     if (bf_samples_new(4, 1, &s, &err) != BF_OK) {
@@ -382,15 +382,17 @@ bool check_prep(std::string &value)
         s->value[i] = 0.1;
     }
     s->theta_o[3] = 95.0;
-    bf_prep p = {};
-    bf_prep_report rep = {};
-    if (bf_samples_prep(s, &p, &rep, &err) != BF_OK) {
+    bf_samples_info info;
+    bf_samples_info_init(&info);
+    if (bf_samples_describe(s, &info, &err) != BF_OK) {
         value = err.msg;
         return false;
     }
-    value = std::to_string(rep.read) + " read, " + std::to_string(rep.below_horizon) + " below the horizon, " +
-            std::to_string(rep.kept) + " kept";
-    return rep.read == 4 && rep.below_horizon == 1 && rep.kept == 3 && s->n == 3;
+    value = std::to_string(info.n) + " samples, " + std::to_string(info.below_horizon) + " below the horizon, mean " +
+            std::to_string(info.mean[0]);
+    const bool ok = info.n == 4 && info.below_horizon == 1 && std::fabs(info.mean[0] - 0.1) < 1e-12;
+    bf_samples_info_clear(&info);
+    return ok;
 }
 
 bool check_regress(std::string &value)

@@ -119,15 +119,20 @@ typedef struct bf_compare {
     int timing;                     /* 1: the outputs carry wall times (then they differ
                                        from run to run) */
     const char *residual;           /* the fit objective's name, for the outputs (NULL: omitted) */
-    bf_fit_result *results;         /* nmaterials * nmodels, slot i * nmodels + j (owned):
-                                       the fits bf_compare_run made (NULL before) */
+    bf_fit_result **results;        /* nmaterials * nmodels, slot i * nmodels + j (owned,
+                                       each malloc'd and set up by bf_fit_result_init, or
+                                       NULL): the fits bf_compare_run made (NULL before);
+                                       a program filling a comparison itself allocates
+                                       them the same way (freed by bf_compare_free) */
 } bf_compare;
 
-/* Allocates the tables (fits zeroed, state NOT_RUN) and copies the names. */
-BF_API bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
-                    const char *const *models, bf_error *err);
-/* Frees the tables, and the fit results bf_compare_run made. */
-BF_API void bf_compare_clear(bf_compare *c);
+/* A comparison of nmodels models (specs as given) across nmaterials materials (data
+ * names), made by the library (read through the pointer: docs/api.md): tables zeroed,
+ * every fit NOT_RUN, the names copied. */
+BF_API bf_status bf_compare_new(int nmaterials, const char *const *data, int nmodels, const char *const *models,
+                                bf_compare **out, bf_error *err);
+/* Frees c, its tables and the fit results it holds (NULL allowed). */
+BF_API void bf_compare_free(bf_compare *c);
 
 /* Called once per fit, when it is done (whatever its state; never for a fit not run):
  * material and model index its slot, done counts the fits done so far (this one
@@ -153,7 +158,7 @@ BF_API bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_e
  * running solves stop too (bf_options_set_cancel). After either, fits never started
  * stay NOT_RUN and c->interrupted is 1.
  * The results depend neither on jobs, nor on the thread count, nor on the order the
- * fits finish in: each fit has its slot. The results are owned by c (bf_compare_clear).
+ * fits finish in: each fit has its slot. The results are owned by c (bf_compare_free).
  * Nothing is printed and no signal handler installed: the caller does both, through
  * progress and cancel. Each sample set's geometry is computed before the threads start.
  * Returns BF_OK when the fits were run (whatever their outcome, interrupted or not);
@@ -194,8 +199,10 @@ BF_API bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err)
 #define BF_REPORT_MARKER ".brdfit-report"
 BF_API bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err);
 
-/* What else a report can use and say. Every field may be 0 / NULL. */
+/* What else a report can use and say. Every field may be 0 / NULL. The caller sets it
+ * up with bf_report_options_init (its size: docs/api.md). */
 typedef struct bf_report_options {
+    size_t size;                /* sizeof, set by bf_report_options_init */
     bf_samples *const *samples; /* nmaterials sets the models were fitted to (overlays) */
     bf_samples *const *tables;  /* nmaterials (entries may be NULL): MERL tables as read,
                                    whole, for the pictures of the measurement when the
@@ -207,6 +214,11 @@ typedef struct bf_report_options {
     const char *data_options;   /* how the data was read and prepared, shown */
     const char *scene;          /* the scene file the errors are over, or NULL */
 } bf_report_options;
+BF_API void bf_report_options_init_size(bf_report_options *o, size_t size);
+static inline void bf_report_options_init(bf_report_options *o)
+{
+    bf_report_options_init_size(o, sizeof *o);
+}
 BF_API bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err);
 BF_API bf_status bf_compare_html_check(const char *dir, bf_error *err);
 

@@ -34,7 +34,11 @@ typedef struct bf_export_material {
 } bf_export_material;
 
 /* An empty material (no model) with its size set. */
-BF_API void bf_export_material_init(bf_export_material *e);
+BF_API void bf_export_material_init_size(bf_export_material *e, size_t size);
+static inline void bf_export_material_init(bf_export_material *e)
+{
+    bf_export_material_init_size(e, sizeof *e);
+}
 
 /* The direction pairs a conversion fits: theta_i and theta_o 2.5 .. 87.5 by 5 degrees,
  * phi_o 0 .. 350 by 10, and for an anisotropic source phi_i 0 .. 150 by 30. */
@@ -61,8 +65,9 @@ BF_API bf_status bf_export_check(const bf_export_target *t, const bf_model *src,
 
 /* Puts (src, xs) into t's native model as *e (set up by bf_export_material_init): the
  * source itself when its family is t->model, else a conversion fit of t->model to src's
- * values (seeded, so the same bytes each time), whose result goes into *fit (clear it
- * with bf_fit_result_clear once *e is no longer used; it is cleared here on an error).
+ * values (seeded, so the same bytes each time), whose result goes into *fit (set up by
+ * bf_fit_result_init; clear it with bf_fit_result_clear once *e is no longer used; it is
+ * cleared here on an error).
  * Check first with bf_export_check. */
 BF_API bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err);

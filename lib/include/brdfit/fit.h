@@ -69,7 +69,10 @@ typedef struct bf_presolve_info {
     double seconds;
 } bf_presolve_info;
 
+/* A fit. The caller sets it up with bf_fit_result_init (its size: docs/api.md), bf_fit
+ * fills it, bf_fit_result_clear frees what it holds (and keeps it ready for another). */
 typedef struct bf_fit_result {
+    size_t size;            /* sizeof, set by bf_fit_result_init */
     bf_model *model;        /* configured with the samples' channel count (owned) */
     double *x;              /* best parameters, bf_model_nvalues entries, always finite */
     double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
@@ -117,6 +120,13 @@ BF_API int bf_fit_result_unsure(const bf_fit_result *r);
  * cancelled by either stops at once, with r->ok 0, r->solution.stop BF_STOP_CANCELLED,
  * r->x the start, no metrics, and bf_fit_write_json refuses it. */
 BF_API bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err);
+/* An empty result with its size set, for bf_fit (or for a program's own fit, as brdfit
+ * report fills them from a database). */
+BF_API void bf_fit_result_init_size(bf_fit_result *r, size_t size);
+static inline void bf_fit_result_init(bf_fit_result *r)
+{
+    bf_fit_result_init_size(r, sizeof *r);
+}
 BF_API void bf_fit_result_clear(bf_fit_result *r);
 
 /* K-fold cross-validation: the held-out error of the fitted objective. The samples are

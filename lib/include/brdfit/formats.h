@@ -6,6 +6,7 @@
 #define BRDFIT_FORMATS_H
 
 #include "brdfit/error.h"
+#include "brdfit/options.h"
 #include "brdfit/samples.h"
 
 #ifdef __cplusplus
@@ -22,30 +23,12 @@ typedef enum bf_format {
     BF_FORMAT_MBSDF,    /* NVIDIA MDL measured BSDF (.mbsdf) */
 } bf_format;
 
-/* How a CSV maps onto samples. Zeroed = the defaults (docs/formats.md, CSV). */
-typedef struct bf_csv_map {
-    const char *angle_cols[4]; /* theta_i, phi_i, theta_o, phi_o column names (NULL: those names) */
-    int radians;               /* angles in radians instead of degrees */
-    const char *channels;      /* comma-separated channel columns; NULL: every column but the
-                                  angles and the weight */
-    const char *weight_col;    /* NULL: "weight" if present */
-} bf_csv_map;
-
-typedef struct bf_read_options {
-    bf_format format;
-    bf_csv_map csv;
-    int keep_origin; /* keep what writing the file back byte for byte needs (MERL: the raw
-                        table, 35 MB); only a command that writes the format back asks */
-    const char *grid; /* NULL: the file's own measured points. Else the directions at which
-                         to evaluate a format that can be evaluated anywhere (RGL, mbsdf):
-                         "merl" (MERL cell centres above the horizon), "uniform:N" (N^3:
-                         theta_i, theta_o, phi_o - phi_i at cell centres), or a CSV file of
-                         theta_i,phi_i,theta_o,phi_o in degrees (docs/formats.md) */
-} bf_read_options;
-
-/* Reads any supported format. Errors name the file, the line or byte offset, and the
- * problem. Negative values are kept (they are data); NaN or Inf is an error. */
-BF_API bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err);
+/* Reads any supported format with the reading options of o (brdfit/options.h: format,
+ * grid, angles, radians, values, weight; NULL: the defaults), as it is: no sample dropped
+ * or changed (bf_samples_load also prepares them). Errors name the file, the line or byte
+ * offset, and the problem. Negative values are kept (they are data); NaN or Inf is an
+ * error. */
+BF_API bf_status bf_samples_read(const char *path, const bf_options *o, bf_samples **out, bf_error *err);
 /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf" ("auto": BF_FORMAT_AUTO) into *out;
  * BF_ERR_ARG with a message listing them for any other name. */
 BF_API bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err);
@@ -59,14 +42,13 @@ BF_API bf_format bf_format_by_extension(const char *path);
 BF_API bf_format bf_format_for_writing(const char *path);
 
 /* Per-format readers (bf_samples_read dispatches to them). */
-BF_API bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err);
 /* MERL: samples addressed by cells; keep_raw keeps the raw table (bf_merl_origin). */
 BF_API bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err);
 BF_API bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err);
 BF_API bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err);
 /* RGL-EPFL .bsdf (isotropic; RGB: channels r, g, b; spectral: one per wavelength, named
  * by it in nm, s->wavelength set): the BRDF at the measured points (grid NULL) or
- * evaluated at a direction grid (bf_read_options.grid). Anisotropic files are refused. */
+ * evaluated at a direction grid (the option grid). Anisotropic files are refused. */
 BF_API bf_status bf_samples_read_rgl(const char *path, const char *grid, bf_samples **out, bf_error *err);
 /* NVIDIA .mbsdf: the reflection table at its cell centres (grid NULL; channels r, g, b
  * or value), or interpolated on a direction grid. A transmission part is checked and

@@ -29,7 +29,11 @@ typedef struct bf_image {
 } bf_image;
 
 /* An empty image (no pixels) with its size set. */
-BF_API void bf_image_init(bf_image *img);
+BF_API void bf_image_init_size(bf_image *img, size_t size);
+static inline void bf_image_init(bf_image *img)
+{
+    bf_image_init_size(img, sizeof *img);
+}
 
 /* 1 for a .png name, 2 for .exr (case-insensitive), 0 otherwise (BF_IMAGE_*). */
 enum { BF_IMAGE_BY_NAME = 0, BF_IMAGE_PNG = 1, BF_IMAGE_EXR = 2 };
@@ -66,7 +70,8 @@ typedef struct bf_image_spec {
     int is_float;
 } bf_image_spec;
 /* Zeroes *sp and sets its size. */
-BF_API void bf_image_spec_init(bf_image_spec *sp);
+BF_API void bf_image_spec_init_size(bf_image_spec *sp, size_t size);
+static inline void bf_image_spec_init(bf_image_spec *sp) { bf_image_spec_init_size(sp, sizeof *sp); } /* the program's size */
 BF_API bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
 
 /* Reads rows [y0, y1) of any image OpenImageIO reads (0 <= y0 < y1 <= height), every

@@ -35,7 +35,11 @@ typedef struct bf_load_report {
     size_t kept;            /* samples loaded */
 } bf_load_report;
 
-BF_API void bf_load_report_init(bf_load_report *r);
+BF_API void bf_load_report_init_size(bf_load_report *r, size_t size);
+static inline void bf_load_report_init(bf_load_report *r)
+{
+    bf_load_report_init_size(r, sizeof *r);
+}
 
 /* Reads path (any format bf_samples_read takes; "-": standard input) with o's reading
  * options, and prepares the samples with its preprocessing options and scene, into *out

@@ -37,7 +37,8 @@ BF_API bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error 
 BF_API const char *bf_residual_name(bf_residual r);
 
 /* --fix NAME=VALUE and --bound NAME=LO:HI. NAME is a parameter name (every channel of a
- * colour parameter) or NAME[c] (channel c only). */
+ * colour parameter) or NAME[c] (channel c only). Frozen (docs/api.md): a small value
+ * struct, passed in arrays. */
 typedef struct bf_override {
     char name[48];
     int channel; /* -1: all channels */
@@ -55,7 +56,9 @@ BF_API bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_
  * rho_d[1]): BF_ERR_ARG or BF_ERR_RANGE with a one-line message. */
 BF_API bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override *ov, int n, bf_error *err);
 
+/* Set up with bf_objective_options_init (its size: docs/api.md), then change what differs. */
 typedef struct bf_objective_options {
+    size_t size;           /* sizeof, set by bf_objective_options_init */
     bf_residual residual;
     int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:
                               from the cell's extent in theta_h, theta_d, phi_d); needs a
@@ -68,11 +71,21 @@ typedef struct bf_objective_options {
                               the back ends take theirs from bf_solver_options */
 } bf_objective_options;
 
+/* Sets the size and the defaults: the linear residual, the samples' own weights
+ * (use_weights 1, as bf_fit), no solid-angle weights, no overrides, threads 0 (one). */
+BF_API void bf_objective_options_init_size(bf_objective_options *o, size_t size);
+static inline void bf_objective_options_init(bf_objective_options *o)
+{
+    bf_objective_options_init_size(o, sizeof *o);
+}
+
 typedef struct bf_objective bf_objective;
 
 /* The model's channel count must equal the samples'. Validates overrides (unknown
  * parameter, channel out of range, value or bounds outside the model's bounds, lo >= hi)
- * with one-line errors. Computes the sample geometry if needed. */
+ * with one-line errors. Computes the sample geometry if needed. o NULL: a zeroed
+ * struct's settings (linear residual, the samples' own weights not used); o's size not
+ * set by its init: BF_ERR_ARG. */
 BF_API bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
                            bf_objective **out, bf_error *err);
 BF_API void bf_objective_free(bf_objective *obj);

@@ -96,7 +96,11 @@ typedef struct bf_photo_options {
 } bf_photo_options;
 
 /* Sets the size and the defaults: model "walter", 3 relit images, the rest 0. */
-BF_API void bf_photo_options_init(bf_photo_options *o);
+BF_API void bf_photo_options_init_size(bf_photo_options *o, size_t size);
+static inline void bf_photo_options_init(bf_photo_options *o)
+{
+    bf_photo_options_init_size(o, sizeof *o);
+}
 
 #define BF_PHOTO_MAX_RELIT 8
 #define BF_PHOTO_MAX_SHARED 32

@@ -105,7 +105,11 @@ typedef enum bf_regress_status {
     BF_REGRESS_SKIPPED, /* not selected */
 } bf_regress_status;
 
+/* What one case did. The caller sets it up with bf_regress_outcome_init (its size:
+ * docs/api.md); an array of them passed to the library is read with that size as its
+ * stride. */
 typedef struct bf_regress_outcome {
+    size_t size;    /* sizeof, set by bf_regress_outcome_init */
     bf_regress_status status;
     double seconds;
     int nlines;
@@ -126,6 +130,11 @@ BF_API bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_
 /* Marks case c as not runnable with message (status ERROR). */
 BF_API bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
 BF_API void bf_regress_outcome_clear(bf_regress_outcome *out);
+BF_API void bf_regress_outcome_init_size(bf_regress_outcome *out, size_t size);
+static inline void bf_regress_outcome_init(bf_regress_outcome *out)
+{
+    bf_regress_outcome_init_size(out, sizeof *out);
+}
 
 /* Sets case c's expectations to r in the document: expected.ok; the parameters and
  * metrics the case pins (every one when it pins none of the group, and the model's own

@@ -47,7 +47,11 @@ typedef struct bf_sphere_options {
 
 /* brdfit render's defaults: 256 x 256, viewed from +z (0, 0), one light at (45, 0)
  * (lights points to the library's own copy). */
-BF_API void bf_sphere_options_init(bf_sphere_options *o);
+BF_API void bf_sphere_options_init_size(bf_sphere_options *o, size_t size);
+static inline void bf_sphere_options_init(bf_sphere_options *o)
+{
+    bf_sphere_options_init_size(o, sizeof *o);
+}
 
 BF_API bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
                      bf_error *err);
@@ -80,7 +84,8 @@ typedef struct bf_plot_axes {
 } bf_plot_axes;
 
 /* Zeroes *a and sets its size. */
-BF_API void bf_plot_axes_init(bf_plot_axes *a);
+BF_API void bf_plot_axes_init_size(bf_plot_axes *a, size_t size);
+static inline void bf_plot_axes_init(bf_plot_axes *a) { bf_plot_axes_init_size(a, sizeof *a); } /* the program's size */
 
 /* ---- In-plane slices -------------------------------------------------------------
  * For each incidence angle theta_i (light at phi_i = 0), f at viewing directions in the
@@ -115,7 +120,8 @@ typedef struct bf_slice_options {
 /* brdfit render --slice's defaults: 640 x 480, incidence 0, 30 and 60 degrees (incidence
  * points to the library's own copy), no samples, plane_tol 2, the default title, the y
  * range from the data. */
-BF_API void bf_slice_options_init(bf_slice_options *o);
+BF_API void bf_slice_options_init_size(bf_slice_options *o, size_t size);
+static inline void bf_slice_options_init(bf_slice_options *o) { bf_slice_options_init_size(o, sizeof *o); } /* the program's size */
 
 /* The plot's y range in log10 f, and the samples overlaid (in the plane) and drawn.
  * Callers set it up with bf_slice_range_init; the library fills what lies within its
@@ -128,7 +134,8 @@ typedef struct bf_slice_range {
 } bf_slice_range;
 
 /* Zeroes *r and sets its size. */
-BF_API void bf_slice_range_init(bf_slice_range *r);
+BF_API void bf_slice_range_init_size(bf_slice_range *r, size_t size);
+static inline void bf_slice_range_init(bf_slice_range *r) { bf_slice_range_init_size(r, sizeof *r); } /* the program's size */
 
 /* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
  * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds

@@ -37,7 +37,7 @@ typedef struct bf_select_candidate {
     int coloured_specular;   /* a colour parameter besides the diffuse colour, C > 1 */
     /* The fit (bf_select_run). */
     bf_compare_state state;
-    bf_fit_result result;    /* valid when state is OK or FAILED (free with bf_select_clear) */
+    bf_fit_result *result;   /* when state is OK or FAILED, else NULL (owned by the selection) */
     double cv_error;         /* rank_by cv: the held-out error (NaN otherwise or failed) */
     double work;             /* sample evaluations (bf_compare_work) */
     double seconds;          /* wall time: written only with bf_select.timing */
@@ -69,12 +69,14 @@ typedef struct bf_select {
  * strings (free the array only). */
 BF_API int bf_select_default_candidates(int channels, const char ***specs);
 
-/* Sets up s for the specs (each checked with bf_model_new: BF_ERR_ARG naming the
- * bad one) and fills each candidate's description; the error metric, ranking, folds,
- * tolerances and timing come from o (brdfit/options.h, BF_TASK_SELECT). */
-BF_API bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, const bf_options *o,
-                                bf_error *err);
-BF_API void bf_select_clear(bf_select *s);
+/* A selection among n candidate specs for data of `channels` channels, made by the
+ * library (read through the pointer: docs/api.md): each spec checked with bf_model_new
+ * (BF_ERR_ARG naming the bad one) and each candidate described; the error metric,
+ * ranking, folds, tolerances and timing come from o (brdfit/options.h, BF_TASK_SELECT). */
+BF_API bf_status bf_select_new(int n, const char *const *specs, int channels, const bf_options *o, bf_select **out,
+                               bf_error *err);
+/* Frees s and the fits it holds (NULL allowed). */
+BF_API void bf_select_free(bf_select *s);
 
 /* Called after each candidate's fit (i its index; done of s->n finished), for progress
  * output. Calls never overlap; with jobs > 1 they come in the order the fits finish. */

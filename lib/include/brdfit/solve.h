@@ -18,7 +18,9 @@ extern "C" {
 
 struct bf_loss;
 
+/* Set up with bf_problem_init (its size: docs/api.md), then filled in. */
 typedef struct bf_problem {
+    size_t size; /* sizeof, set by bf_problem_init */
     size_t nres; /* residuals */
     int npar;    /* parameters */
     const double *lo, *hi; /* npar bounds each (-INFINITY / INFINITY where unbounded) */
@@ -43,6 +45,13 @@ typedef struct bf_problem {
                   double *jtr, double *jtj);
 } bf_problem;
 
+/* Zeroes p and sets its size. */
+BF_API void bf_problem_init_size(bf_problem *p, size_t size);
+static inline void bf_problem_init(bf_problem *p)
+{
+    bf_problem_init_size(p, sizeof *p);
+}
+
 typedef enum bf_loss_kind {
     BF_LOSS_NONE = 0, /* plain least squares */
     BF_LOSS_HUBER,
@@ -53,7 +62,8 @@ typedef enum bf_loss_kind {
 
 /* A robust loss rho(s) of the squared residual s, with scale a (Ceres' definitions:
  * huber: s <= a^2 ? s : 2 a sqrt(s) - a^2; cauchy: a^2 log(1 + s/a^2); soft_l1:
- * 2 a^2 (sqrt(1 + s/a^2) - 1); arctan: a atan(s/a)). The cost is 1/2 sum rho(r_i^2). */
+ * 2 a^2 (sqrt(1 + s/a^2) - 1); arctan: a atan(s/a)). The cost is 1/2 sum rho(r_i^2).
+ * Frozen (docs/api.md): a value embedded in bf_solver_options. */
 typedef struct bf_loss {
     bf_loss_kind kind;
     double scale;
@@ -106,6 +116,8 @@ enum {
     BF_METHOD_DEFAULT = 1u << 6,     /* its back end's default */
 };
 
+/* Library data (bf_method_get, bf_method_find ...): read through the pointer, never
+ * copied or allocated by a program; fields are only added at the end (docs/api.md). */
 typedef struct bf_method_info {
     const char *name; /* "lm", "dogleg", "LD_LBFGS" ... */
     bf_backend backend;
@@ -140,7 +152,9 @@ typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
  * one. */
 typedef volatile sig_atomic_t bf_cancel_flag;
 
+/* Set up with bf_solver_options_init (its size: docs/api.md), then change what differs. */
 typedef struct bf_solver_options {
+    size_t size; /* sizeof, set by bf_solver_options_init */
     bf_backend backend;
     /* Ceres: "lm" (Levenberg-Marquardt, default) or "dogleg". NLopt: LD_LBFGS, LD_SLSQP,
      * LD_MMA, LN_BOBYQA, LN_NELDERMEAD, LN_SBPLX, GN_DIRECT_L, GN_CRS2_LM, GN_ISRES,
@@ -166,8 +180,17 @@ typedef struct bf_solver_options {
     const bf_cancel_flag *cancel;
 } bf_solver_options;
 
+/* Zeroes o and sets its size: every default is a zero's (above), so Ceres' lm on one
+ * thread, no loss, the default tolerances and iteration limit, no time limit. */
+BF_API void bf_solver_options_init_size(bf_solver_options *o, size_t size);
+static inline void bf_solver_options_init(bf_solver_options *o)
+{
+    bf_solver_options_init_size(o, sizeof *o);
+}
+
 /* The method, the local method and the constraint of o against the registry, before any
- * work: BF_OK, or BF_ERR_ARG with a message listing what would do. */
+ * work: BF_OK, or BF_ERR_ARG with a message listing what would do (or saying that o's
+ * size was not set by its init). */
 BF_API bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err);
 
 /* Why a solve stopped (bf_solution.stop; bf_solution.termination says it for people). */
@@ -186,6 +209,7 @@ BF_API const char *bf_stop_name(bf_stop stop);
  * iteration and cost); the back ends' common test. */
 BF_API int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost);
 
+/* Frozen (docs/api.md): embedded in bf_fit_result, filled whole by bf_solve. */
 typedef struct bf_solution {
     double initial_cost, final_cost; /* 1/2 sum rho(r^2) */
     int iterations;                  /* back-end iterations (NLopt: evaluations) */
@@ -202,8 +226,8 @@ typedef struct bf_solution {
 /* Minimises from x (in: start, clamped into the bounds; out: solution, always finite:
  * the start if nothing better was found). Returns BF_OK when the back end ran, even if
  * it stopped on a limit (see s->usable and s->termination); an error for bad options
- * (unknown algorithm: the message lists the known ones) or a failed back end. Prints
- * nothing. */
+ * (unknown algorithm: the message lists the known ones; p's or o's size not set by its
+ * init) or a failed back end. o NULL: bf_solver_options_init's defaults. Prints nothing. */
 BF_API bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err);
 
 #ifdef __cplusplus

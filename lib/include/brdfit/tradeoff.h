@@ -9,7 +9,7 @@
  * uses the measured wall time instead (then the front and the recommendation vary from
  * run to run, and the outputs say so).
  *
- * The caller builds the grid (bf_tradeoff_init), runs each row (bf_tradeoff_run_row, in
+ * The caller builds the grid (bf_tradeoff_new), runs each row (bf_tradeoff_run_row, in
  * any order, one at a time, since rows are timed) and ranks (bf_tradeoff_rank); the
  * writers read the filled table.
  * Status codes and ownership follow brdfit/error.h.
@@ -46,7 +46,7 @@ BF_API bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_
                       bf_samples **test, bf_error *err);
 
 typedef struct bf_tradeoff_row {
-    /* The setting (bf_tradeoff_init). */
+    /* The setting (bf_tradeoff_new). */
     size_t samples;      /* training samples fitted (the whole training set when all) */
     int all;             /* 1: the whole training set, no subsampling */
     const char *method;  /* as given (points into the init lists) */
@@ -95,11 +95,12 @@ typedef struct bf_tradeoff {
 /* The grid: the full product of the lists, sample counts outermost. counts are training
  * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
  * sorted ascending and deduplicated, so rows run in ascending sample count. Then
- * methods, residuals, starts, in the order given. Every list must be non-empty. */
-BF_API bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
-                     const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
-                     const bf_residual *residuals, int nstarts, const int *starts, bf_error *err);
-BF_API void bf_tradeoff_clear(bf_tradeoff *t);
+ * methods, residuals, starts, in the order given. Every list must be non-empty. Made by
+ * the library (read through the pointer: docs/api.md); freed with bf_tradeoff_free. */
+BF_API bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
+                                 int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
+                                 int nstarts, const int *starts, bf_tradeoff **out, bf_error *err);
+BF_API void bf_tradeoff_free(bf_tradeoff *t);
 
 /* Runs row i: subsamples train (seeded stratified, bf_prep with t->seed) unless the row is
  * all, fits t->model with base overridden by the row's method, residual and starts,

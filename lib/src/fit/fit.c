@@ -13,6 +13,8 @@
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 
+#include "base/sized.h"
+#include "base/sized.h"
 #include "fit_impl.h"
 #include "run_options.h"
 
@@ -213,7 +215,11 @@ static bf_status solve_whole_set(const bf_problem *full, const bf_fit_options *o
 
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err)
 {
-    memset(r, 0, sizeof *r);
+    /* Every member of this version lies within the first version's size, so the library
+     * fills r itself; a member added later must be filled only within r->size. */
+    if (!r || bf_sized_check(r, sizeof *r, "bf_fit_result", err) != BF_OK)
+        return BF_ERR_ARG;
+    memset((char *)r + sizeof r->size, 0, sizeof *r - sizeof r->size);
     if (!o)
         return bf_fail(err, BF_ERR_ARG, "fit: no options");
     if (o->task == BF_TASK_READ)
@@ -229,7 +235,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_re
 bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
     double t0 = bf_now_seconds();
-    memset(r, 0, sizeof *r);
+    bf_fit_result_init(r);
     if (!s || !o)
         return bf_fail(err, BF_ERR_ARG, "fit: no samples or no options");
     if (s->n == 0)
@@ -391,6 +397,20 @@ done:
     return BF_OK;
 }
 
+/* bf_fit_result with the library's defaults (a whole struct of this version). */
+static void fit_result_defaults(bf_fit_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->size = sizeof *r;
+}
+
+void bf_fit_result_init_size(bf_fit_result *r, size_t size)
+{
+    bf_fit_result full;
+    fit_result_defaults(&full);
+    bf_sized_init(r, size, &full, sizeof full);
+}
+
 void bf_fit_result_clear(bf_fit_result *r)
 {
     if (!r)
@@ -401,5 +421,7 @@ void bf_fit_result_clear(bf_fit_result *r)
     free(r->fixed);
     free(r->inactive);
     free(r->inactive_gate);
+    const size_t size = r->size; /* the caller's: it stays ready for another fit */
     memset(r, 0, sizeof *r);
+    r->size = size;
 }

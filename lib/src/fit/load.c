@@ -8,10 +8,27 @@
 
 #include <string.h>
 
-void bf_load_report_init(bf_load_report *r)
+/* bf_load_report with the library's defaults (a whole struct of this version). */
+static void load_report_defaults(bf_load_report *r)
 {
     memset(r, 0, sizeof *r);
     r->size = sizeof *r;
+}
+
+bf_status bf_samples_read(const char *path, const bf_options *o, bf_samples **out, bf_error *err)
+{
+    if (!o)
+        return bf_samples_read_with(path, NULL, out, err);
+    options_reading rd;
+    options_read_get(o, &rd);
+    return bf_samples_read_with(path, &rd.read, out, err);
+}
+
+void bf_load_report_init_size(bf_load_report *r, size_t size)
+{
+    bf_load_report full;
+    load_report_defaults(&full);
+    bf_sized_init(r, size, &full, sizeof full);
 }
 
 /* The scene goes between preprocessing's drops and its subsampling: prep without the
@@ -97,7 +114,7 @@ bf_status bf_samples_load(const char *path, const bf_options *o, bf_samples **ou
     options_reading rd;
     options_read_get(o, &rd);
     bf_samples *s = NULL;
-    if ((rc = bf_samples_read(path, &rd.read, &s, err)) != BF_OK)
+    if ((rc = bf_samples_read_with(path, &rd.read, &s, err)) != BF_OK)
         return rc;
     r.read = s->n;
     r.channels_read = s->channels;

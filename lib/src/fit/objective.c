@@ -22,6 +22,7 @@
 #include "base/big_alloc.h"
 #include "objective_impl.h"
 #include "base/parallel.h"
+#include "base/sized.h"
 
 /* Model-gradient scratch per block of samples: about 128 KiB whatever C and P are, and
  * at most one geometry block (generated geometries are made a block at a time). */
@@ -373,13 +374,32 @@ static int scan_samples(bf_objective *o)
     return 0;
 }
 
+/* bf_objective_options with the library's defaults (a whole struct of this version). */
+static void objective_options_defaults(bf_objective_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->size = sizeof *o;
+    o->use_weights = 1; /* bf_fit's default: a data set's own weights count */
+}
+
+void bf_objective_options_init_size(bf_objective_options *o, size_t size)
+{
+    bf_objective_options full;
+    objective_options_defaults(&full);
+    bf_sized_init(o, size, &full, sizeof full);
+}
+
 bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
                            bf_objective **out, bf_error *err)
 {
     *out = NULL;
-    static const bf_objective_options defaults = {0};
+    /* NULL keeps its meaning from before the size: a zeroed struct's (no weights). */
+    static const bf_objective_options defaults = {.size = sizeof(bf_objective_options)};
     if (!opt)
         opt = &defaults;
+    /* The first version is today's struct: nothing smaller is one. */
+    if (bf_sized_check(opt, sizeof *opt, "bf_objective_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!m || !s)
         return bf_fail(err, BF_ERR_ARG, "objective: no model or no samples");
     if (bf_model_channels(m) != s->channels)
@@ -448,6 +468,7 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
             o->colour_off[o->ncolour++] = bf_model_param_offset(m, i);
         }
 
+    bf_problem_init(&o->problem);
     o->problem.nres = o->n * (size_t)o->C;
     o->problem.npar = o->nz;
     o->problem.lo = o->zlo;

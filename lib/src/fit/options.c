@@ -10,6 +10,10 @@
 void bf_fit_options_init(bf_fit_options *o)
 {
     memset(o, 0, sizeof *o);
+    /* The embedded caller structs carry their sizes (docs/api.md): bf_solve and
+     * bf_objective_new refuse them unset. */
+    bf_objective_options_init(&o->objective);
+    bf_solver_options_init(&o->solver);
     /* Measured BRDFs span decades between the diffuse floor and the highlight: the log
      * form weighs both, where a linear fit serves the peak alone. */
     o->objective.residual = BF_RESIDUAL_LOG;

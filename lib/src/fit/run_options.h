@@ -12,6 +12,8 @@
 #include "brdfit/formats.h"
 #include "brdfit/options.h"
 #include "brdfit/prep.h"
+#include "io/read_options.h"
+#include "samples/prep_options.h"
 
 #define OPTION_ROWS_MAX 64
 

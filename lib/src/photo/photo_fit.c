@@ -29,12 +29,20 @@
 #define MAX_ITERATIONS 100 /* per pixel solve */
 #define DEFAULT_BAND_BYTES ((size_t)1 << 30)
 
-void bf_photo_options_init(bf_photo_options *o)
+/* bf_photo_options with the library's defaults (a whole struct of this version). */
+static void photo_options_defaults(bf_photo_options *o)
 {
     memset(o, 0, sizeof *o);
     o->size = sizeof *o;
     o->model = "walter";
     o->relit_images = 3;
+}
+
+void bf_photo_options_init_size(bf_photo_options *o, size_t size)
+{
+    bf_photo_options full;
+    photo_options_defaults(&full);
+    bf_sized_init(o, size, &full, sizeof full);
 }
 
 void bf_photo_result_free(bf_photo_result *r)

@@ -32,4 +32,15 @@ static inline void bf_sized_copy(void *dst, const void *src, size_t lib_size)
         memcpy((char *)dst + sizeof(size_t), (const char *)src + sizeof(size_t), n - sizeof(size_t));
 }
 
+/* The body of every bf_x_init_size: x, as the program has it (size bytes), from full, the
+ * library's own struct with its defaults (lib_size bytes): the members within size, size
+ * itself, and zeros for any tail this library does not know. */
+static inline void bf_sized_init(void *x, size_t size, void *full, size_t lib_size)
+{
+    *(size_t *)full = size;
+    memcpy(x, full, size < lib_size ? size : lib_size);
+    if (size > lib_size)
+        memset((char *)x + lib_size, 0, size - lib_size);
+}
+
 #endif

@@ -1,5 +1,6 @@
 /* Sample sets as CSV: angle columns (any names, degrees or radians), channel columns,
  * an optional weight column. */
+#include "io/read_options.h"
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/tool.h"

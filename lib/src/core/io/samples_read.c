@@ -1,5 +1,6 @@
 /* Which reader or writer a file gets: by the --format option, else by extension, else
  * by content. */
+#include "io/read_options.h"
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
 
@@ -56,7 +57,7 @@ static bf_status by_content(const char *path, bf_format *format, bf_error *err)
     return BF_OK;
 }
 
-bf_status bf_samples_read(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err)
+bf_status bf_samples_read_with(const char *path, const bf_read_options *opt, bf_samples **out, bf_error *err)
 {
     bf_format f = opt ? opt->format : BF_FORMAT_AUTO;
     if (f == BF_FORMAT_AUTO)

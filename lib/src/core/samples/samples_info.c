@@ -8,6 +8,7 @@
  * channel over every finite value, above the horizon or not. A range or mean with
  * nothing to cover is NaN. */
 #include "brdfit/prep.h"
+#include "base/sized.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -30,11 +31,11 @@ static double theta_d(const bf_geometry *g, size_t i)
     return atan2(sqrt(cx * cx + cy * cy + cz * cz), g->vh[i]);
 }
 
-bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
+static bf_status describe(bf_samples *s, bf_samples_info *info, bf_error *err)
 {
     const bf_range none = {NAN, NAN};
     const size_t C = (size_t)s->channels;
-    *info = (bf_samples_info){0};
+    *info = (bf_samples_info){.size = info->size}; /* the caller's size stays */
     info->n = s->n;
     info->channels = s->channels;
     info->theta_i = info->theta_o = info->theta_h = info->theta_d = none;
@@ -98,6 +99,20 @@ bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *er
     free(nfinite);
     free(sum);
     return BF_OK;
+}
+
+bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err)
+{
+    if (bf_sized_check(info, sizeof *info, "bf_samples_info", err) != BF_OK)
+        return BF_ERR_ARG;
+    /* Every member of this version lies within the first version's size. */
+    return describe(s, info, err);
+}
+
+void bf_samples_info_init_size(bf_samples_info *info, size_t size)
+{
+    bf_samples_info full = {.size = sizeof full};
+    bf_sized_init(info, size, &full, sizeof full);
 }
 
 void bf_samples_info_clear(bf_samples_info *info)

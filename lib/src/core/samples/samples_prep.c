@@ -29,6 +29,7 @@
  *   the other filters: the ones dropped, clamped or kept (before subsampling).
  * - Subsampling to N >= the samples left keeps them all (subsampled_out = 0): "at most
  *   N", so one option suits every file of a batch. */
+#include "samples/prep_options.h"
 #include "brdfit/prep.h"
 
 #include <ctype.h>

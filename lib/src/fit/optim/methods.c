@@ -2,6 +2,7 @@
  * back ends map a name to their library's own constant and judge capabilities from here;
  * parsing, `brdfit methods`, the usage text and tradeoff's --methods read the same table. */
 #include "brdfit/solve.h"
+#include "base/sized.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -130,6 +131,8 @@ bf_status bf_method_parse(const char *text, bf_backend *backend, const bf_method
 bf_status bf_solver_options_check(const bf_solver_options *o, bf_error *err)
 {
     char list[256];
+    if (bf_sized_check(o, sizeof *o, "bf_solver_options", err) != BF_OK)
+        return BF_ERR_ARG;
     const bf_method_info *m = bf_method_find(o->backend, o->algorithm);
     if (!m) {
         bf_method_list(o->backend, 0, 0, list, sizeof list);

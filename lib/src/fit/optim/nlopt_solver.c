@@ -184,7 +184,7 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
     memset(s, 0, sizeof *s);
     snprintf(s->backend, sizeof s->backend, "nlopt");
     if (!o) {
-        memset(&defaults, 0, sizeof defaults);
+        bf_solver_options_init(&defaults);
         o = &defaults;
     }
     if (!p || !p->eval || !x || p->npar < 1 || p->nres < 1)

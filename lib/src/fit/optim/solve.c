@@ -2,6 +2,7 @@
  * validates a problem, clamps the start into the bounds and dispatches to a back end. */
 #include "brdfit/solve.h"
 #include "backends.h"
+#include "base/sized.h"
 
 #include <float.h>
 #include <math.h>
@@ -118,6 +119,21 @@ int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost)
     return o->progress && o->progress(o->progress_user, iteration, cost) != 0;
 }
 
+void bf_problem_init_size(bf_problem *p, size_t size)
+{
+    bf_problem full;
+    memset(&full, 0, sizeof full);
+    bf_sized_init(p, size, &full, sizeof full);
+}
+
+void bf_solver_options_init_size(bf_solver_options *o, size_t size)
+{
+    /* Every default is a zero's (solve.h): the back ends read 0 as "their default". */
+    bf_solver_options full;
+    memset(&full, 0, sizeof full);
+    bf_sized_init(o, size, &full, sizeof full);
+}
+
 bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {
     bf_solver_options defaults;
@@ -126,9 +142,14 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
         s = &scratch;
     memset(s, 0, sizeof *s);
     if (!o) {
-        memset(&defaults, 0, sizeof defaults);
+        bf_solver_options_init(&defaults);
         o = &defaults;
     }
+    /* The first versions are today's structs: nothing smaller is one. */
+    if (p && bf_sized_check(p, sizeof *p, "bf_problem", err) != BF_OK)
+        return BF_ERR_ARG;
+    if (bf_sized_check(o, sizeof *o, "bf_solver_options", err) != BF_OK)
+        return BF_ERR_ARG;
     if (!p || !p->eval || !x)
         return bf_fail(err, BF_ERR_ARG, "bf_solve: no problem, residual function or start vector");
     if (p->npar < 1)

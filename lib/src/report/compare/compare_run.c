@@ -57,10 +57,11 @@ static void fit_one(void *arg, size_t chunk)
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
-    bf_fit_result *res = &c->results[idx];
+    bf_fit_result *res = malloc(sizeof *res);
     bf_error err;
     const double t0 = bf_now_seconds();
-    bf_status rc = bf_fit_with(r->samples[i], c->models[j], &r->fo, res, &err);
+    bf_status rc = res ? bf_fit_with(r->samples[i], c->models[j], &r->fo, res, &err)
+                       : bf_fail(&err, BF_ERR_NOMEM, "out of memory for a fit's result");
     bf_cv_result cv = {.error = NAN};
     if (rc == BF_OK && c->folds > 0 && res->ok) {
         rc = bf_fit_cv_with(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
@@ -71,6 +72,7 @@ static void fit_one(void *arg, size_t chunk)
 
     pthread_mutex_lock(&r->lock);
     bf_compare_fit *f = &c->materials[i].fits[j];
+    c->results[idx] = res;
     if (rc == BF_OK) {
         f->state = res->ok ? BF_CMP_OK : BF_CMP_FAILED;
         f->metrics = res->metrics;

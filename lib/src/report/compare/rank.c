@@ -2,6 +2,8 @@
  * fronts, the simplest model within tolerance, and the summary across materials. */
 #include "brdfit/compare.h"
 
+#include "compare/compare_impl.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,9 +30,14 @@ bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data
                     const char *const *models, bf_error *err)
 {
     memset(c, 0, sizeof *c);
-    c->metric = BF_CMP_RMSE_LOG;
-    c->rank_by = BF_RANK_BIC;
-    c->tolerance = 0.05;
+    /* The ranking's defaults are the options' (bf_compare_run applies a run's own). */
+    bf_options *defaults = NULL;
+    bf_status rc = bf_options_new(BF_TASK_COMPARE, &defaults, err);
+    if (rc == BF_OK)
+        rc = bf_compare_set_options(c, defaults, err);
+    bf_options_free(defaults);
+    if (rc != BF_OK)
+        return rc;
     if (nmaterials < 1 || nmodels < 1)
         return bf_fail(err, BF_ERR_ARG, "a comparison needs at least one material and one model");
     c->nmaterials = nmaterials;
@@ -56,8 +63,10 @@ bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data
 void bf_compare_clear(bf_compare *c)
 {
     if (c->results)
-        for (size_t k = 0; k < (size_t)c->nmaterials * (size_t)c->nmodels; k++)
-            bf_fit_result_clear(&c->results[k]);
+        for (size_t k = 0; k < (size_t)c->nmaterials * (size_t)c->nmodels; k++) {
+            bf_fit_result_clear(c->results[k]);
+            free(c->results[k]);
+        }
     free(c->results);
     if (c->models)
         for (int j = 0; j < c->nmodels; j++)
@@ -71,6 +80,30 @@ void bf_compare_clear(bf_compare *c)
     free(c->materials);
     free(c->summary);
     memset(c, 0, sizeof *c);
+}
+
+bf_status bf_compare_new(int nmaterials, const char *const *data, int nmodels, const char *const *models,
+                         bf_compare **out, bf_error *err)
+{
+    bf_compare *c = malloc(sizeof *c);
+    *out = NULL;
+    if (!c)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory for a comparison table");
+    bf_status rc = bf_compare_init(c, nmaterials, data, nmodels, models, err);
+    if (rc != BF_OK) {
+        free(c);
+        return rc;
+    }
+    *out = c;
+    return BF_OK;
+}
+
+void bf_compare_free(bf_compare *c)
+{
+    if (!c)
+        return;
+    bf_compare_clear(c);
+    free(c);
 }
 
 void bf_compare_pareto(int n, const double *x, const double *y, int *on)

@@ -18,6 +18,7 @@
  *    error column is not repeated under its metric's own name.
  *  - Only ranked (successful) fits get pictures; the others are listed with their state. */
 #include "brdfit/compare.h"
+#include "base/sized.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -404,14 +405,25 @@ static bf_status open_in(const bf_out_folder *f, bf_outfile *o, const char *name
 
 bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples, const char *dir, bf_error *err)
 {
-    bf_report_options o = {.samples = samples};
+    bf_report_options o;
+    bf_report_options_init(&o);
+    o.samples = samples;
     return bf_compare_write_report(c, &o, dir, err);
+}
+
+void bf_report_options_init_size(bf_report_options *o, size_t size)
+{
+    bf_report_options full = {.size = sizeof full};
+    bf_sized_init(o, size, &full, sizeof full);
 }
 
 bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err)
 {
     if (!c || !o)
         return bf_fail(err, BF_ERR_ARG, "report: no comparison");
+    /* Every member of this version lies within the first version's size. */
+    if (bf_sized_check(o, sizeof *o, "bf_report_options", err) != BF_OK)
+        return BF_ERR_ARG;
     /* Checked, built under a registered temporary sibling holding the marker. */
     bf_out_folder f;
     bf_status rc =

@@ -31,10 +31,18 @@ const bf_export_target *bf_export_target_find(const char *name)
     return NULL;
 }
 
-void bf_export_material_init(bf_export_material *e)
+/* bf_export_material with the library's defaults (a whole struct of this version). */
+static void export_material_defaults(bf_export_material *e)
 {
     memset(e, 0, sizeof *e);
     e->size = sizeof *e;
+}
+
+void bf_export_material_init_size(bf_export_material *e, size_t size)
+{
+    bf_export_material full;
+    export_material_defaults(&full);
+    bf_sized_init(e, size, &full, sizeof full);
 }
 
 double bf_export_param(const bf_export_material *e, const char *name, int c)
@@ -139,9 +147,10 @@ static bf_status prepare(const bf_export_target *t, const bf_model *src, const d
 bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err)
 {
-    memset(fit, 0, sizeof *fit);
-    if (bf_sized_check(e, sizeof *e, "bf_export_material", err) != BF_OK)
+    if (!fit || bf_sized_check(fit, sizeof *fit, "bf_fit_result", err) != BF_OK ||
+        bf_sized_check(e, sizeof *e, "bf_export_material", err) != BF_OK)
         return BF_ERR_ARG;
+    bf_fit_result_clear(fit);
     bf_export_material mine;
     bf_export_material_init(&mine);
     bf_status rc = !t || !src || !xs ? bf_fail(err, BF_ERR_ARG, "export: no target, model or parameters")

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sized.h"
 #include "brdfit/io.h"
 #include "regress/regress_impl.h"
 
@@ -99,7 +100,9 @@ static void check_params(checker *ck, const bf_regress_baseline *b, int c, const
 bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
                      bf_error *err)
 {
-    memset(out, 0, sizeof *out);
+    if (bf_sized_check(out, sizeof *out, "bf_regress_outcome", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_regress_outcome_clear(out);
     out->status = BF_REGRESS_PASS;
     out->seconds = r->seconds;
     checker ck = {out, 0};
@@ -134,7 +137,9 @@ bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_res
 
 bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err)
 {
-    memset(out, 0, sizeof *out);
+    if (bf_sized_check(out, sizeof *out, "bf_regress_outcome", err) != BF_OK)
+        return BF_ERR_ARG;
+    bf_regress_outcome_clear(out);
     out->status = BF_REGRESS_ERROR;
     if (bf_regress_addf(&out->lines, &out->nlines, "%s", message) != 0)
         return bf_fail(err, BF_ERR_NOMEM, "out of memory");
@@ -152,5 +157,14 @@ void bf_regress_outcome_clear(bf_regress_outcome *out)
     free(out->warnings);
     free(out->lines);
     free(out->checked);
+    const size_t size = out->size; /* the caller's: it stays ready for another run */
     memset(out, 0, sizeof *out);
+    out->size = size;
+}
+
+void bf_regress_outcome_init_size(bf_regress_outcome *out, size_t size)
+{
+    bf_regress_outcome full;
+    memset(&full, 0, sizeof full);
+    bf_sized_init(out, size, &full, sizeof full);
 }

@@ -2,6 +2,7 @@
  * well-formedness are its job) into memory, then through a temporary file renamed into
  * place, so an interrupted run leaves no partial report. */
 #include "brdfit/regress.h"
+#include "base/sized.h"
 
 #include <libxml/xmlwriter.h>
 #include <stdio.h>
@@ -86,7 +87,8 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
         xmlTextWriterEndElement(w) < 0 || xmlTextWriterEndElement(w) < 0)
         return -1;
     for (int i = 0; i < b->ncases; i++) {
-        const bf_regress_outcome *o = &outs[i];
+        /* The caller's array: its elements are its size apart (docs/api.md). */
+        const bf_regress_outcome *o = (const bf_regress_outcome *)((const char *)outs + (size_t)i * outs->size);
         if (o->status == BF_REGRESS_SKIPPED)
             continue;
         if (xmlTextWriterStartElement(w, X("testcase")) < 0 || attr(w, "name", b->cases[i].name) != 0 ||
@@ -121,6 +123,8 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
 bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
                            bf_error *err)
 {
+    if (b->ncases > 0 && bf_sized_check(outs, sizeof *outs, "bf_regress_outcome", err) != BF_OK)
+        return BF_ERR_ARG;
     xmlBufferPtr buf = xmlBufferCreate();
     xmlTextWriterPtr w = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
     if (!w) {

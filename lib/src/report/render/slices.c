@@ -22,7 +22,8 @@ static void view_angles(double signed_to, double *to, double *po)
     *po = signed_to >= 0.0 ? 180.0 : 0.0;
 }
 
-void bf_slice_options_init(bf_slice_options *o)
+/* bf_slice_options with the library's defaults (a whole struct of this version). */
+static void slice_options_defaults(bf_slice_options *o)
 {
     static const double incidence[] = {0.0, 30.0, 60.0};
     memset(o, 0, sizeof *o);
@@ -34,10 +35,25 @@ void bf_slice_options_init(bf_slice_options *o)
     o->plane_tol = 2.0;
 }
 
-void bf_slice_range_init(bf_slice_range *r)
+void bf_slice_options_init_size(bf_slice_options *o, size_t size)
+{
+    bf_slice_options full;
+    slice_options_defaults(&full);
+    bf_sized_init(o, size, &full, sizeof full);
+}
+
+/* bf_slice_range with the library's defaults (a whole struct of this version). */
+static void slice_range_defaults(bf_slice_range *r)
 {
     memset(r, 0, sizeof *r);
     r->size = sizeof *r;
+}
+
+void bf_slice_range_init_size(bf_slice_range *r, size_t size)
+{
+    bf_slice_range full;
+    slice_range_defaults(&full);
+    bf_sized_init(r, size, &full, sizeof full);
 }
 
 static bf_status check(const bf_slice_options *o, bf_error *err)

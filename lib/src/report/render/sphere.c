@@ -8,7 +8,8 @@
 #include "brdfit/render.h"
 #include "colour.h"
 
-void bf_sphere_options_init(bf_sphere_options *o)
+/* bf_sphere_options with the library's defaults (a whole struct of this version). */
+static void sphere_options_defaults(bf_sphere_options *o)
 {
     static const bf_dir light = {45.0, 0.0};
     memset(o, 0, sizeof *o);
@@ -16,6 +17,13 @@ void bf_sphere_options_init(bf_sphere_options *o)
     o->resolution = 256;
     o->lights = &light;
     o->nlights = 1;
+}
+
+void bf_sphere_options_init_size(bf_sphere_options *o, size_t size)
+{
+    bf_sphere_options full;
+    sphere_options_defaults(&full);
+    bf_sized_init(o, size, &full, sizeof full);
 }
 
 static void dir_vec(bf_dir d, double v[3])

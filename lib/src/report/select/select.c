@@ -1,6 +1,7 @@
 /* Model selection: the smallest candidate within tolerance of the best (see select.h). */
 #include "brdfit/select.h"
 
+#include "compare/compare_impl.h"
 #include "compare/compare_run.h"
 #include "select/select_run.h"
 #include "fit_impl.h"
@@ -118,10 +119,37 @@ void bf_select_clear(bf_select *s)
     if (!s)
         return;
     for (int i = 0; i < s->n && s->c; i++)
-        bf_fit_result_clear(&s->c[i].result);
+        if (s->c[i].result) {
+            bf_fit_result_clear(s->c[i].result);
+            free(s->c[i].result);
+        }
     free(s->c);
     memset(s, 0, sizeof *s);
     s->best = s->chosen = -1;
+}
+
+bf_status bf_select_new(int n, const char *const *specs, int channels, const bf_options *o, bf_select **out,
+                        bf_error *err)
+{
+    bf_select *s = malloc(sizeof *s);
+    *out = NULL;
+    if (!s)
+        return bf_fail(err, BF_ERR_NOMEM, "select: out of memory");
+    bf_status rc = bf_select_init(s, n, specs, channels, o, err);
+    if (rc != BF_OK) {
+        free(s);
+        return rc;
+    }
+    *out = s;
+    return BF_OK;
+}
+
+void bf_select_free(bf_select *s)
+{
+    if (!s)
+        return;
+    bf_select_clear(s);
+    free(s);
 }
 
 /* bf_compare_run's progress: the finished fit moved into its candidate (the table keeps
@@ -142,12 +170,11 @@ static void candidate_done(void *user, const bf_compare *c, int material, int j,
     if (f->state == BF_CMP_ERROR) {
         snprintf(cand->message, sizeof cand->message, "%s", f->message);
     } else {
-        bf_fit_result *res = &c->results[j]; /* material 0's slot j */
-        cand->result = *res;
-        memset(res, 0, sizeof *res);
-        cand->seconds = cand->result.seconds;
+        cand->result = c->results[j]; /* material 0's slot j, taken over */
+        c->results[j] = NULL;
+        cand->seconds = cand->result->seconds;
         cand->work = f->work;
-        cand->k = cand->result.metrics.k; /* fixed parameters (--fix) do not count */
+        cand->k = cand->result->metrics.k; /* fixed parameters (--fix) do not count */
         cand->cv_error = f->cv_error;
     }
     if (r->progress)
@@ -214,7 +241,7 @@ static int prefer(const bf_select *s, int a, int b)
 /* What rank_by orders the candidates by. */
 static double criterion(const bf_select *s, const bf_select_candidate *c)
 {
-    const bf_metrics *m = &c->result.metrics;
+    const bf_metrics *m = &c->result->metrics;
     switch (s->rank_by) {
     case BF_RANK_BIC: return m->bic;
     case BF_RANK_AIC: return m->aic;
@@ -235,7 +262,7 @@ void bf_select_choose(bf_select *s)
         c->error = c->criterion = NAN;
         if (c->state != BF_CMP_OK)
             continue;
-        double e = s->rank_by == BF_RANK_CV ? c->cv_error : bf_compare_metric_value(&c->result.metrics, s->metric);
+        double e = s->rank_by == BF_RANK_CV ? c->cv_error : bf_compare_metric_value(&c->result->metrics, s->metric);
         double v = criterion(s, c);
         if (!isfinite(e) || !isfinite(v))
             continue;
@@ -295,7 +322,7 @@ static cJSON *select_json(const bf_select *s, const char *data)
         int ran = c->state == BF_CMP_OK || c->state == BF_CMP_FAILED;
         cJSON *o = cJSON_CreateObject();
         bf_json_add_string(o, "model", c->spec);
-        bf_json_add_string(o, "spec", ran ? bf_model_spec(c->result.model) : NULL);
+        bf_json_add_string(o, "spec", ran ? bf_model_spec(c->result->model) : NULL);
         cJSON_AddNumberToObject(o, "k", c->k);
         cJSON_AddBoolToObject(o, "anisotropic", c->anisotropic);
         cJSON_AddNumberToObject(o, "lobes", c->lobes);
@@ -311,12 +338,12 @@ static cJSON *select_json(const bf_select *s, const char *data)
         bf_json_add_number(o, "work", ran ? c->work : NAN);
         if (s->timing)
             bf_json_add_number(o, "seconds", ran ? c->seconds : NAN);
-        cJSON_AddItemToObject(o, "metrics", ran ? bf_json_metrics(&c->result.metrics) : cJSON_CreateNull());
-        cJSON_AddItemToObject(o, "params", ran ? bf_json_params(c->result.model, c->result.x) : cJSON_CreateNull());
-        cJSON_AddItemToObject(o, "stderr", ran ? bf_json_params(c->result.model, c->result.stderr_) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "metrics", ran ? bf_json_metrics(&c->result->metrics) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "params", ran ? bf_json_params(c->result->model, c->result->x) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "stderr", ran ? bf_json_params(c->result->model, c->result->stderr_) : cJSON_CreateNull());
         cJSON *w = cJSON_AddArrayToObject(o, "warnings");
-        for (int k = 0; ran && k < c->result.nwarnings; k++)
-            cJSON_AddItemToArray(w, cJSON_CreateString(c->result.warnings[k]));
+        for (int k = 0; ran && k < c->result->nwarnings; k++)
+            cJSON_AddItemToArray(w, cJSON_CreateString(c->result->warnings[k]));
         cJSON_AddItemToArray(list, o);
     }
     return root;

@@ -14,6 +14,7 @@
 
 #include "brdfit/prep.h"
 #include "base/rng.h"
+#include "compare/compare_impl.h"
 #include "run_options.h"
 #include "tradeoff/tradeoff_impl.h"
 
@@ -156,4 +157,30 @@ void bf_tradeoff_clear(bf_tradeoff *t)
     free(t->rows);
     memset(t, 0, sizeof *t);
     t->best = t->recommended = -1;
+}
+
+bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
+                          int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
+                          int nstarts, const int *starts, bf_tradeoff **out, bf_error *err)
+{
+    bf_tradeoff *t = malloc(sizeof *t);
+    *out = NULL;
+    if (!t)
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    bf_status rc = bf_tradeoff_init(t, data, model, train_n, ncounts, counts, nmethods, methods, nresiduals,
+                                    residuals, nstarts, starts, err);
+    if (rc != BF_OK) {
+        free(t);
+        return rc;
+    }
+    *out = t;
+    return BF_OK;
+}
+
+void bf_tradeoff_free(bf_tradeoff *t)
+{
+    if (!t)
+        return;
+    bf_tradeoff_clear(t);
+    free(t);
 }

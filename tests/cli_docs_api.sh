@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The programs docs/api.md and the README show are real: each ```c block is built as a
+# program's body against this build's headers and shared library, and the first (the
+# fit) is run on the bundled Cayman paint with the turntable scene: it must print the
+# result JSON, with the command's parameters and scene-weighted metrics.
+set -u
+source "$(dirname "$0")/common_cli.sh" "$@"
+need cc gcc
+need jq jq
+
+src=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "$(dirname "$BRDFIT")/.." && pwd)
+# The blocks of a Markdown file, one file each: $tmp/<name>-<k>.c.
+blocks() {
+  awk -v out="$tmp/$2" 'BEGIN { k = 0 } /^```c$/ { k++; f = out "-" k ".c"; on = 1; next }
+       /^```/ { on = 0; next } on { print > f }' "$1"
+}
+blocks "$src/docs/api.md" api
+blocks "$src/README.md" readme
+ls "$tmp"/api-*.c >/dev/null 2>&1 && ok || bad "docs/api.md has no C block"
+ls "$tmp"/readme-*.c >/dev/null 2>&1 && ok || bad "README.md has no C block"
+
+# A block is a body: it goes into main(), with every public header and the variables the
+# README's evaluation uses (n directions of the in-plane sweep).
+wrap() {
+  {
+    for h in "$src"/lib/include/brdfit/*.h; do echo "#include <brdfit/$(basename "$h")>"; done
+    echo "#include <brdfit/version.h>"
+    cat <<'C'
+#include <stdio.h>
+#include <stdlib.h>
+int main(void)
+{
+    enum { n = 3 };
+    double theta_i[n] = {10, 30, 50}, phi_i[n] = {0, 0, 0}, theta_o[n] = {10, 30, 50}, phi_o[n] = {180, 180, 180};
+    (void)theta_i, (void)phi_i, (void)theta_o, (void)phi_o;
+C
+    cat "$1"
+    echo "    return 0;"
+    echo "}"
+  } >"$2"
+}
+for b in "$tmp"/api-*.c "$tmp"/readme-*.c; do
+  [ -e "$b" ] || continue
+  name=$(basename "$b" .c)
+  wrap "$b" "$tmp/$name-main.c"
+  if cc -std=c11 -Wall -Wextra -Werror -Wno-unused-variable -Wno-misleading-indentation -I"$src/lib/include" -I"$build/lib/include" \
+      "$tmp/$name-main.c" -L"$build/lib" -lbrdfit -Wl,-rpath,"$build/lib" -lm -o "$tmp/$name" 2>"$tmp/$name.err"; then
+    ok
+  else
+    bad "$name does not build: $(head -n 5 "$tmp/$name.err")"
+  fi
+done
+
+# docs/api.md's first block, run where its file names are: the fit's JSON, equal to the
+# command's.
+mkdir "$tmp/run" && cp "$src/examples/cornell/cayman.brdf" "$src/examples/scenes/turntable.json" "$tmp/run/"
+if [ -x "$tmp/api-1" ] && (cd "$tmp/run" && "$tmp/api-1" >"$tmp/api.json" 2>"$tmp/api.err"); then
+  "$BRDFIT" fit "$tmp/run/cayman.brdf" --rgb --scene "$tmp/run/turntable.json" -m walter -q -o "$tmp/cli.json"
+  [ "$(jq -c .params "$tmp/api.json")" = "$(jq -c .params "$tmp/cli.json")" ] &&
+    [ "$(jq -c .metrics "$tmp/api.json")" = "$(jq -c .metrics "$tmp/cli.json")" ] && ok ||
+    bad "docs/api.md's fit differs from brdfit fit's: $(jq -c .metrics "$tmp/api.json" 2>&1 | head -c 300)"
+else
+  bad "docs/api.md's first program failed: $(cat "$tmp/api.err" 2>/dev/null | head -n 3)"
+fi
+finish
