@@ -206,7 +206,8 @@ int main(int argc, char **argv)
     snprintf(list, sizeof list, "%s", methods);
     for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
         if (bf_options_set(fo, "backend", strcmp(tok, "ceres") ? "nlopt" : "ceres", &err) != BF_OK ||
-            (strcmp(tok, "ceres") ? bf_options_set(fo, "algorithm", tok, &err) : bf_options_reset(fo, "algorithm", &err)) != BF_OK)
+            (strcmp(tok, "ceres") ? bf_options_set(fo, "algorithm", tok, &err)
+                                  : bf_options_reset(fo, "algorithm", &err)) != BF_OK)
             die(tok, &err);
         double best_fit = 1e30, best_solve = 1e30, best_cpu = 1e30;
         bf_fit_result r;

@@ -63,7 +63,10 @@ struct cli_option {
 #define CLI_CALLS(FN) .kind = CLI_CALL, .take = (FN)
 /* A library run option in a command's own table, by its command-line name: the rest of
  * its entry comes from the library's table, for the group's task. */
-#define CLI_LIB(NAME) {NAME, 0, NULL, NULL, NULL, .kind = CLI_LIBRARY}
+#define CLI_LIB(NAME)                                                                                                  \
+    {                                                                                                                  \
+        NAME, 0, NULL, NULL, NULL, .kind = CLI_LIBRARY                                                                 \
+    }
 
 typedef struct cli_group {
     const char *title; /* "reading", "fitting", ...; NULL: the command's own */
@@ -78,12 +81,20 @@ typedef struct cli_group {
     size_t options_at;
 } cli_group;
 
-#define CLI_GROUP(title, table) {title, table, (int)(sizeof table / sizeof table[0]), NULL, 0, 0}
+#define CLI_GROUP(title, table)                                                                                        \
+    {                                                                                                                  \
+        title, table, (int)(sizeof table / sizeof table[0]), NULL, 0, 0                                                \
+    }
 /* A group with CLI_LIB entries: TYPE's FIELD is the bf_options * they are set into. */
 #define CLI_GROUP_OPTIONS(title, table, task, TYPE, FIELD)                                                             \
-    {title, table, (int)(sizeof table / sizeof table[0]), NULL, task, offsetof(TYPE, FIELD)}
+    {                                                                                                                  \
+        title, table, (int)(sizeof table / sizeof table[0]), NULL, task, offsetof(TYPE, FIELD)                         \
+    }
 /* The library's group NAME (under that title) for task: its target is a bf_options *. */
-#define CLI_LIBRARY_GROUP(NAME, task) {NAME, NULL, 0, NAME, task, 0}
+#define CLI_LIBRARY_GROUP(NAME, task)                                                                                  \
+    {                                                                                                                  \
+        NAME, NULL, 0, NAME, task, 0                                                                                   \
+    }
 
 typedef struct cli_command {
     const char *tool;     /* "brdfit" or "brdfit-synth" */

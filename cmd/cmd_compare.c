@@ -107,8 +107,10 @@ static int take_plot_format(void *target, const cli_option *o, const char *v, co
 }
 
 static const cli_option own[] = {
-    {"--model", 'm', "SPECS", "models to compare (as brdfit fit; repeatable), or all: every\n"
-                              "registered model with its default options", "model", CLI_CALLS(take_model)},
+    {"--model", 'm', "SPECS",
+     "models to compare (as brdfit fit; repeatable), or all: every\n"
+     "registered model with its default options",
+     "model", CLI_CALLS(take_model)},
     CLI_LIB("--error"),
     CLI_LIB("--tolerance"),
     CLI_LIB("--jobs"),
@@ -116,12 +118,14 @@ static const cli_option own[] = {
      CLI_STRING_AT(compare_args, json_path)},
     {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file",
      CLI_STRING_AT(compare_args, csv_path)},
-    {"--html", 0, "DIR", "a report to read in a browser: DIR/index.html and its images\n"
-                         "(an existing DIR is replaced only if it is a previous report)", "dir",
-     CLI_STRING_AT(compare_args, html_dir)},
-    {"--plot-format", 0, "png|svg|pdf", "the report's plots: embedded as PNG (default) or SVG; pdf\n"
-                                        "embeds PNG and writes a PDF of each plot, linked", NULL,
-     CLI_CALLS(take_plot_format)},
+    {"--html", 0, "DIR",
+     "a report to read in a browser: DIR/index.html and its images\n"
+     "(an existing DIR is replaced only if it is a previous report)",
+     "dir", CLI_STRING_AT(compare_args, html_dir)},
+    {"--plot-format", 0, "png|svg|pdf",
+     "the report's plots: embedded as PNG (default) or SVG; pdf\n"
+     "embeds PNG and writes a PDF of each plot, linked",
+     NULL, CLI_CALLS(take_plot_format)},
 };
 static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_COMPARE, compare_args, o);
 static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};

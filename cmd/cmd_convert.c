@@ -86,10 +86,11 @@ static int convert(convert_args *c)
     if (rc != BF_OK)
         fprintf(stderr, "brdfit convert: %s\n", err.msg);
     else if (!cli_quiet()) /* on stderr when the data goes to standard output */
-        fprintf(strcmp(paths[1], "-") ? stdout : stderr, "%s: %zu samples, %d channels (read %zu; dropped %zu below the horizon, %zu non-finite, "
-               "%zu above max theta, %zu outside the scene, %zu by subsampling)\n",
-               paths[1], s->n, s->channels, rep.read, rep.below_horizon, rep.nonfinite,
-               rep.above_max_theta, rep.scene_in - rep.scene_kept, rep.subsampled_out);
+        fprintf(strcmp(paths[1], "-") ? stdout : stderr,
+                "%s: %zu samples, %d channels (read %zu; dropped %zu below the horizon, %zu non-finite, "
+                "%zu above max theta, %zu outside the scene, %zu by subsampling)\n",
+                paths[1], s->n, s->channels, rep.read, rep.below_horizon, rep.nonfinite, rep.above_max_theta,
+                rep.scene_in - rep.scene_kept, rep.subsampled_out);
     bf_samples_free(s);
     return rc == BF_OK ? 0 : 1;
 }

@@ -120,7 +120,9 @@ static void print_text(const char *path, const bf_samples *s, const asked *o, co
     }
     printf("; %s\n", info->weighted ? "weighted per sample" : "unweighted");
 
-    const char *done = !strcmp(o->negative, "drop") ? "dropped" : !strcmp(o->negative, "clamp") ? "clamped to 0" : "kept";
+    const char *done = !strcmp(o->negative, "drop")    ? "dropped"
+                       : !strcmp(o->negative, "clamp") ? "clamped to 0"
+                                                       : "kept";
     printf("preprocessing: dropped %zu below the horizon, %zu with NaN or Inf, %zu above max theta, %zu by "
            "subsampling; %zu with negative values %s\n",
            r->below_horizon, r->nonfinite, r->above_max_theta, r->subsampled_out, r->negative, done);

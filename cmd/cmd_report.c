@@ -137,8 +137,8 @@ static int load(batch_db *db, bf_compare **out)
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
             goto done;
         }
-    if (bf_compare_new(m.nmaterials, (const char *const *)data, m.nmodels, (const char *const *)m.models, &c,
-                       &err) != BF_OK ||
+    if (bf_compare_new(m.nmaterials, (const char *const *)data, m.nmodels, (const char *const *)m.models, &c, &err) !=
+            BF_OK ||
         !(c->results = calloc((size_t)m.nmaterials * (size_t)m.nmodels, sizeof *c->results))) {
         fprintf(stderr, "%s: %s\n", cmd, c ? "out of memory" : err.msg);
         goto done;

@@ -69,9 +69,11 @@ static int take_models(void *target, const cli_option *o, const char *v, const c
 }
 
 static const cli_option own[] = {
-    {"--models", 'm', "SPECS", "candidates (as brdfit fit; repeatable); default: diffuse models,\n"
-                               "one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
-                               "data each with mono=specular (a white highlight)", "model", CLI_CALLS(take_models)},
+    {"--models", 'm', "SPECS",
+     "candidates (as brdfit fit; repeatable); default: diffuse models,\n"
+     "one isotropic lobe, anisotropic lobes, two lobes, and for colour\n"
+     "data each with mono=specular (a white highlight)",
+     "model", CLI_CALLS(take_models)},
     {"--model", 0, "SPECS", "the same as --models", "model", CLI_CALLS(take_models)},
     CLI_LIB("--tolerance"),
     CLI_LIB("--abs-tolerance"),
@@ -101,8 +103,8 @@ static void progress(void *user, const bf_select *s, int i, int done)
         fprintf(stderr, "[%d/%d] %s: %s\n", done, s->n, c->spec, c->message);
     else
         fprintf(stderr, "[%d/%d] %s: k %d, %s %.6g, %.3f s%s\n", done, s->n, c->spec, c->result->metrics.k,
-                bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result->metrics, s->metric),
-                c->seconds, c->state == BF_CMP_OK ? "" : " (failed)");
+                bf_compare_metric_name(s->metric), bf_compare_metric_value(&c->result->metrics, s->metric), c->seconds,
+                c->state == BF_CMP_OK ? "" : " (failed)");
 }
 
 static const char *error_name(const bf_select *s)

@@ -482,9 +482,9 @@ static int load(tradeoff_run *r)
         bf_samples_free(all);
         return 1;
     }
-    if (bf_tradeoff_new(r->data, r->specs[0], r->train->n, r->nitems[L_SAMPLES], r->sample_counts,
-                        r->nitems[L_METHODS], (const char *const *)r->items[L_METHODS], r->nitems[L_RESIDUALS],
-                        r->residuals, r->nitems[L_STARTS], r->starts, &r->t, &err) != BF_OK) {
+    if (bf_tradeoff_new(r->data, r->specs[0], r->train->n, r->nitems[L_SAMPLES], r->sample_counts, r->nitems[L_METHODS],
+                        (const char *const *)r->items[L_METHODS], r->nitems[L_RESIDUALS], r->residuals,
+                        r->nitems[L_STARTS], r->starts, &r->t, &err) != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         bf_samples_free(all);
         return err.code == BF_ERR_ARG ? 2 : 1;
@@ -583,7 +583,8 @@ static int report(tradeoff_run *r)
     fflush(info);
     if ((r->json_path && bf_tradeoff_write_json(r->t, r->json_path, &err) != BF_OK) ||
         (r->csv_path && bf_tradeoff_write_csv(r->t, r->csv_path, &err) != BF_OK) ||
-        (r->plot_path && bf_tradeoff_write_plot(r->t, r->plot_path, BF_PLOT_BY_NAME, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
+        (r->plot_path &&
+         bf_tradeoff_write_plot(r->t, r->plot_path, BF_PLOT_BY_NAME, r->plot_w, r->plot_h, &range, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return -1;
     }

@@ -63,4 +63,18 @@ if [ -x "$tmp/api-1" ] && (cd "$tmp/run" && "$tmp/api-1" >"$tmp/api.json" 2>"$tm
 else
   bad "docs/api.md's first program failed: $(cat "$tmp/api.err" 2>/dev/null | head -n 3)"
 fi
+# Every public struct is one of docs/api.md's kinds, and a sized one (kind 3) starts with
+# its size and has its init: a struct added without a place in the rule fails here.
+row() { grep -E "^\| $1\. " "$src/docs/api.md" | awk -F'|' '{print $3}' | grep -oE '`bf_[a-z_]+`' | tr -d '`'; }
+kinds=$(for k in 1 2 3 4; do row $k; done)
+for t in $(grep -ohE '^typedef struct bf_[a-z_]+ \{' "$src"/lib/include/brdfit/*.h | awk '{print $3}'); do
+  grep -qx "$t" <<<"$kinds" && ok || bad "$t is in no kind of docs/api.md's table"
+done
+for t in $(row 3); do
+  h=$(grep -lE "^typedef struct $t \{" "$src"/lib/include/brdfit/*.h)
+  first=$(awk -v t="$t" '$0 ~ "^typedef struct " t " \\{" {getline; print; exit}' "$h")
+  [[ $first =~ ^[[:space:]]*size_t\ size\; ]] && ok || bad "$t's first member is not its size: $first"
+  grep -q "static inline void ${t}_init($t \*" "$h" && grep -q "BF_API void ${t}_init_size(" "$h" && ok ||
+    bad "$t has no static inline ${t}_init and ${t}_init_size in $(basename "$h")"
+done
 finish

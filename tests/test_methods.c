@@ -187,11 +187,8 @@ static void test_sizes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_registry),
-        cmocka_unit_test(test_parse),
-        cmocka_unit_test(test_check),
-        cmocka_unit_test(test_every_method_runs),
-        cmocka_unit_test(test_sizes),
+        cmocka_unit_test(test_registry),          cmocka_unit_test(test_parse), cmocka_unit_test(test_check),
+        cmocka_unit_test(test_every_method_runs), cmocka_unit_test(test_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1117,24 +1117,15 @@ static void test_options_size(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_forms_values),
-        cmocka_unit_test(test_forms_extremes),
-        cmocka_unit_test(test_weights_and_horizon),
-        cmocka_unit_test(test_jacobian_fd),
-        cmocka_unit_test(test_row_ranges),
-        cmocka_unit_test(test_normal_pass),
-        cmocka_unit_test(test_final_pass),
-        cmocka_unit_test(test_parametrisation),
-        cmocka_unit_test(test_open_bounds),
-        cmocka_unit_test(test_override_parse),
-        cmocka_unit_test(test_override_validation),
-        cmocka_unit_test(test_residual_names),
-        cmocka_unit_test(test_solid_angle),
-        cmocka_unit_test(test_constraint),
-        cmocka_unit_test(test_stderr_lambert),
-        cmocka_unit_test(test_stderr_phong),
-        cmocka_unit_test(test_stderr_singular),
-        cmocka_unit_test(test_options_size),
+        cmocka_unit_test(test_forms_values),        cmocka_unit_test(test_forms_extremes),
+        cmocka_unit_test(test_weights_and_horizon), cmocka_unit_test(test_jacobian_fd),
+        cmocka_unit_test(test_row_ranges),          cmocka_unit_test(test_normal_pass),
+        cmocka_unit_test(test_final_pass),          cmocka_unit_test(test_parametrisation),
+        cmocka_unit_test(test_open_bounds),         cmocka_unit_test(test_override_parse),
+        cmocka_unit_test(test_override_validation), cmocka_unit_test(test_residual_names),
+        cmocka_unit_test(test_solid_angle),         cmocka_unit_test(test_constraint),
+        cmocka_unit_test(test_stderr_lambert),      cmocka_unit_test(test_stderr_phong),
+        cmocka_unit_test(test_stderr_singular),     cmocka_unit_test(test_options_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -520,9 +520,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sphere_lambert_exr), cmocka_unit_test(test_sphere_lighting),
         cmocka_unit_test(test_halfdiff_dirs_merl), cmocka_unit_test(test_halfdiff_model),
-        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert), cmocka_unit_test(test_slice_measured),
-        cmocka_unit_test(test_slice_peak),         cmocka_unit_test(test_png_and_errors),
-        cmocka_unit_test(test_tonemap),
+        cmocka_unit_test(test_halfdiff_merl),      cmocka_unit_test(test_slice_lambert),
+        cmocka_unit_test(test_slice_measured),     cmocka_unit_test(test_slice_peak),
+        cmocka_unit_test(test_png_and_errors),     cmocka_unit_test(test_tonemap),
         cmocka_unit_test(test_sized_structs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -48,7 +48,8 @@ static void test_choose_order(void **state)
                            "walter:lobes=2,mono=specular"};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 5, specs, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
+    assert_int_equal(bf_select_init(&s, 5, specs, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err),
+                     BF_OK);
     assert_int_equal(s.c[0].k, 8);
     assert_int_equal(s.c[1].k, 6);
     assert_int_equal(s.c[2].k, 7);
@@ -99,7 +100,9 @@ static void test_choose_order(void **state)
 
     /* Nothing fitted: no choice. */
     const char *one[] = {"lambert"};
-    assert_int_equal(bf_select_init(&s, 1, one, 1, ts_select_options("--error rmse --tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
+    assert_int_equal(
+        bf_select_init(&s, 1, one, 1, ts_select_options("--error rmse --tolerance 0.05 --abs-tolerance 0.0"), &err),
+        BF_OK);
     set_error(&s, 0, BF_CMP_ERROR, NAN);
     bf_select_choose(&s);
     assert_int_equal(s.chosen, -1);
@@ -113,7 +116,8 @@ static int choose_between(const char *a, const char *b, int C, int k)
     const char *specs[] = {a, b};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 2, specs, C, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_OK);
+    assert_int_equal(bf_select_init(&s, 2, specs, C, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err),
+                     BF_OK);
     assert_int_equal(s.c[0].k, k);
     assert_int_equal(s.c[1].k, k);
     set_error(&s, 0, BF_CMP_OK, 0.1);
@@ -142,7 +146,8 @@ static void test_tie_breaks(void **state)
     const char *bad[] = {"walter", "nonesuch"};
     bf_select s;
     bf_error err;
-    assert_int_equal(bf_select_init(&s, 2, bad, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err), BF_ERR_ARG);
+    assert_int_equal(bf_select_init(&s, 2, bad, 3, ts_select_options("--tolerance 0.05 --abs-tolerance 0.0"), &err),
+                     BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "nonesuch"));
 }
 
@@ -190,7 +195,9 @@ static const bf_select_candidate *select_on(bf_samples *data, int n, const char 
                                             int weighted)
 {
     bf_error err;
-    assert_int_equal(bf_select_init(s, n, specs, data->channels, ts_select_options("--tolerance 0.05 --abs-tolerance 1e-6"), &err), BF_OK);
+    assert_int_equal(
+        bf_select_init(s, n, specs, data->channels, ts_select_options("--tolerance 0.05 --abs-tolerance 1e-6"), &err),
+        BF_OK);
     bf_fit_options o = fit_options();
     o.weighted_metrics = weighted;
     assert_int_equal(select_run_with(s, data, &o, 1, NULL, NULL, NULL, &err), BF_OK);

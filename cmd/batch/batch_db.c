@@ -48,8 +48,8 @@ struct batch_db {
 
 /* The columns that hold a result (all but item, material, model, the timings): what
  * merge compares; a schema 1 database has all but the last. */
-#define RESULT_COLUMNS_1                                                                                          \
-    "status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, max_err, weighted, "    \
+#define RESULT_COLUMNS_1                                                                                               \
+    "status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, max_err, weighted, "          \
     "crit_n, loglik, aic, aicc, bic, cv, work, params, stderr, warnings, options, tool_version"
 #define RESULT_COLUMNS RESULT_COLUMNS_1 ", warning_kinds"
 
@@ -354,11 +354,11 @@ bf_status batch_db_redo(batch_db *db, int failed, int all, bf_error *err)
     if (!failed && !all)
         return BF_OK;
     /* Pending again, and emptied: a pending row never shows an old result. */
-#define PENDING                                                                                                   \
-    "UPDATE items SET status = 'pending', message = NULL, spec = NULL, samples = NULL, channels = NULL, "         \
-    "n = NULL, k = NULL, rmse = NULL, rmse_log = NULL, rmse_cos = NULL, rmse_rel = NULL, max_err = NULL, "        \
-    "weighted = NULL, crit_n = NULL, loglik = NULL, aic = NULL, aicc = NULL, bic = NULL, cv = NULL, work = NULL, " \
-    "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL, "    \
+#define PENDING                                                                                                        \
+    "UPDATE items SET status = 'pending', message = NULL, spec = NULL, samples = NULL, channels = NULL, "              \
+    "n = NULL, k = NULL, rmse = NULL, rmse_log = NULL, rmse_cos = NULL, rmse_rel = NULL, max_err = NULL, "             \
+    "weighted = NULL, crit_n = NULL, loglik = NULL, aic = NULL, aicc = NULL, bic = NULL, cv = NULL, work = NULL, "     \
+    "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL, "         \
     "warning_kinds = NULL "
     return exec(db,
                 all ? PENDING "WHERE status != 'pending'" : PENDING "WHERE status IN ('failed', 'error')",
@@ -514,9 +514,9 @@ static void row_of(sqlite3_stmt *st, batch_row *r)
 bf_status batch_db_rows(batch_db *db, bf_status (*each)(void *ctx, const batch_row *r, bf_error *err), void *ctx,
                         bf_error *err)
 {
-#define ROW_COLUMNS                                                                                               \
-    "item, material, model, status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, " \
-    "max_err, weighted, crit_n, loglik, aic, aicc, bic, cv, work, params, stderr, warnings, options, "            \
+#define ROW_COLUMNS                                                                                                    \
+    "item, material, model, status, message, spec, samples, channels, n, k, rmse, rmse_log, rmse_cos, rmse_rel, "      \
+    "max_err, weighted, crit_n, loglik, aic, aicc, bic, cv, work, params, stderr, warnings, options, "                 \
     "tool_version, seconds, "
     sqlite3_stmt *st = NULL;
     char *schema = NULL;
@@ -614,10 +614,10 @@ static bf_status merge_one(batch_db *out, const char *input, int old, bf_error *
             return bf_fail(err, BF_ERR_ARG, "%s: another %s than the first input; nothing merged", input,
                            k == 0 ? "manifest" : "brdfit version");
     }
-#define CLASH(SRC)                                                                                                \
-    "SELECT count(*) FROM main.items a JOIN src.items b USING(item) WHERE "                                       \
-    "a.status != 'pending' AND b.status != 'pending' AND "                                                        \
-    "(SELECT " RESULT_COLUMNS " FROM main.items WHERE item = a.item) IS NOT "                                     \
+#define CLASH(SRC)                                                                                                     \
+    "SELECT count(*) FROM main.items a JOIN src.items b USING(item) WHERE "                                            \
+    "a.status != 'pending' AND b.status != 'pending' AND "                                                             \
+    "(SELECT " RESULT_COLUMNS " FROM main.items WHERE item = a.item) IS NOT "                                          \
     "(SELECT " SRC " FROM src.items WHERE item = a.item)"
     long long clash = count_of(out, old ? CLASH(RESULT_COLUMNS_1 ", NULL") : CLASH(RESULT_COLUMNS), err);
 #undef CLASH
@@ -627,9 +627,9 @@ static bf_status merge_one(batch_db *out, const char *input, int old, bf_error *
         return bf_fail(err, BF_ERR_ARG, "%s: %lld item(s) already merged with other results; nothing merged", input,
                        clash);
     /* Rows the output lacks, then finished rows over its pending ones. */
-#define COPY(SRC)                                                                                                 \
-    "INSERT OR IGNORE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items;"                           \
-    "REPLACE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items b WHERE b.status != 'pending' AND "   \
+#define COPY(SRC)                                                                                                      \
+    "INSERT OR IGNORE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items;"                                \
+    "REPLACE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items b WHERE b.status != 'pending' AND "       \
     "(SELECT status FROM main.items a WHERE a.item = b.item) = 'pending'"
     return exec(out, old ? COPY(ITEM_COLUMNS_1) : COPY(ITEM_COLUMNS), "merging the items", err);
 #undef COPY

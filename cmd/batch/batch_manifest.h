@@ -44,7 +44,7 @@ typedef struct batch_manifest {
     int *lines;                 /* a plain list's: the options: line, then each material's
                                    (owned; NULL for JSON), for the messages */
     int nmaterials;
-    bf_options *o;              /* the shared options, parsed (owned) */
+    bf_options *o; /* the shared options, parsed (owned) */
 } batch_manifest;
 
 /* Reads and checks the manifest (like data_options.c, this prints its one-line errors,

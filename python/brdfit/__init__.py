@@ -1,13 +1,14 @@
 """brdfit: fit parametric BRDF models to measured reflectance, from Python and NumPy.
 
 The same library as the `brdfit` command, with the same results: Model (evaluate any
-model and its analytic gradient), read and Samples (data in), fit, compare and export.
+model and its analytic gradient), read and Samples (data in), fit, compare, select and
+export.
 Options are keyword arguments named as the command line's ("--max-theta" is max_theta),
 declared once, in the library (brdfit.options("fit") lists them).
 docs/python.md walks through it."""
-from ._api import (CompareResult, Error, FitResult, Model, Samples, UsageError, compare, export, fit, models, options,
-                   read, version)
+from ._api import (CompareResult, Error, FitResult, Model, Samples, SelectResult, UsageError, compare, export, fit,
+                   models, options, read, select, version)
 
 __version__ = version().split(" ")[0]
-__all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "models",
-           "options", "read", "fit", "compare", "export", "version"]
+__all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",
+           "models", "options", "read", "fit", "compare", "select", "export", "version"]

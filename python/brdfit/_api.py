@@ -14,8 +14,8 @@ import numpy as np
 
 from ._brdfit import ffi, lib
 
-__all__ = ["Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "models", "options", "read",
-           "fit", "compare", "export", "version"]
+__all__ = ["Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult", "models",
+           "options", "read", "fit", "compare", "select", "export", "version"]
 
 
 class Error(Exception):
@@ -796,6 +796,79 @@ brdfit.Samples or data file names. progress(iteration, cost) sees every solve; r
 True stops the comparison. The options are brdfit compare's, as keywords:
 
 """ + _doc("compare")
+
+
+# ---- Selecting ----------------------------------------------------------------------
+
+class SelectResult:
+    """A selection: .chosen (the chosen spec, or None when nothing could be fitted), .fit
+    (its FitResult), .json (every candidate and the choice, as `brdfit select --json`
+    writes it) and .to_json() (that text)."""
+
+    def __init__(self, text: str, fit: Optional[FitResult]):
+        self._text = text
+        self.json: Dict[str, Any] = json.loads(text)
+        self.fit = fit
+        self.chosen: Optional[str] = fit.spec if fit is not None else None
+
+    def to_json(self) -> str:
+        return self._text
+
+    def __repr__(self) -> str:
+        return "brdfit.SelectResult(chosen=%r)" % (self.chosen,)
+
+
+def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, progress=None,
+           **options: Any) -> SelectResult:
+    opts = _Options("select", options, "select")
+    data = _prepared(samples, opts, "samples")
+    if models is None:  # the library's default candidates for the data's channels
+        arr = ffi.new("const char ***")
+        n = lib.bf_select_default_candidates(data.channels, arr)
+        if n < 0:
+            raise MemoryError("brdfit: out of memory")
+        try:
+            specs = [ffi.string(arr[0][k]).decode() for k in range(n)]
+        finally:
+            lib.bf_free(arr[0])
+    else:
+        specs = _model_list(models)
+    opts.check(specs)
+    data._ready()
+    err = ffi.new("bf_error *")
+    out = ffi.new("bf_select **")
+    cspecs = [ffi.new("char[]", m.encode()) for m in specs]
+    _check(lib.bf_select_new(len(cspecs), cspecs, data.channels, opts.o, out, err), err)
+    s = out[0]
+    run = _Run(progress)
+    run.hook(opts)
+    try:
+        rc = run(lambda: lib.bf_select_run(s, data._s, opts.o, ffi.NULL, ffi.NULL, err))
+        _check(rc, err)
+        path = data.path.encode() if data.path else ffi.NULL
+        text = ffi.new("char **")
+        _check(lib.bf_select_json(s, path, text, err), err)
+        selection = _take_text(text[0])
+        fit = None
+        if s.chosen >= 0:  # the chosen fit, as `brdfit select -o` writes it
+            r = s.c[s.chosen].result
+            _check(lib.bf_fit_result_json(r, path, text, err), err)
+            m = Model._from_ptr(r.model)
+            x = np.array(ffi.unpack(r.x, lib.bf_model_nvalues(r.model)))
+            fit = FitResult(_take_text(text[0]), m, bool(r.ok), False, m._dict(x))
+        return SelectResult(selection, fit)
+    finally:
+        lib.bf_select_free(s)
+
+
+select.__doc__ = """Chooses the smallest model that serves, as `brdfit select`: fits every candidate
+(models: a list of specs or one string as -m takes it; None: the library's default
+candidates for the data's channel count) and chooses the one with the fewest free
+parameters whose error is within the tolerance of the best. progress(iteration, cost)
+sees every solve; returning True stops the selection. The options are brdfit select's, as
+keywords:
+
+""" + _doc("select")
 
 
 # ---- Export -------------------------------------------------------------------------

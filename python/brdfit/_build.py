@@ -114,6 +114,18 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_opt
 void bf_compare_rank(bf_compare *c);
 bf_status bf_compare_json(const bf_compare *c, char **out, bf_error *err);
 
+/* Selection (select.h). */
+typedef struct bf_select_candidate { char spec[160]; bf_fit_result *result; ...; } bf_select_candidate;
+typedef struct bf_select { int n; bf_select_candidate *c; int best, chosen; ...; } bf_select;
+typedef void (*bf_select_progress)(void *user, const bf_select *s, int i, int done);
+int bf_select_default_candidates(int channels, const char ***specs);
+bf_status bf_select_new(int n, const char *const *specs, int channels, const bf_options *o, bf_select **out,
+                        bf_error *err);
+void bf_select_free(bf_select *s);
+bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_select_progress progress, void *user,
+                        bf_error *err);
+bf_status bf_select_json(const bf_select *s, const char *data, char **out, bf_error *err);
+
 /* Export (export.h). */
 typedef struct bf_export_target { const char *name; const char *model; ...; } bf_export_target;
 typedef struct bf_export_material { size_t size; int converted; ...; } bf_export_material;
@@ -138,6 +150,7 @@ SOURCE = r"""
 #include "brdfit/load.h"
 #include "brdfit/model.h"
 #include "brdfit/options.h"
+#include "brdfit/select.h"
 #include "brdfit/version.h"
 """
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 import brdfit
-from _support import CAYMAN, EXAMPLES, cli
+from _support import CAYMAN, EXAMPLES, cli, normalize_json_text
 
 TURNTABLE = EXAMPLES / "scenes" / "turntable.json"
 FAST = dict(threads=1, starts=2, screen=8)
@@ -124,3 +124,17 @@ def test_the_package_holds_no_option_default_or_range():
         for k in ("range", "default"):
             if d[k] and len(d[k]) > 3:
                 assert d[k] not in strings, "%s's %s restated: %r" % (d["name"], k, d[k])
+
+
+def test_select_equals_the_command_line(tmp_path):
+    out, fit = tmp_path / "s.json", tmp_path / "chosen.json"
+    cli("select", CAYMAN, "--rgb", "--scene", TURNTABLE, "--models", "lambert,walter,ward_iso", *FAST_CLI, "-q",
+        "--json", out, "-o", fit)
+    got = brdfit.select(str(CAYMAN), "lambert,walter,ward_iso", rgb=True, scene=TURNTABLE, **FAST)
+    assert got.to_json() == out.read_text()
+    assert normalize_json_text(got.fit.to_json()) == normalize_json_text(fit.read_text())
+    assert got.chosen == json.loads(fit.read_text())["model"] + ":" + ",".join(
+        "%s=%s" % kv for kv in json.loads(fit.read_text())["options"].items())
+    # The default candidates are the library's, as the command's.
+    few = brdfit.read(CAYMAN, luminance=True, subsample=300)
+    assert len(brdfit.select(few, threads=1, starts=1).json["candidates"]) > 10

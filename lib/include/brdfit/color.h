@@ -44,7 +44,8 @@ BF_API BF_DEPRECATED("use bf_illuminant_parse") int bf_illuminant_from_name(cons
  * illuminant's white) in XYZ and, after Bradford adaptation from the illuminant's
  * white to the space's white, (1, 1, 1) in sRGB and ACEScg. Errors: bad wavelengths,
  * BF_COLOR_NONE. */
-BF_API bf_status bf_color_weights(const double *wavelength, int n, bf_color c, bf_illuminant ill, double *w, bf_error *err);
+BF_API bf_status bf_color_weights(const double *wavelength, int n, bf_color c, bf_illuminant ill, double *w,
+                                  bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -68,6 +68,7 @@ BF_API const char *bf_compare_rank_name(bf_compare_rank_by r); /* "bic", "aic", 
  * and final pass included. Deterministic, unlike its wall time. */
 BF_API double bf_compare_work(const bf_fit_result *r);
 
+/* Frozen (docs/api.md): an array element of bf_compare_material. */
 typedef struct bf_compare_fit {
     /* Filled by the caller. */
     bf_compare_state state;
@@ -91,6 +92,7 @@ typedef struct bf_compare_fit {
     int within_tolerance;        /* error <= best error * (1 + tolerance) */
 } bf_compare_fit;
 
+/* Frozen (docs/api.md): an array element of bf_compare. */
 typedef struct bf_compare_material {
     char *data;            /* the data file, as named (owned) */
     size_t samples;
@@ -99,7 +101,8 @@ typedef struct bf_compare_material {
     int best, simplest;    /* model indices from bf_compare_rank; -1: none ranked */
 } bf_compare_material;
 
-/* Per model, over the materials where it was ranked (NaN means when none). */
+/* Per model, over the materials where it was ranked (NaN means when none). Frozen
+ * (docs/api.md): an array element of bf_compare. */
 typedef struct bf_compare_summary {
     int ranked;
     double mean_rank, mean_rank_bic, mean_rank_aic, mean_error;
@@ -138,8 +141,7 @@ BF_API void bf_compare_free(bf_compare *c);
  * material and model index its slot, done counts the fits done so far (this one
  * included) of total. Calls come from the fitting threads, one at a time (under a
  * lock): the callback may print, and read the filled slots, without locking. */
-typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done,
-                                    int total);
+typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done, int total);
 
 /* c's ranking from the options o (brdfit/options.h, BF_TASK_COMPARE): the error metric,
  * what to rank by, the folds (only when ranking by cv), the tolerance, the timing and
@@ -219,7 +221,8 @@ static inline void bf_report_options_init(bf_report_options *o)
 {
     bf_report_options_init_size(o, sizeof *o);
 }
-BF_API bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err);
+BF_API bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir,
+                                         bf_error *err);
 BF_API bf_status bf_compare_html_check(const char *dir, bf_error *err);
 
 #ifdef __cplusplus

@@ -46,6 +46,7 @@ typedef enum bf_status {
 #define BF_ERROR_MAX_CHARS 200
 #define BF_ERROR_TOKEN_CHARS 64
 
+/* Frozen (docs/api.md): a small value. */
 typedef struct bf_error {
     bf_status code;
     char msg[512];   /* one line, no trailing newline, safe to print (see above) */

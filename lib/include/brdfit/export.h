@@ -69,15 +69,16 @@ BF_API bf_status bf_export_check(const bf_export_target *t, const bf_model *src,
  * bf_fit_result_init; clear it with bf_fit_result_clear once *e is no longer used; it is
  * cleared here on an error).
  * Check first with bf_export_check. */
-BF_API bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
-                            bf_fit_result *fit, bf_error *err);
+BF_API bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs,
+                                   bf_export_material *e, bf_fit_result *fit, bf_error *err);
 
 /* "conversion over N direction pairs: rmse ..., max_err ... (1/sr)" to fp (no newline). */
 BF_API void bf_export_conversion_note(const bf_export_material *e, FILE *fp);
 
 /* Writes e with t's writer to path ("-": standard output), atomically (brdfit/io.h's
  * bf_outfile: a failed write leaves no file). */
-BF_API bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
+BF_API bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path,
+                                 bf_error *err);
 
 #ifdef __cplusplus
 }

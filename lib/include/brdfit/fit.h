@@ -62,7 +62,7 @@ BF_API const char *bf_warning_kind_name(bf_warning_kind k);
  * any other. */
 BF_API bf_status bf_warning_kind_parse(const char *name, bf_warning_kind *out, bf_error *err);
 
-/* What the presolve did (samples 0: none ran). */
+/* What the presolve did (samples 0: none ran). Frozen (docs/api.md): embedded in bf_fit_result. */
 typedef struct bf_presolve_info {
     size_t samples;
     int iterations, evaluations;
@@ -87,7 +87,7 @@ typedef struct bf_fit_result {
     bf_solution solution;   /* of the best start (the solve on all samples) */
     bf_presolve_info presolve;
     bf_presolve_info screen; /* the starts' solves on the screening set (samples 0: none) */
-    int starts;             /* starts solved (the option starts; docs/fitting.md) */
+    int starts;              /* starts solved (the option starts; docs/fitting.md) */
     int starts_at_best;     /* of them, those that ended within BF_FIT_AT_BEST of the best */
     int candidates;         /* random candidates screened (0: none) */
     size_t samples;         /* samples fitted (metrics.n counts samples x channels) */
@@ -138,6 +138,7 @@ BF_API void bf_fit_result_clear(bf_fit_result *r);
  * A fold whose fit fails makes the error NaN (counted in failed). */
 #define BF_CV_MAX_FOLDS 20
 typedef struct bf_cv_result {
+    size_t size; /* sizeof, set by bf_cv_result_init (docs/api.md) */
     int folds;
     double error;                       /* pooled; NaN when a fold failed */
     double fold_error[BF_CV_MAX_FOLDS]; /* each fold's own */
@@ -146,6 +147,11 @@ typedef struct bf_cv_result {
 
 BF_API bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o, int folds, bf_cv_result *out,
                            bf_error *err);
+BF_API void bf_cv_result_init_size(bf_cv_result *r, size_t size);
+static inline void bf_cv_result_init(bf_cv_result *r)
+{
+    bf_cv_result_init_size(r, sizeof *r);
+}
 
 /* The largest directional albedo of model m at x, integral of f cos theta_o over the
  * outgoing hemisphere, over incidences 5 .. 85 degrees (and four azimuths for an
@@ -153,7 +159,7 @@ BF_API bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o,
  * integral runs over the half vector, dense near the mirror direction, so a narrow lobe
  * is resolved. BF_OK, or BF_ERR_NOMEM. */
 BF_API bf_status bf_fit_max_albedo(const bf_model *m, const double *x, double *albedo, double *theta_deg, int *channel,
-                            bf_error *err);
+                                   bf_error *err);
 
 /* A data-driven start for any model: diffuse level from off-specular samples, lobe
  * weight and width from the samples near the specular peak, every other parameter at
@@ -167,8 +173,8 @@ BF_API bf_status bf_fit_write_json(const bf_fit_result *r, const char *data_path
  * of a file. */
 BF_API bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char **out, bf_error *err);
 /* Several fits of one data set as {"fits": [result, ...]} (not a parameter file). */
-BF_API bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
-                           bf_error *err);
+BF_API bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path,
+                                        const char *out_path, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -38,14 +38,12 @@ typedef struct bf_geometry {
 /* Angles in radians. A cosine within 1e-15 of zero is taken as exactly zero, so a
  * direction given as exactly 90 degrees lies on the horizon (f = 0) rather than at
  * cos = 6e-17, where 1/(NL NV) factors would dominate a fit. */
-BF_API bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
-                                  const double *theta_o, const double *phi_o, bf_geometry **out,
-                                  bf_error *err);
+BF_API bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i, const double *theta_o,
+                                         const double *phi_o, bf_geometry **out, bf_error *err);
 
 /* L and V as n vectors each, xyz interleaved (3n doubles). They are normalised, and a
  * z within 1e-15 of zero is set to zero (on the horizon), as for angles. */
-BF_API bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
-                                   bf_error *err);
+BF_API bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out, bf_error *err);
 
 /* The geometry of n MERL cell centres (merl.h's convention), generated on demand from
  * cell[] (not copied: it must outlive the geometry). Every cell must be in range. */
@@ -61,6 +59,7 @@ static inline int bf_geometry_stored(const bf_geometry *g) { return g->cell == N
  * anything up to n - i0; for a generated one the block's vectors are computed into
  * b->buf and cnt must be at most BF_GEOMETRY_BLOCK. Returns &b->view. */
 #define BF_GEOMETRY_BLOCK 256
+/* Frozen (docs/api.md): a view filled by bf_geometry_view in inner loops. */
 typedef struct bf_geometry_block {
     bf_geometry view;
     double buf[11 * BF_GEOMETRY_BLOCK];

@@ -49,7 +49,8 @@ BF_API int bf_image_format_of(const char *path);
 BF_API bf_status bf_image_write_rgb(const char *path, int width, int height, const float *rgb, bf_error *err);
 /* The same in a given format (BF_IMAGE_PNG, BF_IMAGE_EXR; BF_IMAGE_BY_NAME: by the
  * extension), for names without one such as "-" (standard output). */
-BF_API bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb, bf_error *err);
+BF_API bf_status bf_image_write_rgb_as(const char *path, int format, int width, int height, const float *rgb,
+                                       bf_error *err);
 
 /* Reads any image OpenImageIO reads, every channel as float: EXR values as stored, PNG
  * values as stored codes / 255 (still sRGB-encoded: no colour conversion), into img (set
@@ -71,7 +72,10 @@ typedef struct bf_image_spec {
 } bf_image_spec;
 /* Zeroes *sp and sets its size. */
 BF_API void bf_image_spec_init_size(bf_image_spec *sp, size_t size);
-static inline void bf_image_spec_init(bf_image_spec *sp) { bf_image_spec_init_size(sp, sizeof *sp); } /* the program's size */
+static inline void bf_image_spec_init(bf_image_spec *sp)
+{
+    bf_image_spec_init_size(sp, sizeof *sp);
+} /* the program's size */
 BF_API bf_status bf_image_info(const char *path, bf_image_spec *out, bf_error *err);
 
 /* Reads rows [y0, y1) of any image OpenImageIO reads (0 <= y0 < y1 <= height), every
@@ -90,7 +94,7 @@ enum {
  * bf_image_write_rgb_as does for RGB: .exr linear float; .png clamped to [0, 1], sRGB-
  * encoded unless BF_IMAGE_CODES, rounded to 8 or (BF_IMAGE_16BIT) 16 bits. */
 BF_API bf_status bf_image_write(const char *path, int format, int width, int height, int channels, const float *pixels,
-                         unsigned flags, bf_error *err);
+                                unsigned flags, bf_error *err);
 
 /* The sRGB transfer function (linear [0, 1] -> encoded [0, 1]) the PNG writer applies. */
 BF_API float bf_srgb_encode(float linear);

@@ -53,6 +53,7 @@ BF_API bf_status bf_params_read(const char *path, bf_model **model, double **x, 
  * BF_ERR_IO, naming path). path NULL or "-": standard output. Temporaries are
  * registered so that bf_remove_temporaries_on_signals (brdfit/tool.h) can remove them. */
 struct bf_out_sink;
+/* Frozen (docs/api.md): declared by the caller, opened by bf_outfile_open. */
 typedef struct bf_outfile {
     FILE *fp;
     char *path;               /* as given (messages); NULL for standard output */
@@ -64,7 +65,7 @@ typedef struct bf_outfile {
 
 BF_API bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err);
 BF_API bf_status bf_outfile_commit(bf_outfile *o, bf_error *err); /* closes; renames into place */
-BF_API void bf_outfile_abort(bf_outfile *o);                /* closes; removes the temporary */
+BF_API void bf_outfile_abort(bf_outfile *o);                      /* closes; removes the temporary */
 
 /* Whether bf_outfile_open(path) could write (nothing is created: access() on the
  * folder and the file), so a command can fail before long work. */

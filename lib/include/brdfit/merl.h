@@ -31,8 +31,7 @@ typedef struct bf_merl_origin {
 
 /* MERL cell centre <-> directions in degrees (Rusinkiewicz half/difference angles,
  * phi_h = 0). */
-BF_API void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o,
-                             double *phi_o);
+BF_API void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o, double *phi_o);
 /* The cell whose centre these directions are (within 1e-9 rad in theta_h and theta_d;
  * phi_d within 1e-9 rad plus its own rounding, which grows as H nears N), or -1. */
 BF_API int32_t bf_merl_cell_of(double theta_i, double phi_i, double theta_o, double phi_o);

@@ -43,7 +43,8 @@ extern "C" {
  *   bic    = -2 loglik + (k + 1) ln N
  * k the free parameters (after --fix and mono= ties), + 1 for sigma. A robust loss
  * minimises no Gaussian likelihood: then every criterion is NaN (undefined). Models
- * compare by them only on the same samples, residual form and weights. */
+ * compare by them only on the same samples, residual form and weights. Frozen
+ * (docs/api.md): embedded in results (bf_fit_result, bf_compare_fit, ...). */
 typedef struct bf_metrics {
     size_t n;
     int k;
@@ -61,10 +62,10 @@ BF_API void bf_metrics_criteria(bf_metrics *m, size_t n, int k, double wssr, dou
 
 /* threads: 0 or 1 for one; the result is the same for any count. */
 BF_API bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
-                       bf_metrics *out, bf_error *err);
+                                    bf_metrics *out, bf_error *err);
 /* The same; weighted = 1 applies the samples' scene weights (if they have any) as above. */
 BF_API bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
-                                int weighted, bf_metrics *out, bf_error *err);
+                                             int weighted, bf_metrics *out, bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -98,9 +98,9 @@ typedef struct bf_model bf_model;
 BF_API bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);
 BF_API void bf_model_free(bf_model *m);
 
-BF_API const char *bf_model_name(const bf_model *m);    /* family name, e.g. "walter" */
-BF_API const bf_family_info *bf_model_family(const bf_model *m); /* its family's description */
-BF_API const char *bf_model_spec(const bf_model *m);    /* canonical spec with every option */
+BF_API const char *bf_model_name(const bf_model *m);                    /* family name, e.g. "walter" */
+BF_API const bf_family_info *bf_model_family(const bf_model *m);        /* its family's description */
+BF_API const char *bf_model_spec(const bf_model *m);                    /* canonical spec with every option */
 BF_API const char *bf_model_option(const bf_model *m, const char *key); /* NULL if none */
 BF_API int bf_model_channels(const bf_model *m);
 BF_API int bf_model_lobes(const bf_model *m);
@@ -127,13 +127,12 @@ BF_API bf_status bf_model_check(const bf_model *m, const double *x, bf_error *er
 
 /* values[i*C + c] for every sample i and channel c. grad (NULL: none) is the row-major
  * Jacobian: grad[(i*C + c)*P + k] = d values[i*C + c] / d x[k]. Thread-safe. */
-BF_API void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
-                   double *values, double *grad);
+BF_API void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g, double *values, double *grad);
 /* The same for samples [i0, i1) only, for callers that split the work (threads,
  * chunks): outputs start at sample i0, i.e. values[(i - i0)*C + c] and
  * grad[((i - i0)*C + c)*P + k], so a buffer for (i1 - i0) samples suffices. */
-BF_API void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
-                         size_t i0, size_t i1, double *values, double *grad);
+BF_API void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                                double *values, double *grad);
 
 #ifdef __cplusplus
 }

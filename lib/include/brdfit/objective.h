@@ -58,7 +58,7 @@ BF_API bf_status bf_overrides_check(const bf_model *m, int channels, const bf_ov
 
 /* Set up with bf_objective_options_init (its size: docs/api.md), then change what differs. */
 typedef struct bf_objective_options {
-    size_t size;           /* sizeof, set by bf_objective_options_init */
+    size_t size; /* sizeof, set by bf_objective_options_init */
     bf_residual residual;
     int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:
                               from the cell's extent in theta_h, theta_d, phi_d); needs a
@@ -86,8 +86,8 @@ typedef struct bf_objective bf_objective;
  * with one-line errors. Computes the sample geometry if needed. o NULL: a zeroed
  * struct's settings (linear residual, the samples' own weights not used); o's size not
  * set by its init: BF_ERR_ARG. */
-BF_API bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o,
-                           bf_objective **out, bf_error *err);
+BF_API bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o, bf_objective **out,
+                                  bf_error *err);
 BF_API void bf_objective_free(bf_objective *obj);
 
 /* The problem over the internal vector z (free parameters only, in their internal

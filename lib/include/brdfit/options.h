@@ -124,11 +124,11 @@ BF_API bf_status bf_options_check_models(const bf_options *o, const char *const 
  * only a program that writes the format back asks (brdfit convert). */
 BF_API void bf_options_keep_origin(bf_options *o, int keep);
 
-/* The flags are bf_cancel_flag (brdfit/solve.h). cancel: read at every iteration of every solve and before every fit: once set,
- * running solves stop at their next iteration (the fit ends cancelled) and no new fit
- * starts. finish: read before each fit of a comparison or selection: once set, no new
- * fit starts and running ones finish (brdfit compare's first Ctrl-C). Either may be NULL;
- * the flags must outlive every use of o. */
+/* The flags are bf_cancel_flag (brdfit/solve.h). cancel: read at every iteration of every
+ * solve and before every fit: once set, running solves stop at their next iteration (the
+ * fit ends cancelled) and no new fit starts. finish: read before each fit of a comparison
+ * or selection: once set, no new fit starts and running ones finish (brdfit compare's
+ * first Ctrl-C). Either may be NULL; the flags must outlive every use of o. */
 BF_API void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
 /* Called after every iteration of every solve (Ceres) or evaluation (NLopt), from the
  * solving thread, with user as its first argument; non-zero stops the fit as cancel

@@ -165,12 +165,13 @@ BF_API void bf_photo_result_free(bf_photo_result *r);
  * existing dir is replaced only when it is empty or holds a previous run's outputs.
  * command_line (may be NULL) is recorded in fit.json. */
 BF_API bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, const char *dir,
-                         const char *command_line, bf_error *err);
+                                const char *command_line, bf_error *err);
 /* The outputs of the `--tile I/N` runs of one stack (the folders of tiles 1..N, in any
  * order) merged into the outputs of the whole image in dir, as one run would have
  * written them (the tiles start alike: photo.h's fits of a tile depend on its rows only
  * through the pixels in them). */
-BF_API bf_status bf_photo_merge(const char *const *dirs, int n, const char *dir, const char *command_line, bf_error *err);
+BF_API bf_status bf_photo_merge(const char *const *dirs, int n, const char *dir, const char *command_line,
+                                bf_error *err);
 
 /* Whether dir could be written (before a long fit). */
 BF_API bf_status bf_photo_check_output(const char *dir, bf_error *err);

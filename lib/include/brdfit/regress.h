@@ -36,12 +36,13 @@ extern "C" {
 #define BF_REGRESS_METRICS_REL 1e-6
 #define BF_REGRESS_METRICS_ABS 1e-12
 
+/* Frozen (docs/api.md): a small value. */
 typedef struct bf_tolerance {
     double rel, abs;
 } bf_tolerance;
 
 /* One expected quantity: a parameter (scalar, or one value per channel) or a metric.
- * null in the file (a non-finite value) reads as NaN. */
+ * null in the file (a non-finite value) reads as NaN. Frozen (docs/api.md): an array element of bf_regress_case. */
 typedef struct bf_regress_value {
     char *name;
     int n;          /* values */
@@ -50,6 +51,7 @@ typedef struct bf_regress_value {
     int line;
 } bf_regress_value;
 
+/* Frozen (docs/api.md): an array element of bf_regress_baseline. */
 typedef struct bf_regress_case {
     char *name;
     char *data;        /* as written */
@@ -109,7 +111,7 @@ typedef enum bf_regress_status {
  * docs/api.md); an array of them passed to the library is read with that size as its
  * stride. */
 typedef struct bf_regress_outcome {
-    size_t size;    /* sizeof, set by bf_regress_outcome_init */
+    size_t size; /* sizeof, set by bf_regress_outcome_init */
     bf_regress_status status;
     double seconds;
     int nlines;
@@ -126,7 +128,7 @@ typedef struct bf_regress_outcome {
  * Expected ok false passes when the fit failed (values unchecked) and fails when it
  * succeeded. Returns BF_OK unless memory runs out. */
 BF_API bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
-                     bf_error *err);
+                                  bf_error *err);
 /* Marks case c as not runnable with message (status ERROR). */
 BF_API bf_status bf_regress_set_error(bf_regress_outcome *out, const char *message, bf_error *err);
 BF_API void bf_regress_outcome_clear(bf_regress_outcome *out);
@@ -141,8 +143,8 @@ static inline void bf_regress_outcome_init(bf_regress_outcome *out)
  * names and channel count where they differ). A failed fit (r->ok 0) sets ok false and
  * leaves the values. Appends one line per change to *changes ("params.alpha: 0.12 ->
  * 0.1201"; caller frees each and the array). */
-BF_API bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
-                      bf_error *err);
+BF_API bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes,
+                                   int *nchanges, bf_error *err);
 /* Writes the document (2-space indent, arrays of scalars on one line, numbers that
  * read back exactly) to path through a temporary file. */
 BF_API bf_status bf_regress_write(const bf_regress_baseline *b, const char *path, bf_error *err);
@@ -152,7 +154,7 @@ BF_API bf_status bf_regress_write(const bf_regress_baseline *b, const char *path
  * holding the diff lines, <error> the reason a case could not run, <system-out> the
  * fit's warnings. Written through a temporary file. */
 BF_API bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
-                           bf_error *err);
+                                        bf_error *err);
 
 #ifdef __cplusplus
 }

@@ -54,7 +54,7 @@ static inline void bf_sphere_options_init(bf_sphere_options *o)
 }
 
 BF_API bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
-                     bf_error *err);
+                                  bf_error *err);
 /* The same sphere of a measured MERL table (read with its origin): each pixel's pair of
  * directions takes the value of the cell MERL's own lookup picks (half/difference
  * angles, phi_d folded by reciprocity); 0 where that cell is invalid. */
@@ -85,7 +85,10 @@ typedef struct bf_plot_axes {
 
 /* Zeroes *a and sets its size. */
 BF_API void bf_plot_axes_init_size(bf_plot_axes *a, size_t size);
-static inline void bf_plot_axes_init(bf_plot_axes *a) { bf_plot_axes_init_size(a, sizeof *a); } /* the program's size */
+static inline void bf_plot_axes_init(bf_plot_axes *a)
+{
+    bf_plot_axes_init_size(a, sizeof *a);
+} /* the program's size */
 
 /* ---- In-plane slices -------------------------------------------------------------
  * For each incidence angle theta_i (light at phi_i = 0), f at viewing directions in the
@@ -121,7 +124,10 @@ typedef struct bf_slice_options {
  * points to the library's own copy), no samples, plane_tol 2, the default title, the y
  * range from the data. */
 BF_API void bf_slice_options_init_size(bf_slice_options *o, size_t size);
-static inline void bf_slice_options_init(bf_slice_options *o) { bf_slice_options_init_size(o, sizeof *o); } /* the program's size */
+static inline void bf_slice_options_init(bf_slice_options *o)
+{
+    bf_slice_options_init_size(o, sizeof *o);
+} /* the program's size */
 
 /* The plot's y range in log10 f, and the samples overlaid (in the plane) and drawn.
  * Callers set it up with bf_slice_range_init; the library fills what lies within its
@@ -135,7 +141,10 @@ typedef struct bf_slice_range {
 
 /* Zeroes *r and sets its size. */
 BF_API void bf_slice_range_init_size(bf_slice_range *r, size_t size);
-static inline void bf_slice_range_init(bf_slice_range *r) { bf_slice_range_init_size(r, sizeof *r); } /* the program's size */
+static inline void bf_slice_range_init(bf_slice_range *r)
+{
+    bf_slice_range_init_size(r, sizeof *r);
+} /* the program's size */
 
 /* Incidence angles the data has: for each wanted angle, the nearest theta_i (below 90)
  * of any sample, to 0.1 degree; duplicates dropped, ascending. out holds
@@ -145,11 +154,11 @@ BF_API int bf_slice_incidences(const bf_samples *s, const double *want, int nwan
 /* The data's extent in log10 f (curves and in-plane samples, limited as above),
  * so that several plots can share one y range: BF_OK, *lo <= *hi. */
 BF_API bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
-                    double *log10_hi, bf_error *err);
+                                 double *log10_hi, bf_error *err);
 /* The slice plot written to path ("-": standard output) in format (BF_PLOT_BY_NAME: by
  * the extension); range may be NULL. */
-BF_API bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
-                    bf_slice_range *range, bf_error *err);
+BF_API bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path,
+                                 int format, bf_slice_range *range, bf_error *err);
 
 /* ---- theta_h x theta_d image -----------------------------------------------------
  * Column i: theta_h = ((i + 0.5)/width)^2 * 90 (even in sqrt(theta_h), as MERL tables
@@ -157,18 +166,19 @@ BF_API bf_status bf_render_slice(const bf_model *m, const double *x, const bf_sl
  * Values are f (linear, per channel). From a model, or from a MERL table read with
  * bf_samples_read_merl: the cell containing (theta_h, theta_d, phi_d) (MERL's own
  * lookup), 0 where that cell is invalid or was not read. */
-BF_API bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
-                             double phi_d, float *rgb, bf_error *err);
-BF_API bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d,
-                            float *rgb, bf_error *err);
+BF_API bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height, double phi_d,
+                                          float *rgb, bf_error *err);
+BF_API bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d, float *rgb,
+                                         bf_error *err);
 
 /* The same image as a figure (a plot, PNG, SVG or PDF by format or the extension):
  * theta_h on a sqrt axis ticked in degrees, theta_d upwards, the mean of the channels on
  * a log colour scale from the image's 99th percentile down `decades`, a colour bar;
  * cells with no value grey. Of the model m (parameters x), or of the MERL table merl
  * when m is NULL. width x height: the figure, pixels (PNG) or points. */
-BF_API bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
-                            int width, int height, const char *path, int format, bf_error *err);
+BF_API bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d,
+                                         double decades, int width, int height, const char *path, int format,
+                                         bf_error *err);
 
 /* L and V (unit, local frame) at half/difference angles in radians, phi_h = 0: L is the
  * difference vector rotated by theta_h about y, V its mirror about H. */

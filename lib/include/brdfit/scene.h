@@ -40,6 +40,7 @@
 extern "C" {
 #endif
 
+/* Frozen (docs/api.md): an array element of bf_scene. */
 typedef struct bf_scene_dir {
     double theta, phi; /* degrees */
     double weight;     /* > 0 */

@@ -28,6 +28,7 @@
 extern "C" {
 #endif
 
+/* Frozen (docs/api.md): an array element of bf_select. */
 typedef struct bf_select_candidate {
     char spec[160];          /* as given */
     /* From the configured model (bf_select_describe). */
@@ -56,7 +57,7 @@ typedef struct bf_select {
     bf_select_candidate *c;  /* n (owned) */
     bf_compare_metric metric;
     bf_compare_rank_by rank_by; /* the options' rank (default error) */
-    int folds;               /* of rank_by cv (the options' folds) */
+    int folds;                  /* of rank_by cv (the options' folds) */
     int timing;              /* 1: the JSON carries wall times */
     double tolerance;        /* relative, >= 0 */
     double abs_tolerance;    /* absolute, >= 0: errors this close to the best are equal */

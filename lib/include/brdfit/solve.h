@@ -41,8 +41,8 @@ typedef struct bf_problem {
      * depend on `threads` (sum fixed chunks in a fixed order). A non-finite residual or
      * Jacobian entry shows as a non-finite *ssq or diagonal. Returns 0, or non-zero to
      * abort (out of memory). NULL: the back ends build the same sums from eval. */
-    int (*normal)(void *user, const double *x, const struct bf_loss *loss, int threads, double *ssq,
-                  double *jtr, double *jtj);
+    int (*normal)(void *user, const double *x, const struct bf_loss *loss, int threads, double *ssq, double *jtr,
+                  double *jtj);
 } bf_problem;
 
 /* Zeroes p and sets its size. */
@@ -99,7 +99,7 @@ static inline double bf_loss_residual(const bf_loss *l, double r, double *dg)
  * else built from eval over fixed chunks of residuals on `threads` threads (summed in
  * chunk order, so independent of the thread count). Same contract as normal. */
 BF_API int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq,
-                      double *jtr, double *jtj);
+                             double *jtr, double *jtj);
 
 typedef enum bf_backend { BF_BACKEND_CERES = 0, BF_BACKEND_NLOPT } bf_backend;
 

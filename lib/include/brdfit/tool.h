@@ -24,7 +24,8 @@ BF_API int bf_parse_number(const char *s, double lo, double hi, double *out);
 /* ---- Outputs: checked before any work, and never left half-written ------------------ */
 
 /* One file a command reads or writes, with the option or role that names it in
- * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped). */
+ * messages ("-o", "--json", "data file", "--params"). path NULL: not given (skipped).
+ * Frozen (docs/api.md): a small value. */
 typedef struct bf_path_use {
     const char *what;
     const char *path;
@@ -40,7 +41,7 @@ typedef struct bf_path_use {
  * - every output must be writable (bf_outfile_check; BF_ERR_IO).
  * The first problem found is returned, as one line in err. */
 BF_API bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
-                     bf_error *err);
+                                  bf_error *err);
 
 /* Installs a handler for the signals that end a process by default (SIGHUP, SIGINT,
  * SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM,

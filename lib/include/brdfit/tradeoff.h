@@ -43,8 +43,9 @@ BF_API bf_status bf_tradeoff_method_check(const char *text, const bf_options *ba
  * and at least 1 left for training), both in the original order. fraction in (0, 1).
  * Weights and channel names are copied; the MERL origin is not (neither set is a table). */
 BF_API bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
-                      bf_samples **test, bf_error *err);
+                                   bf_samples **test, bf_error *err);
 
+/* Frozen (docs/api.md): an array element of bf_tradeoff. */
 typedef struct bf_tradeoff_row {
     /* The setting (bf_tradeoff_new). */
     size_t samples;      /* training samples fitted (the whole training set when all) */
@@ -108,8 +109,8 @@ BF_API void bf_tradeoff_free(bf_tradeoff *t);
  * fit's time with the least interference), and measures the best fit on train and test
  * (every metric). Returns BF_OK when the row was filled (a fit that could not run says so
  * in row->message and returns its error code too). */
-BF_API bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test,
-                                     const bf_options *base, bf_error *err);
+BF_API bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_options *base,
+                                     bf_error *err);
 
 /* error from t->metric on the test set, the Pareto front of (cost, error) over the ok
  * rows, best (lowest error; ties to the cheaper, then the earlier row), within tolerance
@@ -133,7 +134,7 @@ BF_API bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, b
  * (BF_PLOT_BY_NAME: by the extension .png, .svg or .pdf). axes (may be NULL; set up by
  * bf_plot_axes_init): what the axes span. */
 BF_API bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
-                           bf_plot_axes *axes, bf_error *err);
+                                        bf_plot_axes *axes, bf_error *err);
 
 #ifdef __cplusplus
 }

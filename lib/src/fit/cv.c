@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "base/big_alloc.h"
+#include "base/sized.h"
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 #include "fit_impl.h"
@@ -41,11 +42,12 @@ static bf_status held_out(bf_samples *test, const bf_model *m, const double *x, 
     return rc;
 }
 
-bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o, int folds, bf_cv_result *out,
-                    bf_error *err)
+bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o, int folds, bf_cv_result *out, bf_error *err)
 {
-    memset(out, 0, sizeof *out);
-    out->error = NAN;
+    if (!out || bf_sized_check(out, sizeof *out, "bf_cv_result", err) != BF_OK)
+        return BF_ERR_ARG;
+    /* Every member of this version lies within the first version's size. */
+    bf_cv_result_init(out);
     if (!o)
         return bf_fail(err, BF_ERR_ARG, "cross-validation: no options");
     bf_status rc = bf_options_check(o, err);
@@ -59,7 +61,7 @@ bf_status bf_fit_cv(bf_samples *s, const char *spec, const bf_options *o, int fo
 bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed,
                          bf_cv_result *out, bf_error *err)
 {
-    memset(out, 0, sizeof *out);
+    bf_cv_result_init(out);
     out->error = NAN;
     if (!s || !o || !out)
         return bf_fail(err, BF_ERR_ARG, "cross-validation: no samples or no options");
@@ -109,4 +111,10 @@ bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *
     if (rc == BF_OK && out->failed == 0 && wsum > 0.0)
         out->error = sqrt(wssr / wsum);
     return rc;
+}
+
+void bf_cv_result_init_size(bf_cv_result *r, size_t size)
+{
+    bf_cv_result full = {.size = sizeof full, .error = NAN};
+    bf_sized_init(r, size, &full, sizeof full);
 }

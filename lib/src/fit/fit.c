@@ -365,8 +365,8 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
     /* Samples a scene weighted are judged over its directions, as it weighs them,
      * however they reached the fit. */
     const int weighted = o->weighted_metrics || s->scene_weight != NULL;
-    if ((rc = bf_obj_final_held(obj, r->x, weighted, nz - nsilent, held, held ? held + nz : NULL,
-                                &r->metrics, r->stderr_, corr, err)) != BF_OK)
+    if ((rc = bf_obj_final_held(obj, r->x, weighted, nz - nsilent, held, held ? held + nz : NULL, &r->metrics,
+                                r->stderr_, corr, err)) != BF_OK)
         goto done;
     if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
         r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;

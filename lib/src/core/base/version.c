@@ -16,4 +16,7 @@ void bf_version_numbers(int *major, int *minor, int *patch)
         *patch = BRDFIT_VERSION_PATCH;
 }
 
-int bf_version_number(void) { return BRDFIT_VERSION_NUMBER; }
+int bf_version_number(void)
+{
+    return BRDFIT_VERSION_NUMBER;
+}

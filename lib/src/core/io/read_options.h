@@ -18,7 +18,7 @@ typedef struct bf_csv_map {
 typedef struct bf_read_options {
     bf_format format;
     bf_csv_map csv;
-    int keep_origin; /* keep what writing the file back byte for byte needs (MERL: the raw
+    int keep_origin;  /* keep what writing the file back byte for byte needs (MERL: the raw
                         table, 35 MB); only a command that writes the format back asks */
     const char *grid; /* NULL: the file's own measured points. Else the directions at which
                          to evaluate a format that can be evaluated anywhere (RGL, mbsdf):

@@ -8,18 +8,18 @@
 
 /* Zeroed = change nothing but drop what cannot be used (below the horizon, NaN/Inf). */
 typedef struct bf_prep {
-    const char *channels;  /* keep these channels, in this order: comma-separated names or
+    const char *channels;     /* keep these channels, in this order: comma-separated names or
                               0-based indices; NULL keeps all */
-    int to_bands;          /* spectral -> three band means r, g, b: 600-700, 500-600,
+    int to_bands;             /* spectral -> three band means r, g, b: 600-700, 500-600,
                               400-500 nm (not colorimetric: see color) */
-    bf_color color;        /* spectral -> a colour space (brdfit/color.h); NONE: no */
+    bf_color color;           /* spectral -> a colour space (brdfit/color.h); NONE: no */
     bf_illuminant illuminant; /* of the colour conversion, or of to_luminance on spectra;
                                  D65 (0) by default */
-    int to_luminance;      /* -> one channel: CIE Y of spectra with wavelengths, Rec. 709 of
+    int to_luminance;         /* -> one channel: CIE Y of spectra with wavelengths, Rec. 709 of
                               r, g, b, else the mean */
-    double max_theta;      /* degrees; > 0 drops samples with theta_i or theta_o above it */
-    bf_negative negative;  /* negative values are data by default (KEEP) */
-    size_t subsample;      /* > 0: seeded stratified subsample to this many samples */
+    double max_theta;         /* degrees; > 0 drops samples with theta_i or theta_o above it */
+    bf_negative negative;     /* negative values are data by default (KEEP) */
+    size_t subsample;         /* > 0: seeded stratified subsample to this many samples */
     uint64_t seed;
 } bf_prep;
 

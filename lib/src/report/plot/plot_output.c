@@ -130,8 +130,11 @@ int bf_plot_format_of(const char *path)
 
 bf_status bf_plot_format_parse(const char *name, bf_plot_format *out, bf_error *err)
 {
-    bf_plot_format f = !name ? BF_PLOT_BY_NAME : !strcmp(name, "png") ? BF_PLOT_PNG : !strcmp(name, "svg") ? BF_PLOT_SVG
-                                                : !strcmp(name, "pdf") ? BF_PLOT_PDF : BF_PLOT_BY_NAME;
+    bf_plot_format f = !name                  ? BF_PLOT_BY_NAME
+                       : !strcmp(name, "png") ? BF_PLOT_PNG
+                       : !strcmp(name, "svg") ? BF_PLOT_SVG
+                       : !strcmp(name, "pdf") ? BF_PLOT_PDF
+                                              : BF_PLOT_BY_NAME;
     if (f == BF_PLOT_BY_NAME)
         return bf_fail(err, BF_ERR_ARG, "unknown plot format '%s' (png, svg, pdf)", name ? name : "");
     *out = f;

@@ -340,7 +340,8 @@ static cJSON *select_json(const bf_select *s, const char *data)
             bf_json_add_number(o, "seconds", ran ? c->seconds : NAN);
         cJSON_AddItemToObject(o, "metrics", ran ? bf_json_metrics(&c->result->metrics) : cJSON_CreateNull());
         cJSON_AddItemToObject(o, "params", ran ? bf_json_params(c->result->model, c->result->x) : cJSON_CreateNull());
-        cJSON_AddItemToObject(o, "stderr", ran ? bf_json_params(c->result->model, c->result->stderr_) : cJSON_CreateNull());
+        cJSON_AddItemToObject(o, "stderr",
+                              ran ? bf_json_params(c->result->model, c->result->stderr_) : cJSON_CreateNull());
         cJSON *w = cJSON_AddArrayToObject(o, "warnings");
         for (int k = 0; ran && k < c->result->nwarnings; k++)
             cJSON_AddItemToArray(w, cJSON_CreateString(c->result->warnings[k]));

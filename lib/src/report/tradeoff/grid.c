@@ -167,8 +167,8 @@ bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, i
     *out = NULL;
     if (!t)
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
-    bf_status rc = bf_tradeoff_init(t, data, model, train_n, ncounts, counts, nmethods, methods, nresiduals,
-                                    residuals, nstarts, starts, err);
+    bf_status rc = bf_tradeoff_init(t, data, model, train_n, ncounts, counts, nmethods, methods, nresiduals, residuals,
+                                    nstarts, starts, err);
     if (rc != BF_OK) {
         free(t);
         return rc;
