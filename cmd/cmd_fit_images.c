@@ -193,7 +193,7 @@ static int run(const fit_images_args *a, const bf_photo_options *o0)
     progress_state ps = {isatty(STDERR_FILENO), -1, bf_now_seconds()};
     if (ps.tty && !cli_quiet()) {
         o.progress = progress;
-        o.progress_ctx = &ps;
+        o.progress_user = &ps;
     }
     o.cancel = &interrupt_flag;
     struct sigaction old;

@@ -90,8 +90,8 @@ typedef struct bf_photo_options {
     int relit_images;           /* relit comparisons kept (0: none; at most BF_PHOTO_MAX_RELIT) */
     uint64_t seed;              /* the clusters' and shared fit's subsample */
     /* Called now and then with the fraction of pixels done (0..1). */
-    void (*progress)(void *ctx, double done);
-    void *progress_ctx;
+    void (*progress)(void *user, double done);
+    void *progress_user;
     const bf_cancel_flag *cancel; /* non-zero: stop (bf_photo_result.cancelled) */
 } bf_photo_options;
 

@@ -113,8 +113,10 @@ bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *
     return rc;
 }
 
-void bf_cv_result_init_size(bf_cv_result *r, size_t size)
+/* No folds run yet: no error. */
+static void cv_result_defaults(bf_cv_result *r)
 {
-    bf_cv_result full = {.size = sizeof full, .error = NAN};
-    bf_sized_init(r, size, &full, sizeof full);
+    r->error = NAN;
 }
+
+BF_SIZED_INIT(bf_cv_result, cv_result_defaults)

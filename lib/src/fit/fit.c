@@ -397,19 +397,7 @@ done:
     return BF_OK;
 }
 
-/* bf_fit_result with the library's defaults (a whole struct of this version). */
-static void fit_result_defaults(bf_fit_result *r)
-{
-    memset(r, 0, sizeof *r);
-    r->size = sizeof *r;
-}
-
-void bf_fit_result_init_size(bf_fit_result *r, size_t size)
-{
-    bf_fit_result full;
-    fit_result_defaults(&full);
-    bf_sized_init(r, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_fit_result)
 
 void bf_fit_result_clear(bf_fit_result *r)
 {

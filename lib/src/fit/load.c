@@ -8,13 +8,6 @@
 
 #include <string.h>
 
-/* bf_load_report with the library's defaults (a whole struct of this version). */
-static void load_report_defaults(bf_load_report *r)
-{
-    memset(r, 0, sizeof *r);
-    r->size = sizeof *r;
-}
-
 bf_status bf_samples_read(const char *path, const bf_options *o, bf_samples **out, bf_error *err)
 {
     if (!o)
@@ -24,12 +17,7 @@ bf_status bf_samples_read(const char *path, const bf_options *o, bf_samples **ou
     return bf_samples_read_with(path, &rd.read, out, err);
 }
 
-void bf_load_report_init_size(bf_load_report *r, size_t size)
-{
-    bf_load_report full;
-    load_report_defaults(&full);
-    bf_sized_init(r, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_load_report)
 
 /* The scene goes between preprocessing's drops and its subsampling: prep without the
  * subsample, the scene, then prep again with only the subsample (nothing else is left to

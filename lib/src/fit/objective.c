@@ -377,17 +377,10 @@ static int scan_samples(bf_objective *o)
 /* bf_objective_options with the library's defaults (a whole struct of this version). */
 static void objective_options_defaults(bf_objective_options *o)
 {
-    memset(o, 0, sizeof *o);
-    o->size = sizeof *o;
     o->use_weights = 1; /* bf_fit's default: a data set's own weights count */
 }
 
-void bf_objective_options_init_size(bf_objective_options *o, size_t size)
-{
-    bf_objective_options full;
-    objective_options_defaults(&full);
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT(bf_objective_options, objective_options_defaults)
 
 bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
                            bf_objective **out, bf_error *err)

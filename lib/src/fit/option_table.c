@@ -48,13 +48,7 @@ static bf_status set_angles(bf_options *o, const option_row *r, const char *v, b
         }
     if (!ok || commas != 3)
         return bf_fail(err, BF_ERR_ARG, "%s needs four comma-separated column names, got '%s'", SPELL(o, r, name), p);
-    char *copy = strdup(p);
-    if (!copy)
-        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-    int i = option_row_index(r);
-    free(o->text[i]);
-    o->text[i] = copy;
-    return BF_OK;
+    return option_keep_text(o, r, p, err);
 }
 
 /* ---- What spectral data becomes ------------------------------------------------------- */
@@ -232,14 +226,10 @@ static bf_status set_loss(bf_options *o, const option_row *r, const char *v, bf_
     bf_loss l;
     if (bf_loss_parse(v, &l, &e) != BF_OK)
         return bf_fail(err, BF_ERR_ARG, "%s: %s", SPELL(o, r, name), e.msg);
-    char *copy = strdup(v);
-    if (!copy)
-        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-    int i = option_row_index(r);
-    free(o->text[i]);
-    o->text[i] = copy;
-    o->loss = l;
-    return BF_OK;
+    bf_status rc = option_keep_text(o, r, v, err);
+    if (rc == BF_OK)
+        o->loss = l;
+    return rc;
 }
 
 static void get_loss(const bf_options *o, const option_row *r, char *buf, size_t size)

@@ -80,6 +80,17 @@ const char *option_spelled(const bf_options *o, const char *name, char *buf, siz
     return buf;
 }
 
+bf_status option_keep_text(bf_options *o, const option_row *r, const char *v, bf_error *err)
+{
+    char *copy = strdup(v);
+    if (!copy)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    const int i = option_row_index(r);
+    free(o->text[i]);
+    o->text[i] = copy;
+    return BF_OK;
+}
+
 const char *option_text(const bf_options *o, const char *name)
 {
     for (int i = 0; i < option_nrows; i++)
@@ -203,17 +214,10 @@ static bf_status set_generic(bf_options *o, const option_row *r, const char *v, 
             snprintf(what, sizeof what, "a number from %g to %g", r->d.lo, r->d.hi);
         break;
     }
-    case BF_OPTION_TEXT: {
-        char *copy = v ? strdup(v) : NULL;
+    case BF_OPTION_TEXT:
         if (!v)
             return bf_fail(err, BF_ERR_ARG, "%s needs a value (%s)", name, r->d.arg);
-        if (!copy)
-            return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-        int i = option_row_index(r);
-        free(o->text[i]);
-        o->text[i] = copy;
-        return BF_OK;
-    }
+        return option_keep_text(o, r, v, err);
     default: return bf_fail(err, BF_ERR_ARG, "%s: internal error: no way to take it", name);
     }
     return bf_fail(err, BF_ERR_ARG, "%s needs %s, got '%s'", name, r->d.range ? r->d.range : what, v ? v : "");

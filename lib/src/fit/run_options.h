@@ -85,6 +85,8 @@ extern const int option_nrows;
 int option_row_index(const option_row *r);
 /* The option's name as the set's messages spell it, into buf. */
 const char *option_spelled(const bf_options *o, const char *name, char *buf, size_t size);
+/* v kept (copied) as row r's text in o. */
+bf_status option_keep_text(bf_options *o, const option_row *r, const char *v, bf_error *err);
 /* The text of a TEXT row of o by name (NULL when not set). */
 const char *option_text(const bf_options *o, const char *name);
 

@@ -32,18 +32,11 @@
 /* bf_photo_options with the library's defaults (a whole struct of this version). */
 static void photo_options_defaults(bf_photo_options *o)
 {
-    memset(o, 0, sizeof *o);
-    o->size = sizeof *o;
     o->model = "walter";
     o->relit_images = 3;
 }
 
-void bf_photo_options_init_size(bf_photo_options *o, size_t size)
-{
-    bf_photo_options full;
-    photo_options_defaults(&full);
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT(bf_photo_options, photo_options_defaults)
 
 void bf_photo_result_free(bf_photo_result *r)
 {
@@ -429,7 +422,7 @@ static void solve_chunk(void *ctx, size_t ci)
     photo_buffers_free(&cb);
     atomic_fetch_add(&j->done, p1 - p0);
     if (run->o->progress && pthread_equal(pthread_self(), j->caller))
-        run->o->progress(run->o->progress_ctx, (double)atomic_load(&j->done));
+        run->o->progress(run->o->progress_user, (double)atomic_load(&j->done));
 }
 
 static double angle_between(const double *a, const double *b)
@@ -648,7 +641,7 @@ typedef struct progress_ctx {
 static void progress_scaled(void *ctx, double done)
 {
     progress_ctx *pc = ctx;
-    pc->o->progress(pc->o->progress_ctx, pc->total > 0 ? (pc->base + done) / pc->total : 1.0);
+    pc->o->progress(pc->o->progress_user, pc->total > 0 ? (pc->base + done) / pc->total : 1.0);
 }
 
 static bf_status fit_bands(photo_run *run, const unsigned char *mask, bf_photo_result *r, size_t total,
@@ -699,7 +692,7 @@ static bf_status fit_bands(photo_run *run, const unsigned char *mask, bf_photo_r
         bf_photo_options oo = *o;
         if (o->progress) {
             oo.progress = progress_scaled;
-            oo.progress_ctx = &pc;
+            oo.progress_user = &pc;
         }
         const bf_photo_options *keep = run->o;
         run->o = &oo;

@@ -43,4 +43,23 @@ static inline void bf_sized_init(void *x, size_t size, void *full, size_t lib_si
         memset((char *)x + lib_size, 0, size - lib_size);
 }
 
+/* The library's bf_x_init_size for struct T (docs/api.md): a whole T zeroed, then given
+ * its defaults by defaults(T *) (BF_SIZED_INIT_ZERO: none but zeros), copied into the
+ * program's as far as its size reaches. */
+#define BF_SIZED_INIT(T, defaults)                                                                                     \
+    void T##_init_size(T *x, size_t size)                                                                              \
+    {                                                                                                                  \
+        T full;                                                                                                        \
+        memset(&full, 0, sizeof full);                                                                                 \
+        defaults(&full);                                                                                               \
+        bf_sized_init(x, size, &full, sizeof full);                                                                    \
+    }
+#define BF_SIZED_INIT_ZERO(T)                                                                                          \
+    void T##_init_size(T *x, size_t size)                                                                              \
+    {                                                                                                                  \
+        T full;                                                                                                        \
+        memset(&full, 0, sizeof full);                                                                                 \
+        bf_sized_init(x, size, &full, sizeof full);                                                                    \
+    }
+
 #endif

@@ -109,11 +109,7 @@ bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *er
     return describe(s, info, err);
 }
 
-void bf_samples_info_init_size(bf_samples_info *info, size_t size)
-{
-    bf_samples_info full = {.size = sizeof full};
-    bf_sized_init(info, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_samples_info)
 
 void bf_samples_info_clear(bf_samples_info *info)
 {

@@ -119,20 +119,9 @@ int bf_solver_cancelled(const bf_solver_options *o, int iteration, double cost)
     return o->progress && o->progress(o->progress_user, iteration, cost) != 0;
 }
 
-void bf_problem_init_size(bf_problem *p, size_t size)
-{
-    bf_problem full;
-    memset(&full, 0, sizeof full);
-    bf_sized_init(p, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_problem)
 
-void bf_solver_options_init_size(bf_solver_options *o, size_t size)
-{
-    /* Every default is a zero's (solve.h): the back ends read 0 as "their default". */
-    bf_solver_options full;
-    memset(&full, 0, sizeof full);
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_solver_options)
 
 bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {

@@ -411,11 +411,7 @@ bf_status bf_compare_write_html(const bf_compare *c, bf_samples *const *samples,
     return bf_compare_write_report(c, &o, dir, err);
 }
 
-void bf_report_options_init_size(bf_report_options *o, size_t size)
-{
-    bf_report_options full = {.size = sizeof full};
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_report_options)
 
 bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *o, const char *dir, bf_error *err)
 {

@@ -31,19 +31,7 @@ const bf_export_target *bf_export_target_find(const char *name)
     return NULL;
 }
 
-/* bf_export_material with the library's defaults (a whole struct of this version). */
-static void export_material_defaults(bf_export_material *e)
-{
-    memset(e, 0, sizeof *e);
-    e->size = sizeof *e;
-}
-
-void bf_export_material_init_size(bf_export_material *e, size_t size)
-{
-    bf_export_material full;
-    export_material_defaults(&full);
-    bf_sized_init(e, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_export_material)
 
 double bf_export_param(const bf_export_material *e, const char *name, int c)
 {

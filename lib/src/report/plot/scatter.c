@@ -9,19 +9,7 @@
 
 #include "base/sized.h"
 
-/* bf_plot_axes with the library's defaults (a whole struct of this version). */
-static void plot_axes_defaults(bf_plot_axes *a)
-{
-    memset(a, 0, sizeof *a);
-    a->size = sizeof *a;
-}
-
-void bf_plot_axes_init_size(bf_plot_axes *a, size_t size)
-{
-    bf_plot_axes full;
-    plot_axes_defaults(&full);
-    bf_sized_init(a, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_plot_axes)
 
 plot *plot_scatter(const plot_scatter_spec *sp)
 {

@@ -162,9 +162,4 @@ void bf_regress_outcome_clear(bf_regress_outcome *out)
     out->size = size;
 }
 
-void bf_regress_outcome_init_size(bf_regress_outcome *out, size_t size)
-{
-    bf_regress_outcome full;
-    memset(&full, 0, sizeof full);
-    bf_sized_init(out, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_regress_outcome)

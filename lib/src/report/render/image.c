@@ -144,33 +144,9 @@ bf_status bf_image_write(const char *path, int format, int width, int height, in
     return rc;
 }
 
-/* bf_image with the library's defaults (a whole struct of this version). */
-static void image_defaults(bf_image *img)
-{
-    memset(img, 0, sizeof *img);
-    img->size = sizeof *img;
-}
+BF_SIZED_INIT_ZERO(bf_image)
 
-void bf_image_init_size(bf_image *img, size_t size)
-{
-    bf_image full;
-    image_defaults(&full);
-    bf_sized_init(img, size, &full, sizeof full);
-}
-
-/* bf_image_spec with the library's defaults (a whole struct of this version). */
-static void image_spec_defaults(bf_image_spec *sp)
-{
-    memset(sp, 0, sizeof *sp);
-    sp->size = sizeof *sp;
-}
-
-void bf_image_spec_init_size(bf_image_spec *sp, size_t size)
-{
-    bf_image_spec full;
-    image_spec_defaults(&full);
-    bf_sized_init(sp, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_image_spec)
 
 /* The module fills the library's own struct, copied out as far as the caller's size
  * reaches (docs/api.md), so it never writes past a caller's older, smaller one. The

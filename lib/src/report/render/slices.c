@@ -26,8 +26,6 @@ static void view_angles(double signed_to, double *to, double *po)
 static void slice_options_defaults(bf_slice_options *o)
 {
     static const double incidence[] = {0.0, 30.0, 60.0};
-    memset(o, 0, sizeof *o);
-    o->size = sizeof *o;
     o->width = 640;
     o->height = 480;
     o->incidence = incidence;
@@ -35,26 +33,9 @@ static void slice_options_defaults(bf_slice_options *o)
     o->plane_tol = 2.0;
 }
 
-void bf_slice_options_init_size(bf_slice_options *o, size_t size)
-{
-    bf_slice_options full;
-    slice_options_defaults(&full);
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT(bf_slice_options, slice_options_defaults)
 
-/* bf_slice_range with the library's defaults (a whole struct of this version). */
-static void slice_range_defaults(bf_slice_range *r)
-{
-    memset(r, 0, sizeof *r);
-    r->size = sizeof *r;
-}
-
-void bf_slice_range_init_size(bf_slice_range *r, size_t size)
-{
-    bf_slice_range full;
-    slice_range_defaults(&full);
-    bf_sized_init(r, size, &full, sizeof full);
-}
+BF_SIZED_INIT_ZERO(bf_slice_range)
 
 static bf_status check(const bf_slice_options *o, bf_error *err)
 {

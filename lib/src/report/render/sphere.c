@@ -12,19 +12,12 @@
 static void sphere_options_defaults(bf_sphere_options *o)
 {
     static const bf_dir light = {45.0, 0.0};
-    memset(o, 0, sizeof *o);
-    o->size = sizeof *o;
     o->resolution = 256;
     o->lights = &light;
     o->nlights = 1;
 }
 
-void bf_sphere_options_init_size(bf_sphere_options *o, size_t size)
-{
-    bf_sphere_options full;
-    sphere_options_defaults(&full);
-    bf_sized_init(o, size, &full, sizeof full);
-}
+BF_SIZED_INIT(bf_sphere_options, sphere_options_defaults)
 
 static void dir_vec(bf_dir d, double v[3])
 {
