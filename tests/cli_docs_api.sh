@@ -40,11 +40,15 @@ C
     echo "}"
   } >"$2"
 }
+# A sanitizer build's library needs its runtime first in the program.
+sanitize=()
+ldd "$build/lib/libbrdfit.so" 2>/dev/null | grep -q libasan && sanitize=(-fsanitize=address,undefined)
 for b in "$tmp"/api-*.c "$tmp"/readme-*.c; do
   [ -e "$b" ] || continue
   name=$(basename "$b" .c)
   wrap "$b" "$tmp/$name-main.c"
-  if cc -std=c11 -Wall -Wextra -Werror -Wno-unused-variable -Wno-misleading-indentation -I"$src/lib/include" -I"$build/lib/include" \
+  if cc -std=c11 "${sanitize[@]}" -Wall -Wextra -Werror -Wno-unused-variable -Wno-misleading-indentation \
+      -I"$src/lib/include" -I"$build/lib/include" \
       "$tmp/$name-main.c" -L"$build/lib" -lbrdfit -Wl,-rpath,"$build/lib" -lm -o "$tmp/$name" 2>"$tmp/$name.err"; then
     ok
   else

@@ -129,6 +129,19 @@ static void test_result_file_exact(void **state)
             fail_msg("rho_d[%d] = %.17g read back as %.17g", c, x[c], back[c]);
     bf_model_free(m);
     free(back);
+    /* The same text in memory (bf_fit_result_json) parses to the same values, and its
+     * errors name what the caller calls it. */
+    char *text = NULL;
+    assert_int_equal(bf_fit_result_json(&r, "data.csv", &text, &err), BF_OK);
+    assert_int_equal(bf_params_parse(text, "the fit", &m, &back, &err), BF_OK);
+    for (int c = 0; c < C; c++)
+        assert_true(back[c] == x[c]);
+    bf_model_free(m);
+    bf_free(back);
+    bf_free(text);
+    assert_int_equal(bf_params_parse("{\"model\": \"lambert\"}", "the fit", &m, &back, &err), BF_ERR_PARSE);
+    assert_string_equal(err.msg, "the fit:1: \"params\" object missing");
+    assert_null(m);
     bf_model_free(r.model);
 }
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
 import threading
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -876,39 +875,37 @@ keywords:
 def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[Union[str, os.PathLike]] = None,
            convert: bool = False) -> str:
     """Writes a fit (a FitResult, or a result file) as a renderer's material, as `brdfit
-    export`: to "gltf", "blender" or "mitsuba"; convert=True converts any model (else only
-    isotropic one-lobe ones). Writes path (atomically) and returns it, or returns the text
-    when path is None."""
+    export`: to one of the library's targets ("gltf", "blender", "mitsuba"); convert=True
+    converts any model (else only isotropic one-lobe ones). Writes path (atomically) and
+    returns it, or returns the text when path is None."""
     t = lib.bf_export_target_find(_text("to", to).encode())
     if t == ffi.NULL:
-        raise UsageError("to: %r is not a target (gltf, blender, mitsuba)" % (to,), "arg")
+        names = [_str(lib.bf_export_target_get(i).name) for i in range(lib.bf_export_target_count())]
+        raise UsageError("to: %r is not a target (%s)" % (to, ", ".join(names)))
     err = ffi.new("bf_error *")
-    with tempfile.TemporaryDirectory(prefix="brdfit-") as d:
-        if isinstance(result, FitResult):
-            src_path = os.path.join(d, "result.json")
-            with open(src_path, "w", encoding="utf-8") as f:
-                f.write(result.to_json())
-        elif isinstance(result, (str, os.PathLike)):
-            src_path = _path_text(result)
-        else:
-            raise UsageError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
-        m = ffi.new("bf_model **")
-        x = ffi.new("double **")
-        _check(lib.bf_params_read(src_path.encode(), m, x, err), err)
-        fit_r = ffi.new("bf_fit_result *")
-        lib.bf_fit_result_init(fit_r)
-        try:
-            _check(lib.bf_export_check(t, m[0], int(_flag("convert", convert)), err), err)
-            e = ffi.new("bf_export_material *")
-            lib.bf_export_material_init(e)
-            _check(lib.bf_export_prepare(t, m[0], x[0], e, fit_r, err), err)
-            out = _path_text(path) if path is not None else os.path.join(d, "export.out")
+    m = ffi.new("bf_model **")
+    x = ffi.new("double **")
+    if isinstance(result, FitResult):
+        _check(lib.bf_params_parse(result.to_json().encode(), b"the fit", m, x, err), err)
+    elif isinstance(result, (str, os.PathLike)):
+        _check(lib.bf_params_read(_path_text(result).encode(), m, x, err), err)
+    else:
+        raise UsageError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
+    fit_r = ffi.new("bf_fit_result *")
+    lib.bf_fit_result_init(fit_r)
+    try:
+        _check(lib.bf_export_check(t, m[0], int(_flag("convert", convert)), err), err)
+        e = ffi.new("bf_export_material *")
+        lib.bf_export_material_init(e)
+        _check(lib.bf_export_prepare(t, m[0], x[0], e, fit_r, err), err)
+        if path is not None:
+            out = _path_text(path)
             _check(lib.bf_export_write(t, e, out.encode(), err), err)
-            if path is not None:
-                return out
-            with open(out, encoding="utf-8") as f:
-                return f.read()
-        finally:
-            lib.bf_fit_result_clear(fit_r)
-            lib.bf_model_free(m[0])
-            lib.bf_free(x[0])
+            return out
+        text = ffi.new("char **")
+        _check(lib.bf_export_text(t, e, text, err), err)
+        return _take_text(text[0])
+    finally:
+        lib.bf_fit_result_clear(fit_r)
+        lib.bf_model_free(m[0])
+        lib.bf_free(x[0])

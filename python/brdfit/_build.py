@@ -102,6 +102,7 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_re
 void bf_fit_result_clear(bf_fit_result *r);
 bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char **out, bf_error *err);
 bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
+bf_status bf_params_parse(const char *text, const char *name, bf_model **model, double **x, bf_error *err);
 
 /* Comparison (compare.h). */
 typedef struct bf_compare { int nmaterials, nmodels; int interrupted; ...; } bf_compare;
@@ -137,6 +138,7 @@ bf_status bf_export_check(const bf_export_target *t, const bf_model *src, int co
 bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, const double *xs, bf_export_material *e,
                             bf_fit_result *fit, bf_error *err);
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
+bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e, char **out, bf_error *err);
 
 /* The progress callback, into Python (_brdfit_progress in brdfit/_api.py). */
 extern "Python" int _brdfit_progress(void *user, int iteration, double cost);

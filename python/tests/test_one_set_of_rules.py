@@ -138,3 +138,10 @@ def test_select_equals_the_command_line(tmp_path):
     # The default candidates are the library's, as the command's.
     few = brdfit.read(CAYMAN, luminance=True, subsample=300)
     assert len(brdfit.select(few, threads=1, starts=1).json["candidates"]) > 10
+
+
+def test_no_temporary_files():
+    # Results come back in memory (bf_fit_result_json, bf_compare_json, bf_select_json,
+    # bf_export_text, bf_params_parse): the package never writes a file of its own.
+    for path in SOURCES:
+        assert "tempfile" not in path.read_text(), path.name

@@ -79,6 +79,8 @@ BF_API void bf_export_conversion_note(const bf_export_material *e, FILE *fp);
  * bf_outfile: a failed write leaves no file). */
 BF_API bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path,
                                  bf_error *err);
+/* The file's text, into *out (freed with bf_free): what bf_export_write writes. */
+BF_API bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e, char **out, bf_error *err);
 
 #ifdef __cplusplus
 }

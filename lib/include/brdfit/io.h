@@ -39,6 +39,9 @@ BF_API int bf_csv_column(const bf_csv *t, const char *name); /* -1 if absent */
  * stand in for a parameter file. On success *model and *x (malloc'd, length
  * bf_model_nvalues) belong to the caller. */
 BF_API bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
+/* The same from text in memory (a fit's bf_fit_result_json); name stands for the file
+ * in messages ("name:LINE: problem"; NULL: "parameters"). *x is freed with bf_free. */
+BF_API bf_status bf_params_parse(const char *text, const char *name, bf_model **model, double **x, bf_error *err);
 
 /* ---- Outputs that survive failures. bf_outfile_open resolves path: a regular file
  * (symbolic links followed: the file a link points to is replaced, the link stays) is

@@ -12,6 +12,7 @@
  *     bf_options_check(o, &err);                       the couplings (optional: every
  *                                                      function that takes o checks)
  *     bf_samples_load("cayman.brdf", o, &s, NULL, &err);
+ *     bf_fit_result_init(&r);
  *     bf_fit(s, "walter", o, &r, &err);
  *     bf_options_free(o);
  *

@@ -166,6 +166,20 @@ bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_erro
     bf_status rc = bf_read_text(path, &text, &len, err);
     if (rc != BF_OK)
         return rc;
+    rc = bf_params_parse(text, path, model, x, err);
+    free(text);
+    return rc;
+}
+
+bf_status bf_params_parse(const char *text, const char *name, bf_model **model, double **x, bf_error *err)
+{
+    *model = NULL;
+    *x = NULL;
+    const char *path = name ? name : "parameters"; /* what messages call the text */
+    const size_t len = text ? strlen(text) : 0;
+    bf_status rc;
+    if (!text)
+        return bf_fail(err, BF_ERR_ARG, "%s: no text", path);
     bf_model *m = NULL;
     double *v = NULL;
     const char *end = NULL;
@@ -209,7 +223,6 @@ bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_erro
     rc = fill_params(path, text, params, m, v, err);
 done:
     cJSON_Delete(root);
-    free(text);
     if (rc != BF_OK) {
         bf_model_free(m);
         free(v);

@@ -5,6 +5,8 @@
 #include "base/sized.h"
 #include "fit_impl.h"
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "brdfit/io.h"
@@ -145,6 +147,29 @@ bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, cons
                                      : prepare(t, src, xs, &mine, fit, err);
     bf_sized_copy(e, &mine, sizeof mine); /* as far as the caller's size reaches (docs/api.md) */
     return rc;
+}
+
+bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e, char **out, bf_error *err)
+{
+    *out = NULL;
+    if (e && bf_sized_check(e, sizeof *e, "bf_export_material", err) != BF_OK)
+        return BF_ERR_ARG;
+    if (!t || !e || !e->model || !e->x)
+        return bf_fail(err, BF_ERR_ARG, "export: no target or no material");
+    char *text = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&text, &len);
+    if (!fp)
+        return bf_fail(err, BF_ERR_NOMEM, "export: out of memory");
+    bf_status rc = t->write(e, fp, err);
+    if (fclose(fp) != 0 && rc == BF_OK)
+        rc = bf_fail(err, BF_ERR_NOMEM, "export: out of memory");
+    if (rc != BF_OK) {
+        free(text);
+        return rc;
+    }
+    *out = text;
+    return BF_OK;
 }
 
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err)
