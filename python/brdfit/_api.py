@@ -506,7 +506,7 @@ class _Options:
             except UsageError as e:
                 raise UsageError("%s: %s" % (name, e.message)) from None
             for t in texts:
-                _check(lib.bf_options_set(self.o, name.encode(), t.encode() if t is not None else ffi.NULL, err), err)
+                _check(lib.bf_options_set(self.o, name.encode(), os.fsencode(t) if t is not None else ffi.NULL, err), err)
             self.given.append((name, _str(d.group)))
 
     def check(self, specs: Sequence[str] = ()) -> None:
@@ -524,7 +524,7 @@ def _load(path: Union[str, os.PathLike], opts: _Options) -> "Samples":
     p = _path_text(path)
     err = ffi.new("bf_error *")
     out = ffi.new("bf_samples **")
-    _check(lib.bf_samples_load(p.encode(), opts.o, out, ffi.NULL, err), err)
+    _check(lib.bf_samples_load(os.fsencode(p), opts.o, out, ffi.NULL, err), err)
     return Samples._wrap(out[0], p)
 
 
@@ -639,7 +639,7 @@ def _brdfit_progress(user, iteration, cost):
 def _take_text(p) -> str:
     """A text the library made (bf_free'd here)."""
     try:
-        return ffi.string(p).decode("utf-8")
+        return ffi.string(p).decode("utf-8", "surrogateescape")  # a non-UTF-8 file name as Python names it
     finally:
         lib.bf_free(p)
 
@@ -677,7 +677,7 @@ class FitResult:
 
 def _spec_of(model: Any, what: str) -> str:
     spec = model.spec if isinstance(model, Model) else model
-    if not isinstance(spec, str):
+    if not isinstance(spec, str) or "\0" in spec:
         raise UsageError("%s: needs a model spec or brdfit.Model, got %r" % (what, model))
     return spec
 
@@ -703,7 +703,7 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
         text = None
         if not cancelled:
             out = ffi.new("char **")
-            _check(lib.bf_fit_result_json(r, data.path.encode() if data.path else ffi.NULL, out, err), err)
+            _check(lib.bf_fit_result_json(r, os.fsencode(data.path) if data.path else ffi.NULL, out, err), err)
             text = _take_text(out[0])
         return FitResult(text, m, bool(r.ok), cancelled, m._dict(x))
     finally:
@@ -771,7 +771,7 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], prog
         d._ready()
     err = ffi.new("bf_error *")
     out = ffi.new("bf_compare **")
-    keep = [ffi.new("char[]", (d.path or "samples %d" % i).encode()) for i, d in enumerate(data)]
+    keep = [ffi.new("char[]", os.fsencode(d.path or "samples %d" % i)) for i, d in enumerate(data)]
     cspecs = [ffi.new("char[]", m.encode()) for m in specs]
     _check(lib.bf_compare_new(len(data), keep, len(cspecs), cspecs, out, err), err)
     c = out[0]
@@ -844,7 +844,7 @@ def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, pro
     try:
         rc = run(lambda: lib.bf_select_run(s, data._s, opts.o, ffi.NULL, ffi.NULL, err))
         _check(rc, err)
-        path = data.path.encode() if data.path else ffi.NULL
+        path = os.fsencode(data.path) if data.path else ffi.NULL
         text = ffi.new("char **")
         _check(lib.bf_select_json(s, path, text, err), err)
         selection = _take_text(text[0])
@@ -888,7 +888,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
     if isinstance(result, FitResult):
         _check(lib.bf_params_parse(result.to_json().encode(), b"the fit", m, x, err), err)
     elif isinstance(result, (str, os.PathLike)):
-        _check(lib.bf_params_read(_path_text(result).encode(), m, x, err), err)
+        _check(lib.bf_params_read(os.fsencode(_path_text(result)), m, x, err), err)
     else:
         raise UsageError("result: needs a brdfit.FitResult or a result file, got %s" % type(result).__name__)
     fit_r = ffi.new("bf_fit_result *")
@@ -900,7 +900,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
         _check(lib.bf_export_prepare(t, m[0], x[0], e, fit_r, err), err)
         if path is not None:
             out = _path_text(path)
-            _check(lib.bf_export_write(t, e, out.encode(), err), err)
+            _check(lib.bf_export_write(t, e, os.fsencode(out), err), err)
             return out
         text = ffi.new("char **")
         _check(lib.bf_export_text(t, e, text, err), err)
