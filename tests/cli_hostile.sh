@@ -113,4 +113,11 @@ for v in -3 4X ' 4G' 99999999999999999999T; do
   [ $? = 2 ] && grep -q 'BRDFIT_MEMORY=.* is not a byte count' "$tmp/err" && ok || bad "BRDFIT_MEMORY='$v' accepted"
 done
 
+# Devices are no data files, and some never end: refused at once, as data and as a scene.
+for cmdline in "info /dev/zero" "fit /dev/zero -m lambert" "fit $DATA/cornell/cayman_head20.brdf -m lambert --scene /dev/zero"; do
+  timeout 10 "$BRDFIT" $cmdline >/dev/null 2>"$tmp/err"
+  [ $? = 1 ] && grep -q '/dev/zero: cannot open: a device, not a data file' "$tmp/err" && ok ||
+    bad "$cmdline: not refused at once: $(head -c 200 "$tmp/err")"
+done
+
 finish

@@ -331,6 +331,46 @@ static void test_load_order_and_report(void **state)
     remove(path);
 }
 
+/* A start for one fit: refused for a comparison and at another length than the model's;
+ * a fit from the optimum of the same data, with no other start, stays there. */
+static void test_start(void **state)
+{
+    (void)state;
+    char path[64];
+    write_csv(path, sizeof path, 200);
+    bf_error err;
+    bf_options *c = make(BF_TASK_COMPARE), *o = make(BF_TASK_FIT);
+    const double x[1] = {0.3};
+    assert_int_equal(bf_options_set_start(c, x, 1, &err), BF_ERR_ARG);
+    bf_samples *s = NULL;
+    assert_int_equal(bf_options_set(o, "starts", "1", &err), BF_OK);
+    assert_int_equal(bf_samples_load(path, o, &s, NULL, &err), BF_OK);
+    bf_fit_result r;
+    bf_fit_result_init(&r);
+    assert_int_equal(bf_fit(s, "lambert", o, &r, &err), BF_OK);
+    assert_true(r.ok);
+    const double best = r.x[0];
+    ts_assert_rel(best, 0.1 * M_PI, 1e-6, "rho_d of value 0.1");
+    assert_int_equal(bf_options_set_start(o, r.x, 1, &err), BF_OK);
+    bf_fit_result_clear(&r);
+    assert_int_equal(bf_fit(s, "lambert", o, &r, &err), BF_OK);
+    assert_true(r.x[0] == best);
+    bf_fit_result_clear(&r);
+    assert_int_equal(bf_fit(s, "walter", o, &r, &err), BF_ERR_ARG); /* 1 value, walter has more */
+    assert_non_null(strstr(err.msg, "the start has 1 values"));
+    bf_options *copy = NULL;
+    assert_int_equal(bf_options_copy(o, &copy, &err), BF_OK); /* the start goes with a copy */
+    assert_int_equal(bf_fit(s, "walter", copy, &r, &err), BF_ERR_ARG);
+    assert_int_equal(bf_options_set_start(copy, NULL, 0, &err), BF_OK);
+    assert_int_equal(bf_fit(s, "walter", copy, &r, &err), BF_OK);
+    bf_fit_result_clear(&r);
+    bf_options_free(copy);
+    bf_samples_free(s);
+    bf_options_free(o);
+    bf_options_free(c);
+    remove(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -342,6 +382,7 @@ int main(void)
         cmocka_unit_test(test_copy_and_reset),
         cmocka_unit_test(test_model_lists),
         cmocka_unit_test(test_load_order_and_report),
+        cmocka_unit_test(test_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -33,17 +33,20 @@ class UsageError(Error, ValueError):
         super().__init__(message, code)
 
 
-def _raise(err, what: str = "") -> None:
+def _raise(err, what: str = "", usage: bool = False) -> None:
     msg = ffi.string(err.msg).decode("utf-8", "replace")
     if what:
         msg = "%s: %s" % (what, msg)
-    cls = UsageError if err.code == lib.BF_ERR_ARG else Error
+    cls = UsageError if usage or err.code == lib.BF_ERR_ARG else Error
     raise cls(msg, ffi.string(lib.bf_status_name(err.code)).decode())
 
 
-def _check(rc: int, err, what: str = "") -> None:
+def _check(rc: int, err, what: str = "", usage: bool = False) -> None:
+    """Raises the library's error: UsageError (a ValueError) for bad usage, and for any
+    error of a check of the caller's arguments (usage: a value out of its range is the
+    caller's, as the command's exit status 2 says); Error otherwise."""
     if rc != lib.BF_OK:
-        _raise(err, what)
+        _raise(err, what, usage)
 
 
 def version() -> str:
@@ -86,10 +89,12 @@ def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]]) 
 
 def _directions(name: str, a: Any) -> np.ndarray:
     v = _array(name, a, [(None, 3), (3,)]).reshape(-1, 3)
-    norm = np.linalg.norm(v, axis=1)
-    if np.any(norm == 0.0):
+    # Scaled first: a tiny vector (1e-300) is a direction too, and its square underflows.
+    big = np.max(np.abs(v), axis=1)
+    if np.any(big == 0.0):
         raise UsageError("%s: has a zero vector (directions are unit vectors)" % name)
-    return np.ascontiguousarray(v / norm[:, None])
+    v = v / big[:, None]
+    return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None])
 
 
 class _View:
@@ -97,13 +102,17 @@ class _View:
 
     def __init__(self, owner: Any, ptr, shape: Tuple[int, ...]):
         self._owner = owner
+        # Read-only: the library checked these values when they came in, and keeps
+        # relying on them (a NaN or a negative weight written here would reach the fits).
         self.__array_interface__ = {"shape": shape, "typestr": "<f8", "version": 3,
-                                    "data": (int(ffi.cast("uintptr_t", ptr)), False)}
+                                    "data": (int(ffi.cast("uintptr_t", ptr)), True)}
 
 
 def _view(owner: Any, ptr, shape: Tuple[int, ...]) -> np.ndarray:
     if 0 in shape:
-        return np.zeros(shape)
+        z = np.zeros(shape)
+        z.flags.writeable = False
+        return z
     return np.asarray(_View(owner, ptr, shape))
 
 
@@ -116,11 +125,14 @@ class Model:
     def __init__(self, spec: str, channels: int = 1, params: Optional[Mapping[str, Any]] = None):
         if not isinstance(spec, str):
             raise UsageError("spec: needs a model spec (a string), got %r" % (spec,))
-        if isinstance(channels, bool) or not isinstance(channels, (int, np.integer)) or not 1 <= channels <= 1024:
-            raise UsageError("channels: needs an integer from 1 to 1024, got %r" % (channels,))
+        if isinstance(channels, bool) or not isinstance(channels, (int, np.integer)):
+            raise UsageError("channels: needs an integer, got %r" % (channels,))
+        if "\0" in spec:
+            raise UsageError("spec: %r: a NUL character cannot be in a spec" % (spec,))
         err = ffi.new("bf_error *")
         out = ffi.new("bf_model **")
-        _check(lib.bf_model_new(spec.encode(), int(channels), out, err), err)
+        count = int(channels) if -2 ** 31 < int(channels) < 2 ** 31 else 0  # the library says the range
+        _check(lib.bf_model_new(spec.encode(), count, out, err), err, usage=True)
         self._m = ffi.gc(out[0], lib.bf_model_free)
         self._params = None
         if params is not None:
@@ -199,7 +211,7 @@ class Model:
             v = _array("params[%r]" % key, value, [(), (n,)]).reshape(-1)
             x[o:o + n] = v if v.size == n else np.repeat(v, n)
         err = ffi.new("bf_error *")
-        _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, "params")
+        _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, "params", usage=True)
         return x
 
     def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None, gradient: bool = False):
@@ -208,6 +220,7 @@ class Model:
         values for a colour parameter); missing ones take the model's own (a fit's result:
         the fitted values; else the defaults). Returns an (n, channels) array, and with
         gradient=True also the analytic Jacobian, (n, channels, len(value_names))."""
+        gradient = _flag("gradient", gradient)
         L, V = _directions("wi", wi), _directions("wo", wo)
         if L.shape[0] != V.shape[0]:
             raise UsageError("wi and wo: need the same number of directions, got %d and %d" % (L.shape[0], V.shape[0]))
@@ -279,6 +292,8 @@ class Samples:
 
     def _init(self, ti, pi_, to, po, values, weights, first: str) -> None:
         n = ti.size
+        if n == 0:
+            raise UsageError("%s: no directions (a sample set needs at least one sample)" % first)
         vals = _array("values", values, [(n,), (n, None)])
         vals = vals.reshape(n, -1)
         C = vals.shape[1]
@@ -513,8 +528,8 @@ class _Options:
         err = ffi.new("bf_error *")
         keep = [ffi.new("char[]", s.encode()) for s in specs]
         arr = ffi.new("const char *[]", keep) if keep else ffi.NULL
-        _check(lib.bf_options_check_models(self.o, arr, len(keep), err), err)
-        _check(lib.bf_options_check(self.o, err), err)
+        _check(lib.bf_options_check_models(self.o, arr, len(keep), err), err, usage=True)
+        _check(lib.bf_options_check(self.o, err), err, usage=True)
 
     def reading_given(self) -> List[str]:
         return [n for n, g in self.given if g == "reading"]
@@ -683,19 +698,28 @@ def _spec_of(model: Any, what: str) -> str:
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int, float], Any]] = None,
-        **options: Any) -> FitResult:
+        start: Optional[Mapping[str, Any]] = None, **options: Any) -> FitResult:
     spec = _spec_of(model, "model")
     opts = _Options("fit", options, "fit")
     opts.check([spec])
     data = _prepared(samples, opts, "samples")
+    # The start: start= (name -> value), else the parameters a Model was given (a fit's
+    # result), for the data's channels.
+    if isinstance(model, Model) and model.channels != data.channels:
+        raise UsageError("model: %s has %d channels, the data %d" % (spec, model.channels, data.channels))
+    if start is None and isinstance(model, Model) and model._params is not None:
+        start = model.params
+    err = ffi.new("bf_error *")
+    if start is not None:
+        x0 = Model(spec, data.channels)._vector(start)
+        _check(lib.bf_options_set_start(opts.o, ffi.from_buffer("double[]", x0), x0.size, err), err, "start")
     data._ready()
     run = _Run(progress)
     run.hook(opts)
     r = ffi.new("bf_fit_result *")
     lib.bf_fit_result_init(r)
-    err = ffi.new("bf_error *")
-    rc = run(lambda: lib.bf_fit(data._s, spec.encode(), opts.o, r, err))
     try:
+        rc = run(lambda: lib.bf_fit(data._s, spec.encode(), opts.o, r, err))
         _check(rc, err, spec)
         m = Model._from_ptr(r.model)
         cancelled = r.solution.stop == lib.BF_STOP_CANCELLED
@@ -711,9 +735,11 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
 
 
 fit.__doc__ = """Fits model (a spec or a Model) to samples (brdfit.Samples, or a data file name), as
-`brdfit fit` does. progress(iteration, cost) is called as the solver goes; returning True
-stops the fit (the result then says .cancelled). Ctrl-C stops it and raises
-KeyboardInterrupt. The options are brdfit fit's, as keywords:
+`brdfit fit` does. start (name -> value, as Model params take them) replaces the
+data-driven start; a Model given parameters (a fit's .model) starts from them. The search
+still adds its own starts unless starts=1. progress(iteration, cost) is called as the
+solver goes; returning True stops the fit (the result then says .cancelled). Ctrl-C stops
+it and raises KeyboardInterrupt. The options are brdfit fit's, as keywords:
 
 """ + _doc("fit") + """
 

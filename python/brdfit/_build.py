@@ -85,6 +85,7 @@ typedef sig_atomic_t bf_cancel_flag;
 void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
 typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
 void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user);
+bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
 
 /* Loading (load.h). */
 typedef struct bf_load_report { size_t size; size_t read; size_t kept; ...; } bf_load_report;

@@ -79,8 +79,10 @@ BF_API const char *bf_format_double(double v, char *buf, size_t size);
 
 /* Opens an input for reading: a file, or standard input for "-" (read whole on the first
  * open and kept, so that it can be opened again: every reader takes "-"). NULL with errno
- * set when it cannot. */
+ * set when it cannot; a device (/dev/zero, a terminal: some never end) is refused with
+ * ENODEV. bf_input_error(errno) says why, for a message. */
 BF_API FILE *bf_input_open(const char *path);
+BF_API const char *bf_input_error(int e);
 
 #ifdef __cplusplus
 }

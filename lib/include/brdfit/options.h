@@ -125,6 +125,13 @@ BF_API bf_status bf_options_check_models(const bf_options *o, const char *const 
  * only a program that writes the format back asks (brdfit convert). */
 BF_API void bf_options_keep_origin(bf_options *o, int keep);
 
+/* The fit's start: n values of the model's vector (bf_model_nvalues entries, in its
+ * order: a fit's x) instead of the data-driven start, copied; NULL clears it. Only a
+ * BF_TASK_FIT set takes one (a comparison fits many models); bf_fit refuses a start of
+ * another length than its model's. The search still adds its own starts unless the
+ * option starts is 1. */
+BF_API bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
+
 /* The flags are bf_cancel_flag (brdfit/solve.h). cancel: read at every iteration of every
  * solve and before every fit: once set, running solves stop at their next iteration (the
  * fit ends cancelled) and no new fit starts. finish: read before each fit of a comparison

@@ -227,6 +227,15 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_re
     bf_status rc = bf_options_check(o, err);
     if (rc != BF_OK)
         return rc;
+    if (o->start) { /* the start must be this model's vector */
+        bf_model *m = NULL;
+        if ((rc = bf_model_new(spec, s ? s->channels : 1, &m, err)) != BF_OK)
+            return rc;
+        const int n = bf_model_nvalues(m);
+        bf_model_free(m);
+        if (n != o->nstart)
+            return bf_fail(err, BF_ERR_ARG, "%s: the start has %d values, the model %d", spec, o->nstart, n);
+    }
     bf_fit_options fo;
     options_fit_get(o, &fo);
     return bf_fit_with(s, spec, &fo, r, err);

@@ -147,6 +147,7 @@ void bf_options_free(bf_options *o)
         free(o->log[k].value);
     free(o->log);
     free(o->overrides);
+    free(o->start);
     free(o);
 }
 
@@ -158,6 +159,23 @@ bf_task bf_options_task(const bf_options *o)
 void bf_options_set_spelling(bf_options *o, bf_option_spelling spelling)
 {
     o->spelling = spelling;
+}
+
+bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err)
+{
+    if (x && o->task != BF_TASK_FIT)
+        return bf_fail(err, BF_ERR_ARG, "a start is for one fit (options of BF_TASK_FIT), not %s", task_name(o->task));
+    if (x && (n < 1 || n > 64 * BF_MAX_CHANNELS))
+        return bf_fail(err, BF_ERR_ARG, "a start of %d values", n);
+    double *copy = x ? malloc((size_t)n * sizeof *copy) : NULL;
+    if (x && !copy)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    if (x)
+        memcpy(copy, x, (size_t)n * sizeof *copy);
+    free(o->start);
+    o->start = copy;
+    o->nstart = x ? n : 0;
+    return BF_OK;
 }
 
 void bf_options_keep_origin(bf_options *o, int keep)
@@ -276,6 +294,10 @@ static bf_status replay(const bf_options *o, const char *skip, bf_options **out,
     n->finish = o->finish;
     n->progress = o->progress;
     n->progress_user = o->progress_user;
+    if (o->start && (rc = bf_options_set_start(n, o->start, o->nstart, err)) != BF_OK) {
+        bf_options_free(n);
+        return rc;
+    }
     for (int k = 0; k < o->nlog && rc == BF_OK; k++) {
         const option_row *r = &option_rows[o->log[k].row];
         if (!skip || strcmp(r->d.name, skip))
@@ -466,6 +488,7 @@ void options_fit_get(const bf_options *o, bf_fit_options *out)
     out->solver.progress = o->progress;
     out->solver.progress_user = o->progress_user;
     out->solver.cancel = o->cancel;
+    out->start = o->start;
     out->starts = o->starts;
     out->screen = o->screen;
     out->presolve = o->presolve;

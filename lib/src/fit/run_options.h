@@ -58,6 +58,8 @@ struct bf_options {
     double tolerance, abs_tolerance;
     option_set *log; /* every value set, in order (nlog) */
     int nlog;
+    double *start; /* nstart values (owned), or NULL */
+    int nstart;
     /* Hooks. */
     const bf_cancel_flag *cancel, *finish;
     bf_progress_fn progress;

@@ -363,7 +363,7 @@ bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     header h = {0, 0, 0, -1, -1, 0, 0, 0};
     rows r = {NULL, 0, 0, 0};
     bf_samples *s = NULL;

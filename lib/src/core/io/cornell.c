@@ -54,7 +54,7 @@ bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     numbers num = {NULL, 0, 0};
     bf_samples *s = NULL;
     char *line = NULL;

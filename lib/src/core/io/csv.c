@@ -213,7 +213,7 @@ bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err)
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     bf_csv *t = calloc(1, sizeof *t);
     char *line = NULL, **fields = NULL;
     size_t linecap = 0, lineno = 0, cap = 0;

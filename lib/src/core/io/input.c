@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/big_alloc.h"
 
@@ -50,8 +51,16 @@ static void keep_stdin(void)
 
 FILE *bf_input_open(const char *path)
 {
-    if (strcmp(path, "-"))
+    if (strcmp(path, "-")) {
+        /* A device is no data file, and some never end (/dev/zero, a terminal): refused
+         * before any byte is read. Pipes (FIFOs) stay allowed. */
+        struct stat st;
+        if (stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))) {
+            errno = ENODEV;
+            return NULL;
+        }
         return fopen(path, "rb");
+    }
     pthread_mutex_lock(&lock);
     if (kept_state == 0)
         keep_stdin();
@@ -67,4 +76,9 @@ FILE *bf_input_open(const char *path)
     if (fp && !kept_len)
         fseek(fp, 0, SEEK_END);
     return fp;
+}
+
+const char *bf_input_error(int e)
+{
+    return e == ENODEV ? "a device, not a data file" : strerror(e);
 }

@@ -201,7 +201,7 @@ bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out,
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     double *table = NULL;
     bf_status rc = read_header(fp, path, err);
     /* A short file is refused before the 35 MB table is allocated (where its size can be

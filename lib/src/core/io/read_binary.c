@@ -19,7 +19,7 @@ bf_status bf_read_binary(const char *path, unsigned char **out, size_t *len, bf_
     *len = 0;
     FILE *fp = bf_input_open(path);
     if (!fp) {
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     }
     struct stat st;
     size_t cap = 1 << 16;

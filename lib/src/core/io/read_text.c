@@ -21,7 +21,7 @@ bf_status bf_read_text(const char *path, char **text, size_t *len, bf_error *err
     *text = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     size_t cap = 4096, n = 0;
     char *buf = malloc(cap);
     while (buf) {

@@ -17,7 +17,7 @@ static bf_status by_content(const char *path, bf_format *format, bf_error *err)
 {
     FILE *fp = bf_input_open(path);
     if (!fp)
-        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
     /* MERL tables open with their dimensions, three int32: 90 90 180. */
     unsigned char head[20];
     static const unsigned char merl_dims[12] = {90, 0, 0, 0, 90, 0, 0, 0, 180, 0, 0, 0};
