@@ -18,6 +18,9 @@ import _build  # noqa: E402  (the builder lives inside the package, as setup.py 
 pkg = os.path.join(out, "brdfit")
 os.makedirs(pkg, exist_ok=True)
 _build.ffibuilder.compile(tmpdir=out, verbose=False)
-for name in sorted(os.listdir(os.path.join(here, "brdfit"))):
-    if name.endswith(".py") or name == "py.typed":
-        shutil.copy2(os.path.join(here, "brdfit", name), os.path.join(pkg, name))
+wanted = [n for n in sorted(os.listdir(os.path.join(here, "brdfit"))) if n.endswith((".py", ".pyi")) or n == "py.typed"]
+for name in os.listdir(pkg):  # a module the package no longer has must not stay importable
+    if name.endswith((".py", ".pyi")) and name not in wanted:
+        os.remove(os.path.join(pkg, name))
+for name in wanted:
+    shutil.copy2(os.path.join(here, "brdfit", name), os.path.join(pkg, name))

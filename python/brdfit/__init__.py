@@ -6,8 +6,15 @@ export.
 Options are keyword arguments named as the command line's ("--max-theta" is max_theta),
 declared once, in the library (brdfit.options("fit") lists them).
 docs/python.md walks through it."""
-from ._api import (CompareResult, Error, FitResult, Model, Samples, SelectResult, UsageError, compare, export, fit,
-                   models, options, read, select, version)
+from ._compare import CompareResult, compare
+from ._data import read
+from ._errors import Error, UsageError
+from ._export import export
+from ._fit import FitResult, fit
+from ._model import Model, models, version
+from ._options import options
+from ._samples import Samples
+from ._select import SelectResult, select
 
 __version__ = version().split(" ")[0]
 __all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",

@@ -141,7 +141,7 @@ bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, cons
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
 bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e, char **out, bf_error *err);
 
-/* The progress callback, into Python (_brdfit_progress in brdfit/_api.py). */
+/* The progress callback, into Python (_brdfit_progress in brdfit/_run.py). */
 extern "Python" int _brdfit_progress(void *user, int iteration, double cost);
 """
 

@@ -1,0 +1,81 @@
+"""Plain arguments (not run options) checked and converted: arrays of numbers, directions,
+flags, strings and file names. Each refusal is a UsageError naming the argument."""
+from __future__ import annotations
+
+import os
+from typing import Any, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ._brdfit import ffi
+from ._errors import UsageError
+
+
+def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]]) -> np.ndarray:
+    """a as a C-contiguous float64 array of one of the shapes (None: any length): values
+    of any integer or float dtype are converted (never reinterpreted); anything else, or
+    another shape, or a NaN / Inf, is a ValueError naming the argument."""
+    try:
+        arr = np.asarray(a)
+    except Exception as e:  # ragged lists and the like
+        raise UsageError("%s: not an array of numbers (%s)" % (name, e)) from None
+    if arr.dtype == np.bool_ or not (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)):
+        raise UsageError("%s: needs numbers (an integer or float array), got dtype %s" % (name, arr.dtype))
+    for shape in ndim_shapes:
+        if arr.ndim == len(shape) and all(w is None or w == h for w, h in zip(shape, arr.shape)):
+            break
+    else:
+        want = " or ".join("(%s)" % ", ".join("n" if w is None else str(w) for w in s) for s in ndim_shapes)
+        raise UsageError("%s: needs shape %s, got %s" % (name, want, arr.shape))
+    out = np.ascontiguousarray(arr, dtype=np.float64)
+    if not np.all(np.isfinite(out)):
+        raise UsageError("%s: has NaN or infinite values" % name)
+    return out
+
+
+def _directions(name: str, a: Any) -> np.ndarray:
+    v = _array(name, a, [(None, 3), (3,)]).reshape(-1, 3)
+    # Scaled first: a tiny vector (1e-300) is a direction too, and its square underflows.
+    big = np.max(np.abs(v), axis=1)
+    if np.any(big == 0.0):
+        raise UsageError("%s: has a zero vector (directions are unit vectors)" % name)
+    v = v / big[:, None]
+    return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None])
+
+
+class _View:
+    """Exposes library memory to NumPy without a copy, keeping its owner alive."""
+
+    def __init__(self, owner: Any, ptr, shape: Tuple[int, ...]):
+        self._owner = owner
+        # Read-only: the library checked these values when they came in, and keeps
+        # relying on them (a NaN or a negative weight written here would reach the fits).
+        self.__array_interface__ = {"shape": shape, "typestr": "<f8", "version": 3,
+                                    "data": (int(ffi.cast("uintptr_t", ptr)), True)}
+
+
+def _view(owner: Any, ptr, shape: Tuple[int, ...]) -> np.ndarray:
+    if 0 in shape:
+        z = np.zeros(shape)
+        z.flags.writeable = False
+        return z
+    return np.asarray(_View(owner, ptr, shape))
+
+
+def _flag(name: str, v: Any) -> bool:
+    if not isinstance(v, (bool, np.bool_)):
+        raise UsageError("%s: needs True or False, got %r" % (name, v))
+    return bool(v)
+
+
+def _text(name: str, v: Any) -> str:
+    if not isinstance(v, str):
+        raise UsageError("%s: needs a string, got %r" % (name, v))
+    return v
+
+
+def _path_text(p: Any) -> str:
+    s = os.fsdecode(os.fsencode(p))
+    if "\0" in s:
+        raise UsageError("%r: a NUL character cannot be in a file name" % (p,))
+    return s

@@ -1,0 +1,90 @@
+"""Comparing: brdfit.compare and its result."""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, Iterable, List, Sequence, Union
+
+from ._brdfit import ffi, lib
+from ._data import _prepared
+from ._errors import UsageError, _check, _take_text
+from ._fit import _spec_of
+from ._model import Model
+from ._options import _doc, _Options
+from ._run import _Run
+from ._samples import Samples
+
+
+class CompareResult:
+    """A comparison: .rows (one dict per material x model: "data" and the fit's fields of
+    `brdfit compare --json`), .json (all of it) and .to_json() (its text)."""
+
+    def __init__(self, text: str):
+        self._text = text
+        self.json: Dict[str, Any] = json.loads(text)
+        self.rows: List[Dict[str, Any]] = [dict(f, data=mat["data"]) for mat in self.json["materials"]
+                                           for f in mat["fits"]]
+
+    def to_json(self) -> str:
+        return self._text
+
+
+def _model_list(models: Any) -> List[str]:
+    """A list of specs, or one string split as -m splits it (bf_model_list_split)."""
+    if isinstance(models, str):
+        err = ffi.new("bf_error *")
+        specs = ffi.new("char ***")
+        n = ffi.new("int *")
+        _check(lib.bf_model_list_split(models.encode(), specs, n, err), err, "models")
+        try:
+            return [ffi.string(specs[0][k]).decode() for k in range(n[0])]
+        finally:
+            lib.bf_free(specs[0])
+    if isinstance(models, Model) or not isinstance(models, Iterable):
+        raise UsageError("models: needs a list of model specs, or one string as -m takes it")
+    out = [_spec_of(m, "models") for m in models]
+    if not out:
+        raise UsageError("models: needs at least one model")
+    return out
+
+
+def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], progress=None,
+            **options: Any) -> CompareResult:
+    if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
+        raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
+    samples_list = list(samples_list)
+    if not samples_list:
+        raise UsageError("samples_list: needs at least one sample set")
+    specs = _model_list(models)
+    opts = _Options("compare", options, "compare")
+    opts.check(specs)
+    data = [_prepared(x, opts, "samples_list[%d]" % i) for i, x in enumerate(samples_list)]
+    for d in data:
+        d._ready()
+    names = [os.fsencode(d.path or "samples %d" % i) for i, d in enumerate(data)]
+    run = _Run(progress)
+    run.hook(opts)
+
+    def call() -> CompareResult:  # in the worker, which owns the comparison
+        err = ffi.new("bf_error *")
+        out = ffi.new("bf_compare **")
+        keep = [ffi.new("char[]", n) for n in names]
+        cspecs = [ffi.new("char[]", m.encode()) for m in specs]
+        _check(lib.bf_compare_new(len(data), keep, len(cspecs), cspecs, out, err), err)
+        c = ffi.gc(out[0], lib.bf_compare_free)
+        ptrs = ffi.new("bf_samples *[]", [d._s for d in data])
+        _check(lib.bf_compare_run(c, ptrs, opts.o, ffi.NULL, ffi.NULL, err), err)
+        lib.bf_compare_rank(c)
+        text = ffi.new("char **")
+        _check(lib.bf_compare_json(c, text, err), err)
+        return CompareResult(_take_text(text[0]))
+
+    return run(call)
+
+
+compare.__doc__ = """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
+list of specs, or one string as -m takes it ("lambert,walter", "all"); samples_list holds
+brdfit.Samples or data file names. progress(iteration, cost) sees every solve; returning
+True stops the comparison. The options are brdfit compare's, as keywords:
+
+""" + _doc("compare")

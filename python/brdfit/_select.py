@@ -1,0 +1,79 @@
+"""Selecting: brdfit.select and its result."""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, Optional, Sequence, Union
+
+from ._brdfit import ffi, lib
+from ._compare import _model_list
+from ._data import _prepared
+from ._errors import _check, _take_text
+from ._fit import FitResult, _result
+from ._options import _doc, _Options
+from ._run import _Run
+
+
+class SelectResult:
+    """A selection: .chosen (the chosen spec, or None when nothing could be fitted), .fit
+    (its FitResult), .json (every candidate and the choice, as `brdfit select --json`
+    writes it) and .to_json() (that text)."""
+
+    def __init__(self, text: str, fit: Optional[FitResult]):
+        self._text = text
+        self.json: Dict[str, Any] = json.loads(text)
+        self.fit = fit
+        self.chosen: Optional[str] = fit.spec if fit is not None else None
+
+    def to_json(self) -> str:
+        return self._text
+
+    def __repr__(self) -> str:
+        return "brdfit.SelectResult(chosen=%r)" % (self.chosen,)
+
+
+def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, progress=None,
+           **options: Any) -> SelectResult:
+    opts = _Options("select", options, "select")
+    data = _prepared(samples, opts, "samples")
+    if models is None:  # the library's default candidates for the data's channels
+        arr = ffi.new("const char ***")
+        n = lib.bf_select_default_candidates(data.channels, arr)
+        if n < 0:
+            raise MemoryError("brdfit: out of memory")
+        try:
+            specs = [ffi.string(arr[0][k]).decode() for k in range(n)]
+        finally:
+            lib.bf_free(arr[0])
+    else:
+        specs = _model_list(models)
+    opts.check(specs)
+    data._ready()
+    run = _Run(progress)
+    run.hook(opts)
+
+    def call() -> SelectResult:  # in the worker, which owns the selection
+        err = ffi.new("bf_error *")
+        out = ffi.new("bf_select **")
+        cspecs = [ffi.new("char[]", m.encode()) for m in specs]
+        _check(lib.bf_select_new(len(cspecs), cspecs, data.channels, opts.o, out, err), err)
+        s = ffi.gc(out[0], lib.bf_select_free)
+        _check(lib.bf_select_run(s, data._s, opts.o, ffi.NULL, ffi.NULL, err), err)
+        text = ffi.new("char **")
+        _check(lib.bf_select_json(s, os.fsencode(data.path) if data.path else ffi.NULL, text, err), err)
+        selection = _take_text(text[0])
+        # The chosen fit, as `brdfit select -o` writes it.
+        fit = _result(s.c[s.chosen].result, data.path) if s.chosen >= 0 else None
+        return SelectResult(selection, fit)
+
+    return run(call)
+
+
+select.__doc__ = """Chooses the smallest model that serves, as `brdfit select`: fits every candidate
+(models: a list of specs or one string as -m takes it; None: the library's default
+candidates for the data's channel count) and chooses the one with the fewest free
+parameters whose error is within the tolerance of the best. progress(iteration, cost)
+sees every solve; returning True stops the selection. The options are brdfit select's, as
+keywords:
+
+""" + _doc("select")
