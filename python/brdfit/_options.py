@@ -23,7 +23,8 @@ def _table() -> List[Dict[str, Any]]:
         d = lib.bf_option_get(i)
         out.append({"name": _str(d.name), "group": _str(d.group), "tasks": d.tasks, "type": int(d.type),
                     "arg": _str(d.arg), "help": _str(d.help), "default": _str(getattr(d, "def")),
-                    "range": _str(d.range)})
+                    "range": _str(d.range), "complete": _str(d.complete),
+                    "choices": _str(d.choices).split("|") if d.choices != ffi.NULL else None})
     return out
 
 
