@@ -63,7 +63,7 @@ def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, pro
         _check(lib.bf_select_json(s, os.fsencode(data.path) if data.path else ffi.NULL, text, err), err)
         selection = _take_text(text[0])
         # The chosen fit, as `brdfit select -o` writes it.
-        fit = _result(s.c[s.chosen].result, data.path) if s.chosen >= 0 else None
+        fit = _result(s.c[s.chosen].result, data) if s.chosen >= 0 else None
         return SelectResult(selection, fit)
 
     return run(call)
