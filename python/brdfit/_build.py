@@ -105,6 +105,24 @@ bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char
 bf_status bf_params_read(const char *path, bf_model **model, double **x, bf_error *err);
 bf_status bf_params_parse(const char *text, const char *name, bf_model **model, double **x, bf_error *err);
 
+/* The objective (objective.h, solve.h): a fit's residuals, in the form it was fitted in. */
+typedef enum bf_residual { BF_RESIDUAL_LINEAR = 0, ... } bf_residual;
+bf_status bf_residual_parse(const char *name, bf_residual *out, bf_error *err);
+typedef struct bf_objective_options { size_t size; bf_residual residual; int solid_angle; int use_weights; ...; }
+    bf_objective_options;
+void bf_objective_options_init(bf_objective_options *o);
+typedef struct bf_problem {
+    size_t nres; int (*eval)(void *user, const double *x, size_t r0, size_t r1, double *res, double *jac);
+    void *user; ...;
+} bf_problem;
+typedef struct bf_objective bf_objective;
+bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *o, bf_objective **out,
+                           bf_error *err);
+void bf_objective_free(bf_objective *obj);
+const bf_problem *bf_objective_problem(const bf_objective *obj);
+int bf_objective_nz(const bf_objective *obj);
+void bf_objective_to_internal(const bf_objective *obj, const double *x, double *z);
+
 /* Comparison (compare.h). */
 typedef struct bf_compare { int nmaterials, nmodels; int interrupted; ...; } bf_compare;
 typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int material, int model, int done, int total);
@@ -152,6 +170,7 @@ SOURCE = r"""
 #include "brdfit/io.h"
 #include "brdfit/load.h"
 #include "brdfit/model.h"
+#include "brdfit/objective.h"
 #include "brdfit/options.h"
 #include "brdfit/select.h"
 #include "brdfit/version.h"

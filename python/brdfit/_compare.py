@@ -3,12 +3,13 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, Iterable, List, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._data import _prepared
 from ._errors import UsageError, _check, _take_text
 from ._fit import _spec_of
+from ._frames import frame
 from ._model import Model
 from ._options import _doc, _Options
 from ._run import _Run
@@ -17,7 +18,8 @@ from ._samples import Samples
 
 class CompareResult:
     """A comparison: .rows (one dict per material x model: "data" and the fit's fields of
-    `brdfit compare --json`), .json (all of it) and .to_json() (its text)."""
+    `brdfit compare --json`, as it writes them), .to_dataframe() (the rows as a pandas
+    DataFrame), .json (all of it) and .to_json() (its text). It pickles (as its text)."""
 
     def __init__(self, text: str):
         self._text = text
@@ -27,6 +29,25 @@ class CompareResult:
 
     def to_json(self) -> str:
         return self._text
+
+    def to_dataframe(self) -> Any:
+        """The rows as a pandas DataFrame, one row per material x model in .rows' order:
+        "data" (the data's name) first, then the fit's fields ("model", "spec", "status",
+        "rank", the criteria and metrics ...). Numbers are float64 columns with NaN where
+        the JSON has null (a criterion a robust loss leaves undefined, a fit that did not
+        run; a column with no value at all is NaN throughout); "params" and "stderr" are
+        columns of dicts (name -> float, a list per channel for a colour; None for a fit
+        that did not run: `pandas.json_normalize(df["params"].tolist())` spreads them
+        into columns); "warnings" a column of lists. ImportError without pandas."""
+        return frame([dict({"data": r["data"]}, **r) for r in self.rows], nested=("params", "stderr"))
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        return (CompareResult, (self._text,))
+
+    def __repr__(self) -> str:
+        mats = self.json["materials"]
+        return "brdfit.CompareResult(materials=%d, models=%r, best=%r)" % (
+            len(mats), self.json["models"], [m.get("best") for m in mats])
 
 
 def _model_list(models: Any) -> List[str]:
@@ -48,8 +69,8 @@ def _model_list(models: Any) -> List[str]:
     return out
 
 
-def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], progress=None,
-            **options: Any) -> CompareResult:
+def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]],
+            progress: Optional[Callable[[int, float], Any]] = None, **options: Any) -> CompareResult:
     if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
         raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
     samples_list = list(samples_list)
@@ -79,7 +100,8 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], prog
         _check(lib.bf_compare_json(c, text, err), err)
         return CompareResult(_take_text(text[0]))
 
-    return run(call)
+    result: CompareResult = run(call)
+    return result
 
 
 compare.__doc__ = """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a

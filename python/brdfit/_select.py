@@ -3,37 +3,65 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._compare import _model_list
 from ._data import _prepared
 from ._errors import _check, _take_text
 from ._fit import FitResult, _result
+from ._frames import frame
 from ._options import _doc, _Options
 from ._run import _Run
 
 
 class SelectResult:
     """A selection: .chosen (the chosen spec, or None when nothing could be fitted), .fit
-    (its FitResult), .json (every candidate and the choice, as `brdfit select --json`
-    writes it) and .to_json() (that text)."""
+    (its FitResult), .candidates (one dict per candidate model, as `brdfit select --json`
+    writes it: "spec", "k" the free parameters, "error", "chosen", its "metrics",
+    "params", ...), .to_dataframe() (the candidates as a pandas DataFrame), .json (every
+    candidate and the choice) and .to_json() (that text). It pickles (as its JSON text
+    and its fit's)."""
 
     def __init__(self, text: str, fit: Optional[FitResult]):
         self._text = text
         self.json: Dict[str, Any] = json.loads(text)
         self.fit = fit
         self.chosen: Optional[str] = fit.spec if fit is not None else None
+        self.candidates: List[Dict[str, Any]] = list(self.json["candidates"])
 
     def to_json(self) -> str:
         return self._text
+
+    def to_dataframe(self) -> Any:
+        """The candidates as a pandas DataFrame, one row each in .candidates' order:
+        "data" (the data's name), then the candidate's fields with its "metrics" spread
+        into columns of their own ("rmse_log", "bic", ...; one a candidate field already
+        names is "metrics_" + its name: "metrics_k", the k of the criteria). Numbers are
+        float64 columns with NaN where the JSON has null; "params" and "stderr" are
+        columns of dicts (name -> float, a list per channel for a colour; None for a
+        candidate that did not run). ImportError without pandas."""
+        records = []
+        for c in self.candidates:
+            rec: Dict[str, Any] = {"data": self.json.get("data")}
+            for k, v in c.items():
+                if k == "metrics":
+                    for mk, mv in (v or {}).items():
+                        rec["metrics_" + mk if mk in c else mk] = mv
+                else:
+                    rec[k] = v
+            records.append(rec)
+        return frame(records, nested=("params", "stderr"))
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        return (SelectResult, (self._text, self.fit))
 
     def __repr__(self) -> str:
         return "brdfit.SelectResult(chosen=%r)" % (self.chosen,)
 
 
-def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, progress=None,
-           **options: Any) -> SelectResult:
+def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None,
+           progress: Optional[Callable[[int, float], Any]] = None, **options: Any) -> SelectResult:
     opts = _Options("select", options, "select")
     data = _prepared(samples, opts, "samples")
     if models is None:  # the library's default candidates for the data's channels
@@ -63,10 +91,11 @@ def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, pro
         _check(lib.bf_select_json(s, os.fsencode(data.path) if data.path else ffi.NULL, text, err), err)
         selection = _take_text(text[0])
         # The chosen fit, as `brdfit select -o` writes it.
-        fit = _result(s.c[s.chosen].result, data.path) if s.chosen >= 0 else None
+        fit = _result(s.c[s.chosen].result, data) if s.chosen >= 0 else None
         return SelectResult(selection, fit)
 
-    return run(call)
+    result: SelectResult = run(call)
+    return result
 
 
 select.__doc__ = """Chooses the smallest model that serves, as `brdfit select`: fits every candidate

@@ -15,11 +15,25 @@ from _support import (CAYMAN, DIRS_IN_PLANE, PTFE, PTFE_CLI, PTFE_KW, WALTER_RGB
                       cli_fit, flat, normalize_json_text, read_csv_table, synth, vectors_from_angles)
 
 
+def _check_metrics(got, want):
+    """A result's .metrics against the file's: the same names, floats equal to its
+    numbers (booleans as they are), NaN where it has null."""
+    assert list(got) == list(want)
+    for k, w in want.items():
+        g = got[k]
+        if isinstance(w, bool):
+            assert g is w, k
+        elif w is None:
+            assert isinstance(g, float) and math.isnan(g), f"{k}: {g!r} for null"
+        else:
+            assert isinstance(g, float) and g == w, f"{k}: {g!r} != {w!r}"
+
+
 def _check_result(r, text, want):
     """Everything of a Python result against the command line's result file."""
     assert_params_identical(r.params, want["params"])
     assert_params_identical(r.stderr, want["stderr"], what="stderr")
-    assert dict(r.metrics) == want["metrics"]
+    _check_metrics(r.metrics, want["metrics"])
     assert list(r.warnings) == want["warnings"]
     assert normalize_json_text(r.to_json()) == normalize_json_text(text)
 
