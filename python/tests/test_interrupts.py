@@ -45,13 +45,13 @@ CHILD = textwrap.dedent(r"""
     worst = 0.0
     for k in range(times):
         delay = random.uniform(0.0, 0.15)
-        if kind == "int":
-            threading.Timer(delay, lambda: (signalled.__setitem__(0, time.monotonic()),
-                                            os.kill(os.getpid(), signal.SIGINT))).start()
-        else:
-            signalled[0] = time.monotonic() + delay
-            signal.setitimer(signal.ITIMER_REAL, delay)
-        try:
+        try:  # the signal may land while it is being set up, too
+            if kind == "int":
+                threading.Timer(delay, lambda: (signalled.__setitem__(0, time.monotonic()),
+                                                os.kill(os.getpid(), signal.SIGINT))).start()
+            else:
+                signalled[0] = time.monotonic() + delay
+                signal.setitimer(signal.ITIMER_REAL, delay)
             while True:
                 call()
         except (KeyboardInterrupt, TimeoutError):
