@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 from typing import Any, Callable, Dict, List, Mapping, Optional, Union
 
@@ -15,8 +16,17 @@ from ._options import _doc, _Options
 from ._run import _Run
 
 
+def _floats(d: Mapping[str, Any]) -> Dict[str, Any]:
+    """A parameter dict of the result's JSON with floats only: a JSON integer (0) as a
+    float, and NaN where the JSON has null (a standard error that does not exist)."""
+    def f(v: Any) -> float:
+        return math.nan if v is None else float(v)
+    return {k: [f(x) for x in v] if isinstance(v, list) else f(v) for k, v in d.items()}
+
+
 class FitResult:
-    """A fit: .params and .stderr (name -> value, a list per channel for a colour), .metrics,
+    """A fit: .params and .stderr (name -> float, a list of floats per channel for a colour;
+    NaN for a standard error the fit could not give), .metrics,
     .warnings, .ok, .cancelled, .model (a Model holding the fitted parameters, to evaluate),
     .json (the result as a dict) and .to_json() (the text `brdfit fit -o` writes)."""
 
@@ -25,8 +35,8 @@ class FitResult:
         self.json: Dict[str, Any] = json.loads(text) if text else {}
         self.ok = ok
         self.cancelled = cancelled
-        self.params: Dict[str, Any] = self.json.get("params", start)
-        self.stderr: Dict[str, Any] = self.json.get("stderr", {})
+        self.params: Dict[str, Any] = _floats(self.json.get("params", start))
+        self.stderr: Dict[str, Any] = _floats(self.json.get("stderr", {}))
         self.metrics: Dict[str, Any] = self.json.get("metrics", {})
         self.warnings: List[str] = self.json.get("warnings", ["the fit was cancelled"] if cancelled else [])
         self.model = model
