@@ -43,22 +43,34 @@ const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size
 void bf_model_defaults(const bf_model *m, double *x);
 bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err);
 void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g, double *values, double *grad);
+void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                         double *values, double *grad);
 
 /* Geometry (geometry.h). */
 bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out, bf_error *err);
 void bf_geometry_free(bf_geometry *g);
 
-/* Samples (samples.h). */
+/* Samples (samples.h, merl.h). */
+#define BF_MERL_CELLS ...
+typedef struct bf_merl_origin { int32_t *cell; ...; } bf_merl_origin;
 typedef struct bf_samples {
     size_t n; int channels; char **channel_names; double *wavelength;
-    double *theta_i, *phi_i, *theta_o, *phi_o; double *value; double *weight; double *scene_weight; ...;
+    double *theta_i, *phi_i, *theta_o, *phi_o; double *value; double *weight; double *scene_weight;
+    bf_merl_origin *merl; ...;
 } bf_samples;
 bf_status bf_samples_new(size_t n, int channels, bf_samples **out, bf_error *err);
+bf_status bf_samples_new_cells(size_t n, int channels, bf_samples **out, bf_error *err);
+bf_status bf_samples_set_channel_name(bf_samples *s, int c, const char *name, bf_error *err);
 void bf_samples_free(bf_samples *s);
 bf_status bf_samples_add_weights(bf_samples *s, bf_error *err);
 void bf_samples_angle_block(const bf_samples *s, size_t i0, size_t cnt, double *buf, const double *dir[4]);
 bf_status bf_samples_geometry(bf_samples *s, const bf_geometry **out, bf_error *err);
 bf_status bf_samples_copy(const bf_samples *s, const unsigned char *keep, bf_samples **out, bf_error *err);
+
+/* Writing data files (formats.h). */
+typedef enum bf_format { BF_FORMAT_AUTO = 0, ... } bf_format;
+bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err);
+bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
 
 /* Run options (options.h): the table and a set of values. */
 typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8 } bf_task;
@@ -167,6 +179,7 @@ SOURCE = r"""
 #include "brdfit/compare.h"
 #include "brdfit/export.h"
 #include "brdfit/fit.h"
+#include "brdfit/formats.h"
 #include "brdfit/io.h"
 #include "brdfit/load.h"
 #include "brdfit/model.h"

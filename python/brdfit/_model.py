@@ -2,13 +2,15 @@
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Mapping, Optional
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ._args import _array, _directions, _flag
+from ._args import _array, _path_text
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check, _take_text
+from ._eval import Result, evaluate
 
 
 def version() -> str:
@@ -25,9 +27,21 @@ def models() -> List[Dict[str, Any]]:
     return json.loads(_take_text(p))["models"]
 
 
+def _restore(spec: str, channels: int, params: Optional[Sequence[float]]) -> "Model":
+    """A pickled Model made again (Model.__reduce__)."""
+    m = Model(spec, channels)
+    if params is not None:
+        m._params = m._checked(params, "params")
+    return m
+
+
 class Model:
     """A configured model: `Model("walter", channels=3)`, or any spec `brdfit fit -m` takes
-    ("microfacet:D=ggx,lobes=2")."""
+    ("microfacet:D=ggx,lobes=2"); params (name -> value) gives it parameters of its own,
+    which eval uses where it is given none. `Model.from_file(path)` reads a result or
+    parameter file. Models pickle (spec, channels and parameters), so they pass to the
+    processes of a ProcessPoolExecutor; two are equal when their canonical specs,
+    channels and parameters (bit for bit, or both none) are."""
 
     def __init__(self, spec: str, channels: int = 1, params: Optional[Mapping[str, Any]] = None):
         if not isinstance(spec, str):
@@ -46,8 +60,40 @@ class Model:
             self._params = self._vector(params)
 
     @classmethod
-    def _from_ptr(cls, m) -> "Model":
+    def _from_ptr(cls, m: Any) -> "Model":
         return cls(ffi.string(lib.bf_model_spec(m)).decode(), lib.bf_model_channels(m))
+
+    @classmethod
+    def from_file(cls, path: Union[str, bytes, "os.PathLike[Any]"]) -> "Model":
+        """The model of a result file (`brdfit fit -o`) or a parameter file, holding its
+        parameters (the library's reader: every parameter given, inside its bounds)."""
+        if not isinstance(path, (str, bytes, os.PathLike)):
+            raise UsageError("path: needs a file name, got %r" % (path,))
+        p = _path_text(path)
+        err = ffi.new("bf_error *")
+        out = ffi.new("bf_model **")
+        x = ffi.new("double **")
+        _check(lib.bf_params_read(os.fsencode(p), out, x, err), err)
+        m = cls.__new__(cls)
+        m._m = ffi.gc(out[0], lib.bf_model_free)
+        try:
+            m._params = np.array(ffi.unpack(x[0], lib.bf_model_nvalues(out[0])), dtype=np.float64)
+        finally:
+            lib.bf_free(x[0])
+        return m
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        return _restore, (self.spec, self.channels, None if self._params is None else self._params.tolist())
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Model):
+            return NotImplemented
+        a, b = self._params, other._params
+        same = (a is None and b is None) or (a is not None and b is not None and bool(np.array_equal(a, b)))
+        return same and self.channels == other.channels and self.spec == other.spec
+
+    def __hash__(self) -> int:
+        return hash((self.spec, self.channels, None if self._params is None else tuple(self._params.tolist())))
 
     @property
     def spec(self) -> str:
@@ -78,12 +124,47 @@ class Model:
     def _colour(self, i: int) -> bool:
         return bool(lib.bf_model_param(self._m, i).colour)
 
+    def _find(self, key: Any) -> int:
+        """The index of parameter key; a UsageError naming the model's parameters if none."""
+        i = lib.bf_model_find_param(self._m, key.encode()) if isinstance(key, str) and "\0" not in key else -1
+        if i < 0:
+            raise UsageError("params: %s has no parameter %r (it has %s)" % (self.spec, key,
+                                                                              ", ".join(self.param_names)))
+        return int(i)
+
     @property
     def defaults(self) -> Dict[str, Any]:
         """Each parameter's default value (a list of channels values for a colour)."""
         x = np.empty(lib.bf_model_nvalues(self._m))
         lib.bf_model_defaults(self._m, ffi.from_buffer("double[]", x))
         return self._dict(x)
+
+    @property
+    def bounds(self) -> Dict[str, Tuple[float, float]]:
+        """Each parameter's bounds (lo, hi), the library's (brdfit.models() also says which
+        of them are open, that is excluded)."""
+        out: Dict[str, Tuple[float, float]] = {}
+        for i in range(lib.bf_model_nparams(self._m)):
+            p = lib.bf_model_param(self._m, i)
+            out[ffi.string(p.name).decode()] = (float(p.lo), float(p.hi))
+        return out
+
+    def vector(self, params: Optional[Mapping[str, Any]] = None) -> np.ndarray:
+        """The model vector (nvalues,) in the order of value_names: params (name -> value,
+        as eval takes one set) over the model's own parameters (else the defaults),
+        checked against the bounds."""
+        return self._vector(params, self._params)
+
+    def params_from(self, vector: Any) -> Dict[str, Any]:
+        """The parameters (name -> float, or a list of channels floats for a colour) of a
+        model vector (nvalues,), checked against the bounds: vector's inverse."""
+        return self._dict(self._checked(vector, "vector"))
+
+    def _checked(self, vector: Any, what: str) -> np.ndarray:
+        x = _array(what, vector, [(lib.bf_model_nvalues(self._m),)])
+        err = ffi.new("bf_error *")
+        _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, what, usage=True)
+        return x
 
     @property
     def params(self) -> Optional[Dict[str, Any]]:
@@ -99,20 +180,21 @@ class Model:
             out[name] = [float(v) for v in x[o:o + C]] if self._colour(i) else float(x[o])
         return out
 
-    def _vector(self, params: Optional[Mapping[str, Any]]) -> np.ndarray:
-        """The model vector: the defaults with params over them, checked against the bounds."""
+    def _vector(self, params: Optional[Mapping[str, Any]], base: Optional[np.ndarray] = None) -> np.ndarray:
+        """The model vector: base (else the defaults) with params over them, checked
+        against the bounds."""
         x = np.empty(lib.bf_model_nvalues(self._m))
-        lib.bf_model_defaults(self._m, ffi.from_buffer("double[]", x))
+        if base is not None:
+            x[:] = base
+        else:
+            lib.bf_model_defaults(self._m, ffi.from_buffer("double[]", x))
         if params is None:
             return x
         if not isinstance(params, Mapping):
             raise UsageError("params: needs a dict of parameter name -> value, got %s" % type(params).__name__)
         C = self.channels
         for key, value in params.items():
-            i = lib.bf_model_find_param(self._m, str(key).encode()) if isinstance(key, str) else -1
-            if i < 0:
-                raise UsageError("params: %s has no parameter %r (it has %s)" % (self.spec, key,
-                                                                                  ", ".join(self.param_names)))
+            i = self._find(key)
             o = lib.bf_model_param_offset(self._m, i)
             n = C if self._colour(i) else 1
             v = _array("params[%r]" % key, value, [(), (n,)]).reshape(-1)
@@ -121,35 +203,25 @@ class Model:
         _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, "params", usage=True)
         return x
 
-    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None, gradient: bool = False):
-        """The BRDF (1/sr) at direction pairs: wi, wo unit vectors of shape (n, 3) (towards the
-        light and the viewer, z the normal). params: name -> value (a sequence of channels
-        values for a colour parameter); missing ones take the model's own (a fit's result:
-        the fitted values; else the defaults). Returns an (n, channels) array, and with
-        gradient=True also the analytic Jacobian, (n, channels, len(value_names))."""
-        gradient = _flag("gradient", gradient)
-        L, V = _directions("wi", wi), _directions("wo", wo)
-        if L.shape[0] != V.shape[0]:
-            raise UsageError("wi and wo: need the same number of directions, got %d and %d" % (L.shape[0], V.shape[0]))
-        if self._params is not None:
-            base = self._dict(self._params)
-            base.update(params or {})
-            params = base
-        x = self._vector(params)
-        n, C, P = L.shape[0], self.channels, x.size
-        values = np.zeros((n, C))
-        grad = np.zeros((n, C, P)) if gradient else None
-        if n:
-            err = ffi.new("bf_error *")
-            g = ffi.new("bf_geometry **")
-            _check(lib.bf_geometry_from_vectors(n, ffi.from_buffer("double[]", L), ffi.from_buffer("double[]", V), g,
-                                                err), err)
-            try:
-                lib.bf_model_eval(self._m, ffi.from_buffer("double[]", x), g[0], ffi.from_buffer("double[]", values),
-                                  ffi.from_buffer("double[]", grad) if gradient else ffi.NULL)
-            finally:
-                lib.bf_geometry_free(g[0])
-        return (values, grad) if gradient else values
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None,
+             gradient: Union[bool, str] = False) -> Result:
+        """The BRDF (1/sr) at direction pairs: wi, wo unit vectors (towards the light and the
+        viewer, z the normal), each (n, 3) or one (3,); one direction goes with all n of the
+        other. Returns (n, channels) values, (channels,) for one (3,) pair.
+
+        params: name -> value (a sequence of channels values for a colour parameter);
+        missing ones take the model's own (a fit's result: the fitted values; else the
+        defaults). K parameter sets in one call: a scalar parameter as shape (K,), a colour
+        one as (K, channels) (or (K, 1): one value for every channel); the result gains a
+        first axis K.
+
+        gradient=True also returns the analytic Jacobian, (n, channels, len(value_names)):
+        d value[c] / d each entry of the model vector. gradient="channel" returns instead
+        (n, channels, len(param_names)): d value[c] / d each parameter, a colour
+        parameter's entry for channel c (what a channel's own fit needs), with no
+        (n, channels, nvalues) block, for many channels."""
+        return evaluate(self, wi, wo, params, gradient)
 
     def __repr__(self) -> str:
-        return "brdfit.Model(%r, channels=%d)" % (self.spec, self.channels)
+        held = "" if self._params is None else ", params=..."
+        return "brdfit.Model(%r, channels=%d%s)" % (self.spec, self.channels, held)

@@ -1,12 +1,14 @@
 """Samples: directions, values and weights in the library's memory."""
 from __future__ import annotations
 
+import os
 import threading
-from typing import Any, List, Optional, Tuple
+from typing import Any, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ._args import _array, _directions, _view
+from . import _samples_build as build
+from ._args import _array, _directions, _path_text, _text, _view
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check
 
@@ -22,11 +24,18 @@ def _vectors_of(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
     return np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=1)
 
 
+def _restore(arrays: build.Arrays, path: Optional[str]) -> "Samples":
+    """Pickled Samples made again (Samples.__reduce__)."""
+    return Samples._owned(build.build(arrays), path)
+
+
 class Samples:
     """Measured or synthetic samples: directions, values (n, channels) and optional weights.
 
     `Samples(wi, wo, values, weights=None)` from unit vectors, `Samples.from_angles(...)`
-    from angles, or `brdfit.read(path, ...)` from a file."""
+    from angles, or `brdfit.read(path, ...)` from a file. `samples[i:j]`, `samples[mask]`
+    and `samples[indices]` are new Samples, `Samples.concat([a, b])` joins sets,
+    `.write(path)` writes a CSV or MERL file, and Samples pickle."""
 
     def __init__(self, wi: Any, wo: Any, values: Any, weights: Any = None):
         L, V = _directions("wi", wi), _directions("wo", wo)
@@ -77,11 +86,71 @@ class Samples:
         self.path: Optional[str] = None
 
     @classmethod
-    def _wrap(cls, ptr, path: Optional[str]) -> "Samples":
+    def _wrap(cls, ptr: Any, path: Optional[str]) -> "Samples":
+        """Samples of the library's samples ptr, freed with them."""
+        return cls._owned(ffi.gc(ptr, lib.bf_samples_free), path)
+
+    @classmethod
+    def _owned(cls, s_owned: Any, path: Optional[str]) -> "Samples":
         s = cls.__new__(cls)
-        s._s = ffi.gc(ptr, lib.bf_samples_free)
+        s._s = s_owned
         s.path = path
         return s
+
+    def __getitem__(self, key: Any) -> "Samples":
+        """New Samples of the samples key selects: a slice, a boolean mask of length n, or
+        an array of indices. A selection in order (a slice with a positive step, a mask,
+        increasing indices) is the library's copy, which keeps what the samples know of
+        their origin (MERL cells, wavelengths, a scene's weights); one that reorders or
+        repeats is built from the arrays (directions, values, weights, channel names)."""
+        idx = build.indices(key, self.n)
+        if build.in_order(idx):
+            return Samples._owned(build.copy_kept(self._s, idx), self.path)
+        return Samples._owned(build.build(build.arrays(self._s, idx, "index", ": select them in their order (a "
+                                                       "slice, a boolean mask or increasing indices) to keep them")),
+                              self.path)
+
+    @staticmethod
+    def concat(parts: Iterable["Samples"]) -> "Samples":
+        """One Samples of several, in order: the same channels with the same names (else a
+        UsageError); weights where any part has them (1 for the others); MERL cells when
+        every part has them, else angles. Its path is the parts' when they share one."""
+        if isinstance(parts, (Samples, str, bytes)) or not hasattr(parts, "__iter__"):
+            raise UsageError("parts: needs a sequence of brdfit.Samples, got %s" % type(parts).__name__)
+        ps = list(parts)
+        if not ps:
+            raise UsageError("parts: needs at least one brdfit.Samples")
+        for i, p in enumerate(ps):
+            if not isinstance(p, Samples):
+                raise UsageError("parts[%d]: needs brdfit.Samples, got %s" % (i, type(p).__name__))
+            if p.channel_names != ps[0].channel_names:
+                raise UsageError("parts[%d]: has the channels %s, parts[0] %s (concat needs the same channels)"
+                                 % (i, ", ".join(p.channel_names), ", ".join(ps[0].channel_names)))
+        paths = {p.path for p in ps}
+        path = ps[0].path if len(paths) == 1 else None
+        if len(ps) == 1:
+            return Samples._owned(build.copy_kept(ps[0]._s, np.arange(ps[0].n)), path)
+        return Samples._owned(build.build(build.join([build.arrays(p._s, None, "parts[%d]" % i)
+                                                      for i, p in enumerate(ps)])), path)
+
+    def write(self, path: Union[str, bytes, "os.PathLike[Any]"], format: Optional[str] = None) -> None:
+        """Writes the samples through the library's writer, as `brdfit convert` does: format
+        is a format's name ("csv", "merl"), or None for the one the path's extension names;
+        a format the library cannot write is refused with its message. The file appears
+        only when whole."""
+        if not isinstance(path, (str, bytes, os.PathLike)):
+            raise UsageError("path: needs a file name, got %r" % (path,))
+        p = _path_text(path)
+        err = ffi.new("bf_error *")
+        f = ffi.new("bf_format *", lib.BF_FORMAT_AUTO)
+        if format is not None:
+            _check(lib.bf_format_parse(_text("format", format).encode(), f, err), err, "format", usage=True)
+        _check(lib.bf_samples_write(self._s, os.fsencode(p), f[0], err), err)
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        # Arrays, not the library's memory: directions (MERL cells, or angles in degrees as
+        # held), values, weights and channel names, bit for bit.
+        return _restore, (build.arrays(self._s, None, "pickle", ": pass the data file's name instead"), self.path)
 
     _geometry_lock = threading.Lock()
 

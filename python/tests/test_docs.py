@@ -32,8 +32,11 @@ def test_walk_through_runs_as_written(tmp_path):
 def test_example_fit_and_plot(tmp_path):
     out = tmp_path / "cayman.png"
     p = subprocess.run([PYTHON, str(REPO / "examples" / "python" / "fit_and_plot.py"), str(out)], cwd=tmp_path,
-                       env=_env(), capture_output=True, text=True, timeout=300)
+                       env=dict(_env(), MPLBACKEND="Agg"), capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     assert "rmse_log" in p.stdout
+    # Every measured point it draws is on the log axis (sRGB's negative red was not).
+    drawn = re.search(r"measured points drawn: (\d+) per channel, (\d+) hidden", p.stdout)
+    assert drawn and int(drawn.group(1)) > 40 and int(drawn.group(2)) == 0, p.stdout
     data = out.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000

@@ -50,7 +50,7 @@ def test_arguments_out_of_range_are_usage_errors():
     assert brdfit.Model("lambert", channels=2000).channels == 2000
     # A tiny vector is a direction.
     f = brdfit.Model("lambert").eval(np.array([0, 0, 1e-300]), [0, 0, 1])
-    assert np.isfinite(f).all() and f[0, 0] > 0
+    assert f.shape == (1,) and np.isfinite(f).all() and f[0] > 0  # one (3,) pair: (channels,)
     # A per-channel fix takes a sequence, as params do.
     r = brdfit.fit(CAYMAN, "walter", rgb=True, fix={"rho_d": [0.1, 0.2, 0.3]}, threads=1, starts=1)
     assert r.params["rho_d"] == [0.1, 0.2, 0.3]
