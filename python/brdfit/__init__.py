@@ -2,7 +2,8 @@
 
 The same library as the `brdfit` command, with the same results: Model (evaluate any
 model and its analytic gradient), read and Samples (data in), fit, compare, select and
-export.
+export; info, render, fit_images and read_all (the commands info, render, fit-images, and
+many files at once).
 Options are keyword arguments named as the command line's ("--max-theta" is max_theta),
 declared once, in the library (brdfit.options("fit") lists them).
 docs/python.md walks through it."""
@@ -11,11 +12,16 @@ from ._data import read
 from ._errors import Error, UsageError
 from ._export import export
 from ._fit import FitResult, fit
+from ._folders import read_all
+from ._info import Info, LoadReport, info
 from ._model import Model, models, version
 from ._options import options
+from ._photo import FitImagesResult, fit_images
+from ._render import render
 from ._samples import Samples
 from ._select import SelectResult, select
 
 __version__ = version().split(" ")[0]
 __all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",
-           "models", "options", "read", "fit", "compare", "select", "export", "version"]
+           "models", "options", "read", "fit", "compare", "select", "export", "version",
+           "Info", "LoadReport", "FitImagesResult", "info", "render", "fit_images", "read_all"]

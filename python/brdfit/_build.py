@@ -100,7 +100,10 @@ void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user)
 bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
 
 /* Loading (load.h). */
-typedef struct bf_load_report { size_t size; size_t read; size_t kept; ...; } bf_load_report;
+typedef struct bf_load_report {
+    size_t size; size_t read; int channels_read; size_t below_horizon, nonfinite, negative, above_max_theta;
+    int scene; size_t scene_in, scene_kept, subsampled_out; size_t kept; ...;
+} bf_load_report;
 void bf_load_report_init(bf_load_report *r);
 bf_status bf_samples_load(const char *path, const bf_options *o, bf_samples **out, bf_load_report *report,
                           bf_error *err);
@@ -171,6 +174,55 @@ bf_status bf_export_prepare(const bf_export_target *t, const bf_model *src, cons
 bf_status bf_export_write(const bf_export_target *t, const bf_export_material *e, const char *path, bf_error *err);
 bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e, char **out, bf_error *err);
 
+/* Front ends: brdfit info, render, fit-images and many files (_info.py, _render.py,
+   _photo.py, _folders.py). */
+typedef enum bf_format { BF_FORMAT_AUTO = 0, ... } bf_format;
+bf_format bf_format_by_extension(const char *path);
+typedef struct bf_range { double lo, hi; } bf_range;
+typedef struct bf_samples_info {
+    size_t size; size_t n; int channels; bf_range theta_i, theta_o, theta_h, theta_d;
+    size_t below_horizon, nonfinite, negative, zero; bf_range *value; double *mean; int weighted; ...;
+} bf_samples_info;
+void bf_samples_info_init(bf_samples_info *info);
+bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err);
+void bf_samples_info_clear(bf_samples_info *info);
+typedef struct bf_dir { double theta, phi; } bf_dir;
+typedef struct bf_sphere_options { size_t size; int resolution; bf_dir view; const bf_dir *lights; int nlights; ...; }
+    bf_sphere_options;
+void bf_sphere_options_init(bf_sphere_options *o);
+bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb, bf_error *err);
+bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
+bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height, double phi_d,
+                                   float *rgb, bf_error *err);
+bf_status bf_render_halfdiff_merl(const bf_samples *merl, int width, int height, double phi_d, float *rgb,
+                                  bf_error *err);
+typedef struct bf_stack { int nimages; int width, height, channels; ...; } bf_stack;
+bf_status bf_stack_read(const char *path, bf_stack **out, bf_error *err);
+void bf_stack_free(bf_stack *s);
+typedef enum bf_photo_normals { BF_NORMALS_FIT = 0, BF_NORMALS_FILE, BF_NORMALS_FLAT } bf_photo_normals;
+typedef struct bf_photo_options {
+    size_t size; const char *model; bf_photo_normals normals; const char *normals_file; const char *share;
+    int clusters; int scale_given; double scale; int tile_index, tile_count; int threads; int relit_images;
+    uint64_t seed; void (*progress)(void *user, double done); void *progress_user;
+    const volatile sig_atomic_t *cancel; /* bf_cancel_flag (volatile: cffi checks the field) */ ...;
+} bf_photo_options;
+void bf_photo_options_init(bf_photo_options *o);
+typedef struct bf_photo_counts {
+    size_t pixels; size_t masked; size_t failed; size_t samples; size_t shadowed; size_t dark; size_t saturated;
+    size_t invalid;
+} bf_photo_counts;
+typedef struct bf_photo_result {
+    int width, height, channels; int y0, y1; bf_model *model; int nvalues; double scale; unsigned char *mask;
+    float *normals; float *params; float *error; float *lambert_normals; float *lambert_albedo; int *cluster;
+    int nclusters; int nshared; int shared_entry[...]; double *shared; bf_photo_counts counts; int nimages;
+    double relit_rms, lambert_rms; double *image_rms, *image_lambert_rms; size_t *image_samples; int nrelit;
+    int relit_index[...]; float *relit_measured[...], *relit_model[...]; size_t iterations; size_t restarted;
+    int threads; double seconds; int cancelled; ...;
+} bf_photo_result;
+bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_result **out, bf_error *err);
+void bf_photo_result_free(bf_photo_result *r);
+extern "Python" void _brdfit_photo_progress(void *user, double done);
+
 /* The progress callback, into Python (_brdfit_progress in brdfit/_run.py). */
 extern "Python" int _brdfit_progress(void *user, int iteration, double cost);
 """
@@ -187,6 +239,11 @@ SOURCE = r"""
 #include "brdfit/options.h"
 #include "brdfit/select.h"
 #include "brdfit/version.h"
+/* Front ends (info, render, fit-images, many files). */
+#include "brdfit/formats.h"
+#include "brdfit/photo.h"
+#include "brdfit/prep.h"
+#include "brdfit/render.h"
 """
 
 

@@ -11,11 +11,12 @@ from ._options import _doc, _Options
 from ._samples import Samples
 
 
-def _load(path: Union[str, os.PathLike], opts: _Options) -> "Samples":
+def _load(path: Union[str, os.PathLike], opts: _Options, report: Any = ffi.NULL) -> "Samples":
+    """The samples of path; report (a bf_load_report *) gets what loading left out."""
     p = _path_text(path)
     err = ffi.new("bf_error *")
     out = ffi.new("bf_samples **")
-    _check(lib.bf_samples_load(os.fsencode(p), opts.o, out, ffi.NULL, err), err)
+    _check(lib.bf_samples_load(os.fsencode(p), opts.o, out, report, err), err)
     return Samples._wrap(out[0], p)
 
 
