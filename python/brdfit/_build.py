@@ -176,7 +176,6 @@ bf_status bf_export_text(const bf_export_target *t, const bf_export_material *e,
 
 /* Front ends: brdfit info, render, fit-images and many files (_info.py, _render.py,
    _photo.py, _folders.py). */
-typedef enum bf_format { BF_FORMAT_AUTO = 0, ... } bf_format;
 bf_format bf_format_by_extension(const char *path);
 typedef struct bf_range { double lo, hi; } bf_range;
 typedef struct bf_samples_info {
