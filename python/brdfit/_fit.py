@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -171,7 +171,8 @@ def _spec_of(model: Any, what: str) -> str:
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int, float], Any]] = None,
-        start: Optional[Mapping[str, Any]] = None, **options: Any) -> FitResult:
+        start: Union[None, Mapping[str, Any], Model, Sequence[float], np.ndarray] = None,
+        **options: Any) -> FitResult:
     spec = _spec_of(model, "model")
     opts = _Options("fit", options, "fit")
     opts.check([spec])
@@ -183,8 +184,13 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
     if start is None and isinstance(model, Model) and model._params is not None:
         start = model.params
     err = ffi.new("bf_error *")
-    if start is not None:
-        x0 = Model(spec, data.channels)._vector(start)
+    if start is not None:  # names -> values, a Model holding parameters, or the model vector
+        m0 = Model(spec, data.channels)
+        if isinstance(start, Model):
+            if start._params is None:
+                raise UsageError("start: %r holds no parameters" % (start,))
+            start = start.params
+        x0 = m0._vector(start) if isinstance(start, Mapping) else m0._checked(start, "start")
         _check(lib.bf_options_set_start(opts.o, ffi.from_buffer("double[]", x0), x0.size, err), err, "start")
     data._ready()
     run = _Run(progress)
@@ -216,8 +222,9 @@ def _result(r: Any, data: Samples) -> FitResult:
 
 
 fit.__doc__ = """Fits model (a spec or a Model) to samples (brdfit.Samples, or a data file name), as
-`brdfit fit` does. start (name -> value, as Model params take them) replaces the
-data-driven start; a Model given parameters (a fit's .model) starts from them. The search
+`brdfit fit` does. start (name -> value, as Model params take them; a Model holding
+parameters; or the model vector in value_names order) replaces the data-driven start; a
+Model given as model with parameters (a fit's .model) starts from them. The search
 still adds its own starts unless starts=1. progress(iteration, cost) is called as the
 solver goes; returning True stops the fit (the result then says .cancelled). Ctrl-C stops
 it and raises KeyboardInterrupt. The options are brdfit fit's, as keywords:
