@@ -12,6 +12,7 @@ run path, so it finds the same library at run time.
 import os
 import shlex
 import subprocess
+from typing import List, Tuple
 
 from cffi import FFI
 
@@ -246,11 +247,11 @@ SOURCE = r"""
 """
 
 
-def _split(var):
+def _split(var: str) -> List[str]:
     return [p for p in os.environ.get(var, "").split(os.pathsep) if p]
 
 
-def _where():
+def _where() -> Tuple[List[str], List[str]]:
     """The include and library folders of libbrdfit (see the module's docstring)."""
     inc, lib = _split("BRDFIT_INCLUDE_DIRS"), _split("BRDFIT_LIBRARY_DIRS")
     if inc and lib:

@@ -24,7 +24,7 @@ def _table() -> List[Dict[str, Any]]:
         out.append({"name": _str(d.name), "group": _str(d.group), "tasks": d.tasks, "type": int(d.type),
                     "arg": _str(d.arg), "help": _str(d.help), "default": _str(getattr(d, "def")),
                     "range": _str(d.range), "complete": _str(d.complete),
-                    "choices": _str(d.choices).split("|") if d.choices != ffi.NULL else None})
+                    "choices": ffi.string(d.choices).decode().split("|") if d.choices != ffi.NULL else None})
     return out
 
 
@@ -60,7 +60,7 @@ def _doc(task: str, groups: Optional[Sequence[str]] = None) -> str:
     return "\n".join(lines)
 
 
-def _value_texts(d, name: str, v: Any) -> List[Optional[str]]:
+def _value_texts(d: Any, name: str, v: Any) -> List[Optional[str]]:
     """A keyword's value as the texts the library takes (Python types to text only: the
     library checks and refuses)."""
     if int(d.type) == lib.BF_OPTION_LIST:
