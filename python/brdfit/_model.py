@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 
@@ -203,6 +203,18 @@ class Model:
         err = ffi.new("bf_error *")
         _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, "params", usage=True)
         return x
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None,
+             gradient: Literal[False] = False) -> Array: ...
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None, *,
+             gradient: Literal[True, "channel"]) -> Tuple[Array, Array]: ...
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]],
+             gradient: Literal[True, "channel"]) -> Tuple[Array, Array]: ...
 
     def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None,
              gradient: Union[bool, str] = False) -> Result:
