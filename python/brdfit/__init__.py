@@ -1,8 +1,8 @@
 """brdfit: fit parametric BRDF models to measured reflectance, from Python and NumPy.
 
 The same library as the `brdfit` command, with the same results: Model (evaluate any
-model and its analytic gradient), read and Samples (data in), fit, compare, select and
-export.
+model and its analytic gradient), read and Samples (data in), fit, compare, select,
+tradeoff and export.
 Options are keyword arguments named as the command line's ("--max-theta" is max_theta),
 declared once, in the library (brdfit.options("fit") lists them).
 docs/python.md walks through it."""
@@ -15,7 +15,8 @@ from ._model import Model, models, version
 from ._options import options
 from ._samples import Samples
 from ._select import SelectResult, select
+from ._tradeoff import TradeoffResult, tradeoff
 
 __version__ = version().split(" ")[0]
 __all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",
-           "models", "options", "read", "fit", "compare", "select", "export", "version"]
+           "TradeoffResult", "models", "options", "read", "fit", "compare", "select", "tradeoff", "export", "version"]
