@@ -74,7 +74,8 @@ bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err);
 bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
 
 /* Run options (options.h): the table and a set of values. */
-typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8 } bf_task;
+typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8,
+                       BF_TASK_TRADEOFF = 16 } bf_task;
 typedef enum bf_option_type { BF_OPTION_FLAG = 0, BF_OPTION_INT, BF_OPTION_NUMBER, BF_OPTION_TEXT, BF_OPTION_CHOICE,
                               BF_OPTION_LIST, ... } bf_option_type;
 typedef struct bf_option {
@@ -162,6 +163,19 @@ bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_
                         bf_error *err);
 bf_status bf_select_json(const bf_select *s, const char *data, char **out, bf_error *err);
 
+/* Cost against accuracy (tradeoff.h, render.h). */
+typedef enum bf_plot_format { BF_PLOT_BY_NAME = 0, BF_PLOT_PNG = 1, BF_PLOT_SVG, BF_PLOT_PDF } bf_plot_format;
+typedef struct bf_plot_axes { size_t size; ...; } bf_plot_axes;
+typedef struct bf_tradeoff { int nrows; int best, recommended; int plot_width, plot_height; ...; } bf_tradeoff;
+typedef void (*bf_tradeoff_progress)(void *user, const bf_tradeoff *t, int i);
+bf_status bf_tradeoff_run(const bf_samples *data, const char *name, const char *model, const bf_options *o,
+                          bf_tradeoff_progress progress, void *user, bf_tradeoff **out, bf_error *err);
+void bf_tradeoff_free(bf_tradeoff *t);
+bf_status bf_tradeoff_json(const bf_tradeoff *t, char **out, bf_error *err);
+bf_status bf_tradeoff_fit_command(const bf_tradeoff *t, int i, char **out, bf_error *err);
+bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+                                 bf_plot_axes *axes, bf_error *err);
+
 /* Export (export.h). */
 typedef struct bf_export_target { const char *name; const char *model; ...; } bf_export_target;
 typedef struct bf_export_material { size_t size; int converted; ...; } bf_export_material;
@@ -238,6 +252,7 @@ SOURCE = r"""
 #include "brdfit/objective.h"
 #include "brdfit/options.h"
 #include "brdfit/select.h"
+#include "brdfit/tradeoff.h"
 #include "brdfit/version.h"
 /* Front ends (info, render, fit-images, many files). */
 #include "brdfit/formats.h"

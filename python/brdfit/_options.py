@@ -12,7 +12,7 @@ from ._brdfit import ffi, lib
 from ._errors import UsageError, _check, _str
 
 _TASKS = {"read": lib.BF_TASK_READ, "fit": lib.BF_TASK_FIT, "compare": lib.BF_TASK_COMPARE,
-          "select": lib.BF_TASK_SELECT}
+          "select": lib.BF_TASK_SELECT, "tradeoff": lib.BF_TASK_TRADEOFF}
 
 
 
@@ -29,9 +29,9 @@ def _table() -> List[Dict[str, Any]]:
 
 
 def options(task: str) -> List[Dict[str, Any]]:
-    """The keyword options a function takes ("read", "fit", "compare" or "select"), as the
-    library declares them: name, group, type, arg, help, default (text, or None for none
-    or automatic) and range (in words, or None)."""
+    """The keyword options a function takes ("read", "fit", "compare", "select" or
+    "tradeoff"), as the library declares them: name, group, type, arg, help, default (text,
+    or None for none or automatic) and range (in words, or None)."""
     if task not in _TASKS:
         raise UsageError("task: one of %s, got %r" % (", ".join(_TASKS), task))
     seen = set()

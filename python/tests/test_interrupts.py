@@ -1,6 +1,6 @@
 """Every long call is safe to interrupt: Ctrl-C (SIGINT) and a signal handler that raises
 (SIGALRM raising TimeoutError, as signal-based timeouts do) at random times into fit,
-compare, select, read, eval of a large array and export, 50 times each, in a child
+compare, select, read, eval of a large array, export and tradeoff, 50 times each, in a child
 process: no crash, the exception within a second of the signal, and the next call works.
 """
 
@@ -33,6 +33,7 @@ CHILD = textwrap.dedent(r"""
         "read": lambda: brdfit.read(data, rgb=True, subsample=500),
         "eval": lambda: fitted.model.eval(wi, wo, gradient=True),
         "export": lambda: brdfit.export(fitted, "gltf", convert=True),
+        "tradeoff": lambda: brdfit.tradeoff(samples, "walter", samples=[300, "all"], threads=2),
     }
     call = calls[what]
     signalled = [0.0]
@@ -64,7 +65,7 @@ CHILD = textwrap.dedent(r"""
 """)
 
 
-@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export"])
+@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export", "tradeoff"])
 @pytest.mark.parametrize("kind", ["int", "alarm"])
 def test_interrupts(tmp_path, kind, what):
     script = tmp_path / "child.py"

@@ -1,8 +1,9 @@
-/* The options of a run (reading and preparing data, fitting, comparing, selecting), in
- * one place: a table that declares each option once (name, type, range, default, help)
- * and an opaque set of values checked against it. The command line's options, its
- * --help, man pages and completion, and the Python package's keyword arguments all come
- * from this table (docs/api.md), so they mean, allow and refuse the same.
+/* The options of a run (reading and preparing data, fitting, comparing, selecting,
+ * measuring cost against accuracy), in one place: a table that declares each option once
+ * (name, type, range, default, help) and an opaque set of values checked against it. The
+ * command line's options, its --help, man pages and completion, and the Python package's
+ * keyword arguments all come from this table (docs/api.md), so they mean, allow and
+ * refuse the same.
  *
  *     bf_options *o;
  *     bf_options_new(BF_TASK_FIT, &o, &err);
@@ -37,9 +38,10 @@ extern "C" {
  * error). */
 typedef enum bf_task {
     BF_TASK_READ = 1u << 0,    /* reading and preparing data (brdfit info, convert) */
-    BF_TASK_FIT = 1u << 1,     /* and fitting (brdfit fit, regress, tradeoff) */
+    BF_TASK_FIT = 1u << 1,     /* and fitting (brdfit fit, regress) */
     BF_TASK_COMPARE = 1u << 2, /* and comparing models across materials (brdfit compare) */
     BF_TASK_SELECT = 1u << 3,  /* and choosing the smallest model that serves (brdfit select) */
+    BF_TASK_TRADEOFF = 1u << 4, /* and measuring fitting cost against accuracy (brdfit tradeoff) */
 } bf_task;
 
 typedef enum bf_option_type {
@@ -56,7 +58,7 @@ typedef enum bf_option_type {
 typedef struct bf_option {
     const char *name;  /* keyword: "max_theta"; the command line writes "--max-theta" */
     const char *group; /* "reading", "preprocessing", "accuracy", "fitting", "optimizer",
-                             "ranking", "comparing", "selecting" */
+                             "ranking", "comparing", "selecting", "tradeoff" */
     unsigned tasks;    /* bf_task bits of the tasks that take it */
     bf_option_type type;
     const char *arg;      /* the value's name in help ("DEG", "keep|drop|clamp"); NULL for a flag */
