@@ -59,12 +59,18 @@ static void fit_one(void *arg, size_t chunk)
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
     bf_fit_result *res = malloc(sizeof *res);
     bf_error err;
+    bf_fit_options fo = r->fo; /* its progress reports say which fit this is */
+    fo.model = j;
+    if (fo.report_materials) {
+        fo.material = i;
+        fo.material_name = c->materials[i].data;
+    }
     const double t0 = bf_now_seconds();
-    bf_status rc = res ? bf_fit_with(r->samples[i], c->models[j], &r->fo, res, &err)
+    bf_status rc = res ? bf_fit_with(r->samples[i], c->models[j], &fo, res, &err)
                        : bf_fail(&err, BF_ERR_NOMEM, "out of memory for a fit's result");
     bf_cv_result cv = {.error = NAN};
     if (rc == BF_OK && c->folds > 0 && res->ok) {
-        rc = bf_fit_cv_with(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
+        rc = bf_fit_cv_with(r->samples[i], c->models[j], &fo, c->folds, fo.seed, &cv, &err);
         if (rc != BF_OK)
             bf_fit_result_clear(res);
     }
@@ -114,6 +120,7 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_opt
         return rc;
     bf_fit_options fo;
     options_fit_get(o, &fo);
+    fo.report_materials = 1;
     return compare_run_with(c, samples, &fo, o->jobs, progress, user, o->finish, err);
 }
 
