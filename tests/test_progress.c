@@ -1,9 +1,9 @@
 /* Progress reports (brdfit/options.h, bf_options_set_progress_report): the sequence a
  * small fit reports (its phases in order, each start within its phase's count, each
  * phase on the set the options say: the screening set, the presolve's subsample, the
- * data), a fit of small data and a plain multistart, the old callback beside the new
- * one, a report that stops the fit, and which material, model, candidate and fold the
- * reports of a comparison and a selection name. */
+ * data; then one report that it is done), a fit of small data and a plain multistart,
+ * the old callback beside the new one, a report that stops the fit, and which material,
+ * model, candidate and fold the reports of a comparison and a selection name. */
 #include <math.h>
 #include <pthread.h>
 #include <setjmp.h>
@@ -116,12 +116,22 @@ static int phases_of(const seen *k, bf_fit_phase *phases)
     return n;
 }
 
-/* What every report of a fit alone says, and within each phase: one count of starts and
- * one set size, starts that never go back and stay below the count, iterations of a
- * solve that never go back, finite costs for solves. */
-static void assert_sane(const seen *k, const char *spec)
+/* What every report of a fit alone (result r) says, and within each phase: one count of
+ * starts and one set size, starts that never go back and stay below the count,
+ * iterations of a solve that never go back, finite costs for solves; the last report,
+ * and only it, says the fit is done, with the result's cost and iterations. */
+static void assert_sane(const seen *k, const char *spec, const bf_fit_result *res)
 {
-    assert_true(k->n > 0);
+    assert_true(k->n > 1);
+    const bf_progress_report *done = &k->r[k->n - 1].r;
+    assert_int_equal(done->phase, BF_PHASE_DONE);
+    assert_int_equal(done->start, 0);
+    assert_int_equal(done->starts, 1);
+    assert_int_equal(done->iteration, res->solution.iterations);
+    assert_true(done->cost == res->solution.final_cost);
+    assert_int_equal(done->samples, res->samples);
+    for (int i = 0; i < k->n - 1; i++)
+        assert_int_not_equal(k->r[i].r.phase, BF_PHASE_DONE);
     for (int i = 0; i < k->n; i++) {
         const bf_progress_report *r = &k->r[i].r;
         assert_int_equal(r->size, sizeof *r);
@@ -181,13 +191,14 @@ static void test_fit_reports_every_phase(void **state)
     fit_seen(s, "walter", "--starts 4 --screen 16 --presolve 1200 --threads 1", &k, &r);
     assert_true(r.ok);
     assert_int_equal(r.presolve.samples, 1200);
-    assert_sane(&k, "walter");
+    assert_sane(&k, "walter", &r);
     bf_fit_phase ph[8];
-    assert_int_equal(phases_of(&k, ph), 4);
+    assert_int_equal(phases_of(&k, ph), 5);
     assert_int_equal(ph[0], BF_PHASE_CANDIDATES);
     assert_int_equal(ph[1], BF_PHASE_SCREEN);
     assert_int_equal(ph[2], BF_PHASE_PRESOLVE);
     assert_int_equal(ph[3], BF_PHASE_DATA);
+    assert_int_equal(ph[4], BF_PHASE_DONE);
     /* Every candidate, in order: 16 = the screen option (at least 4 per start). */
     const bf_progress_report *c = first_in(&k, BF_PHASE_CANDIDATES);
     assert_int_equal(c->starts, 16);
@@ -208,8 +219,8 @@ static void test_fit_reports_every_phase(void **state)
     assert_int_equal(d->samples, 1439);
     assert_int_equal(d->starts, 1);
     assert_int_equal(starts_in(&k, BF_PHASE_DATA), 1);
-    /* The last report is the whole set's last iteration: its cost is the result's. */
-    const bf_progress_report *last = &k.r[k.n - 1].r;
+    /* The whole set's last iteration reaches the result's cost. */
+    const bf_progress_report *last = &k.r[k.n - 2].r;
     assert_int_equal(last->phase, BF_PHASE_DATA);
     ts_assert_rel(last->cost, r.solution.final_cost, 1e-12, "last reported cost");
     bf_fit_result_clear(&r);
@@ -229,11 +240,12 @@ static void test_small_data_is_the_screening_set(void **state)
     bf_fit_result r;
     fit_seen(s, "ward_iso", "--starts 3 --screen 12 --threads 1", &k, &r);
     assert_true(r.ok);
-    assert_sane(&k, "ward_iso");
+    assert_sane(&k, "ward_iso", &r);
     bf_fit_phase ph[8];
-    assert_int_equal(phases_of(&k, ph), 2);
+    assert_int_equal(phases_of(&k, ph), 3);
     assert_int_equal(ph[0], BF_PHASE_CANDIDATES);
     assert_int_equal(ph[1], BF_PHASE_SCREEN);
+    assert_int_equal(ph[2], BF_PHASE_DONE);
     assert_int_equal(first_in(&k, BF_PHASE_CANDIDATES)->samples, 600);
     assert_int_equal(first_in(&k, BF_PHASE_CANDIDATES)->starts, 12);
     assert_int_equal(first_in(&k, BF_PHASE_SCREEN)->samples, 600);
@@ -252,14 +264,15 @@ static void test_plain_multistart(void **state)
     bf_fit_result r;
     fit_seen(s, "ward_iso", "--starts 3 --screen 0 --threads 1", &k, &r);
     assert_true(r.ok);
-    assert_sane(&k, "ward_iso");
+    assert_sane(&k, "ward_iso", &r);
     bf_fit_phase ph[8];
-    assert_int_equal(phases_of(&k, ph), 1);
+    assert_int_equal(phases_of(&k, ph), 2);
     assert_int_equal(ph[0], BF_PHASE_DATA);
+    assert_int_equal(ph[1], BF_PHASE_DONE);
     assert_int_equal(first_in(&k, BF_PHASE_DATA)->starts, 3);
     assert_int_equal(first_in(&k, BF_PHASE_DATA)->samples, 600);
     assert_int_equal(starts_in(&k, BF_PHASE_DATA), 3);
-    assert_int_equal(k.r[k.n - 1].r.start, 2);
+    assert_int_equal(k.r[k.n - 2].r.start, 2);
     bf_fit_result_clear(&r);
     seen_clear(&k);
     bf_samples_free(s);
@@ -296,7 +309,8 @@ static void test_old_callback_beside_reports(void **state)
     for (int i = 0; i < b.n; i++)
         candidates += b.r[i].r.phase == BF_PHASE_CANDIDATES;
     assert_int_equal(candidates, 12);
-    assert_int_equal(b.n - candidates, b.old_calls);
+    assert_int_equal(b.r[b.n - 1].r.phase, BF_PHASE_DONE);
+    assert_int_equal(b.n - candidates - 1, b.old_calls);
     const int P = bf_model_nvalues(plain.model);
     assert_memory_equal(plain.x, old_only.x, (size_t)P * sizeof *plain.x);
     assert_memory_equal(plain.x, both.x, (size_t)P * sizeof *plain.x);
@@ -323,7 +337,7 @@ static void test_report_stops_the_fit(void **state)
         bf_fit_result r;
         fit_seen(s, "walter", "--starts 3 --screen 12 --threads 1", &k, &r);
         assert_int_equal(k.n, stop_at[t]);
-        assert_int_equal(k.r[k.n - 1].r.phase, t == 0 ? BF_PHASE_CANDIDATES : BF_PHASE_SCREEN);
+        assert_int_equal(k.r[k.n - 1].r.phase, t == 0 ? BF_PHASE_CANDIDATES : BF_PHASE_SCREEN); /* no DONE */
         assert_int_equal(r.solution.stop, BF_STOP_CANCELLED);
         assert_false(r.ok);
         bf_fit_result_clear(&r);
@@ -333,7 +347,7 @@ static void test_report_stops_the_fit(void **state)
 }
 
 /* A comparison's reports name the material (index and name), the model and, ranked by
- * cv, the fold; every fit reports, from two jobs at once. */
+ * cv, the fold; every fit reports, from two jobs at once, and says once that it is done. */
 static void test_compare_names_material_model_fold(void **state)
 {
     (void)state;
@@ -349,7 +363,7 @@ static void test_compare_names_material_model_fold(void **state)
     seen_init(&k);
     bf_options_set_progress_report(o, record, &k);
     assert_int_equal(bf_compare_run(c, data, o, NULL, NULL, &err), BF_OK);
-    int pairs[2][2][3] = {{{0}}}; /* material, model, fold */
+    int pairs[2][2][3] = {{{0}}}, done[2][2][3] = {{{0}}}; /* material, model, fold */
     for (int i = 0; i < k.n; i++) {
         const bf_progress_report *r = &k.r[i].r;
         assert_true(r->material >= 0 && r->material < 2);
@@ -359,12 +373,16 @@ static void test_compare_names_material_model_fold(void **state)
         assert_string_equal(k.r[i].spec, specs[r->model]);
         assert_true(r->samples <= data[r->material]->n);
         pairs[r->material][r->model][r->fold]++;
+        done[r->material][r->model][r->fold] += r->phase == BF_PHASE_DONE;
     }
     for (int m = 0; m < 2; m++)
         for (int j = 0; j < 2; j++)
-            for (int f = 0; f < 3; f++)
+            for (int f = 0; f < 3; f++) {
                 if (!pairs[m][j][f])
                     fail_msg("no report from %s x %s, fold %d", names[m], specs[j], f);
+                if (done[m][j][f] != 1)
+                    fail_msg("%s x %s, fold %d: %d reports of its end", names[m], specs[j], f, done[m][j][f]);
+            }
     seen_clear(&k);
     bf_options_free(o);
     bf_compare_free(c);
@@ -386,7 +404,7 @@ static void test_select_names_the_candidate(void **state)
     seen_init(&k);
     bf_options_set_progress_report(o, record, &k);
     assert_int_equal(bf_select_run(s, data, o, NULL, NULL, &err), BF_OK);
-    int per[3] = {0};
+    int per[3] = {0}, done[3] = {0};
     for (int i = 0; i < k.n; i++) {
         const bf_progress_report *r = &k.r[i].r;
         assert_true(r->model >= 0 && r->model < 3);
@@ -394,9 +412,12 @@ static void test_select_names_the_candidate(void **state)
         assert_null(r->material_name);
         assert_string_equal(k.r[i].spec, specs[r->model]);
         per[r->model]++;
+        done[r->model] += r->phase == BF_PHASE_DONE;
     }
-    for (int j = 0; j < 3; j++)
+    for (int j = 0; j < 3; j++) {
         assert_true(per[j] > 0);
+        assert_int_equal(done[j], 1);
+    }
     seen_clear(&k);
     bf_select_free(s);
     bf_options_free(o);
@@ -410,6 +431,7 @@ static void test_phase_names(void **state)
     assert_string_equal(bf_fit_phase_name(BF_PHASE_SCREEN), "screen");
     assert_string_equal(bf_fit_phase_name(BF_PHASE_PRESOLVE), "presolve");
     assert_string_equal(bf_fit_phase_name(BF_PHASE_DATA), "data");
+    assert_string_equal(bf_fit_phase_name(BF_PHASE_DONE), "done");
     assert_string_equal(bf_fit_phase_name((bf_fit_phase)99), "?");
 }
 

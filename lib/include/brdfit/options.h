@@ -156,9 +156,13 @@ typedef enum bf_fit_phase {
                                 most BF_FIT_SCREEN_SAMPLES, fit.h, and the fit ends here) */
     BF_PHASE_PRESOLVE,       /* starts solved on the presolve's subsample (option presolve) */
     BF_PHASE_DATA,           /* solves on all the samples */
+    BF_PHASE_DONE,           /* the fit has ended: reported once, last (not when it was
+                                cancelled), with start 0 of 1, the solution's iterations and
+                                final cost (NaN for a failed fit) and the data's samples;
+                                what the callback returns then is not looked at */
 } bf_fit_phase;
 
-/* "candidates", "screen", "presolve", "data" ("?" out of range). */
+/* "candidates", "screen", "presolve", "data", "done" ("?" out of range). */
 BF_API const char *bf_fit_phase_name(bf_fit_phase phase);
 
 /* One report, made by the library and read through the pointer during the callback

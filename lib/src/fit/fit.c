@@ -408,6 +408,8 @@ done:
         return rc;
     }
     r->seconds = bf_now_seconds() - t0;
+    if (r->solution.stop != BF_STOP_CANCELLED)
+        bf_fit_watch_done(&watch, &r->solution, s->n);
     return BF_OK;
 }
 

@@ -11,6 +11,7 @@ const char *bf_fit_phase_name(bf_fit_phase phase)
     case BF_PHASE_SCREEN: return "screen";
     case BF_PHASE_PRESOLVE: return "presolve";
     case BF_PHASE_DATA: return "data";
+    case BF_PHASE_DONE: return "done";
     }
     return "?";
 }
@@ -70,4 +71,15 @@ int bf_fit_watch_candidate(bf_fit_watch *w, int j, double cost)
     w->r.iteration = 0;
     w->r.cost = isfinite(cost) ? cost : NAN;
     return w->o->report(w->o->report_user, &w->r) != 0;
+}
+
+void bf_fit_watch_done(bf_fit_watch *w, const bf_solution *sol, size_t samples)
+{
+    if (!w->o->report)
+        return;
+    bf_fit_watch_phase(w, BF_PHASE_DONE, 1, samples);
+    w->r.start = 0;
+    w->r.iteration = sol->iterations;
+    w->r.cost = isfinite(sol->final_cost) ? sol->final_cost : NAN;
+    (void)w->o->report(w->o->report_user, &w->r); /* the fit is over: nothing left to stop */
 }

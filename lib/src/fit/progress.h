@@ -5,6 +5,7 @@
 #ifndef BF_FIT_PROGRESS_H
 #define BF_FIT_PROGRESS_H
 
+#include "brdfit/solve.h"
 #include "fit_impl.h"
 
 typedef struct bf_fit_watch {
@@ -24,5 +25,7 @@ void bf_fit_watch_phase(bf_fit_watch *w, bf_fit_phase phase, int starts, size_t 
 void bf_fit_watch_solve(bf_fit_watch *w, bf_solver_options *so);
 /* Reports candidate j of the phase and its cost; non-zero: the caller asks to stop. */
 int bf_fit_watch_candidate(bf_fit_watch *w, int j, double cost);
+/* Reports the end of the fit: its solution (sol) on samples samples. */
+void bf_fit_watch_done(bf_fit_watch *w, const bf_solution *sol, size_t samples);
 
 #endif

@@ -419,36 +419,36 @@ static bf_status screened(bf_search *s, bf_error *err)
     if (sp == prob)
         goto done;
 
-    /* Promote: the best PROMOTE distinct screened optima and the data-driven start, then
-     * (presolved) the revives. */
+    /* Promote: the data-driven start and the best PROMOTE distinct screened optima (chosen
+     * first, so that the progress reports count them), then (presolved) the revives. */
+    int promote[PROMOTE], npromote = 0, k = n + SCREEN_REVIVES;
+    for (int t = 0; t < n && npromote < PROMOTE; t++) {
+        if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
+            continue;
+        if (solved[t].cost > solved[0].cost * (1.0 + PROMOTE_WINDOW))
+            break;   /* sorted: the rest are worse still */
+        int dup = 0; /* the same optimum as an earlier one, or as the data-driven start's */
+        for (int u = 0; u < n && !dup; u++)
+            dup = (u < t || order[solved[u].index] == 0) && isfinite(solved[u].cost) &&
+                  fabs(solved[u].cost - solved[t].cost) <= BF_FIT_AT_BEST * solved[t].cost;
+        if (!dup)
+            promote[npromote++] = t;
+    }
     bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
-                       1 + PROMOTE + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
-    int promoted = 0, k = n + SCREEN_REVIVES;
-    for (int t = -1; t < n && promoted < PROMOTE; t++) {
-        if (t >= 0) {
-            if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
-                continue;
-            if (solved[t].cost > solved[0].cost * (1.0 + PROMOTE_WINDOW))
-                break;   /* sorted: the rest are worse still */
-            int dup = 0; /* the same optimum as an earlier one, or as the data-driven start's */
-            for (int u = 0; u < n && !dup; u++)
-                dup = (u < t || order[solved[u].index] == 0) && isfinite(solved[u].cost) &&
-                      fabs(solved[u].cost - solved[t].cost) <= BF_FIT_AT_BEST * solved[t].cost;
-            if (dup)
-                continue;
-            memcpy(zp, pts + (size_t)order[solved[t].index] * nz, (size_t)nz * sizeof *zp);
-            promoted++;
-        } else {
+                       1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
+    for (int q = -1; q < npromote; q++) {
+        if (q >= 0)
+            memcpy(zp, pts + (size_t)order[solved[promote[q]].index] * nz, (size_t)nz * sizeof *zp);
+        else
             memcpy(zp, s->z0, (size_t)nz * sizeof *zp);
-        }
         bf_solution sol;
         double cost;
         uint64_t seed;
-        if ((rc = solve_start(prob, o, s->watch, t < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled,
+        if ((rc = solve_start(prob, o, s->watch, q < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled,
                               err)) != BF_OK ||
             s->cancelled)
             goto done;
-        if (t < 0)
+        if (q < 0)
             s->first = sol;
         consider(s, zp, &sol, cost, seed);
     }
