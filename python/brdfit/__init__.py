@@ -13,9 +13,10 @@ from ._export import export
 from ._fit import FitResult, fit
 from ._model import Model, models, version
 from ._options import options
+from ._progress import Progress
 from ._samples import Samples
 from ._select import SelectResult, select
 
 __version__ = version().split(" ")[0]
 __all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",
-           "models", "options", "read", "fit", "compare", "select", "export", "version"]
+           "Progress", "models", "options", "read", "fit", "compare", "select", "export", "version"]
