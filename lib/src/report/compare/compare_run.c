@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "brdfit/compare.h"
+#include "base/cancel.h"
 #include "base/parallel.h"
 #include "compare/compare_run.h"
 #include "run_options.h"
@@ -37,23 +38,13 @@ typedef struct run {
     int done, total;
 } run;
 
-/* The cancel flag, read by every fitting thread while a signal handler may set it: an
- * atomic load where the compiler has one (the handler should store it atomically too:
- * see cmd/cmd_compare.c), else the volatile read. */
-static int cancelled(const bf_cancel_flag *flag)
-{
-#if defined(__GNUC__)
-    return flag && __atomic_load_n(flag, __ATOMIC_RELAXED);
-#else
-    return flag && *flag;
-#endif
-}
-
 /* Fits slot idx (and cross-validates it when asked); fills it and reports under the lock. */
 static void fit_one(void *arg, size_t chunk)
 {
     run *r = arg;
-    if (cancelled(r->finish) || cancelled(r->cancel))
+    /* Read by every fitting thread while a signal handler may set them (the handler should
+     * store atomically too: see cmd/cmd_compare.c). */
+    if (bf_cancel_is_set(r->finish) || bf_cancel_is_set(r->cancel))
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
