@@ -17,6 +17,7 @@ from ._info import Info, LoadReport, info
 from ._model import Model, models, version
 from ._options import options
 from ._photo import FitImagesResult, fit_images
+from ._progress import Progress
 from ._render import render
 from ._samples import Samples
 from ._select import SelectResult, select
@@ -24,5 +25,5 @@ from ._tradeoff import TradeoffResult, tradeoff
 
 __version__ = version().split(" ")[0]
 __all__ = ["__version__", "Error", "UsageError", "Model", "Samples", "FitResult", "CompareResult", "SelectResult",
-           "TradeoffResult", "models", "options", "read", "fit", "compare", "select", "tradeoff", "export", "version",
-           "Info", "LoadReport", "FitImagesResult", "info", "render", "fit_images", "read_all"]
+           "TradeoffResult", "Progress", "models", "options", "read", "fit", "compare", "select", "tradeoff", "export",
+           "version", "Info", "LoadReport", "FitImagesResult", "info", "render", "fit_images", "read_all"]

@@ -17,7 +17,8 @@ from typing import List, Tuple
 from cffi import FFI
 
 CDEF = r"""
-typedef enum bf_status { BF_OK = 0, BF_ERR_ARG, BF_ERR_IO, BF_ERR_PARSE, BF_ERR_RANGE, BF_ERR_NOMEM } bf_status;
+typedef enum bf_status { BF_OK = 0, BF_ERR_ARG, BF_ERR_IO, BF_ERR_PARSE, BF_ERR_RANGE, BF_ERR_NOMEM,
+                         BF_ERR_CANCELLED } bf_status;
 typedef struct bf_error { bf_status code; char msg[512]; } bf_error;
 const char *bf_version(void);
 const char *bf_status_name(bf_status code);
@@ -97,8 +98,15 @@ bf_status bf_options_check_models(const bf_options *o, const char *const *specs,
 typedef int... sig_atomic_t;
 typedef sig_atomic_t bf_cancel_flag;
 void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
-typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
-void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user);
+typedef enum bf_fit_phase { BF_PHASE_CANDIDATES = 0, BF_PHASE_SCREEN, BF_PHASE_PRESOLVE, BF_PHASE_DATA,
+                            BF_PHASE_DONE } bf_fit_phase;
+const char *bf_fit_phase_name(bf_fit_phase phase);
+typedef struct bf_progress_report {
+    size_t size; bf_fit_phase phase; int start; int starts; int iteration; double cost; size_t samples;
+    const char *spec; int material; int model; int fold; ...;
+} bf_progress_report;
+typedef int (*bf_progress_report_fn)(void *user, const bf_progress_report *report);
+void bf_options_set_progress_report(bf_options *o, bf_progress_report_fn progress, void *user);
 bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
 
 /* Loading (load.h). */
@@ -237,8 +245,8 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
 void bf_photo_result_free(bf_photo_result *r);
 extern "Python" void _brdfit_photo_progress(void *user, double done);
 
-/* The progress callback, into Python (_brdfit_progress in brdfit/_run.py). */
-extern "Python" int _brdfit_progress(void *user, int iteration, double cost);
+/* The progress reports, into Python (_brdfit_report in brdfit/_run.py). */
+extern "Python" int _brdfit_report(void *user, const bf_progress_report *report);
 """
 
 SOURCE = r"""

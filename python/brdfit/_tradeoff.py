@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Dict, List, Optional, Union
 
 from ._args import _path_text
 from ._brdfit import ffi, lib
@@ -12,7 +12,7 @@ from ._errors import _check, _take_text
 from ._fit import _spec_of
 from ._model import Model
 from ._options import _doc, _Options
-from ._run import _Run
+from ._run import CancelEvent, ProgressFn, _Run
 
 
 class TradeoffResult:
@@ -49,15 +49,15 @@ class TradeoffResult:
             len(self.rows), None if self.recommended is None else self.command)
 
 
-def tradeoff(samples: Any, model: Union[str, Model], /, progress: Optional[Callable[[int, float], Any]] = None,
-             **options: Any) -> TradeoffResult:
+def tradeoff(samples: Any, model: Union[str, Model], /, progress: Optional[ProgressFn] = None,
+             cancel: Optional[CancelEvent] = None, **options: Any) -> TradeoffResult:
     spec = _spec_of(model, "model")
     opts = _Options("tradeoff", options, "tradeoff")
     opts.check([spec])
-    data = _prepared(samples, opts, "samples")
+    run = _Run(progress, cancel, "tradeoff", partial=True)
+    run.hook(opts)  # reading the data file too
+    data = _prepared(samples, opts, "samples", run)
     data._ready()
-    run = _Run(progress)
-    run.hook(opts)
 
     def call() -> TradeoffResult:  # in the worker, which owns the table
         err = ffi.new("bf_error *")
@@ -83,7 +83,9 @@ test share of samples (brdfit.Samples, or a data file name), fits model (a spec 
 Model) to the rest under every combination of sample count, method, residual form and
 start count, judges each on the held-out samples, and recommends the cheapest setting
 within the tolerance of the best. samples and model are positional (samples= is the
-option). progress(iteration, cost) sees every solve; returning True stops the run. The
+option). progress(brdfit.Progress) sees every solve; returning True, or cancel (a
+threading.Event) once set, stops the run: the fit then running says "failed", the rest
+"not_run", and nothing is recommended. The
 options are brdfit tradeoff's, as keywords (a list may be given as a Python list:
 samples=[1000, "all"]):
 

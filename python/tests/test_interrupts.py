@@ -46,7 +46,9 @@ CHILD = textwrap.dedent(r"""
     worst = 0.0
     for k in range(times):
         delay = random.uniform(0.0, 0.15)
-        try:  # the signal may land while it is being set up, too
+        try:
+            # Armed inside the try: on a loaded machine a short delay can end while the
+            # timer's thread is still being started.
             if kind == "int":
                 threading.Timer(delay, lambda: (signalled.__setitem__(0, time.monotonic()),
                                                 os.kill(os.getpid(), signal.SIGINT))).start()

@@ -130,9 +130,9 @@ def test_progress_stops_and_samples_without_a_file():
     # progress returning True stops the run: the fit in progress ends cancelled, the rest
     # do not run, and nothing is recommended.
     calls = []
-    got = brdfit.tradeoff(str(CAYMAN), "lambert", lambda i, c: calls.append(i) or True, rgb=True,
+    got = brdfit.tradeoff(str(CAYMAN), "lambert", lambda p: calls.append(p) or True, rgb=True,
                           samples=[300, "all"], threads=1)
-    assert calls and [r["status"] for r in got.rows] == ["failed", "not_run", "not_run", "not_run"]
+    assert calls and calls[0].model == "lambert" and [r["status"] for r in got.rows] == ["failed", "not_run", "not_run", "not_run"]
     assert got.recommended is None and got.command is None and got.best is None
     # Samples made in memory: no data name.
     data = brdfit.read(CAYMAN, luminance=True)

@@ -201,6 +201,12 @@ void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user)
     o->progress_user = user;
 }
 
+void bf_options_set_progress_report(bf_options *o, bf_progress_report_fn progress, void *user)
+{
+    o->report = progress;
+    o->report_user = user;
+}
+
 /* ---- Setting and reading by name ---------------------------------------------------- */
 
 /* The generic forms (a row without its own set): the one-line messages say the range. */
@@ -300,6 +306,8 @@ static bf_status replay(const bf_options *o, const char *skip, bf_options **out,
     n->finish = o->finish;
     n->progress = o->progress;
     n->progress_user = o->progress_user;
+    n->report = o->report;
+    n->report_user = o->report_user;
     if (o->start && (rc = bf_options_set_start(n, o->start, o->nstart, err)) != BF_OK) {
         bf_options_free(n);
         return rc;
@@ -435,6 +443,7 @@ void options_read_get(const bf_options *o, options_reading *out)
     out->read.csv.channels = option_text(o, "values");
     out->read.csv.weight_col = option_text(o, "weight");
     out->read.grid = option_text(o, "grid");
+    out->read.cancel = o->cancel;
     const char *angles = option_text(o, "angles"); /* checked when set: four names */
     if (angles) {
         snprintf(out->angles, sizeof out->angles, "%s", angles);
@@ -498,6 +507,8 @@ void options_fit_get(const bf_options *o, bf_fit_options *out)
     out->solver.progress = o->progress;
     out->solver.progress_user = o->progress_user;
     out->solver.cancel = o->cancel;
+    out->report = o->report;
+    out->report_user = o->report_user;
     out->start = o->start;
     out->starts = o->starts;
     out->screen = o->screen;
