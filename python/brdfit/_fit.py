@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, TYPE_CHECKING, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
-from ._args import _path_text
+from ._args import Array, _path_text
 from ._brdfit import ffi, lib
 from ._data import _prepared
 from ._errors import Error, UsageError, _check, _take_text
@@ -17,6 +17,11 @@ from ._model import Model
 from ._options import _doc, _Options
 from ._run import CancelEvent, ProgressFn, _Run
 from ._samples import Samples
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import FitKeywords
 
 # Residuals computed per call of the objective: a short call each, so that Ctrl-C is
 # seen between them on a large data set (the objective has no cancel flag).
@@ -171,8 +176,8 @@ def _spec_of(model: Any, what: str) -> str:
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[ProgressFn] = None,
-        start: Union[None, Mapping[str, Any], Model, Sequence[float], np.ndarray] = None,
-        cancel: Optional[CancelEvent] = None, **options: Any) -> FitResult:
+        start: Union[None, Mapping[str, Any], Model, Sequence[float], Array] = None,
+        cancel: Optional[CancelEvent] = None, **options: Unpack[FitKeywords]) -> FitResult:
     spec = _spec_of(model, "model")
     opts = _Options("fit", options, "fit")
     opts.check([spec])
