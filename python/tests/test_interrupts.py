@@ -15,6 +15,11 @@ import pytest
 from _images import make_stack
 from _support import CAYMAN
 
+# The sanitizer build's suite runs fewer, with more time for the slower library
+# (python/CMakeLists.txt).
+TIMES = int(os.environ.get("BRDFIT_INTERRUPT_TIMES", "50"))
+BOUND = float(os.environ.get("BRDFIT_INTERRUPT_SECONDS", "1.0"))
+
 CHILD = textwrap.dedent(r"""
     import os, random, signal, sys, threading, time
     import numpy as np
@@ -82,9 +87,9 @@ def stack(tmp_path_factory):
 def test_interrupts(tmp_path, stack, kind, what):
     script = tmp_path / "child.py"
     script.write_text(CHILD)
-    p = subprocess.run([sys.executable, str(script), kind, what, "50", str(CAYMAN), str(stack)], capture_output=True, text=True,
+    p = subprocess.run([sys.executable, str(script), kind, what, str(TIMES), str(CAYMAN), str(stack)], capture_output=True, text=True,
                        timeout=300, env=dict(os.environ))
     assert p.returncode == 0, "%s %s: exit %d (a signal is negative): %s" % (kind, what, p.returncode,
                                                                           p.stderr[-2000:])
     worst = float(p.stdout.split()[-2])
-    assert worst < 1.0, "%s %s: the exception came %.3f s after the signal" % (kind, what, worst)
+    assert worst < BOUND, "%s %s: the exception came %.3f s after the signal" % (kind, what, worst)
