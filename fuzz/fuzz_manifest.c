@@ -39,9 +39,10 @@ static void same_manifest(const batch_manifest *a, const batch_manifest *b, cons
         for (int k = 0; k < x->nwords - (x->scene ? 1 : 0); k++)
             if (strcmp(x->words[k], y->words[k]))
                 fuzz_fail("material %d: option '%s' read back as '%s'", i, x->words[k], y->words[k]);
-        data_options d;
-        if (batch_manifest_data_options(b, i, &d, "fuzz") < 0)
+        bf_options *o = NULL;
+        if (batch_manifest_options(b, i, &o, "fuzz") < 0)
             fuzz_fail("material %d's options do not parse when read back", i);
+        bf_options_free(o);
     }
 }
 

@@ -37,7 +37,7 @@ static void round_trip(bf_model *m, double *x)
 {
     const int P = bf_model_nvalues(m);
     bf_fit_result r;
-    memset(&r, 0, sizeof r);
+    bf_fit_result_init(&r);
     r.model = m;
     r.x = x;
     r.stderr_ = calloc((size_t)P, sizeof *r.stderr_);

@@ -16,7 +16,7 @@ enum { MAX_CASES = 4 };
 /* A result for case c's model with C channels: the model's defaults, fixed metrics. */
 static int make_result(const bf_regress_case *cs, int C, bf_fit_result *r)
 {
-    memset(r, 0, sizeof *r);
+    bf_fit_result_init(r);
     if (bf_model_new(cs->model, C, &r->model, NULL) != BF_OK)
         return 0;
     if (!(r->x = malloc((size_t)bf_model_nvalues(r->model) * sizeof *r->x + 1)))
@@ -71,7 +71,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     bf_fit_result r[MAX_CASES];
     bf_regress_outcome outs[MAX_CASES];
     int made[MAX_CASES] = {0};
-    memset(outs, 0, sizeof outs);
+    for (int c = 0; c < MAX_CASES; c++)
+        bf_regress_outcome_init(&outs[c]);
     for (int c = 0; c < n; c++) {
         /* One channel for even cases, three for odd ones. */
         if (!(made[c] = make_result(&b->cases[c], c % 2 ? 3 : 1, &r[c])))
@@ -98,6 +99,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fuzz_fail("%d cases reloaded as %d", b->ncases, b2->ncases);
     for (int c = 0; c < n; c++) {
         bf_regress_outcome o;
+        bf_regress_outcome_init(&o);
         if (bf_regress_check(b2, c, &r[c], &o, &err) != BF_OK)
             fuzz_fail("check after update: %s", err.msg);
         if (o.status != BF_REGRESS_PASS)

@@ -40,7 +40,7 @@ setup(
     version=_version(),
     description="Fit parametric BRDF models to measured reflectance (Python bindings of libbrdfit)",
     packages=["brdfit"],
-    package_data={"brdfit": ["py.typed"]},
+    package_data={"brdfit": ["py.typed", "_brdfit.pyi"]},
     setup_requires=["cffi"],
     install_requires=["cffi", "numpy"],
     cffi_modules=["brdfit/_build.py:ffibuilder"],

@@ -20,7 +20,7 @@
 #include "brdfit/options.h"
 #include "support.h"
 
-static const unsigned tasks[] = {BF_TASK_READ, BF_TASK_FIT, BF_TASK_COMPARE, BF_TASK_SELECT};
+static const unsigned tasks[] = {BF_TASK_READ, BF_TASK_FIT, BF_TASK_COMPARE, BF_TASK_SELECT, BF_TASK_TRADEOFF};
 
 static bf_options *make(unsigned task)
 {
@@ -140,7 +140,7 @@ static void test_set_and_refuse(void **state)
     assert_int_equal(bf_options_set(o, "bogus", "1", &err), BF_ERR_ARG);
     assert_string_equal(err.msg, "unknown option 'bogus'");
     assert_int_equal(bf_options_set(o, "tolerance", "0.1", &err), BF_ERR_ARG);
-    assert_string_equal(err.msg, "tolerance is not an option of fit (it is one of compare, select)");
+    assert_string_equal(err.msg, "tolerance is not an option of fit (it is one of compare, select, tradeoff)");
     /* Lists add an entry each time; a bad entry names the option. */
     assert_int_equal(bf_options_set(o, "fix", "rho_d=0.1", &err), BF_OK);
     assert_int_equal(bf_options_set(o, "fix", "alpha[1]=0.2", &err), BF_OK);

@@ -1,7 +1,9 @@
 /* The tradeoff table: grid size and order (ascending, deduplicated sample counts, one
  * "all" row), a disjoint seeded train/test split of the right sizes, reproducible errors
  * for one seed, the Pareto front and the recommendation on hand-made timings, method
- * names, and the JSON and CSV outputs. */
+ * names, and the JSON and CSV outputs; the tradeoff's options (their defaults from the
+ * base setting, the lists' checks and messages) and the whole measurement from them
+ * (bf_tradeoff_run) on generated data, step for step the same as the parts. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <setjmp.h>
@@ -17,6 +19,7 @@
 #include "brdfit/tradeoff.h"
 #include "compare/compare_impl.h"
 #include "support.h"
+#include "synth.h"
 #include "tradeoff/tradeoff_impl.h"
 
 static const char *const methods2[] = {"ceres", "LD_LBFGS"};
@@ -376,6 +379,355 @@ static void test_json_and_csv(void **state)
     bf_tradeoff_clear(&t);
 }
 
+/* ---- The options and the whole measurement ------------------------------------------ */
+
+static void value(const bf_options *o, const char *name, const char *want)
+{
+    char v[256];
+    bf_error err;
+    if (bf_options_get(o, name, v, sizeof v, &err) != BF_OK)
+        fail_msg("%s: %s", name, err.msg);
+    assert_string_equal(v, want);
+}
+
+/* The lists' defaults follow the base setting; the other values are the table's or as
+ * given (a count may end in k). */
+static void test_options_defaults(void **state)
+{
+    (void)state;
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, NULL);
+    value(o, "samples", "1000,4000,16000,64000,all");
+    value(o, "methods", "ceres,LD_LBFGS");
+    value(o, "residuals", "log");
+    value(o, "starts_list", "auto");
+    value(o, "test_fraction", "0.2");
+    value(o, "cost", "work");
+    value(o, "repeats", "1");
+    value(o, "error", "rmse_log");
+    char v[64];
+    assert_int_equal(bf_options_get(o, "tolerance", v, sizeof v, NULL), BF_OK);
+    assert_true(strtod(v, NULL) == 0.05);
+    value(o, "plot_size", "640x400");
+    value(o, "timing", "false");
+    assert_int_equal(bf_options_check(o, NULL), BF_OK);
+    bf_options_free(o);
+
+    o = ts_options(BF_TASK_TRADEOFF, "--backend nlopt --algorithm LN_BOBYQA --residual linear --starts 3 --repeats 1k");
+    value(o, "methods", "LN_BOBYQA");
+    value(o, "residuals", "linear");
+    value(o, "starts_list", "3");
+    value(o, "repeats", "1k");
+    bf_options_free(o);
+    o = ts_options(BF_TASK_TRADEOFF, "--algorithm dogleg --methods ceres,LN_SBPLX --starts-list 1,auto");
+    value(o, "methods", "ceres,LN_SBPLX");
+    value(o, "starts_list", "1,auto");
+    assert_int_equal(bf_options_reset(o, "methods", NULL), BF_OK);
+    value(o, "methods", "ceres:dogleg");
+    bf_options_free(o);
+    /* Only a tradeoff takes them; a tradeoff takes no --accuracy. */
+    assert_null(bf_option_find("samples", BF_TASK_FIT));
+    assert_null(bf_option_find("accuracy", BF_TASK_TRADEOFF));
+    assert_non_null(bf_option_find("max_theta", BF_TASK_TRADEOFF));
+    assert_non_null(bf_option_find("starts", BF_TASK_TRADEOFF));
+}
+
+/* Set is refused with the command line's message when the value alone is wrong; set but
+ * refused by bf_options_check when the lists are (their defaults and methods depend on
+ * the other options). Messages name the option as the set spells it. */
+static void refused_when_set(bf_option_spelling spelling, const char *name, const char *v, const char *msg)
+{
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, NULL);
+    bf_error err;
+    bf_options_set_spelling(o, spelling);
+    assert_int_equal(bf_options_set(o, name, v, &err), BF_ERR_ARG);
+    assert_string_equal(err.msg, msg);
+    bf_options_free(o);
+}
+
+static void refused_by_check(bf_option_spelling spelling, const char *words, const char *msg)
+{
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, words);
+    bf_error err;
+    bf_options_set_spelling(o, spelling);
+    if (bf_options_check(o, &err) != BF_ERR_ARG)
+        fail_msg("%s: taken", words);
+    assert_string_equal(err.msg, msg);
+    bf_options_free(o);
+}
+
+static void test_options_refused(void **state)
+{
+    (void)state;
+    const bf_option_spelling cl = BF_SPELL_COMMAND_LINE, kw = BF_SPELL_KEYWORD;
+    refused_when_set(cl, "test_fraction", "1", "--test-fraction needs a number between 0 and 1 (exclusive), got '1'");
+    refused_when_set(kw, "test_fraction", "0", "test_fraction needs a number between 0 and 1 (exclusive), got '0'");
+    refused_when_set(cl, "repeats", "2k", "--repeats needs an integer from 1 to 1000, got '2k'");
+    refused_when_set(kw, "repeats", "0", "repeats needs an integer from 1 to 1000, got '0'");
+    refused_when_set(cl, "cost", "time", "--cost needs work or seconds, got 'time'");
+    refused_when_set(cl, "plot_size", "10x10", "--plot-size needs WxH, each 40 to 8192, got '10x10'");
+    refused_when_set(kw, "plot_size", "400", "plot_size needs WxH, each 40 to 8192, got '400'");
+    refused_when_set(cl, "tolerance", "-1", "--tolerance needs a number >= 0 (relative, 0.05 = 5%), got '-1'");
+    refused_when_set(kw, "error", "mse", "error: unknown error metric 'mse' (rmse, rmse_log, rmse_cos, rmse_rel)");
+    refused_by_check(cl, "--samples 500,lots", "--samples: 'lots' is not a positive count or 'all'");
+    refused_by_check(kw, "--samples 0", "samples: '0' is not a positive count or 'all'");
+    refused_by_check(kw, "--samples 500,,all", "samples: empty item in the list");
+    refused_by_check(cl, "--starts-list 1,x", "--starts-list: 'x' is not a positive integer or auto");
+    refused_by_check(kw, "--starts-list 100001", "starts_list: '100001' is not a positive integer or auto");
+    refused_by_check(kw, "--residuals log,square",
+                 "residuals: unknown residual form 'square' (linear, cosine, log, cbrt, relative)");
+    /* A list's form is checked before any list's items. */
+    refused_by_check(cl, "--samples lots --starts-list 1,", "--starts-list: empty item in the list");
+    /* A method against the base's other settings. */
+    refused_by_check(cl, "--backend nlopt --algorithm LD_SLSQP --constrain-energy --methods LD_SLSQP,LN_BOBYQA",
+                 "--methods: method \"LN_BOBYQA\": nlopt method LN_BOBYQA does not take constraints (those that "
+                 "do: LD_SLSQP, LD_MMA, LN_COBYLA, GN_ISRES)");
+    char many[512] = "--samples ";
+    for (int k = 1; k <= 65; k++)
+        snprintf(many + strlen(many), sizeof many - strlen(many), "%s%d", k > 1 ? "," : "", k);
+    refused_by_check(kw, many, "samples: more than 64 items");
+    /* 20 counts x 2 methods x 64 residuals x 64 starts: the product, before the counts
+     * merge. */
+    char big[1024] = "--samples 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20 --residuals ";
+    for (int k = 0; k < 64; k++)
+        snprintf(big + strlen(big), sizeof big - strlen(big), "%s%s", k ? "," : "", k % 2 ? "log" : "linear");
+    snprintf(big + strlen(big), sizeof big - strlen(big), " --starts-list ");
+    for (int k = 1; k <= 64; k++)
+        snprintf(big + strlen(big), sizeof big - strlen(big), "%s%d", k > 1 ? "," : "", k);
+    refused_by_check(cl, big, "163840 settings is too many (at most 100000): shorten the lists");
+}
+
+/* noise_level relative noise on lambert (rho 0.5, one channel) at n uniform directions. */
+static bf_samples *lambert_data(size_t n, double noise_level)
+{
+    bf_error err;
+    bf_model *m = ts_model("lambert", 1);
+    const double rho[] = {0.5};
+    bf_synth_options so;
+    memset(&so, 0, sizeof so);
+    so.pattern = BF_SYNTH_UNIFORM;
+    so.count = n;
+    so.seed = 5;
+    so.noise.model = BF_NOISE_RELATIVE;
+    so.noise.level = noise_level;
+    bf_samples *s = NULL;
+    if (bf_synth_generate(m, rho, &so, &s, &err) != BF_OK)
+        fail_msg("%s", err.msg);
+    bf_model_free(m);
+    return s;
+}
+
+static int progress_calls;
+static void count_progress(void *user, const bf_tradeoff *t, int i)
+{
+    assert_ptr_equal(user, &progress_calls);
+    assert_int_equal(i, progress_calls); /* in order, each once */
+    assert_true(t->rows[i].ran);
+    progress_calls++;
+}
+
+/* bf_tradeoff_run is the parts in their order: the same split, grid, rows and ranking. */
+static void test_run_is_the_parts(void **state)
+{
+    (void)state;
+    bf_error err;
+    bf_samples *data = lambert_data(1000, 0.01);
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, "--samples 200,all,5000 --starts-list 1 --threads 1 --seed 3 "
+                                                 "--test-fraction 0.25 --tolerance 0.1");
+    bf_tradeoff *t = NULL;
+    progress_calls = 0;
+    assert_int_equal(bf_tradeoff_run(data, "synth.csv", "lambert", o, count_progress, &progress_calls, &t, &err),
+                     BF_OK);
+    assert_int_equal(progress_calls, 4);
+    assert_string_equal(t->data, "synth.csv");
+    assert_string_equal(t->model, "lambert");
+    assert_int_equal(t->total, 1000);
+    assert_int_equal(t->train_n, 750);
+    assert_int_equal(t->test_n, 250);
+    assert_int_equal(t->channels, 1);
+    assert_true(t->test_fraction == 0.25 && t->tolerance == 0.1);
+    assert_int_equal(t->seed, 3);
+    assert_int_equal(t->repeats, 1);
+    assert_int_equal(t->cost, BF_TRADEOFF_COST_WORK);
+    assert_int_equal(t->timing, 0);
+    assert_int_equal(t->plot_width, 640);
+    assert_int_equal(t->plot_height, 400);
+    /* The held-out error of the truth (rho 0.5), which a fit to the rest can only near. */
+    bf_samples *train, *test;
+    assert_int_equal(bf_tradeoff_split(data, 0.25, 3, &train, &test, &err), BF_OK);
+    bf_model *truth = ts_model("lambert", 1);
+    const double rho[] = {0.5};
+    bf_metrics tm;
+    assert_int_equal(bf_metrics_compute(truth, rho, test, 1, 1, &tm, &err), BF_OK);
+    bf_model_free(truth);
+    assert_true(tm.rmse_log > 1e-4); /* the noise is there */
+    /* 200 and all (5000 is all) x ceres, LD_LBFGS x log x 1 start. */
+    assert_int_equal(t->nrows, 4);
+    const char *const methods[] = {"ceres", "LD_LBFGS", "ceres", "LD_LBFGS"};
+    for (int i = 0; i < 4; i++) {
+        const bf_tradeoff_row *r = &t->rows[i];
+        assert_int_equal(r->all, i >= 2);
+        assert_int_equal(r->samples, i < 2 ? 200 : 750);
+        assert_string_equal(r->method, methods[i]);
+        assert_int_equal(r->starts, 1);
+        assert_true(r->ran && r->ok);
+        assert_int_equal(r->train.n, r->samples);
+        assert_int_equal(r->test.n, 250);
+        /* 1% relative noise: the log error of the fitted constant is about 0.01 */
+        assert_true(r->test.rmse_log > 0.98 * tm.rmse_log && r->test.rmse_log < 1.05 * tm.rmse_log);
+        assert_true(r->error == r->test.rmse_log);
+    }
+    /* Lambert from 200 samples is as good as from 750: the cheapest row is recommended. */
+    assert_true(t->best >= 0);
+    assert_int_equal(t->recommended, 0);
+
+    /* The parts: split, grid, rows, rank, with the same options. */
+    const size_t counts[] = {200, 0, 5000};
+    const bf_residual res[] = {BF_RESIDUAL_LOG};
+    const int starts[] = {1};
+    bf_tradeoff *p = NULL;
+    assert_int_equal(bf_tradeoff_new("synth.csv", "lambert", train->n, 3, counts, 2, methods2, 1, res, 1, starts, &p,
+                                     &err),
+                     BF_OK);
+    p->seed = 3;
+    p->tolerance = 0.1;
+    for (int i = 0; i < p->nrows; i++)
+        assert_int_equal(bf_tradeoff_run_row(p, i, train, test, o, &err), BF_OK);
+    bf_tradeoff_rank(p);
+    assert_int_equal(p->nrows, t->nrows);
+    assert_int_equal(p->best, t->best);
+    assert_int_equal(p->recommended, t->recommended);
+    for (int i = 0; i < p->nrows; i++) {
+        assert_true(p->rows[i].test.rmse_log == t->rows[i].test.rmse_log);
+        assert_true(p->rows[i].train.rmse == t->rows[i].train.rmse);
+        assert_true(p->rows[i].work == t->rows[i].work);
+        assert_int_equal(p->rows[i].on_front, t->rows[i].on_front);
+    }
+
+    /* The JSON in memory is the file's text. */
+    char *text = NULL;
+    assert_int_equal(bf_tradeoff_json(t, &text, &err), BF_OK);
+    char path[] = "/tmp/test_tradeoff_run_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(bf_tradeoff_write_json(t, path, &err), BF_OK);
+    char *file = slurp(path);
+    assert_string_equal(text, file);
+    assert_non_null(strstr(text, "\"test_fraction\":\t0.25,"));
+    free(file);
+    bf_free(text);
+    unlink(path);
+
+    /* The recommendation as brdfit fit's command line: the base options as set, then
+     * the row's. */
+    char *command = NULL;
+    assert_int_equal(bf_tradeoff_fit_command(t, t->recommended, &command, &err), BF_OK);
+    assert_string_equal(command, "brdfit fit synth.csv --threads 1 --seed 3 -m lambert --subsample 200 --backend ceres "
+                                 "--residual log --starts 1");
+    bf_free(command);
+    assert_int_equal(bf_tradeoff_fit_command(t, 3, &command, &err), BF_OK);
+    assert_string_equal(command, "brdfit fit synth.csv --threads 1 --seed 3 -m lambert --backend nlopt --algorithm "
+                                 "LD_LBFGS --residual log --starts 1");
+    bf_free(command);
+    assert_int_equal(bf_tradeoff_fit_command(t, 4, &command, &err), BF_ERR_ARG);
+    assert_null(command);
+    /* A table of the parts has no base options. */
+    assert_int_equal(bf_tradeoff_fit_command(p, 2, &command, &err), BF_OK);
+    assert_string_equal(command, "brdfit fit synth.csv -m lambert --backend ceres --residual log --starts 1");
+    bf_free(command);
+
+    bf_tradeoff_free(p);
+    bf_tradeoff_free(t);
+    bf_samples_free(train);
+    bf_samples_free(test);
+    bf_options_free(o);
+    bf_samples_free(data);
+}
+
+/* The base options repeated in the command: quoted for a shell, flags by name, the
+ * tradeoff's own and the row's left out; seconds as the cost imply timing; repeats. */
+static void test_run_options_carried(void **state)
+{
+    (void)state;
+    bf_error err;
+    bf_samples *data = lambert_data(300, 0.01);
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, "--samples all --methods ceres --residual linear --starts 2 "
+                                                 "--threads 1 --cost seconds --repeats 2 --plot-size 320x200");
+    assert_int_equal(bf_options_set(o, "fix", "rho_d=0.5", &err), BF_OK);
+    assert_int_equal(bf_options_set(o, "no_weights", "true", &err), BF_OK);
+    assert_int_equal(bf_options_set(o, "solid_angle", "false", &err), BF_OK);
+    assert_int_equal(bf_options_set(o, "channels", "it's 0", &err), BF_OK);
+    assert_int_equal(bf_options_reset(o, "channels", &err), BF_OK); /* gone from the command too */
+    assert_int_equal(bf_options_set(o, "weight", "my weight", &err), BF_OK);
+    bf_tradeoff *t = NULL;
+    assert_int_equal(bf_tradeoff_run(data, NULL, "lambert", o, NULL, NULL, &t, &err), BF_OK);
+    assert_string_equal(t->data, "");
+    assert_int_equal(t->nrows, 1);
+    assert_int_equal(t->rows[0].residual, BF_RESIDUAL_LINEAR);
+    assert_int_equal(t->rows[0].starts, 2);
+    assert_int_equal(t->cost, BF_TRADEOFF_COST_SECONDS);
+    assert_int_equal(t->timing, 1);
+    assert_int_equal(t->repeats, 2);
+    assert_int_equal(t->plot_width, 320);
+    assert_int_equal(t->plot_height, 200);
+    assert_true(t->rows[0].ok && t->rows[0].seconds >= 0.0);
+    char *command = NULL;
+    assert_int_equal(bf_tradeoff_fit_command(t, 0, &command, &err), BF_OK);
+    assert_string_equal(command, "brdfit fit  --threads 1 --fix rho_d=0.5 --no-weights --weight 'my weight' -m "
+                                 "lambert --backend ceres --residual linear --starts 2");
+    bf_free(command);
+    bf_tradeoff_free(t);
+    assert_int_equal(bf_options_set(o, "weight", "it's", &err), BF_OK);
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "lambert", o, NULL, NULL, &t, &err), BF_OK);
+    assert_int_equal(bf_tradeoff_fit_command(t, 0, &command, &err), BF_OK);
+    assert_non_null(strstr(command, " --weight 'my weight' --weight 'it'\\''s' -m lambert"));
+    bf_free(command);
+    bf_tradeoff_free(t);
+    bf_options_free(o);
+    bf_samples_free(data);
+}
+
+static void test_run_refuses(void **state)
+{
+    (void)state;
+    bf_error err;
+    bf_samples *data = lambert_data(300, 0.0), *one = lambert_data(1, 0.0);
+    bf_tradeoff *t = (bf_tradeoff *)&err; /* set to NULL on failure */
+    bf_options *o = ts_options(BF_TASK_TRADEOFF, "--samples 0");
+    bf_options_set_spelling(o, BF_SPELL_KEYWORD);
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "lambert", o, NULL, NULL, &t, &err), BF_ERR_ARG);
+    assert_null(t);
+    assert_string_equal(err.msg, "samples: '0' is not a positive count or 'all'");
+    bf_options_free(o);
+    o = ts_options(BF_TASK_TRADEOFF, "--fix nosuch=1");
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "lambert", o, NULL, NULL, &t, &err), BF_ERR_ARG);
+    assert_string_equal(err.msg, "fix nosuch: model lambert has no parameter 'nosuch'");
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "nosuch", o, NULL, NULL, &t, &err), BF_ERR_ARG);
+    bf_options_free(o);
+    o = ts_options(BF_TASK_TRADEOFF, NULL);
+    assert_int_equal(bf_tradeoff_run(one, "one.csv", "lambert", o, NULL, NULL, &t, &err), BF_ERR_ARG);
+    assert_string_equal(err.msg, "one.csv: 1 sample: too few to hold any out for testing");
+    assert_null(t);
+    bf_options_free(o);
+    /* Options for another task. */
+    o = ts_options(BF_TASK_FIT, NULL);
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "lambert", o, NULL, NULL, &t, &err), BF_ERR_ARG);
+    bf_options_free(o);
+    /* Cancelled before it starts: a table whose rows did not run, nothing recommended. */
+    o = ts_options(BF_TASK_TRADEOFF, "--samples 100,all --threads 1");
+    bf_cancel_flag cancel = 1;
+    bf_options_set_cancel(o, &cancel, NULL);
+    assert_int_equal(bf_tradeoff_run(data, "d.csv", "lambert", o, NULL, NULL, &t, &err), BF_OK);
+    assert_int_equal(t->nrows, 4);
+    for (int i = 0; i < t->nrows; i++)
+        assert_false(t->rows[i].ran);
+    assert_int_equal(t->recommended, -1);
+    bf_tradeoff_free(t);
+    bf_options_free(o);
+    bf_samples_free(data);
+    bf_samples_free(one);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -385,6 +737,11 @@ int main(void)
         cmocka_unit_test(test_same_seed_same_errors),
         cmocka_unit_test(test_methods),
         cmocka_unit_test(test_json_and_csv),
+        cmocka_unit_test(test_options_defaults),
+        cmocka_unit_test(test_options_refused),
+        cmocka_unit_test(test_run_is_the_parts),
+        cmocka_unit_test(test_run_options_carried),
+        cmocka_unit_test(test_run_refuses),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

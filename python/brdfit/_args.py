@@ -6,12 +6,17 @@ import os
 from typing import Any, Optional, Sequence, Tuple
 
 import numpy as np
+import numpy.typing as npt
 
 from ._brdfit import ffi
 from ._errors import UsageError
 
+# The arrays the package hands out and takes: float64, as the library's doubles.
+Array = npt.NDArray[np.float64]
+Index = npt.NDArray[np.intp]
 
-def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]], any_name: str = "n") -> np.ndarray:
+
+def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]], any_name: str = "n") -> Array:
     """a as a C-contiguous float64 array of one of the shapes (None: any length, called
     any_name in the message): values of any integer or float dtype are converted (never
     reinterpreted); anything else, or another shape, or a NaN / Inf, is a ValueError
@@ -34,11 +39,11 @@ def _array(name: str, a: Any, ndim_shapes: Sequence[Tuple[Optional[int], ...]], 
     return out
 
 
-def _directions(name: str, a: Any) -> np.ndarray:
+def _directions(name: str, a: Any) -> Array:
     return _direction_array(name, a)[0]
 
 
-def _direction_array(name: str, a: Any) -> Tuple[np.ndarray, bool]:
+def _direction_array(name: str, a: Any) -> Tuple[Array, bool]:
     """Unit vectors (n, 3) of a, an (n, 3) or (3,) array, and whether a was one (3,)."""
     arr = _array(name, a, [(None, 3), (3,)])
     single = arr.ndim == 1
@@ -51,7 +56,7 @@ def _direction_array(name: str, a: Any) -> Tuple[np.ndarray, bool]:
     return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None]), single
 
 
-def _direction_pairs(wi: Any, wo: Any) -> Tuple[np.ndarray, np.ndarray, Tuple[int, ...]]:
+def _direction_pairs(wi: Any, wo: Any) -> Tuple[Array, Array, Tuple[int, ...]]:
     """wi and wo as n pairs of unit vectors, (n, 3) each, broadcast as NumPy does: one
     direction (a (3,) or (1, 3) array) goes with every direction of the other. The third
     item is the leading shape of a result: () when both are (3,), else (n,)."""
@@ -70,7 +75,7 @@ def _direction_pairs(wi: Any, wo: Any) -> Tuple[np.ndarray, np.ndarray, Tuple[in
 class _View:
     """Exposes library memory to NumPy without a copy, keeping its owner alive."""
 
-    def __init__(self, owner: Any, ptr, shape: Tuple[int, ...]):
+    def __init__(self, owner: Any, ptr: Any, shape: Tuple[int, ...]):
         self._owner = owner
         # Read-only: the library checked these values when they came in, and keeps
         # relying on them (a NaN or a negative weight written here would reach the fits).
@@ -78,7 +83,7 @@ class _View:
                                     "data": (int(ffi.cast("uintptr_t", ptr)), True)}
 
 
-def _view(owner: Any, ptr, shape: Tuple[int, ...]) -> np.ndarray:
+def _view(owner: Any, ptr: Any, shape: Tuple[int, ...]) -> Array:
     if 0 in shape:
         z = np.zeros(shape)
         z.flags.writeable = False

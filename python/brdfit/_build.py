@@ -12,11 +12,13 @@ run path, so it finds the same library at run time.
 import os
 import shlex
 import subprocess
+from typing import List, Tuple
 
 from cffi import FFI
 
 CDEF = r"""
-typedef enum bf_status { BF_OK = 0, BF_ERR_ARG, BF_ERR_IO, BF_ERR_PARSE, BF_ERR_RANGE, BF_ERR_NOMEM } bf_status;
+typedef enum bf_status { BF_OK = 0, BF_ERR_ARG, BF_ERR_IO, BF_ERR_PARSE, BF_ERR_RANGE, BF_ERR_NOMEM,
+                         BF_ERR_CANCELLED } bf_status;
 typedef struct bf_error { bf_status code; char msg[512]; } bf_error;
 const char *bf_version(void);
 const char *bf_status_name(bf_status code);
@@ -73,7 +75,8 @@ bf_status bf_format_parse(const char *name, bf_format *out, bf_error *err);
 bf_status bf_samples_write(const bf_samples *s, const char *path, bf_format f, bf_error *err);
 
 /* Run options (options.h): the table and a set of values. */
-typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8 } bf_task;
+typedef enum bf_task { BF_TASK_READ = 1, BF_TASK_FIT = 2, BF_TASK_COMPARE = 4, BF_TASK_SELECT = 8,
+                       BF_TASK_TRADEOFF = 16 } bf_task;
 typedef enum bf_option_type { BF_OPTION_FLAG = 0, BF_OPTION_INT, BF_OPTION_NUMBER, BF_OPTION_TEXT, BF_OPTION_CHOICE,
                               BF_OPTION_LIST, ... } bf_option_type;
 typedef struct bf_option {
@@ -95,8 +98,15 @@ bf_status bf_options_check_models(const bf_options *o, const char *const *specs,
 typedef int... sig_atomic_t;
 typedef sig_atomic_t bf_cancel_flag;
 void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
-typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
-void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user);
+typedef enum bf_fit_phase { BF_PHASE_CANDIDATES = 0, BF_PHASE_SCREEN, BF_PHASE_PRESOLVE, BF_PHASE_DATA,
+                            BF_PHASE_DONE } bf_fit_phase;
+const char *bf_fit_phase_name(bf_fit_phase phase);
+typedef struct bf_progress_report {
+    size_t size; bf_fit_phase phase; int start; int starts; int iteration; double cost; size_t samples;
+    const char *spec; int material; int model; int fold; ...;
+} bf_progress_report;
+typedef int (*bf_progress_report_fn)(void *user, const bf_progress_report *report);
+void bf_options_set_progress_report(bf_options *o, bf_progress_report_fn progress, void *user);
 bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
 
 /* Loading (load.h). */
@@ -161,6 +171,19 @@ bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_
                         bf_error *err);
 bf_status bf_select_json(const bf_select *s, const char *data, char **out, bf_error *err);
 
+/* Cost against accuracy (tradeoff.h, render.h). */
+typedef enum bf_plot_format { BF_PLOT_BY_NAME = 0, BF_PLOT_PNG = 1, BF_PLOT_SVG, BF_PLOT_PDF } bf_plot_format;
+typedef struct bf_plot_axes { size_t size; ...; } bf_plot_axes;
+typedef struct bf_tradeoff { int nrows; int best, recommended; int plot_width, plot_height; ...; } bf_tradeoff;
+typedef void (*bf_tradeoff_progress)(void *user, const bf_tradeoff *t, int i);
+bf_status bf_tradeoff_run(const bf_samples *data, const char *name, const char *model, const bf_options *o,
+                          bf_tradeoff_progress progress, void *user, bf_tradeoff **out, bf_error *err);
+void bf_tradeoff_free(bf_tradeoff *t);
+bf_status bf_tradeoff_json(const bf_tradeoff *t, char **out, bf_error *err);
+bf_status bf_tradeoff_fit_command(const bf_tradeoff *t, int i, char **out, bf_error *err);
+bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
+                                 bf_plot_axes *axes, bf_error *err);
+
 /* Export (export.h). */
 typedef struct bf_export_target { const char *name; const char *model; ...; } bf_export_target;
 typedef struct bf_export_material { size_t size; int converted; ...; } bf_export_material;
@@ -222,8 +245,8 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
 void bf_photo_result_free(bf_photo_result *r);
 extern "Python" void _brdfit_photo_progress(void *user, double done);
 
-/* The progress callback, into Python (_brdfit_progress in brdfit/_run.py). */
-extern "Python" int _brdfit_progress(void *user, int iteration, double cost);
+/* The progress reports, into Python (_brdfit_report in brdfit/_run.py). */
+extern "Python" int _brdfit_report(void *user, const bf_progress_report *report);
 """
 
 SOURCE = r"""
@@ -237,6 +260,7 @@ SOURCE = r"""
 #include "brdfit/objective.h"
 #include "brdfit/options.h"
 #include "brdfit/select.h"
+#include "brdfit/tradeoff.h"
 #include "brdfit/version.h"
 /* Front ends (info, render, fit-images, many files). */
 #include "brdfit/formats.h"
@@ -246,11 +270,11 @@ SOURCE = r"""
 """
 
 
-def _split(var):
+def _split(var: str) -> List[str]:
     return [p for p in os.environ.get(var, "").split(os.pathsep) if p]
 
 
-def _where():
+def _where() -> Tuple[List[str], List[str]]:
     """The include and library folders of libbrdfit (see the module's docstring)."""
     inc, lib = _split("BRDFIT_INCLUDE_DIRS"), _split("BRDFIT_LIBRARY_DIRS")
     if inc and lib:

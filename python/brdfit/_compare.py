@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._data import _prepared
@@ -12,7 +12,7 @@ from ._fit import _spec_of
 from ._frames import frame
 from ._model import Model
 from ._options import _doc, _Options
-from ._run import _Run
+from ._run import CancelEvent, ProgressFn, _Run
 from ._samples import Samples
 
 
@@ -69,8 +69,8 @@ def _model_list(models: Any) -> List[str]:
     return out
 
 
-def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]],
-            progress: Optional[Callable[[int, float], Any]] = None, **options: Any) -> CompareResult:
+def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], progress: Optional[ProgressFn] = None,
+            cancel: Optional[CancelEvent] = None, **options: Any) -> CompareResult:
     if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
         raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
     samples_list = list(samples_list)
@@ -79,12 +79,12 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]],
     specs = _model_list(models)
     opts = _Options("compare", options, "compare")
     opts.check(specs)
-    data = [_prepared(x, opts, "samples_list[%d]" % i) for i, x in enumerate(samples_list)]
+    run = _Run(progress, cancel, "compare")
+    run.hook(opts)  # reading the data files too
+    data = [_prepared(x, opts, "samples_list[%d]" % i, run) for i, x in enumerate(samples_list)]
     for d in data:
         d._ready()
     names = [os.fsencode(d.path or "samples %d" % i) for i, d in enumerate(data)]
-    run = _Run(progress)
-    run.hook(opts)
 
     def call() -> CompareResult:  # in the worker, which owns the comparison
         err = ffi.new("bf_error *")
@@ -106,7 +106,10 @@ def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]],
 
 compare.__doc__ = """Fits every model to every sample set and ranks them, as `brdfit compare`: models is a
 list of specs, or one string as -m takes it ("lambert,walter", "all"); samples_list holds
-brdfit.Samples or data file names. progress(iteration, cost) sees every solve; returning
-True stops the comparison. The options are brdfit compare's, as keywords:
+brdfit.Samples or data file names. progress(brdfit.Progress) sees every fit's progress
+(.material: the index in samples_list, .model: the spec; with jobs > 1 from several
+threads); returning True, or cancel (a threading.Event) once set, stops the comparison,
+which then raises brdfit.Error (code "cancelled"). The options are brdfit compare's, as
+keywords:
 
 """ + _doc("compare")

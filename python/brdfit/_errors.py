@@ -2,7 +2,7 @@
 bf_error into an exception and a library-made string into a str."""
 from __future__ import annotations
 
-from typing import Optional
+from typing import Any, Optional
 
 from ._brdfit import ffi, lib
 
@@ -23,7 +23,7 @@ class UsageError(Error, ValueError):
         super().__init__(message, code)
 
 
-def _raise(err, what: str = "", usage: bool = False) -> None:
+def _raise(err: Any, what: str = "", usage: bool = False) -> None:
     msg = ffi.string(err.msg).decode("utf-8", "replace")
     if what:
         msg = "%s: %s" % (what, msg)
@@ -31,7 +31,7 @@ def _raise(err, what: str = "", usage: bool = False) -> None:
     raise cls(msg, ffi.string(lib.bf_status_name(err.code)).decode())
 
 
-def _check(rc: int, err, what: str = "", usage: bool = False) -> None:
+def _check(rc: int, err: Any, what: str = "", usage: bool = False) -> None:
     """Raises the library's error: UsageError (a ValueError) for bad usage, and for any
     error of a check of the caller's arguments (usage: a value out of its range is the
     caller's, as the command's exit status 2 says); Error otherwise."""
@@ -39,14 +39,15 @@ def _check(rc: int, err, what: str = "", usage: bool = False) -> None:
         _raise(err, what, usage)
 
 
-def _take_text(p) -> str:
+def _take_text(p: Any) -> str:
     """A text the library made (bf_free'd here)."""
     try:
-        return ffi.string(p).decode("utf-8", "surrogateescape")  # a non-UTF-8 file name as Python names it
+        text: str = ffi.string(p).decode("utf-8", "surrogateescape")
+        return text  # a non-UTF-8 file name as Python names it
     finally:
         lib.bf_free(p)
 
 
 
-def _str(p) -> Optional[str]:
+def _str(p: Any) -> Optional[str]:
     return None if p == ffi.NULL else ffi.string(p).decode()

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Tuple, Uni
 
 import numpy as np
 
-from ._args import _array, _direction_pairs
+from ._args import Array, Index, _array, _direction_pairs
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check
 
@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 # at most this many doubles of it at once (32 MiB; one sample's rows at least).
 _CHANNEL_BLOCK = 1 << 22
 
-Result = Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]
+Result = Union[Array, Tuple[Array, Array]]
 
 
 def _gradient_mode(gradient: Any) -> Optional[str]:
@@ -29,7 +29,7 @@ def _gradient_mode(gradient: Any) -> Optional[str]:
     raise UsageError("gradient: needs True, False or 'channel', got %r" % (gradient,))
 
 
-def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[np.ndarray, Optional[int]]:
+def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[Array, Optional[int]]:
     """The model vectors of params, (K, nvalues), and K, or None for one set (then one
     row): the model's own parameters (a fit's; else the defaults) with params over them.
     A scalar parameter of shape (K,) or a colour one of shape (K, C) or (K, 1) gives K
@@ -40,7 +40,7 @@ def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[np.nda
     if not isinstance(params, Mapping):
         raise UsageError("params: needs a dict of parameter name -> value, got %s" % type(params).__name__)
     C = m.channels
-    given: List[Tuple[int, bool, np.ndarray]] = []
+    given: List[Tuple[int, bool, Array]] = []
     sets: Dict[str, int] = {}
     for key, value in params.items():
         i = m._find(key)
@@ -67,7 +67,7 @@ def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[np.nda
     return X, K
 
 
-def _channel_columns(m: "Model") -> Tuple[np.ndarray, np.ndarray]:
+def _channel_columns(m: "Model") -> Tuple[Index, Index]:
     """Indices into a dense Jacobian (n, C, nvalues) that give d value[c] / d parameter:
     rows (C, 1) and columns (C, nparams), a colour parameter's column being channel c's."""
     C, nparams = m.channels, lib.bf_model_nparams(m._m)
@@ -78,7 +78,7 @@ def _channel_columns(m: "Model") -> Tuple[np.ndarray, np.ndarray]:
     return np.arange(C)[:, None], cols
 
 
-def _eval_channel(m: "Model", x: np.ndarray, g: Any, values: np.ndarray, out: np.ndarray) -> None:
+def _eval_channel(m: "Model", x: Array, g: Any, values: Array, out: Array) -> None:
     """values (n, C) and out (n, C, nparams) of one parameter set: the library's analytic
     Jacobian of a block of samples at a time, of which only the per-channel columns stay."""
     n, C = values.shape

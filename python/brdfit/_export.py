@@ -10,7 +10,7 @@ from ._errors import UsageError, _check, _str, _take_text
 from ._fit import FitResult
 
 
-def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[Union[str, os.PathLike]] = None,
+def export(result: Union[FitResult, str, "os.PathLike[str]"], to: str, path: Optional[Union[str, "os.PathLike[str]"]] = None,
            convert: bool = False) -> str:
     """Writes a fit (a FitResult, or a result file) as a renderer's material, as `brdfit
     export`: to one of the library's targets ("gltf", "blender", "mitsuba"); convert=True
@@ -18,7 +18,7 @@ def export(result: Union[FitResult, str, os.PathLike], to: str, path: Optional[U
     returns it, or returns the text when path is None."""
     t = lib.bf_export_target_find(_text("to", to).encode())
     if t == ffi.NULL:
-        names = [_str(lib.bf_export_target_get(i).name) for i in range(lib.bf_export_target_count())]
+        names = [ffi.string(lib.bf_export_target_get(i).name).decode() for i in range(lib.bf_export_target_count())]
         raise UsageError("to: %r is not a target (%s)" % (to, ", ".join(names)))
     err = ffi.new("bf_error *")
     m = ffi.new("bf_model **")

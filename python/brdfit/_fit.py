@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -15,7 +15,7 @@ from ._errors import Error, UsageError, _check, _take_text
 from ._frames import NAN, floats
 from ._model import Model
 from ._options import _doc, _Options
-from ._run import _Run
+from ._run import CancelEvent, ProgressFn, _Run
 from ._samples import Samples
 
 # Residuals computed per call of the objective: a short call each, so that Ctrl-C is
@@ -170,12 +170,15 @@ def _spec_of(model: Any, what: str) -> str:
     return spec
 
 
-def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int, float], Any]] = None,
-        start: Optional[Mapping[str, Any]] = None, **options: Any) -> FitResult:
+def fit(samples: Any, model: Union[str, Model], progress: Optional[ProgressFn] = None,
+        start: Union[None, Mapping[str, Any], Model, Sequence[float], np.ndarray] = None,
+        cancel: Optional[CancelEvent] = None, **options: Any) -> FitResult:
     spec = _spec_of(model, "model")
     opts = _Options("fit", options, "fit")
     opts.check([spec])
-    data = _prepared(samples, opts, "samples")
+    run = _Run(progress, cancel, "fit", partial=True)
+    run.hook(opts)  # reading the data file too
+    data = _prepared(samples, opts, "samples", run)
     # The start: start= (name -> value), else the parameters a Model was given (a fit's
     # result), for the data's channels.
     if isinstance(model, Model) and model.channels != data.channels:
@@ -183,12 +186,15 @@ def fit(samples: Any, model: Union[str, Model], progress: Optional[Callable[[int
     if start is None and isinstance(model, Model) and model._params is not None:
         start = model.params
     err = ffi.new("bf_error *")
-    if start is not None:
-        x0 = Model(spec, data.channels)._vector(start)
+    if start is not None:  # names -> values, a Model holding parameters, or the model vector
+        m0 = Model(spec, data.channels)
+        if isinstance(start, Model):
+            if start._params is None:
+                raise UsageError("start: %r holds no parameters" % (start,))
+            start = start.params
+        x0 = m0._vector(start) if isinstance(start, Mapping) else m0._checked(start, "start")
         _check(lib.bf_options_set_start(opts.o, ffi.from_buffer("double[]", x0), x0.size, err), err, "start")
     data._ready()
-    run = _Run(progress)
-    run.hook(opts)
 
     def call() -> FitResult:  # in the worker, which owns r (freed with it)
         r = ffi.gc(ffi.new("bf_fit_result *"), lib.bf_fit_result_clear)
@@ -216,10 +222,13 @@ def _result(r: Any, data: Samples) -> FitResult:
 
 
 fit.__doc__ = """Fits model (a spec or a Model) to samples (brdfit.Samples, or a data file name), as
-`brdfit fit` does. start (name -> value, as Model params take them) replaces the
-data-driven start; a Model given parameters (a fit's .model) starts from them. The search
-still adds its own starts unless starts=1. progress(iteration, cost) is called as the
-solver goes; returning True stops the fit (the result then says .cancelled). Ctrl-C stops
+`brdfit fit` does. start (name -> value, as Model params take them; a Model holding
+parameters; or the model vector in value_names order) replaces the data-driven start; a
+Model given as model with parameters (a fit's .model) starts from them. The search
+still adds its own starts unless starts=1. progress(brdfit.Progress) is called as the
+fit goes (its phase, start of starts, iteration, cost, samples); returning True stops the
+fit, and so does cancel (a threading.Event) once set: the result then says .cancelled
+(stopped while still reading a data file: brdfit.Error, code "cancelled"). Ctrl-C stops
 it and raises KeyboardInterrupt. The options are brdfit fit's, as keywords:
 
 """ + _doc("fit") + """

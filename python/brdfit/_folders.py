@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import glob
 import os
-from typing import Any, List, Union
+from typing import Any, List, Optional, Union
 
 from ._args import _path_text
 from ._brdfit import lib
 from ._data import _load
 from ._errors import UsageError
 from ._options import _doc, _Options
+from ._run import CancelEvent, _Run
 from ._samples import Samples
 
 
@@ -26,7 +27,8 @@ def _files(where: str) -> List[str]:
     return sorted(glob.glob(where))
 
 
-def read_all(folder_or_glob: Union[str, "os.PathLike[str]"], **data_options: Any) -> List[Samples]:
+def read_all(folder_or_glob: Union[str, "os.PathLike[str]"], cancel: Optional[CancelEvent] = None,
+             **data_options: Any) -> List[Samples]:
     if not isinstance(folder_or_glob, (str, os.PathLike)):
         raise UsageError("folder_or_glob: needs a folder or a glob pattern, got %r" % (folder_or_glob,))
     where = _path_text(folder_or_glob)
@@ -36,11 +38,15 @@ def read_all(folder_or_glob: Union[str, "os.PathLike[str]"], **data_options: Any
         raise UsageError("folder_or_glob: %s: %s" % (
             where, "no data file in the folder (by extension: brdfit.read's formats)" if os.path.isdir(where)
             else "matches no file"))
-    return [_load(p, opts) for p in paths]
+    run = _Run(None, cancel, "read_all")
+    run.hook(opts)
+    return [_load(p, opts, run) for p in paths]
 
 
 read_all.__doc__ = """The data files of a folder (those whose extension names a format the library reads,
 as bf_format_by_extension tells), or the files a glob pattern matches, in the order of their sorted names, each read and prepared as brdfit.read does
-(Samples with .path). No file is a UsageError. The data options as keywords:
+(Samples with .path). No file is a UsageError. cancel (a threading.Event) once set, or
+Ctrl-C, stops the reading (brdfit.Error, code "cancelled"; KeyboardInterrupt). The data
+options as keywords:
 
 """ + _doc("read")

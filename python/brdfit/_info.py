@@ -12,6 +12,7 @@ from ._brdfit import ffi, lib
 from ._data import _load
 from ._errors import UsageError, _check
 from ._options import _doc, _Options, options
+from ._run import CancelEvent, _Run
 from ._samples import Samples
 
 # bf_options_get's buffer: a scene's file name is the longest value a read option holds.
@@ -99,13 +100,15 @@ def _values(opts: _Options) -> Dict[str, str]:
     return out
 
 
-def info(path: Union[str, "os.PathLike[str]"], **data_options: Any) -> Info:
+def info(path: Union[str, "os.PathLike[str]"], cancel: Optional[CancelEvent] = None, **data_options: Any) -> Info:
     if not isinstance(path, (str, os.PathLike)):
         raise UsageError("path: needs a file name, got %r" % (path,))
     opts = _Options("read", data_options, "read")
     report = ffi.new("bf_load_report *")
     lib.bf_load_report_init(report)
-    samples = _load(path, opts, report)
+    run = _Run(None, cancel, "info")
+    run.hook(opts)
+    samples = _load(path, opts, run, report)
     d = ffi.gc(ffi.new("bf_samples_info *"), lib.bf_samples_info_clear)
     lib.bf_samples_info_init(d)
     err = ffi.new("bf_error *")
@@ -115,6 +118,8 @@ def info(path: Union[str, "os.PathLike[str]"], **data_options: Any) -> Info:
 
 info.__doc__ = """What a data file holds once read and prepared as a fit would see it, as `brdfit info`
 reports it: a brdfit.Info (samples read and used, channels, what the preprocessing
-dropped and why, angle coverage, value ranges). The data options as keywords:
+dropped and why, angle coverage, value ranges). cancel (a threading.Event) once set, or
+Ctrl-C, stops a long read (brdfit.Error, code "cancelled"; KeyboardInterrupt). The data
+options as keywords:
 
 """ + _doc("read")

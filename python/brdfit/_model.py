@@ -3,11 +3,11 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 
-from ._args import _array, _path_text
+from ._args import Array, _array, _path_text
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check, _take_text
 from ._eval import Result, evaluate
@@ -15,7 +15,7 @@ from ._eval import Result, evaluate
 
 def version() -> str:
     """The library's version, as `brdfit --version` says it."""
-    return ffi.string(lib.bf_version()).decode()
+    return str(ffi.string(lib.bf_version()).decode())
 
 
 def models() -> List[Dict[str, Any]]:
@@ -24,7 +24,8 @@ def models() -> List[Dict[str, Any]]:
     p = lib.bf_models_json()
     if p == ffi.NULL:
         raise MemoryError("brdfit: out of memory")
-    return json.loads(_take_text(p))["models"]
+    families: List[Dict[str, Any]] = json.loads(_take_text(p))["models"]
+    return families
 
 
 def _restore(spec: str, channels: int, params: Optional[Sequence[float]]) -> "Model":
@@ -98,16 +99,16 @@ class Model:
     @property
     def spec(self) -> str:
         """The canonical spec, every option written out."""
-        return ffi.string(lib.bf_model_spec(self._m)).decode()
+        return str(ffi.string(lib.bf_model_spec(self._m)).decode())
 
     @property
     def name(self) -> str:
         """The family's name ("walter")."""
-        return ffi.string(lib.bf_model_name(self._m)).decode()
+        return str(ffi.string(lib.bf_model_name(self._m)).decode())
 
     @property
     def channels(self) -> int:
-        return lib.bf_model_channels(self._m)
+        return int(lib.bf_model_channels(self._m))
 
     @property
     def param_names(self) -> List[str]:
@@ -149,7 +150,7 @@ class Model:
             out[ffi.string(p.name).decode()] = (float(p.lo), float(p.hi))
         return out
 
-    def vector(self, params: Optional[Mapping[str, Any]] = None) -> np.ndarray:
+    def vector(self, params: Optional[Mapping[str, Any]] = None) -> Array:
         """The model vector (nvalues,) in the order of value_names: params (name -> value,
         as eval takes one set) over the model's own parameters (else the defaults),
         checked against the bounds."""
@@ -160,7 +161,7 @@ class Model:
         model vector (nvalues,), checked against the bounds: vector's inverse."""
         return self._dict(self._checked(vector, "vector"))
 
-    def _checked(self, vector: Any, what: str) -> np.ndarray:
+    def _checked(self, vector: Any, what: str) -> Array:
         x = _array(what, vector, [(lib.bf_model_nvalues(self._m),)])
         err = ffi.new("bf_error *")
         _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, what, usage=True)
@@ -171,7 +172,7 @@ class Model:
         """The parameters this model was given (a fit's result: the fitted ones), or None."""
         return None if self._params is None else self._dict(self._params)
 
-    def _dict(self, x: np.ndarray) -> Dict[str, Any]:
+    def _dict(self, x: Array) -> Dict[str, Any]:
         out: Dict[str, Any] = {}
         C = self.channels
         for i in range(lib.bf_model_nparams(self._m)):
@@ -180,7 +181,7 @@ class Model:
             out[name] = [float(v) for v in x[o:o + C]] if self._colour(i) else float(x[o])
         return out
 
-    def _vector(self, params: Optional[Mapping[str, Any]], base: Optional[np.ndarray] = None) -> np.ndarray:
+    def _vector(self, params: Optional[Mapping[str, Any]], base: Optional[Array] = None) -> Array:
         """The model vector: base (else the defaults) with params over them, checked
         against the bounds."""
         x = np.empty(lib.bf_model_nvalues(self._m))
@@ -202,6 +203,18 @@ class Model:
         err = ffi.new("bf_error *")
         _check(lib.bf_model_check(self._m, ffi.from_buffer("double[]", x), err), err, "params", usage=True)
         return x
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None,
+             gradient: Literal[False] = False) -> Array: ...
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None, *,
+             gradient: Literal[True, "channel"]) -> Tuple[Array, Array]: ...
+
+    @overload
+    def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]],
+             gradient: Literal[True, "channel"]) -> Tuple[Array, Array]: ...
 
     def eval(self, wi: Any, wo: Any, params: Optional[Mapping[str, Any]] = None,
              gradient: Union[bool, str] = False) -> Result:

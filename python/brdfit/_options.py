@@ -12,7 +12,7 @@ from ._brdfit import ffi, lib
 from ._errors import UsageError, _check, _str
 
 _TASKS = {"read": lib.BF_TASK_READ, "fit": lib.BF_TASK_FIT, "compare": lib.BF_TASK_COMPARE,
-          "select": lib.BF_TASK_SELECT}
+          "select": lib.BF_TASK_SELECT, "tradeoff": lib.BF_TASK_TRADEOFF}
 
 
 
@@ -24,14 +24,14 @@ def _table() -> List[Dict[str, Any]]:
         out.append({"name": _str(d.name), "group": _str(d.group), "tasks": d.tasks, "type": int(d.type),
                     "arg": _str(d.arg), "help": _str(d.help), "default": _str(getattr(d, "def")),
                     "range": _str(d.range), "complete": _str(d.complete),
-                    "choices": _str(d.choices).split("|") if d.choices != ffi.NULL else None})
+                    "choices": ffi.string(d.choices).decode().split("|") if d.choices != ffi.NULL else None})
     return out
 
 
 def options(task: str) -> List[Dict[str, Any]]:
-    """The keyword options a function takes ("read", "fit", "compare" or "select"), as the
-    library declares them: name, group, type, arg, help, default (text, or None for none
-    or automatic) and range (in words, or None)."""
+    """The keyword options a function takes ("read", "fit", "compare", "select" or
+    "tradeoff"), as the library declares them: name, group, type, arg, help, default (text,
+    or None for none or automatic) and range (in words, or None)."""
     if task not in _TASKS:
         raise UsageError("task: one of %s, got %r" % (", ".join(_TASKS), task))
     seen = set()
@@ -60,7 +60,7 @@ def _doc(task: str, groups: Optional[Sequence[str]] = None) -> str:
     return "\n".join(lines)
 
 
-def _value_texts(d, name: str, v: Any) -> List[Optional[str]]:
+def _value_texts(d: Any, name: str, v: Any) -> List[Optional[str]]:
     """A keyword's value as the texts the library takes (Python types to text only: the
     library checks and refuses)."""
     if int(d.type) == lib.BF_OPTION_LIST:

@@ -14,7 +14,7 @@ from ._errors import UsageError, _check
 from ._fit import _spec_of
 from ._model import Model
 from ._render import _int
-from ._run import _Run
+from ._run import CancelEvent, ProgressFn, _Run
 
 
 def _copy(ptr: Any, dtype: Any, shape: Tuple[int, ...]) -> NDArray[Any]:
@@ -109,7 +109,8 @@ def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, N
                clusters: Optional[int] = None, scale: Union[float, str, None] = None,
                tile: Union[str, Tuple[int, int], None] = None, relit: Optional[int] = None,
                seed: Optional[int] = None, threads: Optional[int] = None,
-               progress: Optional[Callable[[float], Any]] = None) -> FitImagesResult:
+               progress: Optional[Callable[[float], Any]] = None,
+               cancel: Optional[CancelEvent] = None) -> FitImagesResult:
     """Fits a normal and a model's parameters to every pixel of a stack of photographs under
     known lights, as `brdfit fit-images STACK` does (docs/images.md), with the maps as
     arrays instead of files: a FitImagesResult.
@@ -122,12 +123,13 @@ def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, N
     many relit comparisons to keep. seed: the clusters' seed. threads: 0 or None for every
     core (the results do not depend on it). None leaves the library's default
     (bf_photo_options_init). progress(done) is called with the fraction of pixels done;
-    returning True stops the fit (the result says .cancelled). Ctrl-C stops it and raises
+    returning True, or cancel (a threading.Event) once set, stops the fit (the result says
+    .cancelled). Ctrl-C stops it and raises
     KeyboardInterrupt."""
     path = _path_text(stack) if isinstance(stack, (str, os.PathLike)) else None
     if path is None:
         raise UsageError("stack: needs a folder or a JSON stack file, got %r" % (stack,))
-    run = _Run(cast(Optional[Callable[[int, float], Any]], progress))  # called as progress(done) here
+    run = _Run(cast(Optional[ProgressFn], progress), cancel, "fit_images", partial=True)  # progress(done) here
     o = ffi.new("bf_photo_options *")
     lib.bf_photo_options_init(o)
     keep: List[Any] = []  # the texts the options point to live as long as the call

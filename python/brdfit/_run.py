@@ -1,15 +1,29 @@
-"""Running a library call: a worker thread, the progress callback, and interrupts."""
+"""Running a library call: a worker thread, progress reports, cancelling and interrupts."""
 from __future__ import annotations
 
 import threading
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Protocol, TypeVar
+
+
 
 from ._brdfit import ffi, lib
-from ._errors import UsageError
+from ._errors import Error, UsageError
 from ._options import _Options
+from ._progress import Progress, _progress_of
 
-# How often the calling thread looks up from waiting (Ctrl-C is seen at once regardless).
+# How often the calling thread looks up from waiting (Ctrl-C is seen at once regardless,
+# a cancel event within this).
 _POLL_SECONDS = 0.025
+
+
+class CancelEvent(Protocol):
+    """What cancel= takes: a threading.Event, or anything with is_set()."""
+
+    def is_set(self) -> bool: ...
+
+
+ProgressFn = Callable[[Progress], Any]
+T = TypeVar("T")
 
 
 class _Run:
@@ -20,23 +34,35 @@ class _Run:
     ffi.gc), so it is freed when the worker lets go, never under it. An exception in the
     calling thread (Ctrl-C's KeyboardInterrupt, a signal handler's TimeoutError), wherever
     it lands, sets the library's cancel flag, and the calling thread waits for the worker
-    to end before raising it. The progress callback runs in the worker (with the GIL); an
-    exception it raises, or True, stops the call."""
+    to end before raising it. The calling thread also polls the cancel event and sets the
+    flag once it is set. The progress callback runs in the worker (with the GIL); an
+    exception it raises, or True, stops the call.
 
-    def __init__(self, progress: Optional[Callable[[int, float], Any]]):
+    what names the call in the error of a stopped call; partial says whether the call's
+    result tells that it was stopped (fit: .cancelled), else a call the caller stopped
+    (the event, or progress returning True) raises brdfit.Error (code "cancelled")."""
+
+    def __init__(self, progress: Optional[ProgressFn], cancel: Optional[CancelEvent] = None, what: str = "",
+                 partial: bool = False):
         if progress is not None and not callable(progress):
-            raise UsageError("progress: needs a callable (iteration, cost) -> bool, got %r" % (progress,))
+            raise UsageError("progress: needs a callable (brdfit.Progress) -> bool, got %r" % (progress,))
+        if cancel is not None and not callable(getattr(cancel, "is_set", None)):
+            raise UsageError("cancel: needs a threading.Event (anything with is_set()), got %r" % (cancel,))
         self.progress = progress
+        self.event = cancel
+        self.what = what
+        self.partial = partial
         self.cancel = ffi.new("bf_cancel_flag *", 0)
+        self.stopped = False  # by the caller: the event, or progress returning True
         self.error: Optional[BaseException] = None
         self.handle = ffi.new_handle(self)
 
     def hook(self, opts: _Options) -> None:
         lib.bf_options_set_cancel(opts.o, self.cancel, ffi.NULL)
         if self.progress is not None:
-            lib.bf_options_set_progress(opts.o, lib._brdfit_progress, self.handle)
+            lib.bf_options_set_progress_report(opts.o, lib._brdfit_report, self.handle)
 
-    def __call__(self, fn: Callable[[], Any]) -> Any:
+    def __call__(self, fn: Callable[[], T]) -> T:
         box: Dict[str, Any] = {}
         began, done = threading.Event(), threading.Event()
 
@@ -50,6 +76,7 @@ class _Run:
                 done.set()
 
         self._pending: Optional[BaseException] = None
+        self._poll_event()  # an event set already: the call stops at its first check
         try:
             threading.Thread(target=work, name="brdfit", daemon=True).start()
         except BaseException as e:  # in start(): the worker may or may not have begun
@@ -64,34 +91,47 @@ class _Run:
             raise self.error
         if "exc" in box:
             raise box["exc"]
-        return box["rc"]
+        if self.stopped and not self.partial:
+            raise Error("%s: cancelled" % self.what if self.what else "cancelled", "cancelled")
+        rc: T = box["rc"]
+        return rc
+
+    def _poll_event(self) -> None:
+        if self.event is not None and not self.cancel[0] and self.event.is_set():
+            self.stopped = True
+            self.cancel[0] = 1
 
     def _wait(self, event: threading.Event, limit: Optional[float]) -> bool:
-        """Waits for event (at most limit seconds); an exception meanwhile sets the cancel
-        flag and is kept for the caller (the first one), and the wait goes on."""
+        """Waits for event (at most limit seconds), looking at the cancel event in between;
+        an exception meanwhile sets the cancel flag and is kept for the caller (the first
+        one), and the wait goes on."""
         waited = 0.0
         while limit is None or waited < limit:
             try:
                 if event.wait(_POLL_SECONDS):
                     return True
                 waited += _POLL_SECONDS
+                self._poll_event()
             except BaseException as e:
                 self.cancel[0] = 1
                 if self._pending is None:
                     self._pending = e
         return False
 
+
 @ffi.def_extern()
-def _brdfit_progress(user, iteration, cost):
+def _brdfit_report(user: Any, report: Any) -> int:
     run = ffi.from_handle(user)
     if run.error is not None or run.cancel[0]:
         return 1
     try:
-        stop = bool(run.progress(int(iteration), float(cost)))
+        stop = bool(run.progress(_progress_of(report)))
     except BaseException as e:
         run.error = e
         stop = True
     if stop:  # the whole call stops, not only this solve
+        if run.error is None:
+            run.stopped = True
         run.cancel[0] = 1
         return 1
     return 0

@@ -8,18 +8,18 @@ from typing import Any, Iterable, List, Optional, Tuple, Union
 import numpy as np
 
 from . import _samples_build as build
-from ._args import _array, _directions, _path_text, _text, _view
+from ._args import Array, _array, _directions, _path_text, _text, _view
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check
 
 
-def _angles_of(v: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+def _angles_of(v: Array) -> Tuple[Array, Array]:
     theta = np.degrees(np.arccos(np.clip(v[:, 2], -1.0, 1.0)))
     phi = np.degrees(np.arctan2(v[:, 1], v[:, 0]))
     return theta, phi
 
 
-def _vectors_of(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
+def _vectors_of(theta: Array, phi: Array) -> Array:
     t, p = np.radians(theta), np.radians(phi)
     return np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=1)
 
@@ -57,10 +57,10 @@ class Samples:
             raise UsageError("theta_i, phi_i, theta_o, phi_o: need the same length, got %s" % [a.size for a in arrs])
         if not degrees:
             arrs = [np.degrees(a) for a in arrs]
-        s._init(*arrs, values, weights, "theta_i")
+        s._init(arrs[0], arrs[1], arrs[2], arrs[3], values, weights, "theta_i")
         return s
 
-    def _init(self, ti, pi_, to, po, values, weights, first: str) -> None:
+    def _init(self, ti: Array, pi_: Array, to: Array, po: Array, values: Any, weights: Any, first: str) -> None:
         n = ti.size
         if n == 0:
             raise UsageError("%s: no directions (a sample set needs at least one sample)" % first)
@@ -178,33 +178,35 @@ class Samples:
         return [ffi.string(self._s.channel_names[c]).decode() for c in range(self.channels)]
 
     @property
-    def values(self) -> np.ndarray:
+    def values(self) -> Array:
         """(n, channels) values in 1/sr: the library's own memory (no copy)."""
         return _view(self, self._s.value, (self.n, self.channels))
 
     @property
-    def weights(self) -> Optional[np.ndarray]:
+    def weights(self) -> Optional[Array]:
         """(n,) weights (no copy), or None when every sample weighs 1."""
         return None if self._s.weight == ffi.NULL else _view(self, self._s.weight, (self.n,))
 
-    def angles(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def angles(self) -> Tuple[Array, Array, Array, Array]:
         """theta_i, phi_i, theta_o, phi_o in degrees (copies)."""
         n = self.n
         if n == 0:
-            return tuple(np.zeros(0) for _ in range(4))
+            z = np.zeros(0)
+            return z, z.copy(), z.copy(), z.copy()
         buf = np.empty(4 * n)  # MERL cells: the library computes them here
         d = ffi.new("const double *[4]")
         lib.bf_samples_angle_block(self._s, 0, n, ffi.from_buffer("double[]", buf), d)
-        return tuple(np.array(_view(buf, d[k], (n,))) for k in range(4))
+        ti, pi_, to, po = (np.array(_view(buf, d[k], (n,))) for k in range(4))
+        return ti, pi_, to, po
 
     @property
-    def wi(self) -> np.ndarray:
+    def wi(self) -> Array:
         """(n, 3) unit vectors towards the light (computed from the angles)."""
         t, p, _, _ = self.angles()
         return _vectors_of(t, p)
 
     @property
-    def wo(self) -> np.ndarray:
+    def wo(self) -> Array:
         """(n, 3) unit vectors towards the viewer (computed from the angles)."""
         _, _, t, p = self.angles()
         return _vectors_of(t, p)

@@ -7,21 +7,21 @@ from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._args import _array, _view
+from ._args import Array, Index, _array, _view
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check
 
 # What a set built anew carries: channel names, MERL cells (n,) or None, the four angle
 # arrays in degrees (n,) (for cells, the library's angles of them), values (n, C),
 # weights (n,) or None.
-Arrays = Tuple[List[str], Optional[np.ndarray], Tuple[np.ndarray, ...], np.ndarray, Optional[np.ndarray]]
+Arrays = Tuple[List[str], Optional[Array], Tuple[Array, ...], Array, Optional[Array]]
 
 
 def _owned(ptr: Any) -> Any:
     return ffi.gc(ptr, lib.bf_samples_free)
 
 
-def indices(key: Any, n: int) -> np.ndarray:
+def indices(key: Any, n: int) -> Index:
     """The sample indices (0 <= i < n) that key (a slice, a boolean mask of length n or an
     array of indices, negative ones from the end) selects, in its order."""
     if isinstance(key, slice):
@@ -51,12 +51,12 @@ def indices(key: Any, n: int) -> np.ndarray:
     return idx
 
 
-def in_order(idx: np.ndarray) -> bool:
+def in_order(idx: Index) -> bool:
     """Whether idx selects samples in their order, each once (a keep mask says it)."""
     return bool(np.all(np.diff(idx) > 0))
 
 
-def copy_kept(s: Any, idx: np.ndarray) -> Any:
+def copy_kept(s: Any, idx: Index) -> Any:
     """The library's copy of samples s with the samples idx (in order) kept."""
     keep = np.zeros(int(s.n), dtype=np.uint8)
     keep[idx] = 1
@@ -75,7 +75,7 @@ def _refuse_what_arrays_lose(s: Any, what: str, hint: str) -> None:
                          % (what, " and ".join(lost), hint))
 
 
-def arrays(s: Any, idx: Optional[np.ndarray], what: str, hint: str = "") -> Arrays:
+def arrays(s: Any, idx: Optional[Index], what: str, hint: str = "") -> Arrays:
     """What a set built anew takes from samples s (the samples idx, or all), as copies;
     what and hint word the refusal of samples with more than that."""
     _refuse_what_arrays_lose(s, what, hint)

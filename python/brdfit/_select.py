@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._compare import _model_list
@@ -12,7 +12,7 @@ from ._errors import _check, _take_text
 from ._fit import FitResult, _result
 from ._frames import frame
 from ._options import _doc, _Options
-from ._run import _Run
+from ._run import CancelEvent, ProgressFn, _Run
 
 
 class SelectResult:
@@ -60,10 +60,12 @@ class SelectResult:
         return "brdfit.SelectResult(chosen=%r)" % (self.chosen,)
 
 
-def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None,
-           progress: Optional[Callable[[int, float], Any]] = None, **options: Any) -> SelectResult:
+def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, progress: Optional[ProgressFn] = None,
+           cancel: Optional[CancelEvent] = None, **options: Any) -> SelectResult:
     opts = _Options("select", options, "select")
-    data = _prepared(samples, opts, "samples")
+    run = _Run(progress, cancel, "select")
+    run.hook(opts)  # reading the data file too
+    data = _prepared(samples, opts, "samples", run)
     if models is None:  # the library's default candidates for the data's channels
         arr = ffi.new("const char ***")
         n = lib.bf_select_default_candidates(data.channels, arr)
@@ -77,8 +79,6 @@ def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None,
         specs = _model_list(models)
     opts.check(specs)
     data._ready()
-    run = _Run(progress)
-    run.hook(opts)
 
     def call() -> SelectResult:  # in the worker, which owns the selection
         err = ffi.new("bf_error *")
@@ -101,8 +101,9 @@ def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None,
 select.__doc__ = """Chooses the smallest model that serves, as `brdfit select`: fits every candidate
 (models: a list of specs or one string as -m takes it; None: the library's default
 candidates for the data's channel count) and chooses the one with the fewest free
-parameters whose error is within the tolerance of the best. progress(iteration, cost)
-sees every solve; returning True stops the selection. The options are brdfit select's, as
-keywords:
+parameters whose error is within the tolerance of the best. progress(brdfit.Progress)
+sees every fit's progress (.model: the candidate's spec); returning True, or cancel (a
+threading.Event) once set, stops the selection, which then raises brdfit.Error (code
+"cancelled"). The options are brdfit select's, as keywords:
 
 """ + _doc("select")

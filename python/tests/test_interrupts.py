@@ -1,6 +1,6 @@
 """Every long call is safe to interrupt: Ctrl-C (SIGINT) and a signal handler that raises
 (SIGALRM raising TimeoutError, as signal-based timeouts do) at random times into fit,
-compare, select, read, eval of a large array and export, 50 times each, in a child
+compare, select, read, eval of a large array, export and tradeoff, 50 times each, in a child
 process: no crash, the exception within a second of the signal, and the next call works.
 """
 
@@ -33,6 +33,7 @@ CHILD = textwrap.dedent(r"""
         "read": lambda: brdfit.read(data, rgb=True, subsample=500),
         "eval": lambda: fitted.model.eval(wi, wo, gradient=True),
         "export": lambda: brdfit.export(fitted, "gltf", convert=True),
+        "tradeoff": lambda: brdfit.tradeoff(samples, "walter", samples=[300, "all"], threads=2),
     }
     call = calls[what]
     signalled = [0.0]
@@ -45,7 +46,9 @@ CHILD = textwrap.dedent(r"""
     worst = 0.0
     for k in range(times):
         delay = random.uniform(0.0, 0.15)
-        try:  # the signal may land while it is being set up, too
+        try:
+            # Armed inside the try: on a loaded machine a short delay can end while the
+            # timer's thread is still being started.
             if kind == "int":
                 threading.Timer(delay, lambda: (signalled.__setitem__(0, time.monotonic()),
                                                 os.kill(os.getpid(), signal.SIGINT))).start()
@@ -64,7 +67,7 @@ CHILD = textwrap.dedent(r"""
 """)
 
 
-@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export"])
+@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export", "tradeoff"])
 @pytest.mark.parametrize("kind", ["int", "alarm"])
 def test_interrupts(tmp_path, kind, what):
     script = tmp_path / "child.py"

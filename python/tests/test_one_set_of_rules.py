@@ -56,11 +56,13 @@ def test_scene_compare_metrics_equal_the_command_lines(tmp_path):
 
 
 def test_keywords_are_the_librarys_table():
-    names = {t: {d["name"] for d in brdfit.options(t)} for t in ("read", "fit", "compare", "select")}
+    names = {t: {d["name"] for d in brdfit.options(t)} for t in ("read", "fit", "compare", "select", "tradeoff")}
     assert {"max_theta", "scene", "subsample", "seed", "rgb"} <= names["read"]
     assert names["read"] < names["fit"]
     assert "accuracy" in names["fit"] and "accuracy" not in names["compare"]  # as the commands take them
     assert {"tolerance", "error", "rank", "folds", "jobs"} <= names["compare"]
+    assert names["read"] < names["tradeoff"] and "accuracy" not in names["tradeoff"]
+    assert {"samples", "methods", "residuals", "starts_list", "test_fraction", "cost", "repeats"} <= names["tradeoff"]
     tolerance = {d["name"]: d for d in brdfit.options("compare")}["tolerance"]
     assert tolerance["default"] == "0.05" and tolerance["range"]
     # Help comes from the table too, with keywords for option names.
@@ -108,7 +110,7 @@ def _option_literals():
 
 def test_the_package_holds_no_option_default_or_range():
     strings, numbers = _option_literals()
-    table = [d for t in ("read", "fit", "compare", "select") for d in brdfit.options(t)]
+    table = [d for t in ("read", "fit", "compare", "select", "tradeoff") for d in brdfit.options(t)]
     # No option is named in the code: the library's table names them. "fix" and "bound"
     # are read as dicts (their shape is the package's), so their names are the exception.
     named = sorted(d["name"] for d in table if d["name"] in strings and d["name"] not in ("fix", "bound"))

@@ -75,3 +75,14 @@ def test_start():
     assert same.params == first.params
     with pytest.raises(brdfit.UsageError, match="channels"):
         brdfit.fit(CAYMAN, first.model, luminance=True)
+    # The model vector (value_names order) and a Model holding parameters are starts too;
+    # a vector of the wrong length or outside the bounds is the caller's error.
+    vec = first.model.vector()
+    assert brdfit.fit(CAYMAN, "walter", rgb=True, threads=1, starts=1, start=vec).params == first.params
+    assert brdfit.fit(CAYMAN, "walter", rgb=True, threads=1, starts=1, start=first.model).params == first.params
+    with pytest.raises(brdfit.UsageError, match="start"):
+        brdfit.fit(CAYMAN, "walter", rgb=True, start=vec[:-1])
+    with pytest.raises(brdfit.UsageError, match="start"):
+        brdfit.fit(CAYMAN, "walter", rgb=True, start=-vec)
+    with pytest.raises(brdfit.UsageError, match="no parameters"):
+        brdfit.fit(CAYMAN, "walter", rgb=True, start=brdfit.Model("walter", 3))

@@ -77,7 +77,7 @@ def test_criteria_a_robust_loss_leaves_undefined_are_nan(samples):
 
 
 def test_a_cancelled_fit_has_nan_standard_errors_and_no_residuals(samples):
-    r = brdfit.fit(samples, "walter", starts=1, progress=lambda it, cost: True)
+    r = brdfit.fit(samples, "walter", starts=1, progress=lambda p: True)
     assert r.cancelled and not r.ok
     assert list(r.stderr) == list(r.params)
     assert all(math.isnan(v) for v in np.ravel([r.stderr[k] for k in ("alpha", "f0")]))

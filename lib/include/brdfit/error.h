@@ -35,7 +35,9 @@ typedef enum bf_status {
     BF_ERR_IO,       /* cannot open, read or write a file */
     BF_ERR_PARSE,    /* malformed input file */
     BF_ERR_RANGE,    /* value outside its bounds, NaN or Inf */
-    BF_ERR_NOMEM
+    BF_ERR_NOMEM,
+    BF_ERR_CANCELLED /* stopped by the caller's cancel flag (bf_options_set_cancel) before it
+                        was done: nothing was made (bf_samples_load) */
 } bf_status;
 
 /* Messages quote what hostile files hold, and are printed on terminals: bf_fail makes
@@ -66,8 +68,8 @@ BF_API bf_status bf_failv(bf_error *err, bf_status code, const char *fmt, va_lis
 
 BF_API void bf_error_clear(bf_error *err);
 
-/* The status's name: "ok", "arg", "io", "parse", "range", "nomem" ("unknown" for any
- * other value). Stable: front ends map them to their own error types. */
+/* The status's name: "ok", "arg", "io", "parse", "range", "nomem", "cancelled" ("unknown"
+ * for any other value). Stable: front ends map them to their own error types. */
 BF_API const char *bf_status_name(bf_status code);
 
 /* Frees what the library allocated and handed over as plain memory (a text such as

@@ -27,7 +27,7 @@ typedef enum bf_format {
  * grid, angles, radians, values, weight; NULL: the defaults), as it is: no sample dropped
  * or changed (bf_samples_load also prepares them). Errors name the file, the line or byte
  * offset, and the problem. Negative values are kept (they are data); NaN or Inf is an
- * error. */
+ * error. o's cancel flag stops it as it stops bf_samples_load (brdfit/load.h). */
 BF_API bf_status bf_samples_read(const char *path, const bf_options *o, bf_samples **out, bf_error *err);
 /* "csv", "merl", "cornell", "alta", "rgl", "mbsdf" ("auto": BF_FORMAT_AUTO) into *out;
  * BF_ERR_ARG with a message listing them for any other name. */

@@ -44,13 +44,18 @@ static inline void bf_load_report_init(bf_load_report *r)
 /* Reads path (any format bf_samples_read takes; "-": standard input) with o's reading
  * options, and prepares the samples with its preprocessing options and scene, into *out
  * (freed with bf_samples_free). report may be NULL. Errors name the file (and line) or
- * the scene file, and the problem; nothing is printed. */
+ * the scene file, and the problem; nothing is printed.
+ * Cancelling: o's cancel flag (bf_options_set_cancel) is read between the steps and, in
+ * the readers of files that take long (CSV, MERL tables, Cornell, ALTA), at every line
+ * or chunk; once it is set the load stops with BF_ERR_CANCELLED ("PATH: reading
+ * cancelled", or "PATH: cancelled" between steps) and *out stays NULL. */
 BF_API bf_status bf_samples_load(const char *path, const bf_options *o, bf_samples **out, bf_load_report *report,
                                  bf_error *err);
 
 /* The same preparation applied to samples already in memory (a program's own, or a set
  * loaded before), in place: preprocessing, the scene, then the subsample. The reading
- * options play no part. Messages name the samples "samples". */
+ * options play no part. Messages name the samples "samples". o's cancel flag is read
+ * between the steps (BF_ERR_CANCELLED; s is then partly prepared, as after any error). */
 BF_API bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report *report, bf_error *err);
 
 /* What `brdfit info` prints about samples loaded from path (the name the report gives

@@ -1,8 +1,9 @@
-/* The options of a run (reading and preparing data, fitting, comparing, selecting), in
- * one place: a table that declares each option once (name, type, range, default, help)
- * and an opaque set of values checked against it. The command line's options, its
- * --help, man pages and completion, and the Python package's keyword arguments all come
- * from this table (docs/api.md), so they mean, allow and refuse the same.
+/* The options of a run (reading and preparing data, fitting, comparing, selecting,
+ * measuring cost against accuracy), in one place: a table that declares each option once
+ * (name, type, range, default, help) and an opaque set of values checked against it. The
+ * command line's options, its --help, man pages and completion, and the Python package's
+ * keyword arguments all come from this table (docs/api.md), so they mean, allow and
+ * refuse the same.
  *
  *     bf_options *o;
  *     bf_options_new(BF_TASK_FIT, &o, &err);
@@ -37,9 +38,10 @@ extern "C" {
  * error). */
 typedef enum bf_task {
     BF_TASK_READ = 1u << 0,    /* reading and preparing data (brdfit info, convert) */
-    BF_TASK_FIT = 1u << 1,     /* and fitting (brdfit fit, regress, tradeoff) */
+    BF_TASK_FIT = 1u << 1,     /* and fitting (brdfit fit, regress) */
     BF_TASK_COMPARE = 1u << 2, /* and comparing models across materials (brdfit compare) */
     BF_TASK_SELECT = 1u << 3,  /* and choosing the smallest model that serves (brdfit select) */
+    BF_TASK_TRADEOFF = 1u << 4, /* and measuring fitting cost against accuracy (brdfit tradeoff) */
 } bf_task;
 
 typedef enum bf_option_type {
@@ -56,7 +58,7 @@ typedef enum bf_option_type {
 typedef struct bf_option {
     const char *name;  /* keyword: "max_theta"; the command line writes "--max-theta" */
     const char *group; /* "reading", "preprocessing", "accuracy", "fitting", "optimizer",
-                             "ranking", "comparing", "selecting" */
+                             "ranking", "comparing", "selecting", "tradeoff" */
     unsigned tasks;    /* bf_task bits of the tasks that take it */
     bf_option_type type;
     const char *arg;      /* the value's name in help ("DEG", "keep|drop|clamp"); NULL for a flag */
@@ -134,14 +136,76 @@ BF_API bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_
 
 /* The flags are bf_cancel_flag (brdfit/solve.h). cancel: read at every iteration of every
  * solve and before every fit: once set, running solves stop at their next iteration (the
- * fit ends cancelled) and no new fit starts. finish: read before each fit of a comparison
- * or selection: once set, no new fit starts and running ones finish (brdfit compare's
- * first Ctrl-C). Either may be NULL; the flags must outlive every use of o. */
+ * fit ends cancelled) and no new fit starts; a load stops too (bf_samples_load:
+ * BF_ERR_CANCELLED). finish: read before each fit of a comparison or selection: once
+ * set, no new fit starts and running ones finish (brdfit compare's first Ctrl-C). Either
+ * may be NULL; the flags must outlive every use of o. */
 BF_API void bf_options_set_cancel(bf_options *o, const bf_cancel_flag *cancel, const bf_cancel_flag *finish);
 /* Called after every iteration of every solve (Ceres) or evaluation (NLopt), from the
  * solving thread, with user as its first argument; non-zero stops the fit as cancel
  * does. NULL: none. */
 BF_API void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user);
+
+/* ---- Progress reports: where a fit, a comparison or a selection is ----------------- */
+
+/* The phases of a fit's search (docs/fitting.md), in the order a fit goes through them;
+ * a fit skips those its options and data leave out. */
+typedef enum bf_fit_phase {
+    BF_PHASE_CANDIDATES = 0, /* the screened search's random candidates, each scored by its
+                                cost on the screening set (no solve: iteration 0) */
+    BF_PHASE_SCREEN,         /* the chosen starts solved on the screening set, then its best
+                                revived (the screening set is the data when that has at
+                                most BF_FIT_SCREEN_SAMPLES, fit.h, and the fit ends here) */
+    BF_PHASE_PRESOLVE,       /* starts solved on the presolve's subsample (option presolve) */
+    BF_PHASE_DATA,           /* solves on all the samples */
+    BF_PHASE_DONE,           /* the fit has ended: reported once, last (not when it was
+                                cancelled), with start 0 of 1, the solution's iterations and
+                                final cost (NaN for a failed fit) and the data's samples;
+                                what the callback returns then is not looked at */
+} bf_fit_phase;
+
+/* "candidates", "screen", "presolve", "data", "done" ("?" out of range). */
+BF_API const char *bf_fit_phase_name(bf_fit_phase phase);
+
+/* One report, made by the library and read through the pointer during the callback
+ * only. Its first member is the library's sizeof: fields are only added at the end
+ * (docs/api.md), and a program reads a field its header has but an older library may
+ * not fill only when size reaches past it (offsetof(bf_progress_report, f) + sizeof f
+ * <= size). */
+typedef struct bf_progress_report {
+    size_t size;
+    bf_fit_phase phase;
+    int start;                 /* the phase's solve (CANDIDATES: its candidate), from 0 */
+    int starts;                /* the solves (candidates) the phase runs at most: start <
+                                  starts; one with nothing to do is skipped, so a phase may
+                                  end before start reaches starts - 1 */
+    int iteration;             /* the solve's iteration (NLopt: evaluation); 0 for a
+                                  candidate */
+    double cost;               /* the cost there, 1/2 sum rho(r^2) over the set solved (a
+                                  candidate's: NaN when not finite) */
+    size_t samples;            /* the samples of that set: the screening set, the
+                                  presolve's subsample or the data */
+    const char *spec;          /* the model being fitted */
+    int material;              /* bf_compare_run: the material's index; -1 otherwise */
+    const char *material_name; /* bf_compare_run: its name (the data); NULL otherwise */
+    int model;                 /* bf_compare_run: the model's index; bf_select_run: the
+                                  candidate's; -1 in a fit alone */
+    int fold;                  /* 0: the fit of all the samples; k = 1 to K: the fit
+                                  leaving out fold k of a cross-validation (compare and
+                                  select ranked by cv) */
+} bf_progress_report;
+
+/* Called as bf_progress_fn is (after every iteration or evaluation of every solve, from
+ * the solving thread), and once for each candidate the screened search scores, with
+ * where the fit is; non-zero stops the fit as cancel does. In bf_compare_run and
+ * bf_select_run the fits running at once (option jobs) call it from their own threads,
+ * concurrently. */
+typedef int (*bf_progress_report_fn)(void *user, const bf_progress_report *report);
+
+/* Sets the report callback (NULL: none), with user as its first argument. It and the
+ * callback of bf_options_set_progress may both be set: each is called (the older first,
+ * and the report only when it did not ask to stop). */
+BF_API void bf_options_set_progress_report(bf_options *o, bf_progress_report_fn progress, void *user);
 
 #ifdef __cplusplus
 }

@@ -9,9 +9,11 @@
  * uses the measured wall time instead (then the front and the recommendation vary from
  * run to run, and the outputs say so).
  *
- * The caller builds the grid (bf_tradeoff_new), runs each row (bf_tradeoff_run_row, in
- * any order, one at a time, since rows are timed) and ranks (bf_tradeoff_rank); the
- * writers read the filled table.
+ * bf_tradeoff_run makes the whole measurement from a set of options (BF_TASK_TRADEOFF,
+ * brdfit/options.h: the lists, the test fraction, the cost, the tolerance ...), as
+ * `brdfit tradeoff` does. Or the caller builds the grid (bf_tradeoff_new), runs each row
+ * (bf_tradeoff_run_row, in any order, one at a time, since rows are timed) and ranks
+ * (bf_tradeoff_rank). The writers read the filled table.
  * Status codes and ownership follow brdfit/error.h.
  */
 #ifndef BRDFIT_TRADEOFF_H
@@ -50,7 +52,7 @@ typedef struct bf_tradeoff_row {
     /* The setting (bf_tradeoff_new). */
     size_t samples;      /* training samples fitted (the whole training set when all) */
     int all;             /* 1: the whole training set, no subsampling */
-    const char *method;  /* as given (points into the init lists) */
+    const char *method;  /* as given (a copy the table owns) */
     bf_residual residual;
     int starts;
     /* Filled by bf_tradeoff_run_row. */
@@ -88,6 +90,11 @@ typedef struct bf_tradeoff {
     int nrows;
     bf_tradeoff_row *rows; /* owned */
     int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */
+    /* From the options of bf_tradeoff_run (bf_tradeoff_new: 0 and NULL). */
+    int plot_width, plot_height; /* plot_size, for bf_tradeoff_write_plot */
+    char *fit_options;           /* owned: the data and base fit options as set, as brdfit fit's
+                                    options (bf_tradeoff_fit_command), or NULL */
+    char *names;                 /* owned: the methods' names, which the rows point into */
 } bf_tradeoff;
 
 /* The most settings a grid may hold (the product of the list lengths). */
@@ -96,8 +103,9 @@ typedef struct bf_tradeoff {
 /* The grid: the full product of the lists, sample counts outermost. counts are training
  * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
  * sorted ascending and deduplicated, so rows run in ascending sample count. Then
- * methods, residuals, starts, in the order given. Every list must be non-empty. Made by
- * the library (read through the pointer: docs/api.md); freed with bf_tradeoff_free. */
+ * methods (copied), residuals, starts, in the order given. Every list must be non-empty.
+ * Made by the library (read through the pointer: docs/api.md); freed with
+ * bf_tradeoff_free. */
 BF_API bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
                                  int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
                                  int nstarts, const int *starts, bf_tradeoff **out, bf_error *err);
@@ -112,6 +120,28 @@ BF_API void bf_tradeoff_free(bf_tradeoff *t);
 BF_API bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_samples *test, const bf_options *base,
                                      bf_error *err);
 
+/* Called after each row of bf_tradeoff_run (i its index), from the calling thread, for
+ * progress output. */
+typedef void (*bf_tradeoff_progress)(void *user, const bf_tradeoff *t, int i);
+
+/* The whole measurement, as `brdfit tradeoff` makes it, from the options o
+ * (BF_TASK_TRADEOFF): model and o checked (bf_options_check_models, bf_options_check:
+ * the lists too, BF_ERR_ARG with the command line's messages); data (prepared already:
+ * bf_samples_load or bf_samples_prepare) split by the options' test_fraction and seed
+ * (bf_tradeoff_split; a set too small to split is BF_ERR_ARG, its message led by name);
+ * the grid made from the lists (bf_tradeoff_new; the methods default to the base
+ * setting's method or ceres,LD_LBFGS, the residuals and start counts to the base's);
+ * every row run in that order, one at a time (bf_tradeoff_run_row with o as the base: a
+ * row that cannot run is marked and the others go on), progress (may be NULL) called
+ * after each with user; then ranked (bf_tradeoff_rank). The table carries the options'
+ * values (test fraction, seed, repeats, error, tolerance, cost, timing, plot size) and
+ * the base options for bf_tradeoff_fit_command. o's cancel and finish flags
+ * (bf_options_set_cancel) stop it before the next row (the rows left are not run).
+ * name (may be NULL) names the data in the outputs. *out: the table (bf_tradeoff_free),
+ * NULL on failure. Returns BF_OK when the rows were run, whatever their outcome. */
+BF_API bf_status bf_tradeoff_run(const bf_samples *data, const char *name, const char *model, const bf_options *o,
+                                 bf_tradeoff_progress progress, void *user, bf_tradeoff **out, bf_error *err);
+
 /* error from t->metric on the test set, the Pareto front of (cost, error) over the ok
  * rows, best (lowest error; ties to the cheaper, then the earlier row), within tolerance
  * (error <= best * (1 + tolerance)) and recommended: the cheapest row within tolerance
@@ -122,10 +152,20 @@ BF_API void bf_tradeoff_rank(bf_tradeoff *t);
 BF_API double bf_tradeoff_row_cost(const bf_tradeoff *t, const bf_tradeoff_row *r);
 BF_API const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "seconds" */
 
+/* Row i's setting as a `brdfit fit` command line, into *out (freed with bf_free):
+ * "brdfit fit DATA OPTIONS -m MODEL SETTING", OPTIONS the data and base fit options of
+ * bf_tradeoff_run as they were set, in order (shell-quoted where needed; none for a
+ * table of bf_tradeoff_new), SETTING the row's: --subsample N (unless all), --backend
+ * (and --algorithm unless Ceres's default), --residual and --starts (unless automatic).
+ * The recommendation is row t->recommended. */
+BF_API bf_status bf_tradeoff_fit_command(const bf_tradeoff *t, int i, char **out, bf_error *err);
+
 /* Outputs through bf_outfile (no partial file on failure; "-": stdout). JSON: every key
  * always present (null where not applicable), seconds only with t->timing; CSV: a header
  * and one row per grid row, a seconds column only with t->timing. */
 BF_API bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_error *err);
+/* The JSON's text, into *out (freed with bf_free). */
+BF_API bf_status bf_tradeoff_json(const bf_tradeoff *t, char **out, bf_error *err);
 BF_API bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error *err);
 
 /* Test error (log axis unless some error is 0) against the cost (log axis): every

@@ -91,7 +91,9 @@ bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *
         if (rc != BF_OK)
             break;
         bf_fit_result r;
-        rc = bf_fit_with(train, spec, o, &r, err);
+        bf_fit_options fo = *o; /* its progress reports name the fold */
+        fo.fold = k + 1;
+        rc = bf_fit_with(train, spec, &fo, &r, err);
         if (rc == BF_OK) {
             double fw = NAN, fs = NAN;
             if (!r.ok) {

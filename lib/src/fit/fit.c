@@ -14,12 +14,12 @@
 #include "brdfit/prep.h"
 
 #include "base/sized.h"
-#include "base/sized.h"
 #include "fit_impl.h"
 #include "run_options.h"
 
 #include "diagnostics.h"
 #include "lobe_order.h"
+#include "progress.h"
 #include "search.h"
 #include "silence.h"
 #include "brdfit/clock.h"
@@ -195,6 +195,7 @@ static bf_status solve_whole_set(const bf_problem *full, const bf_fit_options *o
 {
     const int nz = full->npar; /* the free entries */
     bf_solver_options so = o->solver;
+    bf_fit_watch_solve(sr->watch, &so);
     memcpy(z, zbest, (size_t)nz * sizeof *z);
     so.seed = seed;
     if (!(so.function_tolerance > 0.0))
@@ -275,6 +276,8 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
     unsigned char *held = NULL;
     bf_search sr;
     memset(&sr, 0, sizeof sr);
+    bf_fit_watch watch;
+    bf_fit_watch_init(&watch, o, spec);
     int nsilent = 0, cancelled = 0;
     const bf_problem *prob = full; /* where the starts are solved */
     double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
@@ -319,7 +322,8 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
                          .prob = prob,
                          .presolved = pobj != NULL,
                          .z0 = z0,
-                         .z = zbest};
+                         .z = zbest,
+                         .watch = &watch};
         if ((rc = bf_fit_search(&sr, err)) != BF_OK)
             goto done;
         have_best = sr.have_best;
@@ -333,6 +337,7 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
     }
     if (pobj && have_best && !cancelled) {
         r->presolve.samples = pn;
+        bf_fit_watch_phase(&watch, BF_PHASE_DATA, 1, s->n);
         if ((rc = solve_whole_set(full, o, &sr, best_seed, z, zbest, &sol, err)) != BF_OK)
             goto done;
         cancelled = sol.stop == BF_STOP_CANCELLED;
@@ -403,6 +408,8 @@ done:
         return rc;
     }
     r->seconds = bf_now_seconds() - t0;
+    if (r->solution.stop != BF_STOP_CANCELLED)
+        bf_fit_watch_done(&watch, &r->solution, s->n);
     return BF_OK;
 }
 

@@ -31,6 +31,16 @@ typedef struct bf_fit_options {
      * 0: automatic (BF_FIT_PRESOLVE_SAMPLES when the data has at least
      * BF_FIT_PRESOLVE_MIN samples); < 0: never. */
     long presolve;
+    /* Progress reports (brdfit/options.h; NULL: none), and what they say besides the
+     * search's place: the comparison's material (index and name; -1 and NULL: none),
+     * its model or the selection's candidate (-1: none), the cross-validation's fold (0:
+     * the fit of all samples). bf_fit_options_init: none of them. */
+    bf_progress_report_fn report;
+    void *report_user;
+    int material, model, fold;
+    const char *material_name;
+    int report_materials; /* 1: a comparison's fits set material (bf_compare_run); a
+                             selection's one material is none */
 } bf_fit_options;
 
 /* The defaults every fitting command starts from (brdfit fit's): log residual, the

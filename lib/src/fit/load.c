@@ -2,6 +2,7 @@
  * end uses. */
 #include "brdfit/load.h"
 
+#include "base/cancel.h"
 #include "base/sized.h"
 #include "brdfit/scene.h"
 #include "run_options.h"
@@ -44,6 +45,14 @@ static bf_status apply_scene(const char *path, const char *scene, const bf_prep 
     return BF_OK;
 }
 
+/* Stopped by o's cancel flag between steps (the readers watch it within theirs). */
+static bf_status cancelled(const char *name, const bf_options *o, bf_error *err)
+{
+    if (bf_cancel_is_set(o->cancel))
+        return bf_fail(err, BF_ERR_CANCELLED, "%s: cancelled", name);
+    return BF_OK;
+}
+
 /* The preprocessing, the scene and the subsample of o applied to s, counted into r. */
 static bf_status prepare(const char *name, const bf_options *o, bf_samples *s, bf_load_report *r, bf_error *err)
 {
@@ -63,7 +72,11 @@ static bf_status prepare(const char *name, const bf_options *o, bf_samples *s, b
     r->negative = pr.negative;
     r->above_max_theta = pr.above_max_theta;
     r->subsampled_out = pr.subsampled_out;
-    return scene ? apply_scene(name, scene, &p, s, r, err) : BF_OK;
+    if ((rc = cancelled(name, o, err)) != BF_OK)
+        return rc;
+    if (scene && (rc = apply_scene(name, scene, &p, s, r, err)) != BF_OK)
+        return rc;
+    return cancelled(name, o, err);
 }
 
 bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report *report, bf_error *err)
@@ -79,7 +92,8 @@ bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report 
         return rc;
     r.read = s->n;
     r.channels_read = s->channels;
-    rc = prepare("samples", o, s, &r, err);
+    if ((rc = cancelled("samples", o, err)) == BF_OK)
+        rc = prepare("samples", o, s, &r, err);
     r.kept = s->n;
     if (report)
         bf_sized_copy(report, &r, sizeof r);
@@ -106,7 +120,8 @@ bf_status bf_samples_load(const char *path, const bf_options *o, bf_samples **ou
         return rc;
     r.read = s->n;
     r.channels_read = s->channels;
-    rc = prepare(path, o, s, &r, err);
+    if ((rc = cancelled(path, o, err)) == BF_OK)
+        rc = prepare(path, o, s, &r, err);
     r.kept = s->n;
     if (report)
         bf_sized_copy(report, &r, sizeof r);

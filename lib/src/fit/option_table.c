@@ -2,6 +2,7 @@
  * is taken and read. The command line's tables, --help, man pages and completion, and
  * the Python package's keywords and help are made from these rows. */
 #include "run_options.h"
+#include "tradeoff_options.h"
 
 #include "brdfit/io.h"
 #include "brdfit/tool.h"
@@ -389,8 +390,8 @@ static void get_metric(const bf_options *o, const option_row *r, char *buf, size
 
 /* ---- The rows ------------------------------------------------------------------------- */
 
-#define DATA_TASKS (BF_TASK_READ | BF_TASK_FIT | BF_TASK_COMPARE | BF_TASK_SELECT)
-#define FIT_TASKS (BF_TASK_FIT | BF_TASK_COMPARE | BF_TASK_SELECT)
+#define DATA_TASKS (BF_TASK_READ | BF_TASK_FIT | BF_TASK_COMPARE | BF_TASK_SELECT | BF_TASK_TRADEOFF)
+#define FIT_TASKS (BF_TASK_FIT | BF_TASK_COMPARE | BF_TASK_SELECT | BF_TASK_TRADEOFF)
 #define RANK_TASKS (BF_TASK_COMPARE | BF_TASK_SELECT)
 
 /* Each row: name, group, tasks, type, arg, help, complete, choices, default, lo, hi,
@@ -584,6 +585,53 @@ const option_row option_rows[] = {
     {ROW("error", "selecting", BF_TASK_SELECT, BF_OPTION_CHOICE, "rmse|rmse_log|rmse_cos|rmse_rel",
          "the error compared (default rmse_log)", NULL, "rmse|rmse_log|rmse_cos|rmse_rel", "rmse_log", 0, 0, NULL),
      .set = set_metric, .get = get_metric},
+    /* Measuring cost against accuracy (tradeoff_options.c). The lists are checked once
+     * every option is in (bf_options_check), their defaults following the base setting. */
+    {ROW("samples", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_TEXT, "N,...|all",
+         "training sample counts (default 1000,4000,16000,64000,all;\n"
+         "'k' suffix: thousands); counts >= the training set are 'all'",
+         NULL, NULL, "1000,4000,16000,64000,all", 0, 0, NULL),
+     .get = options_tradeoff_get_list},
+    {ROW("methods", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_TEXT, "M,...",
+         "ceres (Levenberg-Marquardt), ceres:dogleg, or NLopt names\n"
+         "(LD_LBFGS, LD_SLSQP, LN_BOBYQA ...); default: the --backend /\n"
+         "--algorithm setting if given, else ceres,LD_LBFGS",
+         NULL, NULL, NULL, 0, 0, NULL),
+     .get = options_tradeoff_get_list},
+    {ROW("residuals", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_TEXT, "R,...", "residual forms (default: --residual, log)",
+         NULL, NULL, NULL, 0, 0, NULL),
+     .get = options_tradeoff_get_list},
+    {ROW("starts_list", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_TEXT, "N|auto,...",
+         "start counts (brdfit fit --starts; auto: its automatic\ncount; default: --starts, or auto)", NULL, NULL, NULL,
+         0, 0, NULL),
+     .get = options_tradeoff_get_list},
+    {ROW("test_fraction", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_NUMBER, "F",
+         "held-out share of the samples, seeded random (default 0.2)", NULL, NULL, "0.2", DBL_TRUE_MIN,
+         1.0 - DBL_EPSILON / 2, "a number between 0 and 1 (exclusive)"),
+     .set = options_tradeoff_set_number, .get = options_tradeoff_get_kept},
+    {ROW("cost", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_CHOICE, "work|seconds",
+         "what a setting costs: sample evaluations (default; the same on\n"
+         "every machine) or wall time (varies from run to run)",
+         NULL, "work|seconds", "work", 0, 0, NULL),
+     .set = options_tradeoff_set_cost, .get = options_tradeoff_get_kept},
+    {ROW("timing", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_FLAG, NULL, "wall times in the table and the files too", NULL,
+         NULL, NULL, 0, 0, NULL),
+     .at = AT(timing), .flag_on = 1},
+    {ROW("repeats", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_INT, "N",
+         "fit each setting N times, keep the least time (default 1)", NULL, NULL, "1", 1, 1000,
+         "an integer from 1 to 1000"),
+     .set = options_tradeoff_set_number, .get = options_tradeoff_get_kept},
+    {ROW("error", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_CHOICE, "rmse|rmse_log|rmse_cos|rmse_rel",
+         "test error to judge by (default rmse_log)", NULL, "rmse|rmse_log|rmse_cos|rmse_rel", "rmse_log", 0, 0, NULL),
+     .set = set_metric, .get = get_metric},
+    {ROW("tolerance", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_NUMBER, "T",
+         "recommend the cheapest setting with test error <= best * (1 + T)\n(default 0.05)", NULL, NULL, "0.05", 0.0,
+         HUGE_VAL, "a number >= 0 (relative, 0.05 = 5%)"),
+     .at = AT(tolerance)},
+    {ROW("plot_size", "tradeoff", BF_TASK_TRADEOFF, BF_OPTION_TEXT, "WxH",
+         "pixels (PNG) or points (SVG, PDF); default 640x400", NULL, NULL, "640x400", 40, 8192,
+         "WxH, each 40 to 8192"),
+     .set = options_tradeoff_set_plot_size, .get = options_tradeoff_get_kept},
 };
 const int option_nrows = (int)(sizeof option_rows / sizeof option_rows[0]);
 _Static_assert(sizeof option_rows / sizeof option_rows[0] <= OPTION_ROWS_MAX, "raise OPTION_ROWS_MAX");

@@ -21,6 +21,7 @@ void bf_fit_options_init(bf_fit_options *o)
     o->solver.backend = BF_BACKEND_CERES;
     o->starts = 0; /* automatic (search.c) */
     o->screen = BF_FIT_SCREEN;
+    o->material = o->model = -1; /* a fit alone */
     /* Results do not depend on the thread count (fixed chunks summed in a fixed order),
      * so every core costs nothing in reproducibility. */
     long cores = sysconf(_SC_NPROCESSORS_ONLN);

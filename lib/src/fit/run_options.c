@@ -2,6 +2,7 @@
  * the table (option_table.c), checked for what couples options, and turned into the
  * structs the readers, the preprocessing and the fit take. */
 #include "run_options.h"
+#include "tradeoff_options.h"
 
 #include "brdfit/tool.h"
 
@@ -103,13 +104,18 @@ const char *option_text(const bf_options *o, const char *name)
 
 static const char *task_name(unsigned t)
 {
-    return t == BF_TASK_READ ? "read" : t == BF_TASK_FIT ? "fit" : t == BF_TASK_COMPARE ? "compare" : "select";
+    return t == BF_TASK_READ      ? "read"
+           : t == BF_TASK_FIT     ? "fit"
+           : t == BF_TASK_COMPARE ? "compare"
+           : t == BF_TASK_SELECT  ? "select"
+                                  : "tradeoff";
 }
 
 bf_status bf_options_new(bf_task task, bf_options **out, bf_error *err)
 {
     *out = NULL;
-    if (task != BF_TASK_READ && task != BF_TASK_FIT && task != BF_TASK_COMPARE && task != BF_TASK_SELECT)
+    if (task != BF_TASK_READ && task != BF_TASK_FIT && task != BF_TASK_COMPARE && task != BF_TASK_SELECT &&
+        task != BF_TASK_TRADEOFF)
         return bf_fail(err, BF_ERR_ARG, "options: unknown task %d", (int)task);
     bf_options *o = calloc(1, sizeof *o);
     if (!o)
@@ -195,6 +201,12 @@ void bf_options_set_progress(bf_options *o, bf_progress_fn progress, void *user)
     o->progress_user = user;
 }
 
+void bf_options_set_progress_report(bf_options *o, bf_progress_report_fn progress, void *user)
+{
+    o->report = progress;
+    o->report_user = user;
+}
+
 /* ---- Setting and reading by name ---------------------------------------------------- */
 
 /* The generic forms (a row without its own set): the one-line messages say the range. */
@@ -250,7 +262,7 @@ bf_status bf_options_set(bf_options *o, const char *name, const char *value, bf_
         if (!named)
             return bf_fail(err, BF_ERR_ARG, "unknown option '%s'", name ? name : "");
         char tasks[64] = "";
-        for (unsigned t = BF_TASK_READ; t <= BF_TASK_SELECT; t <<= 1) {
+        for (unsigned t = BF_TASK_READ; t <= BF_TASK_TRADEOFF; t <<= 1) {
             const option_row *other = find_row(name, t, &named);
             if (other)
                 snprintf(tasks + strlen(tasks), sizeof tasks - strlen(tasks), "%s%s", *tasks ? ", " : "", task_name(t));
@@ -294,6 +306,8 @@ static bf_status replay(const bf_options *o, const char *skip, bf_options **out,
     n->finish = o->finish;
     n->progress = o->progress;
     n->progress_user = o->progress_user;
+    n->report = o->report;
+    n->report_user = o->report_user;
     if (o->start && (rc = bf_options_set_start(n, o->start, o->nstart, err)) != BF_OK) {
         bf_options_free(n);
         return rc;
@@ -395,7 +409,11 @@ bf_status bf_options_check(const bf_options *o, bf_error *err)
     /* The method, its local method and the constraint against the method registry. */
     bf_fit_options f;
     options_fit_get(o, &f);
-    return bf_solver_options_check(&f.solver, err);
+    bf_status rc = bf_solver_options_check(&f.solver, err);
+    /* The tradeoff's lists, once every option is in (tradeoff_options.c). */
+    if (rc == BF_OK && o->task == BF_TASK_TRADEOFF)
+        rc = options_tradeoff_check(o, err);
+    return rc;
 }
 
 bf_status bf_options_check_models(const bf_options *o, const char *const *specs, int n, bf_error *err)
@@ -425,6 +443,7 @@ void options_read_get(const bf_options *o, options_reading *out)
     out->read.csv.channels = option_text(o, "values");
     out->read.csv.weight_col = option_text(o, "weight");
     out->read.grid = option_text(o, "grid");
+    out->read.cancel = o->cancel;
     const char *angles = option_text(o, "angles"); /* checked when set: four names */
     if (angles) {
         snprintf(out->angles, sizeof out->angles, "%s", angles);
@@ -488,6 +507,8 @@ void options_fit_get(const bf_options *o, bf_fit_options *out)
     out->solver.progress = o->progress;
     out->solver.progress_user = o->progress_user;
     out->solver.cancel = o->cancel;
+    out->report = o->report;
+    out->report_user = o->report_user;
     out->start = o->start;
     out->starts = o->starts;
     out->screen = o->screen;

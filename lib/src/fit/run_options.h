@@ -64,6 +64,8 @@ struct bf_options {
     const bf_cancel_flag *cancel, *finish;
     bf_progress_fn progress;
     void *progress_user;
+    bf_progress_report_fn report;
+    void *report_user;
 };
 
 /* One row of the table: the public declaration and how it is taken. */

@@ -41,6 +41,7 @@
 #include "brdfit/prep.h"
 
 #include "base/big_alloc.h"
+#include "progress.h"
 #include "silence.h"
 #include "base/rng.h"
 
@@ -102,13 +103,16 @@ static void add_counts(bf_presolve_info *c, const bf_solution *sol)
     c->seconds += sol->seconds;
 }
 
-/* Solves p from z (in place) with start k's seed. *cost: the final cost, NaN when the
- * solve is not usable. Returns an error only for the first start of a search (bad options
- * or a back end that cannot run); a later start the back end fails on is just unusable. */
-static bf_status solve_start(const bf_problem *p, const bf_fit_options *o, int k, double *z, bf_solution *sol,
-                             double *cost, uint64_t *seed, bf_presolve_info *counts, int *cancelled, bf_error *err)
+/* Solves p from z (in place) with start k's seed, as the next solve of w's phase. *cost:
+ * the final cost, NaN when the solve is not usable. Returns an error only for the first
+ * start of a search (bad options or a back end that cannot run); a later start the back
+ * end fails on is just unusable. */
+static bf_status solve_start(const bf_problem *p, const bf_fit_options *o, bf_fit_watch *w, int k, double *z,
+                             bf_solution *sol, double *cost, uint64_t *seed, bf_presolve_info *counts, int *cancelled,
+                             bf_error *err)
 {
     bf_solver_options so = o->solver;
+    bf_fit_watch_solve(w, &so);
     uint64_t sseed = o->seed + (uint64_t)k + 1;
     so.seed = bf_splitmix64(&sseed);
     *seed = so.seed;
@@ -161,8 +165,8 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
             random_start(p, s->z0, &draw, z);
         bf_solution sol;
         uint64_t seed;
-        if ((rc = solve_start(p, s->options, k, z, &sol, &costs[k], &seed, &s->on_prob, &s->cancelled, err)) !=
-                BF_OK ||
+        if ((rc = solve_start(p, s->options, s->watch, k, z, &sol, &costs[k], &seed, &s->on_prob, &s->cancelled,
+                              err)) != BF_OK ||
             s->cancelled)
             break;
         if (k == 0)
@@ -184,9 +188,9 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
  * other bound, the silenced entries left where they are (or just inside a bound they sit
  * on), and solved again; a better optimum replaces *zb and *sb. At most max solves.
  * Returns the solves run. */
-static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *dp, const bf_fit_options *opt, int k0,
-                  double *zb, bf_solution *sb, uint64_t *seed, int max, int places, bf_presolve_info *counts,
-                  int *cancelled)
+static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *dp, const bf_fit_options *opt,
+                  bf_fit_watch *w, int k0, double *zb, bf_solution *sb, uint64_t *seed, int max, int places,
+                  bf_presolve_info *counts, int *cancelled)
 {
     const int nz = p->npar;
     const bf_model *m = o->model;
@@ -219,7 +223,7 @@ static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *
             bf_solution sol;
             double cost;
             uint64_t sd;
-            if (solve_start(p, opt, k0 + runs, z, &sol, &cost, &sd, counts, cancelled, &e2) != BF_OK || *cancelled)
+            if (solve_start(p, opt, w, k0 + runs, z, &sol, &cost, &sd, counts, cancelled, &e2) != BF_OK || *cancelled)
                 break;
             runs++;
             if (isfinite(cost) && cost < sb->final_cost * (1.0 - DISTINCT)) {
@@ -346,6 +350,7 @@ static bf_status screened(bf_search *s, bf_error *err)
     const int K = N - 1 - nsw;
     double *cz = pts + (size_t)(1 + nsw) * nz; /* the candidates */
     uint64_t draw = o->seed;
+    bf_fit_watch_phase(s->watch, BF_PHASE_CANDIDATES, M, nS);
     for (int j = 0; j < M; j++) {
         if (o->solver.cancel && *o->solver.cancel) {
             s->cancelled = 1;
@@ -354,6 +359,10 @@ static bf_status screened(bf_search *s, bf_error *err)
         random_start(sp, s->z0, &draw, cz + (size_t)j * nz);
         cand[j].cost = cost_at(sp, &o->solver, cz + (size_t)j * nz);
         cand[j].index = j;
+        if (bf_fit_watch_candidate(s->watch, j, cand[j].cost)) {
+            s->cancelled = 1;
+            goto done;
+        }
     }
     qsort(cand, (size_t)M, sizeof *cand, by_cost);
     /* What is solved, in order: z0, the switches, the cheapest half of K, then the rest
@@ -369,11 +378,13 @@ static bf_status screened(bf_search *s, bf_error *err)
     for (int j = 0; j < M && n < 1 + nsw + K; j++)
         if (!taken[j])
             order[n++] = 1 + nsw + j;
+    bf_fit_watch_phase(s->watch, BF_PHASE_SCREEN, n + SCREEN_REVIVES, nS); /* the starts, then the revives */
     for (int t = 0; t < n; t++) {
         double *z = pts + (size_t)order[t] * nz;
         bf_solution sol;
         uint64_t seed;
-        if ((rc = solve_start(sp, o, t, z, &sol, &solved[t].cost, &seed, &s->screen, &s->cancelled, err)) != BF_OK ||
+        if ((rc = solve_start(sp, o, s->watch, t, z, &sol, &solved[t].cost, &seed, &s->screen, &s->cancelled, err)) !=
+                BF_OK ||
             s->cancelled)
             goto done;
         solved[t].index = t; /* ties go to the earlier solve, as consider() keeps them */
@@ -398,7 +409,7 @@ static bf_status screened(bf_search *s, bf_error *err)
         if (sp == prob)
             sb = s->best;
         uint64_t seed = s->best_seed;
-        revive(sp, so, sp, o, n, zb, &sb, &seed, SCREEN_REVIVES, 2, &s->screen, &s->cancelled);
+        revive(sp, so, sp, o, s->watch, n, zb, &sb, &seed, SCREEN_REVIVES, 2, &s->screen, &s->cancelled);
         if (s->cancelled)
             goto done;
         solved[0].cost = sb.final_cost;
@@ -408,38 +419,42 @@ static bf_status screened(bf_search *s, bf_error *err)
     if (sp == prob)
         goto done;
 
-    /* Promote: the best PROMOTE distinct screened optima and the data-driven start. */
-    int promoted = 0, k = n + SCREEN_REVIVES;
-    for (int t = -1; t < n && promoted < PROMOTE; t++) {
-        if (t >= 0) {
-            if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
-                continue;
-            if (solved[t].cost > solved[0].cost * (1.0 + PROMOTE_WINDOW))
-                break;   /* sorted: the rest are worse still */
-            int dup = 0; /* the same optimum as an earlier one, or as the data-driven start's */
-            for (int u = 0; u < n && !dup; u++)
-                dup = (u < t || order[solved[u].index] == 0) && isfinite(solved[u].cost) &&
-                      fabs(solved[u].cost - solved[t].cost) <= BF_FIT_AT_BEST * solved[t].cost;
-            if (dup)
-                continue;
-            memcpy(zp, pts + (size_t)order[solved[t].index] * nz, (size_t)nz * sizeof *zp);
-            promoted++;
-        } else {
+    /* Promote: the data-driven start and the best PROMOTE distinct screened optima (chosen
+     * first, so that the progress reports count them), then (presolved) the revives. */
+    int promote[PROMOTE], npromote = 0, k = n + SCREEN_REVIVES;
+    for (int t = 0; t < n && npromote < PROMOTE; t++) {
+        if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
+            continue;
+        if (solved[t].cost > solved[0].cost * (1.0 + PROMOTE_WINDOW))
+            break;   /* sorted: the rest are worse still */
+        int dup = 0; /* the same optimum as an earlier one, or as the data-driven start's */
+        for (int u = 0; u < n && !dup; u++)
+            dup = (u < t || order[solved[u].index] == 0) && isfinite(solved[u].cost) &&
+                  fabs(solved[u].cost - solved[t].cost) <= BF_FIT_AT_BEST * solved[t].cost;
+        if (!dup)
+            promote[npromote++] = t;
+    }
+    bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
+                       1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
+    for (int q = -1; q < npromote; q++) {
+        if (q >= 0)
+            memcpy(zp, pts + (size_t)order[solved[promote[q]].index] * nz, (size_t)nz * sizeof *zp);
+        else
             memcpy(zp, s->z0, (size_t)nz * sizeof *zp);
-        }
         bf_solution sol;
         double cost;
         uint64_t seed;
-        if ((rc = solve_start(prob, o, t < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled, err)) !=
-                BF_OK ||
+        if ((rc = solve_start(prob, o, s->watch, q < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled,
+                              err)) != BF_OK ||
             s->cancelled)
             goto done;
-        if (t < 0)
+        if (q < 0)
             s->first = sol;
         consider(s, zp, &sol, cost, seed);
     }
     if (s->have_best && s->presolved)
-        revive(prob, pobj, sp, o, k, s->z, &s->best, &s->best_seed, PROB_REVIVES, 1, &s->on_prob, &s->cancelled);
+        revive(prob, pobj, sp, o, s->watch, k, s->z, &s->best, &s->best_seed, PROB_REVIVES, 1, &s->on_prob,
+               &s->cancelled);
 
 done:
     free(pts);
@@ -513,7 +528,10 @@ bf_status bf_fit_search(bf_search *s, bf_error *err)
     memset(&s->screen, 0, sizeof s->screen);
     memset(&s->first, 0, sizeof s->first);
     const int starts = bf_fit_search_starts(s->options, s->samples->n);
-    if (starts <= 1 || s->options->screen <= 0)
+    if (starts <= 1 || s->options->screen <= 0) {
+        bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA, starts > 1 ? starts : 1,
+                           s->samples->n);
         return plain(s, starts > 1 ? starts : 1, err);
+    }
     return screened(s, err);
 }

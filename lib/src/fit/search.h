@@ -19,6 +19,7 @@ typedef struct bf_search {
     const bf_problem *prob;        /* where the chosen starts are solved */
     int presolved;                 /* 1: prob is the presolve's subsample of the data */
     const double *z0;              /* the data-driven (or the caller's) start, internal */
+    struct bf_fit_watch *watch;    /* the fit's progress reports (progress.h; NULL: none) */
     /* Out. */
     double *z;          /* the best point on prob (nz, allocated by the caller) */
     bf_solution best;   /* its solution on prob */

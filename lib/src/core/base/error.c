@@ -167,6 +167,7 @@ const char *bf_status_name(bf_status code)
     case BF_ERR_PARSE: return "parse";
     case BF_ERR_RANGE: return "range";
     case BF_ERR_NOMEM: return "nomem";
+    case BF_ERR_CANCELLED: return "cancelled";
     }
     return "unknown";
 }

@@ -22,6 +22,8 @@
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 #include "base/big_alloc.h"
+#include "base/cancel.h"
+#include "io/read_options.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -360,6 +362,12 @@ static bf_status header_complete(const header *h, const char *path, size_t linen
 
 bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
 {
+    return bf_samples_read_alta_cancellable(path, NULL, out, err);
+}
+
+bf_status bf_samples_read_alta_cancellable(const char *path, const bf_cancel_flag *cancel, bf_samples **out,
+                                           bf_error *err)
+{
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
@@ -375,6 +383,10 @@ bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err
 
     while ((len = getline(&line, &linecap, fp)) >= 0) {
         lineno++;
+        if (bf_cancel_is_set(cancel)) {
+            rc = bf_read_cancelled(path, err);
+            goto done;
+        }
         if (memchr(line, '\0', (size_t)len)) {
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in an ALTA text file", path, lineno);
             goto done;

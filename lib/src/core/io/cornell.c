@@ -12,6 +12,8 @@
 #include "brdfit/io.h"
 #include "brdfit/samples.h"
 #include "base/big_alloc.h"
+#include "base/cancel.h"
+#include "io/read_options.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -51,6 +53,12 @@ enum { IN_COUNT, IN_WAVELENGTHS, IN_RECORDS };
 
 bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *err)
 {
+    return bf_samples_read_cornell_cancellable(path, NULL, out, err);
+}
+
+bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_flag *cancel, bf_samples **out,
+                                              bf_error *err)
+{
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
@@ -69,6 +77,10 @@ bf_status bf_samples_read_cornell(const char *path, bf_samples **out, bf_error *
 
     while ((len = getline(&line, &linecap, fp)) >= 0) {
         lineno++;
+        if (bf_cancel_is_set(cancel)) {
+            rc = bf_read_cancelled(path, err);
+            goto done;
+        }
         if (memchr(line, '\0', (size_t)len)) {
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in a Cornell text file", path,
                          lineno);

@@ -3,6 +3,8 @@
  * error name the line and column. */
 #include "brdfit/io.h"
 #include "base/big_alloc.h"
+#include "base/cancel.h"
+#include "io/read_options.h"
 #include "brdfit/limits.h"
 
 #include <ctype.h>
@@ -210,6 +212,11 @@ done:
 
 bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err)
 {
+    return bf_csv_read_cancellable(path, NULL, out, err);
+}
+
+bf_status bf_csv_read_cancellable(const char *path, const bf_cancel_flag *cancel, bf_csv **out, bf_error *err)
+{
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
@@ -225,6 +232,10 @@ bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err)
     }
     while ((len = getline(&line, &linecap, fp)) >= 0) {
         lineno++;
+        if (bf_cancel_is_set(cancel)) { /* every line: one load, cheap beside parsing it */
+            rc = bf_read_cancelled(path, err);
+            goto done;
+        }
         if (memchr(line, '\0', (size_t)len)) {
             rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in a CSV file", path, lineno);
             goto done;

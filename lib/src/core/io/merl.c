@@ -21,6 +21,8 @@
 #include "brdfit/samples.h"
 
 #include "base/big_alloc.h"
+#include "base/cancel.h"
+#include "io/read_options.h"
 
 #include <errno.h>
 #include <math.h>
@@ -103,7 +105,8 @@ static bf_status read_header(FILE *fp, const char *path, bf_error *err)
  * samples' layout), a chunk at a time so no second copy of the table is needed. */
 enum { READ_CHUNK = 65536 }; /* doubles */
 
-static bf_status read_planes(FILE *fp, const char *path, double *dst, int interleaved, bf_error *err)
+static bf_status read_planes(FILE *fp, const char *path, double *dst, int interleaved, const bf_cancel_flag *cancel,
+                             bf_error *err)
 {
     double *buf = malloc(READ_CHUNK * sizeof *buf);
     if (!buf)
@@ -113,6 +116,10 @@ static bf_status read_planes(FILE *fp, const char *path, double *dst, int interl
         for (size_t c0 = 0; c0 < (size_t)BF_MERL_CELLS && rc == BF_OK; c0 += READ_CHUNK) {
             const size_t want = (size_t)BF_MERL_CELLS - c0 < READ_CHUNK ? (size_t)BF_MERL_CELLS - c0 : READ_CHUNK;
             const size_t x0 = p * (size_t)BF_MERL_CELLS + c0; /* doubles before this chunk */
+            if (bf_cancel_is_set(cancel)) {
+                rc = bf_read_cancelled(path, err);
+                break;
+            }
             size_t got = fread(buf, 1, want * sizeof *buf, fp);
             if (ferror(fp)) {
                 rc = read_error(fp, path, err);
@@ -198,6 +205,12 @@ static bf_status table_samples(const char *path, double *table, int interleaved,
 
 bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out, bf_error *err)
 {
+    return bf_samples_read_merl_cancellable(path, keep_raw, NULL, out, err);
+}
+
+bf_status bf_samples_read_merl_cancellable(const char *path, int keep_raw, const bf_cancel_flag *cancel,
+                                           bf_samples **out, bf_error *err)
+{
     *out = NULL;
     FILE *fp = bf_input_open(path);
     if (!fp)
@@ -221,8 +234,10 @@ bf_status bf_samples_read_merl(const char *path, int keep_raw, bf_samples **out,
     if (rc == BF_OK && !(table = bf_big_malloc(TABLE_DOUBLES * sizeof *table)))
         rc = bf_fail_memory(err, path, 0, TABLE_DOUBLES * sizeof *table);
     if (rc == BF_OK)
-        rc = read_planes(fp, path, table, !keep_raw, err);
+        rc = read_planes(fp, path, table, !keep_raw, cancel, err);
     fclose(fp);
+    if (rc == BF_OK && bf_cancel_is_set(cancel))
+        rc = bf_read_cancelled(path, err);
     if (rc == BF_OK)
         rc = table_samples(path, table, !keep_raw, out, err);
     if (rc != BF_OK)

@@ -47,12 +47,18 @@ static bf_status find_columns(const bf_csv *t, const char *path, const char *lis
 
 bf_status bf_samples_read_csv(const char *path, const bf_csv_map *map, bf_samples **out, bf_error *err)
 {
+    return bf_samples_read_csv_cancellable(path, map, NULL, out, err);
+}
+
+bf_status bf_samples_read_csv_cancellable(const char *path, const bf_csv_map *map, const bf_cancel_flag *cancel,
+                                          bf_samples **out, bf_error *err)
+{
     static const bf_csv_map defaults = {{NULL, NULL, NULL, NULL}, 0, NULL, NULL};
     if (!map)
         map = &defaults;
     *out = NULL;
     bf_csv *t;
-    bf_status rc = bf_csv_read(path, &t, err);
+    bf_status rc = bf_csv_read_cancellable(path, cancel, &t, err);
     if (rc != BF_OK)
         return rc;
     bf_samples *s = NULL;

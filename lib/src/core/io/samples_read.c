@@ -1,6 +1,7 @@
 /* Which reader or writer a file gets: by the --format option, else by extension, else
  * by content. */
 #include "io/read_options.h"
+#include "base/cancel.h"
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
 
@@ -72,18 +73,28 @@ bf_status bf_samples_read_with(const char *path, const bf_read_options *opt, bf_
                        "%s: a direction grid (%s) needs a format that can be evaluated anywhere (rgl, mbsdf), not %s",
                        path, grid, bf_format_name(f));
     }
+    const bf_cancel_flag *cancel = opt ? opt->cancel : NULL;
+    if (bf_cancel_is_set(cancel)) {
+        *out = NULL;
+        return bf_read_cancelled(path, err);
+    }
     switch (f) {
     case BF_FORMAT_RGL:
         return bf_samples_read_rgl(path, grid, out, err);
     case BF_FORMAT_MBSDF:
         return bf_samples_read_mbsdf(path, grid, out, err);
     case BF_FORMAT_MERL:
-        return bf_samples_read_merl(path, opt ? opt->keep_origin : 0, out, err);
+        return bf_samples_read_merl_cancellable(path, opt ? opt->keep_origin : 0, cancel, out, err);
     case BF_FORMAT_CORNELL:
-        return bf_samples_read_cornell(path, out, err);
+        return bf_samples_read_cornell_cancellable(path, cancel, out, err);
     case BF_FORMAT_ALTA:
-        return bf_samples_read_alta(path, out, err);
+        return bf_samples_read_alta_cancellable(path, cancel, out, err);
     default:
-        return bf_samples_read_csv(path, opt ? &opt->csv : NULL, out, err);
+        return bf_samples_read_csv_cancellable(path, opt ? &opt->csv : NULL, cancel, out, err);
     }
+}
+
+bf_status bf_read_cancelled(const char *path, bf_error *err)
+{
+    return bf_fail(err, BF_ERR_CANCELLED, "%s: reading cancelled", path);
 }

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "brdfit/compare.h"
+#include "base/cancel.h"
 #include "base/parallel.h"
 #include "compare/compare_run.h"
 #include "run_options.h"
@@ -37,34 +38,30 @@ typedef struct run {
     int done, total;
 } run;
 
-/* The cancel flag, read by every fitting thread while a signal handler may set it: an
- * atomic load where the compiler has one (the handler should store it atomically too:
- * see cmd/cmd_compare.c), else the volatile read. */
-static int cancelled(const bf_cancel_flag *flag)
-{
-#if defined(__GNUC__)
-    return flag && __atomic_load_n(flag, __ATOMIC_RELAXED);
-#else
-    return flag && *flag;
-#endif
-}
-
 /* Fits slot idx (and cross-validates it when asked); fills it and reports under the lock. */
 static void fit_one(void *arg, size_t chunk)
 {
     run *r = arg;
-    if (cancelled(r->finish) || cancelled(r->cancel))
+    /* Read by every fitting thread while a signal handler may set them (the handler should
+     * store atomically too: see cmd/cmd_compare.c). */
+    if (bf_cancel_is_set(r->finish) || bf_cancel_is_set(r->cancel))
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
     bf_fit_result *res = malloc(sizeof *res);
     bf_error err;
+    bf_fit_options fo = r->fo; /* its progress reports say which fit this is */
+    fo.model = j;
+    if (fo.report_materials) {
+        fo.material = i;
+        fo.material_name = c->materials[i].data;
+    }
     const double t0 = bf_now_seconds();
-    bf_status rc = res ? bf_fit_with(r->samples[i], c->models[j], &r->fo, res, &err)
+    bf_status rc = res ? bf_fit_with(r->samples[i], c->models[j], &fo, res, &err)
                        : bf_fail(&err, BF_ERR_NOMEM, "out of memory for a fit's result");
     bf_cv_result cv = {.error = NAN};
     if (rc == BF_OK && c->folds > 0 && res->ok) {
-        rc = bf_fit_cv_with(r->samples[i], c->models[j], &r->fo, c->folds, r->fo.seed, &cv, &err);
+        rc = bf_fit_cv_with(r->samples[i], c->models[j], &fo, c->folds, fo.seed, &cv, &err);
         if (rc != BF_OK)
             bf_fit_result_clear(res);
     }
@@ -114,6 +111,7 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_opt
         return rc;
     bf_fit_options fo;
     options_fit_get(o, &fo);
+    fo.report_materials = 1;
     return compare_run_with(c, samples, &fo, o->jobs, progress, user, o->finish, err);
 }
 

@@ -1,4 +1,5 @@
-/* The tradeoff grid: methods, the train/test split and the rows in their order.
+/* The tradeoff grid: methods, the train/test split and the rows in their order (the
+ * methods themselves are taken as the options take them: fit/tradeoff_options.c).
  *
  * Decisions:
  *  - The test set is a uniform random subset (not stratified): it then has the same
@@ -19,21 +20,6 @@
 #include "tradeoff/tradeoff_impl.h"
 
 /* ---- Methods ------------------------------------------------------------------- */
-
-bf_status bf_tradeoff_method_apply(const char *text, bf_solver_options *so, bf_error *err)
-{
-    bf_backend backend;
-    const bf_method_info *m;
-    if (bf_method_parse(text, &backend, &m, err) != BF_OK)
-        return BF_ERR_ARG;
-    bf_solver_options o = *so;
-    o.backend = backend;
-    o.algorithm = m->name;
-    if (bf_solver_options_check(&o, err) != BF_OK)
-        return bf_fail(err, BF_ERR_ARG, "method \"%s\": %s", text, err ? err->msg : "");
-    *so = o;
-    return BF_OK;
-}
 
 bf_status bf_tradeoff_method_check(const char *text, const bf_options *base, bf_error *err)
 {
@@ -122,13 +108,27 @@ bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, 
         return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows,
                        BF_TRADEOFF_MAX_ROWS);
     }
+    /* The methods' names, copied into one block the rows point into. */
+    size_t names = 0;
+    for (int m = 0; m < nmethods; m++)
+        names += strlen(methods[m] ? methods[m] : "") + 1;
     t->data = strdup(data ? data : "");
     t->model = strdup(model ? model : "");
     t->rows = calloc(rows, sizeof *t->rows);
-    if (!t->data || !t->model || !t->rows) {
+    t->names = malloc(names);
+    size_t *at = malloc((size_t)nmethods * sizeof *at);
+    if (!t->data || !t->model || !t->rows || !t->names || !at) {
         free(c);
+        free(at);
         bf_tradeoff_clear(t);
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    }
+    names = 0;
+    for (int m = 0; m < nmethods; m++) {
+        const char *text = methods[m] ? methods[m] : "";
+        at[m] = names;
+        memcpy(t->names + names, text, strlen(text) + 1);
+        names += strlen(text) + 1;
     }
     t->nrows = (int)rows;
     int i = 0;
@@ -139,12 +139,13 @@ bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, 
                     bf_tradeoff_row *row = &t->rows[i++];
                     row->samples = c[a];
                     row->all = c[a] == train_n;
-                    row->method = methods[m];
+                    row->method = t->names + at[m];
                     row->residual = residuals[r];
                     row->starts = starts[s];
                     row->error = NAN;
                 }
     free(c);
+    free(at);
     return BF_OK;
 }
 
@@ -155,6 +156,8 @@ void bf_tradeoff_clear(bf_tradeoff *t)
     for (int i = 0; t->rows && i < t->nrows; i++)
         free(t->rows[i].warnings);
     free(t->rows);
+    free(t->fit_options);
+    free(t->names);
     memset(t, 0, sizeof *t);
     t->best = t->recommended = -1;
 }

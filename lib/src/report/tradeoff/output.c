@@ -86,6 +86,12 @@ bf_status bf_tradeoff_write_json(const bf_tradeoff *t, const char *path, bf_erro
     return bf_json_write(tradeoff_json(t), path, "the tradeoff table", err);
 }
 
+bf_status bf_tradeoff_json(const bf_tradeoff *t, char **out, bf_error *err)
+{
+    *out = NULL;
+    return bf_json_text(tradeoff_json(t), "the tradeoff table", out, err);
+}
+
 static void put_metrics(FILE *fp, const bf_metrics *m, int ran)
 {
     bf_csv_put_number(fp, ran ? m->rmse : NAN);
