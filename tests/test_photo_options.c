@@ -218,6 +218,21 @@ static void test_fit_refuses_bad_options_first(void **state)
     o.spelling = BF_SPELL_KEYWORD;
     assert_int_equal(bf_photo_fit(s, &o, &r, &err), BF_ERR_ARG);
     assert_string_equal(err.msg, "tile 3/40: out of range (the image has 6 rows)");
+    /* A program built before `spelling`: its shorter struct (allocated at that size, so
+     * the sanitizers see a read past it) is taken, and read no further. */
+    const size_t old_size = offsetof(bf_photo_options, spelling);
+    bf_photo_options_init(&o);
+    o.size = old_size;
+    o.model = "lambert";
+    o.threads = 1;
+    o.relit_images = 0;
+    void *old = malloc(old_size);
+    assert_non_null(old);
+    memcpy(old, &o, old_size);
+    assert_int_equal(bf_photo_fit(s, old, &r, &err), BF_OK);
+    assert_int_equal(r->counts.pixels, W * H);
+    bf_photo_result_free(r);
+    free(old);
     bf_stack_free(s);
 }
 

@@ -749,6 +749,13 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
     if (o->tile_count > s->height)
         return bf_fail(err, BF_ERR_ARG, "%s %d/%d: out of range (the image has %d rows)", photo_option_name(o, "tile"),
                        o->tile_index + 1, o->tile_count, s->height);
+    /* The run reads (and copies) a whole struct of this version: an older caller's is
+     * shorter, its missing tail the defaults. */
+    bf_photo_options whole;
+    bf_photo_options_init(&whole);
+    memcpy(&whole, o, o->size < sizeof whole ? o->size : sizeof whole);
+    whole.size = sizeof whole;
+    o = &whole;
     photo_run run = {.s = s, .o = o, .spec = o->model, .K = s->nimages, .C = s->channels};
     run.threads = o->threads > 0 ? o->threads : online_threads();
     run.scale = o->scale_given ? o->scale : s->scale;
