@@ -50,7 +50,8 @@ static const cli_option own[] = {
      NULL, CLI_STRING_AT(fit_images_args, scale)},
     {"--tile", 0, "I/N", "fit band I of N bands of rows only (job arrays), merged by\nbrdfit merge-images", NULL,
      CLI_STRING_AT(fit_images_args, tile)},
-    {"--relit", 0, "N", "relit comparisons written (default 3)", NULL, CLI_INT_AT(fit_images_args, relit, 0, BF_PHOTO_MAX_RELIT)},
+    {"--relit", 0, "N", "relit comparisons written (default 3)", NULL,
+     CLI_INT_AT(fit_images_args, relit, 0, BF_PHOTO_MAX_RELIT)},
     {"--seed", 0, "N", "seed of the start's clusters (default 0)", NULL,
      CLI_INT_AT(fit_images_args, seed, 0, 2147483647)},
     {"--threads", 0, "N", "threads (default: every core); results do not depend on it", NULL,
@@ -107,7 +108,8 @@ static int settle(const fit_images_args *a, bf_photo_options *o)
     o->seed = (uint64_t)a->seed;
     bf_error err;
     if ((a->normals && bf_photo_options_set_normals(o, a->normals, &err) != BF_OK) ||
-        bf_photo_options_check(o, &err) != BF_OK || (a->scale && bf_photo_options_set_scale(o, a->scale, &err) != BF_OK) ||
+        bf_photo_options_check(o, &err) != BF_OK ||
+        (a->scale && bf_photo_options_set_scale(o, a->scale, &err) != BF_OK) ||
         (a->tile && bf_photo_options_set_tile(o, a->tile, &err) != BF_OK)) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 2;

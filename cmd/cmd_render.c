@@ -80,7 +80,7 @@ typedef struct render_args {
     bf_slice_options slices;
     bf_halfdiff_options hd;
     bf_tonemap_options tm;
-    bf_dir lights[BF_RENDER_MAX_LIGHTS + 1]; /* one more: the one the check refuses */
+    bf_dir lights[BF_RENDER_MAX_LIGHTS + 1];     /* one more: the one the check refuses */
     int nlights, slice, halfdiff, width, height; /* width 0: the mode's default size */
     int tonemap_given;
     int to; /* --to: a to_format, or 0 */
@@ -178,8 +178,7 @@ static int take_plane_tol(void *target, const cli_option *o, const char *v, cons
 static int take_phi_d(void *target, const cli_option *o, const char *v, const char *c)
 {
     render_args *r = target;
-    return parse_double(v, &r->hd.phi_d) && bf_halfdiff_options_check(&r->hd, NULL) == BF_OK ? 0
-                                                                                            : bad_value(o, v, c);
+    return parse_double(v, &r->hd.phi_d) && bf_halfdiff_options_check(&r->hd, NULL) == BF_OK ? 0 : bad_value(o, v, c);
 }
 
 static int take_tonemap(void *target, const cli_option *o, const char *v, const char *c)
@@ -291,10 +290,14 @@ static int settle(render_args *r, int fmt)
 {
     const int hd_plot = r->halfdiff && (fmt == TO_SVG || fmt == TO_PDF);
     if (r->width == 0) {
-        r->width = r->slice ? r->slices.width : hd_plot ? r->hd.plot_width : r->halfdiff ? r->hd.width
-                                                                                        : r->sphere.resolution;
-        r->height = r->slice ? r->slices.height : hd_plot ? r->hd.plot_height : r->halfdiff ? r->hd.height
-                                                                                           : r->sphere.resolution;
+        r->width = r->slice      ? r->slices.width
+                   : hd_plot     ? r->hd.plot_width
+                   : r->halfdiff ? r->hd.width
+                                 : r->sphere.resolution;
+        r->height = r->slice      ? r->slices.height
+                    : hd_plot     ? r->hd.plot_height
+                    : r->halfdiff ? r->hd.height
+                                  : r->sphere.resolution;
     }
     bf_error err;
     if (r->halfdiff) {
@@ -355,7 +358,8 @@ static int load_inputs(const render_args *r, bf_model **m, double **x, bf_sample
 
 /* Draws the mode's picture into rgb (width x height x 3, linear), and tone maps it for
  * a PNG. Returns a BF_ status. */
-static bf_status draw(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
+static bf_status draw(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb,
+                      bf_error *err)
 {
     bf_status rc = r->halfdiff ? (m ? bf_render_halfdiff_model(m, x, r->width, r->height, r->hd.phi_d, rgb, err)
                                     : bf_render_halfdiff_merl(s, r->width, r->height, r->hd.phi_d, rgb, err))

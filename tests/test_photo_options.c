@@ -70,9 +70,11 @@ static void test_check_ranges_and_messages(void **state)
     o.normals = BF_NORMALS_FILE;
     refused(&o, "--normals: no file", "normals: no file");
     o.clusters = 65;
-    refused(&o, "--clusters needs an integer from 1 to 64, got '65'", "clusters needs an integer from 1 to 64, got '65'");
+    refused(&o, "--clusters needs an integer from 1 to 64, got '65'",
+            "clusters needs an integer from 1 to 64, got '65'");
     o.clusters = -1;
-    refused(&o, "--clusters needs an integer from 1 to 64, got '-1'", "clusters needs an integer from 1 to 64, got '-1'");
+    refused(&o, "--clusters needs an integer from 1 to 64, got '-1'",
+            "clusters needs an integer from 1 to 64, got '-1'");
     o.scale_given = 1;
     o.scale = -1;
     refused(&o, "bad value '-1' for --scale (auto or a positive number)",
@@ -121,8 +123,9 @@ static void test_parsers(void **state)
     assert_int_equal(bf_photo_options_set_tile(&o, "2/3", &err), BF_OK);
     assert_true(o.tile_index == 1 && o.tile_count == 3);
     assert_int_equal(bf_photo_options_set_tile(&o, "1000000/1000000", &err), BF_OK);
-    static const char *const bad_tiles[] = {"1/", "/2", "2", "1/2/3", " 1/2", "0/2", "3/2", "+1/2", "1/1000001",
-                                            "12345678901234567890123456789012345/40", ""};
+    static const char *const bad_tiles[] = {"1/",  "/2",  "2",    "1/2/3",     " 1/2",
+                                            "0/2", "3/2", "+1/2", "1/1000001", "12345678901234567890123456789012345/40",
+                                            ""};
     for (size_t k = 0; k < sizeof bad_tiles / sizeof *bad_tiles; k++) {
         bf_photo_options_init(&o);
         assert_int_equal(bf_photo_options_set_tile(&o, bad_tiles[k], &err), BF_ERR_ARG);
@@ -166,7 +169,7 @@ static const double ALBEDO[3] = {0.5, 0.4, 0.3};
 
 static bf_stack *plane_stack(void)
 {
-    static const double dirs[K][3] = {{0, 0, 1}, {0.6, 0, 0.8}, {-0.6, 0, 0.8},
+    static const double dirs[K][3] = {{0, 0, 1},     {0.6, 0, 0.8},  {-0.6, 0, 0.8},
                                       {0, 0.6, 0.8}, {0, -0.6, 0.8}, {0.48, 0.36, 0.8}};
     char json[2048] = "{\"images\": [";
     float px[W * H * 3];
@@ -269,9 +272,9 @@ static void test_result_json_is_fit_json(void **state)
     assert_int_equal(cJSON_GetObjectItem(counts, "pixels")->valuedouble, W * H);
     assert_int_equal(cJSON_GetObjectItem(counts, "samples_used")->valuedouble, W * H * K);
     /* The files: those bf_photo_write wrote, in its order. */
-    const char *want[] = {"normals.exr", "rho_d.exr", "error.exr", "lambert_normals.exr", "lambert_albedo.exr",
-                          "normals.png", "albedo.png", "relit_000.png", "relit_000.exr", "relit_005.png",
-                          "relit_005.exr", "mask.png"};
+    const char *want[] = {"normals.exr",        "rho_d.exr",     "error.exr",     "lambert_normals.exr",
+                          "lambert_albedo.exr", "normals.png",   "albedo.png",    "relit_000.png",
+                          "relit_000.exr",      "relit_005.png", "relit_005.exr", "mask.png"};
     const cJSON *files = cJSON_GetObjectItem(root, "files");
     assert_int_equal(cJSON_GetArraySize(files), sizeof want / sizeof *want);
     for (int i = 0; i < cJSON_GetArraySize(files); i++) {

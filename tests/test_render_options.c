@@ -51,7 +51,8 @@ static void test_tonemap_names_and_checks(void **state)
     assert_int_equal(m, BF_TONEMAP_REINHARD);
     assert_int_equal(bf_tonemap_parse("log", &m, &err), BF_OK);
     assert_int_equal(m, BF_TONEMAP_LOG);
-    assert_fails(bf_tonemap_parse("Log", &m, &err), BF_ERR_ARG, &err, "unknown tone map 'Log' (clamp, reinhard or log)");
+    assert_fails(bf_tonemap_parse("Log", &m, &err), BF_ERR_ARG, &err,
+                 "unknown tone map 'Log' (clamp, reinhard or log)");
     assert_int_equal(m, BF_TONEMAP_LOG); /* left as it was */
     assert_string_equal(bf_tonemap_name(BF_TONEMAP_CLAMP), "clamp");
     assert_string_equal(bf_tonemap_name(BF_TONEMAP_LOG), "log");
@@ -141,7 +142,8 @@ static void test_sphere_check(void **state)
                  "sphere render: need a size >= 1 and at least one light");
     so.nlights = 2;
     so.resolution = BF_RENDER_MAX_SIDE + 1;
-    assert_fails(bf_sphere_options_check(&so, &err), BF_ERR_ARG, &err, "sphere render: size 16385 is above 16384 pixels");
+    assert_fails(bf_sphere_options_check(&so, &err), BF_ERR_ARG, &err,
+                 "sphere render: size 16385 is above 16384 pixels");
     so.resolution = 0;
     assert_int_equal(bf_sphere_options_check(&so, &err), BF_ERR_ARG);
     so.resolution = 8;
@@ -183,7 +185,8 @@ static void test_halfdiff_check(void **state)
     assert_fails(bf_halfdiff_options_check(&hd, &err), BF_ERR_ARG, &err, "a half-diff plot must be at least 40x40");
     hd.plot_width = 40;
     hd.plot_height = 16385;
-    assert_fails(bf_halfdiff_options_check(&hd, &err), BF_ERR_ARG, &err, "a half-diff plot must be at most 16384x16384");
+    assert_fails(bf_halfdiff_options_check(&hd, &err), BF_ERR_ARG, &err,
+                 "a half-diff plot must be at most 16384x16384");
     hd.plot_height = 40;
     hd.tonemap = (bf_tonemap_mode)-1;
     assert_int_equal(bf_halfdiff_options_check(&hd, &err), BF_ERR_ARG);

@@ -224,11 +224,11 @@ BF_API bf_status bf_render_memory_check(int width, int height, bf_error *err);
  * bf_tonemap takes them. Callers set it up with bf_tonemap_options_init (size:
  * docs/api.md). */
 typedef struct bf_tonemap_options {
-    size_t size;           /* sizeof, set by bf_tonemap_options_init */
-    bf_tonemap_mode mode;  /* a sphere's (a half/difference image's: bf_halfdiff_options.tonemap) */
-    double exposure;       /* multiplies the values first; > 0 */
-    double decades;        /* LOG's range below the maximum, and the half/difference figure's
-                              colour scale; > 0 */
+    size_t size;          /* sizeof, set by bf_tonemap_options_init */
+    bf_tonemap_mode mode; /* a sphere's (a half/difference image's: bf_halfdiff_options.tonemap) */
+    double exposure;      /* multiplies the values first; > 0 */
+    double decades;       /* LOG's range below the maximum, and the half/difference figure's
+                             colour scale; > 0 */
 } bf_tonemap_options;
 
 /* brdfit render's defaults: BF_TONEMAP_CLAMP, exposure 1, 4 decades. */

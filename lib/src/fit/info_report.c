@@ -156,7 +156,8 @@ static void put_channel_names(FILE *fp, const bf_samples *s)
             continue;
         }
         char shown[4 * BF_ERROR_TOKEN_CHARS];
-        fprintf(fp, "%s%s", c ? ", " : "", bf_printable(s->channel_names[c], BF_ERROR_TOKEN_CHARS, 0, shown, sizeof shown));
+        fprintf(fp, "%s%s", c ? ", " : "",
+                bf_printable(s->channel_names[c], BF_ERROR_TOKEN_CHARS, 0, shown, sizeof shown));
     }
 }
 
@@ -198,8 +199,8 @@ static void put_text(FILE *fp, const char *path, const bf_samples *s, const aske
     const struct {
         const char *name;
         bf_range r;
-    } cov[] = {{"theta_i", info->theta_i}, {"theta_o", info->theta_o}, {"theta_h", info->theta_h},
-               {"theta_d", info->theta_d}};
+    } cov[] = {
+        {"theta_i", info->theta_i}, {"theta_o", info->theta_o}, {"theta_h", info->theta_h}, {"theta_d", info->theta_d}};
     for (int k = 0; k < 4; k++)
         fprintf(fp, "  %-8s %11.6g .. %.6g\n", cov[k].name, cov[k].r.lo, cov[k].r.hi);
 

@@ -27,9 +27,9 @@ const char *photo_option_name(const bf_photo_options *o, const char *keyword)
 {
     static const struct {
         const char *keyword, *command_line;
-    } names[] = {{"model", "-m"},         {"normals", "--normals"}, {"share", "--share"},
-                 {"clusters", "--clusters"}, {"scale", "--scale"},     {"tile", "--tile"},
-                 {"relit", "--relit"},       {"seed", "--seed"},       {"threads", "--threads"}};
+    } names[] = {{"model", "-m"},         {"normals", "--normals"}, {"share", "--share"}, {"clusters", "--clusters"},
+                 {"scale", "--scale"},    {"tile", "--tile"},       {"relit", "--relit"}, {"seed", "--seed"},
+                 {"threads", "--threads"}};
     const int keywords = o && o->size >= PHOTO_OPTIONS_SPELLING_SIZE && o->spelling == BF_SPELL_KEYWORD;
     for (size_t i = 0; i < sizeof names / sizeof *names; i++)
         if (!strcmp(names[i].keyword, keyword))

@@ -294,8 +294,8 @@ bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_p
     if (r->cancelled)
         return bf_fail(err, BF_ERR_ARG, "%s: the fit was cancelled: nothing written", dir);
     bf_out_folder f;
-    rc = bf_out_folder_begin(
-        &f, dir, MARKER, WHAT, "brdfit fit-images output: this folder is replaced by the next run written here", err);
+    rc = bf_out_folder_begin(&f, dir, MARKER, WHAT,
+                             "brdfit fit-images output: this folder is replaced by the next run written here", err);
     if (rc != BF_OK)
         return rc;
     int W = r->width, H = r->height, C = r->channels;

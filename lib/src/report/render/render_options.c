@@ -42,8 +42,7 @@ bf_status bf_sphere_options_check(const bf_sphere_options *o, bf_error *err)
     if (!o || o->resolution < 1 || o->nlights < 1 || !o->lights)
         return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
     if (o->resolution > BF_RENDER_MAX_SIDE)
-        return bf_fail(err, BF_ERR_ARG, "sphere render: size %d is above %d pixels", o->resolution,
-                       BF_RENDER_MAX_SIDE);
+        return bf_fail(err, BF_ERR_ARG, "sphere render: size %d is above %d pixels", o->resolution, BF_RENDER_MAX_SIDE);
     if (o->nlights > BF_RENDER_MAX_LIGHTS)
         return bf_fail(err, BF_ERR_ARG, "at most %d lights", BF_RENDER_MAX_LIGHTS);
     if (!isfinite(o->view.theta) || !isfinite(o->view.phi))
