@@ -1,7 +1,7 @@
 /* The fit driver on synthetic data with known answers (noiseless, so the optimum is the
  * generating parameters): recovery from the data-driven start with Ceres and with an
  * NLopt method, the start itself, multistart determinism, fixed parameters, a fit that
- * cannot succeed, and the result file read back as a parameter file. */
+ * cannot succeed, the result file read back as a parameter file, and the covariance. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -186,8 +186,8 @@ static void test_initial_guess_roles(void **state)
         for (int c = 0; c < 3; c++) {
             double d = start_value(m, x, outside[k][1], c, &def), v = start_value(m, x, outside[k][2], c, &def);
             if (!(d > 0.0 && v == d))
-                fail_msg("%s starts %s[%d] %g, %s %g: not both the diffuse level", outside[k][0], outside[k][1], c,
-                         d, outside[k][2], v);
+                fail_msg("%s starts %s[%d] %g, %s %g: not both the diffuse level", outside[k][0], outside[k][1], c, d,
+                         outside[k][2], v);
         }
         bf_model_free(m);
     }
@@ -374,8 +374,8 @@ static void test_result_json_round_trip(void **state)
 {
     (void)state;
     /* Parameters that need all 17 digits, with two lobes so options include lobes. */
-    double truth[14] = {0.123456789012345678, 0.3, 0.1 / 3.0, 0.7, 0.6, 0.5, 0.1 + 1e-16, 0.04,
-                        0.2, 0.2, 0.2, 0.37, 0.5};
+    double truth[14] = {
+        0.123456789012345678, 0.3, 0.1 / 3.0, 0.7, 0.6, 0.5, 0.1 + 1e-16, 0.04, 0.2, 0.2, 0.2, 0.37, 0.5};
     const char *spec = "walter:lobes=2";
     bf_model *m = ts_model(spec, 3);
     assert_int_equal(bf_model_nvalues(m), 13);
@@ -408,6 +408,118 @@ static void test_result_json_round_trip(void **state)
     bf_samples_free(s);
 }
 
+/* ---- covariance ------------------------------------------------------------------ */
+
+/* Inverts the k x k matrix a in place (Gauss-Jordan with partial pivoting): the test's
+ * own, independent of the library's eigen-decomposition. */
+static void invert(double *a, int k)
+{
+    double inv[16 * 16];
+    assert_true(k <= 16);
+    for (int i = 0; i < k; i++)
+        for (int j = 0; j < k; j++)
+            inv[i * k + j] = i == j;
+    for (int c = 0; c < k; c++) {
+        int p = c;
+        for (int i = c + 1; i < k; i++)
+            if (fabs(a[i * k + c]) > fabs(a[p * k + c]))
+                p = i;
+        for (int j = 0; j < k; j++) {
+            double t = a[c * k + j];
+            a[c * k + j] = a[p * k + j], a[p * k + j] = t;
+            t = inv[c * k + j];
+            inv[c * k + j] = inv[p * k + j], inv[p * k + j] = t;
+        }
+        const double d = a[c * k + c];
+        assert_true(fabs(d) > 0.0);
+        for (int j = 0; j < k; j++)
+            a[c * k + j] /= d, inv[c * k + j] /= d;
+        for (int i = 0; i < k; i++)
+            if (i != c) {
+                const double f = a[i * k + c];
+                for (int j = 0; j < k; j++)
+                    a[i * k + j] -= f * a[c * k + j], inv[i * k + j] -= f * inv[c * k + j];
+            }
+    }
+    memcpy(a, inv, (size_t)k * k * sizeof *a);
+}
+
+/* The covariance of a least-squares fit is s^2 (J^T J)^-1 at the solution, J the model's
+ * Jacobian over the samples (its analytic gradient, tested against finite differences
+ * in test_models) and s^2 the residuals' variance: against the test's own computation,
+ * with a fixed parameter's row and column 0 and the diagonal the standard errors'
+ * squares. */
+static void test_covariance(void **state)
+{
+    (void)state;
+    const double truth[3] = {0.3, 0.6, 40.0};
+    bf_samples *s = synth("phong", 1, truth, BF_SYNTH_UNIFORM, 2000);
+    for (size_t i = 0; i < s->n; i++) /* noise, so that s^2 > 0 */
+        s->value[i] *= 1.0 + 0.05 * sin(12.9898 * (double)i);
+    for (int with_fix = 0; with_fix < 2; with_fix++) {
+        bf_fit_options o;
+        ts_fit_defaults(&o);
+        o.objective.solid_angle = 0;
+        bf_override ov;
+        bf_error err;
+        if (with_fix) {
+            assert_int_equal(bf_override_parse_fix("rho_d=0.3", &ov, &err), BF_OK);
+            o.objective.overrides = &ov;
+            o.objective.noverrides = 1;
+        }
+        bf_fit_result r;
+        ts_fit_ok(s, "phong", &o, &r);
+        const int P = bf_model_nvalues(r.model);
+        assert_int_equal(P, 3);
+        assert_non_null(r.covariance);
+        /* J over the free entries, the residuals' sum of squares. */
+        const bf_geometry *g;
+        assert_int_equal(bf_samples_geometry(s, &g, &err), BF_OK);
+        double *v = malloc(s->n * sizeof *v), *jac = malloc(s->n * (size_t)P * sizeof *jac);
+        assert_non_null(v);
+        assert_non_null(jac);
+        bf_model_eval(r.model, r.x, g, v, jac);
+        int free_[3], k = 0;
+        for (int a = 0; a < P; a++)
+            if (!r.fixed[a])
+                free_[k++] = a;
+        double jtj[9] = {0}, ssr = 0.0;
+        for (size_t i = 0; i < s->n; i++) {
+            ssr += (v[i] - s->value[i]) * (v[i] - s->value[i]);
+            for (int a = 0; a < k; a++)
+                for (int b = 0; b < k; b++)
+                    jtj[a * k + b] += jac[i * P + free_[a]] * jac[i * P + free_[b]];
+        }
+        invert(jtj, k);
+        const double s2 = ssr / (double)(s->n - (size_t)k);
+        for (int a = 0; a < P; a++)
+            for (int b = 0; b < P; b++) {
+                const double got = r.covariance[a * P + b];
+                assert_true(got == r.covariance[b * P + a]);
+                if (r.fixed[a] || r.fixed[b]) {
+                    assert_true(got == 0.0);
+                    continue;
+                }
+                int ia = 0, ib = 0;
+                while (free_[ia] != a)
+                    ia++;
+                while (free_[ib] != b)
+                    ib++;
+                char what[64];
+                snprintf(what, sizeof what, "covariance[%d][%d]%s", a, b, with_fix ? " (rho_d fixed)" : "");
+                ts_assert_rel(got, s2 * jtj[ia * k + ib], 1e-5, what);
+            }
+        for (int a = 0; a < P; a++)
+            ts_assert_rel(r.covariance[a * P + a], r.stderr_[a] * r.stderr_[a], 1e-12, "the diagonal");
+        assert_int_equal(k, with_fix ? 2 : 3);
+        free(v);
+        free(jac);
+        bf_fit_result_clear(&r);
+        assert_null(r.covariance);
+    }
+    bf_samples_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -420,6 +532,7 @@ int main(void)
         cmocka_unit_test(test_fix_holds),
         cmocka_unit_test(test_impossible_fit),
         cmocka_unit_test(test_result_json_round_trip),
+        cmocka_unit_test(test_covariance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

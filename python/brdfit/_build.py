@@ -122,7 +122,8 @@ bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report 
 /* Fitting (solve.h, fit.h). */
 typedef enum bf_stop { BF_STOP_CONVERGED = 0, BF_STOP_ITERATIONS, BF_STOP_TIME, BF_STOP_CANCELLED, BF_STOP_FAILED } bf_stop;
 typedef struct bf_solution { bf_stop stop; ...; } bf_solution;
-typedef struct bf_fit_result { size_t size; bf_model *model; double *x; bf_solution solution; int ok; ...; } bf_fit_result;
+typedef struct bf_fit_result { size_t size; bf_model *model; double *x; bf_solution solution; int ok; double *covariance; ...; }
+    bf_fit_result;
 void bf_fit_result_init(bf_fit_result *r);
 bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_result *r, bf_error *err);
 void bf_fit_result_clear(bf_fit_result *r);

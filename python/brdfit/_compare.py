@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, List, Optional, Sequence, TYPE_CHECKING, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._data import _prepared
@@ -14,6 +14,11 @@ from ._model import Model
 from ._options import _doc, _Options
 from ._run import CancelEvent, ProgressFn, _Run
 from ._samples import Samples
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import CompareKeywords
 
 
 class CompareResult:
@@ -70,7 +75,7 @@ def _model_list(models: Any) -> List[str]:
 
 
 def compare(samples_list: Sequence[Any], models: Union[str, Sequence[Any]], progress: Optional[ProgressFn] = None,
-            cancel: Optional[CancelEvent] = None, **options: Any) -> CompareResult:
+            cancel: Optional[CancelEvent] = None, **options: Unpack[CompareKeywords]) -> CompareResult:
     if isinstance(samples_list, (Samples, str, os.PathLike)) or not isinstance(samples_list, Iterable):
         raise UsageError("samples_list: needs a list of brdfit.Samples (or data file names)")
     samples_list = list(samples_list)

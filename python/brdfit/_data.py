@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Optional, Union
+from typing import Any, Optional, TYPE_CHECKING, Union
 
 from ._args import _path_text
 from ._brdfit import ffi, lib
@@ -10,6 +10,11 @@ from ._errors import UsageError, _check
 from ._options import _doc, _Options
 from ._run import CancelEvent, _Run
 from ._samples import Samples
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import ReadKeywords
 
 
 def _load(path: Union[str, "os.PathLike[str]"], opts: _Options, run: _Run, report: Any = ffi.NULL) -> "Samples":
@@ -28,7 +33,7 @@ def _load(path: Union[str, "os.PathLike[str]"], opts: _Options, run: _Run, repor
 
 
 def read(path: Union[str, "os.PathLike[str]"], cancel: Optional[CancelEvent] = None,
-         **data_options: Any) -> "Samples":
+         **data_options: Unpack[ReadKeywords]) -> "Samples":
     if not isinstance(path, (str, os.PathLike)):
         raise UsageError("path: needs a file name, got %r" % (path,))
     opts = _Options("read", data_options, "read")

@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, TYPE_CHECKING, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
-from ._args import _path_text
+from ._args import Array, _path_text
 from ._brdfit import ffi, lib
 from ._data import _prepared
 from ._errors import Error, UsageError, _check, _take_text
@@ -17,6 +17,11 @@ from ._model import Model
 from ._options import _doc, _Options
 from ._run import CancelEvent, ProgressFn, _Run
 from ._samples import Samples
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import FitKeywords
 
 # Residuals computed per call of the objective: a short call each, so that Ctrl-C is
 # seen between them on a large data set (the objective has no cancel flag).
@@ -27,12 +32,12 @@ class FitResult:
     """A fit: .params and .stderr (name -> float, a list per channel for a colour; a
     standard error the data do not determine is NaN), .metrics (name -> float, NaN where
     undefined), .warnings, .ok, .cancelled, .model (a Model holding the fitted
-    parameters, to evaluate), .residuals(), .json (the result as the library wrote it)
-    and .to_json() (the text `brdfit fit -o` writes). FitResult.from_json reads a saved
-    result back; a FitResult pickles (as its JSON text)."""
+    parameters, to evaluate), .covariance, .residuals(), .json (the result as the library
+    wrote it) and .to_json() (the text `brdfit fit -o` writes). FitResult.from_json reads
+    a saved result back; a FitResult pickles (as its JSON text and covariance)."""
 
     def __init__(self, text: Optional[str], model: Model, x: npt.NDArray[np.float64], ok: bool, cancelled: bool,
-                 samples: Optional[Samples] = None):
+                 samples: Optional[Samples] = None, covariance: Optional[Array] = None):
         self._text = text
         self.json: Dict[str, Any] = json.loads(text) if text else {}
         self.ok = ok
@@ -49,6 +54,12 @@ class FitResult:
             self.metrics = {}
         self.warnings: List[str] = self.json.get("warnings", ["the fit was cancelled"] if cancelled else [])
         self._samples = samples
+        # (nvalues, nvalues) in value_names order, the library's (bf_fit_result.covariance):
+        # NaN in an undetermined entry's row and column, 0 in a fixed one's; None when the
+        # library gave none (cancelled, or read from JSON, which does not hold it).
+        self.covariance = covariance
+        if covariance is not None:
+            covariance.flags.writeable = False
 
     @classmethod
     def from_json(cls, text_or_path: Union[str, "os.PathLike[str]"]) -> "FitResult":
@@ -151,11 +162,19 @@ class FitResult:
     def __reduce__(self) -> Tuple[Any, ...]:
         """Pickled as its JSON text (a cancelled fit: its spec and start)."""
         if self._text is not None:
-            return (FitResult.from_json, (self._text,))
+            return (_unpickled, (self._text, self.covariance))
         return (_cancelled, (self.spec, self.model.channels, self.params))
 
     def __repr__(self) -> str:
         return "brdfit.FitResult(%r, ok=%s, rmse_log=%s)" % (self.spec, self.ok, self.metrics.get("rmse_log", NAN))
+
+
+def _unpickled(text: str, covariance: Optional[Array]) -> FitResult:
+    r = FitResult.from_json(text)
+    if covariance is not None:
+        r.covariance = np.array(covariance)
+        r.covariance.flags.writeable = False
+    return r
 
 
 def _cancelled(spec: str, channels: int, params: Dict[str, Any]) -> FitResult:
@@ -171,8 +190,8 @@ def _spec_of(model: Any, what: str) -> str:
 
 
 def fit(samples: Any, model: Union[str, Model], progress: Optional[ProgressFn] = None,
-        start: Union[None, Mapping[str, Any], Model, Sequence[float], np.ndarray] = None,
-        cancel: Optional[CancelEvent] = None, **options: Any) -> FitResult:
+        start: Union[None, Mapping[str, Any], Model, Sequence[float], Array] = None,
+        cancel: Optional[CancelEvent] = None, **options: Unpack[FitKeywords]) -> FitResult:
     spec = _spec_of(model, "model")
     opts = _Options("fit", options, "fit")
     opts.check([spec])
@@ -218,7 +237,11 @@ def _result(r: Any, data: Samples) -> FitResult:
         out = ffi.new("char **")
         _check(lib.bf_fit_result_json(r, os.fsencode(data.path) if data.path else ffi.NULL, out, err), err)
         text = _take_text(out[0])
-    return FitResult(text, m, x, bool(r.ok), cancelled, None if cancelled else data)
+    cov = None
+    if r.covariance != ffi.NULL:
+        P = x.size
+        cov = np.array(ffi.unpack(r.covariance, P * P)).reshape(P, P)
+    return FitResult(text, m, x, bool(r.ok), cancelled, None if cancelled else data, cov)
 
 
 fit.__doc__ = """Fits model (a spec or a Model) to samples (brdfit.Samples, or a data file name), as

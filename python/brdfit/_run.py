@@ -2,9 +2,8 @@
 from __future__ import annotations
 
 import threading
+import time
 from typing import Any, Callable, Dict, Optional, Protocol, TypeVar
-
-
 
 from ._brdfit import ffi, lib
 from ._errors import Error, UsageError
@@ -14,6 +13,7 @@ from ._progress import Progress, _progress_of
 # How often the calling thread looks up from waiting (Ctrl-C is seen at once regardless,
 # a cancel event within this).
 _POLL_SECONDS = 0.025
+_FIRST_NAP_SECONDS = 0.0005
 
 
 class CancelEvent(Protocol):
@@ -64,16 +64,15 @@ class _Run:
 
     def __call__(self, fn: Callable[[], T]) -> T:
         box: Dict[str, Any] = {}
-        began, done = threading.Event(), threading.Event()
 
         def work() -> None:  # holds self (the cancel flag, the progress handle) and fn
-            began.set()
+            box["began"] = True
             try:
                 box["rc"] = fn()
             except BaseException as e:  # surfaced in the calling thread
                 box["exc"] = e
             finally:
-                done.set()
+                box["done"] = True
 
         self._pending: Optional[BaseException] = None
         self._poll_event()  # an event set already: the call stops at its first check
@@ -82,9 +81,9 @@ class _Run:
         except BaseException as e:  # in start(): the worker may or may not have begun
             self.cancel[0] = 1
             self._pending = e
-            if not self._wait(began, 1.0):
+            if not self._wait(box, "began", 1.0):
                 raise
-        self._wait(done, None)
+        self._wait(box, "done", None)
         if self._pending is not None:
             raise self._pending
         if self.error is not None:
@@ -101,22 +100,29 @@ class _Run:
             self.stopped = True
             self.cancel[0] = 1
 
-    def _wait(self, event: threading.Event, limit: Optional[float]) -> bool:
-        """Waits for event (at most limit seconds), looking at the cancel event in between;
-        an exception meanwhile sets the cancel flag and is kept for the caller (the first
-        one), and the wait goes on."""
-        waited = 0.0
-        while limit is None or waited < limit:
+    def _wait(self, box: Dict[str, Any], key: str, limit: Optional[float]) -> bool:
+        """Waits until the worker puts key in box (at most limit seconds), looking at the
+        cancel event in between; an exception meanwhile sets the cancel flag and is kept for
+        the caller (the first one), and the wait goes on.
+
+        Plain sleeps on a flag, not threading.Event.wait: an exception a signal handler
+        raises inside a Condition's wait can leave its lock released twice ("release
+        unlocked lock"), and the waiting must survive any number of them. The sleeps grow
+        from 0.5 ms, so a short call returns at once and a long one costs no CPU."""
+        end = None if limit is None else time.monotonic() + limit
+        nap = _FIRST_NAP_SECONDS
+        while key not in box:
+            if end is not None and time.monotonic() >= end:
+                return False
             try:
-                if event.wait(_POLL_SECONDS):
-                    return True
-                waited += _POLL_SECONDS
+                time.sleep(nap)
+                nap = min(2 * nap, _POLL_SECONDS)
                 self._poll_event()
             except BaseException as e:
                 self.cancel[0] = 1
                 if self._pending is None:
                     self._pending = e
-        return False
+        return True
 
 
 @ffi.def_extern()

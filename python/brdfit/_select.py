@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, TYPE_CHECKING, Tuple, Union
 
 from ._brdfit import ffi, lib
 from ._compare import _model_list
@@ -13,6 +13,11 @@ from ._fit import FitResult, _result
 from ._frames import frame
 from ._options import _doc, _Options
 from ._run import CancelEvent, ProgressFn, _Run
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import SelectKeywords
 
 
 class SelectResult:
@@ -61,7 +66,7 @@ class SelectResult:
 
 
 def select(samples: Any, models: Optional[Union[str, Sequence[Any]]] = None, progress: Optional[ProgressFn] = None,
-           cancel: Optional[CancelEvent] = None, **options: Any) -> SelectResult:
+           cancel: Optional[CancelEvent] = None, **options: Unpack[SelectKeywords]) -> SelectResult:
     opts = _Options("select", options, "select")
     run = _Run(progress, cancel, "select")
     run.hook(opts)  # reading the data file too

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Dict, List, Optional, TYPE_CHECKING, Union
 
 from ._args import _path_text
 from ._brdfit import ffi, lib
@@ -13,6 +13,11 @@ from ._fit import _spec_of
 from ._model import Model
 from ._options import _doc, _Options
 from ._run import CancelEvent, ProgressFn, _Run
+
+if TYPE_CHECKING:  # the keywords' types, for type checkers only
+    from typing import Unpack
+
+    from ._keywords import TradeoffKeywords
 
 
 class TradeoffResult:
@@ -50,7 +55,7 @@ class TradeoffResult:
 
 
 def tradeoff(samples: Any, model: Union[str, Model], /, progress: Optional[ProgressFn] = None,
-             cancel: Optional[CancelEvent] = None, **options: Any) -> TradeoffResult:
+             cancel: Optional[CancelEvent] = None, **options: Unpack[TradeoffKeywords]) -> TradeoffResult:
     spec = _spec_of(model, "model")
     opts = _Options("tradeoff", options, "tradeoff")
     opts.check([spec])

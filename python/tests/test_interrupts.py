@@ -1,6 +1,7 @@
 """Every long call is safe to interrupt: Ctrl-C (SIGINT) and a signal handler that raises
 (SIGALRM raising TimeoutError, as signal-based timeouts do) at random times into fit,
-compare, select, read, eval of a large array, export and tradeoff, 50 times each, in a child
+compare, select, read, eval of a large array, export, tradeoff and fit_images, 50 times
+each, in a child
 process: no crash, the exception within a second of the signal, and the next call works.
 """
 
@@ -11,6 +12,7 @@ import textwrap
 
 import pytest
 
+from _images import make_stack
 from _support import CAYMAN
 
 CHILD = textwrap.dedent(r"""
@@ -19,7 +21,7 @@ CHILD = textwrap.dedent(r"""
     import brdfit
 
     kind, what, times = sys.argv[1], sys.argv[2], int(sys.argv[3])
-    data = sys.argv[4]
+    data, stack = sys.argv[4], sys.argv[5]
     samples = brdfit.read(data, rgb=True)
     fitted = brdfit.fit(samples, "walter", threads=2, starts=1)
     n = 400000
@@ -34,6 +36,7 @@ CHILD = textwrap.dedent(r"""
         "eval": lambda: fitted.model.eval(wi, wo, gradient=True),
         "export": lambda: brdfit.export(fitted, "gltf", convert=True),
         "tradeoff": lambda: brdfit.tradeoff(samples, "walter", samples=[300, "all"], threads=2),
+        "fit_images": lambda: brdfit.fit_images(stack, "walter", threads=2),
     }
     call = calls[what]
     signalled = [0.0]
@@ -67,12 +70,19 @@ CHILD = textwrap.dedent(r"""
 """)
 
 
-@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export", "tradeoff"])
+@pytest.fixture(scope="module")
+def stack(tmp_path_factory):
+    # about a second to fit with two threads: signals land in every part of it
+    return make_stack(tmp_path_factory.mktemp("stack") / "sphere", size=48, lights=12,
+                      params={"rho_d": [0.5, 0.35, 0.2], "rho_s": 0.3, "alpha": 0.15})
+
+
+@pytest.mark.parametrize("what", ["fit", "compare", "select", "read", "eval", "export", "tradeoff", "fit_images"])
 @pytest.mark.parametrize("kind", ["int", "alarm"])
-def test_interrupts(tmp_path, kind, what):
+def test_interrupts(tmp_path, stack, kind, what):
     script = tmp_path / "child.py"
     script.write_text(CHILD)
-    p = subprocess.run([sys.executable, str(script), kind, what, "50", str(CAYMAN)], capture_output=True, text=True,
+    p = subprocess.run([sys.executable, str(script), kind, what, "50", str(CAYMAN), str(stack)], capture_output=True, text=True,
                        timeout=300, env=dict(os.environ))
     assert p.returncode == 0, "%s %s: exit %d (a signal is negative): %s" % (kind, what, p.returncode,
                                                                           p.stderr[-2000:])

@@ -315,3 +315,32 @@ def test_to_dataframe_without_pandas_says_so(samples, monkeypatch):
     monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas raises ImportError
     with pytest.raises(ImportError, match="to_dataframe\\(\\) needs pandas"):
         c.to_dataframe()
+
+
+def test_covariance_is_s2_inverse_jtj_and_travels_with_the_result():
+    # Noisy Phong samples, a linear fit: the covariance is s^2 (J^T J)^-1 with J the
+    # model's gradient at the fitted parameters (NumPy's own inverse), the diagonal the
+    # standard errors squared; a fixed parameter has a row and column of 0.
+    rng = np.random.default_rng(3)
+    n = 2000
+    ti, to, po = rng.uniform(0, 80, n), rng.uniform(0, 80, n), rng.uniform(0, 360, n)
+    truth = brdfit.Model("phong", 1, {"rho_d": 0.3, "rho_s": 0.6, "n": 40})
+    ones = brdfit.Samples.from_angles(ti, 0 * ti, to, po, np.ones((n, 1)))
+    v = truth.eval(ones.wi, ones.wo) * (1 + 0.05 * rng.standard_normal((n, 1)))
+    s = brdfit.Samples.from_angles(ti, 0 * ti, to, po, v)
+    for fix, free in ((None, [0, 1, 2]), ({"rho_d": 0.3}, [1, 2])):
+        r = brdfit.fit(s, "phong", residual="linear", starts=1, fix=fix)
+        val, g = r.model.eval(s.wi, s.wo, gradient=True)
+        J = g[:, 0, free]
+        s2 = ((val[:, 0] - s.values[:, 0]) ** 2).sum() / (n - len(free))
+        want = np.zeros((3, 3))
+        want[np.ix_(free, free)] = s2 * np.linalg.inv(J.T @ J)
+        assert r.covariance.shape == (3, 3)
+        np.testing.assert_allclose(r.covariance, want, rtol=1e-5, atol=0)
+        se = np.array([r.stderr[k][0] if isinstance(r.stderr[k], list) else r.stderr[k] for k in ("rho_d", "rho_s", "n")])
+        np.testing.assert_allclose(np.diag(r.covariance), se ** 2, rtol=1e-12)
+        assert not r.covariance.flags.writeable
+    back = pickle.loads(pickle.dumps(r))
+    assert np.array_equal(back.covariance, r.covariance) and back.to_json() == r.to_json()
+    assert brdfit.FitResult.from_json(r.to_json()).covariance is None
+    assert brdfit.fit(s, "phong", starts=1, progress=lambda p: True).covariance is None

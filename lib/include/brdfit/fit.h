@@ -105,6 +105,12 @@ typedef struct bf_fit_result {
     char warnings[BF_FIT_MAX_WARNINGS][BF_FIT_WARNING_LEN];
     /* The kind of warnings[i] (at the end, so the fields above keep their offsets). */
     bf_warning_kind warning_kind[BF_FIT_MAX_WARNINGS];
+    /* The parameters' covariance, bf_model_nvalues squared, row-major in the model's order
+     * (owned): s^2 (J^T J)^+ at the solution, from the pass that gives stderr_ (its
+     * diagonal is stderr_ squared), NaN in the row and column of an entry without a
+     * standard error, 0 in a fixed entry's. NULL for a cancelled fit and a result the
+     * program made (read back from a file). */
+    double *covariance;
 } bf_fit_result;
 
 /* 1 when r has a BF_WARN_ONE_START warning: its best optimum was reached from one start

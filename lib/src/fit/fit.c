@@ -65,7 +65,8 @@ static bf_status fixed_only(const bf_problem *p, const double *z, bf_solution *s
     sol->usable = isfinite(cost);
     sol->stop = sol->usable ? BF_STOP_CONVERGED : BF_STOP_FAILED;
     snprintf(sol->termination, sizeof sol->termination, "%s",
-             sol->usable ? "every parameter fixed: nothing to solve" : "every parameter fixed, and the cost is not finite");
+             sol->usable ? "every parameter fixed: nothing to solve"
+                         : "every parameter fixed, and the cost is not finite");
     return BF_OK;
 }
 
@@ -379,8 +380,12 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
     /* Samples a scene weighted are judged over its directions, as it weighs them,
      * however they reached the fit. */
     const int weighted = o->weighted_metrics || s->scene_weight != NULL;
+    if (!(r->covariance = malloc(((size_t)P * (size_t)P + 1) * sizeof *r->covariance))) {
+        rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the covariance");
+        goto done;
+    }
     if ((rc = bf_obj_final_held(obj, r->x, weighted, nz - nsilent, held, held ? held + nz : NULL, &r->metrics,
-                                r->stderr_, corr, err)) != BF_OK)
+                                r->stderr_, corr, r->covariance, err)) != BF_OK)
         goto done;
     if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
         r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;
@@ -425,6 +430,7 @@ void bf_fit_result_clear(bf_fit_result *r)
     free(r->fixed);
     free(r->inactive);
     free(r->inactive_gate);
+    free(r->covariance);
     const size_t size = r->size; /* the caller's: it stays ready for another fit */
     memset(r, 0, sizeof *r);
     r->size = size;

@@ -220,9 +220,10 @@ bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int
                  double *se, double *corr, bf_error *err);
 /* The same with the internal entries flagged in held (nz; NULL: none) left out of the
  * standard errors (NaN: entries on a bound or without effect), and those in held_corr
- * out of the correlations (entries without effect). */
+ * out of the correlations (entries without effect); cov (NULL: not wanted) the P x P
+ * covariance of the model's entries, from the standard errors' pass (bf_fit_result's). */
 bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
                             const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr,
-                            bf_error *err);
+                            double *cov, bf_error *err);
 
 #endif

@@ -74,14 +74,17 @@ static void jacobi(double *a, double *v, int k)
     }
 }
 
-/* se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when corr is not
- * NULL the correlations of each pair of determined entries (nz x nz; NaN where either is
- * undetermined; 1 on the diagonal). work: 2 nz^2 + nz doubles; idx: nz ints. */
+/* se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when corr or cov is
+ * not NULL the correlations and covariances of each pair of determined entries (nz x nz;
+ * NaN where either is undetermined; corr 1 and cov se^2 on the diagonal), all from the
+ * same pseudo-inverse. work: 2 nz^2 + nz doubles; idx: nz ints. */
 static void covariance(const double *jtj, int nz, double s2, const unsigned char *held, double *se, double *corr,
-                       double *work, int *idx)
+                       double *cov, double *work, int *idx)
 {
     for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
         corr[e] = NAN;
+    for (size_t e = 0; cov && e < (size_t)nz * nz; e++)
+        cov[e] = NAN;
     double *d = work + 2 * (size_t)nz * nz;
     int k = 0;
     for (int j = 0; j < nz; j++) {
@@ -113,8 +116,9 @@ static void covariance(const double *jtj, int nz, double s2, const unsigned char
         if (nullshare <= NULL_SHARE && isfinite(var))
             se[idx[p]] = sqrt(s2 * var / d[idx[p]]);
     }
-    /* Correlations from the same pseudo-inverse (the scaling by d cancels). */
-    for (int p = 0; corr && p < k; p++)
+    /* Correlations from the same pseudo-inverse (the scaling by d cancels in them, not in
+     * the covariances). */
+    for (int p = 0; (corr || cov) && p < k; p++)
         for (int q = 0; q <= p; q++) {
             if (isnan(se[idx[p]]) || isnan(se[idx[q]]))
                 continue;
@@ -127,23 +131,29 @@ static void covariance(const double *jtj, int nz, double s2, const unsigned char
                 cpp += v[p * k + e] * v[p * k + e] / lam;
                 cqq += v[q * k + e] * v[q * k + e] / lam;
             }
-            double r = p == q ? 1.0 : cpq / sqrt(cpp * cqq);
-            corr[idx[p] * nz + idx[q]] = corr[idx[q] * nz + idx[p]] = r;
+            const int i = idx[p], j = idx[q];
+            if (corr)
+                corr[i * nz + j] = corr[j * nz + i] = p == q ? 1.0 : cpq / sqrt(cpp * cqq);
+            if (cov)
+                cov[i * nz + j] = cov[j * nz + i] = p == q ? se[i] * se[i] : s2 * cpq / sqrt(d[i] * d[j]);
         }
 }
 
 /* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
- * squared residuals. */
+ * squared residuals; cov (NULL: not wanted) the P x P covariance in model order, from
+ * the standard errors' pass: 0 in a fixed entry's row and column, NaN where either entry
+ * is undetermined. */
 static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, const unsigned char *held,
-                             const unsigned char *held_corr, double *se, double *corr, bf_error *err)
+                             const unsigned char *held_corr, double *se, double *corr, double *cov, bf_error *err)
 {
     const int nz = o->nz;
     size_t nz2 = (size_t)nz * nz;
     double *sez = malloc((size_t)nz * sizeof *sez);
     double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
     int *idx = malloc((size_t)nz * sizeof *idx);
+    double *covz = cov ? malloc((nz2 + 1) * sizeof *covz) : NULL;
     bf_status rc = BF_OK;
-    if (!sez || !work || !idx) {
+    if (!sez || !work || !idx || (cov && !covz)) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
     }
@@ -153,17 +163,28 @@ static bf_status stderr_from(const bf_objective *o, const double *jtj, double ss
             sez[k] = NAN;
         for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
             corr[e] = NAN;
+        for (size_t e = 0; covz && e < nz2; e++)
+            covz[e] = NAN;
     } else {
         const double s2 = ssr / (double)(n - (size_t)nz);
         if (corr && held != held_corr) { /* two masks: the correlations from their own pass */
-            covariance(jtj, nz, s2, held_corr, sez, corr, work, idx);
+            covariance(jtj, nz, s2, held_corr, sez, corr, NULL, work, idx);
             corr = NULL;
         }
-        covariance(jtj, nz, s2, held, sez, corr, work, idx);
+        covariance(jtj, nz, s2, held, sez, corr, covz, work, idx);
     }
     for (int k = 0; k < nz; k++)
         se[o->kidx[k]] = sez[k];
+    if (cov) {
+        const size_t P = (size_t)o->P;
+        for (size_t e = 0; e < P * P; e++)
+            cov[e] = 0.0;
+        for (int a = 0; a < nz; a++)
+            for (int b = 0; b < nz; b++)
+                cov[(size_t)o->kidx[a] * P + (size_t)o->kidx[b]] = covz[(size_t)a * nz + (size_t)b];
+    }
 done:
+    free(covz);
     free(sez);
     free(work);
     free(idx);
@@ -174,7 +195,7 @@ done:
  * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
 static bf_status final_pass(const bf_objective *o, const double *x, int weighted, const unsigned char *held,
                             const unsigned char *held_corr, bf_metric_sums *metrics, double *se, double *corr,
-                            double *wssr, bf_error *err)
+                            double *cov, double *wssr, bf_error *err)
 {
     bf_status rc = bf_model_check(o->model, x, err);
     if (rc)
@@ -200,7 +221,7 @@ static bf_status final_pass(const bf_objective *o, const double *x, int weighted
         goto done;
     }
     if (nz > 0)
-        rc = stderr_from(o, jtj, ssr, held, held_corr, se, corr, err);
+        rc = stderr_from(o, jtj, ssr, held, held_corr, se, corr, cov, err);
     *wssr = ssr;
 done:
     free(ones);
@@ -211,22 +232,22 @@ done:
 bf_status bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
     double wssr;
-    return final_pass(o, x, 0, NULL, NULL, NULL, se, NULL, &wssr, err);
+    return final_pass(o, x, 0, NULL, NULL, NULL, se, NULL, NULL, &wssr, err);
 }
 
 bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
-                 double *corr, bf_error *err)
+                       double *corr, bf_error *err)
 {
-    return bf_obj_final_held(o, x, weighted, k, NULL, NULL, metrics, se, corr, err);
+    return bf_obj_final_held(o, x, weighted, k, NULL, NULL, metrics, se, corr, NULL, err);
 }
 
 bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
-                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr,
+                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr, double *cov,
                             bf_error *err)
 {
     bf_metric_sums sums;
     double wssr = NAN;
-    bf_status rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, &wssr, err);
+    bf_status rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, cov, &wssr, err);
     if (rc == BF_OK)
         rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
     if (rc == BF_OK)
