@@ -43,18 +43,19 @@ static const cli_option own[] = {
     {"--share", 0, "NAME,...", "parameters fitted once per material cluster, not per pixel", NULL,
      CLI_STRING_AT(fit_images_args, share)},
     {"--clusters", 0, "K", "material clusters (k-means on the albedo) for --share (default 1)", NULL,
-     CLI_INT_AT(fit_images_args, clusters, 1, 64)},
+     CLI_INT_AT(fit_images_args, clusters, 1, BF_PHOTO_MAX_CLUSTERS)},
     {"--scale", 0, "auto|S",
      "values are multiplied by S before fitting; auto: the 99th percentile\n"
      "albedo becomes 0.8 (default: the stack's; DiLiGenT auto, JSON 1)",
      NULL, CLI_STRING_AT(fit_images_args, scale)},
     {"--tile", 0, "I/N", "fit band I of N bands of rows only (job arrays), merged by\nbrdfit merge-images", NULL,
      CLI_STRING_AT(fit_images_args, tile)},
-    {"--relit", 0, "N", "relit comparisons written (default 3)", NULL, CLI_INT_AT(fit_images_args, relit, 0, 8)},
+    {"--relit", 0, "N", "relit comparisons written (default 3)", NULL,
+     CLI_INT_AT(fit_images_args, relit, 0, BF_PHOTO_MAX_RELIT)},
     {"--seed", 0, "N", "seed of the start's clusters (default 0)", NULL,
      CLI_INT_AT(fit_images_args, seed, 0, 2147483647)},
     {"--threads", 0, "N", "threads (default: every core); results do not depend on it", NULL,
-     CLI_INT_AT(fit_images_args, threads, 1, 1024)},
+     CLI_INT_AT(fit_images_args, threads, 1, BF_PHOTO_MAX_THREADS)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
@@ -88,7 +89,9 @@ static int take_stack(void *ctx, const char *v, const char *c)
     return 0;
 }
 
-/* The options into o: 0, or 2 after a one-line error. */
+/* The options into o: 0, or 2 after a one-line error. The ranges, the parsing of
+ * --normals, --scale and --tile and the messages are the library's (photo.h); the
+ * model and the shared names are usage, checked before any image is read. */
 static int settle(const fit_images_args *a, bf_photo_options *o)
 {
     bf_photo_options_init(o);
@@ -98,60 +101,18 @@ static int settle(const fit_images_args *a, bf_photo_options *o)
     }
     if (a->model)
         o->model = a->model;
-    /* The model and the shared names are usage: checked before any image is read. */
-    bf_model *m = NULL;
-    bf_error err;
-    if (bf_model_new(o->model, 3, &m, &err) != BF_OK) {
-        fprintf(stderr, "%s: -m: %s\n", cmd, err.msg);
-        return 2;
-    }
-    char names[512];
-    snprintf(names, sizeof names, "%s", a->share ? a->share : "");
-    for (char *save = NULL, *t = strtok_r(names, ",", &save); t; t = strtok_r(NULL, ",", &save))
-        if (bf_model_find_param(m, t) < 0) {
-            fprintf(stderr, "%s: --share: %s has no parameter '%s' (brdfit models)\n", cmd, bf_model_name(m), t);
-            bf_model_free(m);
-            return 2;
-        }
-    bf_model_free(m);
-    if (a->normals && strcmp(a->normals, "fit")) {
-        if (!strcmp(a->normals, "flat"))
-            o->normals = BF_NORMALS_FLAT;
-        else {
-            o->normals = BF_NORMALS_FILE;
-            o->normals_file = a->normals;
-        }
-    }
     o->share = a->share;
     o->clusters = a->clusters;
     o->threads = a->threads;
     o->relit_images = a->relit;
     o->seed = (uint64_t)a->seed;
-    if (a->scale) {
-        o->scale_given = 1;
-        if (strcmp(a->scale, "auto") && !(args_number(a->scale, 1e-30, 1e30, &o->scale) && o->scale > 0.0)) {
-            fprintf(stderr, "%s: bad value '%s' for --scale (auto or a positive number)\n", cmd, a->scale);
-            return 2;
-        }
-    }
-    if (a->tile) {
-        long i, n;
-        const char *slash = strchr(a->tile, '/');
-        char head[32];
-        size_t len = slash ? (size_t)(slash - a->tile) : 0;
-        if (!slash || len >= sizeof head)
-            i = 0;
-        else {
-            memcpy(head, a->tile, len);
-            head[len] = '\0';
-        }
-        if (!slash || len >= sizeof head || !args_int(head, 1, 1000000, &i) || !args_int(slash + 1, 1, 1000000, &n) ||
-            i > n) {
-            fprintf(stderr, "%s: bad value '%s' for --tile (I/N with 1 <= I <= N)\n", cmd, a->tile);
-            return 2;
-        }
-        o->tile_index = (int)i - 1;
-        o->tile_count = (int)n;
+    bf_error err;
+    if ((a->normals && bf_photo_options_set_normals(o, a->normals, &err) != BF_OK) ||
+        bf_photo_options_check(o, &err) != BF_OK ||
+        (a->scale && bf_photo_options_set_scale(o, a->scale, &err) != BF_OK) ||
+        (a->tile && bf_photo_options_set_tile(o, a->tile, &err) != BF_OK)) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
+        return 2;
     }
     return 0;
 }

@@ -16,6 +16,9 @@
  *  - The default light is at theta 45, phi 0 (the highlight off-centre, shading visible);
  *    the default view is straight down +z. Angles in degrees; render.h defines frames.
  *  - --size N or WxH (default 256; slice plots 640x480).
+ *  - Every default, limit and check is the library's (render.h: the options' inits,
+ *    BF_RENDER_MAX_*, the checks); the command adds the syntax and the messages naming
+ *    its options.
  *  - Exit 2 for bad usage, 1 for bad data or an unwritable image; no partial file. */
 #include <errno.h>
 #include <math.h>
@@ -28,7 +31,6 @@
 #include "brdfit/formats.h"
 #include "brdfit/image.h"
 #include "brdfit/io.h"
-#include "brdfit/limits.h"
 #include "brdfit/render.h"
 #include "args.h"
 #include "cli.h"
@@ -36,8 +38,6 @@
 #include "data_options.h"
 
 static const char cmd[] = "brdfit render";
-
-#define MAX_LIGHTS 16
 
 static int parse_double(const char *s, double *out)
 {
@@ -59,21 +59,7 @@ static int parse_dir(const char *s, bf_dir *d)
 
 static int parse_size(const char *s, int *w, int *h)
 {
-    return args_size(s, 1, 16384, w, h);
-}
-
-/* The image is held whole (floats, then the encoder's copy): about 16 bytes a pixel.
- * Refuse what the machine cannot hold rather than be killed for it. */
-static int image_fits(int width, int height)
-{
-    const double need = 16.0 * width * height;
-    const size_t have = bf_memory_available();
-    if (have != SIZE_MAX && need > (double)have) {
-        fprintf(stderr, "%s: a %dx%d image needs about %.3g MiB, %.3g MiB available%s\n", cmd, width, height,
-                need / 1048576.0, (double)have / 1048576.0, getenv("BRDFIT_MEMORY") ? " (BRDFIT_MEMORY)" : "");
-        return 0;
-    }
-    return 1;
+    return args_size(s, 1, BF_RENDER_MAX_SIDE, w, h);
 }
 
 /* --to and the extensions: images are PNG or EXR, plots PNG, SVG or PDF. */
@@ -86,40 +72,37 @@ static int to_of(const char *path)
            : p == BF_PLOT_PDF ? TO_PDF : 0;
 }
 
-/* What the command line asked for. */
+/* What the command line asked for, over the library's defaults (the options' inits). */
 typedef struct render_args {
     bf_options *o;
     const char *params, *data, *out_path;
-    bf_dir lights[MAX_LIGHTS], view;
-    int nlights, slice, halfdiff, width, height;
-    int tonemap; /* bf_tonemap_mode, or -1: the mode's default */
-    int to;      /* --to: a to_format, or 0 */
-    double exposure, decades, plane_tol, phi_d;
+    bf_sphere_options sphere;
+    bf_slice_options slices;
+    bf_halfdiff_options hd;
+    bf_tonemap_options tm;
+    bf_dir lights[BF_RENDER_MAX_LIGHTS + 1];     /* one more: the one the check refuses */
+    int nlights, slice, halfdiff, width, height; /* width 0: the mode's default size */
+    int tonemap_given;
+    int to; /* --to: a to_format, or 0 */
     double incidence[BF_SLICE_MAX_INCIDENCE];
-    int nincidence, incidence_given;
+    int incidence_given;
 } render_args;
 
 /* --incidence A,B,...: at most BF_SLICE_MAX_INCIDENCE angles in [0, 90). */
 static int parse_incidence(const char *v, render_args *r)
 {
     char buf[512], *save = NULL;
-    int ok = 1;
+    int ok = 1, n = 0;
     snprintf(buf, sizeof buf, "%s", v);
-    r->nincidence = 0;
     for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save)) {
         double x;
-        ok = r->nincidence < BF_SLICE_MAX_INCIDENCE && parse_double(t, &x) && x >= 0.0 && x < 90.0;
+        ok = n < BF_SLICE_MAX_INCIDENCE && parse_double(t, &x) && x >= 0.0 && x < 90.0;
         if (ok)
-            r->incidence[r->nincidence++] = x;
+            r->incidence[n++] = x;
     }
-    return ok && r->nincidence > 0;
-}
-
-/* --tonemap: a bf_tonemap_mode, or -2 for an unknown name. */
-static int parse_tonemap(const char *v)
-{
-    return !strcmp(v, "clamp") ? BF_TONEMAP_CLAMP : !strcmp(v, "reinhard") ? BF_TONEMAP_REINHARD
-           : !strcmp(v, "log") ? BF_TONEMAP_LOG : -2;
+    r->slices.incidence = r->incidence;
+    r->slices.nincidence = n;
+    return ok && n > 0;
 }
 
 /* A value render cannot take: the same line for every option. */
@@ -140,16 +123,26 @@ static int take_to(void *target, const cli_option *o, const char *v, const char 
 static int take_light(void *target, const cli_option *o, const char *v, const char *c)
 {
     render_args *r = target;
-    if (r->nlights >= MAX_LIGHTS) {
-        fprintf(stderr, "%s: at most %d lights\n", c, MAX_LIGHTS);
-        return -1;
+    if (r->nlights >= BF_RENDER_MAX_LIGHTS) { /* one too many: the library's limit, in its words */
+        bf_sphere_options so = r->sphere;
+        so.lights = r->lights;
+        so.nlights = r->nlights + 1;
+        bf_error err;
+        if (bf_sphere_options_check(&so, &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", c, err.msg);
+            return -1;
+        }
     }
-    return parse_dir(v, &r->lights[r->nlights++]) ? 0 : bad_value(o, v, c);
+    if (!parse_dir(v, &r->lights[r->nlights]))
+        return bad_value(o, v, c);
+    r->sphere.lights = r->lights;
+    r->sphere.nlights = ++r->nlights;
+    return 0;
 }
 
 static int take_view(void *target, const cli_option *o, const char *v, const char *c)
 {
-    return parse_dir(v, &((render_args *)target)->view) ? 0 : bad_value(o, v, c);
+    return parse_dir(v, &((render_args *)target)->sphere.view) ? 0 : bad_value(o, v, c);
 }
 
 static int take_size(void *target, const cli_option *o, const char *v, const char *c)
@@ -158,37 +151,41 @@ static int take_size(void *target, const cli_option *o, const char *v, const cha
     return parse_size(v, &r->width, &r->height) ? 0 : bad_value(o, v, c);
 }
 
-/* --exposure and --decades: a number above 0. */
-static int take_positive(double *d, const cli_option *o, const char *v, const char *c)
+/* --exposure and --decades: a number the display mapping takes (bf_tonemap_options_check). */
+static int take_mapping(render_args *r, double *d, const cli_option *o, const char *v, const char *c)
 {
-    return parse_double(v, d) && *d > 0.0 ? 0 : bad_value(o, v, c);
+    return parse_double(v, d) && bf_tonemap_options_check(&r->tm, NULL) == BF_OK ? 0 : bad_value(o, v, c);
 }
 
 static int take_exposure(void *target, const cli_option *o, const char *v, const char *c)
 {
-    return take_positive(&((render_args *)target)->exposure, o, v, c);
+    render_args *r = target;
+    return take_mapping(r, &r->tm.exposure, o, v, c);
 }
 
 static int take_decades(void *target, const cli_option *o, const char *v, const char *c)
 {
-    return take_positive(&((render_args *)target)->decades, o, v, c);
+    render_args *r = target;
+    return take_mapping(r, &r->tm.decades, o, v, c);
 }
 
 static int take_plane_tol(void *target, const cli_option *o, const char *v, const char *c)
 {
     render_args *r = target;
-    return parse_double(v, &r->plane_tol) && r->plane_tol >= 0.0 ? 0 : bad_value(o, v, c);
+    return parse_double(v, &r->slices.plane_tol) && r->slices.plane_tol >= 0.0 ? 0 : bad_value(o, v, c);
 }
 
 static int take_phi_d(void *target, const cli_option *o, const char *v, const char *c)
 {
-    return parse_double(v, &((render_args *)target)->phi_d) ? 0 : bad_value(o, v, c);
+    render_args *r = target;
+    return parse_double(v, &r->hd.phi_d) && bf_halfdiff_options_check(&r->hd, NULL) == BF_OK ? 0 : bad_value(o, v, c);
 }
 
 static int take_tonemap(void *target, const cli_option *o, const char *v, const char *c)
 {
     render_args *r = target;
-    return (r->tonemap = parse_tonemap(v)) != -2 ? 0 : bad_value(o, v, c);
+    r->tonemap_given = 1;
+    return bf_tonemap_parse(v, &r->tm.mode, NULL) == BF_OK ? 0 : bad_value(o, v, c);
 }
 
 static int take_incidence(void *target, const cli_option *o, const char *v, const char *c)
@@ -287,27 +284,50 @@ static int check_mode(const render_args *r, int *fmt)
     return 0;
 }
 
-/* The mode's defaults for what was not given (size, light), then the checks that need
- * them: 0, or the exit status after a one-line error. */
+/* The mode's defaults for what was not given (the size: the library's for the mode),
+ * then the checks that need them: 0, or the exit status after a one-line error. */
 static int settle(render_args *r, int fmt)
 {
     const int hd_plot = r->halfdiff && (fmt == TO_SVG || fmt == TO_PDF);
     if (r->width == 0) {
-        r->width = r->slice ? 640 : hd_plot ? 480 : 256;
-        r->height = r->slice ? 480 : hd_plot ? 400 : 256;
+        r->width = r->slice      ? r->slices.width
+                   : hd_plot     ? r->hd.plot_width
+                   : r->halfdiff ? r->hd.width
+                                 : r->sphere.resolution;
+        r->height = r->slice      ? r->slices.height
+                    : hd_plot     ? r->hd.plot_height
+                    : r->halfdiff ? r->hd.height
+                                  : r->sphere.resolution;
     }
-    if (hd_plot && (r->width < 40 || r->height < 40)) {
-        fprintf(stderr, "%s: a half-diff plot must be at least 40x40\n", cmd);
-        return 2;
+    bf_error err;
+    if (r->halfdiff) {
+        if (hd_plot) {
+            r->hd.plot_width = r->width;
+            r->hd.plot_height = r->height;
+        } else {
+            r->hd.width = r->width;
+            r->hd.height = r->height;
+        }
+        if (!r->tonemap_given)
+            r->tm.mode = r->hd.tonemap;
+        if (bf_halfdiff_options_check(&r->hd, &err) != BF_OK) {
+            fprintf(stderr, "%s: %s\n", cmd, err.msg);
+            return 2;
+        }
+    } else if (!r->slice) {
+        if (r->width != r->height) {
+            fprintf(stderr, "%s: the sphere image is square: --size N\n", cmd);
+            return 2;
+        }
+        r->sphere.resolution = r->width;
+    } else {
+        r->slices.width = r->width;
+        r->slices.height = r->height;
     }
-    if (!r->slice && !r->halfdiff && r->width != r->height) {
-        fprintf(stderr, "%s: the sphere image is square: --size N\n", cmd);
-        return 2;
-    }
-    if (r->nlights == 0)
-        r->lights[r->nlights++] = (bf_dir){45.0, 0.0};
-    if (!image_fits(r->width, r->height))
+    if (bf_render_memory_check(r->width, r->height, &err) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, err.msg);
         return 1; /* the request is well formed; this machine cannot hold it */
+    }
     char scene[4096];
     const bf_path_use in[] = {{"--params file", r->params},
                               {"--data file", r->data},
@@ -338,26 +358,14 @@ static int load_inputs(const render_args *r, bf_model **m, double **x, bf_sample
 
 /* Draws the mode's picture into rgb (width x height x 3, linear), and tone maps it for
  * a PNG. Returns a BF_ status. */
-static bf_status draw(render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb, bf_error *err)
+static bf_status draw(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, float *rgb,
+                      bf_error *err)
 {
-    int rc;
-    if (r->halfdiff) {
-        rc = m ? bf_render_halfdiff_model(m, x, r->width, r->height, r->phi_d, rgb, err)
-               : bf_render_halfdiff_merl(s, r->width, r->height, r->phi_d, rgb, err);
-        if (r->tonemap < 0)
-            r->tonemap = BF_TONEMAP_LOG;
-    } else {
-        bf_sphere_options so;
-        bf_sphere_options_init(&so);
-        so.resolution = r->width;
-        so.view = r->view;
-        so.lights = r->lights;
-        so.nlights = r->nlights;
-        rc = bf_render_sphere(m, x, &so, rgb, err);
-    }
+    bf_status rc = r->halfdiff ? (m ? bf_render_halfdiff_model(m, x, r->width, r->height, r->hd.phi_d, rgb, err)
+                                    : bf_render_halfdiff_merl(s, r->width, r->height, r->hd.phi_d, rgb, err))
+                               : bf_render_sphere(m, x, &r->sphere, rgb, err);
     if (rc == BF_OK && fmt == TO_PNG)
-        bf_tonemap(rgb, (size_t)r->width * (size_t)r->height * 3,
-                   r->tonemap < 0 ? BF_TONEMAP_CLAMP : (bf_tonemap_mode)r->tonemap, r->exposure, r->decades);
+        rc = bf_tonemap_apply(rgb, (size_t)r->width * (size_t)r->height * 3, &r->tm, err);
     return rc;
 }
 
@@ -366,15 +374,13 @@ static bf_status draw(render_args *r, int fmt, const bf_model *m, const double *
 static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
 {
     double measured[BF_SLICE_MAX_INCIDENCE];
-    int nm = s && !r->incidence_given ? bf_slice_incidences(s, r->incidence, r->nincidence, measured) : 0;
-    bf_slice_options so;
-    bf_slice_options_init(&so);
-    so.width = r->width;
-    so.height = r->height;
-    so.incidence = nm ? measured : r->incidence;
-    so.nincidence = nm ? nm : r->nincidence;
+    bf_slice_options so = r->slices;
+    int nm = s && !r->incidence_given ? bf_slice_incidences(s, so.incidence, so.nincidence, measured) : 0;
+    if (nm) {
+        so.incidence = measured;
+        so.nincidence = nm;
+    }
     so.samples = s;
-    so.plane_tol = r->plane_tol;
     int pf = fmt == TO_SVG ? BF_PLOT_SVG : fmt == TO_PDF ? BF_PLOT_PDF : BF_PLOT_PNG;
     return bf_render_slice(m, x, &so, r->out_path, pf, NULL, err);
 }
@@ -392,7 +398,7 @@ static int render(render_args *r, int fmt)
         goto done;
     if (r->slice || (r->halfdiff && (fmt == TO_SVG || fmt == TO_PDF))) {
         rc = r->slice ? slice_plot(r, fmt, m, x, s, &err)
-                      : bf_render_halfdiff_plot(m, x, s, r->phi_d, r->decades, r->width, r->height, r->out_path,
+                      : bf_render_halfdiff_plot(m, x, s, r->hd.phi_d, r->tm.decades, r->width, r->height, r->out_path,
                                                 fmt == TO_SVG ? BF_PLOT_SVG : BF_PLOT_PDF, &err);
         if (rc != BF_OK) {
             fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -424,18 +430,14 @@ done:
     return status;
 }
 
-/* The defaults that do not depend on the mode (settle fills in the others). */
+/* The library's defaults of every mode (settle picks the mode's size). */
 static void render_args_init(render_args *r)
 {
-    static const double incidence[] = {0.0, 30.0, 60.0};
     memset(r, 0, sizeof *r);
-    r->tonemap = -1;
-    r->exposure = 1.0;
-    r->decades = 4.0;
-    r->plane_tol = 2.0;
-    r->phi_d = 90.0;
-    memcpy(r->incidence, incidence, sizeof incidence);
-    r->nincidence = 3;
+    bf_sphere_options_init(&r->sphere);
+    bf_slice_options_init(&r->slices);
+    bf_halfdiff_options_init(&r->hd);
+    bf_tonemap_options_init(&r->tm);
 }
 
 int cmd_render(int argc, char **argv)

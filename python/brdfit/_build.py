@@ -209,10 +209,27 @@ typedef struct bf_samples_info {
 void bf_samples_info_init(bf_samples_info *info);
 bf_status bf_samples_describe(bf_samples *s, bf_samples_info *info, bf_error *err);
 void bf_samples_info_clear(bf_samples_info *info);
+bf_status bf_samples_info_json(bf_samples *s, const bf_load_report *report, const bf_options *o,
+                               const char *path, char **out, bf_error *err);
+bf_status bf_samples_info_text(bf_samples *s, const bf_load_report *report, const bf_options *o,
+                               const char *path, char **out, bf_error *err);
 typedef struct bf_dir { double theta, phi; } bf_dir;
 typedef struct bf_sphere_options { size_t size; int resolution; bf_dir view; const bf_dir *lights; int nlights; ...; }
     bf_sphere_options;
 void bf_sphere_options_init(bf_sphere_options *o);
+bf_status bf_sphere_options_check(const bf_sphere_options *o, bf_error *err);
+bf_status bf_render_memory_check(int width, int height, bf_error *err);
+typedef enum bf_tonemap_mode { BF_TONEMAP_CLAMP = 0, BF_TONEMAP_REINHARD, BF_TONEMAP_LOG } bf_tonemap_mode;
+bf_status bf_tonemap_parse(const char *name, bf_tonemap_mode *out, bf_error *err);
+typedef struct bf_tonemap_options { size_t size; bf_tonemap_mode mode; double exposure; double decades; ...; }
+    bf_tonemap_options;
+void bf_tonemap_options_init(bf_tonemap_options *o);
+bf_status bf_tonemap_options_check(const bf_tonemap_options *o, bf_error *err);
+bf_status bf_tonemap_apply(float *v, size_t n, const bf_tonemap_options *o, bf_error *err);
+typedef struct bf_halfdiff_options { size_t size; int width, height; double phi_d; bf_tonemap_mode tonemap; ...; }
+    bf_halfdiff_options;
+void bf_halfdiff_options_init(bf_halfdiff_options *o);
+bf_status bf_halfdiff_options_check(const bf_halfdiff_options *o, bf_error *err);
 bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb, bf_error *err);
 bf_status bf_render_sphere_merl(const bf_samples *merl, const bf_sphere_options *o, float *rgb, bf_error *err);
 bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height, double phi_d,
@@ -227,9 +244,14 @@ typedef struct bf_photo_options {
     size_t size; const char *model; bf_photo_normals normals; const char *normals_file; const char *share;
     int clusters; int scale_given; double scale; int tile_index, tile_count; int threads; int relit_images;
     uint64_t seed; void (*progress)(void *user, double done); void *progress_user;
-    const volatile sig_atomic_t *cancel; /* bf_cancel_flag (volatile: cffi checks the field) */ ...;
+    const volatile sig_atomic_t *cancel; /* bf_cancel_flag (volatile: cffi checks the field) */
+    bf_option_spelling spelling; ...;
 } bf_photo_options;
 void bf_photo_options_init(bf_photo_options *o);
+bf_status bf_photo_options_check(const bf_photo_options *o, bf_error *err);
+bf_status bf_photo_options_set_tile(bf_photo_options *o, const char *text, bf_error *err);
+bf_status bf_photo_options_set_normals(bf_photo_options *o, const char *text, bf_error *err);
+bf_status bf_photo_options_set_scale(bf_photo_options *o, const char *text, bf_error *err);
 typedef struct bf_photo_counts {
     size_t pixels; size_t masked; size_t failed; size_t samples; size_t shadowed; size_t dark; size_t saturated;
     size_t invalid;
@@ -244,6 +266,8 @@ typedef struct bf_photo_result {
 } bf_photo_result;
 bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_result **out, bf_error *err);
 void bf_photo_result_free(bf_photo_result *r);
+bf_status bf_photo_result_json(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o,
+                               const char *command_line, char **out, bf_error *err);
 extern "Python" void _brdfit_photo_progress(void *user, double done);
 
 /* The progress reports, into Python (_brdfit_report in brdfit/_run.py). */

@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from ._brdfit import ffi, lib
 from ._data import _load
-from ._errors import UsageError, _check
+from ._errors import UsageError, _check, _take_text
 from ._options import _doc, _Options, options
 from ._run import CancelEvent, _Run
 from ._samples import Samples
@@ -59,11 +59,14 @@ class Info:
     .wavelengths (nm, or None), .weighted, .theta_i, .theta_o, .theta_h, .theta_d
     (min, max in degrees over the samples above the horizon), .below_horizon, .nonfinite,
     .negative, .zero (counts), .value_min, .value_max, .value_mean (per channel, over the
-    finite values)."""
+    finite values); .json and .text, what `brdfit info --json` and `brdfit info` print for
+    the file, byte for byte (bf_samples_info_json, bf_samples_info_text)."""
 
-    def __init__(self, path: str, samples: Samples, report: LoadReport, info: Any, options: Dict[str, str]):
+    def __init__(self, path: str, samples: Samples, report: LoadReport, info: Any, options: Dict[str, str],
+                 texts: Tuple[str, str]):
         C = int(info.channels)
         self.path = path
+        self.json, self.text = texts
         self.samples = samples
         self.report = report
         self.options = options
@@ -113,7 +116,15 @@ def info(path: Union[str, "os.PathLike[str]"], cancel: Optional[CancelEvent] = N
     lib.bf_samples_info_init(d)
     err = ffi.new("bf_error *")
     _check(lib.bf_samples_describe(samples._s, d, err), err, samples.path or "samples")
-    return Info(samples.path or "", samples, LoadReport(report), d, _values(opts))
+    # The command's report, made by the library from the same samples, load report and
+    # options (the file named as it was given).
+    name = os.fsencode(samples.path or "")
+    texts = []
+    for report_fn in (lib.bf_samples_info_json, lib.bf_samples_info_text):
+        out = ffi.new("char **")
+        _check(report_fn(samples._s, report, opts.o, name, out, err), err)
+        texts.append(_take_text(out[0]))
+    return Info(samples.path or "", samples, LoadReport(report), d, _values(opts), (texts[0], texts[1]))
 
 
 info.__doc__ = """What a data file holds once read and prepared as a fit would see it, as `brdfit info`

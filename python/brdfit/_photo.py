@@ -10,10 +10,10 @@ from numpy.typing import NDArray
 
 from ._args import _path_text
 from ._brdfit import ffi, lib
-from ._errors import UsageError, _check
+from ._errors import UsageError, _check, _take_text
 from ._fit import _spec_of
 from ._model import Model
-from ._render import _int
+from ._render import _int, _number
 from ._run import CancelEvent, ProgressFn, _Run
 
 
@@ -41,11 +41,14 @@ class FitImagesResult:
     baseline), .image_rms, .image_lambert_rms, .image_samples (per image), .relit (a list
     of (image index, measured, relit by the model) images), .scale (as used), .rows (the
     rows fitted: a tile's band), .iterations, .restarted, .threads, .seconds and
-    .cancelled (a run stopped by progress or Ctrl-C: the maps are incomplete).
+    .cancelled (a run stopped by progress or Ctrl-C: the maps are incomplete); .json, the
+    text fit-images writes to fit.json (bf_photo_result_json; no "command"; None for a
+    cancelled run).
     The maps are floats (float32) as the library holds them; fit-images writes the same
     values to normals.exr, NAME.exr, error.exr and the others."""
 
-    def __init__(self, r: Any):
+    def __init__(self, r: Any, summary: Optional[str] = None):
+        self.json = summary
         H, W, C, P = int(r.height), int(r.width), int(r.channels), int(r.nvalues)
         self.model = Model._from_ptr(r.model)
         self.width, self.height, self.channels = W, H, C
@@ -91,19 +94,6 @@ class FitImagesResult:
 
 
 
-def _tile(v: Any) -> Tuple[int, int]:
-    """(I, N): band I of N, from 1, as --tile I/N (also the text "I/N")."""
-    if isinstance(v, str):
-        parts = v.split("/")
-        try:
-            v = tuple(int(p) for p in parts)
-        except ValueError:
-            v = None
-    if not isinstance(v, (tuple, list)) or len(v) != 2:
-        raise UsageError("tile: needs (I, N) or 'I/N' (band I of N, from 1), got %r" % (v,))
-    return _int("tile", v[0]), _int("tile", v[1])
-
-
 def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, None] = None,
                normals: Union[str, "os.PathLike[str]", None] = None, share: Union[str, Sequence[str], None] = None,
                clusters: Optional[int] = None, scale: Union[float, str, None] = None,
@@ -141,18 +131,16 @@ def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, N
         keep.append(c)
         return c
 
+    err = ffi.new("bf_error *")
+    # Texts are parsed by the library (bf_photo_options_set_*), and every range is its
+    # check's (bf_photo_options_check), its messages naming the keywords.
+    o.spelling = lib.BF_SPELL_KEYWORD
     if model is not None:
         o.model = text("model", _spec_of(model, "model"))
     if normals is not None:
         if not isinstance(normals, (str, os.PathLike)):
             raise UsageError("normals: needs 'fit', 'flat' or an image file, got %r" % (normals,))
-        if normals == "fit":
-            o.normals = lib.BF_NORMALS_FIT
-        elif normals == "flat":
-            o.normals = lib.BF_NORMALS_FLAT
-        else:
-            o.normals = lib.BF_NORMALS_FILE
-            o.normals_file = text("normals", _path_text(normals))
+        _check(lib.bf_photo_options_set_normals(o, text("normals", _path_text(normals)), err), err)
     if share is not None:
         if isinstance(share, str):
             names = share
@@ -163,27 +151,28 @@ def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, N
         o.share = text("share", names)
     if clusters is not None:
         o.clusters = _int("clusters", clusters)
-    if scale is not None:
-        o.scale_given = 1
-        if scale != "auto":  # auto: the stack's own rule (bf_photo_options: scale 0)
-            if isinstance(scale, (bool, str)) or not isinstance(scale, (int, float, np.integer, np.floating)) \
-                    or not np.isfinite(scale):
-                raise UsageError("scale: needs 'auto' or a finite number, got %r" % (scale,))
-            o.scale = float(scale)
-    if tile is not None:
-        i, n = _tile(tile)
-        o.tile_index, o.tile_count = i - 1, n
+    if isinstance(scale, str):
+        _check(lib.bf_photo_options_set_scale(o, text("scale", scale), err), err)
+    elif scale is not None:
+        o.scale_given, o.scale = 1, _number("scale", scale)
+    if isinstance(tile, str):
+        _check(lib.bf_photo_options_set_tile(o, text("tile", tile), err), err)
+    elif tile is not None:
+        if not isinstance(tile, (tuple, list)) or len(tile) != 2:
+            raise UsageError("tile: needs (I, N) or 'I/N' (band I of N, from 1), got %r" % (tile,))
+        i, n = _int("tile", tile[0]), _int("tile", tile[1])
+        o.tile_index, o.tile_count = _int("tile", i - 1), n
     if relit is not None:
         o.relit_images = _int("relit", relit)
     if seed is not None:
         o.seed = _int("seed", seed, "uint64_t")
     if threads is not None:
         o.threads = _int("threads", threads)
+    _check(lib.bf_photo_options_check(o, err), err)  # before the stack is read
     o.cancel = run.cancel
     if progress is not None:
         o.progress = lib._brdfit_photo_progress
         o.progress_user = run.handle
-    err = ffi.new("bf_error *")
 
     held = (o, keep)  # the options and the texts they point to, for the call
 
@@ -197,7 +186,12 @@ def fit_images(stack: Union[str, "os.PathLike[str]"], model: Union[str, Model, N
         r = ffi.gc(out[0], lib.bf_photo_result_free) if out[0] != ffi.NULL else None
         _check(rc, err)
         assert r is not None
-        return FitImagesResult(r)
+        summary = None  # a cancelled fit has none
+        if not r.cancelled:
+            made = ffi.new("char **")
+            _check(lib.bf_photo_result_json(r, st, opts, ffi.NULL, made, err), err)
+            summary = _take_text(made[0])
+        return FitImagesResult(r, summary)
 
     result: FitImagesResult = run(call)
     return result

@@ -36,13 +36,11 @@ def _number(name: str, v: Any) -> float:
 
 
 def _dir(name: str, v: Any) -> Tuple[float, float]:
-    """(theta, phi) in degrees, as --light and --view take them."""
+    """(theta, phi) in degrees, as --light and --view take them (the library checks that
+    they are finite directions)."""
     if isinstance(v, (str, bytes)) or not isinstance(v, (tuple, list, np.ndarray)) or len(v) != 2:
         raise UsageError("%s: needs (theta, phi) in degrees, got %r" % (name, v))
-    t, p = _number(name, v[0]), _number(name, v[1])
-    if not (np.isfinite(t) and np.isfinite(p)):
-        raise UsageError("%s: needs finite angles, got %r" % (name, v))
-    return t, p
+    return _number(name, v[0]), _number(name, v[1])
 
 
 def _model_of(source: Source, params: Any) -> Tuple[Any, NDArray[np.float64]]:
@@ -71,7 +69,8 @@ def _model_of(source: Source, params: Any) -> Tuple[Any, NDArray[np.float64]]:
 
 def _sphere_options(resolution: Optional[int], view: Any, lights: Any) -> Tuple[Any, Any]:
     """bf_sphere_options at the library's defaults (bf_sphere_options_init), with what was
-    given over them; and the lights' array, which must outlive the options."""
+    given over them, checked by the library (bf_sphere_options_check: the size, the number
+    of lights, finite directions); and the lights' array, which must outlive the options."""
     o = ffi.new("bf_sphere_options *")
     lib.bf_sphere_options_init(o)
     if resolution is not None:
@@ -88,19 +87,70 @@ def _sphere_options(resolution: Optional[int], view: Any, lights: Any) -> Tuple[
             keep[i].theta, keep[i].phi = t, p
         o.lights = keep
         o.nlights = len(dirs)
+    err = ffi.new("bf_error *")
+    _check(lib.bf_sphere_options_check(o, err), err)
     return o, keep
 
 
+def _halfdiff_options(size: Any, phi_d: Any) -> Any:
+    """bf_halfdiff_options at the library's defaults (bf_halfdiff_options_init: the size,
+    phi_d), with what was given over them, checked by the library."""
+    o = ffi.new("bf_halfdiff_options *")
+    lib.bf_halfdiff_options_init(o)
+    if isinstance(size, (tuple, list)) and len(size) == 2:
+        o.width, o.height = _int("size", size[0]), _int("size", size[1])
+    elif size is not None:
+        o.width = o.height = _int("size", size)
+    if phi_d is not None:
+        o.phi_d = _number("phi_d", phi_d)
+    err = ffi.new("bf_error *")
+    _check(lib.bf_halfdiff_options_check(o, err), err)
+    return o
+
+
+def _tonemap_options(tonemap: Any, default: Optional[int], exposure: Any, decades: Any) -> Any:
+    """bf_tonemap_options for tonemap (True: the kind's default mapping, default, or the
+    options' own when None; a name as --tonemap takes it), exposure and decades over the
+    library's defaults (bf_tonemap_options_init), checked by the library; None for tonemap
+    None or False."""
+    if tonemap is None or tonemap is False:
+        if exposure is not None or decades is not None:
+            raise UsageError("%s: only with tonemap" % ("exposure" if exposure is not None else "decades"))
+        return None
+    o = ffi.new("bf_tonemap_options *")
+    lib.bf_tonemap_options_init(o)
+    err = ffi.new("bf_error *")
+    if tonemap is True:
+        if default is not None:
+            o.mode = default
+    elif isinstance(tonemap, str):
+        mode = ffi.new("bf_tonemap_mode *")
+        _check(lib.bf_tonemap_parse(tonemap.encode(), mode, err), err, "tonemap")
+        o.mode = mode[0]
+    else:
+        raise UsageError("tonemap: needs True or a mapping's name, got %r" % (tonemap,))
+    if exposure is not None:
+        o.exposure = _number("exposure", exposure)
+    if decades is not None:
+        o.decades = _number("decades", decades)
+    _check(lib.bf_tonemap_options_check(o, err), err)
+    return o
+
+
 def _image(width: int, height: int) -> Tuple[NDArray[np.float32], Any]:
-    """An (height, width, 3) float32 image and its pointer (NULL for an empty size: the
-    library refuses it before writing)."""
-    img = np.zeros((max(height, 0), max(width, 0), 3), dtype=np.float32)
-    return img, (ffi.from_buffer("float[]", img) if img.size else ffi.NULL)
+    """An (height, width, 3) float32 image and its pointer, once the library says that
+    this machine can hold it (bf_render_memory_check: as the command refuses a size)."""
+    err = ffi.new("bf_error *")
+    _check(lib.bf_render_memory_check(width, height, err), err)
+    img = np.zeros((height, width, 3), dtype=np.float32)
+    return img, ffi.from_buffer("float[]", img)
 
 
 def render(source: Source, kind: str = "sphere", params: Optional[Any] = None, resolution: Optional[int] = None,
            view: Optional[Sequence[float]] = None, lights: Optional[Sequence[Sequence[float]]] = None,
-           size: Optional[Union[int, Tuple[int, int]]] = None, phi_d: Optional[float] = None) -> NDArray[np.float32]:
+           size: Optional[Union[int, Tuple[int, int]]] = None, phi_d: Optional[float] = None,
+           tonemap: Union[None, bool, str] = None, exposure: Optional[float] = None,
+           decades: Optional[float] = None) -> NDArray[np.float32]:
     """A picture as a float32 array (height, width, 3) of linear values, what `brdfit render`
     writes to an EXR: every channel count shown as RGB (one channel as grey, three as they
     are, others as the mean of the channels).
@@ -115,8 +165,17 @@ def render(source: Source, kind: str = "sphere", params: Optional[Any] = None, r
     (bf_sphere_options_init), as the command's --size, --view and --light do.
 
     kind="halfdiff": theta_h (columns, even in sqrt(theta_h)) by theta_d (rows, from the
-    top) at a fixed phi_d (degrees, required), as `brdfit render --half-diff`; size is N or
-    (width, height) and defaults to the sphere's resolution."""
+    top) at a fixed phi_d (degrees), as `brdfit render --half-diff`; size is N or (width,
+    height); both default to the library's (bf_halfdiff_options_init), as the command's.
+
+    tonemap: the display mapping of the command's PNG instead of linear values (before
+    the 8-bit encoding, which clamps to [0, 1]): True for the kind's own (the command's
+    default), or "clamp", "reinhard" or "log"; exposure and decades as --exposure and
+    --decades, defaulting to the library's (bf_tonemap_options_init).
+
+    The sizes, angles and the mapping are checked by the library, with its messages
+    (brdfit.UsageError); a picture this machine cannot hold is refused before it is
+    drawn (brdfit.Error, code "nomem")."""
     if not isinstance(kind, str) or kind not in ("sphere", "halfdiff"):
         raise UsageError("kind: 'sphere' or 'halfdiff', got %r" % (kind,))
     merl = isinstance(source, Samples)
@@ -131,6 +190,7 @@ def render(source: Source, kind: str = "sphere", params: Optional[Any] = None, r
             raise UsageError("%s: for kind='halfdiff'; the sphere takes resolution" % (
                 "size" if size is not None else "phi_d"))
         o, keep = _sphere_options(resolution, view, lights)
+        tm = _tonemap_options(tonemap, None, exposure, decades)
         img, rgb = _image(o.resolution, o.resolution)
         if merl:
             assert isinstance(source, Samples)
@@ -139,25 +199,20 @@ def render(source: Source, kind: str = "sphere", params: Optional[Any] = None, r
             m, x = _model_of(source, params)
             _check(lib.bf_render_sphere(m, ffi.from_buffer("double[]", x), o, rgb, err), err)
         del keep  # the lights lived until here
-        return img
-    if resolution is not None or view is not None or lights is not None:
-        raise UsageError("%s: for kind='sphere'; the half/difference image takes size and phi_d" % (
-            "resolution" if resolution is not None else "view" if view is not None else "lights"))
-    if phi_d is None:
-        raise UsageError("phi_d: kind='halfdiff' needs phi_d (degrees)")
-    pd = _number("phi_d", phi_d)
-    if size is None:
-        o, _ = _sphere_options(None, None, None)
-        width = height = int(o.resolution)
-    elif isinstance(size, (tuple, list)) and len(size) == 2:
-        width, height = _int("size", size[0]), _int("size", size[1])
     else:
-        width = height = _int("size", size)
-    img, rgb = _image(width, height)
-    if merl:
-        assert isinstance(source, Samples)
-        _check(lib.bf_render_halfdiff_merl(source._s, width, height, pd, rgb, err), err)
-    else:
-        m, x = _model_of(source, params)
-        _check(lib.bf_render_halfdiff_model(m, ffi.from_buffer("double[]", x), width, height, pd, rgb, err), err)
+        if resolution is not None or view is not None or lights is not None:
+            raise UsageError("%s: for kind='sphere'; the half/difference image takes size and phi_d" % (
+                "resolution" if resolution is not None else "view" if view is not None else "lights"))
+        hd = _halfdiff_options(size, phi_d)
+        tm = _tonemap_options(tonemap, hd.tonemap, exposure, decades)
+        img, rgb = _image(hd.width, hd.height)
+        if merl:
+            assert isinstance(source, Samples)
+            _check(lib.bf_render_halfdiff_merl(source._s, hd.width, hd.height, hd.phi_d, rgb, err), err)
+        else:
+            m, x = _model_of(source, params)
+            _check(lib.bf_render_halfdiff_model(m, ffi.from_buffer("double[]", x), hd.width, hd.height, hd.phi_d, rgb,
+                                                err), err)
+    if tm is not None:
+        _check(lib.bf_tonemap_apply(rgb, img.size, tm, err), err)
     return img

@@ -73,6 +73,16 @@ def test_fit_images_equals_the_commands_outputs(tmp_path, sphere):
     out, want = _cli_fit_images(tmp_path, sphere, "-m", "walter")
     got = brdfit.fit_images(sphere, "walter")
     _check_against_outputs(got, out, want)
+    # .json is fit.json's text (bf_photo_result_json) but for the command line, the wall
+    # time and the build's git description (the command and the module may be built from
+    # different commits).
+    summary = json.loads(got.json)
+    assert "command" not in summary or summary["command"] is None
+    for d in (summary, want):
+        d.pop("command", None)
+        d["timing"].pop("seconds")
+        d["brdfit_version"] = d["brdfit_version"].split()[0]
+    assert summary == want
     # The truth: the sphere's normals and roughness are recovered.
     j, i = np.mgrid[0:16, 0:16]
     sx, sy = 2 * (i + 0.5) / 16 - 1, 1 - 2 * (j + 0.5) / 16
@@ -180,16 +190,37 @@ def test_fit_images_errors_are_the_librarys(tmp_path, sphere):
     with pytest.raises(brdfit.Error) as e:
         brdfit.fit_images(missing)
     assert p.returncode == 1 and "brdfit fit-images: " + str(e.value) == p.stderr.strip()
+    # The library's checks and messages, the command's but for the option's name (a keyword
+    # here, bf_photo_options.spelling).
+    for options, kw, msg in (
+            (["-m", "nope"], dict(model="nope"), "model: unknown model 'nope' (see brdfit models)"),
+            (["--share", "zz"], dict(share="zz"), "share: walter has no parameter 'zz' (brdfit models)"),
+            (["--tile", "3/2"], dict(tile="3/2"), "bad value '3/2' for tile (I/N with 1 <= I <= N)"),
+            (["--tile", "1/"], dict(tile="1/"), "bad value '1/' for tile (I/N with 1 <= I <= N)"),
+            (["--scale", "big"], dict(scale="big"), "bad value 'big' for scale (auto or a positive number)"),
+            (["--scale", "-1"], dict(scale=-1), "bad value '-1' for scale (auto or a positive number)"),
+            (["--clusters", "65"], dict(clusters=65), "clusters needs an integer from 1 to 64, got '65'"),
+            (["--relit", "9"], dict(relit=9), "relit needs an integer from 0 to 8, got '9'")):
+        p = cli("fit-images", sphere, *options, "-o", tmp_path / "o", ok=False)
+        with pytest.raises(brdfit.UsageError) as e:
+            brdfit.fit_images(sphere, **kw)
+        assert str(e.value) == msg
+        keyword = next(iter(kw))
+        assert p.returncode == 2 and p.stderr.strip() == "brdfit fit-images: " + msg.replace(keyword, options[0], 1)
     with pytest.raises(brdfit.UsageError) as e:
-        brdfit.fit_images(sphere, "nope")
-    assert str(e.value) == "unknown model 'nope' (see brdfit models)"
+        brdfit.fit_images(sphere, tile=(0, 4))
+    assert str(e.value) == "bad value '0/4' for tile (I/N with 1 <= I <= N)"
     with pytest.raises(brdfit.UsageError) as e:
-        brdfit.fit_images(sphere, share="zz")
-    assert str(e.value) == "--share: walter has no parameter 'zz'"
+        brdfit.fit_images(sphere, scale=float("nan"))
+    assert str(e.value) == "bad value 'nan' for scale (auto or a positive number)"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.fit_images(sphere, threads=1025)
+    assert str(e.value) == "threads needs an integer from 1 to 1024 (0: every core), got '1025'"
     p = cli("fit-images", sphere, "--tile", "3/40", "-o", tmp_path / "o", ok=False)
     with pytest.raises(brdfit.UsageError) as e:
         brdfit.fit_images(sphere, tile=(3, 40))
-    assert p.returncode == 1 and "brdfit fit-images: " + str(e.value) == p.stderr.strip()
+    assert str(e.value) == "tile 3/40: out of range (the image has 16 rows)"
+    assert p.returncode == 1 and "brdfit fit-images: --" + str(e.value) == p.stderr.strip()
     for bad in (dict(tile="1/"), dict(tile=(1, 2, 3)), dict(clusters="2"), dict(scale="big"), dict(scale=float("nan")), dict(relit=1.5),
                 dict(seed=-1), dict(threads=2 ** 40), dict(share=[1]), dict(normals=3), dict(model=3)):
         with pytest.raises(brdfit.UsageError):

@@ -1,6 +1,6 @@
-"""brdfit.info: every number `brdfit info --json` reports, for the same file and data
-options (drops, negatives, a scene, a subsample, spectral data), and its errors in the
-library's words."""
+"""brdfit.info: every number `brdfit info --json` reports, and the report as the command
+prints it (JSON and text, byte for byte), for the same file and data options (drops,
+negatives, a scene, a subsample, spectral data), and its errors in the library's words."""
 
 import json
 import math
@@ -72,9 +72,13 @@ CASES = [
 
 @pytest.mark.parametrize("name,path,cli_opts,kw", CASES, ids=[c[0] for c in CASES])
 def test_info_equals_the_commands_json(name, path, cli_opts, kw):
-    want = json.loads(cli("info", path, *cli_opts, "--json").stdout)
+    printed = cli("info", path, *cli_opts, "--json").stdout
+    want = json.loads(printed)
     got = brdfit.info(path, **kw)
     _check(got, want, path)
+    # The reports themselves, byte for byte: the library makes them for both.
+    assert got.json == printed
+    assert got.text == cli("info", path, *cli_opts).stdout
 
 
 def test_info_counts_what_was_dropped():

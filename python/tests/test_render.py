@@ -97,7 +97,7 @@ def test_merl_table_sphere_is_the_models(merl_table):
     assert np.all(table[model == 0] == 0)
 
 
-def test_render_errors_are_the_librarys(tmp_path):
+def test_render_errors_are_the_librarys(tmp_path, monkeypatch):
     with pytest.raises(brdfit.UsageError) as e:
         brdfit.render(str(LAMBERT_RGB), resolution=0)
     assert str(e.value) == "sphere render: need a size >= 1 and at least one light"
@@ -106,7 +106,36 @@ def test_render_errors_are_the_librarys(tmp_path):
     assert str(e.value) == "sphere render: need a size >= 1 and at least one light"
     with pytest.raises(brdfit.UsageError) as e:
         brdfit.render(str(LAMBERT_RGB), kind="halfdiff", phi_d=90, size=(0, 5))
-    assert str(e.value) == "half/difference image: bad size 0x5"
+    assert str(e.value) == "half/difference image: bad size 0x5 (each side 1 to 16384)"
+    # The library's limits, in its words: the sides and the lights of the command.
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), resolution=16385)
+    assert str(e.value) == "sphere render: size 16385 is above 16384 pixels"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), lights=[(10, k) for k in range(17)])
+    assert str(e.value) == "at most 16 lights"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), lights=[(10, 0), (20, float("nan"))])
+    assert str(e.value) == "sphere render: light 2 (20, nan) is not a finite direction"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), kind="halfdiff", phi_d=float("inf"))
+    assert str(e.value) == "half/difference image: phi_d is not finite"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), tonemap="Log")
+    assert str(e.value) == "tonemap: unknown tone map 'Log' (clamp, reinhard or log)"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), tonemap=True, exposure=0)
+    assert str(e.value) == "tone map: exposure must be a finite number above 0, got 0"
+    with pytest.raises(brdfit.UsageError) as e:
+        brdfit.render(str(LAMBERT_RGB), tonemap="log", decades=-1)
+    assert str(e.value) == "tone map: decades must be a finite number above 0, got -1"
+    # A picture this machine cannot hold is refused before it is drawn, as by the command.
+    with monkeypatch.context() as env:
+        env.setenv("BRDFIT_MEMORY", "1M")
+        p = cli("render", "--params", LAMBERT_RGB, "--size", "300", "-o", tmp_path / "big.png", ok=False)
+        with pytest.raises(brdfit.Error) as e:
+            brdfit.render(str(LAMBERT_RGB), resolution=300)
+    assert p.returncode == 1 and e.value.code == "nomem" and "brdfit render: " + str(e.value) == p.stderr.strip()
     with pytest.raises(brdfit.UsageError) as e:
         brdfit.render(brdfit.read(DIRS_SMALL, values="theta_o"))
     assert str(e.value) == "sphere render: the data is not a MERL table as read"
@@ -118,7 +147,7 @@ def test_render_errors_are_the_librarys(tmp_path):
     with pytest.raises(brdfit.Error) as e:
         brdfit.render(missing)
     assert p.returncode == 1 and "brdfit render: " + str(e.value) == p.stderr.strip()
-    for bad in (dict(kind="slice"), dict(kind="halfdiff"), dict(lights=[(45,)]), dict(view="0,0"),
+    for bad in (dict(kind="slice"), dict(exposure=2), dict(tonemap=3), dict(lights=[(45,)]), dict(view="0,0"),
                 dict(resolution=2.5), dict(kind="halfdiff", phi_d=90, resolution=8), dict(size=8),
                 dict(params={"rho_d": 0.5})):
         with pytest.raises(brdfit.UsageError):
@@ -127,3 +156,50 @@ def test_render_errors_are_the_librarys(tmp_path):
         brdfit.render(brdfit.Model("lambert", 3), params={"nope": 1})
     with pytest.raises(brdfit.UsageError):
         brdfit.render(42)
+
+
+def test_halfdiff_defaults_are_the_librarys(tmp_path):
+    # No phi_d and no size: bf_halfdiff_options_init's, the command's --half-diff defaults.
+    want = _cli_render(tmp_path, "--params", WALTER_RGB, "--half-diff")
+    got = brdfit.render(str(WALTER_RGB), kind="halfdiff")
+    assert got.shape == want.shape
+    assert_image_equal(got, want, "walter half/difference, defaults")
+    assert np.array_equal(got, brdfit.render(str(WALTER_RGB), kind="halfdiff", phi_d=90))
+    assert not np.array_equal(got, brdfit.render(str(WALTER_RGB), kind="halfdiff", phi_d=45))
+
+
+def _srgb_codes(v):
+    """8-bit codes of display values as the PNG writer encodes them (clamped, sRGB)."""
+    v = np.clip(v.astype(np.float64), 0, 1)
+    return 255 * np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
+
+
+@pytest.mark.parametrize("kind, options, kw", [
+    ("sphere", [], dict(tonemap=True)),
+    ("sphere", ["--tonemap", "reinhard", "--exposure", "3"], dict(tonemap="reinhard", exposure=3)),
+    ("halfdiff", ["--half-diff", "--size", "40x30"], dict(kind="halfdiff", size=(40, 30), tonemap=True)),
+    ("halfdiff", ["--half-diff", "--size", "40", "--tonemap", "log", "--decades", "2"],
+     dict(kind="halfdiff", size=40, tonemap="log", decades=2)),
+])
+def test_tonemap_is_the_commands_png(tmp_path, kind, options, kw):
+    got = brdfit.render(str(WALTER_RGB), **kw)
+    linear = brdfit.render(str(WALTER_RGB), **{k: v for k, v in kw.items() if k not in ("tonemap", "exposure",
+                                                                                    "decades")})
+    # The mappings by hand (render.h): the defaults are clamp for a sphere, log for the
+    # half/difference image, exposure 1, 4 decades.
+    mode = kw["tonemap"] if kw["tonemap"] is not True else "clamp" if kind == "sphere" else "log"
+    e = linear.astype(np.float64) * kw.get("exposure", 1)
+    if mode == "clamp":
+        want = e
+    elif mode == "reinhard":
+        want = np.where(e > 0, e / (1 + e), 0)
+    else:
+        top, dec = np.log10(e.max()), kw.get("decades", 4)
+        want = np.where(e > 0, np.maximum(0, (np.log10(np.where(e > 0, e, 1)) - (top - dec)) / dec), 0)
+    assert np.allclose(got, want, rtol=1e-5, atol=1e-6)
+    # And the command's PNG holds them (8-bit codes: within one).
+    out = tmp_path / "r.png"
+    cli("render", "--params", WALTER_RGB, *options, "-q", "-o", out)
+    codes = read_image(out)
+    assert codes.shape == got.shape
+    assert np.abs(codes - _srgb_codes(got)).max() <= 1

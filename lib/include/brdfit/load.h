@@ -58,6 +58,19 @@ BF_API bf_status bf_samples_load(const char *path, const bf_options *o, bf_sampl
  * between the steps (BF_ERR_CANCELLED; s is then partly prepared, as after any error). */
 BF_API bf_status bf_samples_prepare(bf_samples *s, const bf_options *o, bf_load_report *report, bf_error *err);
 
+/* What `brdfit info` prints about samples loaded from path (the name the report gives
+ * the file) with the options o (NULL: the defaults) and their load report: JSON (`brdfit
+ * info --json`: the file, samples read and used, channels, wavelengths, weights, what
+ * the preprocessing dropped and what the option negative did, the scene, angle coverage,
+ * counts and value ranges per channel, as bf_samples_describe gives them) or the text
+ * (the same in words: the wavelength range, the negatives "dropped", "clamped to 0" or
+ * "kept", a subsample that kept every sample). Each ends with a newline; *out is freed
+ * with bf_free. Errors name path. */
+BF_API bf_status bf_samples_info_json(bf_samples *s, const bf_load_report *report, const bf_options *o,
+                                      const char *path, char **out, bf_error *err);
+BF_API bf_status bf_samples_info_text(bf_samples *s, const bf_load_report *report, const bf_options *o,
+                                      const char *path, char **out, bf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -11,6 +11,7 @@
 
 #include "brdfit/error.h"
 #include "brdfit/model.h"
+#include "brdfit/options.h"
 #include "brdfit/solve.h"
 
 #ifdef __cplusplus
@@ -74,6 +75,11 @@ typedef enum bf_photo_normals {
     BF_NORMALS_FLAT     /* the sample's plane: the world's +z */
 } bf_photo_normals;
 
+/* The options' ranges (bf_photo_options_check). */
+#define BF_PHOTO_MAX_CLUSTERS 64
+#define BF_PHOTO_MAX_THREADS 1024
+#define BF_PHOTO_MAX_TILES 1000000
+
 /* Callers set it up with bf_photo_options_init (size: docs/api.md). */
 typedef struct bf_photo_options {
     size_t size;       /* sizeof, set by bf_photo_options_init */
@@ -81,11 +87,12 @@ typedef struct bf_photo_options {
     bf_photo_normals normals;
     const char *normals_file;   /* BF_NORMALS_FILE */
     const char *share;          /* NULL, or parameter names joined by ',' fitted once per cluster */
-    int clusters;               /* material clusters for shared parameters (0, 1: one) */
+    int clusters;               /* material clusters for shared parameters (0, 1: one; at most
+                                   BF_PHOTO_MAX_CLUSTERS) */
     int scale_given;            /* 1: `scale` overrides the stack's */
-    double scale;               /* 0: automatic */
+    double scale;               /* 0: automatic; else from 1e-30 to 1e30 */
     int tile_index, tile_count; /* a band of the image (0-based index of count); count 0: all */
-    int threads;                /* 0: every online core */
+    int threads;                /* 0: every online core; at most BF_PHOTO_MAX_THREADS */
     size_t band_bytes;          /* memory for one band's samples; 0: 1 GiB */
     int relit_images;           /* relit comparisons kept (0: none; at most BF_PHOTO_MAX_RELIT) */
     uint64_t seed;              /* the clusters' and shared fit's subsample */
@@ -93,6 +100,10 @@ typedef struct bf_photo_options {
     void (*progress)(void *user, double done);
     void *progress_user;
     const bf_cancel_flag *cancel; /* non-zero: stop (bf_photo_result.cancelled) */
+    /* How messages name the options: as `brdfit fit-images` writes them ("--tile 3/40:
+     * ...", "-m: ..."; the default) or as keywords ("tile 3/40: ...", "model: ...") for
+     * APIs: model, normals, share, clusters, scale, tile, relit, seed, threads. */
+    bf_option_spelling spelling;
 } bf_photo_options;
 
 /* Sets the size and the defaults: model "walter", 3 relit images, the rest 0. */
@@ -104,6 +115,22 @@ static inline void bf_photo_options_init(bf_photo_options *o)
 
 #define BF_PHOTO_MAX_RELIT 8
 #define BF_PHOTO_MAX_SHARED 32
+
+/* The options against their ranges, before any image is read: the model spec (a
+ * registry model), the shared names (its parameters), a file for BF_NORMALS_FILE,
+ * clusters, scale, the tile (1 <= I <= N, N at most BF_PHOTO_MAX_TILES), threads and
+ * relit_images (0 to BF_PHOTO_MAX_RELIT). BF_ERR_ARG with a one-line message naming the
+ * option as o->spelling says. bf_photo_fit checks them too. */
+BF_API bf_status bf_photo_options_check(const bf_photo_options *o, bf_error *err);
+
+/* The options that brdfit fit-images takes as text, parsed in one place: the tile "I/N"
+ * (band I of N, from 1), the normals "fit", "flat" or an image file (o keeps the pointer
+ * to text as normals_file: it must outlive o's use), the scale "auto" (the stack's rule)
+ * or a number. BF_ERR_ARG, o unchanged, for a value they do not take, with the message
+ * the check gives ("bad value '3/2' for --tile (I/N with 1 <= I <= N)"). */
+BF_API bf_status bf_photo_options_set_tile(bf_photo_options *o, const char *text, bf_error *err);
+BF_API bf_status bf_photo_options_set_normals(bf_photo_options *o, const char *text, bf_error *err);
+BF_API bf_status bf_photo_options_set_scale(bf_photo_options *o, const char *text, bf_error *err);
 
 /* Counts of samples (pixel x image) and pixels. Frozen (docs/api.md): embedded in
  * bf_photo_result. */
@@ -166,6 +193,11 @@ BF_API void bf_photo_result_free(bf_photo_result *r);
  * command_line (may be NULL) is recorded in fit.json. */
 BF_API bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, const char *dir,
                                 const char *command_line, bf_error *err);
+/* The text bf_photo_write puts in fit.json (docs/images.md: the model, the stack, the
+ * options, counts, relit errors, shared values, the files it writes, timing), in memory:
+ * *out, freed with bf_free. */
+BF_API bf_status bf_photo_result_json(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o,
+                                      const char *command_line, char **out, bf_error *err);
 /* The outputs of the `--tile I/N` runs of one stack (the folders of tiles 1..N, in any
  * order) merged into the outputs of the whole image in dir, as one run would have
  * written them (the tiles start alike: photo.h's fits of a tile depend on its rows only

@@ -197,6 +197,73 @@ BF_API void bf_tonemap(float *v, size_t n, bf_tonemap_mode mode, double exposure
  * 1 when no pixel is > 0; NaN when out of memory. */
 BF_API double bf_exposure_percentile(const float *rgb, size_t npx, double percentile);
 
+/* The mapping's names, as brdfit render --tonemap takes them: "clamp", "reinhard", "log"
+ * into *out; BF_ERR_ARG listing them for any other name. */
+BF_API bf_status bf_tonemap_parse(const char *name, bf_tonemap_mode *out, bf_error *err);
+BF_API const char *bf_tonemap_name(bf_tonemap_mode mode); /* NULL for an unknown mode */
+
+/* ---- brdfit render's defaults, limits and checks ---------------------------------
+ * What a front end takes from the library rather than restating it: the defaults (each
+ * struct's init), the limits below, and checks that refuse what is out of range with a
+ * one-line message before any picture is allocated. */
+#define BF_RENDER_MAX_SIDE 16384 /* pixels (points, for SVG and PDF) a side of a picture */
+#define BF_RENDER_MAX_LIGHTS 16  /* lights of a sphere */
+
+/* A sphere's options within range: resolution 1 to BF_RENDER_MAX_SIDE, 1 to
+ * BF_RENDER_MAX_LIGHTS lights (at most: "at most 16 lights"), finite angles.
+ * bf_render_sphere and bf_render_sphere_merl check them. */
+BF_API bf_status bf_sphere_options_check(const bf_sphere_options *o, bf_error *err);
+
+/* Whether this machine can hold a width x height picture while it is drawn and written:
+ * about 16 bytes a pixel (the floats, then the encoder's copy), against
+ * bf_memory_available. BF_ERR_NOMEM "a WxH image needs about N MiB, M MiB available"
+ * when it cannot (" (BRDFIT_MEMORY)" when that variable set the limit). */
+BF_API bf_status bf_render_memory_check(int width, int height, bf_error *err);
+
+/* The display mapping of an 8-bit image (a PNG): mode, exposure and decades as
+ * bf_tonemap takes them. Callers set it up with bf_tonemap_options_init (size:
+ * docs/api.md). */
+typedef struct bf_tonemap_options {
+    size_t size;          /* sizeof, set by bf_tonemap_options_init */
+    bf_tonemap_mode mode; /* a sphere's (a half/difference image's: bf_halfdiff_options.tonemap) */
+    double exposure;      /* multiplies the values first; > 0 */
+    double decades;       /* LOG's range below the maximum, and the half/difference figure's
+                             colour scale; > 0 */
+} bf_tonemap_options;
+
+/* brdfit render's defaults: BF_TONEMAP_CLAMP, exposure 1, 4 decades. */
+BF_API void bf_tonemap_options_init_size(bf_tonemap_options *o, size_t size);
+static inline void bf_tonemap_options_init(bf_tonemap_options *o)
+{
+    bf_tonemap_options_init_size(o, sizeof *o);
+}
+/* A known mode, exposure and decades finite and > 0. */
+BF_API bf_status bf_tonemap_options_check(const bf_tonemap_options *o, bf_error *err);
+/* bf_tonemap over n floats with o, once o passes bf_tonemap_options_check. */
+BF_API bf_status bf_tonemap_apply(float *v, size_t n, const bf_tonemap_options *o, bf_error *err);
+
+/* The theta_h x theta_d picture's options (bf_render_halfdiff_model, _merl and _plot
+ * take them as arguments). Callers set it up with bf_halfdiff_options_init (size:
+ * docs/api.md). */
+typedef struct bf_halfdiff_options {
+    size_t size;                 /* sizeof, set by bf_halfdiff_options_init */
+    int width, height;           /* the image, pixels */
+    double phi_d;                /* degrees */
+    bf_tonemap_mode tonemap;     /* its display mapping (bf_tonemap_options.mode) */
+    int plot_width, plot_height; /* the figure (bf_render_halfdiff_plot), pixels or points */
+} bf_halfdiff_options;
+
+/* brdfit render --half-diff's defaults: the sphere's size (256 x 256), phi_d 90, the log
+ * mapping (as BRDF papers show the image), a 480 x 400 figure. */
+BF_API void bf_halfdiff_options_init_size(bf_halfdiff_options *o, size_t size);
+static inline void bf_halfdiff_options_init(bf_halfdiff_options *o)
+{
+    bf_halfdiff_options_init_size(o, sizeof *o);
+}
+/* The image 1 to BF_RENDER_MAX_SIDE a side, phi_d finite, a known mapping, the figure
+ * 40 to BF_RENDER_MAX_SIDE a side ("a half-diff plot must be at least 40x40"). */
+BF_API bf_status bf_halfdiff_options_check(const bf_halfdiff_options *o, bf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -19,7 +19,6 @@
 #include <unistd.h>
 
 #include "base/parallel.h"
-#include "base/sized.h"
 #include "brdfit/clock.h"
 #include "brdfit/image.h"
 #include "objective_impl.h"
@@ -28,15 +27,6 @@
 #define START_PIXELS 2048  /* the subsample of the start */
 #define MAX_ITERATIONS 100 /* per pixel solve */
 #define DEFAULT_BAND_BYTES ((size_t)1 << 30)
-
-/* bf_photo_options with the library's defaults (a whole struct of this version). */
-static void photo_options_defaults(bf_photo_options *o)
-{
-    o->model = "walter";
-    o->relit_images = 3;
-}
-
-BF_SIZED_INIT(bf_photo_options, photo_options_defaults)
 
 void bf_photo_result_free(bf_photo_result *r)
 {
@@ -129,11 +119,12 @@ static bf_status setup(photo_run *run, bf_error *err)
     if (o->share && *o->share) {
         char *list = strdup(o->share), *save = NULL;
         if (!list)
-            return bf_fail(err, BF_ERR_NOMEM, "--share: out of memory");
+            return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", photo_option_name(o, "share"));
         for (char *t = strtok_r(list, ",", &save); t && rc == BF_OK; t = strtok_r(NULL, ",", &save)) {
             int i = bf_model_find_param(run->model, t);
             if (i < 0) {
-                rc = bf_fail(err, BF_ERR_ARG, "--share: %s has no parameter '%s'", bf_model_name(run->model), t);
+                rc = bf_fail(err, BF_ERR_ARG, "%s: %s has no parameter '%s' (brdfit models)",
+                             photo_option_name(o, "share"), bf_model_name(run->model), t);
                 break;
             }
             const bf_param_info *pi = bf_model_param(run->model, i);
@@ -148,7 +139,8 @@ static bf_status setup(photo_run *run, bf_error *err)
         if (rc != BF_OK)
             return rc;
         if (run->nshared > BF_PHOTO_MAX_SHARED)
-            return bf_fail(err, BF_ERR_ARG, "--share: %d entries, at most %d", run->nshared, BF_PHOTO_MAX_SHARED);
+            return bf_fail(err, BF_ERR_ARG, "%s: %d entries, at most %d", photo_option_name(o, "share"), run->nshared,
+                           BF_PHOTO_MAX_SHARED);
     }
     run->lbuf = malloc((size_t)run->K * 3 * sizeof *run->lbuf);
     run->ebuf = malloc((size_t)run->K * (size_t)run->C * sizeof *run->ebuf);
@@ -749,16 +741,21 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
 {
     *out = NULL;
     double t0 = bf_now_seconds();
-    if (o && bf_sized_check(o, sizeof *o, "bf_photo_options", err) != BF_OK)
-        return BF_ERR_ARG;
-    if (!s || !o || !o->model)
-        return bf_fail(err, BF_ERR_ARG, "fit-images: no stack or model");
-    if (o->normals == BF_NORMALS_FILE && !o->normals_file)
-        return bf_fail(err, BF_ERR_ARG, "--normals: no file");
-    if (o->tile_count < 0 || (o->tile_count > 0 && (o->tile_index < 0 || o->tile_index >= o->tile_count)) ||
-        o->tile_count > s->height)
-        return bf_fail(err, BF_ERR_ARG, "--tile %d/%d: out of range (the image has %d rows)", o->tile_index + 1,
-                       o->tile_count, s->height);
+    if (!s)
+        return bf_fail(err, BF_ERR_ARG, "fit-images: no stack");
+    bf_status checked = bf_photo_options_check(o, err);
+    if (checked != BF_OK)
+        return checked;
+    if (o->tile_count > s->height)
+        return bf_fail(err, BF_ERR_ARG, "%s %d/%d: out of range (the image has %d rows)", photo_option_name(o, "tile"),
+                       o->tile_index + 1, o->tile_count, s->height);
+    /* The run reads (and copies) a whole struct of this version: an older caller's is
+     * shorter, its missing tail the defaults. */
+    bf_photo_options whole;
+    bf_photo_options_init(&whole);
+    memcpy(&whole, o, o->size < sizeof whole ? o->size : sizeof whole);
+    whole.size = sizeof whole;
+    o = &whole;
     photo_run run = {.s = s, .o = o, .spec = o->model, .K = s->nimages, .C = s->channels};
     run.threads = o->threads > 0 ? o->threads : online_threads();
     run.scale = o->scale_given ? o->scale : s->scale;

@@ -3,7 +3,8 @@
  *  - photo_light.c:   per pixel, each image's light direction and irradiance and the view;
  *  - photo_lambert.c: the Lambertian least-squares baseline and the robust start;
  *  - photo_solve.c:   the per-pixel (and shared) Levenberg-Marquardt solve;
- *  - photo_fit.c:     the whole run: start, clusters, shared parameters, bands, counts. */
+ *  - photo_fit.c:     the whole run: start, clusters, shared parameters, bands, counts;
+ *  - photo_options.c: the options' defaults, ranges and parsers. */
 #ifndef BF_PHOTO_IMPL_H
 #define BF_PHOTO_IMPL_H
 
@@ -11,6 +12,14 @@
 #include <stdint.h>
 
 #include "brdfit/photo.h"
+
+/* bf_photo_options as the first version had it (before `spelling`): the least size the
+ * library takes; `spelling` is read only when the caller's size holds it. */
+#define PHOTO_OPTIONS_MIN_SIZE offsetof(bf_photo_options, spelling)
+#define PHOTO_OPTIONS_SPELLING_SIZE (offsetof(bf_photo_options, spelling) + sizeof(bf_option_spelling))
+/* How messages name an option (a keyword: "tile", "model", ...): "--tile" and "-m" as
+ * the command line writes them, or the keyword, as o->spelling says. */
+const char *photo_option_name(const bf_photo_options *o, const char *keyword);
 
 /* A band of rows [y0, y1): its masked pixels and their values, image-major per pixel:
  * v[(p*K + k)*C + c], linear, exposure divided out, black level subtracted, times the

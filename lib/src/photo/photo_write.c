@@ -14,10 +14,13 @@
 #include "brdfit/version.h"
 #include "io/json_out.h"
 #include "io/out_folder.h"
+#include "photo_impl.h"
 #include "photo_write_impl.h"
 
 #define MARKER ".brdfit-fit-images"
 #define WHAT "fit-images output"
+#define NAME_CHARS 96
+#define MAX_FILES (2 * BF_PHOTO_MAX_RELIT + 96)
 
 bf_status bf_photo_check_output(const char *dir, bf_error *err)
 {
@@ -144,9 +147,40 @@ static const char *normals_name(bf_photo_normals n)
     return n == BF_NORMALS_FILE ? "file" : n == BF_NORMALS_FLAT ? "flat" : "fit";
 }
 
-static bf_status write_json(const bf_out_folder *f, const bf_photo_result *r, const bf_stack *s,
-                            const bf_photo_options *o, const char *command_line, char **files, int nfiles,
-                            bf_error *err)
+/* The files bf_photo_write writes, in its order, into names: their count. */
+static int output_names(const bf_photo_result *r, char names[][NAME_CHARS], int max)
+{
+    int n = 0;
+#define NAME(...) (n < max ? (void)snprintf(names[n++], NAME_CHARS, __VA_ARGS__) : (void)0)
+    NAME("normals.exr");
+    int np = bf_model_nparams(r->model);
+    for (int i = 0; i < np; i++)
+        NAME("%s.exr", bf_model_param(r->model, i)->name);
+    NAME("error.exr");
+    NAME("lambert_normals.exr");
+    NAME("lambert_albedo.exr");
+    if (r->cluster)
+        NAME("clusters.exr");
+    NAME("normals.png");
+    NAME("albedo.png");
+    for (int i = 0; i < r->nrelit; i++) {
+        NAME("relit_%03d.png", r->relit_index[i]);
+        NAME("relit_%03d.exr", r->relit_index[i]);
+    }
+    NAME("mask.png");
+    if (!strcmp(bf_model_name(r->model), "gltf")) {
+        NAME("material.gltf");
+        NAME("base_color.png");
+        NAME("metallic_roughness.png");
+        NAME("normal.png");
+    }
+#undef NAME
+    return n;
+}
+
+/* fit.json's document (docs/images.md). */
+static cJSON *summary_json(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o,
+                           const char *command_line)
 {
     cJSON *root = cJSON_CreateObject();
     bf_json_add_version(root);
@@ -208,6 +242,8 @@ static bf_status write_json(const bf_out_folder *f, const bf_photo_result *r, co
         }
         free(x);
     }
+    char files[MAX_FILES][NAME_CHARS];
+    int nfiles = output_names(r, files, MAX_FILES);
     cJSON *fl = cJSON_AddArrayToObject(root, "files");
     for (int i = 0; i < nfiles; i++)
         cJSON_AddItemToArray(fl, cJSON_CreateString(files[i]));
@@ -216,98 +252,94 @@ static bf_status write_json(const bf_out_folder *f, const bf_photo_result *r, co
     bf_json_add_number(tm, "threads", r->threads);
     bf_json_add_number(tm, "iterations_per_pixel",
                        r->counts.pixels ? (double)r->iterations / (double)r->counts.pixels : 0.0);
+    return root;
+}
+
+/* What a result's summary needs: r, s and o (a fit that ran to its end: the callers). */
+static bf_status summary_ready(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, bf_error *err)
+{
+    if (!r || !s || !o)
+        return bf_fail(err, BF_ERR_ARG, "fit-images: nothing to write");
+    if (bf_sized_check(o, PHOTO_OPTIONS_MIN_SIZE, "bf_photo_options", err) != BF_OK)
+        return BF_ERR_ARG;
+    return BF_OK;
+}
+
+bf_status bf_photo_result_json(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o,
+                               const char *command_line, char **out, bf_error *err)
+{
+    *out = NULL;
+    bf_status rc = summary_ready(r, s, o, err);
+    if (rc != BF_OK)
+        return rc;
+    if (r->cancelled)
+        return bf_fail(err, BF_ERR_ARG, "fit-images: the fit was cancelled: it has no summary");
+    return bf_json_text(summary_json(r, s, o, command_line), "fit-images summary", out, err);
+}
+
+static bf_status write_json(const bf_out_folder *f, const bf_photo_result *r, const bf_stack *s,
+                            const bf_photo_options *o, const char *command_line, bf_error *err)
+{
     char path[4200];
     bf_status rc = bf_out_folder_path(f, "fit.json", path, sizeof path, err);
-    if (rc != BF_OK) {
-        cJSON_Delete(root);
-        return rc;
-    }
-    return bf_json_write(root, path, "fit-images summary", err);
+    return rc != BF_OK ? rc : bf_json_write(summary_json(r, s, o, command_line), path, "fit-images summary", err);
 }
 
 bf_status bf_photo_write(const bf_photo_result *r, const bf_stack *s, const bf_photo_options *o, const char *dir,
                          const char *command_line, bf_error *err)
 {
-    if (!r || !s || !o)
-        return bf_fail(err, BF_ERR_ARG, "fit-images: nothing to write");
-    if (bf_sized_check(o, sizeof *o, "bf_photo_options", err) != BF_OK)
-        return BF_ERR_ARG;
+    bf_status rc = summary_ready(r, s, o, err);
+    if (rc != BF_OK)
+        return rc;
     if (r->cancelled)
         return bf_fail(err, BF_ERR_ARG, "%s: the fit was cancelled: nothing written", dir);
     bf_out_folder f;
-    bf_status rc = bf_out_folder_begin(
-        &f, dir, MARKER, WHAT, "brdfit fit-images output: this folder is replaced by the next run written here", err);
+    rc = bf_out_folder_begin(&f, dir, MARKER, WHAT,
+                             "brdfit fit-images output: this folder is replaced by the next run written here", err);
     if (rc != BF_OK)
         return rc;
     int W = r->width, H = r->height, C = r->channels;
     size_t n = (size_t)W * (size_t)H;
     float *buf = malloc(n * 4 * sizeof *buf);
-    char *files[BF_PHOTO_MAX_RELIT + 80];
-    int nfiles = 0;
-#define FILE_DONE(name) (nfiles < (int)(sizeof files / sizeof *files) ? (files[nfiles++] = strdup(name)) : NULL)
     if (!buf)
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
-    if (rc == BF_OK && (rc = photo_write_image(&f, "normals.exr", W, H, 3, r->normals, 0, err)) == BF_OK)
-        FILE_DONE("normals.exr");
+    if (rc == BF_OK)
+        rc = photo_write_image(&f, "normals.exr", W, H, 3, r->normals, 0, err);
     int np = bf_model_nparams(r->model);
     for (int i = 0; rc == BF_OK && i < np; i++)
-        if ((rc = write_param(&f, r, i, buf, err)) == BF_OK) {
-            char name[96];
-            snprintf(name, sizeof name, "%s.exr", bf_model_param(r->model, i)->name);
-            FILE_DONE(name);
-        }
-    if (rc == BF_OK && (rc = photo_write_image(&f, "error.exr", W, H, 1, r->error, 0, err)) == BF_OK)
-        FILE_DONE("error.exr");
-    if (rc == BF_OK &&
-        (rc = photo_write_image(&f, "lambert_normals.exr", W, H, 3, r->lambert_normals, 0, err)) == BF_OK)
-        FILE_DONE("lambert_normals.exr");
-    if (rc == BF_OK && (rc = photo_write_image(&f, "lambert_albedo.exr", W, H, C, r->lambert_albedo, 0, err)) == BF_OK)
-        FILE_DONE("lambert_albedo.exr");
+        rc = write_param(&f, r, i, buf, err);
+    if (rc == BF_OK)
+        rc = photo_write_image(&f, "error.exr", W, H, 1, r->error, 0, err);
+    if (rc == BF_OK)
+        rc = photo_write_image(&f, "lambert_normals.exr", W, H, 3, r->lambert_normals, 0, err);
+    if (rc == BF_OK)
+        rc = photo_write_image(&f, "lambert_albedo.exr", W, H, C, r->lambert_albedo, 0, err);
     if (rc == BF_OK && r->cluster) {
         for (size_t p = 0; p < n; p++)
             buf[p] = (float)r->cluster[p];
-        if ((rc = photo_write_image(&f, "clusters.exr", W, H, 1, buf, 0, err)) == BF_OK)
-            FILE_DONE("clusters.exr");
+        rc = photo_write_image(&f, "clusters.exr", W, H, 1, buf, 0, err);
     }
     if (rc == BF_OK) { /* the normal map: (n + 1) / 2 as codes, the usual encoding */
         for (size_t p = 0; p < n; p++)
             for (int c = 0; c < 3; c++)
                 buf[3 * p + (size_t)c] = r->mask[p] ? 0.5f * (r->normals[3 * p + (size_t)c] + 1.0f) : 0.0f;
-        if ((rc = photo_write_image(&f, "normals.png", W, H, 3, buf, BF_IMAGE_CODES, err)) == BF_OK)
-            FILE_DONE("normals.png");
+        rc = photo_write_image(&f, "normals.png", W, H, 3, buf, BF_IMAGE_CODES, err);
     }
     if (rc == BF_OK) {
         albedo_image(r, buf);
-        if ((rc = photo_write_image(&f, "albedo.png", W, H, 3, buf, 0, err)) == BF_OK)
-            FILE_DONE("albedo.png");
+        rc = photo_write_image(&f, "albedo.png", W, H, 3, buf, 0, err);
     }
     for (int i = 0; rc == BF_OK && i < r->nrelit; i++)
-        if ((rc = write_relit(&f, r, i, err)) == BF_OK) {
-            char name[64];
-            snprintf(name, sizeof name, "relit_%03d.png", r->relit_index[i]);
-            FILE_DONE(name);
-            snprintf(name, sizeof name, "relit_%03d.exr", r->relit_index[i]);
-            FILE_DONE(name);
-        }
+        rc = write_relit(&f, r, i, err);
     if (rc == BF_OK) { /* the fitted pixels */
         for (size_t p = 0; p < n; p++)
             buf[p] = r->mask[p] ? 1.0f : 0.0f;
-        if ((rc = photo_write_image(&f, "mask.png", W, H, 1, buf, BF_IMAGE_CODES, err)) == BF_OK)
-            FILE_DONE("mask.png");
+        rc = photo_write_image(&f, "mask.png", W, H, 1, buf, BF_IMAGE_CODES, err);
     }
-    if (rc == BF_OK && !strcmp(bf_model_name(r->model), "gltf")) {
+    if (rc == BF_OK && !strcmp(bf_model_name(r->model), "gltf"))
         rc = photo_write_gltf(&f, r, err);
-        if (rc == BF_OK) {
-            FILE_DONE("material.gltf");
-            FILE_DONE("base_color.png");
-            FILE_DONE("metallic_roughness.png");
-            FILE_DONE("normal.png");
-        }
-    }
-    if (rc == BF_OK)
-        rc = write_json(&f, r, s, o, command_line, files, nfiles, err);
-    for (int i = 0; i < nfiles; i++)
-        free(files[i]);
+    if (rc == BF_OK) /* fit.json lists the files just written (output_names) */
+        rc = write_json(&f, r, s, o, command_line, err);
     free(buf);
     return bf_out_folder_end(&f, rc, err);
 }

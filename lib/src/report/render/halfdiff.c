@@ -33,8 +33,9 @@ static double column_theta_h(int i, int n)
 
 static bf_status check_size(int width, int height, double phi_d, bf_error *err)
 {
-    if (width < 1 || height < 1)
-        return bf_fail(err, BF_ERR_ARG, "half/difference image: bad size %dx%d", width, height);
+    if (width < 1 || height < 1 || width > BF_RENDER_MAX_SIDE || height > BF_RENDER_MAX_SIDE)
+        return bf_fail(err, BF_ERR_ARG, "half/difference image: bad size %dx%d (each side 1 to %d)", width, height,
+                       BF_RENDER_MAX_SIDE);
     if (!isfinite(phi_d))
         return bf_fail(err, BF_ERR_ARG, "half/difference image: phi_d is not finite");
     return BF_OK;

@@ -327,6 +327,9 @@ bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_s
         return bf_fail(err, BF_ERR_ARG, "%s: unknown plot format (.png, .svg or .pdf)", path ? path : "-");
     if (!(decades > 0.0))
         return bf_fail(err, BF_ERR_ARG, "half/difference plot: decades must be > 0");
+    if (width < 40 || height < 40 || width > BF_RENDER_MAX_SIDE || height > BF_RENDER_MAX_SIDE)
+        return bf_fail(err, BF_ERR_ARG, "half/difference plot: bad size %dx%d (each side 40 to %d)", width, height,
+                       BF_RENDER_MAX_SIDE);
     const size_t npx = (size_t)PX * PX;
     float *rgb = malloc(3 * npx * sizeof *rgb);
     double *v = malloc(npx * sizeof *v);

@@ -134,10 +134,9 @@ static size_t band_frames(int N, int j0, int j1, const double *u, const double *
 
 static bf_status render(const source *src, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
-    if (o && bf_sized_check(o, sizeof *o, "bf_sphere_options", err) != BF_OK)
-        return BF_ERR_ARG;
-    if (!o || o->resolution < 1 || o->nlights < 1 || !o->lights)
-        return bf_fail(err, BF_ERR_ARG, "sphere render: need a size >= 1 and at least one light");
+    bf_status rc = bf_sphere_options_check(o, err);
+    if (rc != BF_OK)
+        return rc;
     const int N = o->resolution, C = src->C;
     const size_t npx = (size_t)N * (size_t)N, nb = (size_t)N * (size_t)(N < BAND ? N : BAND);
     memset(rgb, 0, npx * 3 * sizeof *rgb);
