@@ -194,3 +194,8 @@ def message_line(exc):
     assert msg.strip(), f"{type(exc).__name__} with an empty message"
     assert "\n" not in msg.strip(), f"message is not one line: {msg!r}"
     return msg
+
+
+# How soon an interrupt or a cancel must be answered: 1 s, more in the sanitizer build's
+# suite, whose instrumented library is slower (python/CMakeLists.txt sets it).
+INTERRUPT_SECONDS = float(os.environ.get("BRDFIT_INTERRUPT_SECONDS", "1.0"))

@@ -13,12 +13,11 @@ import textwrap
 import pytest
 
 from _images import make_stack
-from _support import CAYMAN
+from _support import CAYMAN, INTERRUPT_SECONDS
 
 # The sanitizer build's suite runs fewer, with more time for the slower library
 # (python/CMakeLists.txt).
 TIMES = int(os.environ.get("BRDFIT_INTERRUPT_TIMES", "50"))
-BOUND = float(os.environ.get("BRDFIT_INTERRUPT_SECONDS", "1.0"))
 
 CHILD = textwrap.dedent(r"""
     import os, random, signal, sys, threading, time
@@ -92,4 +91,4 @@ def test_interrupts(tmp_path, stack, kind, what):
     assert p.returncode == 0, "%s %s: exit %d (a signal is negative): %s" % (kind, what, p.returncode,
                                                                           p.stderr[-2000:])
     worst = float(p.stdout.split()[-2])
-    assert worst < BOUND, "%s %s: the exception came %.3f s after the signal" % (kind, what, worst)
+    assert worst < INTERRUPT_SECONDS, "%s %s: the exception came %.3f s after the signal" % (kind, what, worst)
