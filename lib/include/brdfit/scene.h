@@ -2,7 +2,7 @@
  * selecting models for a scene restricts (and weights) the samples to those directions,
  * so that error is spent, and reported, where the scene can see it.
  *
- * JSON (every key optional; angles in degrees; see README "Scenes"):
+ * JSON (every key optional; angles in degrees; see docs/scenes.md):
  *   {
  *     "description": "product shot: camera within 60 degrees, lights from above",
  *     "light": {"theta": [0, 45]},          range of incidence angles (default [0, 90])

@@ -466,7 +466,7 @@ const option_row option_rows[] = {
          18446744073709551615.0, "an integer from 0 to 18446744073709551615"),
      .set = set_seed, .get = get_seed},
     {ROW("scene", "preprocessing", DATA_TASKS, BF_OPTION_TEXT, "FILE",
-         "keep and weight the samples a scene's lights and views use\n(JSON; README \"Scenes\"); error is reported "
+         "keep and weight the samples a scene's lights and views use\n(JSON; docs/scenes.md); error is reported "
          "over "
          "them",
          "file", NULL, NULL, 0, 0, NULL)},
