@@ -85,8 +85,8 @@ static bf_samples *generate(bf_error *err)
 /* The parts of a fit besides the solve, at the start (best of 3): one fused pass of the
  * objective (cost, J'r and J'J: what a Ceres iteration costs) and a cost-only pass on
  * `threads` threads, then the metrics and the standard errors. */
-static void time_parts(bf_samples *s, const bf_objective_options *oo, int threads, double *t_pass,
-                       double *t_cost, double *t_metrics, double *t_stderr, bf_error *err)
+static void time_parts(bf_samples *s, const bf_objective_options *oo, int threads, double *t_pass, double *t_cost,
+                       double *t_metrics, double *t_stderr, bf_error *err)
 {
     bf_model *m;
     bf_objective *obj;
@@ -181,9 +181,8 @@ int main(int argc, char **argv)
     const bf_geometry *g;
     if (bf_samples_geometry(s, &g, &err) != BF_OK)
         die("geometry", &err);
-    printf("walter (%s), %zu samples x %d channels (%s in %.2f s), residual %s, %d thread%s\n",
-           SPEC, s->n, s->channels, data ? "read" : "generated", now() - t0, residual, threads,
-           threads == 1 ? "" : "s");
+    printf("walter (%s), %zu samples x %d channels (%s in %.2f s), residual %s, %d thread%s\n", SPEC, s->n, s->channels,
+           data ? "read" : "generated", now() - t0, residual, threads, threads == 1 ? "" : "s");
 
     bf_model *m = NULL;
     bf_model_new(SPEC, 3, &m, &err);
@@ -197,10 +196,10 @@ int main(int argc, char **argv)
     oo.threads = threads;
     time_parts(s, &oo, threads, &t_pass, &t_cost, &t_metrics, &t_stderr, &err);
     printf("data-driven start %.3f s (alpha %.4g); %d thread%s: fused pass (cost, J'r, J'J) %.4f s, "
-           "cost alone %.4f s, metrics %.4f s, standard errors %.4f s\n", ts, x0[ia], threads,
-           threads == 1 ? "" : "s", t_pass, t_cost, t_metrics, t_stderr);
-    printf("%-10s %8s %8s %8s %6s %6s %10s %12s %10s\n", "method", "fit s", "fit cpu", "solve s", "iter",
-           "evals", "s/iter", "final cost", "alpha err");
+           "cost alone %.4f s, metrics %.4f s, standard errors %.4f s\n",
+           ts, x0[ia], threads, threads == 1 ? "" : "s", t_pass, t_cost, t_metrics, t_stderr);
+    printf("%-10s %8s %8s %8s %6s %6s %10s %12s %10s\n", "method", "fit s", "fit cpu", "solve s", "iter", "evals",
+           "s/iter", "final cost", "alpha err");
 
     char list[256];
     snprintf(list, sizeof list, "%s", methods);

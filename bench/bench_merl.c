@@ -112,11 +112,9 @@ int main(int argc, char **argv)
         best_raw = fmin(best_raw, t5 - t4);
         best_write = fmin(best_write, t6 - t5);
     }
-    printf("MERL table: %zu bytes, %zu valid samples of %d cells; best of %d\n", bytes, s->n,
-           BF_MERL_CELLS, reps);
+    printf("MERL table: %zu bytes, %zu valid samples of %d cells; best of %d\n", bytes, s->n, BF_MERL_CELLS, reps);
     printf("  file read alone (fread)             %7.3f s\n", best_file);
-    printf("  bf_samples_read_merl                %7.3f s  (%.2f x the file read)\n", best_read,
-           best_read / best_file);
+    printf("  bf_samples_read_merl                %7.3f s  (%.2f x the file read)\n", best_read, best_read / best_file);
     printf("  bf_samples_read_merl, raw kept      %7.3f s\n", best_raw);
     printf("  prep + walter objective (log, 2 threads) %7.3f s\n", best_prep);
     printf("  read + prepare                      %7.3f s\n", best_read + best_prep);

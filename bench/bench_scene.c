@@ -54,8 +54,8 @@ int main(int argc, char **argv)
         size_t kept = 0;
         for (size_t i = 0; i < s->n; i++)
             kept += w[i] > 0.0;
-        printf("%s: %zu of %zu samples in the scene; bf_scene_weights %.4f s (best of %d)\n", argv[k], kept, s->n,
-               best, repeats);
+        printf("%s: %zu of %zu samples in the scene; bf_scene_weights %.4f s (best of %d)\n", argv[k], kept, s->n, best,
+               repeats);
         bf_scene_free(sc);
     }
     free(w);

@@ -317,22 +317,12 @@ static int take_one(void *target, const cli_group *g, const cli_option *o, const
             rc = -1;
         }
         break;
-    case CLI_FLAG:
-        *(int *)var = (int)o->lo;
-        break;
-    case CLI_STRING:
-        *(const char **)var = v;
-        break;
+    case CLI_FLAG: *(int *)var = (int)o->lo; break;
+    case CLI_STRING: *(const char **)var = v; break;
     case CLI_INT:
-    case CLI_NUMBER:
-        rc = take_number(var, o, v, cmd);
-        break;
-    case CLI_CALL:
-        rc = o->take(target, o, v, cmd);
-        break;
-    default:
-        fprintf(stderr, "%s: internal error: option %s is not bound to a variable\n", cmd, o->name);
-        return -1;
+    case CLI_NUMBER: rc = take_number(var, o, v, cmd); break;
+    case CLI_CALL: rc = o->take(target, o, v, cmd); break;
+    default: fprintf(stderr, "%s: internal error: option %s is not bound to a variable\n", cmd, o->name); return -1;
     }
     return rc;
 }
@@ -566,9 +556,8 @@ void cli_man(const cli_command *c, const char *version, const char *see_also, FI
     roff(c->synopsis, out, 1);
     fputs("\n.SH DESCRIPTION\n", out);
     char first[512];
-    snprintf(first, sizeof first, "%c%s.", c->summary[0] >= 'a' && c->summary[0] <= 'z' ? c->summary[0] - 'a' + 'A'
-                                                                                        : c->summary[0],
-             c->summary + 1);
+    snprintf(first, sizeof first, "%c%s.",
+             c->summary[0] >= 'a' && c->summary[0] <= 'z' ? c->summary[0] - 'a' + 'A' : c->summary[0], c->summary + 1);
     roff(first, out, 1);
     fputc('\n', out);
     if (c->description) { /* paragraphs: a blank line becomes .PP */
@@ -664,7 +653,10 @@ static void completion_arms(const cli_command *c, const char *(*words_of)(const 
         }
     }
     fprintf(out, "\" -- \"$cur\"))\n%selse\n%s    COMPREPLY=($(compgen %s -- \"$cur\"))\n%sfi\n", indent, indent,
-            c->operands && !strcmp(c->operands, "dir") ? "-d" : c->operands ? "-f" : "-W ''", indent);
+            c->operands && !strcmp(c->operands, "dir") ? "-d"
+            : c->operands                              ? "-f"
+                                                       : "-W ''",
+            indent);
 }
 
 void cli_completion(const cli_command *const *cmds, int n, const char *(*words_of)(const char *kind), FILE *out)

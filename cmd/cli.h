@@ -58,7 +58,7 @@ struct cli_option {
 #define CLI_SETS(TYPE, FIELD, VALUE) .kind = CLI_FLAG, .at = offsetof(TYPE, FIELD), .lo = (VALUE)
 #define CLI_STRING_AT(TYPE, FIELD) .kind = CLI_STRING, .at = offsetof(TYPE, FIELD)
 #define CLI_INT_AT(TYPE, FIELD, LO, HI) .kind = CLI_INT, .at = offsetof(TYPE, FIELD), .lo = (LO), .hi = (HI)
-#define CLI_NUMBER_AT(TYPE, FIELD, LO, HI, WHAT)                                                                        \
+#define CLI_NUMBER_AT(TYPE, FIELD, LO, HI, WHAT)                                                                       \
     .kind = CLI_NUMBER, .at = offsetof(TYPE, FIELD), .lo = (LO), .hi = (HI), .what = (WHAT)
 #define CLI_CALLS(FN) .kind = CLI_CALL, .take = (FN)
 /* A library run option in a command's own table, by its command-line name: the rest of
@@ -103,15 +103,15 @@ typedef struct cli_command {
     const char *summary;  /* one line, lower case, for lists and the man page's NAME */
     /* Paragraphs for --help and the man page (blank line between paragraphs), or NULL. */
     const char *description;
-    const char *operands;             /* completion of operands: "file", "dir" or NULL */
-    const cli_group *const *groups;   /* the command's options, by group */
+    const char *operands;           /* completion of operands: "file", "dir" or NULL */
+    const cli_group *const *groups; /* the command's options, by group */
     int ngroups;
 } cli_command;
 
 /* One option or operand of a parsed command line, in order. */
 typedef struct cli_arg {
-    const char *name;  /* the option's long form ("--model"), or NULL for an operand */
-    const char *value; /* the option's value (NULL for a flag), or the operand */
+    const char *name;         /* the option's long form ("--model"), or NULL for an operand */
+    const char *value;        /* the option's value (NULL for a flag), or the operand */
     const cli_option *option; /* its entry (NULL for an operand) */
     int group;                /* its group's index in the command's groups */
 } cli_arg;

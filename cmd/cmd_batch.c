@@ -111,13 +111,18 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_batch = {
-    "brdfit", "batch", "MANIFEST -o RESULTS.db [--redo failed|all] [--shard I/N] [--jobs N]",
+    "brdfit",
+    "batch",
+    "MANIFEST -o RESULTS.db [--redo failed|all] [--shard I/N] [--jobs N]",
     "run a manifest's fits into a resumable results database",
     "Runs every (material, model) fit a manifest lists (materials with their data options, models, and the "
-    "options of brdfit compare; JSON or a plain list, one data file per line: docs/batch.md) and writes each result, as it finishes, into an SQLite database. "
+    "options of brdfit compare; JSON or a plain list, one data file per line: docs/batch.md) and writes each result, "
+    "as it finishes, into an SQLite database. "
     "Rerunning the same command resumes where a killed or interrupted run stopped. brdfit report ranks the results "
     "as compare does; brdfit merge joins the databases of --shard runs.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static int take_manifest(void *ctx, const char *v, const char *c)
@@ -181,8 +186,10 @@ static void run_material(batch_run *r, batch_fitter *f, const int *items, int n)
         if (r->sent[model] || batch_fitter_run(f, &items[k], 1, got_row, r, &held, why2, sizeof why2) == 0 ||
             interrupt_flag)
             continue;
-        fprintf(stderr, "%s: %s, %s: the process fitting it died again (%s); recorded as an error (--redo failed "
-                "runs it again)\n", cmd, r->m->materials[i].data, r->m->models[model], why2);
+        fprintf(stderr,
+                "%s: %s, %s: the process fitting it died again (%s); recorded as an error (--redo failed "
+                "runs it again)\n",
+                cmd, r->m->materials[i].data, r->m->models[model], why2);
         batch_run_lost_twice(r, items[k], why2);
     }
 }
@@ -204,7 +211,6 @@ static void run_items(batch_run *r, const int *items, int n)
     }
     batch_fitter_clear(&f);
 }
-
 
 /* One process, or the coordinator of several (nproc > 1): its workers are stopped on
  * every path. */
@@ -256,8 +262,8 @@ static int batch(const batch_args *a, const batch_manifest *m, int nproc)
         return 130;
     }
     if (r.bad) {
-        fprintf(stderr, "%s: %d of %d items failed (brdfit report lists them; --redo failed reruns them)\n", cmd,
-                r.bad, r.total);
+        fprintf(stderr, "%s: %d of %d items failed (brdfit report lists them; --redo failed reruns them)\n", cmd, r.bad,
+                r.total);
         return 1;
     }
     return 0;

@@ -80,9 +80,9 @@ typedef struct compare_args {
     const char **data;
     int nmodels, ndata, all;
     const char *json_path, *csv_path, *html_dir;
-    int plot_format;       /* --plot-format: a bf_plot_format */
-    char *command_line;    /* as typed, for the report (NULL when out of memory) */
-    char *data_opts;       /* the data options given, for the report */
+    int plot_format;    /* --plot-format: a bf_plot_format */
+    char *command_line; /* as typed, for the report (NULL when out of memory) */
+    char *data_opts;    /* the data options given, for the report */
 } compare_args;
 
 static int take_model(void *target, const cli_option *o, const char *v, const char *c)
@@ -128,15 +128,24 @@ static const cli_option own[] = {
      NULL, CLI_CALLS(take_plot_format)},
 };
 static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_COMPARE, compare_args, o);
-static const cli_group *const groups[] = {&own_group, &rank_options_bic, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+static const cli_group *const groups[] = {&own_group,
+                                          &rank_options_bic,
+                                          &fit_options_fitting,
+                                          &fit_options_optimizer,
+                                          &data_options_reading,
+                                          &data_options_preprocessing};
 const cli_command cli_compare = {
-    "brdfit", "compare", "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
+    "brdfit",
+    "compare",
+    "DATA... -m MODEL[,MODEL...]|all [options] [--json R.json] [--csv R.csv] [--html DIR]",
     "fit many models to many materials and rank them",
     "Fits every model to every data file, ranks the models per material and across materials (by an information "
     "criterion, cross-validated error or plain error), marks the Pareto fronts of error against free parameters and "
     "fitting work, and writes the tables and a report. Ctrl-C stops starting new fits and writes what finished "
     "(exit 130).",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static void compare_args_free(compare_args *a)
@@ -149,7 +158,6 @@ static void compare_args_free(compare_args *a)
     free(a->data_opts);
     bf_options_free(a->o);
 }
-
 
 /* -m all: every registered family, after the models named. 0, or -1 after an error. */
 static int add_all_models(compare_args *a)

@@ -35,12 +35,17 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_convert = {
-    "brdfit", "convert", "IN OUT [data options] [--to csv|merl]", "convert between data formats",
+    "brdfit",
+    "convert",
+    "IN OUT [data options] [--to csv|merl]",
+    "convert between data formats",
     "Reads IN in any supported format (- for standard input), applies the data options, and writes OUT as CSV or "
     "MERL binary (- for standard output, with --to). MERL output needs 3 channels at MERL cell centres; a MERL "
     "table written back keeps the bytes of the cells it does not change. Whatever convert writes, brdfit reads "
     "back to the same samples.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* The operands: IN, then OUT. */

@@ -29,10 +29,15 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_eval = {
-    "brdfit", "eval", "--params P.json --dirs D.csv [-o OUT.csv]", "evaluate a model at direction pairs",
+    "brdfit",
+    "eval",
+    "--params P.json --dirs D.csv [-o OUT.csv]",
+    "evaluate a model at direction pairs",
     "The output repeats the direction columns of D.csv and adds one column per channel (value, or r,g,b, or "
     "c0..cN-1).",
-    NULL, groups, sizeof groups / sizeof groups[0],
+    NULL,
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static void channel_name(int C, int c, char *buf, size_t size)
@@ -57,13 +62,13 @@ static void write_table(FILE *fp, const bf_csv *t, const int *col, int C, const 
     fputc('\n', fp);
     for (size_t r = 0; r < t->nrows; r++) {
         for (int k = 0; k < 4; k++)
-            fprintf(fp, "%s%s", k ? "," : "", bf_format_double(t->data[r * t->ncols + (size_t)col[k]], buf, sizeof buf));
+            fprintf(fp, "%s%s", k ? "," : "",
+                    bf_format_double(t->data[r * t->ncols + (size_t)col[k]], buf, sizeof buf));
         for (int c = 0; c < C; c++)
             fprintf(fp, ",%s", bf_format_double(v[r * (size_t)C + (size_t)c], buf, sizeof buf));
         fputc('\n', fp);
     }
 }
-
 
 /* Takes the parsed command line into a: 0, or 2 after a one-line error. */
 static int take_args(const cli_args *args, eval_args *a)

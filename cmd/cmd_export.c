@@ -23,19 +23,27 @@ static const cli_option own[] = {
      CLI_STRING_AT(export_args, to_name)},
     {"--output", 'o', "FILE", "the file (default and -: standard output)", "file",
      CLI_STRING_AT(export_args, out_path)},
-    {"--convert", 0, NULL, "convert an anisotropic or multi-lobe source too (the target holds one isotropic\n"
-                           "lobe: the conversion error says what is lost)", NULL, CLI_SETS(export_args, convert, 1)},
+    {"--convert", 0, NULL,
+     "convert an anisotropic or multi-lobe source too (the target holds one isotropic\n"
+     "lobe: the conversion error says what is lost)",
+     NULL, CLI_SETS(export_args, convert, 1)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_export = {
-    "brdfit", "export", "RESULT.json --to gltf|blender|mitsuba [-o OUT] [--convert]", "write a fitted material for a renderer",
-    "A result whose model is the target's own (gltf for glTF, blender_principled for Blender, mitsuba_principled for Mitsuba) is written exactly. "
+    "brdfit",
+    "export",
+    "RESULT.json --to gltf|blender|mitsuba [-o OUT] [--convert]",
+    "write a fitted material for a renderer",
+    "A result whose model is the target's own (gltf for glTF, blender_principled for Blender, mitsuba_principled for "
+    "Mitsuba) is written exactly. "
     "Any other model is converted: the target's model is fitted to the source's values at 11664 direction pairs "
     "(theta 2.5..87.5 by 5 degrees, phi_o 0..350 by 10; phi_i 0..150 by 30 for an anisotropic source), and the "
     "conversion's metrics go to standard error and into the file (glTF asset.extras.brdfit, a comment in the "
     "script or the XML). Colours need 1 or 3 channels. Parameter conventions: docs/export.md.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* The operand: the one result file. */

@@ -67,17 +67,27 @@ static const cli_option own[] = {
      "models to fit, e.g. walter or microfacet:D=ggx,G=smith_ggx,lambert\n"
      "(a comma starts a new model where a model name follows; repeatable)",
      "model", CLI_CALLS(take_model)},
-    {"--output", 'o', "FILE", "result JSON (one model: a parameter file; several: {\"fits\": [...]});\n- for standard output",
-     "file", CLI_STRING_AT(fit_run, out_path)},
+    {"--output", 'o', "FILE",
+     "result JSON (one model: a parameter file; several: {\"fits\": [...]});\n- for standard output", "file",
+     CLI_STRING_AT(fit_run, out_path)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
-static const cli_group *const groups[] = {&own_group, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+static const cli_group *const groups[] = {&own_group,
+                                          &fit_options_accuracy,
+                                          &fit_options_fitting,
+                                          &fit_options_optimizer,
+                                          &data_options_reading,
+                                          &data_options_preprocessing};
 const cli_command cli_fit = {
-    "brdfit", "fit", "DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]",
+    "brdfit",
+    "fit",
+    "DATA -m MODEL[,MODEL...] [options] [-o RESULT.json]",
     "fit models to measured or synthetic reflectance",
     "Fits each model to the data file (CSV, MERL .binary, Cornell, ALTA; - for standard input), prints a short "
     "summary per model and writes the result file, which brdfit eval and brdfit render take as a parameter file.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static void print_values(FILE *out, const bf_param_info *pi, const double *v, const double *se,

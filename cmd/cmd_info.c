@@ -24,10 +24,15 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_info = {
-    "brdfit", "info", "DATA [data options] [--json]", "describe what a data file holds",
+    "brdfit",
+    "info",
+    "DATA [data options] [--json]",
+    "describe what a data file holds",
     "Format, samples, channels, angle ranges, values and weights of DATA (- for standard input) after the data "
     "options: what a fit of it would see.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* Loads the data and prints what it holds: the exit status. */

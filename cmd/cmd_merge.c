@@ -37,11 +37,15 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_merge = {
-    "brdfit", "merge", "A.db B.db ... -o ALL.db",
+    "brdfit",
+    "merge",
+    "A.db B.db ... -o ALL.db",
     "join the databases of brdfit batch --shard runs",
     "Joins results databases of one manifest and brdfit version into a new one, refusing inputs of another manifest "
     "or version and items finished twice with different results.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* The merge into tmp, then renamed to out. 0, or 1 after a one-line error. */

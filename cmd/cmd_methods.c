@@ -19,20 +19,25 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_methods = {
-    "brdfit", "methods", "[--json]", "list the optimizer methods and what each can do",
+    "brdfit",
+    "methods",
+    "[--json]",
+    "list the optimizer methods and what each can do",
     "Every method of every back end (--backend ceres|nlopt --algorithm NAME; brdfit tradeoff --methods): whether "
     "it uses the gradient, takes the energy constraint (--constrain-energy), searches globally (finite bounds, "
     "many evaluations), can be G_MLSL_LDS's local method (--local), and which is its back end's default. Every "
     "method keeps parameters inside their bounds and minimises the robust losses (--loss).",
-    NULL, groups, sizeof groups / sizeof groups[0],
+    NULL,
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static const struct {
     unsigned bit;
     const char *name;
 } caps[] = {
-    {BF_METHOD_GRADIENT, "gradient"}, {BF_METHOD_BOUNDS, "bounds"},   {BF_METHOD_CONSTRAINTS, "constraints"},
-    {BF_METHOD_GLOBAL, "global"},     {BF_METHOD_LOSSES, "losses"},   {BF_METHOD_LOCAL, "local"},
+    {BF_METHOD_GRADIENT, "gradient"}, {BF_METHOD_BOUNDS, "bounds"}, {BF_METHOD_CONSTRAINTS, "constraints"},
+    {BF_METHOD_GLOBAL, "global"},     {BF_METHOD_LOSSES, "losses"}, {BF_METHOD_LOCAL, "local"},
     {BF_METHOD_DEFAULT, "default"},
 };
 
@@ -69,7 +74,6 @@ static void print_text(void)
                *list ? ")" : "");
     }
 }
-
 
 int cmd_methods(int argc, char **argv)
 {

@@ -16,15 +16,16 @@ static void print_text(const bf_family_info *fi)
     }
     printf("%s  (%s; %s)\n", fi->name, fi->summary, fi->reference);
     printf("  %s, %s, %s%s; free parameters: %d for 1 channel, %d for 3\n",
-           fi->anisotropic ? "anisotropic" : "isotropic",
-           bf_model_reciprocal(m1) ? "reciprocal" : "not reciprocal",
-           bf_model_energy_conserving(m1) ? "energy conserving" : "not energy conserving",
-           fi->lobes ? ", lobes=K" : "", bf_model_nvalues(m1), bf_model_nvalues(m3));
+           fi->anisotropic ? "anisotropic" : "isotropic", bf_model_reciprocal(m1) ? "reciprocal" : "not reciprocal",
+           bf_model_energy_conserving(m1) ? "energy conserving" : "not energy conserving", fi->lobes ? ", lobes=K" : "",
+           bf_model_nvalues(m1), bf_model_nvalues(m3));
     for (int i = 0; i < bf_model_nparams(m1); i++) {
         const bf_param_info *p = bf_model_param(m1, i);
         printf("  %-16s %-6s %-20s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",
                bf_param_role_name(p->role), p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']', p->def,
-               p->scale == BF_SCALE_LINEAR ? "" : p->scale == BF_SCALE_LOG ? " (log scale)" : " (log1p scale)");
+               p->scale == BF_SCALE_LINEAR ? ""
+               : p->scale == BF_SCALE_LOG  ? " (log scale)"
+                                           : " (log1p scale)");
     }
     for (int k = 0; fi->options && fi->options[k].name; k++) {
         printf("  option %s=", fi->options[k].name);
@@ -49,12 +50,16 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_models = {
-    "brdfit", "models", "[--json|--names]", "list the models, their parameters, bounds and options",
+    "brdfit",
+    "models",
+    "[--json|--names]",
+    "list the models, their parameters, bounds and options",
     "Every model family brdfit fits, with its parameters (colour or scalar, bounds, default, the scale the "
     "optimizer works in) and its options (MODEL:option=value). docs/models.md gives the formulas.",
-    NULL, groups, sizeof groups / sizeof groups[0],
+    NULL,
+    groups,
+    sizeof groups / sizeof groups[0],
 };
-
 
 int cmd_models(int argc, char **argv)
 {

@@ -69,21 +69,25 @@ static const cli_option own[] = {
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_regress = {
-    "brdfit", "regress", "BASELINE.json [--update] [--junit OUT.xml] [--case NAME]... [--verbose]",
+    "brdfit",
+    "regress",
+    "BASELINE.json [--update] [--junit OUT.xml] [--case NAME]... [--verbose]",
     "re-run fits and compare them with a baseline",
     "Each case of the baseline names a data file (relative to the baseline's folder), a model, brdfit fit's data "
     "and fit options (--threads defaults to 1) and the expected parameters and metrics with their tolerances. "
     "--verbose prints every compared value, not only those that moved.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* The options a case may hold: brdfit fit's data and fit options. */
 static const cli_group *const case_groups[] = {
-    &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading,
-    &data_options_preprocessing,
+    &fit_options_accuracy, &fit_options_fitting,        &fit_options_optimizer,
+    &data_options_reading, &data_options_preprocessing,
 };
-static const cli_command case_options = {"brdfit", "fit", "", "", NULL, NULL, case_groups,
-                                         sizeof case_groups / sizeof case_groups[0]};
+static const cli_command case_options = {"brdfit", "fit", "",          "",
+                                         NULL,     NULL,  case_groups, sizeof case_groups / sizeof case_groups[0]};
 
 /* One case's parsed options. The argv holds the baseline's strings, except --scene
  * values, resolved against the baseline's folder (owned). */
@@ -186,7 +190,7 @@ static int prepare(const bf_regress_baseline *b, int c, case_run *r)
  * an error only when memory runs out (a case that cannot run is an ERROR outcome, its
  * reason printed on stderr). */
 static bf_status run(const bf_regress_baseline *b, int c, case_run *cr, bf_fit_result *r, bf_regress_outcome *out,
-               bf_error *err)
+                     bf_error *err)
 {
     const bf_regress_case *cs = &b->cases[c];
     char prefix[1024], msg[1200];
@@ -273,8 +277,7 @@ static int parse(regress_args *a, int argc, char **argv)
 
 /* Marks the cases to run (all without --case) and parses every case's options (the
  * whole baseline is checked, whatever is selected). 0, or 2 after a one-line error. */
-static int prepare_cases(const regress_args *a, const bf_regress_baseline *b, case_run *runs,
-                         unsigned char *run_it)
+static int prepare_cases(const regress_args *a, const bf_regress_baseline *b, case_run *runs, unsigned char *run_it)
 {
     for (int k = 0; k < a->nselected; k++) {
         int found = 0;
@@ -301,8 +304,7 @@ typedef struct tally {
 
 /* --update: case c's expectations set to r, and the changes printed. 0, or 1 after an
  * error. */
-static int update_case(bf_regress_baseline *b, int c, const bf_fit_result *r, const bf_regress_outcome *o,
-                       tally *t)
+static int update_case(bf_regress_baseline *b, int c, const bf_fit_result *r, const bf_regress_outcome *o, tally *t)
 {
     char **changes = NULL;
     int nchanges = 0;
@@ -356,8 +358,7 @@ static int run_case(bf_regress_baseline *b, int c, case_run *cr, int update, bf_
 
 /* The JUnit report, the rewritten baseline (--update) and the summary line; the exit
  * status. */
-static int finish(const regress_args *a, const bf_regress_baseline *b, const bf_regress_outcome *outs,
-                  const tally *t)
+static int finish(const regress_args *a, const bf_regress_baseline *b, const bf_regress_outcome *outs, const tally *t)
 {
     bf_error err;
     int write_failed = 0;

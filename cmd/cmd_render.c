@@ -68,8 +68,11 @@ enum to_format { TO_PNG = 1, TO_EXR, TO_SVG, TO_PDF };
 static int to_of(const char *path)
 {
     int p = bf_plot_format_of(path);
-    return bf_image_format_of(path) == BF_IMAGE_EXR ? TO_EXR : p == BF_PLOT_PNG ? TO_PNG : p == BF_PLOT_SVG ? TO_SVG
-           : p == BF_PLOT_PDF ? TO_PDF : 0;
+    return bf_image_format_of(path) == BF_IMAGE_EXR ? TO_EXR
+           : p == BF_PLOT_PNG                       ? TO_PNG
+           : p == BF_PLOT_SVG                       ? TO_SVG
+           : p == BF_PLOT_PDF                       ? TO_PDF
+                                                    : 0;
 }
 
 /* What the command line asked for, over the library's defaults (the options' inits). */
@@ -115,8 +118,11 @@ static int bad_value(const cli_option *o, const char *v, const char *c)
 static int take_to(void *target, const cli_option *o, const char *v, const char *c)
 {
     render_args *r = target;
-    r->to = !strcmp(v, "png") ? TO_PNG : !strcmp(v, "exr") ? TO_EXR : !strcmp(v, "svg") ? TO_SVG
-            : !strcmp(v, "pdf") ? TO_PDF : 0;
+    r->to = !strcmp(v, "png")   ? TO_PNG
+            : !strcmp(v, "exr") ? TO_EXR
+            : !strcmp(v, "svg") ? TO_SVG
+            : !strcmp(v, "pdf") ? TO_PDF
+                                : 0;
     return r->to ? 0 : bad_value(o, v, c);
 }
 
@@ -198,28 +204,37 @@ static int take_incidence(void *target, const cli_option *o, const char *v, cons
 static const cli_option modes[] = {
     {"--slice", 0, NULL, "in-plane slices: f (log axis) against theta_o (-90..90, + on the mirror side)", NULL,
      CLI_SETS(render_args, slice, 1)},
-    {"--half-diff", 0, NULL, "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards)\n"
-                             "at a fixed phi_d; as .svg or .pdf a figure with axes and a colour bar", NULL,
-     CLI_SETS(render_args, halfdiff, 1)},
+    {"--half-diff", 0, NULL,
+     "theta_h (x, 0..90 even in sqrt(theta_h)) by theta_d (y, 0..90 downwards)\n"
+     "at a fixed phi_d; as .svg or .pdf a figure with axes and a colour bar",
+     NULL, CLI_SETS(render_args, halfdiff, 1)},
 };
 static const cli_option own[] = {
     {"--params", 0, "FILE", "the model and its parameters (a brdfit fit result; - for standard input)", "file",
      CLI_STRING_AT(render_args, params)},
-    {"--output", 'o', "FILE", "the image: .png or .exr; slices .png, .svg or .pdf (- for standard\n"
-                              "output, with --to)", "file", CLI_STRING_AT(render_args, out_path)},
-    {"--to", 0, "png|exr|svg|pdf", "format (default: by the output's extension; svg and pdf for\n"
-                                   "--slice, exr for images)", NULL, CLI_CALLS(take_to)},
+    {"--output", 'o', "FILE",
+     "the image: .png or .exr; slices .png, .svg or .pdf (- for standard\n"
+     "output, with --to)",
+     "file", CLI_STRING_AT(render_args, out_path)},
+    {"--to", 0, "png|exr|svg|pdf",
+     "format (default: by the output's extension; svg and pdf for\n"
+     "--slice, exr for images)",
+     NULL, CLI_CALLS(take_to)},
     {"--light", 0, "THETA,PHI", "a directional light, degrees (repeatable; default 45,0)", NULL, CLI_CALLS(take_light)},
     {"--view", 0, "THETA,PHI", "towards the camera, degrees (default 0,0: looking down +z)", NULL,
      CLI_CALLS(take_view)},
-    {"--size", 0, "N|WxH", "image size (default 256; slices 640x480, half-diff plots 480x400;\n"
-                           "points for SVG and PDF)", NULL, CLI_CALLS(take_size)},
+    {"--size", 0, "N|WxH",
+     "image size (default 256; slices 640x480, half-diff plots 480x400;\n"
+     "points for SVG and PDF)",
+     NULL, CLI_CALLS(take_size)},
     {"--exposure", 0, "E", "multiplies values before the PNG mapping (default 1)", NULL, CLI_CALLS(take_exposure)},
     {"--tonemap", 0, "clamp|reinhard|log", "PNG mapping (default: clamp; log for --half-diff)", NULL,
      CLI_CALLS(take_tonemap)},
     {"--decades", 0, "D", "range of the log mapping (default 4)", NULL, CLI_CALLS(take_decades)},
-    {"--incidence", 0, "A,B,...", "slice incidence angles (default 0,30,60; with --data, the\n"
-                                  "measured incidences nearest those)", NULL, CLI_CALLS(take_incidence)},
+    {"--incidence", 0, "A,B,...",
+     "slice incidence angles (default 0,30,60; with --data, the\n"
+     "measured incidences nearest those)",
+     NULL, CLI_CALLS(take_incidence)},
     {"--data", 0, "FILE", "slices: measured samples to overlay; half-diff: a MERL table", "file",
      CLI_STRING_AT(render_args, data)},
     {"--plane-tol", 0, "D", "slices: overlay samples within D degrees of the plane (default 2)", NULL,
@@ -230,13 +245,16 @@ static const cli_group mode_group = CLI_GROUP("modes (default: a lit sphere of t
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&mode_group, &own_group, &data_options_reading, &data_options_preprocessing};
 const cli_command cli_render = {
-    "brdfit", "render", "--params P.json [--slice|--half-diff] [options] -o OUT.png|.exr|.svg|.pdf",
+    "brdfit",
+    "render",
+    "--params P.json [--slice|--half-diff] [options] -o OUT.png|.exr|.svg|.pdf",
     "render pictures of a model or a MERL table",
     "A lit sphere or a half-diff image as PNG (tone mapped) or EXR (linear values), or in-plane slices with "
     "measured samples overlaid as a plot (PNG, SVG or PDF).",
-    NULL, groups, sizeof groups / sizeof groups[0],
+    NULL,
+    groups,
+    sizeof groups / sizeof groups[0],
 };
-
 
 /* Takes the parsed command line into r: 0, or -1 after a one-line error. */
 static int take_args(render_args *r, const cli_args *args)
@@ -267,8 +285,8 @@ static int check_mode(const render_args *r, int *fmt)
         return 2;
     }
     if (!r->slice && !r->halfdiff && (*fmt == TO_SVG || *fmt == TO_PDF)) {
-        fprintf(stderr, "%s: %s: SVG and PDF are for --slice and --half-diff plots; the sphere is PNG or EXR\n",
-                cmd, r->out_path);
+        fprintf(stderr, "%s: %s: SVG and PDF are for --slice and --half-diff plots; the sphere is PNG or EXR\n", cmd,
+                r->out_path);
         return 2;
     }
     if (r->halfdiff ? (!r->params == !r->data) : !r->params) {
@@ -371,7 +389,8 @@ static bf_status draw(const render_args *r, int fmt, const bf_model *m, const do
 
 /* The slice plot, written: a BF_ status. Without --incidence, measured data is sliced
  * where it was measured (the Cornell files have no 0 degree incidence). */
-static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s, bf_error *err)
+static bf_status slice_plot(const render_args *r, int fmt, const bf_model *m, const double *x, bf_samples *s,
+                            bf_error *err)
 {
     double measured[BF_SLICE_MAX_INCIDENCE];
     bf_slice_options so = r->slices;

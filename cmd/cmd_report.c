@@ -45,19 +45,25 @@ static const cli_option own[] = {
      CLI_STRING_AT(report_args, json_path)},
     {"--csv", 0, "FILE", "one row per material x model (as brdfit compare; - for standard output)", "file",
      CLI_STRING_AT(report_args, csv_path)},
-    {"--html", 0, "DIR", "a report to read in a browser (as brdfit compare, without the\n"
-                         "measurement's overlays)", "dir", CLI_STRING_AT(report_args, html_dir)},
+    {"--html", 0, "DIR",
+     "a report to read in a browser (as brdfit compare, without the\n"
+     "measurement's overlays)",
+     "dir", CLI_STRING_AT(report_args, html_dir)},
     {"--plot-format", 0, "png|svg|pdf", "the report's plots (as brdfit compare)", NULL, CLI_CALLS(take_plot_format)},
 };
 static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group *const groups[] = {&own_group};
 const cli_command cli_report = {
-    "brdfit", "report", "RESULTS.db [--json R.json] [--csv R.csv] [--html DIR]",
+    "brdfit",
+    "report",
+    "RESULTS.db [--json R.json] [--csv R.csv] [--html DIR]",
     "compare's rankings and outputs from a batch database",
     "Reads the results database of brdfit batch (or brdfit merge), ranks the models per material and across "
     "materials with the manifest's ranking options, prints compare's tables and writes its JSON, CSV and HTML "
     "report.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 /* The operand: the one database. */

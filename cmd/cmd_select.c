@@ -85,14 +85,24 @@ static const cli_option own[] = {
      CLI_STRING_AT(select_run, out_path)},
 };
 static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_SELECT, select_run, o);
-static const cli_group *const groups[] = {&own_group, &rank_options_error, &fit_options_accuracy, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+static const cli_group *const groups[] = {&own_group,
+                                          &rank_options_error,
+                                          &fit_options_accuracy,
+                                          &fit_options_fitting,
+                                          &fit_options_optimizer,
+                                          &data_options_reading,
+                                          &data_options_preprocessing};
 const cli_command cli_select = {
-    "brdfit", "select", "DATA [-m MODEL,...] [--tolerance T] [--scene SCENE.json] [options]",
+    "brdfit",
+    "select",
+    "DATA [-m MODEL,...] [--tolerance T] [--scene SCENE.json] [options]",
     "choose the smallest model that serves",
     "Fits every candidate to DATA (- for standard input) and chooses the one with the fewest free parameters "
     "whose error is within the tolerance of the best; with --scene, error is measured over the directions the "
     "scene uses.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static void progress(void *user, const bf_select *s, int i, int done)

@@ -31,8 +31,8 @@ static const char cmd[] = "brdfit tradeoff";
 
 static void print_table(FILE *out, const bf_tradeoff *t)
 {
-    fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total,
-            t->train_n, t->test_n, t->channels, t->channels == 1 ? "" : "s");
+    fprintf(out, "%s  %s  (%zu samples: %zu train, %zu test; %d channel%s)\n", t->data, t->model, t->total, t->train_n,
+            t->test_n, t->channels, t->channels == 1 ? "" : "s");
     const char *en = bf_compare_metric_name(t->metric);
     fprintf(out, "  %4s %8s %-14s %-9s %6s %9s%s %6s %12s %12s  %s\n", "#", "samples", "method", "residual", "starts",
             "work M", t->timing ? "    time s" : "", "iters", "train", "test", "marks");
@@ -59,8 +59,9 @@ static void print_table(FILE *out, const bf_tradeoff *t)
                 r->ok ? "" : "FAILED ", r->on_front ? "front " : "", r->within_tolerance ? "tol " : "",
                 i == t->best ? "best " : "", i == t->recommended ? "<- recommended" : "");
     }
-    fprintf(out, "  (train/test: %s; work M: millions of sample evaluations; front: Pareto front of %s against "
-                 "test error; tol: within %g%% of the best)\n",
+    fprintf(out,
+            "  (train/test: %s; work M: millions of sample evaluations; front: Pareto front of %s against "
+            "test error; tol: within %g%% of the best)\n",
             en, t->cost == BF_TRADEOFF_COST_SECONDS ? "time" : "work", 100.0 * t->tolerance);
     for (int i = 0; i < t->nrows; i++)
         for (int w = 0; w < t->rows[i].nwarnings; w++)
@@ -108,22 +109,27 @@ static const cli_option own[] = {
     CLI_LIB("--tolerance"),
     {"--json", 0, "FILE", "the table, machine-readable (stable keys; - for standard output)", "file",
      CLI_STRING_AT(tradeoff_run, json_path)},
-    {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file",
-     CLI_STRING_AT(tradeoff_run, csv_path)},
-    {"--plot", 0, "FILE.png|.svg|.pdf", "test error against the cost with the Pareto front (format by\n"
-                                        "the extension)", "file",
-     CLI_STRING_AT(tradeoff_run, plot_path)},
+    {"--csv", 0, "FILE", "one row per setting (- for standard output)", "file", CLI_STRING_AT(tradeoff_run, csv_path)},
+    {"--plot", 0, "FILE.png|.svg|.pdf",
+     "test error against the cost with the Pareto front (format by\n"
+     "the extension)",
+     "file", CLI_STRING_AT(tradeoff_run, plot_path)},
     CLI_LIB("--plot-size"),
 };
 static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_TRADEOFF, tradeoff_run, o);
-static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer, &data_options_reading, &data_options_preprocessing};
+static const cli_group *const groups[] = {&own_group, &fit_options_fitting, &fit_options_optimizer,
+                                          &data_options_reading, &data_options_preprocessing};
 const cli_command cli_tradeoff = {
-    "brdfit", "tradeoff", "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png|.svg|.pdf]",
+    "brdfit",
+    "tradeoff",
+    "DATA -m MODEL [options] [--json F] [--csv F] [--plot F.png|.svg|.pdf]",
     "measure fitting cost against accuracy",
     "Fits one model to a training share of DATA under every combination of sample count, method, residual and "
     "start count, measures each fit's error on the held-out samples, and recommends the cheapest setting within "
     "the tolerance of the best.",
-    "file", groups, sizeof groups / sizeof groups[0],
+    "file",
+    groups,
+    sizeof groups / sizeof groups[0],
 };
 
 static int take_data(void *r, const char *v, const char *c)
@@ -189,8 +195,8 @@ static int run(tradeoff_run *r)
     bf_samples *all = data_options_load(r->o, r->data, NULL, NULL, cmd);
     if (!all)
         return 1;
-    bf_status rc = bf_tradeoff_run(all, r->data, r->specs[0], r->o, cli_quiet() ? NULL : print_progress, NULL, &r->t,
-                                   &err);
+    bf_status rc =
+        bf_tradeoff_run(all, r->data, r->specs[0], r->o, cli_quiet() ? NULL : print_progress, NULL, &r->t, &err);
     bf_samples_free(all);
     if (rc != BF_OK) {
         fprintf(stderr, "%s: %s\n", cmd, err.msg);
@@ -227,8 +233,9 @@ static void print_recommendation(FILE *info, const bf_tradeoff *t)
 static void print_plot_axes(FILE *info, const bf_tradeoff *t, const char *plot_path, const bf_plot_axes *axes)
 {
     int seconds = t->cost == BF_TRADEOFF_COST_SECONDS;
-    fprintf(info, "plot %s: test %s (y, %s axis, %.4g to %.4g) against fitting %s (x, log axis, %s, %.4g to %.4g); "
-                  "Pareto front labelled #N\n",
+    fprintf(info,
+            "plot %s: test %s (y, %s axis, %.4g to %.4g) against fitting %s (x, log axis, %s, %.4g to %.4g); "
+            "Pareto front labelled #N\n",
             plot_path, bf_compare_metric_name(t->metric), axes->log_y ? "log" : "linear", axes->y_lo, axes->y_hi,
             seconds ? "time" : "work", seconds ? "s" : "sample evaluations", axes->x_lo, axes->x_hi);
 }

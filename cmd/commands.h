@@ -5,8 +5,9 @@
 
 #include "cli.h"
 
-extern const cli_command cli_models, cli_methods, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render, cli_tradeoff,
-    cli_select, cli_regress, cli_export, cli_batch, cli_report, cli_merge, cli_fit_images, cli_merge_images;
+extern const cli_command cli_models, cli_methods, cli_eval, cli_info, cli_convert, cli_fit, cli_compare, cli_render,
+    cli_tradeoff, cli_select, cli_regress, cli_export, cli_batch, cli_report, cli_merge, cli_fit_images,
+    cli_merge_images;
 
 int cmd_models(int argc, char **argv);
 int cmd_methods(int argc, char **argv);

@@ -37,7 +37,8 @@ static void print_material(FILE *out, const bf_compare *c, const bf_compare_mate
     for (int j = 0; j < c->nmodels; j++)
         if (!m->fits[j].rank)
             fprintf(out, "  %-5s %-28s %s%s%s\n", "-", c->models[j], bf_compare_state_name(m->fits[j].state),
-                    m->fits[j].state == BF_CMP_ERROR ? ": " : "", m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
+                    m->fits[j].state == BF_CMP_ERROR ? ": " : "",
+                    m->fits[j].state == BF_CMP_ERROR ? m->fits[j].message : "");
     if (m->simplest >= 0)
         fprintf(out, "  ranked by %s; simplest within %g%% of the best %s (%s): %s\n", bf_compare_rank_name(c->rank_by),
                 100.0 * c->tolerance, error_name(c), c->models[m->best], c->models[m->simplest]);

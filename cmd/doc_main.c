@@ -44,16 +44,17 @@ static void close_out(FILE *fp)
 /* brdfit(1): what the tool is, and its commands, each with its own page. */
 static void overview(const char *version, FILE *out)
 {
-    fprintf(out, ".TH BRDFIT 1 \"\" \"brdfit %s\" \"brdfit manual\"\n.SH NAME\nbrdfit \\- fit parametric BRDF models "
-                 "to measured reflectance\n.SH SYNOPSIS\n.B brdfit\n\\fICOMMAND\\fR [\\fIoptions\\fR]\n.br\n"
-                 ".B brdfit help\n[\\fICOMMAND\\fR]\n.br\n.B brdfit \\-\\-version\n.SH DESCRIPTION\n"
-                 "brdfit fits analytic BRDF models (Lambert, Phong, Cook\\-Torrance, Ward, GGX and many more) to "
-                 "measured reflectance: MERL tables, goniometer CSV files, Cornell and ALTA files, or synthetic "
-                 "samples from brdfit\\-synth(1). It reports each fit's parameters and errors and ranks models by "
-                 "their error against their number of parameters.\n.PP\nEvery command takes \\-h/\\-\\-help, "
-                 "\\-q/\\-\\-quiet and \\-v/\\-\\-verbose; long options take \\fB\\-\\-name value\\fR or "
-                 "\\fB\\-\\-name=value\\fR, short ones \\fB\\-m value\\fR or \\fB\\-mvalue\\fR; \\fB\\-\\-\\fR ends "
-                 "the options; \\fB\\-\\fR is standard input or output.\n.SH COMMANDS\n",
+    fprintf(out,
+            ".TH BRDFIT 1 \"\" \"brdfit %s\" \"brdfit manual\"\n.SH NAME\nbrdfit \\- fit parametric BRDF models "
+            "to measured reflectance\n.SH SYNOPSIS\n.B brdfit\n\\fICOMMAND\\fR [\\fIoptions\\fR]\n.br\n"
+            ".B brdfit help\n[\\fICOMMAND\\fR]\n.br\n.B brdfit \\-\\-version\n.SH DESCRIPTION\n"
+            "brdfit fits analytic BRDF models (Lambert, Phong, Cook\\-Torrance, Ward, GGX and many more) to "
+            "measured reflectance: MERL tables, goniometer CSV files, Cornell and ALTA files, or synthetic "
+            "samples from brdfit\\-synth(1). It reports each fit's parameters and errors and ranks models by "
+            "their error against their number of parameters.\n.PP\nEvery command takes \\-h/\\-\\-help, "
+            "\\-q/\\-\\-quiet and \\-v/\\-\\-verbose; long options take \\fB\\-\\-name value\\fR or "
+            "\\fB\\-\\-name=value\\fR, short ones \\fB\\-m value\\fR or \\fB\\-mvalue\\fR; \\fB\\-\\-\\fR ends "
+            "the options; \\fB\\-\\fR is standard input or output.\n.SH COMMANDS\n",
             version);
     for (int i = 0; i < ncommands; i++)
         fprintf(out, ".TP\n.BR brdfit\\-%s (1)\n%s.\n", commands[i].cli->name, commands[i].cli->summary);

@@ -30,30 +30,25 @@ bf_status bf_synth_noise_check(const bf_synth_noise *nz, bf_error *err)
         !(nz->level >= 0.0 && isfinite(nz->level)))
         return bf_fail(err, BF_ERR_ARG, "noise level %g must be finite and >= 0", nz->level);
     if (nz->model == BF_NOISE_PHOTON && !(nz->counts > 0.0 && isfinite(nz->counts)))
-        return bf_fail(err, BF_ERR_ARG, "photon counts per unit value %g must be finite and > 0",
-                       nz->counts);
+        return bf_fail(err, BF_ERR_ARG, "photon counts per unit value %g must be finite and > 0", nz->counts);
     if (!(nz->outlier_fraction >= 0.0 && nz->outlier_fraction <= 1.0))
         return bf_fail(err, BF_ERR_ARG, "outlier fraction %g must be in [0, 1]", nz->outlier_fraction);
     if (!(nz->outlier_factor >= 0.0 && isfinite(nz->outlier_factor)))
-        return bf_fail(err, BF_ERR_ARG, "outlier factor %g must be finite and > 0 (0: random)",
-                       nz->outlier_factor);
+        return bf_fail(err, BF_ERR_ARG, "outlier factor %g must be finite and > 0 (0: random)", nz->outlier_factor);
     return BF_OK;
 }
 
 static double noisy(const bf_synth_noise *nz, bf_synth_rng *r, double v)
 {
     switch (nz->model) {
-    case BF_NOISE_RELATIVE:
-        return v * (1.0 + nz->level * bf_synth_normal(r));
-    case BF_NOISE_ADDITIVE:
-        return v + nz->level * bf_synth_normal(r);
+    case BF_NOISE_RELATIVE: return v * (1.0 + nz->level * bf_synth_normal(r));
+    case BF_NOISE_ADDITIVE: return v + nz->level * bf_synth_normal(r);
     case BF_NOISE_PHOTON: {
         const double mean = nz->counts * (v > 0.0 ? v : 0.0);
         /* Past the largest double the counts are the limit of no noise at all. */
         return isfinite(mean) ? bf_synth_poisson(r, mean) / nz->counts : v;
     }
-    default:
-        return v;
+    default: return v;
     }
 }
 
@@ -113,9 +108,10 @@ bf_status bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth
             s->value[i] = 0.0;
         /* A huge level or factor can overflow; no NaN or Inf goes out as data. */
         if (!isfinite(s->value[i]))
-            return bf_fail(err, BF_ERR_RANGE,
-                           "sample %zu, channel %d: the noise made the value %g (noise level or outlier factor too large)",
-                           i / (size_t)s->channels + 1, (int)(i % (size_t)s->channels), s->value[i]);
+            return bf_fail(
+                err, BF_ERR_RANGE,
+                "sample %zu, channel %d: the noise made the value %g (noise level or outlier factor too large)",
+                i / (size_t)s->channels + 1, (int)(i % (size_t)s->channels), s->value[i]);
     }
     return BF_OK;
 }

@@ -31,7 +31,10 @@ int bf_synth_pattern_fixed_count(bf_synth_pattern p)
     return p == BF_SYNTH_GONIO || p == BF_SYNTH_MERL;
 }
 
-static double deg(double rad) { return rad * (180.0 / M_PI); }
+static double deg(double rad)
+{
+    return rad * (180.0 / M_PI);
+}
 
 /* Above the horizon exactly as bf_geometry sees a polar angle in degrees: it converts
  * with the same factor and takes a cosine below 1e-15 as zero. */
@@ -46,11 +49,11 @@ static void draw_direction(bf_synth_pattern p, bf_synth_rng *r, double *theta, d
 {
     do {
         const double u = bf_synth_uniform(r);
-        if (p == BF_SYNTH_UNIFORM)      /* cos theta uniform on (0, 1] */
+        if (p == BF_SYNTH_UNIFORM) /* cos theta uniform on (0, 1] */
             *theta = deg(acos(1.0 - u));
-        else if (p == BF_SYNTH_COSINE)  /* pdf 2 cos theta sin theta: cos^2 uniform */
+        else if (p == BF_SYNTH_COSINE) /* pdf 2 cos theta sin theta: cos^2 uniform */
             *theta = deg(acos(sqrt(1.0 - u)));
-        else                            /* random: theta itself uniform on [0, 90) */
+        else /* random: theta itself uniform on [0, 90) */
             *theta = 90.0 * u;
         *phi = 360.0 * bf_synth_uniform(r);
     } while (!above(*theta));
@@ -207,8 +210,8 @@ static int merl_above(int32_t cell)
 
 /* ---- dispatch ---------------------------------------------------------------------- */
 
-bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
-                        bf_synth_rng *r, int channels, bf_samples **out, bf_error *err)
+bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio, bf_synth_rng *r,
+                              int channels, bf_samples **out, bf_error *err)
 {
     *out = NULL;
     size_t n = count;
@@ -218,8 +221,7 @@ bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_g
     case BF_SYNTH_STRATIFIED:
     case BF_SYNTH_RANDOM:
         if (count < 1)
-            return bf_fail(err, BF_ERR_ARG, "pattern %s needs a sample count of at least 1",
-                           bf_synth_pattern_name(p));
+            return bf_fail(err, BF_ERR_ARG, "pattern %s needs a sample count of at least 1", bf_synth_pattern_name(p));
         break;
     case BF_SYNTH_GONIO:
         if (!gonio_ok(gonio))
@@ -233,23 +235,19 @@ bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_g
         for (int32_t c = 0; c < BF_MERL_CELLS; c++)
             n += (size_t)merl_above(c);
         break;
-    default:
-        return bf_fail(err, BF_ERR_ARG, "unknown pattern %d", (int)p);
+    default: return bf_fail(err, BF_ERR_ARG, "unknown pattern %d", (int)p);
     }
 
     /* MERL cells stay cells (no angle arrays): the same directions and geometry as the
      * table read back. */
     bf_samples *s;
-    bf_status rc = p == BF_SYNTH_MERL ? bf_samples_new_cells(n, channels, &s, err) : bf_samples_new(n, channels, &s, err);
+    bf_status rc =
+        p == BF_SYNTH_MERL ? bf_samples_new_cells(n, channels, &s, err) : bf_samples_new(n, channels, &s, err);
     if (rc != BF_OK)
         return rc;
     switch (p) {
-    case BF_SYNTH_STRATIFIED:
-        stratified(s, r);
-        break;
-    case BF_SYNTH_GONIO:
-        gonio_fill(gonio, s);
-        break;
+    case BF_SYNTH_STRATIFIED: stratified(s, r); break;
+    case BF_SYNTH_GONIO: gonio_fill(gonio, s); break;
     case BF_SYNTH_MERL: {
         size_t i = 0;
         for (int32_t c = 0; c < BF_MERL_CELLS; c++)

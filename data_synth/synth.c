@@ -1,8 +1,8 @@
 /* The whole generation: pattern, model values, noise. */
 #include "synth.h"
 
-bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
-                      bf_samples **out, bf_error *err)
+bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o, bf_samples **out,
+                            bf_error *err)
 {
     *out = NULL;
     const int C = bf_model_channels(m);

@@ -24,7 +24,7 @@ extern "C" {
  * (1/sqrt(mean) < 3e-5) no fit can see. */
 typedef struct bf_synth_rng {
     uint64_t s[4];
-    double spare;   /* the polar method makes normals in pairs */
+    double spare; /* the polar method makes normals in pairs */
     int has_spare;
 } bf_synth_rng;
 
@@ -83,8 +83,8 @@ void bf_synth_strata(size_t n, size_t dims[4]);
 /* The pattern's direction pairs (degrees) in a new sample set of `channels` channels,
  * values zero. count: for uniform, cosine, stratified and random (>= 1); ignored for
  * gonio and merl. gonio: for BF_SYNTH_GONIO. Every pair is above the horizon. */
-bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio,
-                        bf_synth_rng *r, int channels, bf_samples **out, bf_error *err);
+bf_status bf_synth_directions(bf_synth_pattern p, size_t count, const bf_synth_gonio *gonio, bf_synth_rng *r,
+                              int channels, bf_samples **out, bf_error *err);
 
 /* ---- Noise (noise.c) ---------------------------------------------------------------
  * Applied per value v, in this order:
@@ -123,18 +123,18 @@ bf_status bf_synth_noise_apply(bf_samples *s, const bf_synth_noise *nz, bf_synth
 /* ---- The whole job (synth.c) -------------------------------------------------------- */
 typedef struct bf_synth_options {
     bf_synth_pattern pattern;
-    size_t count;          /* see bf_synth_directions */
+    size_t count; /* see bf_synth_directions */
     bf_synth_gonio gonio;
     uint64_t seed;
-    bf_synth_noise noise;  /* zeroed: no noise */
+    bf_synth_noise noise; /* zeroed: no noise */
 } bf_synth_options;
 
 /* Directions from the generator seeded with o->seed; values by bf_model_eval; noise from
  * a second stream (the seed's stream jumped), so the same seed gives the same directions
  * with or without noise. For merl: the model must have 3 channels, and clamping is
  * always on, since a negative value marks a cell invalid in a MERL table. */
-bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o,
-                      bf_samples **out, bf_error *err);
+bf_status bf_synth_generate(const bf_model *m, const double *x, const bf_synth_options *o, bf_samples **out,
+                            bf_error *err);
 
 #ifdef __cplusplus
 }

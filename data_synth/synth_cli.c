@@ -47,12 +47,16 @@ static const cli_group own_group = CLI_GROUP(NULL, own);
 static const cli_group noise_group = CLI_GROUP("noise (applied in this order: model, outliers, clamping)", noise);
 static const cli_group *const groups[] = {&own_group, &noise_group};
 const cli_command cli_synth = {
-    "brdfit-synth", NULL, "--params P.json --pattern PATTERN [--count N] [options] -o OUT.csv|OUT.binary",
+    "brdfit-synth",
+    NULL,
+    "--params P.json --pattern PATTERN [--count N] [options] -o OUT.csv|OUT.binary",
     "make synthetic reflectance data from a model",
     "Patterns: uniform (N pairs, each direction uniform in solid angle), cosine (each direction cosine-weighted), "
     "stratified (one pair per stratum of a jittered (cos theta, phi) grid per direction; N = m^4 gives m strata in "
     "each of the four dimensions), random (theta uniform in [0, 90) and phi in [0, 360) degrees, as a goniometer "
     "stepping at random), gonio (an in-plane sweep and an out-of-plane ring per incidence), merl (every MERL cell "
     "centre above the horizon; needs a 3-channel model and OUT.binary; other cells are written invalid).",
-    NULL, groups, sizeof groups / sizeof groups[0],
+    NULL,
+    groups,
+    sizeof groups / sizeof groups[0],
 };

@@ -137,7 +137,9 @@ static int build_outliers(const char *s, bf_synth_noise *nz)
 static int build_noise(const synth_args *a, bf_synth_noise *nz)
 {
     int model = a->noise_model ? bf_synth_noise_model_from_name(a->noise_model)
-                               : a->noise ? BF_NOISE_RELATIVE : a->counts ? BF_NOISE_PHOTON : BF_NOISE_NONE;
+                : a->noise     ? BF_NOISE_RELATIVE
+                : a->counts    ? BF_NOISE_PHOTON
+                               : BF_NOISE_NONE;
     if (model < 0)
         return usage_error("unknown noise model '%s' (relative, additive, photon, none)", a->noise_model);
     nz->model = (bf_synth_noise_model)model;

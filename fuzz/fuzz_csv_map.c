@@ -43,8 +43,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     char *p = spec, *angles = piece(&p), *channels = piece(&p), *weight = piece(&p), *radians = piece(&p);
-    bf_csv_map map = {{NULL, NULL, NULL, NULL}, *radians != '\0', *channels ? channels : NULL,
-                      *weight ? weight : NULL};
+    bf_csv_map map = {{NULL, NULL, NULL, NULL}, *radians != '\0', *channels ? channels : NULL, *weight ? weight : NULL};
     /* Angle names: four comma-separated, as --angles takes them; otherwise the defaults. */
     char *a[4] = {angles, NULL, NULL, NULL};
     int k = 1;

@@ -22,9 +22,18 @@ static int make_result(const bf_regress_case *cs, int C, bf_fit_result *r)
     if (!(r->x = malloc((size_t)bf_model_nvalues(r->model) * sizeof *r->x + 1)))
         fuzz_fail("out of memory");
     bf_model_defaults(r->model, r->x);
-    r->metrics = (bf_metrics){.n = 100, .k = bf_model_nvalues(r->model), .rmse = 0.125, .rmse_cos = 0.25,
-                              .rmse_log = 0.03125, .rmse_rel = 1.5e-3, .max_err = 2.0, .crit_n = 100,
-                              .loglik = -12.5, .aic = 31.0, .aicc = 32.25, .bic = 40.0};
+    r->metrics = (bf_metrics){.n = 100,
+                              .k = bf_model_nvalues(r->model),
+                              .rmse = 0.125,
+                              .rmse_cos = 0.25,
+                              .rmse_log = 0.03125,
+                              .rmse_rel = 1.5e-3,
+                              .max_err = 2.0,
+                              .crit_n = 100,
+                              .loglik = -12.5,
+                              .aic = 31.0,
+                              .aicc = 32.25,
+                              .bic = 40.0};
     r->ok = 1;
     r->seconds = 0.5;
     r->nwarnings = 1;

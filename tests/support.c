@@ -64,8 +64,8 @@ int ts_all_specs(char ***specs)
                 char buf[256];
                 int len = snprintf(buf, sizeof buf, "%s", fi->name);
                 for (int o = 0; o < no; o++)
-                    len += snprintf(buf + len, sizeof buf - (size_t)len, "%c%s=%s", o ? ',' : ':',
-                                    fi->options[o].name, fi->options[o].values[idx[o]]);
+                    len += snprintf(buf + len, sizeof buf - (size_t)len, "%c%s=%s", o ? ',' : ':', fi->options[o].name,
+                                    fi->options[o].values[idx[o]]);
                 if (fi->lobes)
                     snprintf(buf + len, sizeof buf - (size_t)len, "%clobes=%d", no ? ',' : ':', lobes);
                 push(specs, &n, &cap, buf);
@@ -178,8 +178,7 @@ double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g)
     return v;
 }
 
-bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to,
-                             const double *po)
+bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to, const double *po)
 {
     double *a = malloc(4 * (n + 1) * sizeof *a);
     for (size_t k = 0; k < n; k++) {
@@ -194,8 +193,7 @@ bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, cons
     return g;
 }
 
-double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
-                int c)
+double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po, int c)
 {
     bf_geometry *g = ts_geometry_deg(1, &ti, &pi_, &to, &po);
     double *v = ts_eval(m, x, g);

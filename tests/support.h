@@ -27,7 +27,9 @@ int ts_all_specs(char ***specs);
 void ts_free_specs(char **specs, int n);
 
 /* Deterministic generator (xorshift64*). */
-typedef struct ts_rng { uint64_t s; } ts_rng;
+typedef struct ts_rng {
+    uint64_t s;
+} ts_rng;
 double ts_uniform(ts_rng *r); /* [0, 1) */
 
 /* How a random parameter vector is drawn. */
@@ -55,8 +57,7 @@ void ts_dirs_deg(double ti, double pi_, double to, double po, double L[3], doubl
 double *ts_eval(const bf_model *m, const double *x, const bf_geometry *g);
 
 /* Geometry from degrees. */
-bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to,
-                             const double *po);
+bf_geometry *ts_geometry_deg(size_t n, const double *ti, const double *pi_, const double *to, const double *po);
 
 /* A model that must exist (fails the current cmocka test otherwise). */
 bf_model *ts_model(const char *spec, int C);
@@ -114,7 +115,6 @@ typedef double (*ts_ref_fn)(const void *ctx, int C, double ti, double pi_, doubl
 void ts_compare_reference(const char *spec, uint64_t seed, ts_draw_fn draw, ts_ref_fn ref, void *ctx, double tol);
 
 /* Single value of channel c at one direction pair in degrees. */
-double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po,
-                int c);
+double ts_eval1(const bf_model *m, const double *x, double ti, double pi_, double to, double po, int c);
 
 #endif

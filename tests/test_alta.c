@@ -134,8 +134,8 @@ static bf_samples *read_rusin(void)
 {
     char text[2048] = H("RUSIN_TH_TD_PD", 3);
     for (size_t i = 0; i < NR; i++)
-        snprintf(text + strlen(text), sizeof text - strlen(text), "%.17g %.17g %.17g %zu\n", rusin[i][0],
-                 rusin[i][1], rusin[i][2], i);
+        snprintf(text + strlen(text), sizeof text - strlen(text), "%.17g %.17g %.17g %zu\n", rusin[i][0], rusin[i][1],
+                 rusin[i][2], i);
     return read_text("rusin.alta", text);
 }
 
@@ -204,10 +204,10 @@ static void test_cartesian_and_spherical(void **state)
     for (size_t i = 0; i < NR; i++) {
         double L[3], V[3];
         ts_dirs_deg(r->theta_i[i], r->phi_i[i], r->theta_o[i], r->phi_o[i], L, V);
-        snprintf(cart + strlen(cart), sizeof cart - strlen(cart), "%.17g %.17g %.17g\t%.17g %.17g %.17g\t%zu\n",
-                 V[0], V[1], V[2], L[0], L[1], L[2], i);
-        snprintf(sph + strlen(sph), sizeof sph - strlen(sph), "%.17g %.17g %.17g %.17g %zu\n",
-                 r->theta_i[i] * DEG, r->phi_i[i] * DEG, r->theta_o[i] * DEG, r->phi_o[i] * DEG, i);
+        snprintf(cart + strlen(cart), sizeof cart - strlen(cart), "%.17g %.17g %.17g\t%.17g %.17g %.17g\t%zu\n", V[0],
+                 V[1], V[2], L[0], L[1], L[2], i);
+        snprintf(sph + strlen(sph), sizeof sph - strlen(sph), "%.17g %.17g %.17g %.17g %zu\n", r->theta_i[i] * DEG,
+                 r->phi_i[i] * DEG, r->theta_o[i] * DEG, r->phi_o[i] * DEG, i);
     }
     bf_samples *c = read_text("cart.alta", cart), *s = read_text("sph.alta", sph);
     for (size_t i = 0; i < NR; i++) {
@@ -257,8 +257,8 @@ static void test_reduced_half_diff(void **state)
     assert_close(s->theta_i[1], 120.0, 1e-12, "theta_h beyond 90 degrees (data below the horizon)", 1);
     bf_samples_free(s);
 
-    snprintf(text, sizeof text, H("RUSIN_VH", 3) "%.17g %.17g %.17g 1\n", sin(0.3) * cos(1.0),
-             sin(0.3) * sin(1.0), cos(0.3));
+    snprintf(text, sizeof text, H("RUSIN_VH", 3) "%.17g %.17g %.17g 1\n", sin(0.3) * cos(1.0), sin(0.3) * sin(1.0),
+             cos(0.3));
     s = read_text("vh.alta", text);
     assert_close(s->theta_i[0], 0.3 * 180 / M_PI, 1e-12, "theta_i", 0);
     assert_close(s->phi_i[0], 180 / M_PI, 1e-12, "phi_i", 0);
@@ -295,8 +295,8 @@ static void test_isotropic_forms(void **state)
     assert_close(a->theta_i[0], 0.9 * 180 / M_PI, 1e-12, "theta_i", 0);
     assert_close(a->phi_i[0], 2 * 180 / M_PI, 1e-12, "phi_i", 0);
     char text[512];
-    snprintf(text, sizeof text, H("ISOTROPIC_TL_TV_PROJ_DPHI", 3) "0.9 %.17g %.17g 5\n0.2 0 0 6\n",
-             0.4 * cos(-2.0), 0.4 * sin(-2.0));
+    snprintf(text, sizeof text, H("ISOTROPIC_TL_TV_PROJ_DPHI", 3) "0.9 %.17g %.17g 5\n0.2 0 0 6\n", 0.4 * cos(-2.0),
+             0.4 * sin(-2.0));
     bf_samples *b = read_text("proj.alta", text);
     assert_close(b->theta_i[0], 0.9 * 180 / M_PI, 1e-12, "theta_i", 0);
     assert_true(b->phi_i[0] == 0.0);
@@ -325,9 +325,8 @@ static void test_outputs(void **state)
         int n;
         const char *names[3];
     } cases[] = {
-        {"INV_STERADIAN", 1, {"value"}}, {"INV_STERADIAN", 2, {"c0", "c1"}},
-        {"INV_STERADIAN", 3, {"c0", "c1", "c2"}}, {"RGB_COLOR", 3, {"r", "g", "b"}},
-        {"XYZ_COLOR", 3, {"X", "Y", "Z"}},
+        {"INV_STERADIAN", 1, {"value"}},   {"INV_STERADIAN", 2, {"c0", "c1"}}, {"INV_STERADIAN", 3, {"c0", "c1", "c2"}},
+        {"RGB_COLOR", 3, {"r", "g", "b"}}, {"XYZ_COLOR", 3, {"X", "Y", "Z"}},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         snprintf(text, sizeof text, "#DIM 4 %d\n#PARAM_IN SPHERICAL_TL_PL_TV_PV\n#PARAM_OUT %s\n%s", cases[k].n,

@@ -18,10 +18,10 @@
 #include "support.h"
 
 typedef struct watch {
-    int calls;         /* progress calls */
-    int cancel_at;     /* the callback returns 1 at this call (0: never) */
-    int signal_at;     /* ... or signals the other thread at this call */
-    int bad_cost;      /* a call with a cost that is not finite */
+    int calls;     /* progress calls */
+    int cancel_at; /* the callback returns 1 at this call (0: never) */
+    int signal_at; /* ... or signals the other thread at this call */
+    int bad_cost;  /* a call with a cost that is not finite */
     pthread_mutex_t lock;
     pthread_cond_t cond;
     int signalled;

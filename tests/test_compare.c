@@ -60,7 +60,7 @@ static void test_ranks_and_ties(void **state)
     bf_compare_rank(&c);
     for (int j = 0; j < 5; j++)
         assert_int_equal(f[j].rank, f[j].rank_bic); /* BIC is the default */
-    assert_int_equal(f[0].rank_cv, 0);            /* no cross-validation ran */
+    assert_int_equal(f[0].rank_cv, 0);              /* no cross-validation ran */
     assert_int_equal(f[0].rank_bic, 4);
     assert_int_equal(f[1].rank_bic, 1);
     assert_int_equal(f[2].rank_bic, 3);
@@ -160,10 +160,10 @@ static void test_pareto_marks_in_rank(void **state)
     (void)state;
     bf_compare c = make(1, 4);
     bf_compare_fit *f = c.materials[0].fits;
-    set_fit(&f[0], 3, 0.5, 0, 0, 1e6);  /* fewest k, least work: on both fronts */
-    set_fit(&f[1], 4, 0.6, 0, 0, 5e7);  /* dominated by f[0] on both */
-    set_fit(&f[2], 8, 0.1, 0, 0, 1e8);  /* best error: on both */
-    set_fit(&f[3], 8, 0.2, 0, 0, 2e6);  /* k: dominated by f[2]; work: on the front */
+    set_fit(&f[0], 3, 0.5, 0, 0, 1e6); /* fewest k, least work: on both fronts */
+    set_fit(&f[1], 4, 0.6, 0, 0, 5e7); /* dominated by f[0] on both */
+    set_fit(&f[2], 8, 0.1, 0, 0, 1e8); /* best error: on both */
+    set_fit(&f[3], 8, 0.2, 0, 0, 2e6); /* k: dominated by f[2]; work: on the front */
     bf_compare_rank(&c);
     assert_int_equal(f[0].pareto_k, 1);
     assert_int_equal(f[1].pareto_k, 0);
@@ -184,11 +184,11 @@ static void test_simplest_within_tolerance(void **state)
     (void)state;
     bf_compare c = make(1, 5);
     bf_compare_fit *f = c.materials[0].fits;
-    set_fit(&f[0], 3, 0.1049, 0, 0, 0);  /* within 5% of 0.1: fewest parameters */
-    set_fit(&f[1], 2, 0.1051, 0, 0, 0);  /* fewer, but just outside */
-    set_fit(&f[2], 8, 0.1000, 0, 0, 0);  /* best */
-    set_fit(&f[3], 3, 0.1020, 0, 0, 0);  /* same k as f[0], lower error: wins the tie */
-    set_fit(&f[4], 3, 0.1020, 0, 0, 0);  /* exact tie with f[3]: the earlier model stays */
+    set_fit(&f[0], 3, 0.1049, 0, 0, 0); /* within 5% of 0.1: fewest parameters */
+    set_fit(&f[1], 2, 0.1051, 0, 0, 0); /* fewer, but just outside */
+    set_fit(&f[2], 8, 0.1000, 0, 0, 0); /* best */
+    set_fit(&f[3], 3, 0.1020, 0, 0, 0); /* same k as f[0], lower error: wins the tie */
+    set_fit(&f[4], 3, 0.1020, 0, 0, 0); /* exact tie with f[3]: the earlier model stays */
     bf_compare_rank(&c);
     assert_int_equal(c.materials[0].best, 2);
     assert_int_equal(c.materials[0].simplest, 3);
@@ -283,17 +283,23 @@ static void test_json_keys(void **state)
     char *text = slurp(path);
     cJSON *root = cJSON_Parse(text);
     assert_non_null(root);
-    const char *top[] = {"version", "rank_by", "error", "folds", "tolerance", "residual", "work", "timing",
-                         "interrupted", "models", "materials", "summary"};
+    const char *top[] = {"version", "rank_by", "error",       "folds",  "tolerance", "residual",
+                         "work",    "timing",  "interrupted", "models", "materials", "summary"};
     for (size_t k = 0; k < sizeof top / sizeof top[0]; k++)
         assert_true(cJSON_HasObjectItem(root, top[k]));
     assert_string_equal(cJSON_GetObjectItem(root, "error")->valuestring, "rmse_log");
     cJSON *mats = cJSON_GetObjectItem(root, "materials");
     assert_int_equal(cJSON_GetArraySize(mats), 3);
-    const char *fit_keys[] = {"model", "spec", "status", "ok", "message", "k", "n", "error", "rmse", "rmse_log",
-                              "rmse_cos", "rmse_rel", "max_err", "loglik", "aic", "aicc", "bic", "cv", "work",
-                              "rank", "rank_bic", "rank_aic", "rank_aicc", "rank_cv", "pareto_k", "pareto_work",
-                              "within_tolerance", "params", "stderr", "warnings"};
+    const char *fit_keys[] = {"model",    "spec",        "status",
+                              "ok",       "message",     "k",
+                              "n",        "error",       "rmse",
+                              "rmse_log", "rmse_cos",    "rmse_rel",
+                              "max_err",  "loglik",      "aic",
+                              "aicc",     "bic",         "cv",
+                              "work",     "rank",        "rank_bic",
+                              "rank_aic", "rank_aicc",   "rank_cv",
+                              "pareto_k", "pareto_work", "within_tolerance",
+                              "params",   "stderr",      "warnings"};
     cJSON *m;
     /* no wall times unless asked */
     assert_null(strstr(text, "seconds"));
@@ -325,7 +331,8 @@ static void test_json_keys(void **state)
     assert_int_equal(bf_compare_write_json(&c, path, &err), BF_OK);
     text = slurp(path);
     root = cJSON_Parse(text);
-    cJSON *f0 = cJSON_GetArrayItem(cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "materials"), 0), "fits"), 0);
+    cJSON *f0 = cJSON_GetArrayItem(
+        cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "materials"), 0), "fits"), 0);
     assert_true(cJSON_IsNumber(cJSON_GetObjectItem(f0, "seconds")));
     cJSON_Delete(root);
     free(text);
@@ -383,10 +390,14 @@ static void test_metric_names(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ranks_and_ties),       cmocka_unit_test(test_pareto_known_set),
-        cmocka_unit_test(test_pareto_marks_in_rank), cmocka_unit_test(test_simplest_within_tolerance),
-        cmocka_unit_test(test_summary),              cmocka_unit_test(test_json_keys),
-        cmocka_unit_test(test_csv_rows),             cmocka_unit_test(test_metric_names),
+        cmocka_unit_test(test_ranks_and_ties),
+        cmocka_unit_test(test_pareto_known_set),
+        cmocka_unit_test(test_pareto_marks_in_rank),
+        cmocka_unit_test(test_simplest_within_tolerance),
+        cmocka_unit_test(test_summary),
+        cmocka_unit_test(test_json_keys),
+        cmocka_unit_test(test_csv_rows),
+        cmocka_unit_test(test_metric_names),
         cmocka_unit_test(test_rank_by_cv),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -67,8 +67,7 @@ static void check_against_plain(const bf_samples *s, const char *path)
                 fail_msg("%s: record %zu angle %d: %.17g, want %.17g", path, i, k, got[k], want[k]);
         for (size_t c = 0; c < C; c++)
             if (s->value[i * C + c] != r[4 + c])
-                fail_msg("%s: record %zu channel %zu: %.17g, want %.17g", path, i, c, s->value[i * C + c],
-                         r[4 + c]);
+                fail_msg("%s: record %zu channel %zu: %.17g, want %.17g", path, i, c, s->value[i * C + c], r[4 + c]);
     }
     free(v);
 }
@@ -237,8 +236,9 @@ static void test_bad_input(void **state)
     static char buf[1 << 14];
     size_t n = fread(buf, 1, sizeof buf, fp);
     fclose(fp);
-    expect_error_len("cut.brdf", buf, n - 40, BF_ERR_PARSE, ":33: incomplete record 20: records are theta_i phi_i "
-                                                            "theta_s phi_s and 31 values (35 numbers), the last has");
+    expect_error_len("cut.brdf", buf, n - 40, BF_ERR_PARSE,
+                     ":33: incomplete record 20: records are theta_i phi_i "
+                     "theta_s phi_s and 31 values (35 numbers), the last has");
 
     bf_samples *s = NULL;
     bf_error err = {0};
@@ -250,11 +250,8 @@ static void test_bad_input(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_subset),
-        cmocka_unit_test(test_full_shared_files),
-        cmocka_unit_test(test_flat_stream),
-        cmocka_unit_test(test_dispatch),
-        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_subset),   cmocka_unit_test(test_full_shared_files), cmocka_unit_test(test_flat_stream),
+        cmocka_unit_test(test_dispatch), cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests_name("cornell", tests, NULL, NULL);
 }

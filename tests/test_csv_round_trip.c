@@ -102,8 +102,9 @@ static void test_clashing_names(void **state)
     assert_int_equal(s->channels, 3);
     assert_string_equal(s->channel_names[0], "theta_i");
     bf_samples *b = round_trip(s, "clash2.csv");
-    assert_string_equal(ts_read_file(ts_tmp_path("clash2.csv")),
-                        "theta_i,phi_i,theta_o,phi_o,theta_i_3,weight_2,theta_i_2,weight\n10,20,30,40,0.5,0.25,0.125,2\n");
+    assert_string_equal(
+        ts_read_file(ts_tmp_path("clash2.csv")),
+        "theta_i,phi_i,theta_o,phi_o,theta_i_3,weight_2,theta_i_2,weight\n10,20,30,40,0.5,0.25,0.125,2\n");
     assert_string_equal(b->channel_names[0], "theta_i_3");
     assert_string_equal(b->channel_names[1], "weight_2");
     assert_string_equal(b->channel_names[2], "theta_i_2");
@@ -133,8 +134,9 @@ static void test_quoted_names(void **state)
     assert_string_equal(s->channel_names[2], " pad ");
     assert_string_equal(s->channel_names[3], "x\"y"); /* a quote inside an unquoted name is text */
     bf_samples *b = round_trip(s, "q2.csv");
-    assert_string_equal(ts_read_file(ts_tmp_path("q2.csv")),
-                        "theta_i,phi_i,theta_o,phi_o,\"a,b\",\"say \"\"hi\"\"\",\" pad \",\"x\"\"y\"\n1,2,3,4,5,6,7,8\n");
+    assert_string_equal(
+        ts_read_file(ts_tmp_path("q2.csv")),
+        "theta_i,phi_i,theta_o,phi_o,\"a,b\",\"say \"\"hi\"\"\",\" pad \",\"x\"\"y\"\n1,2,3,4,5,6,7,8\n");
     for (int c = 0; c < 4; c++)
         assert_string_equal(b->channel_names[c], s->channel_names[c]);
     bf_samples_free(b);

@@ -63,8 +63,8 @@ static void check(const char *spec, int C)
                 }
                 double albedo = sum * (1.0 / NU) * (2.0 * M_PI / NPHI);
                 if (!(albedo <= 1.0 + 0.02))
-                    fail_msg("%s C=%d: albedo %.6f > 1 at theta_i = %g deg, channel %d",
-                             spec, C, albedo, incident_deg[j], c);
+                    fail_msg("%s C=%d: albedo %.6f > 1 at theta_i = %g deg, channel %d", spec, C, albedo,
+                             incident_deg[j], c);
             }
         free(v);
     }
@@ -73,7 +73,10 @@ static void check(const char *spec, int C)
 }
 
 /* One channel suffices: channels share the lobe shapes (the gradient test covers C = 3). */
-static void test_spec(void **state) { check(*state, 1); }
+static void test_spec(void **state)
+{
+    check(*state, 1);
+}
 
 /* Lambert's albedo is exactly rho_d: checks the quadrature itself. */
 static void test_quadrature_lambert(void **state)

@@ -21,7 +21,10 @@
 
 #define NCH 3
 
-static int verbose(void) { return getenv("BRDFIT_TEST_VERBOSE") != NULL; }
+static int verbose(void)
+{
+    return getenv("BRDFIT_TEST_VERBOSE") != NULL;
+}
 
 static bf_samples *generate(const char *spec, const double *x, const bf_synth_options *o)
 {
@@ -310,12 +313,9 @@ static void test_zeros_and_negatives(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_near_mirror),
-        cmocka_unit_test(test_large_exponents),
-        cmocka_unit_test(test_lambertian_data),
-        cmocka_unit_test(test_grazing_only),
-        cmocka_unit_test(test_f0_near_one),
-        cmocka_unit_test(test_zeros_and_negatives),
+        cmocka_unit_test(test_near_mirror),     cmocka_unit_test(test_large_exponents),
+        cmocka_unit_test(test_lambertian_data), cmocka_unit_test(test_grazing_only),
+        cmocka_unit_test(test_f0_near_one),     cmocka_unit_test(test_zeros_and_negatives),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,7 +27,10 @@
 #include "brdfit/prep.h"
 #include "support.h"
 
-static int verbose(void) { return getenv("BRDFIT_TEST_VERBOSE") != NULL; }
+static int verbose(void)
+{
+    return getenv("BRDFIT_TEST_VERBOSE") != NULL;
+}
 
 static bf_samples *read_ptfe(void)
 {
@@ -98,9 +101,8 @@ static void fit_all(bf_samples *s, const char *what)
             if (!isfinite(r.x[k]))
                 fail_msg("%s: %s parameter %d is %g", what, spec, k, r.x[k]);
         if (verbose())
-            printf("  %-22s ok %d log rmse %.6g (%.3f of Lambert's) it %d %.3f s %s\n", spec, r.ok,
-                   r.metrics.rmse_log, r.metrics.rmse_log / lambert, r.solution.iterations, r.seconds,
-                   r.solution.termination);
+            printf("  %-22s ok %d log rmse %.6g (%.3f of Lambert's) it %d %.3f s %s\n", spec, r.ok, r.metrics.rmse_log,
+                   r.metrics.rmse_log / lambert, r.solution.iterations, r.seconds, r.solution.termination);
         if (!r.ok) {
             print_error("%s: %s did not converge: %s\n", what, spec, r.solution.termination);
             worse++;
@@ -112,8 +114,8 @@ static void fit_all(bf_samples *s, const char *what)
             }
         } else if (expected_worse(what, spec)) {
             if (!(r.metrics.rmse_log > lambert) || !(r.x[0] == 1.0)) {
-                print_error("%s: %s no longer fails as listed (log rmse %.6g, rho_d %g): update the list\n", what,
-                            spec, r.metrics.rmse_log, r.x[0]);
+                print_error("%s: %s no longer fails as listed (log rmse %.6g, rho_d %g): update the list\n", what, spec,
+                            r.metrics.rmse_log, r.x[0]);
                 worse++;
             }
         } else if (!(r.metrics.rmse_log < lambert)) {

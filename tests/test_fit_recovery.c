@@ -50,9 +50,9 @@
 #include "synth.h"
 
 #define NCH 3
-#define NSTRAT 2401  /* 7^4: seven strata in each of the four dimensions */
+#define NSTRAT 2401 /* 7^4: seven strata in each of the four dimensions */
 #define NMIRROR 1500
-#define SPREAD 8.0   /* degrees around the mirror direction */
+#define SPREAD 8.0 /* degrees around the mirror direction */
 
 typedef struct truth_case {
     const char *spec;
@@ -104,13 +104,10 @@ static const truth_case cases[] = {
     {"walter:fresnel=dielectric", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 1.6}, 1},
     {"microfacet:D=beckmann,G=smith_ggx", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
     /* Metals: gold-like and copper-like reflectivity r and edge tint g per channel. */
-    {"microfacet:F=conductor",
-     {0.05, 0.03, 0.01, 0.9, 0.9, 0.9, 0.2, 0.944, 0.776, 0.373, 0.998, 0.981, 0.751}, 1},
-    {"walter:fresnel=conductor",
-     {0.04, 0.02, 0.02, 0.8, 0.8, 0.8, 0.1, 0.955, 0.638, 0.538, 0.999, 0.983, 0.949}, 1},
+    {"microfacet:F=conductor", {0.05, 0.03, 0.01, 0.9, 0.9, 0.9, 0.2, 0.944, 0.776, 0.373, 0.998, 0.981, 0.751}, 1},
+    {"walter:fresnel=conductor", {0.04, 0.02, 0.02, 0.8, 0.8, 0.8, 0.1, 0.955, 0.638, 0.538, 0.999, 0.983, 0.949}, 1},
     {"cook_torrance:lobes=2", {0.4, 0.35, 0.3, 0.7, 0.6, 0.5, 0.1, 0.2, 0.3, 0.3, 0.3, 0.4, 0.05}, 1},
-    {"lafortune:lobes=2",
-     {0.3, 0.3, 0.35, 0.5, 0.45, 0.4, -0.9, 0.7, 30, 0.2, 0.2, 0.2, -0.5, 0.9, 4}, 16},
+    {"lafortune:lobes=2", {0.3, 0.3, 0.35, 0.5, 0.45, 0.4, -0.9, 0.7, 30, 0.2, 0.2, 0.2, -0.5, 0.9, 4}, 16},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
@@ -409,7 +406,8 @@ static void test_recover_noisy(void **state)
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
         const bf_model *m = r.model;
-        int disney = !strcmp(t->spec, "disney"), weak = disney || WEAK(t), lafortune = !strncmp(t->spec, "lafortune", 9);
+        int disney = !strcmp(t->spec, "disney"), weak = disney || WEAK(t),
+            lafortune = !strncmp(t->spec, "lafortune", 9);
         for (int p = 0; p < bf_model_nparams(m); p++) {
             const bf_param_info *pi = bf_model_param(m, p);
             int off = bf_model_param_offset(m, p);
@@ -424,8 +422,8 @@ static void test_recover_noisy(void **state)
                  * half-angles, few samples): standard errors up to 1.3%. */
                 double within = pi->role == BF_ROLE_EDGE_TINT ? 0.02 : 0.01;
                 if (!(se > 0.0) || !(e <= 5.0 * se) || (!weak && !(se <= within * fabs(want))))
-                    fail_msg("%s %s[%d]: fit %.8g, truth %g, standard error %.3g", t->spec, pi->name, c,
-                             r.x[k], want, se);
+                    fail_msg("%s %s[%d]: fit %.8g, truth %g, standard error %.3g", t->spec, pi->name, c, r.x[k], want,
+                             se);
             }
         }
         if (lafortune) {

@@ -87,10 +87,8 @@ static void test_from_vectors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_half_vector),
-        cmocka_unit_test(test_sin2h_near_peak),
-        cmocka_unit_test(test_vh_grazing_mirror),
-        cmocka_unit_test(test_horizon),
+        cmocka_unit_test(test_half_vector),       cmocka_unit_test(test_sin2h_near_peak),
+        cmocka_unit_test(test_vh_grazing_mirror), cmocka_unit_test(test_horizon),
         cmocka_unit_test(test_from_vectors),
     };
     return cmocka_run_group_tests_name("geometry", tests, NULL, NULL);

@@ -16,8 +16,8 @@ enum { NDIRS = 48, TRIALS = 12 };
 
 /* Finite-difference derivative of every value with respect to x[k]; central inside the
  * bounds, one-sided second order at a bound. h is the step. */
-static void fd_column(const bf_model *m, const bf_geometry *g, double *x, int k, double lo,
-                      double hi, double h, double *out)
+static void fd_column(const bf_model *m, const bf_geometry *g, double *x, int k, double lo, double hi, double h,
+                      double *out)
 {
     size_t n = g->n * (size_t)bf_model_channels(m);
     double x0 = x[k];
@@ -84,8 +84,7 @@ static void check_model(const char *spec, int C, int *checked, int *kinks)
         for (int k = 0; k < P; k++) {
             const bf_param_info *p = slot_param(m, k);
             double lo = ts_param_lo(p), hi = ts_param_hi(p);
-            double mag = p->scale == BF_SCALE_LINEAR ? fmax(fabs(x[k]), 1e-2 * (hi - lo))
-                                                      : fmax(fabs(x[k]), 1e-3);
+            double mag = p->scale == BF_SCALE_LINEAR ? fmax(fabs(x[k]), 1e-2 * (hi - lo)) : fmax(fabs(x[k]), 1e-3);
             double h = 1e-6 * mag;
             fd_column(m, g, x, k, lo, hi, h, fd);
             fd_column(m, g, x, k, lo, hi, h / 8.0, fd2);
@@ -112,8 +111,8 @@ static void check_model(const char *spec, int C, int *checked, int *kinks)
                 size_t s = i / (size_t)C;
                 fail_msg("%s C=%d: d/d%s (slot %d = %.17g) at dirs (%.6g,%.6g,%.6g,%.6g) deg "
                          "channel %zu: analytic %.10g, finite difference %.10g (value %.10g)",
-                         spec, C, p->name, k, x[k], ti[s] / DEG, pi_[s] / DEG, to[s] / DEG,
-                         po[s] / DEG, i % (size_t)C, a, fd[i], val[i]);
+                         spec, C, p->name, k, x[k], ti[s] / DEG, pi_[s] / DEG, to[s] / DEG, po[s] / DEG, i % (size_t)C,
+                         a, fd[i], val[i]);
             }
         }
     }

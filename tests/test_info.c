@@ -83,8 +83,8 @@ static void test_describe_half_angles(void **state)
     bf_samples_info_init(&info);
     assert_int_equal(bf_samples_describe(s, &info, NULL), BF_OK);
     assert_range(info.theta_h, acos(2 * ct / len) / DEG, acos(2 * ct / len) / DEG, "theta_h");
-    assert_range(info.theta_d, acos((st * st + 2 * ct * ct) / len) / DEG,
-                 acos((st * st + 2 * ct * ct) / len) / DEG, "theta_d");
+    assert_range(info.theta_d, acos((st * st + 2 * ct * ct) / len) / DEG, acos((st * st + 2 * ct * ct) / len) / DEG,
+                 "theta_d");
     bf_samples_info_clear(&info);
     /* L = V (retro-reflection): theta_d is 0 to rounding, not the 1e-6 degrees of acos. */
     s->theta_o[0] = 40;

@@ -224,10 +224,8 @@ int main(void)
 {
     signal(SIGPIPE, SIG_IGN); /* a write after the reader stopped: EPIPE, not a signal */
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_status_name),
-        cmocka_unit_test(test_flag_set_before),
-        cmocka_unit_test(test_csv_reader_stops),
-        cmocka_unit_test(test_cornell_reader_stops),
+        cmocka_unit_test(test_status_name),       cmocka_unit_test(test_flag_set_before),
+        cmocka_unit_test(test_csv_reader_stops),  cmocka_unit_test(test_cornell_reader_stops),
         cmocka_unit_test(test_merl_reader_stops),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

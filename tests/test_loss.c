@@ -40,8 +40,7 @@ static double want_d1(bf_loss_kind k, double a, double s)
 static void test_values_and_derivatives(void **state)
 {
     (void)state;
-    const bf_loss_kind kinds[] = {BF_LOSS_NONE, BF_LOSS_HUBER, BF_LOSS_CAUCHY, BF_LOSS_SOFT_L1,
-                                  BF_LOSS_ARCTAN};
+    const bf_loss_kind kinds[] = {BF_LOSS_NONE, BF_LOSS_HUBER, BF_LOSS_CAUCHY, BF_LOSS_SOFT_L1, BF_LOSS_ARCTAN};
     const double scales[] = {0.1, 1.0, 2.5};
     const double ss[] = {0.0, 1e-6, 3e-3, 0.02, 0.5, 1.0, 4.0, 37.0, 1e4};
     for (size_t ik = 0; ik < sizeof kinds / sizeof kinds[0]; ik++)
@@ -96,10 +95,13 @@ static void test_shape(void **state)
 static void test_parse(void **state)
 {
     (void)state;
-    const struct { const char *text; bf_loss_kind kind; double scale; } good[] = {
-        {"none", BF_LOSS_NONE, 1.0},      {"huber", BF_LOSS_HUBER, 1.0},
-        {"huber:0.1", BF_LOSS_HUBER, 0.1}, {"cauchy:2", BF_LOSS_CAUCHY, 2.0},
-        {"soft_l1:0.5", BF_LOSS_SOFT_L1, 0.5}, {"arctan:1", BF_LOSS_ARCTAN, 1.0},
+    const struct {
+        const char *text;
+        bf_loss_kind kind;
+        double scale;
+    } good[] = {
+        {"none", BF_LOSS_NONE, 1.0},           {"huber", BF_LOSS_HUBER, 1.0},         {"huber:0.1", BF_LOSS_HUBER, 0.1},
+        {"cauchy:2", BF_LOSS_CAUCHY, 2.0},     {"soft_l1:0.5", BF_LOSS_SOFT_L1, 0.5}, {"arctan:1", BF_LOSS_ARCTAN, 1.0},
         {"Cauchy:1e-3", BF_LOSS_CAUCHY, 1e-3}, {"soft_l1", BF_LOSS_SOFT_L1, 1.0},
     };
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
@@ -113,13 +115,22 @@ static void test_parse(void **state)
     assert_int_equal(bf_loss_parse(NULL, &l, NULL), BF_OK); /* no loss: least squares */
     assert_int_equal(l.kind, BF_LOSS_NONE);
 
-    const struct { const char *text; const char *fragment; } bad[] = {
-        {"", "unknown loss"},           {"tukey", "unknown loss"},
-        {"hubber:0.1", "unknown loss"}, {"huber:0", "> 0"},
-        {"huber:-1", "> 0"},            {"cauchy:inf", "> 0"},
-        {"cauchy:nan", "> 0"},          {"huber:", "not a number"},
-        {"huber:x", "not a number"},    {"huber:0.1x", "not a number"},
-        {"none:2", "no scale"},         {"arctan:1:2", "not a number"},
+    const struct {
+        const char *text;
+        const char *fragment;
+    } bad[] = {
+        {"", "unknown loss"},
+        {"tukey", "unknown loss"},
+        {"hubber:0.1", "unknown loss"},
+        {"huber:0", "> 0"},
+        {"huber:-1", "> 0"},
+        {"cauchy:inf", "> 0"},
+        {"cauchy:nan", "> 0"},
+        {"huber:", "not a number"},
+        {"huber:x", "not a number"},
+        {"huber:0.1x", "not a number"},
+        {"none:2", "no scale"},
+        {"arctan:1:2", "not a number"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         bf_error err = {0};
@@ -128,8 +139,8 @@ static void test_parse(void **state)
         char quoted[64];
         snprintf(quoted, sizeof quoted, "\"%s\"", bad[i].text);
         if (!strstr(err.msg, quoted) || !strstr(err.msg, bad[i].fragment))
-            fail_msg("loss \"%s\": message \"%s\" should name the text and say \"%s\"", bad[i].text,
-                     err.msg, bad[i].fragment);
+            fail_msg("loss \"%s\": message \"%s\" should name the text and say \"%s\"", bad[i].text, err.msg,
+                     bad[i].fragment);
         assert_null(strchr(err.msg, '\n'));
     }
     /* the unknown-name message lists the known ones */

@@ -106,11 +106,11 @@ static void test_grid(void **state)
     bf_samples *cells = read_ok(CARPAINT, NULL);
     const char *csv = ts_tmp_path("dirs.csv");
     const char *text = "theta_i,phi_i,theta_o,phi_o\n"
-                       "31,0,31,179\n"       /* cell (15, 15, 89) */
-                       "31,10,31,189\n"      /* the same, rotated */
-                       "31,0,31,-179\n"      /* azimuth folded into [0, 180] */
-                       "31,0,31,178\n"       /* between cells 88 and 89 */
-                       "31,0,95,179\n";      /* below the horizon */
+                       "31,0,31,179\n"  /* cell (15, 15, 89) */
+                       "31,10,31,189\n" /* the same, rotated */
+                       "31,0,31,-179\n" /* azimuth folded into [0, 180] */
+                       "31,0,31,178\n"  /* between cells 88 and 89 */
+                       "31,0,95,179\n"; /* below the horizon */
     ts_write_file(csv, text, strlen(text));
     bf_samples *s = read_ok(CARPAINT, csv);
     assert_int_equal(s->n, 5);
@@ -220,8 +220,8 @@ static void test_small_files(void **state)
         {"junk.mbsdf", "", "unexpected data after a table", 1, 0, 1, 2, 2, 0, -4},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        n = make(buf, bad[k].lines, bad[k].refl, bad[k].trans, bad[k].type, bad[k].nt,
-                 bad[k].np > 100 ? 1 : bad[k].np, bad[k].v);
+        n = make(buf, bad[k].lines, bad[k].refl, bad[k].trans, bad[k].type, bad[k].nt, bad[k].np > 100 ? 1 : bad[k].np,
+                 bad[k].v);
         if (bad[k].np > 100) /* the header says more than the data holds */
             buf[20 + 23 + 8] = 0, buf[20 + 23 + 9] = 0x28, buf[20 + 23 + 10] = 0x6b, buf[20 + 23 + 11] = 0xee;
         if (bad[k].cut == -2)

@@ -29,8 +29,7 @@ static void test_parse_bytes(void **state)
     assert_int_equal(v, (size_t)2 << 40);
     assert_int_equal(bf_bytes_parse("0", &v, NULL), BF_OK);
     assert_int_equal(v, 0);
-    const char *bad[] = {NULL, "", "-3", "+3", " 3", "3 ", "4X", "4GB", "1.5G", "99999999999999999999",
-                         "17179869184G"};
+    const char *bad[] = {NULL, "", "-3", "+3", " 3", "3 ", "4X", "4GB", "1.5G", "99999999999999999999", "17179869184G"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         v = 7;
         assert_int_equal(bf_bytes_parse(bad[i], &v, NULL), BF_ERR_ARG);

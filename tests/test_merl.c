@@ -48,8 +48,7 @@ static void put_le(FILE *fp, uint64_t v, int bytes)
 
 /* A MERL file written by hand: dims, then the first `count` doubles of raw, then
  * `extra` zero bytes. */
-static void write_raw_file(const char *path, const int32_t dims[3], const double *raw, size_t count,
-                           size_t extra)
+static void write_raw_file(const char *path, const int32_t dims[3], const double *raw, size_t count, size_t extra)
 {
     FILE *fp = fopen(path, "wb");
     assert_non_null(fp);
@@ -90,7 +89,10 @@ static double raw_at(const unsigned char *file, size_t x)
     return v;
 }
 
-static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 /* ---- A random table ------------------------------------------------------------------ */
 
@@ -357,9 +359,9 @@ static void test_cell_geometry(void **state)
         const bf_geometry *v = bf_geometry_view(g, i0, cnt, &gb);
         for (size_t q = 0; q < cnt; q++) {
             size_t i = i0 + q;
-            const double a[11] = {v->lx[q], v->ly[q], v->lz[q], v->vx[q], v->vy[q], v->vz[q],
+            const double a[11] = {v->lx[q], v->ly[q], v->lz[q], v->vx[q], v->vy[q],   v->vz[q],
                                   v->hx[q], v->hy[q], v->hz[q], v->vh[q], v->sin2h[q]};
-            const double b[11] = {ga->lx[i], ga->ly[i], ga->lz[i], ga->vx[i], ga->vy[i], ga->vz[i],
+            const double b[11] = {ga->lx[i], ga->ly[i], ga->lz[i], ga->vx[i], ga->vy[i],   ga->vz[i],
                                   ga->hx[i], ga->hy[i], ga->hz[i], ga->vh[i], ga->sin2h[i]};
             assert_int_equal(bf_geometry_valid(v, q), bf_geometry_valid(ga, i));
             assert_int_equal(bf_geometry_valid_at(g, i), bf_geometry_valid(ga, i));
@@ -568,7 +570,7 @@ static void test_write_errors(void **state)
 static void expect_read_error(const char *path, int code, const char *frag1, const char *frag2)
 {
     for (int keep_raw = 0; keep_raw < 2; keep_raw++) { /* both layouts of the reader */
-        bf_samples *s = (bf_samples *)&s; /* must come back NULL */
+        bf_samples *s = (bf_samples *)&s;              /* must come back NULL */
         bf_error err;
         assert_int_equal(bf_samples_read_merl(path, keep_raw, &s, &err), code);
         assert_null(s);
@@ -626,16 +628,11 @@ static void test_read_errors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_centre_directions),
-        cmocka_unit_test(test_cell_of_inverse),
-        cmocka_unit_test(test_horizon_count),
-        cmocka_unit_test(test_read_values),
-        cmocka_unit_test(test_cell_geometry),
-        cmocka_unit_test(test_round_trip_bytes),
-        cmocka_unit_test(test_keep_then_write),
-        cmocka_unit_test(test_changed_values),
-        cmocka_unit_test(test_write_without_origin),
-        cmocka_unit_test(test_write_errors),
+        cmocka_unit_test(test_centre_directions),    cmocka_unit_test(test_cell_of_inverse),
+        cmocka_unit_test(test_horizon_count),        cmocka_unit_test(test_read_values),
+        cmocka_unit_test(test_cell_geometry),        cmocka_unit_test(test_round_trip_bytes),
+        cmocka_unit_test(test_keep_then_write),      cmocka_unit_test(test_changed_values),
+        cmocka_unit_test(test_write_without_origin), cmocka_unit_test(test_write_errors),
         cmocka_unit_test(test_read_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

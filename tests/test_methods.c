@@ -48,10 +48,14 @@ static void test_parse(void **state)
         const char *text, *name;
         bf_backend backend;
     } ok[] = {
-        {"ceres", "lm", BF_BACKEND_CERES},          {"ceres:dogleg", "dogleg", BF_BACKEND_CERES},
-        {"dogleg", "dogleg", BF_BACKEND_CERES},     {"lm", "lm", BF_BACKEND_CERES},
-        {"nlopt", "LD_LBFGS", BF_BACKEND_NLOPT},    {"nlopt:LN_BOBYQA", "LN_BOBYQA", BF_BACKEND_NLOPT},
-        {"LN_COBYLA", "LN_COBYLA", BF_BACKEND_NLOPT}, {"gn_isres", "GN_ISRES", BF_BACKEND_NLOPT},
+        {"ceres", "lm", BF_BACKEND_CERES},
+        {"ceres:dogleg", "dogleg", BF_BACKEND_CERES},
+        {"dogleg", "dogleg", BF_BACKEND_CERES},
+        {"lm", "lm", BF_BACKEND_CERES},
+        {"nlopt", "LD_LBFGS", BF_BACKEND_NLOPT},
+        {"nlopt:LN_BOBYQA", "LN_BOBYQA", BF_BACKEND_NLOPT},
+        {"LN_COBYLA", "LN_COBYLA", BF_BACKEND_NLOPT},
+        {"gn_isres", "GN_ISRES", BF_BACKEND_NLOPT},
     };
     for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
         bf_backend b;

@@ -85,8 +85,8 @@ static void test_free_parameter_counts(void **state)
             bf_model *m = ts_model(cases[i].spec, counts[k]);
             int expect = cases[i].colour * counts[k] + cases[i].scalar;
             if (bf_model_nvalues(m) != expect)
-                fail_msg("%s C=%d: %d free parameters, expected %d", cases[i].spec, counts[k],
-                         bf_model_nvalues(m), expect);
+                fail_msg("%s C=%d: %d free parameters, expected %d", cases[i].spec, counts[k], bf_model_nvalues(m),
+                         expect);
             bf_model_free(m);
         }
     }
@@ -112,8 +112,7 @@ static void test_param_table(void **state)
 
     /* Lobe parameters get a lobe suffix when there is more than one lobe. */
     m = ts_model("lafortune:lobes=2", 1);
-    static const char *const lnames[] = {"rho_d", "rho_s_1", "cxy_1", "cz_1", "n_1",
-                                         "rho_s_2", "cxy_2", "cz_2", "n_2"};
+    static const char *const lnames[] = {"rho_d", "rho_s_1", "cxy_1", "cz_1", "n_1", "rho_s_2", "cxy_2", "cz_2", "n_2"};
     assert_int_equal(bf_model_nparams(m), 9);
     for (int i = 0; i < 9; i++)
         assert_string_equal(bf_model_param(m, i)->name, lnames[i]);

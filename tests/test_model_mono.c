@@ -73,7 +73,9 @@ static void test_table_and_spec(void **state)
 static void test_bad_specs(void **state)
 {
     (void)state;
-    static const struct { const char *spec, *fragment; } bad[] = {
+    static const struct {
+        const char *spec, *fragment;
+    } bad[] = {
         {"lambert:mono=specular", "ties nothing"},
         {"walter:mono=alpha", "not a colour parameter"},
         {"walter:mono=rho_q", "not one of its parameters"},
@@ -87,8 +89,7 @@ static void test_bad_specs(void **state)
         bf_model *m = NULL;
         bf_model_new(bad[k].spec, 3, &m, &err);
         if (m || !strstr(err.msg, bad[k].fragment))
-            fail_msg("%s: expected an error with '%s', got %s", bad[k].spec, bad[k].fragment,
-                     m ? "a model" : err.msg);
+            fail_msg("%s: expected an error with '%s', got %s", bad[k].spec, bad[k].fragment, m ? "a model" : err.msg);
     }
 }
 

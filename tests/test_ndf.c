@@ -26,24 +26,18 @@ static double ndf(int kind, double t, double r, double *dD)
     double c2 = 1.0 / (1.0 + t * t);
     double nh = sqrt(c2), s2 = t * t * c2;
     switch (kind) {
-    case NDF_GGX:
-        return bf_d_ggx(nh, s2, r, dD);
-    case NDF_BECKMANN:
-        return bf_d_beckmann(nh, s2, r, dD);
-    case NDF_BLINN:
-        return bf_d_blinn(nh, s2, r, dD);
-    default:
-        return bf_d_gaussian(nh, s2, r, dD);
+    case NDF_GGX: return bf_d_ggx(nh, s2, r, dD);
+    case NDF_BECKMANN: return bf_d_beckmann(nh, s2, r, dD);
+    case NDF_BLINN: return bf_d_blinn(nh, s2, r, dD);
+    default: return bf_d_gaussian(nh, s2, r, dD);
     }
 }
 
 /* Integral of D cos and of |dD/dr| cos and dD/dr cos over the hemisphere. */
 static void integrate(int kind, double r, double *I, double *dI, double *dIabs)
 {
-    static const double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                 0.9602898564975363};
-    static const double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                 0.1012285362903763};
+    static const double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static const double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
     /* Lobe width in tan(theta_h): m for Beckmann/Gaussian, alpha for GGX, the Beckmann
      * equivalent sqrt(2/(n+2)) for Blinn. */
     double w = kind == NDF_BLINN ? sqrt(2.0 / (r + 2.0)) : r;
@@ -77,8 +71,7 @@ static void check_normalised(int kind, const char *name, const double *rs, int n
         if (!(fabs(I - 1.0) < 1e-10))
             fail_msg("%s(%g): integral of D cos = %.12f, not 1", name, rs[i], I);
         if (!(fabs(dI) < 1e-9 * dIabs))
-            fail_msg("%s(%g): integral of dD/dr cos = %.6g (scale %.6g), not 0", name, rs[i], dI,
-                     dIabs);
+            fail_msg("%s(%g): integral of dD/dr cos = %.6g (scale %.6g), not 0", name, rs[i], dI, dIabs);
     }
 }
 

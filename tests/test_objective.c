@@ -17,8 +17,8 @@
 #include "fit/objective_impl.h"
 #include "support.h"
 
-static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, BF_RESIDUAL_LOG,
-                                        BF_RESIDUAL_CBRT, BF_RESIDUAL_RELATIVE};
+static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, BF_RESIDUAL_LOG, BF_RESIDUAL_CBRT,
+                                        BF_RESIDUAL_RELATIVE};
 #define NFORMS 5
 
 /* n samples of C channels at random directions above the horizon (degrees). */
@@ -39,8 +39,7 @@ static bf_samples *random_samples(size_t n, int C, uint64_t seed)
 }
 
 /* Evaluates the problem on [r0, r1) at z, into new arrays. */
-static void eval_range(const bf_problem *p, const double *z, size_t r0, size_t r1, double **res,
-                       double **jac)
+static void eval_range(const bf_problem *p, const double *z, size_t r0, size_t r1, double **res, double **jac)
 {
     *res = malloc((r1 - r0 + 1) * sizeof **res);
     *jac = jac ? malloc(((r1 - r0) * (size_t)p->npar + 1) * sizeof **jac) : NULL;
@@ -58,8 +57,7 @@ static bf_objective_options objective_options(bf_residual form, int use_weights)
     return o;
 }
 
-static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form,
-                              const bf_override *ov, int nov)
+static bf_objective *make_obj(const bf_model *m, bf_samples *s, bf_residual form, const bf_override *ov, int nov)
 {
     bf_objective_options o = objective_options(form, 0);
     o.overrides = ov;
@@ -94,11 +92,7 @@ static void test_forms_values(void **state)
         (f - mm) / (0.1 + 1e-3 * 0.1), /* delta = 1e-3 mean |m| */
     };
     const double dwant[NFORMS] = {
-        1 / M_PI,
-        c / M_PI,
-        c / (1 + f * c) / M_PI,
-        c / (3 * cbrt(f * c) * cbrt(f * c)) / M_PI,
-        1 / (0.1 + 1e-4) / M_PI,
+        1 / M_PI, c / M_PI, c / (1 + f * c) / M_PI, c / (3 * cbrt(f * c) * cbrt(f * c)) / M_PI, 1 / (0.1 + 1e-4) / M_PI,
     };
     for (int k = 0; k < NFORMS; k++) {
         bf_objective *obj = make_obj(m, s, all_forms[k], NULL, 0);
@@ -288,9 +282,9 @@ static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
         for (size_t q = 0; q < nr; q++) {
             double fd = (rp[q] - rm[q]) / (2 * h), an = jac[q * (size_t)nz + (size_t)j];
             if (!isfinite(an) || fabs(fd - an) > 1e-5 * fabs(fd) + 1e-6 * colmax + 1e-9)
-                fail_msg("%s, %s, fix %s, bound %s: row %zu, z[%d]: analytic %.10g, differences %.10g",
-                         jc->spec, bf_residual_name(form), jc->fix ? jc->fix : "-",
-                         jc->bound ? jc->bound : "-", r0 + q, j, an, fd);
+                fail_msg("%s, %s, fix %s, bound %s: row %zu, z[%d]: analytic %.10g, differences %.10g", jc->spec,
+                         bf_residual_name(form), jc->fix ? jc->fix : "-", jc->bound ? jc->bound : "-", r0 + q, j, an,
+                         fd);
         }
     }
     free(rp);
@@ -592,7 +586,7 @@ static void test_parametrisation(void **state)
 {
     (void)state;
     bf_model *m = ts_model("walter", 3); /* rho_d[3] rho_s[3] alpha f0 */
-    bf_model *ph = ts_model("phong", 3);  /* rho_d[3] rho_s[3] n (LOG1P) */
+    bf_model *ph = ts_model("phong", 3); /* rho_d[3] rho_s[3] n (LOG1P) */
     bf_samples *s = random_samples(10, 3, 3);
     bf_override ov[2];
     assert_int_equal(bf_override_parse_fix("f0=0.04", &ov[0], NULL), BF_OK);
@@ -841,7 +835,8 @@ static void test_solid_angle(void **state)
 {
     (void)state;
     /* Cells (theta_h index, theta_d index) at phi_d index 90, all above the horizon. */
-    static const int cells[][2] = {{0, 0}, {1, 0}, {1, 10}, {10, 5}, {30, 30}, {60, 20}, {85, 1}, {88, 0}, {89, 0}, {45, 44}};
+    static const int cells[][2] = {{0, 0},   {1, 0},  {1, 10}, {10, 5}, {30, 30},
+                                   {60, 20}, {85, 1}, {88, 0}, {89, 0}, {45, 44}};
     const size_t n = sizeof cells / sizeof cells[0];
     bf_model *m = ts_model("lambert", 3);
     bf_samples *s = NULL;
@@ -880,8 +875,8 @@ static void test_solid_angle(void **state)
     for (size_t q = 0; q < n; q++)
         ts_assert_rel(w[q], cell_measure(cells[q][0], cells[q][1]) * (double)n / msum, 1e-6, "cell weight");
     /* Cells are narrow near theta_h = 0 and wide near 90: weights follow. */
-    assert_true(w[8] > 50 * w[1]);  /* (89, 0) against (1, 0) */
-    assert_true(w[1] > 2 * w[0]);   /* (1, 0) against (0, 0) */
+    assert_true(w[8] > 50 * w[1]); /* (89, 0) against (1, 0) */
+    assert_true(w[1] > 2 * w[0]);  /* (1, 0) against (0, 0) */
     bf_objective_free(obj);
 
     /* Samples that are not MERL cells (a copy, its cells taken away): an error. */

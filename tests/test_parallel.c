@@ -250,9 +250,9 @@ static void test_fork_child(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_every_chunk_once), cmocka_unit_test(test_growing),
+        cmocka_unit_test(test_every_chunk_once),   cmocka_unit_test(test_growing),
         cmocka_unit_test(test_concurrent_callers), cmocka_unit_test(test_callers_side_by_side),
-        cmocka_unit_test(test_helpers_help), cmocka_unit_test(test_nested),
+        cmocka_unit_test(test_helpers_help),       cmocka_unit_test(test_nested),
         cmocka_unit_test(test_fork_child),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

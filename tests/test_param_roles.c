@@ -74,13 +74,19 @@ static void test_roles_of_known_parameters(void **state)
         const char *spec, *param;
         bf_param_role role;
     } cases[] = {
-        {"walter", "rho_d", BF_ROLE_DIFFUSE},        {"walter", "rho_s", BF_ROLE_WEIGHT},
-        {"walter", "alpha", BF_ROLE_ROUGHNESS},      {"walter", "f0", BF_ROLE_F0},
-        {"walter:fresnel=dielectric", "ior", BF_ROLE_IOR}, {"phong", "n", BF_ROLE_EXPONENT},
+        {"walter", "rho_d", BF_ROLE_DIFFUSE},
+        {"walter", "rho_s", BF_ROLE_WEIGHT},
+        {"walter", "alpha", BF_ROLE_ROUGHNESS},
+        {"walter", "f0", BF_ROLE_F0},
+        {"walter:fresnel=dielectric", "ior", BF_ROLE_IOR},
+        {"phong", "n", BF_ROLE_EXPONENT},
         {"kurt", "alpha", BF_ROLE_SHAPE}, /* an exponent on NL NV, not a width */
-        {"abc", "b", BF_ROLE_FALLOFF},               {"brady", "beta", BF_ROLE_SLOPE_SPREAD},
-        {"disney", "base_color", BF_ROLE_DIFFUSE},   {"disney", "roughness", BF_ROLE_PERCEPTUAL_ROUGHNESS},
-        {"oren_nayar", "sigma", BF_ROLE_DIFFUSE_SHAPE}, {"microfacet:lobes=2", "rho_s_2", BF_ROLE_WEIGHT},
+        {"abc", "b", BF_ROLE_FALLOFF},
+        {"brady", "beta", BF_ROLE_SLOPE_SPREAD},
+        {"disney", "base_color", BF_ROLE_DIFFUSE},
+        {"disney", "roughness", BF_ROLE_PERCEPTUAL_ROUGHNESS},
+        {"oren_nayar", "sigma", BF_ROLE_DIFFUSE_SHAPE},
+        {"microfacet:lobes=2", "rho_s_2", BF_ROLE_WEIGHT},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         bf_model *m = NULL;

@@ -83,8 +83,8 @@ static void test_model_spec(void **state)
     /* A numeric option value out of int range (undefined conversion before). */
     expect_error("fresnel.json", "{\"model\":\"walter\",\"options\":{\"fresnel\":1e30},\"params\":{}}", BF_ERR_PARSE,
                  ":1: option \"fresnel\" must be a string or an integer");
-    expect_error("lobes.json", "{\"model\":\"walter\",\"options\":{\"lobes\":-2147483649},\"params\":{}}",
-                 BF_ERR_PARSE, "option \"lobes\" must be a string or an integer");
+    expect_error("lobes.json", "{\"model\":\"walter\",\"options\":{\"lobes\":-2147483649},\"params\":{}}", BF_ERR_PARSE,
+                 "option \"lobes\" must be a string or an integer");
     expect_error("lobes9.json", "{\"model\":\"walter\",\"options\":{\"lobes\":9},\"params\":{}}", BF_ERR_ARG,
                  "lobes must be an integer from 1 to 8, got '9'");
     /* An option value cannot smuggle in another option. */

@@ -72,7 +72,8 @@ static void test_ticks_linear(void **state)
     assert_string_equal(t.label[5], "10");
     plot_make_ticks(-0.93, 0.93, 0, 5, 0, 0.0, &t); /* step 0.5 */
     assert_int_equal(t.n, 3);
-    assert_string_equal(t.label[0], "\xe2\x88\x92" "0.5"); /* a real minus sign */
+    assert_string_equal(t.label[0], "\xe2\x88\x92"
+                                    "0.5"); /* a real minus sign */
     assert_string_equal(t.label[1], "0.0");
     assert_string_equal(t.label[2], "0.5");
     plot_make_ticks(-90, 90, 0, 4, 0, 30.0, &t); /* a fixed step */
@@ -83,7 +84,8 @@ static void test_ticks_linear(void **state)
     assert_string_equal(t.label[0], "1");
     /* Large values: a shared power of ten. */
     plot_make_ticks(0.0, 3e6, 0, 4, 0, 0.0, &t);
-    assert_true(has_label(&t, "1\xc3\x97" "10^{6}"));
+    assert_true(has_label(&t, "1\xc3\x97"
+                              "10^{6}"));
     /* Ticks stay inside the range; the steps are 1, 2 or 5 times a power of ten. */
     for (double span = 0.013; span < 1e4; span *= 3.7) {
         plot_make_ticks(1.0, 1.0 + span, 0, 6, 0, 0.0, &t);
@@ -122,7 +124,9 @@ static void test_ticks_log(void **state)
         assert_string_equal(t.label[i], want[i]);
     assert_true(t.nminor > 0);
     plot_make_ticks(2e-5, 1e-3, 1, 6, 0, 0.0, &t); /* small values: m x 10^k */
-    assert_true(has_label(&t, "5\xc3\x97" "10^{-5}") && has_label(&t, "10^{-4}") && has_label(&t, "10^{-3}"));
+    assert_true(has_label(&t, "5\xc3\x97"
+                              "10^{-5}") &&
+                has_label(&t, "10^{-4}") && has_label(&t, "10^{-3}"));
     /* Three decades and more: decades only. */
     plot_make_ticks(0.0011, 2.0, 1, 6, 0, 0.0, &t);
     assert_int_equal(t.n, 3); /* 10^-2, 10^-1, 10^0 */
@@ -134,7 +138,9 @@ static void test_ticks_log(void **state)
     assert_true(t.n >= 2);
     for (int i = 1; i < t.n; i++)
         assert_string_not_equal(t.label[i], t.label[i - 1]);
-    assert_true(has_label(&t, "6.5\xc3\x97" "10^{-3}") || has_label(&t, "0.0065"));
+    assert_true(has_label(&t, "6.5\xc3\x97"
+                              "10^{-3}") ||
+                has_label(&t, "0.0065"));
 }
 
 static void test_markup(void **state)
@@ -155,8 +161,9 @@ static void test_layout_and_scatter(void **state)
     const double x[4] = {2, 5, 3, 8}, y[4] = {0.2, 0.011, 0.05, 0.01};
     const int front[4] = {1, 1, 1, 1};
     const char *labels[4] = {"lambert", "walter", "ward", "cook_torrance"};
-    plot_scatter_spec sp = {"error against k", "free parameters k", "rmse_log", 0, 1, 1, 4, x, y, front, labels,
-                            "models", NULL, 1, "simplest"};
+    plot_scatter_spec sp = {
+        "error against k", "free parameters k", "rmse_log", 0, 1, 1, 4, x, y, front, labels, "models", NULL, 1,
+        "simplest"};
     plot *p = plot_scatter(&sp);
     assert_non_null(p);
     assert_int_equal(plot_nseries(p), 3);
@@ -284,7 +291,9 @@ static void test_raster_colour_bar(void **state)
     assert_int_equal(plot_layout_compute(p, 400, 300, &l), 0);
     assert_int_equal(l.colour_bar, 1);
     assert_true(l.bar_x > l.x1 && l.bar_x + l.bar_w < 400);
-    assert_true(has_label(&l.bar_ticks, "\xe2\x88\x92" "2") && has_label(&l.bar_ticks, "2"));
+    assert_true(has_label(&l.bar_ticks, "\xe2\x88\x92"
+                                        "2") &&
+                has_label(&l.bar_ticks, "2"));
     assert_int_equal(l.axis[PLOT_X].ticks.n, 3);
     assert_string_equal(l.axis[PLOT_X].ticks.label[2], "9\xc2\xb0");
     bf_error err;
@@ -316,9 +325,14 @@ static void test_formats(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ranges),  cmocka_unit_test(test_ticks_linear),       cmocka_unit_test(test_ticks_log),
-        cmocka_unit_test(test_markup),  cmocka_unit_test(test_layout_and_scatter), cmocka_unit_test(test_formats),
-        cmocka_unit_test(test_legend_lines_equal), cmocka_unit_test(test_raster_colour_bar),
+        cmocka_unit_test(test_ranges),
+        cmocka_unit_test(test_ticks_linear),
+        cmocka_unit_test(test_ticks_log),
+        cmocka_unit_test(test_markup),
+        cmocka_unit_test(test_layout_and_scatter),
+        cmocka_unit_test(test_formats),
+        cmocka_unit_test(test_legend_lines_equal),
+        cmocka_unit_test(test_raster_colour_bar),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -322,17 +322,17 @@ static bf_samples *make_mixed(void)
     bf_samples *s = make(10, 2);
     for (size_t i = 0; i < 10; i++)
         s->value[2 * i] = s->value[2 * i + 1] = 0.5;
-    s->theta_i[1] = 90;                      /* 1: on the horizon */
-    s->theta_o[2] = 95;                      /* 2: below it */
-    s->theta_i[3] = 89.99;                   /* 3: grazing but above: kept */
-    s->value[2 * 4 + 1] = NAN;               /* 4: NaN */
-    s->value[2 * 5] = -INFINITY;             /* 5: Inf (and below the horizon: counted once) */
+    s->theta_i[1] = 90;          /* 1: on the horizon */
+    s->theta_o[2] = 95;          /* 2: below it */
+    s->theta_i[3] = 89.99;       /* 3: grazing but above: kept */
+    s->value[2 * 4 + 1] = NAN;   /* 4: NaN */
+    s->value[2 * 5] = -INFINITY; /* 5: Inf (and below the horizon: counted once) */
     s->theta_i[5] = 95;
-    s->theta_i[6] = 70;                      /* 6: above max theta 60 (as is 3) */
-    s->value[2 * 7] = -0.01;                 /* 7: negative */
-    s->value[2 * 8 + 1] = -0.02;             /* 8: negative and above max theta 60 */
+    s->theta_i[6] = 70;          /* 6: above max theta 60 (as is 3) */
+    s->value[2 * 7] = -0.01;     /* 7: negative */
+    s->value[2 * 8 + 1] = -0.02; /* 8: negative and above max theta 60 */
     s->theta_o[8] = 80;
-    s->theta_i[9] = nextafter(90.0, 0.0);    /* 9: cos < 1e-15: the geometry's horizon */
+    s->theta_i[9] = nextafter(90.0, 0.0); /* 9: cos < 1e-15: the geometry's horizon */
     return s;
 }
 

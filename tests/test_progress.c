@@ -438,14 +438,10 @@ static void test_phase_names(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_fit_reports_every_phase),
-        cmocka_unit_test(test_small_data_is_the_screening_set),
-        cmocka_unit_test(test_plain_multistart),
-        cmocka_unit_test(test_old_callback_beside_reports),
-        cmocka_unit_test(test_report_stops_the_fit),
-        cmocka_unit_test(test_compare_names_material_model_fold),
-        cmocka_unit_test(test_select_names_the_candidate),
-        cmocka_unit_test(test_phase_names),
+        cmocka_unit_test(test_fit_reports_every_phase),    cmocka_unit_test(test_small_data_is_the_screening_set),
+        cmocka_unit_test(test_plain_multistart),           cmocka_unit_test(test_old_callback_beside_reports),
+        cmocka_unit_test(test_report_stops_the_fit),       cmocka_unit_test(test_compare_names_material_model_fold),
+        cmocka_unit_test(test_select_names_the_candidate), cmocka_unit_test(test_phase_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

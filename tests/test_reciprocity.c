@@ -36,8 +36,8 @@ static void check(const char *spec, int C)
             double tol = 1e-9 * fmax(fabs(a[i]), fabs(b[i])) + 1e-300;
             if (!(fabs(a[i] - b[i]) <= tol)) {
                 size_t s = i / (size_t)C;
-                fail_msg("%s C=%d: f(L,V) = %.17g but f(V,L) = %.17g at (%.6g,%.6g,%.6g,%.6g) deg",
-                         spec, C, a[i], b[i], ti[s] / DEG, pi_[s] / DEG, to[s] / DEG, po[s] / DEG);
+                fail_msg("%s C=%d: f(L,V) = %.17g but f(V,L) = %.17g at (%.6g,%.6g,%.6g,%.6g) deg", spec, C, a[i], b[i],
+                         ti[s] / DEG, pi_[s] / DEG, to[s] / DEG, po[s] / DEG);
             }
         }
         free(a);

@@ -31,12 +31,22 @@ static void fake_walter(fake *f)
     memcpy(f->x, x, sizeof x);
     f->r.x = f->x;
     f->r.ok = 1;
-    f->r.metrics = (bf_metrics){.n = 300, .k = 8, .rmse = 0.01, .rmse_cos = 0.005, .rmse_log = 0.002,
-                                .rmse_rel = 0.1, .max_err = 0.05, .aic = -100.0, .bic = -90.0};
+    f->r.metrics = (bf_metrics){.n = 300,
+                                .k = 8,
+                                .rmse = 0.01,
+                                .rmse_cos = 0.005,
+                                .rmse_log = 0.002,
+                                .rmse_rel = 0.1,
+                                .max_err = 0.05,
+                                .aic = -100.0,
+                                .bic = -90.0};
     snprintf(f->r.solution.termination, sizeof f->r.solution.termination, "CONVERGENCE");
 }
 
-static void fake_free(fake *f) { bf_model_free(f->r.model); }
+static void fake_free(fake *f)
+{
+    bf_model_free(f->r.model);
+}
 
 static bf_regress_baseline *parse_ok(const char *text)
 {
@@ -74,7 +84,8 @@ static void test_parse_errors(void **state)
     snprintf(text, sizeof text, "%s{\"name\": \"a\", \"data\": \"x.csv\", \"model\": \"lambert\",\n \"optoins\": []}]}",
              head);
     expect_parse_error(text, "base.json:4:", "unknown key \"optoins\"");
-    snprintf(text, sizeof text, "%s{\"name\": \"a\", \"data\": \"x.csv\", \"model\": \"lambert\",\n \"options\": [\"--rgb\",\n 3]}]}",
+    snprintf(text, sizeof text,
+             "%s{\"name\": \"a\", \"data\": \"x.csv\", \"model\": \"lambert\",\n \"options\": [\"--rgb\",\n 3]}]}",
              head);
     expect_parse_error(text, "base.json:5:", "option 2 must be a string");
     snprintf(text, sizeof text,
@@ -160,11 +171,12 @@ static void test_tolerance(void **state)
 {
     (void)state;
     /* Resolution: defaults, file group, file per-name, case group, case per-name. */
-    bf_regress_baseline *b = parse_ok(
-        "{\"brdfit_baseline\": 1, \"tolerance\": {\"params\": {\"rel\": 0.01, \"alpha\": {\"abs\": 3}}},\n"
-        " \"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"walter\"},\n"
-        "  {\"name\": \"b\", \"data\": \"x\", \"model\": \"walter\",\n"
-        "   \"tolerance\": {\"params\": {\"abs\": 2, \"alpha\": {\"rel\": 0.5}}, \"metrics\": {\"rmse\": {\"rel\": 7}}}}]}");
+    bf_regress_baseline *b =
+        parse_ok("{\"brdfit_baseline\": 1, \"tolerance\": {\"params\": {\"rel\": 0.01, \"alpha\": {\"abs\": 3}}},\n"
+                 " \"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"walter\"},\n"
+                 "  {\"name\": \"b\", \"data\": \"x\", \"model\": \"walter\",\n"
+                 "   \"tolerance\": {\"params\": {\"abs\": 2, \"alpha\": {\"rel\": 0.5}}, \"metrics\": {\"rmse\": "
+                 "{\"rel\": 7}}}}]}");
     bf_tolerance t = bf_regress_tolerance(b, 0, "metrics", "rmse");
     assert_true(t.rel == BF_REGRESS_METRICS_REL && t.abs == BF_REGRESS_METRICS_ABS);
     t = bf_regress_tolerance(b, 0, "params", "rho_d");
@@ -187,7 +199,7 @@ static void test_tolerance(void **state)
     assert_int_equal(status_of("0.1011", "0.04", "0.01", "0.1", "0.4", 0), BF_REGRESS_FAIL);
     assert_int_equal(status_of("0.0991", "0.04", "0.01", "0.1", "0.4", 0), BF_REGRESS_PASS);
     assert_int_equal(status_of("0.0989", "0.04", "0.01", "0.1", "0.4", 0), BF_REGRESS_FAIL);
-    assert_int_equal(status_of("0.1", "0.5", "0.01", "0.1", "0.4", 0), BF_REGRESS_PASS);  /* f0: abs 0.5 */
+    assert_int_equal(status_of("0.1", "0.5", "0.01", "0.1", "0.4", 0), BF_REGRESS_PASS); /* f0: abs 0.5 */
     assert_int_equal(status_of("0.1", "0.6", "0.01", "0.1", "0.4", 0), BF_REGRESS_FAIL);
     assert_int_equal(status_of("0.1", "0.04", "0.0109", "0.1", "0.4", 0), BF_REGRESS_PASS);
     assert_int_equal(status_of("0.1", "0.04", "0.0111", "0.1", "0.4", 0), BF_REGRESS_FAIL);
@@ -216,11 +228,11 @@ static void test_diff_lines(void **state)
     (void)state;
     fake f;
     fake_walter(&f);
-    bf_regress_outcome o = check_text(
-        "{\"brdfit_baseline\": 1, \"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"walter\",\n"
-        " \"expected\": {\"ok\": true, \"params\": {\"rho_d\": [0.5, 0.41, 0.3], \"alpha\": 0.1},\n"
-        "               \"metrics\": {\"bic\": -90, \"k\": 7}}}]}",
-        &f);
+    bf_regress_outcome o =
+        check_text("{\"brdfit_baseline\": 1, \"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"walter\",\n"
+                   " \"expected\": {\"ok\": true, \"params\": {\"rho_d\": [0.5, 0.41, 0.3], \"alpha\": 0.1},\n"
+                   "               \"metrics\": {\"bic\": -90, \"k\": 7}}}]}",
+                   &f);
     assert_int_equal(o.status, BF_REGRESS_FAIL);
     assert_int_equal(o.nlines, 2);
     assert_string_equal(o.lines[0], "  params.rho_d[1]: expected 0.41, got 0.4 (|diff| 0.01 > tol 4.1e-07)");
@@ -280,12 +292,11 @@ static char *slurp(const char *path)
 static void test_junit(void **state)
 {
     (void)state;
-    bf_regress_baseline *b = parse_ok(
-        "{\"brdfit_baseline\": 1, \"cases\": [\n"
-        " {\"name\": \"ok\", \"data\": \"x\", \"model\": \"lambert\"},\n"
-        " {\"name\": \"a<b&\\\"c\\\"\", \"data\": \"x\", \"model\": \"lambert\"},\n"
-        " {\"name\": \"broken\", \"data\": \"x\", \"model\": \"lambert\"},\n"
-        " {\"name\": \"skipped\", \"data\": \"x\", \"model\": \"lambert\"}]}");
+    bf_regress_baseline *b = parse_ok("{\"brdfit_baseline\": 1, \"cases\": [\n"
+                                      " {\"name\": \"ok\", \"data\": \"x\", \"model\": \"lambert\"},\n"
+                                      " {\"name\": \"a<b&\\\"c\\\"\", \"data\": \"x\", \"model\": \"lambert\"},\n"
+                                      " {\"name\": \"broken\", \"data\": \"x\", \"model\": \"lambert\"},\n"
+                                      " {\"name\": \"skipped\", \"data\": \"x\", \"model\": \"lambert\"}]}");
     bf_regress_outcome o[4];
     bf_error err;
     for (int k = 0; k < 4; k++)
@@ -332,8 +343,8 @@ static void test_repeated_keys(void **state)
     expect_parse_error("{\"brdfit_baseline\": 1,\"cases\":[{\"name\": \"a\",\"data\": \".\",\"model\":\"walter\","
                        "\"expected\":{\"params\":{ \"rho_s\":[3],\n \"rho_s\":3}}}]}",
                        "base.json:1:", "key \"rho_s\" appears twice in the same object");
-    expect_parse_error("{\"brdfit_baseline\": 1,\n\"brdfit_baseline\": 1, \"cases\": []}", "base.json:1:",
-                       "key \"brdfit_baseline\" appears twice");
+    expect_parse_error("{\"brdfit_baseline\": 1,\n\"brdfit_baseline\": 1, \"cases\": []}",
+                       "base.json:1:", "key \"brdfit_baseline\" appears twice");
     expect_parse_error("{\"brdfit_baseline\": 1, \"tolerance\": {\"metrics\": {\"rel\": 1,\n\"rel\": 2}},\n"
                        "\"cases\": [{\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}",
                        "base.json:1:", "key \"rel\" appears twice");
@@ -359,8 +370,9 @@ static void test_control_characters(void **state)
                        " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\", \"options\": [\"--rgb\",\n"
                        "  \"\\t\"]}]}",
                        "base.json:3:", "'\\x09' holds");
-    bf_regress_baseline *comment = parse_ok("{\"brdfit_baseline\": 1, \"comment\": \"line\\nnext\\u001b\", \"cases\": [\n"
-                                            " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
+    bf_regress_baseline *comment =
+        parse_ok("{\"brdfit_baseline\": 1, \"comment\": \"line\\nnext\\u001b\", \"cases\": [\n"
+                 " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
     bf_regress_baseline_free(comment);
     bf_regress_baseline *b = parse_ok("{\"brdfit_baseline\": 1, \"cases\": [\n"
                                       " {\"name\": \"a\", \"data\": \"x\", \"model\": \"lambert\"}]}");
@@ -404,7 +416,8 @@ static void test_update(void **state)
           " \"cases\": [\n"
           "  {\"name\": \"pinned\", \"data\": \"x.csv\", \"model\": \"walter\", \"options\": [\"--rgb\"],\n"
           "   \"tolerance\": {\"params\": {\"alpha\": {\"abs\": 0.125}}},\n"
-          "   \"expected\": {\"params\": {\"alpha\": 0.3, \"rho_d\": [0.5], \"gone\": 1}, \"metrics\": {\"rmse\": 0.01}}},\n"
+          "   \"expected\": {\"params\": {\"alpha\": 0.3, \"rho_d\": [0.5], \"gone\": 1}, \"metrics\": {\"rmse\": "
+          "0.01}}},\n"
           "  {\"name\": \"new\", \"data\": \"x.csv\", \"model\": \"walter\"}]}\n",
           fp);
     fclose(fp);
@@ -484,8 +497,9 @@ static void test_update(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_parse_errors), cmocka_unit_test(test_parse_fields), cmocka_unit_test(test_tolerance),
-        cmocka_unit_test(test_diff_lines),   cmocka_unit_test(test_junit),        cmocka_unit_test(test_update),
+        cmocka_unit_test(test_parse_errors),  cmocka_unit_test(test_parse_fields),
+        cmocka_unit_test(test_tolerance),     cmocka_unit_test(test_diff_lines),
+        cmocka_unit_test(test_junit),         cmocka_unit_test(test_update),
         cmocka_unit_test(test_repeated_keys), cmocka_unit_test(test_control_characters),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -19,7 +19,10 @@
 #include "render/slices.h"
 #include "support.h"
 
-static float *px(float *rgb, int w, int x, int y) { return rgb + 3 * ((size_t)y * (size_t)w + (size_t)x); }
+static float *px(float *rgb, int w, int x, int y)
+{
+    return rgb + 3 * ((size_t)y * (size_t)w + (size_t)x);
+}
 
 /* Options as the tests give them, through the init functions (docs/api.md). */
 static bf_sphere_options sphere_options(int n, bf_dir view, const bf_dir *lights, int nlights)
@@ -82,8 +85,7 @@ static void test_sphere_lambert_exr(void **state)
         assert_true(px(img.pixels, N, N - 1, 5)[c] == 0.0f);
         /* Off-centre: cos(theta_L) = n_z = sqrt(1 - sx^2). */
         double sx = 2.0 * (50 + 0.5) / N - 1.0;
-        ts_assert_near(px(img.pixels, N, 50, 32)[c], rho[c] / M_PI * sqrt(1.0 - sx * sx), 1e-6, 1e-7,
-                       "off centre");
+        ts_assert_near(px(img.pixels, N, 50, 32)[c], rho[c] / M_PI * sqrt(1.0 - sx * sx), 1e-6, 1e-7, "off centre");
     }
     bf_image_clear(&img);
     free(rgb);
@@ -109,7 +111,7 @@ static void test_sphere_lighting(void **state)
     assert_true(px(a, N, N / 2, N / 2)[0] > 0.0f);
     o.lights = &top;
     assert_int_equal(bf_render_sphere(m, &rho, &o, b, &err), BF_OK);
-    assert_true(px(b, N, N / 2, N / 2)[0] > 0.99f * (float)(rho / M_PI)); /* bright centre */
+    assert_true(px(b, N, N / 2, N / 2)[0] > 0.99f * (float)(rho / M_PI));  /* bright centre */
     assert_true(px(b, N, N / 2, N / 2)[0] > 2.0f * px(b, N, 2, N / 2)[0]); /* dim limb (cos 0.39) */
     o.lights = both;
     o.nlights = 2;
@@ -207,7 +209,7 @@ static void test_halfdiff_merl(void **state)
     assert_int_equal(bf_render_halfdiff_merl(s, W, W, 90.0, rgb, &err), BF_OK);
     for (int c = 0; c < 3; c++) {
         assert_true(px(rgb, W, 20, 7)[c] == (float)(0.1 * (c + 1)));
-        assert_true(px(rgb, W, 20, 8)[c] == 0.0f);   /* another theta_d bin: no sample */
+        assert_true(px(rgb, W, 20, 8)[c] == 0.0f); /* another theta_d bin: no sample */
         assert_true(px(rgb, W, 0, 7)[c] == (float)(5.0 + c));
     }
     /* phi_d 270 folds onto 90 by reciprocity. */
@@ -279,7 +281,8 @@ static void test_slice_lambert(void **state)
     assert_int_equal(plot_layout_compute(p, 640, 480, &l), 0);
     /* x: -90..90 every 30 degrees; legend: the incidence and the measured samples. */
     assert_int_equal(l.axis[PLOT_X].ticks.n, 7);
-    assert_string_equal(l.axis[PLOT_X].ticks.label[0], "\xe2\x88\x92" "90");
+    assert_string_equal(l.axis[PLOT_X].ticks.label[0], "\xe2\x88\x92"
+                                                       "90");
     assert_string_equal(l.axis[PLOT_X].ticks.label[6], "90");
     assert_int_equal(l.nlegend, 2);
     plot_free(p);

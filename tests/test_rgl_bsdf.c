@@ -94,16 +94,16 @@ static void check_stored(const char *path, size_t want_points)
                         wk = k, wx = x, wy = y;
                     }
                     if (e > FLOAT_EPS)
-                        fail_msg("%s: point (%zu, %zu, %zu) channel %d: %.9g, stored %.9g", path, k, x, y, c,
-                                 stored[c], want);
+                        fail_msg("%s: point (%zu, %zu, %zu) channel %d: %.9g, stored %.9g", path, k, x, y, c, stored[c],
+                                 want);
                     /* The BRDF factor is one number for all channels. */
                     if (want > 1e-3)
                         ts_assert_rel(f[c] / stored[c], f[0] / stored[0], 1e-12, "D / (4 sigma cos)");
                 }
             }
     assert_int_equal(points, want_points);
-    print_message("%s: %zu points, worst relative difference %.3g at (%zu, %zu, %zu)\n", path, points, worst, wk,
-                  wx, wy);
+    print_message("%s: %zu points, worst relative difference %.3g at (%zu, %zu, %zu)\n", path, points, worst, wk, wx,
+                  wy);
     bf_tensor_file_clear(&t);
     free(bytes);
     bf_rgl_bsdf_clear(&b);

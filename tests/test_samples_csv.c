@@ -188,7 +188,8 @@ static void test_no_partial_output(void **state)
     bf_samples_new(2, 1, &s, NULL);
     bf_error err;
     assert_int_not_equal(bf_samples_write_csv(s, "/nonexistent-dir/x.csv", &err), BF_OK);
-    assert_non_null(strstr(err.msg, "/nonexistent-dir/x.csv: cannot write in the folder /nonexistent-dir: No such file or directory"));
+    assert_non_null(strstr(
+        err.msg, "/nonexistent-dir/x.csv: cannot write in the folder /nonexistent-dir: No such file or directory"));
     assert_int_not_equal(bf_samples_write(s, ts_tmp_path("x.txt"), BF_FORMAT_AUTO, &err), BF_OK);
     assert_non_null(strstr(err.msg, "cannot write"));
     assert_int_equal(access(ts_tmp_path("x.txt"), F_OK), -1);

@@ -118,8 +118,8 @@ static void test_parse_errors(void **state)
         snprintf(where, sizeof where, "dir/scene.json:%d: ", cases[k].line);
         if (rc != cases[k].code || sc != NULL || strncmp(err.msg, where, strlen(where)) != 0 ||
             !strstr(err.msg, cases[k].fragment) || strchr(err.msg, '\n'))
-            fail_msg("case %zu: code %d (want %d), message '%s' (want '%s...%s')", k, rc, cases[k].code, err.msg,
-                     where, cases[k].fragment);
+            fail_msg("case %zu: code %d (want %d), message '%s' (want '%s...%s')", k, rc, cases[k].code, err.msg, where,
+                     cases[k].fragment);
     }
 }
 
@@ -193,12 +193,12 @@ static void test_explicit_kernel(void **state)
 {
     (void)state;
     static const double dirs[][4] = {
-        {30, 0, 40, 180},  /* exactly the scene's configuration */
-        {30, 0, 50, 180},  /* view 10 degrees = 2 radius away */
-        {40, 0, 40, 180},  /* light 2 radius away */
-        {30, 0, 56, 180},  /* view beyond 3 radius */
-        {46, 0, 40, 180},  /* light beyond 3 radius */
-        {40, 180, 30, 0},  /* the configuration with light and view swapped */
+        {30, 0, 40, 180},                        /* exactly the scene's configuration */
+        {30, 0, 50, 180},                        /* view 10 degrees = 2 radius away */
+        {40, 0, 40, 180},                        /* light 2 radius away */
+        {30, 0, 56, 180},                        /* view beyond 3 radius */
+        {46, 0, 40, 180},                        /* light beyond 3 radius */
+        {40, 180, 30, 0},                        /* the configuration with light and view swapped */
         {30, 0, 40, 180 - 10.0 / sin(40 * DEG)}, /* about 2 radius away in azimuth */
     };
     const size_t n = sizeof dirs / sizeof dirs[0];
@@ -586,8 +586,8 @@ static void test_many_directions_match_plain_sum(void **state)
     char *text = malloc(200000), *p = text;
     p += sprintf(p, "{\"radius\": 7, \"reciprocal\": true, \"lights\": [");
     for (int k = 0; k < 60; k++)
-        p += sprintf(p, "%s{\"theta\": %.3f, \"phi\": %.3f, \"weight\": %.3f}", k ? "," : "",
-                     85 * ts_uniform(&r), 360 * ts_uniform(&r) - 180, 0.5 + ts_uniform(&r));
+        p += sprintf(p, "%s{\"theta\": %.3f, \"phi\": %.3f, \"weight\": %.3f}", k ? "," : "", 85 * ts_uniform(&r),
+                     360 * ts_uniform(&r) - 180, 0.5 + ts_uniform(&r));
     p += sprintf(p, "], \"views\": [");
     for (int k = 0; k < 50; k++)
         p += sprintf(p, "%s{\"theta\": %.3f, \"phi\": %.3f}", k ? "," : "", 85 * ts_uniform(&r),

@@ -224,8 +224,14 @@ static void test_lambert_data_selects_lambert(void **state)
 }
 
 static const char *const single_lobe_candidates[] = {
-    "lambert", "walter:mono=specular", "walter", "walter_aniso:mono=specular", "walter_aniso",
-    "ward:mono=specular", "walter:lobes=2,mono=specular", "walter:lobes=2",
+    "lambert",
+    "walter:mono=specular",
+    "walter",
+    "walter_aniso:mono=specular",
+    "walter_aniso",
+    "ward:mono=specular",
+    "walter:lobes=2,mono=specular",
+    "walter:lobes=2",
 };
 enum { NSINGLE = sizeof single_lobe_candidates / sizeof single_lobe_candidates[0] };
 

@@ -26,9 +26,9 @@
 typedef struct decay {
     size_t n;
     double *t, *y;
-    int line;            /* 1: residuals c0 + c1 t - y instead of the decay */
-    double fail_above;   /* eval fails where x[1] > fail_above (INFINITY: never) */
-    int fail_with_nan;   /* ... by writing NaN instead of returning non-zero */
+    int line;                     /* 1: residuals c0 + c1 t - y instead of the decay */
+    double fail_above;            /* eval fails where x[1] > fail_above (INFINITY: never) */
+    int fail_with_nan;            /* ... by writing NaN instead of returning non-zero */
     atomic_ullong residuals_done; /* residuals evaluated, all calls */
     atomic_ullong bad_ranges;     /* calls with an empty, oversized or out-of-range range */
 } decay;
@@ -290,8 +290,10 @@ static void test_robust_losses_ignore_outlier(void **state)
     assert_true(fabs(x[0] - 1.0) > 0.5);
 
     /* Each loss with scale 0.1; huber and soft_l1 keep a bounded pull (about a/n). */
-    const struct { bf_loss_kind kind; double tol; } losses[] = {
-        {BF_LOSS_HUBER, 2e-2}, {BF_LOSS_CAUCHY, 1e-5}, {BF_LOSS_SOFT_L1, 2e-2}, {BF_LOSS_ARCTAN, 1e-6}};
+    const struct {
+        bf_loss_kind kind;
+        double tol;
+    } losses[] = {{BF_LOSS_HUBER, 2e-2}, {BF_LOSS_CAUCHY, 1e-5}, {BF_LOSS_SOFT_L1, 2e-2}, {BF_LOSS_ARCTAN, 1e-6}};
     for (size_t l = 0; l < sizeof losses / sizeof *losses; l++) {
         o.loss.kind = losses[l].kind;
         o.loss.scale = 0.1;

@@ -20,9 +20,9 @@ typedef struct curve {
     size_t n;
     double *t, *y;
     int line;
-    double fail_k;     /* eval fails (returns 1) where k > fail_k (0: never) */
-    int nan_always;    /* residuals are NaN */
-    int passes;        /* calls with r0 == 0: whole-set passes (single writer) */
+    double fail_k;  /* eval fails (returns 1) where k > fail_k (0: never) */
+    int nan_always; /* residuals are NaN */
+    int passes;     /* calls with r0 == 0: whole-set passes (single writer) */
 } curve;
 
 static int curve_eval(void *ctx, const double *x, size_t r0, size_t r1, double *res, double *jac)
@@ -137,8 +137,16 @@ static void check_decay_recovered(const char *alg)
     free_curve(&c);
 }
 
-static void test_decay_lbfgs(void **state) { (void)state; check_decay_recovered("LD_LBFGS"); }
-static void test_decay_bobyqa(void **state) { (void)state; check_decay_recovered("LN_BOBYQA"); }
+static void test_decay_lbfgs(void **state)
+{
+    (void)state;
+    check_decay_recovered("LD_LBFGS");
+}
+static void test_decay_bobyqa(void **state)
+{
+    (void)state;
+    check_decay_recovered("LN_BOBYQA");
+}
 static void test_decay_others(void **state)
 {
     (void)state;
@@ -269,8 +277,7 @@ static void test_seeded(void **state)
 static void test_bounds_respected(void **state)
 {
     (void)state;
-    const char *algs[] = {"LD_LBFGS", "LD_SLSQP", "LD_MMA", "LN_BOBYQA", "LN_SBPLX", "LN_NELDERMEAD",
-                          "LN_COBYLA"};
+    const char *algs[] = {"LD_LBFGS", "LD_SLSQP", "LD_MMA", "LN_BOBYQA", "LN_SBPLX", "LN_NELDERMEAD", "LN_COBYLA"};
     for (size_t a = 0; a < sizeof algs / sizeof algs[0]; a++) {
         curve c = make_decay(100);
         double lo[2] = {0.5, 0.0}, hi[2] = {2.0, 10.0}; /* A's optimum (2.5) is outside */
@@ -398,8 +405,7 @@ static void test_constraint(void **state)
     free_curve(&c);
 }
 
-static void expect_error(const bf_problem *p, const bf_solver_options *o, int code, const char *f1,
-                         const char *f2)
+static void expect_error(const bf_problem *p, const bf_solver_options *o, int code, const char *f1, const char *f2)
 {
     double x[2] = {1.0, 0.5};
     bf_solution s;
@@ -491,8 +497,8 @@ static void test_threads_agree(void **state)
             } else {
                 if (x[0] != ref[0] || x[1] != ref[1] || s.final_cost != refcost)
                     fail_msg("%s with %d threads: (%.17g, %.17g) cost %.17g, one thread (%.17g, %.17g) "
-                             "cost %.17g", algs[a], threads[t], x[0], x[1], s.final_cost, ref[0],
-                             ref[1], refcost);
+                             "cost %.17g",
+                             algs[a], threads[t], x[0], x[1], s.final_cost, ref[0], ref[1], refcost);
                 assert_int_equal(s.evaluations, refevals);
             }
             free_curve(&c);
@@ -596,18 +602,12 @@ static void test_limits_and_failures(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_decay_lbfgs),
-        cmocka_unit_test(test_decay_bobyqa),
-        cmocka_unit_test(test_decay_others),
-        cmocka_unit_test(test_default_algorithm),
-        cmocka_unit_test(test_multimodal),
-        cmocka_unit_test(test_seeded),
-        cmocka_unit_test(test_bounds_respected),
-        cmocka_unit_test(test_constant_parameter),
-        cmocka_unit_test(test_constraint),
-        cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_threads_agree),
-        cmocka_unit_test(test_robust_loss),
+        cmocka_unit_test(test_decay_lbfgs),         cmocka_unit_test(test_decay_bobyqa),
+        cmocka_unit_test(test_decay_others),        cmocka_unit_test(test_default_algorithm),
+        cmocka_unit_test(test_multimodal),          cmocka_unit_test(test_seeded),
+        cmocka_unit_test(test_bounds_respected),    cmocka_unit_test(test_constant_parameter),
+        cmocka_unit_test(test_constraint),          cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_threads_agree),       cmocka_unit_test(test_robust_loss),
         cmocka_unit_test(test_limits_and_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -37,7 +37,10 @@ static void mean_var(const double *v, size_t n, size_t stride, double *mean, dou
     *var = ss / (double)(n - 1);
 }
 
-static double cosd(double deg) { return cos(deg * DEG); }
+static double cosd(double deg)
+{
+    return cos(deg * DEG);
+}
 
 /* A Lambert model with albedo rho per channel: value rho / pi everywhere above the
  * horizon, which the noise tests need (one known mean). */
@@ -284,8 +287,8 @@ static void check_gonio(const double *inc, int ninc, double step, const double (
     for (size_t i = 0; i < nwant; i++) {
         if (s->theta_i[i] != want[i][0] || s->phi_i[i] != want[i][1] || s->theta_o[i] != want[i][2] ||
             s->phi_o[i] != want[i][3])
-            fail_msg("gonio sample %zu: (%g, %g, %g, %g), expected (%g, %g, %g, %g)", i, s->theta_i[i],
-                     s->phi_i[i], s->theta_o[i], s->phi_o[i], want[i][0], want[i][1], want[i][2], want[i][3]);
+            fail_msg("gonio sample %zu: (%g, %g, %g, %g), expected (%g, %g, %g, %g)", i, s->theta_i[i], s->phi_i[i],
+                     s->theta_o[i], s->phi_o[i], want[i][0], want[i][1], want[i][2], want[i][3]);
     }
     bf_samples_free(s);
 }
@@ -295,11 +298,10 @@ static void test_gonio_pattern(void **state)
     (void)state;
     /* Incidence 45 lies on the 45-degree in-plane grid: its ring leaves out phi_o 0, 180. */
     const double inc1[2] = {0, 45};
-    const double want1[][4] = {
-        {0, 0, 45, 0},    {0, 0, 0, 0},      {0, 0, 45, 180},                          /* 0: in-plane */
-        {45, 0, 45, 0},   {45, 0, 0, 0},     {45, 0, 45, 180},                         /* 45: in-plane */
-        {45, 0, 45, 45},  {45, 0, 45, 90},   {45, 0, 45, 135}, {45, 0, 45, 225},       /* 45: ring */
-        {45, 0, 45, 270}, {45, 0, 45, 315}};
+    const double want1[][4] = {{0, 0, 45, 0},    {0, 0, 0, 0},    {0, 0, 45, 180},                    /* 0: in-plane */
+                               {45, 0, 45, 0},   {45, 0, 0, 0},   {45, 0, 45, 180},                   /* 45: in-plane */
+                               {45, 0, 45, 45},  {45, 0, 45, 90}, {45, 0, 45, 135}, {45, 0, 45, 225}, /* 45: ring */
+                               {45, 0, 45, 270}, {45, 0, 45, 315}};
     check_gonio(inc1, 2, 45, want1, sizeof want1 / sizeof want1[0]);
     /* Incidence 40 is off the 30-degree grid: the ring keeps all twelve azimuths, the
      * mirror direction (40, 180) among them. */
@@ -314,7 +316,7 @@ static void test_gonio_pattern(void **state)
         const double row[4] = {40, 0, 40, 30.0 * j};
         memcpy(want2[5 + j], row, sizeof row);
     }
-    check_gonio(inc2, 1, 30, (const double (*)[4])want2, 17);
+    check_gonio(inc2, 1, 30, (const double(*)[4])want2, 17);
     /* Default CLI settings: 0, 30, 60 at 5 degrees: 35 in-plane each, rings of 72 - 2. */
     const double inc3[3] = {0, 30, 60};
     bf_synth_gonio g = {inc3, 3, 5};
@@ -586,7 +588,9 @@ static void test_outliers_and_clamp(void **state)
     double *x;
     bf_model *m = lambert(3, rho, &x);
     /* factor: exactly round(0.03 n) samples, every channel times 10; the rest untouched */
-    bf_synth_options o = {.pattern = BF_SYNTH_UNIFORM, .count = 10001, .seed = 40,
+    bf_synth_options o = {.pattern = BF_SYNTH_UNIFORM,
+                          .count = 10001,
+                          .seed = 40,
                           .noise = {.outlier_fraction = 0.03, .outlier_factor = 10}};
     bf_samples *s = generate(m, x, &o);
     size_t out = 0;

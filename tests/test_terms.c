@@ -26,8 +26,7 @@ static void test_dielectric_values(void **state)
     const double ns[] = {1.01, 1.33, 1.5, 2.4, 3.0};
     for (int i = 0; i < 5; i++)
         for (int j = 0; j < 5; j++)
-            ts_assert_rel(bf_dielectric(cs[i], ns[j], NULL), fresnel_snell(cs[i], ns[j]), 1e-12,
-                          "dielectric vs Snell");
+            ts_assert_rel(bf_dielectric(cs[i], ns[j], NULL), fresnel_snell(cs[i], ns[j]), 1e-12, "dielectric vs Snell");
 }
 
 /* At ior = 1 nothing reflects: F is exactly 0 at every angle, grazing included (the

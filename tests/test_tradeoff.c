@@ -163,8 +163,7 @@ static void test_rank_front_and_recommendation(void **state)
     const size_t counts[] = {100, 200, 300, 400, 500, 0};
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1};
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 6, counts, 1, methods2, 1, res, 1, starts, &err),
-                     BF_OK);
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 6, counts, 1, methods2, 1, res, 1, starts, &err), BF_OK);
     assert_int_equal(t.nrows, 6);
     t.tolerance = 0.05;
     set_row(&t.rows[0], 0.10, 0.200, 1.0); /* fastest, poor: front */
@@ -173,7 +172,7 @@ static void test_rank_front_and_recommendation(void **state)
     set_row(&t.rows[3], 2.00, 0.100, 1.0); /* best */
     set_row(&t.rows[4], 3.00, 0.100, 1.0); /* as good but slower: not on the front */
     set_row(&t.rows[5], 0.01, 0.001, 1.0);
-    t.rows[5].ok = 0;                      /* failed: never ranked */
+    t.rows[5].ok = 0; /* failed: never ranked */
     bf_tradeoff_rank(&t);
     assert_int_equal(t.best, 3);
     assert_int_equal(t.recommended, 1);
@@ -316,17 +315,17 @@ static void test_json_and_csv(void **state)
     char *text = slurp(path);
     cJSON *root = cJSON_Parse(text);
     assert_non_null(root);
-    const char *top[] = {"version", "data", "model", "samples", "train_samples", "test_samples", "channels",
-                         "test_fraction", "seed", "repeats", "error", "tolerance", "cost", "work", "timing",
-                         "best", "recommended", "rows"};
+    const char *top[] = {"version",  "data",          "model",  "samples", "train_samples", "test_samples",
+                         "channels", "test_fraction", "seed",   "repeats", "error",         "tolerance",
+                         "cost",     "work",          "timing", "best",    "recommended",   "rows"};
     for (size_t k = 0; k < sizeof top / sizeof top[0]; k++)
         assert_non_null(cJSON_GetObjectItemCaseSensitive(root, top[k]));
     assert_int_equal(cJSON_GetObjectItem(root, "recommended")->valueint, 1);
     cJSON *rows = cJSON_GetObjectItem(root, "rows");
     assert_int_equal(cJSON_GetArraySize(rows), 4);
-    const char *keys[] = {"index", "samples", "all", "method", "residual", "starts", "status", "ok", "message",
-                          "work", "iterations", "error", "train", "test", "on_front", "within_tolerance",
-                          "best", "recommended", "warnings"};
+    const char *keys[] = {"index",    "samples",          "all",  "method",      "residual", "starts", "status",
+                          "ok",       "message",          "work", "iterations",  "error",    "train",  "test",
+                          "on_front", "within_tolerance", "best", "recommended", "warnings"};
     for (int i = 0; i < 4; i++) {
         cJSON *r = cJSON_GetArrayItem(rows, i);
         for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
@@ -372,7 +371,8 @@ static void test_json_and_csv(void **state)
     cJSON *w0 = cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "rows"), 0), "warnings");
     assert_int_equal(cJSON_GetArraySize(w0), 2);
     assert_string_equal(cJSON_GetArrayItem(w0, 1)->valuestring, "f0, \"x\"");
-    assert_true(cJSON_IsNumber(cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "rows"), 0), "seconds")));
+    assert_true(
+        cJSON_IsNumber(cJSON_GetObjectItem(cJSON_GetArrayItem(cJSON_GetObjectItem(root, "rows"), 0), "seconds")));
     cJSON_Delete(root);
     free(text);
     unlink(path);
@@ -474,13 +474,13 @@ static void test_options_refused(void **state)
     refused_by_check(cl, "--starts-list 1,x", "--starts-list: 'x' is not a positive integer or auto");
     refused_by_check(kw, "--starts-list 100001", "starts_list: '100001' is not a positive integer or auto");
     refused_by_check(kw, "--residuals log,square",
-                 "residuals: unknown residual form 'square' (linear, cosine, log, cbrt, relative)");
+                     "residuals: unknown residual form 'square' (linear, cosine, log, cbrt, relative)");
     /* A list's form is checked before any list's items. */
     refused_by_check(cl, "--samples lots --starts-list 1,", "--starts-list: empty item in the list");
     /* A method against the base's other settings. */
     refused_by_check(cl, "--backend nlopt --algorithm LD_SLSQP --constrain-energy --methods LD_SLSQP,LN_BOBYQA",
-                 "--methods: method \"LN_BOBYQA\": nlopt method LN_BOBYQA does not take constraints (those that "
-                 "do: LD_SLSQP, LD_MMA, LN_COBYLA, GN_ISRES)");
+                     "--methods: method \"LN_BOBYQA\": nlopt method LN_BOBYQA does not take constraints (those that "
+                     "do: LD_SLSQP, LD_MMA, LN_COBYLA, GN_ISRES)");
     char many[512] = "--samples ";
     for (int k = 1; k <= 65; k++)
         snprintf(many + strlen(many), sizeof many - strlen(many), "%s%d", k > 1 ? "," : "", k);
@@ -585,9 +585,8 @@ static void test_run_is_the_parts(void **state)
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1};
     bf_tradeoff *p = NULL;
-    assert_int_equal(bf_tradeoff_new("synth.csv", "lambert", train->n, 3, counts, 2, methods2, 1, res, 1, starts, &p,
-                                     &err),
-                     BF_OK);
+    assert_int_equal(
+        bf_tradeoff_new("synth.csv", "lambert", train->n, 3, counts, 2, methods2, 1, res, 1, starts, &p, &err), BF_OK);
     p->seed = 3;
     p->tolerance = 0.1;
     for (int i = 0; i < p->nrows; i++)

@@ -11,18 +11,19 @@
 
 #include "support.h"
 
-static double p5(double t) { return t * t * t * t * t; }
+static double p5(double t)
+{
+    return t * t * t * t * t;
+}
 
 static double diffuse_ref(double rd, double rs, double nl, double nv)
 {
-    return 28.0 * rd / (23.0 * M_PI) * (1.0 - rs) * (1.0 - p5(1.0 - nl / 2.0)) *
-           (1.0 - p5(1.0 - nv / 2.0));
+    return 28.0 * rd / (23.0 * M_PI) * (1.0 - rs) * (1.0 - p5(1.0 - nl / 2.0)) * (1.0 - p5(1.0 - nv / 2.0));
 }
 
 /* docs/models.md's formula from the angles (degrees). The exponent is written as in the paper,
  * e = nu cos^2(phi_h) + nv sin^2(phi_h), and NH^e with pow: an independent route. */
-static double as_ref(double rd, double rs, double nu, double nv, double ti, double pi_,
-                     double to, double po)
+static double as_ref(double rd, double rs, double nu, double nv, double ti, double pi_, double to, double po)
 {
     double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
     double L[3] = {sin(a) * cos(b), sin(a) * sin(b), cos(a)};
@@ -37,8 +38,7 @@ static double as_ref(double rd, double rs, double nu, double nv, double ti, doub
     double e = nu * cos(phih) * cos(phih) + nv * sin(phih) * sin(phih);
     double vh = V[0] * H[0] + V[1] * H[1] + V[2] * H[2];
     double F = rs + (1.0 - rs) * p5(1.0 - vh);
-    double spec = sqrt((nu + 1.0) * (nv + 1.0)) / (8.0 * M_PI) * pow(H[2], e) /
-                  (vh * fmax(L[2], V[2])) * F;
+    double spec = sqrt((nu + 1.0) * (nv + 1.0)) / (8.0 * M_PI) * pow(H[2], e) / (vh * fmax(L[2], V[2])) * F;
     return spec + diffuse_ref(rd, rs, L[2], V[2]);
 }
 
@@ -92,8 +92,7 @@ static void test_mirror(void **state)
     for (int k = 0; k < 4; k++) {
         double u = cos(th[k] * DEG);
         double F = 0.1 + 0.9 * p5(1.0 - u);
-        double want = sqrt((1e6 + 1.0) * 8.0) / (8.0 * M_PI) * F / (u * u) +
-                      diffuse_ref(0.6, 0.1, u, u);
+        double want = sqrt((1e6 + 1.0) * 8.0) / (8.0 * M_PI) * F / (u * u) + diffuse_ref(0.6, 0.1, u, u);
         ts_assert_rel(ts_eval1(m, x, th[k], 0.0, th[k], 180.0, 0), want, 1e-12, "A-S mirror");
     }
     bf_model_free(m);
@@ -181,9 +180,8 @@ static void test_random(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),     cmocka_unit_test(test_normal),
-        cmocka_unit_test(test_mirror),    cmocka_unit_test(test_near_peak),
-        cmocka_unit_test(test_underflow), cmocka_unit_test(test_random),
+        cmocka_unit_test(test_table),     cmocka_unit_test(test_normal),    cmocka_unit_test(test_mirror),
+        cmocka_unit_test(test_near_peak), cmocka_unit_test(test_underflow), cmocka_unit_test(test_random),
     };
     return cmocka_run_group_tests_name("values_ashikhmin_shirley", tests, NULL, NULL);
 }

@@ -33,10 +33,10 @@ static bf_model *make(int C)
 
 static void pack(const bf_model *m, const bp *p, double *x)
 {
-    static const char *const names[NS] = {"metallic", "specular", "specular_tint", "roughness",
-                                          "sheen", "sheen_tint", "clearcoat", "clearcoat_roughness"};
-    const double s[NS] = {p->metallic, p->specular, p->specular_tint, p->roughness,
-                          p->sheen, p->sheen_tint, p->clearcoat, p->clearcoat_roughness};
+    static const char *const names[NS] = {"metallic", "specular",   "specular_tint", "roughness",
+                                          "sheen",    "sheen_tint", "clearcoat",     "clearcoat_roughness"};
+    const double s[NS] = {p->metallic, p->specular,   p->specular_tint, p->roughness,
+                          p->sheen,    p->sheen_tint, p->clearcoat,     p->clearcoat_roughness};
     int C = bf_model_channels(m);
     assert_int_equal(bf_model_nvalues(m), C + NS);
     for (int c = 0; c < C; c++)
@@ -49,7 +49,10 @@ static void pack(const bf_model *m, const bp *p, double *x)
     }
 }
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 static double schlick_fresnel(double u)
 {
     double m = fmin(fmax(1.0 - u, 0.0), 1.0);
@@ -140,8 +143,14 @@ static double ref_cycles(const bp *p, int C, double ti, double pi_, double to, d
 
 static bp defaults(void)
 {
-    bp p = {.metallic = 0.0, .specular = 0.5, .specular_tint = 0.0, .roughness = 0.5, .sheen = 0.0,
-            .sheen_tint = 0.5, .clearcoat = 0.0, .clearcoat_roughness = 0.03};
+    bp p = {.metallic = 0.0,
+            .specular = 0.5,
+            .specular_tint = 0.0,
+            .roughness = 0.5,
+            .sheen = 0.0,
+            .sheen_tint = 0.5,
+            .clearcoat = 0.0,
+            .clearcoat_roughness = 0.03};
     for (int c = 0; c < MAXC; c++)
         p.base[c] = 0.8;
     return p;

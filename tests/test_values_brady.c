@@ -75,8 +75,7 @@ static void test_retro_45(void **state)
 }
 
 /* Plain re-implementation from the angles (degrees); x = rho_d[C], rho_s[C], f0, a, beta. */
-static double brady_plain(int C, const double *x, int c, double ti, double pi_, double to,
-                          double po)
+static double brady_plain(int C, const double *x, int c, double ti, double pi_, double to, double po)
 {
     double L[3] = {sin(ti * DEG) * cos(pi_ * DEG), sin(ti * DEG) * sin(pi_ * DEG), cos(ti * DEG)};
     double V[3] = {sin(to * DEG) * cos(po * DEG), sin(to * DEG) * sin(po * DEG), cos(to * DEG)};
@@ -112,8 +111,7 @@ static void check_random(int C)
             double ti, pi_, to, po;
             ts_random_pair_deg(&rng, d % 3 == 0, &ti, &pi_, &to, &po);
             for (int c = 0; c < C; c++)
-                assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                             brady_plain(C, x, c, ti, pi_, to, po), REL);
+                assert_close(ts_eval1(m, x, ti, pi_, to, po, c), brady_plain(C, x, c, ti, pi_, to, po), REL);
         }
     }
     bf_model_free(m);
@@ -174,9 +172,8 @@ static void test_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_peak_normal),   cmocka_unit_test(test_peak_mirror_60),
-        cmocka_unit_test(test_retro_45),      cmocka_unit_test(test_random),
-        cmocka_unit_test(test_peak_gradient), cmocka_unit_test(test_table),
+        cmocka_unit_test(test_peak_normal), cmocka_unit_test(test_peak_mirror_60), cmocka_unit_test(test_retro_45),
+        cmocka_unit_test(test_random),      cmocka_unit_test(test_peak_gradient),  cmocka_unit_test(test_table),
     };
     return cmocka_run_group_tests_name("values_brady", tests, NULL, NULL);
 }

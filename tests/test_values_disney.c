@@ -14,8 +14,8 @@
 
 /* Parameter vector layout: base_color[C], then the ten scalars in this order. */
 typedef struct dp {
-    double metallic, subsurface, specular, roughness, specular_tint, anisotropic, sheen,
-        sheen_tint, clearcoat, clearcoat_gloss;
+    double metallic, subsurface, specular, roughness, specular_tint, anisotropic, sheen, sheen_tint, clearcoat,
+        clearcoat_gloss;
 } dp;
 
 static bf_model *make(int C)
@@ -31,12 +31,10 @@ static void pack(const bf_model *m, const double *base, const dp *p, double *x)
 {
     int C = bf_model_channels(m);
     assert_int_equal(bf_model_nvalues(m), C + 10);
-    const double s[10] = {p->metallic, p->subsurface, p->specular, p->roughness,
-                          p->specular_tint, p->anisotropic, p->sheen, p->sheen_tint,
-                          p->clearcoat, p->clearcoat_gloss};
-    static const char *const names[10] = {"metallic", "subsurface", "specular", "roughness",
-                                          "specular_tint", "anisotropic", "sheen", "sheen_tint",
-                                          "clearcoat", "clearcoat_gloss"};
+    const double s[10] = {p->metallic,    p->subsurface, p->specular,   p->roughness, p->specular_tint,
+                          p->anisotropic, p->sheen,      p->sheen_tint, p->clearcoat, p->clearcoat_gloss};
+    static const char *const names[10] = {"metallic",    "subsurface", "specular",   "roughness", "specular_tint",
+                                          "anisotropic", "sheen",      "sheen_tint", "clearcoat", "clearcoat_gloss"};
     assert_int_equal(bf_model_param_offset(m, bf_model_find_param(m, "base_color")), 0);
     for (int c = 0; c < C; c++)
         x[c] = base[c];
@@ -50,8 +48,14 @@ static void pack(const bf_model *m, const double *base, const dp *p, double *x)
 
 /* ---- The shader, written out plainly ------------------------------------------ */
 
-static double sqr(double v) { return v * v; }
-static double mix(double a, double b, double t) { return a * (1.0 - t) + b * t; }
+static double sqr(double v)
+{
+    return v * v;
+}
+static double mix(double a, double b, double t)
+{
+    return a * (1.0 - t) + b * t;
+}
 static double schlick_fresnel(double u)
 {
     double m = 1.0 - u;
@@ -81,8 +85,7 @@ static double smith_g_ggx_aniso(double n, double x, double y, double ax, double 
 }
 
 /* Channel c of the shader for C channels; angles in degrees. */
-static double ref_disney(const double *base, int C, const dp *p, double ti, double pi_,
-                         double to, double po, int c)
+static double ref_disney(const double *base, int C, const dp *p, double ti, double pi_, double to, double po, int c)
 {
     double L[3] = {sin(ti * DEG) * cos(pi_ * DEG), sin(ti * DEG) * sin(pi_ * DEG), cos(ti * DEG)};
     double V[3] = {sin(to * DEG) * cos(po * DEG), sin(to * DEG) * sin(po * DEG), cos(to * DEG)};
@@ -117,8 +120,7 @@ static double ref_disney(const double *base, int C, const dp *p, double ti, doub
     double Ds = gtr2_aniso(NdotH, H[0], H[1], ax, ay);
     double FH = schlick_fresnel(LdotH);
     double Fs = mix(Cspec0, 1.0, FH);
-    double Gs = smith_g_ggx_aniso(NdotL, L[0], L[1], ax, ay) *
-                smith_g_ggx_aniso(NdotV, V[0], V[1], ax, ay);
+    double Gs = smith_g_ggx_aniso(NdotL, L[0], L[1], ax, ay) * smith_g_ggx_aniso(NdotV, V[0], V[1], ax, ay);
 
     double Fsheen = FH * p->sheen * Csheen;
 
@@ -126,8 +128,8 @@ static double ref_disney(const double *base, int C, const dp *p, double ti, doub
     double Fr = mix(0.04, 1.0, FH);
     double Gr = smith_g_ggx(NdotL, 0.25) * smith_g_ggx(NdotV, 0.25);
 
-    return ((1.0 / M_PI) * mix(Fd, ss, p->subsurface) * Cdlin + Fsheen) * (1.0 - p->metallic) +
-           Gs * Fs * Ds + 0.25 * p->clearcoat * Gr * Fr * Dr;
+    return ((1.0 / M_PI) * mix(Fd, ss, p->subsurface) * Cdlin + Fsheen) * (1.0 - p->metallic) + Gs * Fs * Ds +
+           0.25 * p->clearcoat * Gr * Fr * Dr;
 }
 
 static const dp shader_defaults = {0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 0.5, 0.0, 1.0};
@@ -165,8 +167,8 @@ static void test_normal_incidence(void **state)
     p.roughness = 0.8;
     p.specular = 1.0;
     pack(m, base, &p, x);
-    ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
-               0.8125 * 0.5 / M_PI + 0.25 * 0.08 / (M_PI * pow(0.8, 4)), 1e-14, "rough .8");
+    ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0), 0.8125 * 0.5 / M_PI + 0.25 * 0.08 / (M_PI * pow(0.8, 4)), 1e-14,
+                  "rough .8");
 
     /* Anisotropy leaves ax ay = r^4 unchanged, so at normal incidence nothing changes. */
     p = shader_defaults;
@@ -191,8 +193,7 @@ static void test_normal_incidence(void **state)
         p.clearcoat_gloss = gl;
         pack(m, base, &p, x);
         double Dr = (a2 - 1.0) / (M_PI * log(a2) * a2);
-        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0),
-                   (0.5 + 0.16) / M_PI + 0.25 * 0.25 * 0.04 * Dr, 1e-13, "clearcoat");
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, 0), (0.5 + 0.16) / M_PI + 0.25 * 0.25 * 0.04 * Dr, 1e-13, "clearcoat");
     }
 
     /* Specular tint 1 with C = 3: Ctint = B / (.3 B_r + .6 B_g + .1 B_b). */
@@ -201,8 +202,8 @@ static void test_normal_incidence(void **state)
     pack(m, col, &p, x);
     double lum = 0.3 * 0.9 + 0.6 * 0.4 + 0.1 * 0.2;
     for (int c = 0; c < 3; c++)
-        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c),
-                   col[c] / M_PI + 0.25 * 0.04 * (col[c] / lum) * 16.0 / M_PI, 1e-14, "tint");
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), col[c] / M_PI + 0.25 * 0.04 * (col[c] / lum) * 16.0 / M_PI, 1e-14,
+                      "tint");
     bf_model_free(m);
 
     /* C = 1: Ctint = 1, so specular_tint and sheen_tint change nothing. */
@@ -217,8 +218,7 @@ static void test_normal_incidence(void **state)
     pack(m, &b1, &p, x2);
     ts_assert_rel(ts_eval1(m, x1, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1");
     ts_assert_rel(ts_eval1(m, x2, 0, 0, 0, 0, 0), (0.3 + 0.16) / M_PI, 1e-14, "C=1 tinted");
-    ts_assert_rel(ts_eval1(m, x2, 40, 10, 55, 100, 0), ts_eval1(m, x1, 40, 10, 55, 100, 0), 1e-14,
-               "C=1 tint-free");
+    ts_assert_rel(ts_eval1(m, x2, 40, 10, 55, 100, 0), ts_eval1(m, x1, 40, 10, 55, 100, 0), 1e-14, "C=1 tint-free");
     bf_model_free(m);
 }
 
@@ -268,8 +268,7 @@ static void test_roughness_floor(void **state)
     p.roughness = 0.0;
     pack(m, base, &p, x);
     for (int c = 0; c < 3; c++)
-        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), base[c] / M_PI + 0.25 * 0.04 / (M_PI * 1e-6),
-                   1e-13, "floor");
+        ts_assert_rel(ts_eval1(m, x, 0, 0, 0, 0, c), base[c] / M_PI + 0.25 * 0.04 / (M_PI * 1e-6), 1e-13, "floor");
     bf_model_free(m);
 }
 
@@ -303,8 +302,8 @@ static void test_against_shader(void **state)
             if (hypot(L[0] + V[0], L[1] + V[1]) < 1e-3)
                 continue;
             for (int c = 0; c < C; c++)
-                ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c),
-                           ref_disney(base, C, &p, ti, pi_, to, po, c), 1e-12, "shader");
+                ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), ref_disney(base, C, &p, ti, pi_, to, po, c), 1e-12,
+                              "shader");
             tested++;
         }
         assert_true(tested > 350);
@@ -343,8 +342,7 @@ static void test_channel_coupling(void **state)
     p.sheen_tint = 0.6;
     pack(m, black, &p, x);
     for (int c = 0; c < 3; c++)
-        ts_assert_rel(ts_eval1(m, x, 50, 0, 30, 120, c), ref_disney(black, 3, &p, 50, 0, 30, 120, c),
-                   1e-12, "black");
+        ts_assert_rel(ts_eval1(m, x, 50, 0, 30, 120, c), ref_disney(black, 3, &p, 50, 0, 30, 120, c), 1e-12, "black");
     bf_model_free(m);
 }
 
@@ -370,12 +368,9 @@ static void test_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),
-        cmocka_unit_test(test_normal_incidence),
-        cmocka_unit_test(test_mirror),
-        cmocka_unit_test(test_roughness_floor),
-        cmocka_unit_test(test_against_shader),
-        cmocka_unit_test(test_channel_coupling),
+        cmocka_unit_test(test_table),          cmocka_unit_test(test_normal_incidence),
+        cmocka_unit_test(test_mirror),         cmocka_unit_test(test_roughness_floor),
+        cmocka_unit_test(test_against_shader), cmocka_unit_test(test_channel_coupling),
     };
     return cmocka_run_group_tests_name("values_disney", tests, NULL, NULL);
 }

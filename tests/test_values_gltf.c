@@ -45,7 +45,10 @@ static void pack(const bf_model *m, const gp *p, double *x)
     x[2 * C + 3] = p->ior;
 }
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 /* Appendix B: D_GGX with the Heaviside factor, the separable Smith visibility written
  * as G / (4 |N.L| |N.V|) with G1 = 2 N.X / (N.X + sqrt(a^2 + (1 - a^2) (N.X)^2)). */

@@ -15,8 +15,8 @@
 #define assert_close(got, want, rel) ts_assert_rel((got), (want), (rel), #got)
 
 /* x for kurt with C = 1 and one lobe: rho_d, rho_s, m, f0, alpha. */
-static double kurt1(double rd, double rs, double mm, double f0, double alpha, double ti,
-                    double pi_, double to, double po)
+static double kurt1(double rd, double rs, double mm, double f0, double alpha, double ti, double pi_, double to,
+                    double po)
 {
     bf_model *m = ts_model("kurt", 1);
     double x[5] = {rd, rs, mm, f0, alpha};
@@ -61,14 +61,12 @@ static void test_retro_45(void **state)
     assert_close(kurt1(0.0, rs, 1.0, f0, 0.0, 45, 30, 45, 30), rs * f0 * D / 4.0, REL);
     assert_close(kurt1(0.0, rs, 1.0, f0, 1.0, 45, 30, 45, 30), rs * f0 * D / 2.0, REL);
     /* Beckmann with m = 0.5: exp(-4) / (pi 0.25 0.25). */
-    assert_close(kurt1(0.0, rs, 0.5, f0, 0.0, 45, 30, 45, 30),
-                 rs * f0 * exp(-4.0) / (M_PI * 0.0625) / 4.0, REL);
+    assert_close(kurt1(0.0, rs, 0.5, f0, 0.0, 45, 30, 45, 30), rs * f0 * exp(-4.0) / (M_PI * 0.0625) / 4.0, REL);
 }
 
 /* Plain re-implementation of kurt from the angles (degrees). x laid out as the model's
  * table for `lobes` lobes and C channels. */
-static double kurt_plain(int lobes, int C, const double *x, int c, double ti, double pi_,
-                         double to, double po)
+static double kurt_plain(int lobes, int C, const double *x, int c, double ti, double pi_, double to, double po)
 {
     double L[3] = {sin(ti * DEG) * cos(pi_ * DEG), sin(ti * DEG) * sin(pi_ * DEG), cos(ti * DEG)};
     double V[3] = {sin(to * DEG) * cos(po * DEG), sin(to * DEG) * sin(po * DEG), cos(to * DEG)};
@@ -104,8 +102,8 @@ static void check_random(const char *spec, int lobes, int C)
             double *p = x + C + k * (C + 3);
             for (int c = 0; c < C; c++)
                 p[c] = ts_uniform(&rng);
-            p[C] = 0.05 * pow(20.0, ts_uniform(&rng));   /* m in [0.05, 1] */
-            p[C + 1] = ts_uniform(&rng);                 /* f0 */
+            p[C] = 0.05 * pow(20.0, ts_uniform(&rng));                 /* m in [0.05, 1] */
+            p[C + 1] = ts_uniform(&rng);                               /* f0 */
             p[C + 2] = t == 0 ? 0.0 : t == 1 ? 1.0 : ts_uniform(&rng); /* alpha */
         }
         assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
@@ -113,8 +111,7 @@ static void check_random(const char *spec, int lobes, int C)
             double ti, pi_, to, po;
             ts_random_pair_deg(&rng, d % 3 == 0, &ti, &pi_, &to, &po);
             for (int c = 0; c < C; c++)
-                assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                             kurt_plain(lobes, C, x, c, ti, pi_, to, po), REL);
+                assert_close(ts_eval1(m, x, ti, pi_, to, po, c), kurt_plain(lobes, C, x, c, ti, pi_, to, po), REL);
         }
     }
     bf_model_free(m);
@@ -139,8 +136,8 @@ static void test_table(void **state)
 {
     (void)state;
     bf_model *m = ts_model("kurt:lobes=2", 3);
-    static const char *const names[] = {"rho_d", "rho_s_1", "m_1", "f0_1", "alpha_1",
-                                        "rho_s_2", "m_2", "f0_2", "alpha_2"};
+    static const char *const names[] = {"rho_d",   "rho_s_1", "m_1",  "f0_1",   "alpha_1",
+                                        "rho_s_2", "m_2",     "f0_2", "alpha_2"};
     assert_int_equal(bf_model_nparams(m), 9);
     for (int i = 0; i < 9; i++)
         assert_string_equal(bf_model_param(m, i)->name, names[i]);

@@ -17,10 +17,11 @@
 
 /* docs/models.md written out plainly: lobes K, per lobe (rho_s, cx, cy, cz, n). For the
  * isotropic model cx = cy = cxy. Only for n small enough that cmax^n stays normal. */
-typedef struct lobe_p { double rs, cx, cy, cz, n; } lobe_p;
+typedef struct lobe_p {
+    double rs, cx, cy, cz, n;
+} lobe_p;
 
-static double laf_ref(double rd, int K, const lobe_p *lp, double ti, double pi_, double to,
-                      double po)
+static double laf_ref(double rd, int K, const lobe_p *lp, double ti, double pi_, double to, double po)
 {
     double L[3], V[3];
     ts_dirs_deg(ti, pi_, to, po, L, V);
@@ -58,8 +59,7 @@ static void test_tables(void **state)
 
     bf_model_new("lafortune:lobes=2", 1, &m, NULL);
     assert_non_null(m);
-    const char *n2[] = {"rho_d", "rho_s_1", "cxy_1", "cz_1", "n_1",
-                        "rho_s_2", "cxy_2", "cz_2", "n_2"};
+    const char *n2[] = {"rho_d", "rho_s_1", "cxy_1", "cz_1", "n_1", "rho_s_2", "cxy_2", "cz_2", "n_2"};
     assert_int_equal(bf_model_nparams(m), 9);
     for (int i = 0; i < 9; i++)
         assert_string_equal(bf_model_param(m, i)->name, n2[i]);
@@ -108,8 +108,8 @@ static void test_equals_phong(void **state)
             po = pi_ + 180.0 + 2.0 * (ts_uniform(&r) - 0.5);
         }
         for (int c = 0; c < 3; c++)
-            assert_close(ts_eval1(laf, xl, ti, pi_, to, po, c),
-                         ts_eval1(ph, xp, ti, pi_, to, po, c), 1e-13, "lafortune vs phong");
+            assert_close(ts_eval1(laf, xl, ti, pi_, to, po, c), ts_eval1(ph, xp, ti, pi_, to, po, c), 1e-13,
+                         "lafortune vs phong");
     }
     bf_model_free(laf);
     bf_model_free(ph);
@@ -128,14 +128,12 @@ static void test_normalisation(void **state)
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
             double x[5] = {0.2, 0.7, -sc[a], sc[a], ns[b]};
-            ts_assert_rel(ts_eval1(m, x, 50.0, 30.0, 50.0, 210.0, 0),
-                       0.2 / M_PI + 0.7 * (ns[b] + 2.0) / (2.0 * M_PI), 1e-12,
-                       "scaled Phong lobe at the mirror direction");
+            ts_assert_rel(ts_eval1(m, x, 50.0, 30.0, 50.0, 210.0, 0), 0.2 / M_PI + 0.7 * (ns[b] + 2.0) / (2.0 * M_PI),
+                          1e-12, "scaled Phong lobe at the mirror direction");
             if (ns[b] < 100.0) {
                 double y[5] = {0.2, 0.7, -1.0, 1.0, ns[b]};
-                ts_assert_rel(ts_eval1(m, x, 20.0, 30.0, 45.0, 170.0, 0),
-                           ts_eval1(m, y, 20.0, 30.0, 45.0, 170.0, 0), 1e-13,
-                           "scale invariance");
+                ts_assert_rel(ts_eval1(m, x, 20.0, 30.0, 45.0, 170.0, 0), ts_eval1(m, y, 20.0, 30.0, 45.0, 170.0, 0),
+                              1e-13, "scale invariance");
             }
         }
     bf_model_free(m);
@@ -148,14 +146,14 @@ static void test_hand(void **state)
     bf_model_new("lafortune", 1, &m, NULL);
     /* Retro-reflection lobe cxy = cz = 1 at the retro direction: d = |L|^2 = 1. */
     double x[5] = {0.1, 0.6, 1.0, 1.0, 7.0};
-    ts_assert_rel(ts_eval1(m, x, 70.0, 40.0, 70.0, 40.0, 0), 0.1 / M_PI + 0.6 * 9.0 / (2.0 * M_PI),
-               1e-12, "retro lobe");
+    ts_assert_rel(ts_eval1(m, x, 70.0, 40.0, 70.0, 40.0, 0), 0.1 / M_PI + 0.6 * 9.0 / (2.0 * M_PI), 1e-12,
+                  "retro lobe");
     /* Off-specular lobe cxy = 0.5, cz = 1, n = 2: L at (30, 0), V at (60, 180):
      * LxVx + LyVy = -sin30 sin60, LzVz = cos30 cos60, both sqrt(3)/4 in size:
      * d = sqrt(3)/4 (1 - 0.5) = sqrt(3)/8, cmax = 1: f = rho_d/pi + rho_s (4/(2 pi)) 3/64. */
     double y[5] = {0.1, 0.6, 0.5, 1.0, 2.0};
-    ts_assert_rel(ts_eval1(m, y, 30.0, 0.0, 60.0, 180.0, 0),
-               0.1 / M_PI + 0.6 * 2.0 / M_PI * 3.0 / 64.0, 1e-13, "off-specular lobe");
+    ts_assert_rel(ts_eval1(m, y, 30.0, 0.0, 60.0, 180.0, 0), 0.1 / M_PI + 0.6 * 2.0 / M_PI * 3.0 / 64.0, 1e-13,
+                  "off-specular lobe");
     /* cz = -1 (lobe below the horizon for the z part), cxy = -0.5 at the mirror pair:
      * d = 0.5 sin^2 - cos^2 < 0 for theta = 30: the lobe vanishes. */
     double z[5] = {0.1, 0.6, -0.5, -1.0, 2.0};
@@ -173,18 +171,17 @@ static void test_hand(void **state)
     /* L at (45, 45), V at (45, 225): LxVx = LyVy = -1/4, LzVz = 1/2. cx = -1, cy = 0.5,
      * cz = 1, n = 3: d = 1/4 - 1/8 + 1/2 = 5/8, cmax = 1: f = rd/pi + rs (5/(2 pi)) (5/8)^3. */
     double a[6] = {0.1, 0.6, -1.0, 0.5, 1.0, 3.0};
-    ts_assert_rel(ts_eval1(m, a, 45.0, 45.0, 45.0, 225.0, 0),
-               0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0, 1e-13, "aniso hand");
+    ts_assert_rel(ts_eval1(m, a, 45.0, 45.0, 45.0, 225.0, 0), 0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0,
+                  1e-13, "aniso hand");
     /* The same lobe scaled by 0.8 and normalised by max|c| = 0.8: unchanged. */
     double b[6] = {0.1, 0.6, -0.8, 0.4, 0.8, 3.0};
-    ts_assert_rel(ts_eval1(m, b, 45.0, 45.0, 45.0, 225.0, 0),
-               0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0, 1e-13,
-               "aniso hand, scaled");
+    ts_assert_rel(ts_eval1(m, b, 45.0, 45.0, 45.0, 225.0, 0), 0.1 / M_PI + 0.6 * 5.0 / (2.0 * M_PI) * 125.0 / 512.0,
+                  1e-13, "aniso hand, scaled");
     /* cy largest: cx = 0.2, cy = -0.5, cz = 0.25: d = -0.05 + 0.125 + 0.125 = 0.2,
      * r = d / 0.5 = 0.4; n = 2: f = rd/pi + rs (4/(2 pi)) 0.16. */
     double c[6] = {0.1, 0.6, 0.2, -0.5, 0.25, 2.0};
-    ts_assert_rel(ts_eval1(m, c, 45.0, 45.0, 45.0, 225.0, 0),
-               0.1 / M_PI + 0.6 * 2.0 / M_PI * 0.16, 1e-13, "aniso, cy the largest");
+    ts_assert_rel(ts_eval1(m, c, 45.0, 45.0, 45.0, 225.0, 0), 0.1 / M_PI + 0.6 * 2.0 / M_PI * 0.16, 1e-13,
+                  "aniso, cy the largest");
     bf_model_free(m);
 }
 
@@ -209,8 +206,8 @@ static void test_aniso_reduces(void **state)
         }
         double ti = 89.0 * ts_uniform(&r), pi_ = 360.0 * ts_uniform(&r);
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
-        assert_close(ts_eval1(an, xa, ti, pi_, to, po, 0), ts_eval1(iso, xi, ti, pi_, to, po, 0),
-                     1e-14, "aniso with cx = cy vs iso");
+        assert_close(ts_eval1(an, xa, ti, pi_, to, po, 0), ts_eval1(iso, xi, ti, pi_, to, po, 0), 1e-14,
+                     "aniso with cx = cy vs iso");
     }
     bf_model_free(iso);
     bf_model_free(an);
@@ -258,8 +255,7 @@ static void random_case(const char *spec, int aniso, int K, uint64_t seed)
             po = pi_ + 180.0 + 4.0 * (ts_uniform(&r) - 0.5);
         }
         for (int c = 0; c < C; c++)
-            assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                         laf_ref(x[c], K, lp[c], ti, pi_, to, po), 1e-12, spec);
+            assert_close(ts_eval1(m, x, ti, pi_, to, po, c), laf_ref(x[c], K, lp[c], ti, pi_, to, po), 1e-12, spec);
     }
     bf_model_free(m);
 }
@@ -276,9 +272,8 @@ static void test_random(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_tables),        cmocka_unit_test(test_equals_phong),
-        cmocka_unit_test(test_normalisation), cmocka_unit_test(test_hand),
-        cmocka_unit_test(test_aniso_reduces), cmocka_unit_test(test_random),
+        cmocka_unit_test(test_tables), cmocka_unit_test(test_equals_phong),  cmocka_unit_test(test_normalisation),
+        cmocka_unit_test(test_hand),   cmocka_unit_test(test_aniso_reduces), cmocka_unit_test(test_random),
     };
     return cmocka_run_group_tests_name("values_lafortune", tests, NULL, NULL);
 }

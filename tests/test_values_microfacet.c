@@ -18,8 +18,7 @@
 #include "support.h"
 
 static const char *const Ds[] = {"ggx", "beckmann", "blinn", "gaussian"};
-static const char *const Gs[] = {"smith_ggx",      "implicit",      "cook_torrance",
-                                 "smith_beckmann", "smith_schlick", "none"};
+static const char *const Gs[] = {"smith_ggx", "implicit", "cook_torrance", "smith_beckmann", "smith_schlick", "none"};
 static const char *const Fs[] = {"schlick", "dielectric", "none"};
 enum { ND = 4, NG = 6, NF = 3 };
 
@@ -51,8 +50,7 @@ static void expect_names(const char *spec, const char *const *names, int n)
         fail_msg("%s: %d parameters, want %d", spec, bf_model_nparams(m), n);
     for (int i = 0; i < n; i++)
         if (strcmp(bf_model_param(m, i)->name, names[i]) != 0)
-            fail_msg("%s: parameter %d is %s, want %s", spec, i, bf_model_param(m, i)->name,
-                     names[i]);
+            fail_msg("%s: parameter %d is %s, want %s", spec, i, bf_model_param(m, i)->name, names[i]);
     bf_model_free(m);
 }
 
@@ -83,7 +81,11 @@ static void test_parameter_tables(void **state)
     bf_model_free(m);
 
     /* Bounds and scales. */
-    struct { const char *spec, *name; double lo, hi; bf_scale scale; } b[] = {
+    struct {
+        const char *spec, *name;
+        double lo, hi;
+        bf_scale scale;
+    } b[] = {
         {"microfacet:D=blinn", "n", 0.0, 1e6, BF_SCALE_LOG1P},
         {"microfacet:D=beckmann", "m", 1e-3, 1.0, BF_SCALE_LOG},
         {"microfacet:D=ggx", "alpha", 1e-4, 1.0, BF_SCALE_LOG},
@@ -100,8 +102,7 @@ static void test_parameter_tables(void **state)
         m = ts_model(b[i].spec, 1);
         const bf_param_info *p = bf_model_param(m, bf_model_find_param(m, b[i].name));
         assert_non_null(p);
-        if (p->lo != b[i].lo || p->hi != b[i].hi || p->scale != b[i].scale || p->colour ||
-            p->lo_open || p->hi_open)
+        if (p->lo != b[i].lo || p->hi != b[i].hi || p->scale != b[i].scale || p->colour || p->lo_open || p->hi_open)
             fail_msg("%s %s: [%g, %g] scale %d", b[i].spec, b[i].name, p->lo, p->hi, p->scale);
         bf_model_free(m);
     }
@@ -137,12 +138,10 @@ static void test_cook_torrance_normal(void **state)
             set(m, x, "m", ms[a]);
             set(m, x, "f0", f0s[b]);
             for (int c = 0; c < 3; c++) {
-                double want = (0.1 + 0.2 * c) / M_PI +
-                              (0.9 - 0.3 * c) * f0s[b] / (4.0 * M_PI * ms[a] * ms[a]);
+                double want = (0.1 + 0.2 * c) / M_PI + (0.9 - 0.3 * c) * f0s[b] / (4.0 * M_PI * ms[a] * ms[a]);
                 ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, c), want, 1e-14, "cook_torrance N");
                 /* Any azimuth at theta = 0 is the same direction. */
-                ts_assert_rel(ts_eval1(m, x, 0.0, 37.0, 0.0, 211.0, c), want, 1e-14,
-                           "cook_torrance N, phi");
+                ts_assert_rel(ts_eval1(m, x, 0.0, 37.0, 0.0, 211.0, c), want, 1e-14, "cook_torrance N, phi");
             }
         }
     bf_model_free(m);
@@ -202,7 +201,7 @@ static void test_dielectric_fresnel(void **state)
     set(m, x, "m", 0.2);
     set(m, x, "ior", 1.5);
     ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.04 / (4.0 * M_PI * 0.04), 1e-14,
-               "cook_torrance dielectric N");
+                  "cook_torrance dielectric N");
     /* ior = 1: no reflection at all. */
     set(m, x, "ior", 1.0);
     assert_true(ts_eval1(m, x, 40.0, 10.0, 35.0, 200.0, 0) == 0.0);
@@ -212,9 +211,9 @@ static void test_dielectric_fresnel(void **state)
 /* ---- Independent re-implementation from the angles ------------------------------- */
 
 typedef struct ref_geo {
-    double nl, nv, sl, sv;      /* cos, sin of theta_i, theta_o (from the angles) */
-    double pl, pv;              /* phi_i, phi_o */
-    double nh, th, phh, vh;     /* cos theta_h, theta_h, phi_h, cos theta_d */
+    double nl, nv, sl, sv;  /* cos, sin of theta_i, theta_o (from the angles) */
+    double pl, pv;          /* phi_i, phi_o */
+    double nh, th, phh, vh; /* cos theta_h, theta_h, phi_h, cos theta_d */
 } ref_geo;
 
 static ref_geo ref_geometry(double ti, double pi_, double to, double po)
@@ -239,29 +238,22 @@ static double ref_D(int d, double r, const ref_geo *g)
 {
     double t2 = tan(g->th) * tan(g->th), c = g->nh;
     switch (d) {
-    case 0: /* GGX a^2 / (pi (NH^2 (a^2 - 1) + 1)^2) */
-        return r * r / (M_PI * pow(c * c * (r * r - 1.0) + 1.0, 2));
-    case 1: /* Beckmann */
-        return exp(-t2 / (r * r)) / (M_PI * r * r * pow(c, 4));
-    case 2: /* normalised Blinn */
-        return (r + 2.0) / (2.0 * M_PI) * pow(c, r);
-    default: /* Gaussian highlight */
-        return exp(-pow(g->th / r, 2)) / (M_PI * r * r);
+    case 0: /* GGX a^2 / (pi (NH^2 (a^2 - 1) + 1)^2) */ return r * r / (M_PI * pow(c * c * (r * r - 1.0) + 1.0, 2));
+    case 1: /* Beckmann */ return exp(-t2 / (r * r)) / (M_PI * r * r * pow(c, 4));
+    case 2: /* normalised Blinn */ return (r + 2.0) / (2.0 * M_PI) * pow(c, r);
+    default: /* Gaussian highlight */ return exp(-pow(g->th / r, 2)) / (M_PI * r * r);
     }
 }
 
 static double ref_G1(int gk, double m, double cosw, double sinw)
 {
     switch (gk) {
-    case 0:
-        return 2.0 / (1.0 + sqrt(1.0 + m * m * pow(sinw / cosw, 2)));
+    case 0: return 2.0 / (1.0 + sqrt(1.0 + m * m * pow(sinw / cosw, 2)));
     case 3: {
         double c = cosw / (m * sinw);
         return c < 1.6 ? (3.535 * c + 2.181 * c * c) / (1.0 + 2.276 * c + 2.577 * c * c) : 1.0;
     }
-    default: { /* 4: Schlick */
-        double k = m * sqrt(2.0 / M_PI);
-        return cosw / (cosw * (1.0 - k) + k);
+    default: { /* 4: Schlick */ double k = m * sqrt(2.0 / M_PI); return cosw / (cosw * (1.0 - k) + k);
     }
     }
 }
@@ -270,14 +262,10 @@ static double ref_G(int gk, int d, double r, const ref_geo *g)
 {
     double m = d == 2 ? sqrt(2.0 / (r + 2.0)) : r; /* blinn: Beckmann-equivalent m */
     switch (gk) {
-    case 1:
-        return g->nl * g->nv;
-    case 2:
-        return fmin(1.0, fmin(2.0 * g->nh * g->nv / g->vh, 2.0 * g->nh * g->nl / g->vh));
-    case 5:
-        return 1.0;
-    default:
-        return ref_G1(gk, m, g->nl, g->sl) * ref_G1(gk, m, g->nv, g->sv);
+    case 1: return g->nl * g->nv;
+    case 2: return fmin(1.0, fmin(2.0 * g->nh * g->nv / g->vh, 2.0 * g->nh * g->nl / g->vh));
+    case 5: return 1.0;
+    default: return ref_G1(gk, m, g->nl, g->sl) * ref_G1(gk, m, g->nv, g->sv);
     }
 }
 
@@ -287,8 +275,7 @@ static double ref_F(int f, double p, double c)
         return p + (1.0 - p) * pow(1.0 - c, 5);
     if (f == 1) {
         double gg = sqrt(p * p + c * c - 1.0);
-        return 0.5 * pow(gg - c, 2) / pow(gg + c, 2) *
-               (1.0 + pow(c * (gg + c) - 1.0, 2) / pow(c * (gg - c) + 1.0, 2));
+        return 0.5 * pow(gg - c, 2) / pow(gg + c, 2) * (1.0 + pow(c * (gg + c) - 1.0, 2) / pow(c * (gg - c) + 1.0, 2));
     }
     return 1.0;
 }
@@ -305,8 +292,7 @@ static void test_microfacet_reference(void **state)
             for (int f = 0; f < NF; f++)
                 for (int K = 1; K <= 2; K++) {
                     char spec[128];
-                    snprintf(spec, sizeof spec, "microfacet:D=%s,G=%s,F=%s,lobes=%d", Ds[d], Gs[gk],
-                             Fs[f], K);
+                    snprintf(spec, sizeof spec, "microfacet:D=%s,G=%s,F=%s,lobes=%d", Ds[d], Gs[gk], Fs[f], K);
                     bf_model *m = ts_model(spec, 2);
                     double x[2 + 2 * (2 + 2)];
                     double rho_s[2][2], rough[2], fp[2];
@@ -347,13 +333,12 @@ static void test_microfacet_reference(void **state)
                         for (int c = 0; c < 2; c++) {
                             double want = (c ? 0.3 : 0.0) / M_PI;
                             for (int k = 0; k < K; k++)
-                                want += rho_s[k][c] * ref_D(d, rough[k], &g) *
-                                        ref_G(gk, d, rough[k], &g) * ref_F(f, fp[k], g.vh) /
-                                        (4.0 * g.nl * g.nv);
+                                want += rho_s[k][c] * ref_D(d, rough[k], &g) * ref_G(gk, d, rough[k], &g) *
+                                        ref_F(f, fp[k], g.vh) / (4.0 * g.nl * g.nv);
                             double got = ts_eval1(m, x, ti, pi_, to, po, c);
                             if (!(fabs(got - want) <= 1e-12 * fabs(want) + 1e-300))
-                                fail_msg("%s channel %d at (%g, %g, %g, %g): %.17g, reference %.17g",
-                                         spec, c, ti, pi_, to, po, got, want);
+                                fail_msg("%s channel %d at (%g, %g, %g, %g): %.17g, reference %.17g", spec, c, ti, pi_,
+                                         to, po, got, want);
                             compared += want > 0.0;
                         }
                     }
@@ -400,7 +385,7 @@ static void test_walter_aniso_reference(void **state)
     set(m, x, "f0", 1.0);
     set(m, x, "alpha_x", 0.4);
     set(m, x, "alpha_y", 0.1);
-    double along_x = ts_eval1(m, x, 40.0, 180.0, 20.0, 0.0, 0); /* H tilted in the XZ plane */
+    double along_x = ts_eval1(m, x, 40.0, 180.0, 20.0, 0.0, 0);  /* H tilted in the XZ plane */
     double along_y = ts_eval1(m, x, 40.0, 270.0, 20.0, 90.0, 0); /* same, in the YZ plane */
     assert_true(along_x > 3.0 * along_y);
     bf_model_free(m);
@@ -447,8 +432,8 @@ static void compare_specs(const char *s1, const char *s2)
         for (int i = 0; i < bf_model_nparams(a); i++) {
             const bf_param_info *p = bf_model_param(a, i), *q = bf_model_param(b, i);
             assert_string_equal(p->name, q->name);
-            assert_true(p->lo == q->lo && p->hi == q->hi && p->def == q->def &&
-                        p->scale == q->scale && p->colour == q->colour);
+            assert_true(p->lo == q->lo && p->hi == q->hi && p->def == q->def && p->scale == q->scale &&
+                        p->colour == q->colour);
         }
         assert_int_equal(bf_model_energy_conserving(a), bf_model_energy_conserving(b));
         ts_rng rng = {0xC0FFEEULL + (uint64_t)C};
@@ -507,10 +492,9 @@ static void check_grazing(const char *spec)
     /* L at cos = 2e-15 (the geometry takes cosines below 1e-15 as the horizon) against
      * V: opposite (H = N), equal (NH = 2e-15), sideways, normal, and also grazing. */
     const double e = 2e-15;
-    const double Ls[][3] = {{1, 0, e}, {1, 0, e}, {1, 0, e}, {1, 0, e}, {1, 0, e}, {0, 0, 1},
-                            {0.6, 0.8, e}, {1, 0, e}};
-    const double Vs[][3] = {{-1, 0, e}, {1, 0, e}, {0, 1, e}, {0, 0, 1}, {-1, 0, 0.3}, {1, 0, e},
-                            {0.6, 0.8, 1e-9}, {-0.6, 0.8, e}};
+    const double Ls[][3] = {{1, 0, e}, {1, 0, e}, {1, 0, e}, {1, 0, e}, {1, 0, e}, {0, 0, 1}, {0.6, 0.8, e}, {1, 0, e}};
+    const double Vs[][3] = {{-1, 0, e},   {1, 0, e}, {0, 1, e},        {0, 0, 1},
+                            {-1, 0, 0.3}, {1, 0, e}, {0.6, 0.8, 1e-9}, {-0.6, 0.8, e}};
     enum { N = sizeof Ls / sizeof Ls[0] };
     bf_geometry *g = NULL;
     bf_geometry_from_vectors(N, &Ls[0][0], &Vs[0][0], &g, NULL);
@@ -536,8 +520,8 @@ static void check_grazing(const char *spec)
                     fail_msg("%s: value %g at grazing sample %d", spec, v[i], i / C);
                 for (int k = 0; k < P; k++)
                     if (!isfinite(gr[(size_t)i * P + k]))
-                        fail_msg("%s: gradient slot %d = %g at grazing sample %d", spec, k,
-                                 gr[(size_t)i * P + k], i / C);
+                        fail_msg("%s: gradient slot %d = %g at grazing sample %d", spec, k, gr[(size_t)i * P + k],
+                                 i / C);
             }
         }
         free(x);
@@ -587,8 +571,7 @@ static double spec_albedo(const char *spec, double rough, double w, double ti_de
                 L[3 * k + c] = l[c];
                 V[3 * k + c] = 2.0 * lh * h[c] - l[c];
             }
-            wt[k] = lh > 0.0 && V[3 * k + 2] > 0.0
-                        ? 2.0 * V[3 * k + 2] * 4.0 * lh * sin(th) * dth * (M_PI / NP) : 0.0;
+            wt[k] = lh > 0.0 && V[3 * k + 2] > 0.0 ? 2.0 * V[3 * k + 2] * 4.0 * lh * sin(th) * dth * (M_PI / NP) : 0.0;
             if (wt[k] == 0.0) { /* below the horizon: any valid vector, weight 0 */
                 V[3 * k] = 0.0, V[3 * k + 1] = 0.0, V[3 * k + 2] = 1.0;
             }
@@ -648,8 +631,7 @@ static void test_energy_flags(void **state)
     double a1 = spec_albedo("microfacet:D=ggx,G=none,F=none", 0.3, 0.3, 80.0);
     double a2 = spec_albedo("microfacet:D=ggx,G=smith_beckmann,F=none", 0.1, 0.1, 89.0);
     double a3 = spec_albedo("microfacet:D=blinn,G=smith_beckmann,F=none", 0.0, 1.0, 89.0);
-    print_message("albedo: ggx/none %.4f, ggx/smith_beckmann %.4f, blinn(n=0)/smith_beckmann %.4f\n",
-                  a1, a2, a3);
+    print_message("albedo: ggx/none %.4f, ggx/smith_beckmann %.4f, blinn(n=0)/smith_beckmann %.4f\n", a1, a2, a3);
     assert_true(a1 > 1.1);
     assert_true(a2 > 1.1);
     assert_true(a3 > 1.1);

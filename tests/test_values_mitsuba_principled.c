@@ -21,7 +21,7 @@ typedef struct mp {
     double metallic, specular, spec_tint, roughness, sheen, sheen_tint, flatness, clearcoat, clearcoat_gloss;
 } mp;
 
-static const char *const names[NS] = {"metallic", "specular", "spec_tint", "roughness", "sheen",
+static const char *const names[NS] = {"metallic",   "specular", "spec_tint", "roughness",      "sheen",
                                       "sheen_tint", "flatness", "clearcoat", "clearcoat_gloss"};
 
 static bf_model *make(int C)
@@ -35,7 +35,7 @@ static bf_model *make(int C)
 
 static void pack(const bf_model *m, const mp *p, double *x)
 {
-    const double s[NS] = {p->metallic, p->specular, p->spec_tint, p->roughness, p->sheen,
+    const double s[NS] = {p->metallic,   p->specular, p->spec_tint, p->roughness,      p->sheen,
                           p->sheen_tint, p->flatness, p->clearcoat, p->clearcoat_gloss};
     int C = bf_model_channels(m);
     assert_int_equal(bf_model_nvalues(m), C + NS);
@@ -49,8 +49,14 @@ static void pack(const bf_model *m, const mp *p, double *x)
     }
 }
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static double lerp(double a, double b, double t) { return a + (b - a) * t; }
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static double lerp(double a, double b, double t)
+{
+    return a + (b - a) * t;
+}
 static double schlick_weight(double cos_i)
 {
     double m = fmin(fmax(1.0 - cos_i, 0.0), 1.0);
@@ -67,7 +73,10 @@ static double fresnel(double cos_i, double eta)
     double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     return 0.5 * (rs * rs + rp * rp);
 }
-static double calc_schlick(double R0, double cos_i) { return lerp(schlick_weight(fabs(cos_i)), 1.0, R0); }
+static double calc_schlick(double R0, double cos_i)
+{
+    return lerp(schlick_weight(fabs(cos_i)), 1.0, R0);
+}
 static double smith_g1(double alpha, double cos_theta)
 {
     double tan2 = (1.0 - cos_theta * cos_theta) / (cos_theta * cos_theta);

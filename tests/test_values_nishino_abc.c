@@ -16,8 +16,7 @@
 #define REL 1e-12
 #define assert_close(got, want, rel) ts_assert_rel((got), (want), (rel), #got)
 
-static double eval1(const char *spec, const double *x, double ti, double pi_, double to,
-                    double po)
+static double eval1(const char *spec, const double *x, double ti, double pi_, double to, double po)
 {
     bf_model *m = ts_model(spec, 1);
     assert_int_equal(bf_model_check(m, x, NULL), BF_OK);
@@ -49,16 +48,14 @@ static void test_normal_incidence(void **state)
         double x[5] = {rd, rs, kappa, gamma, f0};
         assert_close(eval1("nishino", x, 0, 0, 0, 0), rd / M_PI + rs * Dn * f0 / M_PI, REL);
         x[4] = n;
-        assert_close(eval1("nishino:fresnel=dielectric", x, 0, 0, 0, 0),
-                     rd / M_PI + rs * Dn * 0.04 / M_PI, REL);
+        assert_close(eval1("nishino:fresnel=dielectric", x, 0, 0, 0, 0), rd / M_PI + rs * Dn * 0.04 / M_PI, REL);
         assert_close(eval1("nishino:fresnel=none", x, 0, 0, 0, 0), rd / M_PI + rs * Dn / M_PI, REL);
     }
     {
         double x[5] = {rd, rs, 1e4, 2.5, f0};
         assert_close(eval1("abc", x, 0, 0, 0, 0), rd / M_PI + rs * f0 / M_PI, REL);
         x[4] = 2.0; /* ((2-1)/(2+1))^2 = 1/9 */
-        assert_close(eval1("abc:fresnel=dielectric", x, 0, 0, 0, 0),
-                     rd / M_PI + rs / 9.0 / M_PI, REL);
+        assert_close(eval1("abc:fresnel=dielectric", x, 0, 0, 0, 0), rd / M_PI + rs / 9.0 / M_PI, REL);
         assert_close(eval1("abc:fresnel=none", x, 0, 0, 0, 0), rd / M_PI + rs / M_PI, REL);
     }
 }
@@ -98,12 +95,10 @@ static void test_retro_45(void **state)
     (void)state;
     const double rs = 5.0, f0 = 0.5;
     double x[5] = {0.0, rs, 3.0, 2.0, f0}; /* NH^2 = 1/2: D = 1 - exp(-1.5) */
-    assert_close(eval1("nishino", x, 45, 100, 45, 100), rs * (1.0 - exp(-1.5)) * f0 * 2.0 / M_PI,
-                 1e-11);
+    assert_close(eval1("nishino", x, 45, 100, 45, 100), rs * (1.0 - exp(-1.5)) * f0 * 2.0 / M_PI, 1e-11);
     double y[5] = {0.0, rs, 10.0, 2.0, f0};
     double bx = 10.0 * (1.0 - sqrt(0.5));
-    assert_close(eval1("abc", y, 45, 100, 45, 100), rs / ((1.0 + bx) * (1.0 + bx)) * f0 * 2.0 / M_PI,
-                 1e-11);
+    assert_close(eval1("abc", y, 45, 100, 45, 100), rs / ((1.0 + bx) * (1.0 + bx)) * f0 * 2.0 / M_PI, 1e-11);
     /* b = 0 or c = 0: D = 1. */
     y[2] = 0.0;
     assert_close(eval1("abc", y, 45, 100, 45, 100), rs * f0 * 2.0 / M_PI, 1e-11);
@@ -118,8 +113,7 @@ enum { NISHINO, ABC };
 
 /* x laid out as the model's table: rho_d[C], rho_s[C], then the two shape scalars and
  * the Fresnel parameter (absent for none). kind: 0 schlick, 1 dielectric, 2 none. */
-static double plain(int model, int kind, int C, const double *x, int c, double ti, double pi_,
-                    double to, double po)
+static double plain(int model, int kind, int C, const double *x, int c, double ti, double pi_, double to, double po)
 {
     double L[3] = {sin(ti * DEG) * cos(pi_ * DEG), sin(ti * DEG) * sin(pi_ * DEG), cos(ti * DEG)};
     double V[3] = {sin(to * DEG) * cos(po * DEG), sin(to * DEG) * sin(po * DEG), cos(to * DEG)};
@@ -170,7 +164,7 @@ static void check_random(int model, int kind, int C)
             x[2 * C + 1] = 1e-3 * pow(1e6, ts_uniform(&rng)); /* gamma up to 1e3 */
         } else {
             x[2 * C] = expm1(ts_uniform(&rng) * log1p(1e6)); /* b */
-            x[2 * C + 1] = 10.0 * ts_uniform(&rng);           /* c */
+            x[2 * C + 1] = 10.0 * ts_uniform(&rng);          /* c */
         }
         if (kind == 0)
             x[2 * C + 2] = ts_uniform(&rng);
@@ -181,8 +175,7 @@ static void check_random(int model, int kind, int C)
             double ti, pi_, to, po;
             ts_random_pair_deg(&rng, d % 3 == 0, &ti, &pi_, &to, &po);
             for (int c = 0; c < C; c++)
-                assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                             plain(model, kind, C, x, c, ti, pi_, to, po), REL);
+                assert_close(ts_eval1(m, x, ti, pi_, to, po, c), plain(model, kind, C, x, c, ti, pi_, to, po), REL);
         }
     }
     bf_model_free(m);
@@ -270,9 +263,12 @@ static void test_published_fit_in_bounds(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_normal_incidence),  cmocka_unit_test(test_mirror_60_fresnel),
-        cmocka_unit_test(test_retro_45),          cmocka_unit_test(test_random_nishino),
-        cmocka_unit_test(test_random_abc),        cmocka_unit_test(test_tables),
+        cmocka_unit_test(test_normal_incidence),
+        cmocka_unit_test(test_mirror_60_fresnel),
+        cmocka_unit_test(test_retro_45),
+        cmocka_unit_test(test_random_nishino),
+        cmocka_unit_test(test_random_abc),
+        cmocka_unit_test(test_tables),
         cmocka_unit_test(test_published_fit_in_bounds),
     };
     return cmocka_run_group_tests_name("values_nishino_abc", tests, NULL, NULL);

@@ -110,8 +110,8 @@ static void test_random(void **state)
         double ti = 89.0 * ts_uniform(&r), pi_ = 360.0 * ts_uniform(&r);
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
         for (int c = 0; c < 3; c++)
-            ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), on_ref(x[c], x[3], ti, pi_, to, po),
-                       1e-12, "oren_nayar random");
+            ts_assert_rel(ts_eval1(m, x, ti, pi_, to, po, c), on_ref(x[c], x[3], ti, pi_, to, po), 1e-12,
+                          "oren_nayar random");
     }
     bf_model_free(m);
 }
@@ -119,9 +119,8 @@ static void test_random(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),   cmocka_unit_test(test_lambert),
-        cmocka_unit_test(test_hand),    cmocka_unit_test(test_grazing),
-        cmocka_unit_test(test_random),
+        cmocka_unit_test(test_table),   cmocka_unit_test(test_lambert), cmocka_unit_test(test_hand),
+        cmocka_unit_test(test_grazing), cmocka_unit_test(test_random),
     };
     return cmocka_run_group_tests_name("values_oren_nayar", tests, NULL, NULL);
 }

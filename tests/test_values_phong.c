@@ -17,8 +17,7 @@
 
 /* ---- plain re-implementations (nothing shared with the library) ---------------- */
 
-static double phong_ref(double rd, double rs, double n, double ti, double pi_, double to,
-                        double po)
+static double phong_ref(double rd, double rs, double n, double ti, double pi_, double to, double po)
 {
     double L[3], V[3];
     ts_dirs_deg(ti, pi_, to, po, L, V);
@@ -36,20 +35,17 @@ static double half_z(const double L[3], const double V[3])
     return H[2] / sqrt(H[0] * H[0] + H[1] * H[1] + H[2] * H[2]);
 }
 
-static double blinn_ref(double rd, double rs, double n, double ti, double pi_, double to,
-                        double po)
+static double blinn_ref(double rd, double rs, double n, double ti, double pi_, double to, double po)
 {
     double L[3], V[3];
     ts_dirs_deg(ti, pi_, to, po, L, V);
     if (L[2] <= 0.0 || V[2] <= 0.0)
         return 0.0;
     double nh = half_z(L, V);
-    return rd / M_PI +
-           rs * (n + 2.0) * (n + 4.0) / (8.0 * M_PI * (pow(2.0, -n / 2.0) + n)) * pow(nh, n);
+    return rd / M_PI + rs * (n + 2.0) * (n + 4.0) / (8.0 * M_PI * (pow(2.0, -n / 2.0) + n)) * pow(nh, n);
 }
 
-static double gaussian_ref(double rd, double rs, double m, double ti, double pi_, double to,
-                           double po)
+static double gaussian_ref(double rd, double rs, double m, double ti, double pi_, double to, double po)
 {
     double L[3], V[3];
     ts_dirs_deg(ti, pi_, to, po, L, V);
@@ -59,8 +55,7 @@ static double gaussian_ref(double rd, double rs, double m, double ti, double pi_
     return rd / M_PI + rs * exp(-(th / m) * (th / m)) / (M_PI * m * m);
 }
 
-static double hs_ref(double rd, double rs, double s, double phit, double ti, double pi_,
-                     double to, double po)
+static double hs_ref(double rd, double rs, double s, double phit, double ti, double pi_, double to, double po)
 {
     double L[3], V[3];
     ts_dirs_deg(ti, pi_, to, po, L, V);
@@ -136,7 +131,7 @@ static void test_phong_mirror(void **state)
             /* R.V = 1 exactly: f = rho_d/pi + rho_s (n+2)/(2 pi), even at n = 1e6. */
             double want = 0.3 / M_PI + 0.6 * (ns[a] + 2.0) / (2.0 * M_PI);
             ts_assert_rel(ts_eval1(m, x, th[b], phi, th[b], phi + 180.0, 0), want, 1e-12,
-                       "phong at the mirror direction");
+                          "phong at the mirror direction");
         }
     bf_model_free(m);
 }
@@ -149,21 +144,19 @@ static void test_phong_hand(void **state)
     /* Retro direction at 30 degrees: R.V = cos^2 30 - sin^2 30 = 1/2.
      * n = 2: f = rho_d/pi + rho_s (4/(2 pi)) (1/4) = rho_d/pi + rho_s/(2 pi). */
     double x[3] = {0.2, 0.7, 2.0};
-    ts_assert_rel(ts_eval1(m, x, 30.0, 10.0, 30.0, 10.0, 0), 0.2 / M_PI + 0.7 / (2.0 * M_PI),
-               1e-13, "phong retro 30 deg, n = 2");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 10.0, 30.0, 10.0, 0), 0.2 / M_PI + 0.7 / (2.0 * M_PI), 1e-13,
+                  "phong retro 30 deg, n = 2");
     /* Retro at 60 degrees: R.V = -1/2 <= 0: the lobe is 0 for n > 0 ... */
     x[2] = 0.5;
-    ts_assert_rel(ts_eval1(m, x, 60.0, 10.0, 60.0, 10.0, 0), 0.2 / M_PI, 1e-15,
-               "phong R.V < 0, n = 0.5");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 10.0, 60.0, 10.0, 0), 0.2 / M_PI, 1e-15, "phong R.V < 0, n = 0.5");
     /* ... and 1/pi everywhere at n = 0 (max(0, R.V)^0 = 1). */
     x[2] = 0.0;
-    ts_assert_rel(ts_eval1(m, x, 60.0, 10.0, 60.0, 10.0, 0), 0.9 / M_PI, 1e-15,
-               "phong R.V < 0, n = 0");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 10.0, 60.0, 10.0, 0), 0.9 / M_PI, 1e-15, "phong R.V < 0, n = 0");
     ts_assert_rel(ts_eval1(m, x, 10.0, 0.0, 75.0, 123.0, 0), 0.9 / M_PI, 1e-15, "phong n = 0");
     /* Normal incidence, V at 60 degrees: R = N, R.V = 1/2; n = 3: (5/(2 pi))/8. */
     x[2] = 3.0;
-    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 60.0, 200.0, 0),
-               0.2 / M_PI + 0.7 * 5.0 / (16.0 * M_PI), 1e-13, "phong normal incidence");
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 60.0, 200.0, 0), 0.2 / M_PI + 0.7 * 5.0 / (16.0 * M_PI), 1e-13,
+                  "phong normal incidence");
     bf_model_free(m);
 }
 
@@ -186,8 +179,7 @@ static void test_phong_random(void **state)
             po = pi_ + 180.0 + 4.0 * (ts_uniform(&r) - 0.5);
         }
         for (int c = 0; c < 3; c++)
-            assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                         phong_ref(x[c], x[3 + c], x[6], ti, pi_, to, po), 1e-12,
+            assert_close(ts_eval1(m, x, ti, pi_, to, po, c), phong_ref(x[c], x[3 + c], x[6], ti, pi_, to, po), 1e-12,
                          "phong vs plain formula");
     }
     bf_model_free(m);
@@ -210,20 +202,18 @@ static void test_blinn_normal(void **state)
     double x[3] = {0.25, 0.5, 0.0};
     ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.75 / M_PI, 1e-14, "blinn n = 0");
     x[2] = 2.0;
-    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), (0.25 + 0.5 * 1.2) / M_PI, 1e-14,
-               "blinn n = 2");
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), (0.25 + 0.5 * 1.2) / M_PI, 1e-14, "blinn n = 2");
     x[2] = 1e6;
     ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0),
-               0.25 / M_PI + 0.5 * (1e6 + 2.0) * (1e6 + 4.0) / (8.0 * M_PI * 1e6), 1e-14,
-               "blinn n = 1e6");
+                  0.25 / M_PI + 0.5 * (1e6 + 2.0) * (1e6 + 4.0) / (8.0 * M_PI * 1e6), 1e-14, "blinn n = 1e6");
     /* Any mirror pair also has H = N. */
     x[2] = 37.5;
-    ts_assert_rel(ts_eval1(m, x, 55.0, 12.0, 55.0, 192.0, 0), 0.25 / M_PI + 0.5 * blinn_norm(37.5),
-               1e-12, "blinn mirror");
+    ts_assert_rel(ts_eval1(m, x, 55.0, 12.0, 55.0, 192.0, 0), 0.25 / M_PI + 0.5 * blinn_norm(37.5), 1e-12,
+                  "blinn mirror");
     /* theta_i = 60, theta_o = 0 (same plane): theta_h = 30, NH^2 = 3/4; n = 2. */
     x[2] = 2.0;
     ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 0.0, 0.0, 0), (0.25 + 0.5 * 1.2 * 0.75) / M_PI, 1e-13,
-               "blinn theta_h = 30");
+                  "blinn theta_h = 30");
     bf_model_free(m);
 }
 
@@ -241,8 +231,7 @@ static void test_blinn_random(void **state)
         double ti = 89.0 * ts_uniform(&r), pi_ = 360.0 * ts_uniform(&r);
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
         for (int c = 0; c < 2; c++)
-            assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                         blinn_ref(x[c], x[2 + c], x[4], ti, pi_, to, po), 1e-12,
+            assert_close(ts_eval1(m, x, ti, pi_, to, po, c), blinn_ref(x[c], x[2 + c], x[4], ti, pi_, to, po), 1e-12,
                          "blinn_phong vs plain formula");
     }
     bf_model_free(m);
@@ -260,14 +249,13 @@ static void test_gaussian_peak(void **state)
         double x[3] = {0.4, 0.5, ms[a]};
         double want = 0.4 / M_PI + 0.5 / (M_PI * ms[a] * ms[a]);
         ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "gaussian normal peak");
-        ts_assert_rel(ts_eval1(m, x, 63.0, 250.0, 63.0, 70.0, 0), want, 1e-12,
-                   "gaussian mirror peak");
+        ts_assert_rel(ts_eval1(m, x, 63.0, 250.0, 63.0, 70.0, 0), want, 1e-12, "gaussian mirror peak");
     }
     /* theta_i = 60, theta_o = 0 in one plane: theta_h = pi/6. */
     double x[3] = {0.4, 0.5, 0.4};
     double r = (M_PI / 6.0) / 0.4;
-    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 0.0, 0.0, 0),
-               0.4 / M_PI + 0.5 * exp(-r * r) / (M_PI * 0.16), 1e-13, "gaussian theta_h = 30");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 0.0, 0.0, 0), 0.4 / M_PI + 0.5 * exp(-r * r) / (M_PI * 0.16), 1e-13,
+                  "gaussian theta_h = 30");
     bf_model_free(m);
 }
 
@@ -281,8 +269,7 @@ static void test_gaussian_random(void **state)
         double x[3] = {ts_uniform(&r), ts_uniform(&r), 0.05 * pow(20.0, ts_uniform(&r))};
         double ti = 89.0 * ts_uniform(&r), pi_ = 360.0 * ts_uniform(&r);
         double to = 89.0 * ts_uniform(&r), po = 360.0 * ts_uniform(&r);
-        assert_close(ts_eval1(m, x, ti, pi_, to, po, 0),
-                     gaussian_ref(x[0], x[1], x[2], ti, pi_, to, po), 1e-12,
+        assert_close(ts_eval1(m, x, ti, pi_, to, po, 0), gaussian_ref(x[0], x[1], x[2], ti, pi_, to, po), 1e-12,
                      "gaussian vs plain formula");
     }
     bf_model_free(m);
@@ -302,26 +289,26 @@ static void test_hs_hand(void **state)
         for (int k = 0; k < 4; k++) {
             double x[4] = {0.1, 0.8, ss[a], 0.7 * k};
             ts_assert_rel(ts_eval1(m, x, 40.0, 17.0 + 30.0 * k, 40.0, 197.0 + 30.0 * k, 0),
-                       0.1 / M_PI + 0.8 * (ss[a] + 2.0) / (2.0 * M_PI), 1e-12, "hs mirror");
+                          0.1 / M_PI + 0.8 * (ss[a] + 2.0) / (2.0 * M_PI), 1e-12, "hs mirror");
         }
     /* T = X, L perpendicular to T (phi_i = 90): L.T = 0, x = sqrt(1 - (V.T)^2); V at
      * theta_o = 60, phi_o = 0: V.T = sin 60, x = cos 60 = 1/2. s = 3: (5/(2 pi))/8. */
     double x[4] = {0.1, 0.8, 3.0, 0.0};
-    ts_assert_rel(ts_eval1(m, x, 35.0, 90.0, 60.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI),
-               1e-13, "hs L perpendicular to T");
+    ts_assert_rel(ts_eval1(m, x, 35.0, 90.0, 60.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI), 1e-13,
+                  "hs L perpendicular to T");
     /* Retro direction in the XZ plane with T = X: a = b = sin(theta), x = cos(2 theta).
      * 30 degrees: x = 1/2; 60 degrees: x = -1/2, the lobe vanishes (s > 0). */
-    ts_assert_rel(ts_eval1(m, x, 30.0, 0.0, 30.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI),
-               1e-13, "hs retro 30");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 0.0, 30.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI), 1e-13,
+                  "hs retro 30");
     ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 60.0, 0.0, 0), 0.1 / M_PI, 1e-15, "hs retro 60");
     /* The same with the thread along Y (phi_t = pi/2) and the plane rotated with it. */
     x[3] = M_PI / 2.0;
-    ts_assert_rel(ts_eval1(m, x, 30.0, 90.0, 30.0, 90.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI),
-               1e-13, "hs retro 30, T = Y");
+    ts_assert_rel(ts_eval1(m, x, 30.0, 90.0, 30.0, 90.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (16.0 * M_PI), 1e-13,
+                  "hs retro 30, T = Y");
     /* With T = Y both directions of that XZ-plane retro pair are perpendicular to T:
      * L.T = V.T = 0, x = 1, the lobe's peak value (far from the mirror direction). */
-    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 60.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (2.0 * M_PI),
-               1e-13, "hs retro 60, T = Y");
+    ts_assert_rel(ts_eval1(m, x, 60.0, 0.0, 60.0, 0.0, 0), 0.1 / M_PI + 0.8 * 5.0 / (2.0 * M_PI), 1e-13,
+                  "hs retro 60, T = Y");
     /* s = 0: 1/pi everywhere, x <= 0 included. */
     x[2] = 0.0;
     x[3] = 0.0;
@@ -347,11 +334,9 @@ static void test_hs_rotation(void **state)
         assert_close(ts_eval1(m, y, ti, pi_ + d, to, po + d, 0), f0, 1e-11, "hs rotation");
         /* phi_t + pi/2 with the directions rotated by 90 degrees ... */
         y[3] = x[3] + M_PI / 2.0;
-        assert_close(ts_eval1(m, y, ti, pi_ + 90.0, to, po + 90.0, 0), f0, 1e-11,
-                     "hs rotation by 90");
+        assert_close(ts_eval1(m, y, ti, pi_ + 90.0, to, po + 90.0, 0), f0, 1e-11, "hs rotation by 90");
         /* ... then T -> -T: directions rotated by 180 with the same phi_t. */
-        assert_close(ts_eval1(m, x, ti, pi_ + 180.0, to, po + 180.0, 0), f0, 1e-11,
-                     "hs periodic in phi_t");
+        assert_close(ts_eval1(m, x, ti, pi_ + 180.0, to, po + 180.0, 0), f0, 1e-11, "hs periodic in phi_t");
     }
     bf_model_free(m);
 }
@@ -375,8 +360,7 @@ static void test_hs_random(void **state)
             po = pi_ + 180.0 + 4.0 * (ts_uniform(&r) - 0.5);
         }
         for (int c = 0; c < 3; c++)
-            assert_close(ts_eval1(m, x, ti, pi_, to, po, c),
-                         hs_ref(x[c], x[3 + c], x[6], x[7], ti, pi_, to, po), 1e-12,
+            assert_close(ts_eval1(m, x, ti, pi_, to, po, c), hs_ref(x[c], x[3 + c], x[6], x[7], ti, pi_, to, po), 1e-12,
                          "heidrich_seidel vs plain formula");
     }
     bf_model_free(m);
@@ -385,11 +369,11 @@ static void test_hs_random(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_tables),         cmocka_unit_test(test_phong_mirror),
-        cmocka_unit_test(test_phong_hand),     cmocka_unit_test(test_phong_random),
-        cmocka_unit_test(test_blinn_normal),   cmocka_unit_test(test_blinn_random),
-        cmocka_unit_test(test_gaussian_peak),  cmocka_unit_test(test_gaussian_random),
-        cmocka_unit_test(test_hs_hand),        cmocka_unit_test(test_hs_rotation),
+        cmocka_unit_test(test_tables),        cmocka_unit_test(test_phong_mirror),
+        cmocka_unit_test(test_phong_hand),    cmocka_unit_test(test_phong_random),
+        cmocka_unit_test(test_blinn_normal),  cmocka_unit_test(test_blinn_random),
+        cmocka_unit_test(test_gaussian_peak), cmocka_unit_test(test_gaussian_random),
+        cmocka_unit_test(test_hs_hand),       cmocka_unit_test(test_hs_rotation),
         cmocka_unit_test(test_hs_random),
     };
     return cmocka_run_group_tests_name("values_phong", tests, NULL, NULL);

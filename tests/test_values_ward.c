@@ -12,8 +12,7 @@
 #include "support.h"
 
 /* docs/models.md, written out from the angles (degrees), nothing shared with the library. */
-static double ward_ref(double rd, double rs, double ax, double ay, double ti, double pi_,
-                       double to, double po)
+static double ward_ref(double rd, double rs, double ax, double ay, double ti, double pi_, double to, double po)
 {
     double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
     double L[3] = {sin(a) * cos(b), sin(a) * sin(b), cos(a)};
@@ -26,8 +25,7 @@ static double ward_ref(double rd, double rs, double ax, double ay, double ti, do
     H[1] /= len;
     H[2] /= len;
     double ex = H[0] / ax, ey = H[1] / ay;
-    return rd / M_PI + rs * exp(-(ex * ex + ey * ey) / (H[2] * H[2])) /
-                           (4.0 * M_PI * ax * ay * sqrt(L[2] * V[2]));
+    return rd / M_PI + rs * exp(-(ex * ex + ey * ey) / (H[2] * H[2])) / (4.0 * M_PI * ax * ay * sqrt(L[2] * V[2]));
 }
 
 static void test_table(void **state)
@@ -157,9 +155,8 @@ static void test_limits(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),  cmocka_unit_test(test_peak_normal),
-        cmocka_unit_test(test_mirror), cmocka_unit_test(test_axis),
-        cmocka_unit_test(test_random), cmocka_unit_test(test_limits),
+        cmocka_unit_test(test_table), cmocka_unit_test(test_peak_normal), cmocka_unit_test(test_mirror),
+        cmocka_unit_test(test_axis),  cmocka_unit_test(test_random),      cmocka_unit_test(test_limits),
     };
     return cmocka_run_group_tests_name("values_ward", tests, NULL, NULL);
 }

@@ -124,8 +124,7 @@ static bf_status take_lock(batch_db *db, bf_error *err)
     if ((db->lock_fd = open(db->path, O_RDONLY | O_CLOEXEC)) < 0)
         return bf_fail(err, BF_ERR_IO, "%s: %s", db->path, strerror(errno));
     if (flock(db->lock_fd, LOCK_EX | LOCK_NB) != 0)
-        return bf_fail(err, BF_ERR_IO, "%s: in use by another brdfit batch or merge; nothing was changed",
-                       db->path);
+        return bf_fail(err, BF_ERR_IO, "%s: in use by another brdfit batch or merge; nothing was changed", db->path);
     return BF_OK;
 }
 
@@ -353,15 +352,14 @@ bf_status batch_db_redo(batch_db *db, int failed, int all, bf_error *err)
 {
     if (!failed && !all)
         return BF_OK;
-    /* Pending again, and emptied: a pending row never shows an old result. */
+        /* Pending again, and emptied: a pending row never shows an old result. */
 #define PENDING                                                                                                        \
     "UPDATE items SET status = 'pending', message = NULL, spec = NULL, samples = NULL, channels = NULL, "              \
     "n = NULL, k = NULL, rmse = NULL, rmse_log = NULL, rmse_cos = NULL, rmse_rel = NULL, max_err = NULL, "             \
     "weighted = NULL, crit_n = NULL, loglik = NULL, aic = NULL, aicc = NULL, bic = NULL, cv = NULL, work = NULL, "     \
     "params = NULL, stderr = NULL, warnings = NULL, tool_version = NULL, seconds = NULL, finished_at = NULL, "         \
     "warning_kinds = NULL "
-    return exec(db,
-                all ? PENDING "WHERE status != 'pending'" : PENDING "WHERE status IN ('failed', 'error')",
+    return exec(db, all ? PENDING "WHERE status != 'pending'" : PENDING "WHERE status IN ('failed', 'error')",
                 "marking items to redo", err);
 #undef PENDING
 }
@@ -626,7 +624,7 @@ static bf_status merge_one(batch_db *out, const char *input, int old, bf_error *
     if (clash > 0)
         return bf_fail(err, BF_ERR_ARG, "%s: %lld item(s) already merged with other results; nothing merged", input,
                        clash);
-    /* Rows the output lacks, then finished rows over its pending ones. */
+        /* Rows the output lacks, then finished rows over its pending ones. */
 #define COPY(SRC)                                                                                                      \
     "INSERT OR IGNORE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items;"                                \
     "REPLACE INTO main.items(" ITEM_COLUMNS ") SELECT " SRC " FROM src.items b WHERE b.status != 'pending' AND "       \

@@ -70,8 +70,8 @@ static int read_all(int fd, void *buf, size_t n)
     return 1;
 }
 
-enum { ROW = 1, END = 2 };         /* the child's frames: [kind][held], then a row's bytes */
-enum { MAX_ITEMS = 1 << 20 };      /* a call's items: one material's models */
+enum { ROW = 1, END = 2 };    /* the child's frames: [kind][held], then a row's bytes */
+enum { MAX_ITEMS = 1 << 20 }; /* a call's items: one material's models */
 
 struct batch_fitter_out {
     int fd;
@@ -88,7 +88,8 @@ void batch_fitter_emit(batch_fitter_out *out, const batch_row *row, int held)
     const int32_t head[2] = {ROW, held};
     out->held = held;
     const uint64_t n = len;
-    if (send_all(out->fd, head, sizeof head) < 0 || send_all(out->fd, &n, sizeof n) < 0 || send_all(out->fd, buf, len) < 0)
+    if (send_all(out->fd, head, sizeof head) < 0 || send_all(out->fd, &n, sizeof n) < 0 ||
+        send_all(out->fd, buf, len) < 0)
         _exit(4);
     free(buf);
 }

@@ -24,16 +24,19 @@
 
 static const cli_option own[] = {CLI_LIB("--error"), CLI_LIB("--tolerance")};
 static const cli_group own_group = CLI_GROUP_OPTIONS(NULL, own, BF_TASK_COMPARE, batch_manifest, o);
-static const cli_group *const shared_groups[] = {&own_group, &rank_options_bic, &fit_options_fitting,
-                                                 &fit_options_optimizer, &data_options_reading,
+static const cli_group *const shared_groups[] = {&own_group,
+                                                 &rank_options_bic,
+                                                 &fit_options_fitting,
+                                                 &fit_options_optimizer,
+                                                 &data_options_reading,
                                                  &data_options_preprocessing};
 static const cli_group *const material_groups[] = {&data_options_reading, &data_options_preprocessing};
 /* Grammars for the manifest's word lists (never shown as commands; without --help,
  * --quiet, --verbose, which would act on the process). */
-static const cli_command shared_cli = {"brdfit", "batch", "", "", NULL, NULL, shared_groups,
-                                       sizeof shared_groups / sizeof shared_groups[0]};
-static const cli_command material_cli = {"brdfit", "batch", "", "", NULL, NULL, material_groups,
-                                         sizeof material_groups / sizeof material_groups[0]};
+static const cli_command shared_cli = {
+    "brdfit", "batch", "", "", NULL, NULL, shared_groups, sizeof shared_groups / sizeof shared_groups[0]};
+static const cli_command material_cli = {
+    "brdfit", "batch", "", "", NULL, NULL, material_groups, sizeof material_groups / sizeof material_groups[0]};
 
 void batch_manifest_clear(batch_manifest *m)
 {
@@ -178,7 +181,8 @@ static int read_material(batch_manifest *m, const cJSON *e, const char *dir, bat
     const cJSON *data = cJSON_IsString(e) ? e : cJSON_GetObjectItemCaseSensitive(e, "data");
     const cJSON *scene = cJSON_IsObject(e) ? cJSON_GetObjectItemCaseSensitive(e, "scene") : NULL;
     if (!cJSON_IsString(data) || !data->valuestring[0] || (scene && !cJSON_IsString(scene))) {
-        fprintf(stderr, "%s: %s: a material is a data file name or {\"data\": FILE, \"options\": [...], \"scene\": FILE}\n",
+        fprintf(stderr,
+                "%s: %s: a material is a data file name or {\"data\": FILE, \"options\": [...], \"scene\": FILE}\n",
                 cmd, where);
         return -1;
     }

@@ -24,24 +24,24 @@
 #define BATCH_MAX_MODELS 128 /* models a manifest may list */
 
 typedef struct batch_material {
-    char *data;      /* the data file, resolved against the manifest's folder (owned) */
-    char *scene;     /* its scene file, resolved (owned), or NULL */
+    char *data;       /* the data file, resolved against the manifest's folder (owned) */
+    char *scene;      /* its scene file, resolved (owned), or NULL */
     char *scene_word; /* "--scene=" and scene (owned), or NULL */
-    char **words;    /* its data options as given (borrowed from the JSON tree), then
+    char **words;     /* its data options as given (borrowed from the JSON tree), then
                         scene_word */
     int nwords;
 } batch_material;
 
 typedef struct batch_manifest {
     cJSON *root;
-    char *text;                 /* canonical JSON (owned) */
-    char hash[17];              /* 64-bit FNV-1a of text, in hex */
-    char **models;              /* nmodels specs (owned), -m lists split as compare splits them */
+    char *text;    /* canonical JSON (owned) */
+    char hash[17]; /* 64-bit FNV-1a of text, in hex */
+    char **models; /* nmodels specs (owned), -m lists split as compare splits them */
     int nmodels;
-    char **words;               /* the shared options (borrowed from the JSON tree) */
+    char **words; /* the shared options (borrowed from the JSON tree) */
     int nwords;
-    batch_material *materials;  /* nmaterials (owned) */
-    int *lines;                 /* a plain list's: the options: line, then each material's
+    batch_material *materials; /* nmaterials (owned) */
+    int *lines;                /* a plain list's: the options: line, then each material's
                                    (owned; NULL for JSON), for the messages */
     int nmaterials;
     bf_options *o; /* the shared options, parsed (owned) */

@@ -118,7 +118,7 @@ static void receive(int source, unsigned char **buf, int *len, int *tag, int *fr
 /* ---- The coordinator ------------------------------------------------------------------- */
 
 typedef struct queue {
-    const int *items;   /* ascending */
+    const int *items; /* ascending */
     int n, nmodels;
     int *order;         /* materials with items, heaviest first */
     int norder, next;   /* order[next]: the first that may have items left */
@@ -196,7 +196,7 @@ void batch_mpi_coordinate(const int *items, int n, int nmodels, const double *we
     queue q;
     int size;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    int *given = malloc(((size_t)size + 1) * sizeof *given); /* per rank: its item in flight */
+    int *given = malloc(((size_t)size + 1) * sizeof *given);                     /* per rank: its item in flight */
     unsigned char *losses = calloc((size_t)nmaterials * (size_t)nmodels + 1, 1); /* per item */
     if (!given || !losses || queue_init(&q, items, n, nmodels, weight, nmaterials) < 0) {
         fprintf(stderr, "brdfit batch: out of memory for the work queue\n");

@@ -206,8 +206,14 @@ static void put(packer *k, const void *v, size_t n)
     k->n += n;
 }
 
-static void put_i64(packer *k, int64_t v) { put(k, &v, sizeof v); }
-static void put_f64(packer *k, double v) { put(k, &v, sizeof v); }
+static void put_i64(packer *k, int64_t v)
+{
+    put(k, &v, sizeof v);
+}
+static void put_f64(packer *k, double v)
+{
+    put(k, &v, sizeof v);
+}
 
 /* A text as its length + 1 (0: absent) and its bytes. */
 static void put_text(packer *k, const char *s)
@@ -220,10 +226,10 @@ static void put_text(packer *k, const char *s)
 static void put_row(packer *k, const batch_row *r)
 {
     const bf_metrics *m = &r->metrics;
-    const int64_t ints[] = {r->item, r->material, r->model, r->pending, r->state, (int64_t)r->samples, r->channels,
-                            (int64_t)m->n, m->k, m->weighted, (int64_t)m->crit_n};
+    const int64_t ints[] = {r->item,     r->material,   r->model, r->pending,  r->state,          (int64_t)r->samples,
+                            r->channels, (int64_t)m->n, m->k,     m->weighted, (int64_t)m->crit_n};
     const double reals[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel, m->max_err, m->loglik,
-                            m->aic, m->aicc, m->bic, r->cv, r->work, r->seconds};
+                            m->aic,  m->aicc,     m->bic,      r->cv,       r->work,    r->seconds};
     for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++)
         put_i64(k, ints[i]);
     for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
@@ -310,7 +316,7 @@ bf_status batch_row_unpack(const unsigned char *buf, size_t len, batch_row *r, b
     m->n = (size_t)get_i64(&u), m->k = (int)get_i64(&u), m->weighted = (int)get_i64(&u);
     m->crit_n = (size_t)get_i64(&u);
     double *reals[] = {&m->rmse, &m->rmse_cos, &m->rmse_log, &m->rmse_rel, &m->max_err, &m->loglik,
-                       &m->aic, &m->aicc, &m->bic, &r->cv, &r->work, &r->seconds};
+                       &m->aic,  &m->aicc,     &m->bic,      &r->cv,       &r->work,    &r->seconds};
     for (size_t i = 0; i < sizeof reals / sizeof reals[0]; i++)
         *reals[i] = get_f64(&u);
     get_text(&u, r->message, sizeof r->message);

@@ -11,9 +11,9 @@
 
 typedef struct batch_row {
     int item, material, model;
-    int pending;               /* 1: not run yet (the other fields are empty) */
-    bf_compare_state state;    /* OK, FAILED or ERROR */
-    char message[512];         /* ERROR: why */
+    int pending;            /* 1: not run yet (the other fields are empty) */
+    bf_compare_state state; /* OK, FAILED or ERROR */
+    char message[512];      /* ERROR: why */
     size_t samples;
     int channels;
     bf_metrics metrics;
@@ -22,8 +22,8 @@ typedef struct batch_row {
      * warning_kinds the kinds of the warnings, by name, in their order (NULL in a row
      * stored before kinds were: batch_rows.c reads those from the texts). */
     char *spec, *params, *stderr_, *warnings, *options, *warning_kinds;
-    const char *version;       /* the tool's, as written (borrowed) */
-    double seconds;            /* wall time of the fit: a timing, it decides nothing */
+    const char *version; /* the tool's, as written (borrowed) */
+    double seconds;      /* wall time of the fit: a timing, it decides nothing */
 } batch_row;
 
 /* Fills r from fit j of c's material 0 (after bf_compare_run) for item `item`:

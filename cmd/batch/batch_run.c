@@ -185,7 +185,7 @@ void batch_fitting_init(batch_fitting *w, batch_fitter *f, const batch_args *a, 
 void batch_run_lost_twice(batch_run *r, int item, const char *why)
 {
     const int model = item % r->m->nmodels;
-    char reason[sizeof ((batch_row *)0)->message];
+    char reason[sizeof((batch_row *)0)->message];
     snprintf(reason, sizeof reason, "the process fitting it died each of the 2 times it ran; the last time: %.400s",
              why);
     r->material = item / r->m->nmodels;

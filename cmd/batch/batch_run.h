@@ -23,7 +23,7 @@ typedef struct batch_args {
 typedef struct batch_run {
     const batch_args *a;
     const batch_manifest *m;
-    batch_db *db;        /* the writer (the one process, or the MPI coordinator); NULL in a
+    batch_db *db; /* the writer (the one process, or the MPI coordinator); NULL in a
                             fitting process */
     int material;
     const int *model_of; /* the comparison's model j -> the manifest's */

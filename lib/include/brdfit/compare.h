@@ -80,25 +80,25 @@ typedef struct bf_compare_fit {
                                     errors and warnings for the outputs */
     char message[512];           /* BF_CMP_ERROR: why (a bf_error message) */
     /* Filled by bf_compare_rank (ranks 0 and marks 0 where the fit is not ranked). */
-    double error;                /* the error the fronts and the tolerance use: cv_error
+    double error;                               /* the error the fronts and the tolerance use: cv_error
                                     when ranked by CV, else the chosen metric (NaN unless
                                     ranked) */
-    int rank;                    /* by bf_compare.rank_by; 1 = best; equal values share
+    int rank;                                   /* by bf_compare.rank_by; 1 = best; equal values share
                                     the lower rank (1, 2, 2, 4) */
     int rank_bic, rank_aic, rank_aicc, rank_cv; /* by each criterion (0: not defined) */
-    int pareto_k, pareto_work;   /* 1: on the front of k (of work) against error (no other
+    int pareto_k, pareto_work;                  /* 1: on the front of k (of work) against error (no other
                                     fit is at least as good in both and better in one;
                                     duplicates both stay) */
-    int within_tolerance;        /* error <= best error * (1 + tolerance) */
+    int within_tolerance;                       /* error <= best error * (1 + tolerance) */
 } bf_compare_fit;
 
 /* Frozen (docs/api.md): an array element of bf_compare. */
 typedef struct bf_compare_material {
-    char *data;            /* the data file, as named (owned) */
+    char *data; /* the data file, as named (owned) */
     size_t samples;
     int channels;
-    bf_compare_fit *fits;  /* nmodels, in model order (owned) */
-    int best, simplest;    /* model indices from bf_compare_rank; -1: none ranked */
+    bf_compare_fit *fits; /* nmodels, in model order (owned) */
+    int best, simplest;   /* model indices from bf_compare_rank; -1: none ranked */
 } bf_compare_material;
 
 /* Per model, over the materials where it was ranked (NaN means when none). Frozen
@@ -106,7 +106,7 @@ typedef struct bf_compare_material {
 typedef struct bf_compare_summary {
     int ranked;
     double mean_rank, mean_rank_bic, mean_rank_aic, mean_error;
-    int chosen;            /* materials where it is the simplest within tolerance */
+    int chosen; /* materials where it is the simplest within tolerance */
 } bf_compare_summary;
 
 typedef struct bf_compare {
@@ -116,13 +116,13 @@ typedef struct bf_compare {
     bf_compare_summary *summary;    /* nmodels (owned), from bf_compare_rank */
     bf_compare_metric metric;
     bf_compare_rank_by rank_by;
-    int folds;                      /* of the cross-validation (0: none ran) */
-    double tolerance;               /* relative, >= 0 */
-    int interrupted;                /* 1: some fits were never run */
-    int timing;                     /* 1: the outputs carry wall times (then they differ
+    int folds;               /* of the cross-validation (0: none ran) */
+    double tolerance;        /* relative, >= 0 */
+    int interrupted;         /* 1: some fits were never run */
+    int timing;              /* 1: the outputs carry wall times (then they differ
                                        from run to run) */
-    const char *residual;           /* the fit objective's name, for the outputs (NULL: omitted) */
-    bf_fit_result **results;        /* nmaterials * nmodels, slot i * nmodels + j (owned,
+    const char *residual;    /* the fit objective's name, for the outputs (NULL: omitted) */
+    bf_fit_result **results; /* nmaterials * nmodels, slot i * nmodels + j (owned,
                                        each malloc'd and set up by bf_fit_result_init, or
                                        NULL): the fits bf_compare_run made (NULL before);
                                        a program filling a comparison itself allocates

@@ -31,10 +31,10 @@ extern "C" {
 
 typedef enum bf_status {
     BF_OK = 0,
-    BF_ERR_ARG,      /* bad argument or specification */
-    BF_ERR_IO,       /* cannot open, read or write a file */
-    BF_ERR_PARSE,    /* malformed input file */
-    BF_ERR_RANGE,    /* value outside its bounds, NaN or Inf */
+    BF_ERR_ARG,   /* bad argument or specification */
+    BF_ERR_IO,    /* cannot open, read or write a file */
+    BF_ERR_PARSE, /* malformed input file */
+    BF_ERR_RANGE, /* value outside its bounds, NaN or Inf */
     BF_ERR_NOMEM,
     BF_ERR_CANCELLED /* stopped by the caller's cancel flag (bf_options_set_cancel) before it
                         was done: nothing was made (bf_samples_load) */
@@ -51,7 +51,7 @@ typedef enum bf_status {
 /* Frozen (docs/api.md): a small value. */
 typedef struct bf_error {
     bf_status code;
-    char msg[512];   /* one line, no trailing newline, safe to print (see above) */
+    char msg[512]; /* one line, no trailing newline, safe to print (see above) */
 } bf_error;
 
 /* Sets err (if not NULL) and returns code, so callers can `return bf_fail(...)`. */

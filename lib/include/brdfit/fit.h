@@ -72,11 +72,11 @@ typedef struct bf_presolve_info {
 /* A fit. The caller sets it up with bf_fit_result_init (its size: docs/api.md), bf_fit
  * fills it, bf_fit_result_clear frees what it holds (and keeps it ready for another). */
 typedef struct bf_fit_result {
-    size_t size;            /* sizeof, set by bf_fit_result_init */
-    bf_model *model;        /* configured with the samples' channel count (owned) */
-    double *x;              /* best parameters, bf_model_nvalues entries, always finite */
-    double *stderr_;        /* standard errors (0 fixed, NaN undetermined) */
-    unsigned char *fixed;   /* 1 where fixed */
+    size_t size;          /* sizeof, set by bf_fit_result_init */
+    bf_model *model;      /* configured with the samples' channel count (owned) */
+    double *x;            /* best parameters, bf_model_nvalues entries, always finite */
+    double *stderr_;      /* standard errors (0 fixed, NaN undetermined) */
+    unsigned char *fixed; /* 1 where fixed */
     /* 1 where a free entry has no effect at the solution (its Jacobian column is zero):
      * reported once as inactive, and not counted in k (docs/criteria.md). */
     unsigned char *inactive;
@@ -84,18 +84,18 @@ typedef struct bf_fit_result {
      * silences it, or -1. */
     int *inactive_gate;
     bf_metrics metrics;
-    bf_solution solution;   /* of the best start (the solve on all samples) */
+    bf_solution solution; /* of the best start (the solve on all samples) */
     bf_presolve_info presolve;
     bf_presolve_info screen; /* the starts' solves on the screening set (samples 0: none) */
     int starts;              /* starts solved (the option starts; docs/fitting.md) */
-    int starts_at_best;     /* of them, those that ended within BF_FIT_AT_BEST of the best */
-    int candidates;         /* random candidates screened (0: none) */
-    size_t samples;         /* samples fitted (metrics.n counts samples x channels) */
-    int threads;            /* the solver's thread count, as run */
-    uint64_t seed;          /* the multistart seed, as run */
-    double seconds;         /* whole fit: start, solves, metrics */
+    int starts_at_best;      /* of them, those that ended within BF_FIT_AT_BEST of the best */
+    int candidates;          /* random candidates screened (0: none) */
+    size_t samples;          /* samples fitted (metrics.n counts samples x channels) */
+    int threads;             /* the solver's thread count, as run */
+    uint64_t seed;           /* the multistart seed, as run */
+    double seconds;          /* whole fit: start, solves, metrics */
     bf_residual residual;
-    int ok;                 /* 1: the best start's solution is usable */
+    int ok; /* 1: the best start's solution is usable */
     /* What the fit should be doubted for, one line each naming the parameter and the
      * number: a parameter on a bound, one the data do not determine (no or a huge
      * standard error) or a pair correlated beyond 0.999, an albedo above 1, a lobe

@@ -16,11 +16,11 @@ extern "C" {
 typedef enum bf_format {
     BF_FORMAT_AUTO = 0, /* by extension, then by content */
     BF_FORMAT_CSV,
-    BF_FORMAT_MERL,     /* .binary */
-    BF_FORMAT_CORNELL,  /* Cornell spectral gonioreflectometer text (.brdf) */
-    BF_FORMAT_ALTA,     /* ALTA text data (#DIM / #PARAM_IN / #PARAM_OUT header) */
-    BF_FORMAT_RGL,      /* RGL-EPFL measured material (.bsdf, Mitsuba tensor file) */
-    BF_FORMAT_MBSDF,    /* NVIDIA MDL measured BSDF (.mbsdf) */
+    BF_FORMAT_MERL,    /* .binary */
+    BF_FORMAT_CORNELL, /* Cornell spectral gonioreflectometer text (.brdf) */
+    BF_FORMAT_ALTA,    /* ALTA text data (#DIM / #PARAM_IN / #PARAM_OUT header) */
+    BF_FORMAT_RGL,     /* RGL-EPFL measured material (.bsdf, Mitsuba tensor file) */
+    BF_FORMAT_MBSDF,   /* NVIDIA MDL measured BSDF (.mbsdf) */
 } bf_format;
 
 /* Reads any supported format with the reading options of o (brdfit/options.h: format,

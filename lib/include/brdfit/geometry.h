@@ -25,11 +25,11 @@ extern "C" {
  * models return 0 for the others. */
 typedef struct bf_geometry {
     size_t n;
-    double *lx, *ly, *lz;   /* L; lz = N.L */
-    double *vx, *vy, *vz;   /* V; vz = N.V */
-    double *hx, *hy, *hz;   /* H; hz = N.H */
-    double *vh;             /* V.H = L.H */
-    double *sin2h;          /* hx^2 + hy^2: sin^2(theta_h) without cancellation */
+    double *lx, *ly, *lz; /* L; lz = N.L */
+    double *vx, *vy, *vz; /* V; vz = N.V */
+    double *hx, *hy, *hz; /* H; hz = N.H */
+    double *vh;           /* V.H = L.H */
+    double *sin2h;        /* hx^2 + hy^2: sin^2(theta_h) without cancellation */
     /* Generated geometry: the arrays are NULL and each sample is a MERL cell (not owned:
      * it must outlive the geometry). NULL for a stored geometry. */
     const int32_t *cell;
@@ -52,7 +52,10 @@ BF_API bf_status bf_geometry_from_merl_cells(size_t n, const int32_t *cell, bf_g
 BF_API void bf_geometry_free(bf_geometry *g);
 
 /* 1 when the arrays are stored (they may be read directly), 0 when generated. */
-static inline int bf_geometry_stored(const bf_geometry *g) { return g->cell == NULL; }
+static inline int bf_geometry_stored(const bf_geometry *g)
+{
+    return g->cell == NULL;
+}
 
 /* A block view: samples [i0, i0 + cnt) of g as a stored geometry of cnt samples (its
  * sample 0 is sample i0 of g). For a stored g the view points into g and cnt may be

@@ -23,9 +23,9 @@ extern "C" {
  * line and the column. */
 typedef struct bf_csv {
     size_t nrows, ncols;
-    char **names;   /* ncols header names */
-    double *data;   /* nrows * ncols, row-major */
-    size_t *line;   /* source line number of each row (for later error messages) */
+    char **names; /* ncols header names */
+    double *data; /* nrows * ncols, row-major */
+    size_t *line; /* source line number of each row (for later error messages) */
 } bf_csv;
 
 BF_API bf_status bf_csv_read(const char *path, bf_csv **out, bf_error *err);

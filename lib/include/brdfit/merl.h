@@ -25,8 +25,8 @@ extern "C" {
 #define BF_MERL_PD 180
 #define BF_MERL_CELLS (BF_MERL_TH * BF_MERL_TD * BF_MERL_PD)
 typedef struct bf_merl_origin {
-    double *raw;     /* NULL, or 3 * BF_MERL_CELLS, planes R, G, B */
-    int32_t *cell;   /* per sample */
+    double *raw;   /* NULL, or 3 * BF_MERL_CELLS, planes R, G, B */
+    int32_t *cell; /* per sample */
 } bf_merl_origin;
 
 /* MERL cell centre <-> directions in degrees (Rusinkiewicz half/difference angles,

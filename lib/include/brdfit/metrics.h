@@ -51,7 +51,7 @@ typedef struct bf_metrics {
     double rmse, rmse_cos, rmse_log, rmse_rel, max_err;
     int weighted; /* 1: computed with the samples' scene weights */
     /* Criteria (NaN from bf_metrics_compute; bf_fit fills them). */
-    size_t crit_n;   /* N: residuals with a positive weight */
+    size_t crit_n; /* N: residuals with a positive weight */
     double loglik, aic, aicc, bic;
 } bf_metrics;
 

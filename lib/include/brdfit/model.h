@@ -24,34 +24,34 @@ typedef enum bf_scale { BF_SCALE_LINEAR = 0, BF_SCALE_LOG, BF_SCALE_LOG1P } bf_s
 /* What a parameter does, declared by each family with the parameter: code that must
  * know (the data-driven start, mono=specular) asks the role, never the name. */
 typedef enum bf_param_role {
-    BF_ROLE_NONE = 0,              /* not declared (a test fails on it) */
-    BF_ROLE_DIFFUSE,               /* the diffuse colour or albedo: rho_d, base_color */
-    BF_ROLE_DIFFUSE_SHAPE,         /* shapes the diffuse term: Oren-Nayar sigma, subsurface */
-    BF_ROLE_WEIGHT,                /* a lobe's weight or colour: rho_s, sheen, clearcoat */
-    BF_ROLE_ROUGHNESS,             /* lobe width as a slope roughness, wider when larger: alpha, m */
-    BF_ROLE_PERCEPTUAL_ROUGHNESS,  /* its square is the slope roughness: Disney's roughness */
-    BF_ROLE_EXPONENT,              /* a cosine power, narrower when larger: n, nu, nv, s, gamma */
-    BF_ROLE_FALLOFF,               /* 1 / (1 + b (1 - cos)) falloff, narrower when larger: ABC's b */
-    BF_ROLE_SLOPE_SPREAD,          /* a spread of tan(theta_h), wider when larger: Brady's beta */
-    BF_ROLE_F0,                    /* Fresnel reflectance at normal incidence */
-    BF_ROLE_IOR,                   /* index of refraction of a Fresnel term */
-    BF_ROLE_EDGE_TINT,             /* a conductor's edge tint (Gulbrandsen's g) */
-    BF_ROLE_ORIENTATION,           /* an azimuth: Heidrich-Seidel's thread direction */
-    BF_ROLE_SHAPE                  /* any other shape of a lobe (Lafortune's C, ABC's c, ...) */
+    BF_ROLE_NONE = 0,             /* not declared (a test fails on it) */
+    BF_ROLE_DIFFUSE,              /* the diffuse colour or albedo: rho_d, base_color */
+    BF_ROLE_DIFFUSE_SHAPE,        /* shapes the diffuse term: Oren-Nayar sigma, subsurface */
+    BF_ROLE_WEIGHT,               /* a lobe's weight or colour: rho_s, sheen, clearcoat */
+    BF_ROLE_ROUGHNESS,            /* lobe width as a slope roughness, wider when larger: alpha, m */
+    BF_ROLE_PERCEPTUAL_ROUGHNESS, /* its square is the slope roughness: Disney's roughness */
+    BF_ROLE_EXPONENT,             /* a cosine power, narrower when larger: n, nu, nv, s, gamma */
+    BF_ROLE_FALLOFF,              /* 1 / (1 + b (1 - cos)) falloff, narrower when larger: ABC's b */
+    BF_ROLE_SLOPE_SPREAD,         /* a spread of tan(theta_h), wider when larger: Brady's beta */
+    BF_ROLE_F0,                   /* Fresnel reflectance at normal incidence */
+    BF_ROLE_IOR,                  /* index of refraction of a Fresnel term */
+    BF_ROLE_EDGE_TINT,            /* a conductor's edge tint (Gulbrandsen's g) */
+    BF_ROLE_ORIENTATION,          /* an azimuth: Heidrich-Seidel's thread direction */
+    BF_ROLE_SHAPE                 /* any other shape of a lobe (Lafortune's C, ABC's c, ...) */
 } bf_param_role;
 
 /* "diffuse", "weight", "roughness", ... ("none" for BF_ROLE_NONE). */
 BF_API const char *bf_param_role_name(bf_param_role role);
 
 typedef struct bf_param_info {
-    const char *name;   /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
-    int colour;         /* 1: one value per channel; 0: one scalar */
-    double lo, hi;      /* bounds */
+    const char *name;     /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
+    int colour;           /* 1: one value per channel; 0: one scalar */
+    double lo, hi;        /* bounds */
     int lo_open, hi_open; /* 1 where the bound itself is excluded, e.g. brady a in (0, 3] */
-    double def;         /* default value */
+    double def;           /* default value */
     bf_scale scale;
-    int lobe;           /* 0 for parameters outside the lobes, k >= 1 for lobe k */
-    int mono;           /* 1: a colour parameter that the spec option mono ties across
+    int lobe; /* 0 for parameters outside the lobes, k >= 1 for lobe k */
+    int mono; /* 1: a colour parameter that the spec option mono ties across
                            channels: one value for every channel (colour is then 0) */
     bf_param_role role;
 } bf_param_info;

@@ -60,14 +60,14 @@ BF_API bf_status bf_overrides_check(const bf_model *m, int channels, const bf_ov
 typedef struct bf_objective_options {
     size_t size; /* sizeof, set by bf_objective_options_init */
     bf_residual residual;
-    int solid_angle;       /* weight samples by the solid angle they stand for (MERL cells:
+    int solid_angle; /* weight samples by the solid angle they stand for (MERL cells:
                               from the cell's extent in theta_h, theta_d, phi_d); needs a
                               MERL origin, else BF_ERR_ARG */
-    int use_weights;       /* multiply by the samples' own weights when they have some
+    int use_weights; /* multiply by the samples' own weights when they have some
                               (a scene's weights, s->scene_weight, always apply) */
     const bf_override *overrides;
     int noverrides;
-    int threads;           /* threads for the objective's own passes (standard errors);
+    int threads; /* threads for the objective's own passes (standard errors);
                               the back ends take theirs from bf_solver_options */
 } bf_objective_options;
 

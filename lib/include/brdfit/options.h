@@ -37,10 +37,10 @@ extern "C" {
  * which, bf_option.tasks) and has its task's defaults (compare ranks by bic, select by
  * error). */
 typedef enum bf_task {
-    BF_TASK_READ = 1u << 0,    /* reading and preparing data (brdfit info, convert) */
-    BF_TASK_FIT = 1u << 1,     /* and fitting (brdfit fit, regress) */
-    BF_TASK_COMPARE = 1u << 2, /* and comparing models across materials (brdfit compare) */
-    BF_TASK_SELECT = 1u << 3,  /* and choosing the smallest model that serves (brdfit select) */
+    BF_TASK_READ = 1u << 0,     /* reading and preparing data (brdfit info, convert) */
+    BF_TASK_FIT = 1u << 1,      /* and fitting (brdfit fit, regress) */
+    BF_TASK_COMPARE = 1u << 2,  /* and comparing models across materials (brdfit compare) */
+    BF_TASK_SELECT = 1u << 3,   /* and choosing the smallest model that serves (brdfit select) */
     BF_TASK_TRADEOFF = 1u << 4, /* and measuring fitting cost against accuracy (brdfit tradeoff) */
 } bf_task;
 

@@ -31,7 +31,9 @@ BF_API bf_status bf_samples_folds(const bf_samples *s, int K, uint64_t seed, uns
 
 /* ---- What a data set holds (brdfit info) --------------------------------------- */
 /* Frozen (docs/api.md): a small value. */
-typedef struct bf_range { double lo, hi; } bf_range;
+typedef struct bf_range {
+    double lo, hi;
+} bf_range;
 
 /* What a data set holds. The caller sets it up with bf_samples_info_init (its size:
  * docs/api.md), bf_samples_describe fills it, bf_samples_info_clear frees its arrays. */
@@ -41,8 +43,8 @@ typedef struct bf_samples_info {
     int channels;
     bf_range theta_i, theta_o, theta_h, theta_d; /* degrees, over samples above the horizon */
     size_t below_horizon, nonfinite, negative, zero;
-    bf_range *value;   /* per channel, over finite values (malloc'd, C entries) */
-    double *mean;      /* per channel mean of finite values (malloc'd) */
+    bf_range *value; /* per channel, over finite values (malloc'd, C entries) */
+    double *mean;    /* per channel mean of finite values (malloc'd) */
     int weighted;
 } bf_samples_info;
 

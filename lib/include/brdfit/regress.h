@@ -45,8 +45,8 @@ typedef struct bf_tolerance {
  * null in the file (a non-finite value) reads as NaN. Frozen (docs/api.md): an array element of bf_regress_case. */
 typedef struct bf_regress_value {
     char *name;
-    int n;          /* values */
-    int array;      /* written as an array (colour parameters) */
+    int n;     /* values */
+    int array; /* written as an array (colour parameters) */
     double *v;
     int line;
 } bf_regress_value;
@@ -54,25 +54,25 @@ typedef struct bf_regress_value {
 /* Frozen (docs/api.md): an array element of bf_regress_baseline. */
 typedef struct bf_regress_case {
     char *name;
-    char *data;        /* as written */
-    char *data_path;   /* resolved against the baseline's folder */
-    char *model;       /* model spec, as for brdfit fit -m (one model) */
+    char *data;      /* as written */
+    char *data_path; /* resolved against the baseline's folder */
+    char *model;     /* model spec, as for brdfit fit -m (one model) */
     int noptions;
     char **options;    /* brdfit fit's data and fit options, as written */
     int *option_lines; /* line of each option in the baseline */
     int line, data_line, model_line, options_line;
-    int expect_ok;     /* expected.ok (default true) */
+    int expect_ok; /* expected.ok (default true) */
     int nparams, nmetrics;
     bf_regress_value *params, *metrics; /* only those the case pins */
 } bf_regress_case;
 
 typedef struct bf_regress_baseline {
-    char *path;   /* as given */
-    char *dir;    /* folder that relative paths in the file start from */
+    char *path; /* as given */
+    char *dir;  /* folder that relative paths in the file start from */
     int ncases;
     bf_regress_case *cases;
-    void *doc; /* internal (the parsed file, a cJSON tree): tolerances and order survive an update */
-    char *text;        /* the file's text (line numbers of later messages) */
+    void *doc;  /* internal (the parsed file, a cJSON tree): tolerances and order survive an update */
+    char *text; /* the file's text (line numbers of later messages) */
 } bf_regress_baseline;
 
 /* Metric names a baseline may pin ("n" and "k" are compared like the others). */
@@ -115,7 +115,7 @@ typedef struct bf_regress_outcome {
     bf_regress_status status;
     double seconds;
     int nlines;
-    char **lines;   /* FAIL: one per quantity that moved ("params.alpha: expected ...");
+    char **lines; /* FAIL: one per quantity that moved ("params.alpha: expected ...");
                        ERROR: the reason */
     int nchecked;
     char **checked; /* every compared value, passing or not (for --verbose) */

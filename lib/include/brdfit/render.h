@@ -38,11 +38,11 @@ typedef struct bf_dir {
  * zero where L or V is below the local horizon, and exactly 0 outside the disc.
  * Callers set it up with bf_sphere_options_init (size: docs/api.md). */
 typedef struct bf_sphere_options {
-    size_t size;           /* sizeof, set by bf_sphere_options_init */
-    int resolution;        /* image is resolution x resolution */
-    bf_dir view;           /* towards the camera */
-    const bf_dir *lights;  /* towards each light */
-    int nlights;           /* >= 1 */
+    size_t size;          /* sizeof, set by bf_sphere_options_init */
+    int resolution;       /* image is resolution x resolution */
+    bf_dir view;          /* towards the camera */
+    const bf_dir *lights; /* towards each light */
+    int nlights;          /* >= 1 */
 } bf_sphere_options;
 
 /* brdfit render's defaults: 256 x 256, viewed from +z (0, 0), one light at (45, 0)
@@ -111,12 +111,12 @@ static inline void bf_plot_axes_init(bf_plot_axes *a)
 typedef struct bf_slice_options {
     size_t size; /* sizeof, set by bf_slice_options_init */
     int width, height;
-    const double *incidence; /* degrees, in [0, 90) */
-    int nincidence;          /* 1 .. BF_SLICE_MAX_INCIDENCE */
-    bf_samples *samples;     /* NULL, or measured samples to overlay (same channel count
+    const double *incidence;   /* degrees, in [0, 90) */
+    int nincidence;            /* 1 .. BF_SLICE_MAX_INCIDENCE */
+    bf_samples *samples;       /* NULL, or measured samples to overlay (same channel count
                                 or any: shown as the model's channels are) */
-    double plane_tol;        /* degrees */
-    const char *title;       /* NULL: "In-plane slices of MODEL" */
+    double plane_tol;          /* degrees */
+    const char *title;         /* NULL: "In-plane slices of MODEL" */
     double log10_lo, log10_hi; /* the y axis (log10 f) when log10_lo < log10_hi */
 } bf_slice_options;
 
@@ -135,8 +135,8 @@ static inline void bf_slice_options_init(bf_slice_options *o)
 typedef struct bf_slice_range {
     size_t size; /* sizeof, set by bf_slice_range_init */
     double log10_lo, log10_hi;
-    size_t overlaid;         /* measured samples in the plane of an incidence angle */
-    size_t shown;            /* of those, drawn (dense ones: one per degree of theta_o) */
+    size_t overlaid; /* measured samples in the plane of an incidence angle */
+    size_t shown;    /* of those, drawn (dense ones: one per degree of theta_o) */
 } bf_slice_range;
 
 /* Zeroes *r and sets its size. */

@@ -19,22 +19,22 @@ extern "C" {
 #endif
 
 typedef struct bf_samples {
-    size_t n;               /* samples */
-    int channels;           /* C >= 1 */
-    char **channel_names;   /* C names: "r","g","b", "value", "550" (nm), CSV headers... */
-    double *wavelength;     /* NULL, or C wavelengths in nm for spectral data */
+    size_t n;             /* samples */
+    int channels;         /* C >= 1 */
+    char **channel_names; /* C names: "r","g","b", "value", "550" (nm), CSV headers... */
+    double *wavelength;   /* NULL, or C wavelengths in nm for spectral data */
     /* Degrees, n each: the unit users write, kept exactly as read so that a CSV written
      * back has the same text. The geometry converts once. NULL for a set addressed by
      * MERL cells (merl != NULL): read directions with bf_samples_angle_block or
      * bf_samples_direction, which work for both. */
     double *theta_i, *phi_i, *theta_o, *phi_o;
-    double *value;          /* n * C, value[i*C + c]: BRDF in 1/sr */
-    double *weight;         /* NULL (all 1), or n weights: the data's own */
-    double *scene_weight;   /* NULL (all 1), or n weights a scene gave (bf_scene_apply):
+    double *value;        /* n * C, value[i*C + c]: BRDF in 1/sr */
+    double *weight;       /* NULL (all 1), or n weights: the data's own */
+    double *scene_weight; /* NULL (all 1), or n weights a scene gave (bf_scene_apply):
                                the fit multiplies them with the data's own weights (used
                                or not), and a scene's metrics are weighted by them alone */
-    bf_merl_origin *merl;   /* NULL unless the samples are MERL table cells */
-    bf_geometry *geom;      /* NULL until bf_samples_geometry */
+    bf_merl_origin *merl; /* NULL unless the samples are MERL table cells */
+    bf_geometry *geom;    /* NULL until bf_samples_geometry */
 } bf_samples;
 
 /* n samples, C channels; names "value" (C = 1), "r,g,b" (C = 3) or "c0".. otherwise.

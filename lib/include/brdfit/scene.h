@@ -47,14 +47,14 @@ typedef struct bf_scene_dir {
 } bf_scene_dir;
 
 typedef struct bf_scene {
-    char *description;         /* NULL if none (owned) */
-    bf_range light_theta;      /* degrees, within [0, 90] */
+    char *description;    /* NULL if none (owned) */
+    bf_range light_theta; /* degrees, within [0, 90] */
     bf_range view_theta;
-    bf_scene_dir *lights;      /* nlights entries (owned), may be 0 */
+    bf_scene_dir *lights; /* nlights entries (owned), may be 0 */
     bf_scene_dir *views;
     int nlights, nviews;
-    double radius;             /* degrees, > 0 (default 5) */
-    int reciprocal;            /* default 1 */
+    double radius;  /* degrees, > 0 (default 5) */
+    int reciprocal; /* default 1 */
 } bf_scene;
 
 /* Reads a scene file; errors name the file, the line and the problem (unknown key,

@@ -30,38 +30,38 @@ extern "C" {
 
 /* Frozen (docs/api.md): an array element of bf_select. */
 typedef struct bf_select_candidate {
-    char spec[160];          /* as given */
+    char spec[160]; /* as given */
     /* From the configured model (bf_select_describe). */
-    int k;                   /* free parameters for the data's channel count */
-    int anisotropic;         /* the family is anisotropic */
-    int lobes;               /* specular lobes (1 for models without the option) */
-    int coloured_specular;   /* a colour parameter besides the diffuse colour, C > 1 */
+    int k;                 /* free parameters for the data's channel count */
+    int anisotropic;       /* the family is anisotropic */
+    int lobes;             /* specular lobes (1 for models without the option) */
+    int coloured_specular; /* a colour parameter besides the diffuse colour, C > 1 */
     /* The fit (bf_select_run). */
     bf_compare_state state;
-    bf_fit_result *result;   /* when state is OK or FAILED, else NULL (owned by the selection) */
-    double cv_error;         /* rank_by cv: the held-out error (NaN otherwise or failed) */
-    double work;             /* sample evaluations (bf_compare_work) */
-    double seconds;          /* wall time: written only with bf_select.timing */
-    char message[512];       /* ERROR: why */
+    bf_fit_result *result; /* when state is OK or FAILED, else NULL (owned by the selection) */
+    double cv_error;       /* rank_by cv: the held-out error (NaN otherwise or failed) */
+    double work;           /* sample evaluations (bf_compare_work) */
+    double seconds;        /* wall time: written only with bf_select.timing */
+    char message[512];     /* ERROR: why */
     /* bf_select_choose. */
-    double error;            /* the chosen metric, or cv_error under rank_by cv; NaN
+    double error;     /* the chosen metric, or cv_error under rank_by cv; NaN
                                 unless state is OK */
-    double criterion;        /* what rank_by orders by (error, cv_error or a criterion) */
-    int rank;                /* by criterion, 1 = lowest, ties share; 0: not ranked */
-    int within;              /* 1: error <= best (1 + tolerance) + abs_tolerance; by a
+    double criterion; /* what rank_by orders by (error, cv_error or a criterion) */
+    int rank;         /* by criterion, 1 = lowest, ties share; 0: not ranked */
+    int within;       /* 1: error <= best (1 + tolerance) + abs_tolerance; by a
                                 criterion: the lowest criterion */
 } bf_select_candidate;
 
 typedef struct bf_select {
     int n;
-    bf_select_candidate *c;  /* n (owned) */
+    bf_select_candidate *c; /* n (owned) */
     bf_compare_metric metric;
     bf_compare_rank_by rank_by; /* the options' rank (default error) */
     int folds;                  /* of rank_by cv (the options' folds) */
-    int timing;              /* 1: the JSON carries wall times */
-    double tolerance;        /* relative, >= 0 */
-    double abs_tolerance;    /* absolute, >= 0: errors this close to the best are equal */
-    int best, chosen;        /* candidate indices; -1: none fitted (best: lowest error) */
+    int timing;                 /* 1: the JSON carries wall times */
+    double tolerance;           /* relative, >= 0 */
+    double abs_tolerance;       /* absolute, >= 0: errors this close to the best are equal */
+    int best, chosen;           /* candidate indices; -1: none fitted (best: lowest error) */
 } bf_select;
 
 /* The default candidates for C channels, in order of complexity: diffuse models, one

@@ -20,9 +20,9 @@ struct bf_loss;
 
 /* Set up with bf_problem_init (its size: docs/api.md), then filled in. */
 typedef struct bf_problem {
-    size_t size; /* sizeof, set by bf_problem_init */
-    size_t nres; /* residuals */
-    int npar;    /* parameters */
+    size_t size;           /* sizeof, set by bf_problem_init */
+    size_t nres;           /* residuals */
+    int npar;              /* parameters */
     const double *lo, *hi; /* npar bounds each (-INFINITY / INFINITY where unbounded) */
     /* Residuals r0 .. r1-1 at x and, when jac is not NULL, their Jacobian rows:
      * jac[(r - r0) * npar + k] = d res[r - r0] / d x[k]. Called concurrently for
@@ -121,7 +121,7 @@ enum {
 typedef struct bf_method_info {
     const char *name; /* "lm", "dogleg", "LD_LBFGS" ... */
     bf_backend backend;
-    unsigned caps;    /* BF_METHOD_* */
+    unsigned caps; /* BF_METHOD_* */
     const char *summary;
 } bf_method_info;
 
@@ -169,12 +169,12 @@ typedef struct bf_solver_options {
     double parameter_tolerance;  /* 0: default (1e-10 relative) */
     double max_seconds;          /* 0: no limit */
     bf_loss loss;
-    int threads;                 /* 0 or 1: one thread */
-    uint64_t seed;               /* stochastic NLopt methods */
+    int threads;                   /* 0 or 1: one thread */
+    uint64_t seed;                 /* stochastic NLopt methods */
     const unsigned char *constant; /* NULL, or npar flags: hold these parameters at their start */
-    int use_constraint;          /* apply problem->constraint where the method supports it */
-    bf_progress_fn progress;     /* NULL, or called as the solve goes (above) */
-    void *progress_user;         /* its first argument */
+    int use_constraint;            /* apply problem->constraint where the method supports it */
+    bf_progress_fn progress;       /* NULL, or called as the solve goes (above) */
+    void *progress_user;           /* its first argument */
     /* NULL, or a flag that another thread (or a signal handler) sets non-zero to cancel:
      * read at every iteration or evaluation, never written by the library. */
     const bf_cancel_flag *cancel;

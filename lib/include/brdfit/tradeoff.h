@@ -50,24 +50,24 @@ BF_API bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_
 /* Frozen (docs/api.md): an array element of bf_tradeoff. */
 typedef struct bf_tradeoff_row {
     /* The setting (bf_tradeoff_new). */
-    size_t samples;      /* training samples fitted (the whole training set when all) */
-    int all;             /* 1: the whole training set, no subsampling */
-    const char *method;  /* as given (a copy the table owns) */
+    size_t samples;     /* training samples fitted (the whole training set when all) */
+    int all;            /* 1: the whole training set, no subsampling */
+    const char *method; /* as given (a copy the table owns) */
     bf_residual residual;
     int starts;
     /* Filled by bf_tradeoff_run_row. */
-    int ran;             /* 1: a fit ran (ok or not); 0: not run or an error (message) */
+    int ran; /* 1: a fit ran (ok or not); 0: not run or an error (message) */
     int ok;
-    double seconds;      /* bf_fit_result.seconds, minimum over the repeats */
-    double work;         /* sample evaluations of the fit (bf_compare_work) */
+    double seconds; /* bf_fit_result.seconds, minimum over the repeats */
+    double work;    /* sample evaluations of the fit (bf_compare_work) */
     int iterations;
     int nwarnings;
     char (*warnings)[BF_FIT_WARNING_LEN]; /* the fit's warnings (owned), or NULL */
     bf_metrics train, test;
-    char message[512];   /* why the fit could not run (a bf_error message) */
+    char message[512]; /* why the fit could not run (a bf_error message) */
     /* Filled by bf_tradeoff_rank (0 / NaN for rows not ok). */
-    double error;        /* the chosen metric on the test set */
-    int on_front;        /* Pareto front of cost against error */
+    double error; /* the chosen metric on the test set */
+    int on_front; /* Pareto front of cost against error */
     int within_tolerance;
 } bf_tradeoff_row;
 
@@ -77,7 +77,7 @@ typedef enum bf_tradeoff_cost {
 } bf_tradeoff_cost;
 
 typedef struct bf_tradeoff {
-    char *data, *model;  /* owned copies */
+    char *data, *model; /* owned copies */
     size_t total, train_n, test_n;
     int channels;
     double test_fraction;
@@ -86,7 +86,7 @@ typedef struct bf_tradeoff {
     bf_compare_metric metric;
     double tolerance;
     bf_tradeoff_cost cost;
-    int timing;            /* 1: the outputs carry wall times (always with cost seconds) */
+    int timing; /* 1: the outputs carry wall times (always with cost seconds) */
     int nrows;
     bf_tradeoff_row *rows; /* owned */
     int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */

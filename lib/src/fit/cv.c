@@ -18,7 +18,7 @@
 
 /* The held-out samples' sum of w r^2 and sum of w at the model vector x. */
 static bf_status held_out(bf_samples *test, const bf_model *m, const double *x, const bf_fit_options *o, double *wssr,
-                    double *wsum, bf_error *err)
+                          double *wsum, bf_error *err)
 {
     bf_objective_options oo = o->objective;
     if (oo.threads < 1)

@@ -45,7 +45,7 @@
 
 #define DIFFUSE_MIN_THETA_H (25.0 * M_PI / 180.0)
 #define NBINS 36
-#define BIN0 1e-3          /* upper edge of the first bin, radians */
+#define BIN0 1e-3 /* upper edge of the first bin, radians */
 #define BIN_GROWTH 1.25
 #define QUANTILE_CAP 65536 /* samples per channel for the diffuse quantile */
 #define SHAPE_CAP 8192     /* samples for the weight and width fit */
@@ -174,12 +174,18 @@ static void set_widths(const bf_model *m, double *x, double h)
  * ends at 0 on pink felt (rmse_log 0.0060 against 0.0022); at its default, glTF's
  * specular_color ends at 0 when a walter fit of the Cornell cayman paint is converted
  * (rmse_log 0.0050 against 0.00084), for 5 % better on one measured material. */
-static int is_coloured(const bf_param_info *p) { return p->colour || p->mono; }
+static int is_coloured(const bf_param_info *p)
+{
+    return p->colour || p->mono;
+}
 static int is_weight(const bf_param_info *p)
 {
     return is_coloured(p) && p->lobe >= 1 && p->role == BF_ROLE_WEIGHT;
 }
-static int is_diffuse(const bf_param_info *p) { return is_coloured(p) && p->lobe == 0; }
+static int is_diffuse(const bf_param_info *p)
+{
+    return is_coloured(p) && p->lobe == 0;
+}
 
 /* Channel c's value v of parameter p into its entry: a mono entry takes the mean. */
 static void put_channel(const bf_model *m, int i, double *x, int c, double v)
@@ -236,8 +242,8 @@ static double fit_two(const double *y, const double *f1, const double *w, size_t
  * and diffuse colours into x and returns the residual sum of squares; *over is the
  * largest fitted weight over its upper bound. xs: scratch of the model's length; f1:
  * n*C values. */
-static double fit_at_width(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y,
-                           double *xs, double *f1, double *over)
+static double fit_at_width(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y, double *xs,
+                           double *f1, double *over)
 {
     *over = 0.0;
     const int P = bf_model_nvalues(m), C = bf_model_channels(m), np = bf_model_nparams(m);
@@ -266,8 +272,7 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
                 put_channel(m, i, x, c, clamp_param(p, r > 0.0 ? r * xs[o] : 1e-3));
                 if (r * xs[o] / p->hi > *over)
                     *over = r * xs[o] / p->hi;
-            }
-            else if (is_diffuse(p))
+            } else if (is_diffuse(p))
                 put_channel(m, i, x, c, clamp_param(p, d));
         }
     }
@@ -277,8 +282,8 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
 /* Width scan: h times 2^(j/2), j = -6 .. 10 (up to 1.4 rad), the diffuse level and
  * weights fitted at each (fit_at_width); x gets the best. Returns its SSR; *over as
  * fit_at_width's there. xb, xs: scratch of the model's length. */
-static double scan_widths(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y,
-                          double *xs, double *xb, double *f1, double *over)
+static double scan_widths(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y, double *xs,
+                          double *xb, double *f1, double *over)
 {
     const int P = bf_model_nvalues(m);
     double best = HUGE_VAL, best_h = h;

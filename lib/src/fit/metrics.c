@@ -82,20 +82,20 @@ static void chunk_sums(void *ctx, size_t c)
     free(f);
 }
 
-bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
-                       bf_metrics *out, bf_error *err)
+bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, int k, int threads, bf_metrics *out,
+                             bf_error *err)
 {
     return bf_metrics_compute_weighted(m, x, s, k, threads, 0, out, err);
 }
 
 bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
-                                int weighted, bf_metrics *out, bf_error *err)
+                                      int weighted, bf_metrics *out, bf_error *err)
 {
     memset(out, 0, sizeof *out);
     const int C = s->channels;
     if (bf_model_channels(m) != C)
-        return bf_fail(err, BF_ERR_ARG, "metrics: model %s has %d channels but the samples have %d",
-                       bf_model_name(m), bf_model_channels(m), C);
+        return bf_fail(err, BF_ERR_ARG, "metrics: model %s has %d channels but the samples have %d", bf_model_name(m),
+                       bf_model_channels(m), C);
     const bf_geometry *g;
     bf_status rc = bf_samples_geometry(s, &g, err);
     if (rc != BF_OK)

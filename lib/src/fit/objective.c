@@ -45,8 +45,8 @@ static inline double residual_of(const bf_objective *o, size_t i, size_t c, doub
     return bf_obj_form_t(o->residual, f, mm, cs, o->delta[c], t, drdf);
 }
 
-int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res,
-                  double *jac, int ncols, const int *cols, const double *colscale)
+int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res, double *jac, int ncols,
+                  const int *cols, const double *colscale)
 {
     const size_t C = (size_t)o->C, P = (size_t)o->P, nres = o->n * C;
     if (r1 > nres)
@@ -339,8 +339,11 @@ static int scan_samples(bf_objective *o)
     const size_t C = (size_t)o->C, nchunks = (o->n + SCAN_CHUNK - 1) / SCAN_CHUNK;
     if ((o->residual == BF_RESIDUAL_LOG || o->residual == BF_RESIDUAL_CBRT))
         o->meas_t = bf_big_malloc(o->n * C * sizeof *o->meas_t + 1); /* NULL: computed as needed */
-    scan_job j = {o, calloc(nchunks + 1, sizeof(size_t)), calloc(nchunks + 1, sizeof(size_t)),
-                  calloc(nchunks + 1, sizeof(double)), calloc(nchunks + 1, sizeof(double)),
+    scan_job j = {o,
+                  calloc(nchunks + 1, sizeof(size_t)),
+                  calloc(nchunks + 1, sizeof(size_t)),
+                  calloc(nchunks + 1, sizeof(double)),
+                  calloc(nchunks + 1, sizeof(double)),
                   calloc(nchunks * C + 1, sizeof(double))};
     double *sum = calloc(C, sizeof *sum);
     if (!j.nvalid || !j.npos || !j.logw || !j.wsum || !j.sum || !sum) {
@@ -382,8 +385,8 @@ static void objective_options_defaults(bf_objective_options *o)
 
 BF_SIZED_INIT(bf_objective_options, objective_options_defaults)
 
-bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt,
-                           bf_objective **out, bf_error *err)
+bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_options *opt, bf_objective **out,
+                           bf_error *err)
 {
     *out = NULL;
     /* NULL keeps its meaning from before the size: a zeroed struct's (no weights). */
@@ -397,7 +400,7 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
         return bf_fail(err, BF_ERR_ARG, "objective: no model or no samples");
     if (bf_model_channels(m) != s->channels)
         return bf_fail(err, BF_ERR_ARG, "model %s has %d channel%s but the samples have %d", bf_model_name(m),
-                bf_model_channels(m), bf_model_channels(m) == 1 ? "" : "s", s->channels);
+                       bf_model_channels(m), bf_model_channels(m) == 1 ? "" : "s", s->channels);
     if ((int)opt->residual < 0 || opt->residual > BF_RESIDUAL_RELATIVE)
         return bf_fail(err, BF_ERR_ARG, "objective: unknown residual form %d", (int)opt->residual);
     if (opt->noverrides > 0 && !opt->overrides)
@@ -434,9 +437,8 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
         free(o->ws);
         o->ws = NULL;
     }
-    if (!o->ws || !o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx ||
-        !o->zlo || !o->zhi || !o->delta || !o->colour_off ||
-        !o->colour_step) {
+    if (!o->ws || !o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx || !o->zlo ||
+        !o->zhi || !o->delta || !o->colour_off || !o->colour_step) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
     }
@@ -477,9 +479,18 @@ fail:
     return rc;
 }
 
-const bf_problem *bf_objective_problem(const bf_objective *o) { return &o->problem; }
-int bf_objective_nz(const bf_objective *o) { return o->nz; }
-int bf_objective_fixed(const bf_objective *o, int k) { return k >= 0 && k < o->P && o->fixed[k]; }
+const bf_problem *bf_objective_problem(const bf_objective *o)
+{
+    return &o->problem;
+}
+int bf_objective_nz(const bf_objective *o)
+{
+    return o->nz;
+}
+int bf_objective_fixed(const bf_objective *o, int k)
+{
+    return k >= 0 && k < o->P && o->fixed[k];
+}
 
 void bf_objective_bounds(const bf_objective *o, double *lo, double *hi)
 {

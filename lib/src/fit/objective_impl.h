@@ -22,10 +22,22 @@
  * are never more than the threads that ever worked at once on the objective's passes,
  * plus their callers. Contents are not kept between uses. */
 enum {
-    BF_WS_VALS, BF_WS_GRAD, BF_WS_G, BF_WS_S, BF_WS_JC, BF_WS_COLS, BF_WS_USED, /* a chunk's blocks */
-    BF_WS_TR, BF_WS_TJ, BF_WS_COL,                                           /* a chunk's lobe sums */
-    BF_WS_MBUF,                                                              /* a chunk's metric values */
-    BF_WS_PART, BF_WS_SUM, BF_WS_FTR, BF_WS_FTJ, BF_WS_MSUM,                 /* a pass's sums */
+    BF_WS_VALS,
+    BF_WS_GRAD,
+    BF_WS_G,
+    BF_WS_S,
+    BF_WS_JC,
+    BF_WS_COLS,
+    BF_WS_USED, /* a chunk's blocks */
+    BF_WS_TR,
+    BF_WS_TJ,
+    BF_WS_COL,  /* a chunk's lobe sums */
+    BF_WS_MBUF, /* a chunk's metric values */
+    BF_WS_PART,
+    BF_WS_SUM,
+    BF_WS_FTR,
+    BF_WS_FTJ,
+    BF_WS_MSUM, /* a pass's sums */
     BF_WS_NBUF
 };
 typedef struct bf_obj_ws {
@@ -48,40 +60,40 @@ void bf_obj_ws_put(const struct bf_objective *o, bf_obj_ws *w);
 void *bf_obj_ws_buf(bf_obj_ws *w, int k, size_t bytes);
 
 struct bf_objective {
-    const bf_model *model;  /* not owned: must outlive the objective */
-    bf_samples *samples;    /* not owned, not to be changed while the objective lives */
+    const bf_model *model; /* not owned: must outlive the objective */
+    bf_samples *samples;   /* not owned, not to be changed while the objective lives */
     const bf_geometry *geom;
     bf_residual residual;
-    int threads;            /* for the objective's own passes (standard errors) */
-    size_t n;               /* samples */
-    int C, P, nz;           /* channels, model-vector length, free (internal) entries */
+    int threads;  /* for the objective's own passes (standard errors) */
+    size_t n;     /* samples */
+    int C, P, nz; /* channels, model-vector length, free (internal) entries */
 
     /* Per model-vector entry k (P each). */
-    double *lo, *hi;        /* effective bounds in model space (closed: open ends nudged in) */
+    double *lo, *hi; /* effective bounds in model space (closed: open ends nudged in) */
     unsigned char *fixed;
-    double *fixval;         /* value of fixed entries */
-    bf_scale *scale;        /* internal scale actually used (after the LOG fallback) */
-    int *zpos;              /* position in z, or -1 when fixed */
+    double *fixval;  /* value of fixed entries */
+    bf_scale *scale; /* internal scale actually used (after the LOG fallback) */
+    int *zpos;       /* position in z, or -1 when fixed */
 
     /* Per internal entry j (nz each). */
-    int *kidx;              /* model-vector entry */
-    double *zlo, *zhi;      /* internal bounds */
+    int *kidx;         /* model-vector entry */
+    double *zlo, *zhi; /* internal bounds */
 
-    double *sw;             /* NULL, or per-sample sqrt of the combined weight */
-    double *delta;          /* C floors of the relative form */
-    double *meas_t;         /* NULL, or n*C terms bf_obj_form_meas (log and cbrt forms) */
-    size_t nvalid;          /* samples above the horizon */
-    size_t npos;            /* residuals above the horizon with a positive weight (the
+    double *sw;       /* NULL, or per-sample sqrt of the combined weight */
+    double *delta;    /* C floors of the relative form */
+    double *meas_t;   /* NULL, or n*C terms bf_obj_form_meas (log and cbrt forms) */
+    size_t nvalid;    /* samples above the horizon */
+    size_t npos;      /* residuals above the horizon with a positive weight (the
                                criteria's N, metrics.h) */
-    double sum_log_w;       /* sum of ln w over those residuals (0 unweighted) */
-    double wsum;            /* sum of w over them (npos unweighted) */
+    double sum_log_w; /* sum of ln w over those residuals (0 unweighted) */
+    double wsum;      /* sum of w over them (npos unweighted) */
 
     /* Energy constraint: colour parameters summed per channel; channel c's entry is
      * colour_off + c * colour_step (step 0 for a mono parameter: one value for all). */
     int ncolour;
     int *colour_off, *colour_step;
 
-    bf_obj_ws_list *ws;     /* the passes' workspaces (see above) */
+    bf_obj_ws_list *ws; /* the passes' workspaces (see above) */
 
     bf_problem problem;
 };
@@ -140,13 +152,11 @@ static inline double bf_obj_form_meas(bf_residual form, double mm, double c)
 /* r(f) for one model value f against the measurement mm at cosine c (= N.L), and
  * *drdf = dr/df; t = bf_obj_form_meas(form, mm, c). delta is the channel's floor for the
  * relative form. Finite for every finite input, negative measurements included. */
-static inline double bf_obj_form_t(bf_residual form, double f, double mm, double c, double delta,
-                                   double t, double *drdf)
+static inline double bf_obj_form_t(bf_residual form, double f, double mm, double c, double delta, double t,
+                                   double *drdf)
 {
     switch (form) {
-    case BF_RESIDUAL_COSINE:
-        *drdf = c;
-        return (f - mm) * c;
+    case BF_RESIDUAL_COSINE: *drdf = c; return (f - mm) * c;
     case BF_RESIDUAL_LOG: {
         double u = f * c;
         *drdf = u > BF_OBJ_LOG_FLOOR ? c / (1.0 + u) : 0.0;
@@ -164,9 +174,7 @@ static inline double bf_obj_form_t(bf_residual form, double f, double mm, double
         return (f - mm) * s;
     }
     case BF_RESIDUAL_LINEAR:
-    default:
-        *drdf = 1.0;
-        return f - mm;
+    default: *drdf = 1.0; return f - mm;
     }
 }
 
@@ -194,8 +202,8 @@ bf_status bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double
  * with respect to ncols columns: jac[(r - r0) * ncols + j] = dres/dx[cols[j]] * colscale[j].
  * Used for the internal Jacobian (free entries, chain rule dx/dz) and for standard
  * errors (free entries, model space). Returns 0, or -1 when out of memory. */
-int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res,
-                  double *jac, int ncols, const int *cols, const double *colscale);
+int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res, double *jac, int ncols,
+                  const int *cols, const double *colscale);
 
 /* The fused pass of bf_problem.normal (solve.h) at the model vector x over the same
  * columns as bf_obj_eval_x: *ssq = sum g^2 of the loss-weighted residuals, jtr = J'g
@@ -208,22 +216,22 @@ int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_loss *loss,
  * model's values in the same pass, with the samples' scene weights when weighted. */
 struct bf_metric_sums;
 int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj,
-                          int weighted, struct bf_metric_sums *metrics);
+                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj, int weighted,
+                          struct bf_metric_sums *metrics);
 
 /* ---- The end of a fit (objective_stderr.c) ---------------------------------------------
  * Standard errors (as bf_objective_stderr), the metrics (as bf_metrics_compute_weighted
  * with k free parameters) and the criteria of the objective's residuals without a loss
  * (bf_metrics_criteria) at x, from one pass; corr (NULL: not wanted; nz x nz over the free
  * entries) the parameters' correlations, NaN where one of the pair is undetermined. */
-bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics,
-                 double *se, double *corr, bf_error *err);
+bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
+                       double *corr, bf_error *err);
 /* The same with the internal entries flagged in held (nz; NULL: none) left out of the
  * standard errors (NaN: entries on a bound or without effect), and those in held_corr
  * out of the correlations (entries without effect); cov (NULL: not wanted) the P x P
  * covariance of the model's entries, from the standard errors' pass (bf_fit_result's). */
 bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
-                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr,
-                            double *cov, bf_error *err);
+                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr, double *cov,
+                            bf_error *err);
 
 #endif

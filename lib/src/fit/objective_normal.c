@@ -26,32 +26,35 @@
 #include "base/parallel.h"
 
 enum { NORMAL_CHUNK = BF_METRIC_CHUNK }; /* samples: the metrics' chunks (metrics_impl.h) */
-#define BLOCK_DOUBLES 16384   /* gradient scratch of the generic path: about 128 KiB */
+#define BLOCK_DOUBLES 16384              /* gradient scratch of the generic path: about 128 KiB */
 
 typedef struct normal_job {
     const bf_objective *o;
-    const bf_model *m;      /* the model evaluated: o->model, or its untied form */
-    const double *x;        /* m's vector */
-    int P;                  /* m's vector length */
+    const bf_model *m; /* the model evaluated: o->model, or its untied form */
+    const double *x;   /* m's vector */
+    int P;             /* m's vector length */
     int lobe_path;
     bf_lobe_layout lay;
     const bf_loss *loss;
     int want_jac, want_jtj;
-    double *part;           /* per chunk: ssq, jtr (P), jtj (P^2, lower triangle) */
-    bf_metric_sums *msum;   /* NULL, or per chunk: the metrics' sums (metrics_impl.h) */
-    const double *mweight;  /* the metrics' weights (a scene's), NULL: all 1 */
+    double *part;          /* per chunk: ssq, jtr (P), jtj (P^2, lower triangle) */
+    bf_metric_sums *msum;  /* NULL, or per chunk: the metrics' sums (metrics_impl.h) */
+    const double *mweight; /* the metrics' weights (a scene's), NULL: all 1 */
     int failed;
 } normal_job;
 
-static size_t normal_part(int P) { return 1 + (size_t)P + (size_t)P * (size_t)P; }
+static size_t normal_part(int P)
+{
+    return 1 + (size_t)P + (size_t)P * (size_t)P;
+}
 
 /* The final pass keeps a chunk's model values (and, for the log form, the metrics' log
  * differences) and cosines, and sums the metrics from them in bf_metric_chunk's order,
  * so that they equal bf_metrics_compute's to the bit. */
 typedef struct metric_buf {
-    size_t i0;         /* the chunk's first sample */
-    double *f, *dl;    /* per value of the chunk; dl only for the log form */
-    double *cs;        /* per sample: cos theta_i, 0 below the horizon */
+    size_t i0;      /* the chunk's first sample */
+    double *f, *dl; /* per value of the chunk; dl only for the log form */
+    double *cs;     /* per sample: cos theta_i, 0 below the horizon */
 } metric_buf;
 
 /* One value kept (the final pass only). raw is the residual form's value: for the log
@@ -70,9 +73,9 @@ static inline __attribute__((always_inline)) void metric_value(const normal_job 
 /* The residual of measurement value[r] for model value f at cosine cs, and the scale
  * of its Jacobian row (w dr/df dg/dr), for one residual form: the form is a constant in
  * each call of the switches below, so the compiler drops its switch from the loops. */
-static inline __attribute__((always_inline)) double
-residual_at(const normal_job *j, bf_residual form, size_t r, size_t ch, double f, double w, double cs, double *s,
-            double *raw)
+static inline __attribute__((always_inline)) double residual_at(const normal_job *j, bf_residual form, size_t r,
+                                                                size_t ch, double f, double w, double cs, double *s,
+                                                                double *raw)
 {
     const bf_objective *o = j->o;
     const double mm = o->samples->value[r];
@@ -109,19 +112,20 @@ static double dot(const double *restrict a, const double *restrict b, size_t n)
  * channel (u = 0 rho_d[c], 1 .. K rho_s_k[c], then every lobe's scalars in order), and
  * one block's Jacobian columns over those entries. */
 typedef struct lobe_sums {
-    int L;        /* local entries */
-    double *tr;   /* C * L */
-    double *tj;   /* C * L * L, lower triangle */
-    double *col;  /* (L + 2) * BF_LOBE_BLOCK: the columns, then g and s of the block */
+    int L;       /* local entries */
+    double *tr;  /* C * L */
+    double *tj;  /* C * L * L, lower triangle */
+    double *col; /* (L + 2) * BF_LOBE_BLOCK: the columns, then g and s of the block */
 } lobe_sums;
 
 /* One block of one channel: the residuals (form a constant in each call of the switch
  * in lobe_channels, so the compiler drops its switch from the loop), then the block's
  * Jacobian columns, then each of the sums as one dot product over the block. */
-static inline __attribute__((always_inline)) double
-lobe_block(const normal_job *j, bf_residual form, size_t ch, const bf_geometry *gv, size_t ib, size_t cnt,
-           const double (*S)[BF_LOBE_BLOCK], const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
-           lobe_sums *ls, metric_buf *ms)
+static inline __attribute__((always_inline)) double lobe_block(const normal_job *j, bf_residual form, size_t ch,
+                                                               const bf_geometry *gv, size_t ib, size_t cnt,
+                                                               const double (*S)[BF_LOBE_BLOCK],
+                                                               const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
+                                                               lobe_sums *ls, metric_buf *ms)
 {
     const bf_objective *o = j->o;
     const bf_lobe_layout *lay = &j->lay;
@@ -183,12 +187,8 @@ static double lobe_channels(const normal_job *j, const bf_geometry *gv, size_t i
     double ssq = 0.0;
     for (size_t ch = 0; ch < (size_t)j->o->C; ch++)
         switch (j->o->residual) {
-        case BF_RESIDUAL_LOG:
-            ssq += lobe_block(j, BF_RESIDUAL_LOG, ch, gv, ib, cnt, S, dS, ls, ms);
-            break;
-        default:
-            ssq += lobe_block(j, j->o->residual, ch, gv, ib, cnt, S, dS, ls, ms);
-            break;
+        case BF_RESIDUAL_LOG: ssq += lobe_block(j, BF_RESIDUAL_LOG, ch, gv, ib, cnt, S, dS, ls, ms); break;
+        default: ssq += lobe_block(j, j->o->residual, ch, gv, ib, cnt, S, dS, ls, ms); break;
         }
     return ssq;
 }
@@ -268,9 +268,9 @@ typedef struct block_scratch {
     uint64_t *used;      /* P */
 } block_scratch;
 
-static inline __attribute__((always_inline)) double
-block_residuals(const normal_job *j, bf_residual form, const bf_geometry *gv, size_t ib, size_t cnt,
-                block_scratch *b, metric_buf *ms)
+static inline __attribute__((always_inline)) double block_residuals(const normal_job *j, bf_residual form,
+                                                                    const bf_geometry *gv, size_t ib, size_t cnt,
+                                                                    block_scratch *b, metric_buf *ms)
 {
     const bf_objective *o = j->o;
     const size_t C = (size_t)o->C;
@@ -366,12 +366,8 @@ static int generic_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i
         const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
         bf_model_eval_range(j->m, j->x, gv, 0, cnt, b.vals, b.grad);
         switch (o->residual) {
-        case BF_RESIDUAL_LOG:
-            ssq += block_residuals(j, BF_RESIDUAL_LOG, gv, ib, cnt, &b, ms);
-            break;
-        default:
-            ssq += block_residuals(j, o->residual, gv, ib, cnt, &b, ms);
-            break;
+        case BF_RESIDUAL_LOG: ssq += block_residuals(j, BF_RESIDUAL_LOG, gv, ib, cnt, &b, ms); break;
+        default: ssq += block_residuals(j, o->residual, gv, ib, cnt, &b, ms); break;
         }
         if (j->want_jac)
             block_normal(j, cnt, &b, jtr, jtj);
@@ -407,8 +403,8 @@ static void normal_chunk(void *ctx, size_t c)
         memset(mbuf.cs, 0, (i1 - i0) * sizeof *mbuf.cs);
         ms = &mbuf;
     }
-    int bad = j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms)
-                           : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
+    int bad =
+        j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms) : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
     if (!bad && ms)
         bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
                         j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
@@ -425,15 +421,15 @@ int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_loss *loss,
 }
 
 int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj,
-                          int weighted, bf_metric_sums *metrics)
+                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj, int weighted,
+                          bf_metric_sums *metrics)
 {
     const int *map;
     const bf_model *m = bf_model_untied(o->model, &map);
     const int P = bf_model_nvalues(m);
     const size_t nchunks = (o->n + NORMAL_CHUNK - 1) / NORMAL_CHUNK, ps = normal_part(P);
-    normal_job j = {.o = o, .m = m, .P = P, .loss = loss, .want_jac = jtr != NULL || jtj != NULL,
-                    .want_jtj = jtj != NULL};
+    normal_job j = {
+        .o = o, .m = m, .P = P, .loss = loss, .want_jac = jtr != NULL || jtj != NULL, .want_jtj = jtj != NULL};
     j.lobe_path = bf_model_lobe_layout(m, &j.lay);
     /* The untied vector: entry k of m is entry map[k] of the model's. */
     double xs[256], *xu = (size_t)P <= 256 ? xs : malloc((size_t)P * sizeof *xu);

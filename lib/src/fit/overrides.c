@@ -16,8 +16,7 @@
 #include "objective_impl.h"
 
 /* Parses "NAME" or "NAME[c]" from text up to '='; *rest points after the '='. */
-static bf_status parse_target(const char *what, const char *text, bf_override *out, const char **rest,
-                        bf_error *err)
+static bf_status parse_target(const char *what, const char *text, bf_override *out, const char **rest, bf_error *err)
 {
     const char *eq = strchr(text, '=');
     if (!eq)
@@ -38,8 +37,7 @@ static bf_status parse_target(const char *what, const char *text, bf_override *o
         errno = 0;
         long c = strtol(br + 1, &end, 10);
         if (end == br + 1 || *end != ']' || end + 1 != eq || errno || c < 0 || c > 1000000)
-            return bf_fail(err, BF_ERR_ARG, "%s '%s': bad channel index (expected NAME[c] with c >= 0)",
-                           what, text);
+            return bf_fail(err, BF_ERR_ARG, "%s '%s': bad channel index (expected NAME[c] with c >= 0)", what, text);
         out->channel = (int)c;
     }
     *rest = eq + 1;
@@ -97,8 +95,8 @@ bf_status bf_override_parse_bound(const char *text, bf_override *out, bf_error *
     if (!parse_number(colon + 1, colon + 1 + strlen(colon + 1), 1, &out->hi))
         return bf_fail(err, BF_ERR_ARG, "bound '%s': upper bound is not a number", text);
     if (!(out->lo < out->hi))
-        return bf_fail(err, BF_ERR_ARG, "bound '%s': lower bound %g is not below upper bound %g%s",
-                       text, out->lo, out->hi, out->lo == out->hi ? " (use fix for a single value)" : "");
+        return bf_fail(err, BF_ERR_ARG, "bound '%s': lower bound %g is not below upper bound %g%s", text, out->lo,
+                       out->hi, out->lo == out->hi ? " (use fix for a single value)" : "");
     out->fix = 0;
     return BF_OK;
 }

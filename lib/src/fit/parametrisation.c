@@ -34,7 +34,7 @@ double bf_obj_to_x(bf_scale sc, double z)
 double bf_obj_dxdz(bf_scale sc, double x)
 {
     switch (sc) {
-    case BF_SCALE_LOG: return x;        /* d e^z / dz = e^z = x */
+    case BF_SCALE_LOG: return x;         /* d e^z / dz = e^z = x */
     case BF_SCALE_LOG1P: return 1.0 + x; /* d (e^z - 1) / dz = e^z = 1 + x */
     default: return 1.0;
     }

@@ -193,7 +193,7 @@ bf_status bf_fit_result_json(const bf_fit_result *r, const char *data_path, char
 }
 
 bf_status bf_fit_write_json_list(const bf_fit_result *const *r, int n, const char *data_path, const char *out_path,
-                           bf_error *err)
+                                 bf_error *err)
 {
     cJSON *root = cJSON_CreateObject();
     if (root)

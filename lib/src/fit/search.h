@@ -26,7 +26,7 @@ typedef struct bf_search {
     bf_solution first;  /* the first start's, for the reason of a failed fit */
     uint64_t best_seed; /* the solver seed that gave it */
     int have_best;
-    int cancelled;                  /* 1: a solve was cancelled (bf_solver_options.cancel or
+    int cancelled; /* 1: a solve was cancelled (bf_solver_options.cancel or
                                        .progress); the search stopped there */
     int starts, starts_at_best, candidates;
     bf_presolve_info on_prob; /* the solves on prob, summed */

@@ -57,7 +57,7 @@ bf_status bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double
         double h0 = theta_h_edge(i), h1 = theta_h_edge(i + 1);
         double d0 = theta_d_edge(j), d1 = theta_d_edge(j + 1);
         double wh = 2.0 * sin(0.5 * (h0 + h1)) * sin(0.5 * (h1 - h0)); /* cos h0 - cos h1 */
-        double wd = 0.5 * sin(d1 + d0) * sin(d1 - d0);                   /* (sin^2 d1 - sin^2 d0)/2 */
+        double wd = 0.5 * sin(d1 + d0) * sin(d1 - d0);                 /* (sin^2 d1 - sin^2 d0)/2 */
         w[n] = wh * wd;
         if (bf_geometry_valid_at(g, n)) {
             sum += w[n];

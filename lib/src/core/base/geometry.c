@@ -18,7 +18,7 @@ static bf_status alloc_geometry(size_t n, bf_geometry **out, bf_error *err)
         free(block);
         return bf_fail(err, BF_ERR_NOMEM, "out of memory for the geometry of %zu samples", n);
     }
-    double **fields[NFIELDS] = {&g->lx, &g->ly, &g->lz, &g->vx, &g->vy, &g->vz,
+    double **fields[NFIELDS] = {&g->lx, &g->ly, &g->lz, &g->vx, &g->vy,   &g->vz,
                                 &g->hx, &g->hy, &g->hz, &g->vh, &g->sin2h};
     for (int f = 0; f < NFIELDS; f++)
         *fields[f] = block + (size_t)f * n;
@@ -51,11 +51,13 @@ static void half_vector(bf_geometry *g, size_t i)
 }
 
 /* A cosine within 1e-15 of zero is the horizon (see geometry.h). */
-static double horizon(double c) { return fabs(c) < 1e-15 ? 0.0 : c; }
+static double horizon(double c)
+{
+    return fabs(c) < 1e-15 ? 0.0 : c;
+}
 
-bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i,
-                                  const double *theta_o, const double *phi_o, bf_geometry **out,
-                                  bf_error *err)
+bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double *phi_i, const double *theta_o,
+                                  const double *phi_o, bf_geometry **out, bf_error *err)
 {
     *out = NULL;
     bf_geometry *g;
@@ -76,8 +78,7 @@ bf_status bf_geometry_from_angles(size_t n, const double *theta_i, const double 
     return BF_OK;
 }
 
-bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out,
-                                   bf_error *err)
+bf_status bf_geometry_from_vectors(size_t n, const double *L, const double *V, bf_geometry **out, bf_error *err)
 {
     *out = NULL;
     for (size_t i = 0; i < n; i++) {
@@ -131,8 +132,7 @@ void bf_geometry_free(bf_geometry *g)
 /* Points v's 11 arrays at field[f] + i0, in the struct's order. */
 static void point_fields(bf_geometry *v, double *const field[11], size_t i0)
 {
-    double **dst[11] = {&v->lx, &v->ly, &v->lz, &v->vx, &v->vy, &v->vz,
-                        &v->hx, &v->hy, &v->hz, &v->vh, &v->sin2h};
+    double **dst[11] = {&v->lx, &v->ly, &v->lz, &v->vx, &v->vy, &v->vz, &v->hx, &v->hy, &v->hz, &v->vh, &v->sin2h};
     for (int f = 0; f < 11; f++)
         *dst[f] = field[f] + i0;
 }
@@ -143,8 +143,7 @@ const bf_geometry *bf_geometry_view(const bf_geometry *g, size_t i0, size_t cnt,
     v->n = cnt;
     v->cell = NULL;
     if (bf_geometry_stored(g)) {
-        double *const field[11] = {g->lx, g->ly, g->lz, g->vx, g->vy, g->vz,
-                                   g->hx, g->hy, g->hz, g->vh, g->sin2h};
+        double *const field[11] = {g->lx, g->ly, g->lz, g->vx, g->vy, g->vz, g->hx, g->hy, g->hz, g->vh, g->sin2h};
         point_fields(v, field, i0);
         return v;
     }

@@ -28,10 +28,22 @@ static int parse_bytes(const char *s, size_t *out)
         return 0;
     unsigned shift = 0;
     switch (toupper((unsigned char)*end)) {
-    case 'K': shift = 10; end++; break;
-    case 'M': shift = 20; end++; break;
-    case 'G': shift = 30; end++; break;
-    case 'T': shift = 40; end++; break;
+    case 'K':
+        shift = 10;
+        end++;
+        break;
+    case 'M':
+        shift = 20;
+        end++;
+        break;
+    case 'G':
+        shift = 30;
+        end++;
+        break;
+    case 'T':
+        shift = 40;
+        end++;
+        break;
     default: break;
     }
     if (*end || v > (SIZE_MAX >> shift))
@@ -81,8 +93,7 @@ static void keep_least(size_t *least, unsigned long long v)
 }
 
 /* A control group's limit less what it uses, page cache it can drop not counted. */
-static void cgroup_room(const char *dir, const char *limit, const char *usage, const char *cache,
-                        size_t *least)
+static void cgroup_room(const char *dir, const char *limit, const char *usage, const char *cache, size_t *least)
 {
     char path[512];
     unsigned long long max, used, dropable = 0;

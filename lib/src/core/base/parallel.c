@@ -41,22 +41,22 @@ typedef struct job {
     size_t nchunks;
     void (*fn)(void *ctx, size_t chunk);
     void *ctx;
-    int want;           /* helpers wanted (pool lock) */
-    int active;         /* helpers working on it now (pool lock) */
-    int listed;         /* on the open list (pool lock) */
+    int want;   /* helpers wanted (pool lock) */
+    int active; /* helpers working on it now (pool lock) */
+    int listed; /* on the open list (pool lock) */
     struct job *prev, *nxt;
 } job;
 
 static struct {
     pthread_mutex_t lock;
-    pthread_cond_t work; /* a job was posted, or shutdown */
-    pthread_cond_t done; /* some job's last helper left */
-    job *head, *tail;    /* open jobs, oldest first */
-    pthread_t *tid;      /* started workers (joinable) */
+    pthread_cond_t work;         /* a job was posted, or shutdown */
+    pthread_cond_t done;         /* some job's last helper left */
+    job *head, *tail;            /* open jobs, oldest first */
+    pthread_t *tid;              /* started workers (joinable) */
     int nworkers, idle, claimed; /* claimed: idle workers signalled, not yet awake */
-    int running;         /* calls in progress that use the pool */
-    int shutdown;        /* workers to exit */
-    int closed;          /* torn down: every call runs on the calling thread */
+    int running;                 /* calls in progress that use the pool */
+    int shutdown;                /* workers to exit */
+    int closed;                  /* torn down: every call runs on the calling thread */
 } pool = {.lock = PTHREAD_MUTEX_INITIALIZER, .work = PTHREAD_COND_INITIALIZER, .done = PTHREAD_COND_INITIALIZER};
 
 static pthread_once_t pool_once = PTHREAD_ONCE_INIT;
@@ -146,8 +146,14 @@ static void pool_teardown(void)
     free(tid);
 }
 
-static void before_fork(void) { pthread_mutex_lock(&pool.lock); }
-static void after_fork_parent(void) { pthread_mutex_unlock(&pool.lock); }
+static void before_fork(void)
+{
+    pthread_mutex_lock(&pool.lock);
+}
+static void after_fork_parent(void)
+{
+    pthread_mutex_unlock(&pool.lock);
+}
 
 /* The child: no workers, no jobs (the parent's belong to threads the child does not
  * have); fresh lock and conditions (the old ones may hold waiters that do not exist). */

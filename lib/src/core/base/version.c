@@ -4,7 +4,10 @@
 
 #include "version_git.h"
 
-const char *bf_version(void) { return bf_version_full; }
+const char *bf_version(void)
+{
+    return bf_version_full;
+}
 
 void bf_version_numbers(int *major, int *minor, int *patch)
 {

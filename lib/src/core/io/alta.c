@@ -74,8 +74,18 @@ static const struct {
  * normal, vectors that are not unit length) or a research parametrisation: named in
  * the error so the user knows the file is ALTA data that needs converting first. */
 static const char *const unsupported_inputs[] = {
-    "COS_TK", "COS_TLV", "COS_TLR", "ISOTROPIC_TV_PROJ_DPHI", "STARK_2D", "NEUMANN_2D", "SCHLICK_VH",
-    "SCHLICK_TL_TK_PROJ_DPHI", "RETRO_TL_TVL_PROJ_DPHI", "STARK_3D", "NEUMANN_3D", "STEREOGRAPHIC",
+    "COS_TK",
+    "COS_TLV",
+    "COS_TLR",
+    "ISOTROPIC_TV_PROJ_DPHI",
+    "STARK_2D",
+    "NEUMANN_2D",
+    "SCHLICK_VH",
+    "SCHLICK_TL_TK_PROJ_DPHI",
+    "RETRO_TL_TVL_PROJ_DPHI",
+    "STARK_3D",
+    "NEUMANN_3D",
+    "STEREOGRAPHIC",
 };
 
 typedef enum { O_INV_STERADIAN, O_INV_STERADIAN_COSINE_FACTOR, O_RGB_COLOR, O_XYZ_COLOR } param_out;
@@ -85,7 +95,7 @@ static const char *const outputs[] = {"INV_STERADIAN", "INV_STERADIAN_COSINE_FAC
 
 typedef struct header {
     int nin, nout, vs;
-    int in, out;        /* -1 until given */
+    int in, out;                        /* -1 until given */
     size_t dim_line, in_line, out_line; /* where each was given; 0 = not yet */
 } header;
 
@@ -140,8 +150,8 @@ static void half_diff(double th, double ph, double td, double pd, double L[3], d
 }
 
 /* x clamped into [lo, hi] when within slack of it; 0 (and *msg set) beyond. */
-static int in_range(double *x, double lo, double hi, double slack, const char *what, const char *bounds,
-                    char *msg, size_t size)
+static int in_range(double *x, double lo, double hi, double slack, const char *what, const char *bounds, char *msg,
+                    size_t size)
 {
     if (*x < lo - slack || *x > hi + slack) {
         snprintf(msg, size, "%s = %.10g is outside %s", what, *x, bounds);
@@ -209,8 +219,7 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
     case P_ISOTROPIC_TL_TV_PROJ_DPHI: { /* L = (theta_l, 0), V = (|x12|, atan2(x2, x1)) */
         double tv = hypot(x[1], x[2]);
         if (!in_range(&x[0], 0.0, M_PI, ANGLE_SLACK, "theta_l", "[0, pi]", msg, size) ||
-            !in_range(&tv, 0.0, M_PI, ANGLE_SLACK, "theta_v (the length of the projected pair)", "[0, pi]",
-                      msg, size))
+            !in_range(&tv, 0.0, M_PI, ANGLE_SLACK, "theta_v (the length of the projected pair)", "[0, pi]", msg, size))
             return 0;
         ang[0] = x[0] * to_deg;
         ang[1] = 0.0;
@@ -347,11 +356,10 @@ static bf_status header_complete(const header *h, const char *path, size_t linen
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: missing #PARAM_IN header line before the data", path, lineno);
     if (!h->out_line)
         return bf_fail(err, BF_ERR_PARSE,
-                       "%s:%zu: missing #PARAM_OUT header line before the data (the unit of the values)", path,
-                       lineno);
+                       "%s:%zu: missing #PARAM_OUT header line before the data (the unit of the values)", path, lineno);
     if (h->nin != inputs[h->in].dim)
-        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: #DIM gives %d input coordinates but %s has %d", path,
-                       h->dim_line, h->nin, inputs[h->in].name, inputs[h->in].dim);
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: #DIM gives %d input coordinates but %s has %d", path, h->dim_line,
+                       h->nin, inputs[h->in].name, inputs[h->in].dim);
     if ((h->out == O_RGB_COLOR || h->out == O_XYZ_COLOR) && h->nout != 3)
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: #DIM gives %d output values but %s has 3", path, h->dim_line,
                        h->nout, outputs[h->out]);
@@ -482,8 +490,8 @@ bf_status bf_samples_read_alta_cancellable(const char *path, const bf_cancel_fla
         goto done;
     }
     if (!any_header && r.n == 0) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s: empty file (an ALTA header #DIM, #PARAM_IN, #PARAM_OUT is required)",
-                     path);
+        rc =
+            bf_fail(err, BF_ERR_PARSE, "%s: empty file (an ALTA header #DIM, #PARAM_IN, #PARAM_OUT is required)", path);
         goto done;
     }
     if (r.n == 0) {

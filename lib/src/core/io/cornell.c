@@ -82,8 +82,7 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
             goto done;
         }
         if (memchr(line, '\0', (size_t)len)) {
-            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in a Cornell text file", path,
-                         lineno);
+            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in a Cornell text file", path, lineno);
             goto done;
         }
         char *hash = strchr(line, '#');
@@ -102,8 +101,8 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
             char *end;
             double x = strtod(tok, &end);
             if (end != p) {
-                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: '%.*s' is not a number", path, lineno,
-                             tlen > 40 ? 40 : tlen, tok);
+                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: '%.*s' is not a number", path, lineno, tlen > 40 ? 40 : tlen,
+                             tok);
                 goto done;
             }
             if (!isfinite(x)) {
@@ -115,8 +114,8 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
             int where = t == 0 ? IN_COUNT : t <= nwl ? IN_WAVELENGTHS : IN_RECORDS;
             if (where == IN_COUNT) {
                 if (x < 0.0) {
-                    rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: the wavelength count %.*s is negative", path,
-                                 lineno, tlen, tok);
+                    rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: the wavelength count %.*s is negative", path, lineno, tlen,
+                                 tok);
                     goto done;
                 }
                 if (x != floor(x) || x < 1.0 || x > BF_MAX_CHANNELS) {
@@ -130,14 +129,14 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
                 record_len = 4 + nwl;
             } else if (where == IN_WAVELENGTHS) {
                 if (x <= 0.0) {
-                    rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: wavelength %zu is %.*s nm; wavelengths are positive",
-                                 path, lineno, t, tlen, tok);
+                    rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: wavelength %zu is %.*s nm; wavelengths are positive", path,
+                                 lineno, t, tlen, tok);
                     goto done;
                 }
                 for (size_t k = 1; k < t; k++)
                     if (num.v[k] == x) {
-                        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: wavelength %.*s nm appears twice", path,
-                                     lineno, tlen, tok);
+                        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: wavelength %.*s nm appears twice", path, lineno, tlen,
+                                     tok);
                         goto done;
                     }
             } else {
@@ -153,8 +152,7 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
                  * below the horizon, which is data (preprocessing drops it). */
                 if ((pos == 0 || pos == 2) && (x < -ANGLE_SLACK || x > M_PI + ANGLE_SLACK)) {
                     rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: record %zu: %s = %.*s rad is outside [0, pi]", path,
-                                 lineno, (t - 1 - nwl) / record_len + 1, pos == 0 ? "theta_i" : "theta_s",
-                                 tlen, tok);
+                                 lineno, (t - 1 - nwl) / record_len + 1, pos == 0 ? "theta_i" : "theta_s", tlen, tok);
                     goto done;
                 }
                 /* Within the slack, on the bound: a theta of 3.141593 (pi rounded up) is pi,

@@ -178,8 +178,8 @@ static bf_status read_header(bf_csv *t, const char *path, size_t lineno, char *l
         numbers += is_number(f[c], quoted[c]);
     }
     if (numbers == n) {
-        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header expected, found a row of numbers ('%s'%s)", path, lineno,
-                     f[0], n > 1 ? ", ..." : "");
+        rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: header expected, found a row of numbers ('%s'%s)", path, lineno, f[0],
+                     n > 1 ? ", ..." : "");
         goto done;
     }
     /* Sorted, so that wide headers are checked for repeats in n log n. */
@@ -249,8 +249,8 @@ bf_status bf_csv_read_cancellable(const char *path, const bf_cancel_flag *cancel
         }
         size_t bad = 0, n = split(line, fields, NULL, t->ncols, &bad);
         if (bad) {
-            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: field %zu: a quoted field must end with its quote", path,
-                         lineno, bad);
+            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: field %zu: a quoted field must end with its quote", path, lineno,
+                         bad);
             goto done;
         }
         if (n != t->ncols) {
@@ -268,13 +268,13 @@ bf_status bf_csv_read_cancellable(const char *path, const bf_cancel_flag *cancel
             errno = 0;
             double v = strtod(fields[c], &end);
             if (!*fields[c] || *end) {
-                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: column %s: '%s' is not a number", path, lineno,
-                             t->names[c], fields[c]);
+                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: column %s: '%s' is not a number", path, lineno, t->names[c],
+                             fields[c]);
                 goto done;
             }
             if (!isfinite(v)) {
-                rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: column %s: %s is not a finite number", path,
-                             lineno, t->names[c], fields[c]);
+                rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: column %s: %s is not a finite number", path, lineno,
+                             t->names[c], fields[c]);
                 goto done;
             }
             row[c] = v;

@@ -19,14 +19,20 @@ cJSON *bf_json_number(double v)
     return isfinite(v) ? cJSON_CreateRaw(bf_format_double(v, buf, sizeof buf)) : cJSON_CreateNull();
 }
 
-void bf_json_add_number(cJSON *o, const char *key, double v) { cJSON_AddItemToObject(o, key, bf_json_number(v)); }
+void bf_json_add_number(cJSON *o, const char *key, double v)
+{
+    cJSON_AddItemToObject(o, key, bf_json_number(v));
+}
 
 void bf_json_add_string(cJSON *o, const char *key, const char *s)
 {
     cJSON_AddItemToObject(o, key, s ? cJSON_CreateString(s) : cJSON_CreateNull());
 }
 
-void bf_json_add_version(cJSON *o) { bf_json_add_string(o, "brdfit_version", bf_version()); }
+void bf_json_add_version(cJSON *o)
+{
+    bf_json_add_string(o, "brdfit_version", bf_version());
+}
 
 cJSON *bf_json_params(const bf_model *m, const double *x)
 {

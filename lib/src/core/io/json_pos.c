@@ -120,6 +120,5 @@ bf_status bf_json_parse_failure(const char *text, const char *end, const char *p
     size_t line = (size_t)bf_json_line(text, pos);
     if (!k && !*pos)
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON: unexpected end of file", path, line);
-    return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON in or just before '%s'", path, line,
-                   k ? near : "?");
+    return bf_fail(err, BF_ERR_PARSE, "%s:%zu: malformed JSON in or just before '%s'", path, line, k ? near : "?");
 }

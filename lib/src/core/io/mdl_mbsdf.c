@@ -39,13 +39,13 @@
 #endif
 
 #define MAGIC "NVIDIA ARC MBSDF V1\n"
-#define MAX_LINE 4096      /* a text line longer than this is not a header */
-#define MAX_RES 65536      /* cells per axis; the MDL SDK's examples use 45 x 90 */
+#define MAX_LINE 4096 /* a text line longer than this is not a header */
+#define MAX_RES 65536 /* cells per axis; the MDL SDK's examples use 45 x 90 */
 
 typedef struct mbsdf_part {
     int present, channels;
     size_t n_theta, n_phi;
-    size_t offset;          /* byte offset of the first value */
+    size_t offset; /* byte offset of the first value */
 } mbsdf_part;
 
 /* One text line at *pos (without its '\n') into line; 0, or -1 when the file ends
@@ -68,18 +68,18 @@ static int text_line(const unsigned char *b, size_t size, size_t *pos, char *lin
 
 /* A part's header and table at *pos: sizes checked, every value finite. */
 static bf_status read_part(const char *path, const unsigned char *b, size_t size, size_t *pos, const char *what,
-                     mbsdf_part *p, bf_error *err)
+                           mbsdf_part *p, bf_error *err)
 {
     if (size - *pos < 12)
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: file ends inside the %s header (3 uint32)", path,
-                       *pos, what);
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: file ends inside the %s header (3 uint32)", path, *pos,
+                       what);
     const uint32_t type = bf_le_u32(b + *pos), nt = bf_le_u32(b + *pos + 4), np = bf_le_u32(b + *pos + 8);
     if (type > 1)
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: %s data type %lu (0 scalar, 1 RGB)", path, *pos,
-                       what, (unsigned long)type);
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: %s data type %lu (0 scalar, 1 RGB)", path, *pos, what,
+                       (unsigned long)type);
     if (nt < 1 || np < 1 || nt > MAX_RES || np > MAX_RES)
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: %s resolution %lu theta x %lu phi (1 to %d each)",
-                       path, *pos + 4, what, (unsigned long)nt, (unsigned long)np, MAX_RES);
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: %s resolution %lu theta x %lu phi (1 to %d each)", path,
+                       *pos + 4, what, (unsigned long)nt, (unsigned long)np, MAX_RES);
     p->present = 1;
     p->channels = type ? 3 : 1;
     p->n_theta = nt;
@@ -87,9 +87,11 @@ static bf_status read_part(const char *path, const unsigned char *b, size_t size
     p->offset = *pos + 12;
     const size_t count = (size_t)nt * nt * np * (size_t)p->channels; /* < 2^50: no overflow */
     if (count > (size - p->offset) / 4)
-        return bf_fail(err, BF_ERR_PARSE, "%s: truncated: the %s table of %lu x %lu x %lu x %d floats needs %zu bytes, "
-                       "%zu are left", path, what, (unsigned long)nt, (unsigned long)nt, (unsigned long)np,
-                       p->channels, count * 4, size - p->offset);
+        return bf_fail(err, BF_ERR_PARSE,
+                       "%s: truncated: the %s table of %lu x %lu x %lu x %d floats needs %zu bytes, "
+                       "%zu are left",
+                       path, what, (unsigned long)nt, (unsigned long)nt, (unsigned long)np, p->channels, count * 4,
+                       size - p->offset);
     for (size_t i = 0; i < count; i++) {
         const float v = bf_le_f32(b + p->offset + 4 * i);
         if (!isfinite(v))
@@ -106,8 +108,8 @@ static bf_status parse(const char *path, const unsigned char *b, size_t size, mb
 {
     const size_t magic_len = strlen(MAGIC);
     if (size < magic_len || memcmp(b, MAGIC, magic_len) != 0)
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset 0: not an mbsdf file (it starts with \"NVIDIA ARC MBSDF V1\")",
-                       path);
+        return bf_fail(err, BF_ERR_PARSE,
+                       "%s: byte offset 0: not an mbsdf file (it starts with \"NVIDIA ARC MBSDF V1\")", path);
     mbsdf_part parts[2] = {{0}, {0}};
     static const char *const markers[2] = {"MBSDF_DATA_REFLECTION=", "MBSDF_DATA_TRANSMISSION="};
     static const char *const what[2] = {"reflection", "transmission"};
@@ -161,7 +163,7 @@ static double value_at(const mbsdf_table *t, size_t ti, size_t to, size_t j, int
 /* The part's table as the MDL SDK evaluates it: each cell the mean of itself and its
  * reciprocal (theta_in and theta_out exchanged). */
 static bf_status symmetric_table(const char *path, const unsigned char *bytes, const mbsdf_part *p, mbsdf_table *t,
-                           bf_error *err)
+                                 bf_error *err)
 {
     t->n_theta = p->n_theta;
     t->n_phi = p->n_phi;
@@ -174,8 +176,9 @@ static bf_status symmetric_table(const char *path, const unsigned char *bytes, c
         for (size_t to = 0; to < t->n_theta; to++)
             for (size_t j = 0; j < t->n_phi; j++)
                 for (int c = 0; c < t->channels; c++)
-                    t->values[index_of(t, ti, to, j, c)] = 0.5 * ((double)bf_le_f32(raw + 4 * index_of(t, ti, to, j, c)) +
-                                                                  (double)bf_le_f32(raw + 4 * index_of(t, to, ti, j, c)));
+                    t->values[index_of(t, ti, to, j, c)] =
+                        0.5 * ((double)bf_le_f32(raw + 4 * index_of(t, ti, to, j, c)) +
+                               (double)bf_le_f32(raw + 4 * index_of(t, to, ti, j, c)));
     return BF_OK;
 }
 

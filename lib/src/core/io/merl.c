@@ -43,7 +43,10 @@ static const int32_t merl_dims[3] = {BF_MERL_TH, BF_MERL_TD, BF_MERL_PD};
 
 static int host_is_big_endian(void)
 {
-    const union { uint16_t u; unsigned char b[2]; } probe = {0x0102};
+    const union {
+        uint16_t u;
+        unsigned char b[2];
+    } probe = {0x0102};
     return probe.b[0] == 0x01;
 }
 
@@ -90,13 +93,12 @@ static bf_status read_header(FILE *fp, const char *path, bf_error *err)
         return bf_fail(err, BF_ERR_PARSE, "%s: empty file (a MERL table is %zu bytes)", path, (size_t)FILE_BYTES);
     if (got < HEADER_BYTES)
         return bf_fail(err, BF_ERR_PARSE,
-                       "%s: byte offset %zu: file ends inside the 12-byte MERL header (3 int32 dimensions)", path,
-                       got);
+                       "%s: byte offset %zu: file ends inside the 12-byte MERL header (3 int32 dimensions)", path, got);
     if (host_is_big_endian())
         swap_bytes(dims, 3, sizeof dims[0]);
     if (dims[0] != merl_dims[0] || dims[1] != merl_dims[1] || dims[2] != merl_dims[2])
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset 0: dimensions %ld x %ld x %ld, expected %d x %d x %d",
-                       path, (long)dims[0], (long)dims[1], (long)dims[2], BF_MERL_TH, BF_MERL_TD, BF_MERL_PD);
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset 0: dimensions %ld x %ld x %ld, expected %d x %d x %d", path,
+                       (long)dims[0], (long)dims[1], (long)dims[2], BF_MERL_TH, BF_MERL_TD, BF_MERL_PD);
     return BF_OK;
 }
 
@@ -144,8 +146,7 @@ static bf_status read_planes(FILE *fp, const char *path, double *dst, int interl
                 rc = bf_fail(err, BF_ERR_PARSE,
                              "%s: byte offset %zu: raw value %s in plane %s (theta_h %zu, theta_d %zu, phi_d %zu)",
                              path, HEADER_BYTES + (x0 + bad) * sizeof *buf, isnan(buf[bad]) ? "NaN" : "Inf",
-                             plane_name[p], c / (BF_MERL_PD * BF_MERL_TD), c / BF_MERL_PD % BF_MERL_TD,
-                             c % BF_MERL_PD);
+                             plane_name[p], c / (BF_MERL_PD * BF_MERL_TD), c / BF_MERL_PD % BF_MERL_TD, c % BF_MERL_PD);
                 break;
             }
             if (interleaved)
@@ -263,8 +264,7 @@ static double raw_for(double v, double scale)
 }
 
 /* Fills table (raw, host order) from the samples; 0 or an error. */
-static bf_status fill_table(const bf_samples *s, const char *path, double *table, uint32_t *owner,
-                      bf_error *err)
+static bf_status fill_table(const bf_samples *s, const char *path, double *table, uint32_t *owner, bf_error *err)
 {
     const bf_merl_origin *o = s->merl;
     const double *raw = o ? o->raw : NULL;
@@ -273,9 +273,10 @@ static bf_status fill_table(const bf_samples *s, const char *path, double *table
         if (o && (cell < 0 || cell >= BF_MERL_CELLS))
             return bf_fail(err, BF_ERR_ARG, "%s: sample %zu: MERL cell %ld is out of range", path, i + 1, (long)cell);
         if (cell < 0)
-            return bf_fail(err, BF_ERR_ARG,
-                           "%s: sample %zu (theta_i %.17g, phi_i %.17g, theta_o %.17g, phi_o %.17g) is not at a MERL cell centre",
-                           path, i + 1, s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
+            return bf_fail(
+                err, BF_ERR_ARG,
+                "%s: sample %zu (theta_i %.17g, phi_i %.17g, theta_o %.17g, phi_o %.17g) is not at a MERL cell centre",
+                path, i + 1, s->theta_i[i], s->phi_i[i], s->theta_o[i], s->phi_o[i]);
         if (owner[cell])
             return bf_fail(err, BF_ERR_ARG, "%s: samples %lu and %zu are both in MERL cell %ld", path,
                            (unsigned long)owner[cell], i + 1, (long)cell);
@@ -286,8 +287,8 @@ static bf_status fill_table(const bf_samples *s, const char *path, double *table
              * into a missing sample: refuse it rather than change the data. */
             if (!isfinite(v) || v < 0.0)
                 return bf_fail(err, BF_ERR_RANGE,
-                               "%s: sample %zu, channel %s: value %g cannot be stored in a MERL table (%s)",
-                               path, i + 1, s->channel_names[p], v,
+                               "%s: sample %zu, channel %s: value %g cannot be stored in a MERL table (%s)", path,
+                               i + 1, s->channel_names[p], v,
                                isfinite(v) ? "negative values mark invalid cells" : "not finite");
             double *slot = table + (size_t)p * BF_MERL_CELLS + (size_t)cell;
             /* Unchanged values keep their raw bits: a table read and written is the same file. */
@@ -303,11 +304,10 @@ static bf_status fill_table(const bf_samples *s, const char *path, double *table
 bf_status bf_samples_write_merl(const bf_samples *s, const char *path, bf_error *err)
 {
     if (s->channels != 3)
-        return bf_fail(err, BF_ERR_ARG, "%s: a MERL table needs 3 channels (R, G, B); the samples have %d",
-                       path, s->channels);
+        return bf_fail(err, BF_ERR_ARG, "%s: a MERL table needs 3 channels (R, G, B); the samples have %d", path,
+                       s->channels);
     if (s->n > (size_t)BF_MERL_CELLS)
-        return bf_fail(err, BF_ERR_ARG, "%s: %zu samples, a MERL table holds at most %d", path, s->n,
-                       BF_MERL_CELLS);
+        return bf_fail(err, BF_ERR_ARG, "%s: %zu samples, a MERL table holds at most %d", path, s->n, BF_MERL_CELLS);
     double *table = malloc(TABLE_DOUBLES * sizeof *table);
     uint32_t *owner = calloc(BF_MERL_CELLS, sizeof *owner); /* sample number + 1 per cell */
     if (!table || !owner) {

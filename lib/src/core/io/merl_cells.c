@@ -10,8 +10,14 @@ double bf_merl_centre_theta_h(int i)
     double u = (i + 0.5) / BF_MERL_TH;
     return u * u * (M_PI / 2);
 }
-double bf_merl_centre_theta_d(int j) { return (j + 0.5) / BF_MERL_TD * (M_PI / 2); }
-double bf_merl_centre_phi_d(int k) { return (k + 0.5) / BF_MERL_PD * M_PI; }
+double bf_merl_centre_theta_d(int j)
+{
+    return (j + 0.5) / BF_MERL_TD * (M_PI / 2);
+}
+double bf_merl_centre_phi_d(int k)
+{
+    return (k + 0.5) / BF_MERL_PD * M_PI;
+}
 
 static bf_merl_trig trig;
 static pthread_once_t trig_once = PTHREAD_ONCE_INIT;
@@ -38,8 +44,8 @@ const bf_merl_trig *bf_merl_trig_get(void)
     return &trig;
 }
 
-void bf_merl_cell_vectors(const bf_merl_trig *t, int32_t cell, double L[3], double V[3], double H[3],
-                          double *vh, double *sin2h)
+void bf_merl_cell_vectors(const bf_merl_trig *t, int32_t cell, double L[3], double V[3], double H[3], double *vh,
+                          double *sin2h)
 {
     int i, j, k;
     bf_merl_cell_split(cell, &i, &j, &k);
@@ -54,8 +60,7 @@ void bf_merl_cell_vectors(const bf_merl_trig *t, int32_t cell, double L[3], doub
 /* Directions in degrees from the centre's sines and cosines. theta by atan2 rather than
  * acos keeps full precision near the pole; phi_i lies in (0, 180) and phi_o in
  * (180, 360) because phi_d is in (0, pi). */
-void bf_merl_cell_angles(const bf_merl_trig *t, int32_t cell, double *ti, double *pi_, double *to,
-                         double *po)
+void bf_merl_cell_angles(const bf_merl_trig *t, int32_t cell, double *ti, double *pi_, double *to, double *po)
 {
     int i, j, k;
     bf_merl_cell_split(cell, &i, &j, &k);
@@ -70,8 +75,7 @@ void bf_merl_cell_angles(const bf_merl_trig *t, int32_t cell, double *ti, double
     *po = (atan2(-dy, vx) + 2 * M_PI) * r2d;
 }
 
-void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o,
-                             double *phi_o)
+void bf_merl_cell_directions(int32_t cell, double *theta_i, double *phi_i, double *theta_o, double *phi_o)
 {
     bf_merl_cell_angles(bf_merl_trig_get(), cell, theta_i, phi_i, theta_o, phi_o);
 }

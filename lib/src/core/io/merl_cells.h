@@ -58,12 +58,12 @@ static inline void bf_merl_centre_lv(double sth, double cth, double std_, double
 
 /* The unit vectors of a cell centre in the local frame (N = +z): L, V, H, and V.H and
  * sin^2 theta_h without cancellation (bf_merl_centre_lv). */
-void bf_merl_cell_vectors(const bf_merl_trig *t, int32_t cell, double L[3], double V[3], double H[3],
-                          double *vh, double *sin2h);
+void bf_merl_cell_vectors(const bf_merl_trig *t, int32_t cell, double L[3], double V[3], double H[3], double *vh,
+                          double *sin2h);
 
 /* The directions of a cell centre in degrees: phi_i in (0, 180), phi_o in (180, 360).
  * The same bits as bf_merl_cell_directions. */
-void bf_merl_cell_angles(const bf_merl_trig *t, int32_t cell, double *theta_i, double *phi_i,
-                         double *theta_o, double *phi_o);
+void bf_merl_cell_angles(const bf_merl_trig *t, int32_t cell, double *theta_i, double *phi_i, double *theta_o,
+                         double *phi_o);
 
 #endif

@@ -124,8 +124,9 @@ bf_status bf_outfile_open(bf_outfile *o, const char *path, bf_error *err)
     out_target_clear(&t);
     if (fd < 0) {
         reset(o);
-        return bf_fail(err, BF_ERR_IO, direct ? "%s: cannot open: %s" : "%s: cannot create a temporary file beside it: %s",
-                       path, strerror(e));
+        return bf_fail(err, BF_ERR_IO,
+                       direct ? "%s: cannot open: %s" : "%s: cannot create a temporary file beside it: %s", path,
+                       strerror(e));
     }
     o->sink->fd = fd;
     static const cookie_io_functions_t io = {.write = sink_write, .close = sink_close};

@@ -55,7 +55,7 @@ static file_id output_id(const out_target *t)
 }
 
 bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path_use *outputs, int noutputs,
-                     bf_error *err)
+                           bf_error *err)
 {
     /* Usage first: standard input read twice, names that can never be written. */
     for (int i = 0, from_stdin = -1; i < ninputs; i++)
@@ -74,8 +74,8 @@ bf_status bf_outputs_check(const bf_path_use *inputs, int ninputs, const bf_path
             return bf_fail(err, BF_ERR_ARG, "%s: the file name is empty", outputs[o].what);
         if (!strcmp(p, "-")) {
             if (to_stdout >= 0)
-                return bf_fail(err, BF_ERR_ARG, "%s - and %s - both write to standard output",
-                               outputs[to_stdout].what, outputs[o].what);
+                return bf_fail(err, BF_ERR_ARG, "%s - and %s - both write to standard output", outputs[to_stdout].what,
+                               outputs[o].what);
             to_stdout = o;
         }
     }

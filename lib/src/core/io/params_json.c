@@ -23,8 +23,8 @@ static size_t line_of_key(const char *text, const char *key)
 
 /* Builds "model:k=v,..." from the model string and the options object; every piece is
  * measured before it is copied. */
-static bf_status build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options,
-                      char *spec, size_t size, bf_error *err)
+static bf_status build_spec(const char *path, const char *text, const cJSON *model, const cJSON *options, char *spec,
+                            size_t size, bf_error *err)
 {
     if (!cJSON_IsString(model) || !*model->valuestring)
         return bf_fail(err, BF_ERR_PARSE, "%s:%zu: \"model\" must be a non-empty string", path,
@@ -54,8 +54,10 @@ static bf_status build_spec(const char *path, const char *text, const cJSON *mod
                            line_of_key(text, o->string), o->string);
         /* A comma or '=' would smuggle in another option ("fresnel": "schlick,mono=all"). */
         if (!*o->string || strpbrk(o->string, ",=") || strchr(val, ','))
-            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: option \"%s\": names and values cannot be empty or hold ','"
-                           " (names not '=' either)", path, line_of_key(text, o->string), o->string);
+            return bf_fail(err, BF_ERR_PARSE,
+                           "%s:%zu: option \"%s\": names and values cannot be empty or hold ','"
+                           " (names not '=' either)",
+                           path, line_of_key(text, o->string), o->string);
         int k = snprintf(spec + n, size - n, "%c%s=%s", first ? ':' : ',', o->string, val);
         if (k < 0 || (size_t)k >= size - n)
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: model and options too long (at most %zu characters)", path,
@@ -67,8 +69,8 @@ static bf_status build_spec(const char *path, const char *text, const cJSON *mod
 }
 
 /* Channel count: "channels" if given, else the length of the first colour array, else 1. */
-static bf_status channel_count(const char *path, const char *text, const cJSON *root, const cJSON *params,
-                         int *C, bf_error *err)
+static bf_status channel_count(const char *path, const char *text, const cJSON *root, const cJSON *params, int *C,
+                               bf_error *err)
 {
     const cJSON *ch = cJSON_GetObjectItemCaseSensitive(root, "channels");
     if (ch) {
@@ -95,20 +97,20 @@ static bf_status channel_count(const char *path, const char *text, const cJSON *
     return BF_OK;
 }
 
-static bf_status read_value(const char *path, const char *text, const cJSON *v, const char *name,
-                      double *out, bf_error *err)
+static bf_status read_value(const char *path, const char *text, const cJSON *v, const char *name, double *out,
+                            bf_error *err)
 {
     if (!cJSON_IsNumber(v))
-        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: parameter %s: expected a number", path,
-                       line_of_key(text, name), name);
+        return bf_fail(err, BF_ERR_PARSE, "%s:%zu: parameter %s: expected a number", path, line_of_key(text, name),
+                       name);
     if (!isfinite(v->valuedouble))
         return bf_fail(err, BF_ERR_RANGE, "%s:%zu: parameter %s is not finite", path, line_of_key(text, name), name);
     *out = v->valuedouble;
     return BF_OK;
 }
 
-static bf_status fill_params(const char *path, const char *text, const cJSON *params, const bf_model *m,
-                       double *x, bf_error *err)
+static bf_status fill_params(const char *path, const char *text, const cJSON *params, const bf_model *m, double *x,
+                             bf_error *err)
 {
     int C = bf_model_channels(m), rc;
     const cJSON *p;
@@ -131,8 +133,8 @@ static bf_status fill_params(const char *path, const char *text, const cJSON *pa
                            line_of_key(text, "params"), pi->name, bf_model_spec(m));
         if (pi->colour && cJSON_IsArray(v)) {
             if (cJSON_GetArraySize(v) != C)
-                return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s has %d values for %d channels",
-                               path, line_of_key(text, pi->name), pi->name, cJSON_GetArraySize(v), C);
+                return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s has %d values for %d channels", path,
+                               line_of_key(text, pi->name), pi->name, cJSON_GetArraySize(v), C);
             int c = 0;
             const cJSON *e;
             cJSON_ArrayForEach(e, v)
@@ -141,8 +143,8 @@ static bf_status fill_params(const char *path, const char *text, const cJSON *pa
                     return rc;
             }
         } else if (pi->colour && C > 1) {
-            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s needs an array of %d values",
-                           path, line_of_key(text, pi->name), pi->name, C);
+            return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s needs an array of %d values", path,
+                           line_of_key(text, pi->name), pi->name, C);
         } else if ((rc = read_value(path, text, v, pi->name, dst, err)) != BF_OK) {
             return rc;
         }

@@ -41,8 +41,8 @@ bf_status bf_read_text(const char *path, char **text, size_t *len, bf_error *err
     }
     buf[n] = '\0';
     if (strlen(buf) != n) {
-        bf_status rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: not a text file (a NUL byte)", path,
-                               line_of(buf, strlen(buf)));
+        bf_status rc =
+            bf_fail(err, BF_ERR_PARSE, "%s:%zu: not a text file (a NUL byte)", path, line_of(buf, strlen(buf)));
         free(buf);
         return rc;
     }

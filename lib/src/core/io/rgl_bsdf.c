@@ -45,8 +45,8 @@
 
 /* ---- Reading --------------------------------------------------------------------- */
 
-static const char *const dtype_names[] = {"?", "uint8", "int8", "uint16", "int16", "uint32", "int32",
-                                          "uint64", "int64", "float16", "float32", "float64"};
+static const char *const dtype_names[] = {"?",     "uint8",  "int8",  "uint16",  "int16",   "uint32",
+                                          "int32", "uint64", "int64", "float16", "float32", "float64"};
 
 /* *out: field `name`, which must have this type and number of dimensions. */
 static bf_status need(const bf_tensor_file *t, const char *name, int dtype, int ndim, const bf_tensor_field **out,
@@ -57,8 +57,8 @@ static bf_status need(const bf_tensor_file *t, const char *name, int dtype, int 
         return bf_fail(err, BF_ERR_PARSE, "%s: no field '%s' (not an RGL-EPFL material?)", t->path, name);
     if (f->dtype != dtype || f->ndim != ndim) {
         *out = NULL;
-        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' is %s with %d dimensions, expected %s with %d", t->path,
-                       name, dtype_names[f->dtype], f->ndim, dtype_names[dtype], ndim);
+        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' is %s with %d dimensions, expected %s with %d", t->path, name,
+                       dtype_names[f->dtype], f->ndim, dtype_names[dtype], ndim);
     }
     return BF_OK;
 }
@@ -68,8 +68,8 @@ static bf_status grid_ok(const bf_tensor_file *t, const bf_tensor_field *f, bf_e
 {
     const size_t ny = f->shape[f->ndim - 2], nx = f->shape[f->ndim - 1];
     if (nx < 2 || ny < 2)
-        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' has a %zu x %zu grid (at least 2 x 2)", t->path, f->name,
-                       ny, nx);
+        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' has a %zu x %zu grid (at least 2 x 2)", t->path, f->name, ny,
+                       nx);
     return BF_OK;
 }
 
@@ -168,8 +168,8 @@ static bf_status read_channels(const bf_tensor_file *t, bf_rgl_bsdf *b, const bf
         b->channels = (int)fw->count;
     }
     if (f->shape[2] != (size_t)b->channels)
-        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' has %zu channels, expected %d", t->path, f->name,
-                       f->shape[2], b->channels);
+        return bf_fail(err, BF_ERR_PARSE, "%s: field '%s' has %zu channels, expected %d", t->path, f->name, f->shape[2],
+                       b->channels);
     *out = f;
     return BF_OK;
 }

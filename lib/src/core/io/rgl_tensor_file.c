@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAGIC "tensor_file"                 /* 12 bytes with its NUL */
+#define MAGIC "tensor_file" /* 12 bytes with its NUL */
 #define HEADER_BYTES (12 + 2 + 4)
-#define MAX_FIELDS 4096                      /* RGL files have 11 */
+#define MAX_FIELDS 4096 /* RGL files have 11 */
 
 static size_t type_size(int dtype)
 {
@@ -42,8 +42,8 @@ static bf_status parse_field(const bf_tensor_file *t, size_t *pos, bf_tensor_fie
     const uint64_t offset = bf_le_u64(b + *pos + 3);
     *pos += 11;
     if (f->ndim > BF_TENSOR_MAX_DIMS)
-        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: field '%s' has %d dimensions (at most %d)", t->path,
-                       at, f->name, f->ndim, BF_TENSOR_MAX_DIMS);
+        return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: field '%s' has %d dimensions (at most %d)", t->path, at,
+                       f->name, f->ndim, BF_TENSOR_MAX_DIMS);
     const size_t width = type_size(f->dtype);
     if (!width)
         return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: field '%s' has unknown data type %d", t->path, at,
@@ -54,8 +54,8 @@ static bf_status parse_field(const bf_tensor_file *t, size_t *pos, bf_tensor_fie
     for (int d = 0; d < f->ndim; d++, *pos += 8) {
         const uint64_t e = bf_le_u64(b + *pos);
         if (e > t->size || (e && count > t->size / e))
-            return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: field '%s' is larger than the file", t->path,
-                           *pos, f->name);
+            return bf_fail(err, BF_ERR_PARSE, "%s: byte offset %zu: field '%s' is larger than the file", t->path, *pos,
+                           f->name);
         f->shape[d] = (size_t)e;
         count *= (size_t)e;
     }
@@ -69,7 +69,7 @@ static bf_status parse_field(const bf_tensor_file *t, size_t *pos, bf_tensor_fie
 }
 
 bf_status bf_tensor_file_parse(const char *path, const unsigned char *bytes, size_t size, bf_tensor_file *t,
-                         bf_error *err)
+                               bf_error *err)
 {
     memset(t, 0, sizeof *t);
     t->path = path;

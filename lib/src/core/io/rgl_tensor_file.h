@@ -18,26 +18,26 @@
 #define BF_TENSOR_MAX_DIMS 8
 
 typedef struct bf_tensor_field {
-    char name[64];                     /* longer names are kept cut (no field we read has one) */
+    char name[64]; /* longer names are kept cut (no field we read has one) */
     int dtype, ndim;
     size_t shape[BF_TENSOR_MAX_DIMS];
-    size_t count;                      /* product of the extents */
-    size_t offset;                     /* byte offset of the data in the file */
+    size_t count;  /* product of the extents */
+    size_t offset; /* byte offset of the data in the file */
 } bf_tensor_field;
 
 typedef struct bf_tensor_file {
     const char *path;
-    const unsigned char *bytes;        /* the whole file (not owned) */
+    const unsigned char *bytes; /* the whole file (not owned) */
     size_t size;
     size_t nfields;
-    bf_tensor_field *fields;           /* malloc'd */
+    bf_tensor_field *fields; /* malloc'd */
 } bf_tensor_file;
 
 /* Parses the header of a file in memory: every field's name, type and extents, its data
  * checked to lie inside the file (sizes without overflow). Errors "PATH: byte offset N:
  * problem". Free with bf_tensor_file_clear. */
 bf_status bf_tensor_file_parse(const char *path, const unsigned char *bytes, size_t size, bf_tensor_file *t,
-                         bf_error *err);
+                               bf_error *err);
 void bf_tensor_file_clear(bf_tensor_file *t);
 
 /* The field of that name, or NULL. */

@@ -11,8 +11,7 @@ static double clamp01(double x)
     return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
 }
 
-int bf_rgl_warp_init(bf_rgl_warp *w, size_t nx, size_t ny, size_t slices, double *data, int with_cdf,
-                     size_t *bad_slice)
+int bf_rgl_warp_init(bf_rgl_warp *w, size_t nx, size_t ny, size_t slices, double *data, int with_cdf, size_t *bad_slice)
 {
     w->nx = nx;
     w->ny = ny;
@@ -129,8 +128,7 @@ static double cond_at(const bf_rgl_warp *w, const bf_rgl_mix *m, size_t row, dou
     return (1.0 - ty) * mixed(w->cond, size, m, row * w->nx + i) + ty * mixed(w->cond, size, m, (row + 1) * w->nx + i);
 }
 
-static size_t find_patch(const bf_rgl_warp *w, const bf_rgl_mix *m, size_t n, cdf_at f, size_t row, double ty,
-                         double x)
+static size_t find_patch(const bf_rgl_warp *w, const bf_rgl_mix *m, size_t n, cdf_at f, size_t row, double ty, double x)
 {
     size_t lo = 0, hi = n - 2; /* the answer is in [lo, hi] */
     while (lo < hi) {

@@ -26,9 +26,9 @@ typedef struct bf_rgl_mix {
 
 typedef struct bf_rgl_warp {
     size_t nx, ny, slices;
-    double *data;   /* slices * nx * ny; normalised (integral 1 per slice) when cdfs exist */
-    double *cond;   /* NULL, or the conditional CDF of each row, per slice (unnormalised per row) */
-    double *marg;   /* NULL, or the marginal CDF of the rows, per slice (ends at 1) */
+    double *data; /* slices * nx * ny; normalised (integral 1 per slice) when cdfs exist */
+    double *cond; /* NULL, or the conditional CDF of each row, per slice (unnormalised per row) */
+    double *marg; /* NULL, or the marginal CDF of the rows, per slice (ends at 1) */
 } bf_rgl_warp;
 
 /* Takes data (slices * nx * ny, owned from then on). with_cdf: normalise each slice and

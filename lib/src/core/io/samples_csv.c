@@ -71,8 +71,8 @@ bf_status bf_samples_read_csv_cancellable(const char *path, const bf_csv_map *ma
     for (int k = 0; k < 4; k++) {
         const char *name = map->angle_cols[k] ? map->angle_cols[k] : default_angles[k];
         if ((ang[k] = bf_csv_column(t, name)) < 0) {
-            rc = bf_fail(err, BF_ERR_PARSE, "%s: missing angle column '%s' (columns are named with --angles)",
-                         path, name);
+            rc = bf_fail(err, BF_ERR_PARSE, "%s: missing angle column '%s' (columns are named with --angles)", path,
+                         name);
             goto done;
         }
     }
@@ -195,8 +195,7 @@ static void put_name(FILE *fp, const char *name)
 {
     size_t len = strlen(name);
     fputc(',', fp);
-    if (len && (isspace((unsigned char)name[0]) || isspace((unsigned char)name[len - 1])) &&
-        !strpbrk(name, ",\"\r\n"))
+    if (len && (isspace((unsigned char)name[0]) || isspace((unsigned char)name[len - 1])) && !strpbrk(name, ",\"\r\n"))
         fprintf(fp, "\"%s\"", name);
     else
         bf_csv_put_text(fp, name);

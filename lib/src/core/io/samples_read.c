@@ -79,18 +79,12 @@ bf_status bf_samples_read_with(const char *path, const bf_read_options *opt, bf_
         return bf_read_cancelled(path, err);
     }
     switch (f) {
-    case BF_FORMAT_RGL:
-        return bf_samples_read_rgl(path, grid, out, err);
-    case BF_FORMAT_MBSDF:
-        return bf_samples_read_mbsdf(path, grid, out, err);
-    case BF_FORMAT_MERL:
-        return bf_samples_read_merl_cancellable(path, opt ? opt->keep_origin : 0, cancel, out, err);
-    case BF_FORMAT_CORNELL:
-        return bf_samples_read_cornell_cancellable(path, cancel, out, err);
-    case BF_FORMAT_ALTA:
-        return bf_samples_read_alta_cancellable(path, cancel, out, err);
-    default:
-        return bf_samples_read_csv_cancellable(path, opt ? &opt->csv : NULL, cancel, out, err);
+    case BF_FORMAT_RGL: return bf_samples_read_rgl(path, grid, out, err);
+    case BF_FORMAT_MBSDF: return bf_samples_read_mbsdf(path, grid, out, err);
+    case BF_FORMAT_MERL: return bf_samples_read_merl_cancellable(path, opt ? opt->keep_origin : 0, cancel, out, err);
+    case BF_FORMAT_CORNELL: return bf_samples_read_cornell_cancellable(path, cancel, out, err);
+    case BF_FORMAT_ALTA: return bf_samples_read_alta_cancellable(path, cancel, out, err);
+    default: return bf_samples_read_csv_cancellable(path, opt ? &opt->csv : NULL, cancel, out, err);
     }
 }
 

@@ -200,8 +200,8 @@ void bf_remove_temporaries_on_signals(void)
 {
     /* The signals whose default action ends the process and that a user, the shell or a
      * resource limit sends (not the crash signals: a sanitizer handles those). */
-    static const int sigs[] = {SIGHUP,  SIGINT,  SIGQUIT,   SIGTERM, SIGPIPE, SIGALRM, SIGUSR1,
-                               SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF};
+    static const int sigs[] = {SIGHUP,  SIGINT,  SIGQUIT, SIGTERM, SIGPIPE,   SIGALRM,
+                               SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF};
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_fatal_signal;

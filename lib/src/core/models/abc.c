@@ -30,8 +30,8 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars in table order: b, c, then f0 or ior unless fresnel=none. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)k;
     const int kind = m->opt[0]; /* the only option: fresnel */

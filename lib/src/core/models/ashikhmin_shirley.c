@@ -14,8 +14,8 @@
 /* Parameter table order (both variants): rho_d, rho_s, then nu, nv (or n). */
 enum { P_RHO_D, P_RHO_S, P_NU, P_NV };
 
-static void eval_common(const bf_model *m, const double *x, const bf_geometry *g,
-                        size_t i0, size_t i1, double *values, double *grad, int iso)
+static void eval_common(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                        double *grad, int iso)
 {
     const int C = m->channels, P = m->nfree;
     const double *rho_d = x + m->offset[P_RHO_D];
@@ -84,14 +84,14 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
     }
 }
 
-static void eval_aniso(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                       size_t i1, double *values, double *grad)
+static void eval_aniso(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                       double *grad)
 {
     eval_common(m, x, g, i0, i1, values, grad, 0);
 }
 
-static void eval_iso(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                     size_t i1, double *values, double *grad)
+static void eval_iso(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                     double *grad)
 {
     eval_common(m, x, g, i0, i1, values, grad, 1);
 }

@@ -27,7 +27,6 @@
 #include "family.h"
 #include "principled.h"
 
-
 enum { P_BASE, P_METAL, P_SPEC, P_STINT, P_ROUGH, P_SHEEN, P_SHTINT, P_CC, P_CCR, P_COUNT };
 
 /* Below this roughness Cycles treats the GGX lobes as a mirror (alpha^2 <= 1e-7) that
@@ -55,8 +54,8 @@ static bf_status configure(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                 size_t i1, double *values, double *grad)
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const int oB = m->offset[P_BASE], oM = m->offset[P_METAL], oS = m->offset[P_SPEC];

@@ -27,8 +27,8 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars in table order: f0, a, beta. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)m;
     (void)k;
@@ -41,7 +41,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         if (nl > 0.0 && nv > 0.0 && vh > 0.0 && nh > 0.0) {
             double t = sqrt(s2) / nh;
             double u = t > 0.0 ? t * ib2 : 0.0; /* tan(theta_h) / beta^2; no 0 * inf */
-            double q = pow(u, a);           /* 0 at the peak (a > 0) */
+            double q = pow(u, a);               /* 0 at the peak (a > 0) */
             double E = exp(-q) / (4.0 * vh);
             double dF;
             double F = bf_schlick(vh, f0, &dF);

@@ -19,19 +19,23 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-enum { P_BASE, P_METAL, P_SUBSURF, P_SPEC, P_ROUGH, P_STINT, P_ANISO, P_SHEEN, P_SHTINT,
-       P_CC, P_CCGLOSS, P_COUNT };
+enum { P_BASE, P_METAL, P_SUBSURF, P_SPEC, P_ROUGH, P_STINT, P_ANISO, P_SHEEN, P_SHTINT, P_CC, P_CCGLOSS, P_COUNT };
 
 static bf_status configure(bf_model *m, bf_error *err)
 {
     /* Disney's artist parameters mostly shape one term each; only the base colour, the
      * roughness and the sheen and clearcoat weights have a role the start can use. */
     static const bf_param_row tab[P_COUNT] = {
-        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
-        {"subsurface", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE}, {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},
-        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"specular_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
-        {"anisotropic", 0, 0.0, 0.0, BF_ROLE_SHAPE},    {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
-        {"sheen_tint", 0, 0.0, 0.5, BF_ROLE_SHAPE},     {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},
+        {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"subsurface", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE},
+        {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},
+        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS},
+        {"specular_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"anisotropic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"sheen_tint", 0, 0.0, 0.5, BF_ROLE_SHAPE},
+        {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
         {"clearcoat_gloss", 0, 0.0, 1.0, BF_ROLE_SHAPE},
     };
     bf_status rc = bf_model_add_rows(m, tab, P_COUNT, err);
@@ -56,8 +60,7 @@ static inline double schlick_weight(double u)
 /* smithG_GGX_aniso(n, x, y, ax, ay) = 1/(n + sqrt((x ax)^2 + (y ay)^2 + n^2)), which
  * already contains the 1/(4 NL NV) of the microfacet form. *dlx, *dly: derivatives of
  * its log with respect to ax, ay. */
-static inline double smith_ggx_aniso(double n, double x, double y, double ax, double ay,
-                                     double *dlx, double *dly)
+static inline double smith_ggx_aniso(double n, double x, double y, double ax, double ay, double *dlx, double *dly)
 {
     double s = sqrt(x * x * ax * ax + y * y * ay * ay + n * n); /* >= n > 0 */
     double G = 1.0 / (n + s);
@@ -73,8 +76,8 @@ static inline double smith_ggx(double n, double alpha)
     return 1.0 / (n + sqrt(a + b - a * b));
 }
 
-static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                 size_t i1, double *values, double *grad)
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const int oB = m->offset[P_BASE];
@@ -197,8 +200,7 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
             const double cross = tinted ? -dct * B[c] * inv_lum * inv_lum : 0.0;
             for (int k = 0; k < C; k++)
                 row[oB + k] = cross * LUM_W(k);
-            row[oB + c] += (1.0 - metal) * dmix * (1.0 / M_PI) + GD1 * metal +
-                           (tinted ? dct * inv_lum : 0.0);
+            row[oB + c] += (1.0 - metal) * dmix * (1.0 / M_PI) + GD1 * metal + (tinted ? dct * inv_lum : 0.0);
 
             row[oM] = -front + GD1 * (B[c] - spec08 * tintmix);
             row[oS] = (1.0 - metal) * (1.0 / M_PI) * (ss - Fd) * B[c];

@@ -50,8 +50,7 @@ struct bf_model {
  * `s` holds the lobe's scalar values (for a lobe_chroma lobe: one channel's values of
  * its colour parameters). Invalid samples (below the horizon) may be left
  * with any finite or non-finite value: the driver overwrites them with 0. */
-typedef void (*bf_lobe_fn)(const bf_model *m, int lobe, const double *s,
-                           const bf_geometry *g, size_t i0, size_t cnt,
+typedef void (*bf_lobe_fn)(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                            double *S, double *dS);
 
 struct bf_family {
@@ -61,18 +60,18 @@ struct bf_family {
     bf_status (*configure)(bf_model *m, bf_error *err);
     /* Evaluator over samples [i0, i1), outputs relative to i0 (as bf_model_eval_range): either the
      * family's own, or bf_eval_diffuse_lobes together with a `lobe` shape. */
-    void (*eval)(const bf_model *m, const double *x, const bf_geometry *g,
-                 size_t i0, size_t i1, double *values, double *grad);
+    void (*eval)(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad);
     bf_lobe_fn lobe; /* only for bf_eval_diffuse_lobes */
 };
 
 /* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when
  * m->lobes > 1. */
-bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
-                       int lobe, bf_param_role role, bf_error *err);
+bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def,
+                             bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 /* Same, with open bounds. */
 bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
-                            int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
+                                  int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* A table of parameters the way the artist-facing families declare them: outside the
  * lobes, linear, in [lo, 1]; `colour` 1 for a colour. */
@@ -105,8 +104,8 @@ bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *
 
 /* The shared driver for families with a `lobe` function. Expects the table laid out as
  * rho_d (colour), then for each lobe k: rho_s (colour) followed by its scalars. */
-void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
-                           size_t i0, size_t i1, double *values, double *grad);
+void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                           double *values, double *grad);
 
 /* Option index helpers for configure functions. */
 int bf_model_opt(const bf_model *m, const char *key); /* chosen value index, -1 if no such option */

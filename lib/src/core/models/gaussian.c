@@ -11,8 +11,8 @@
 
 #include <math.h>
 
-static void lobe_gaussian(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
-                          size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_gaussian(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
+                          double *S, double *dS)
 {
     (void)m;
     (void)lobe;

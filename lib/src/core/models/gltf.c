@@ -63,8 +63,8 @@ static inline double f0_of(double f0i, double sc)
     return q < 1.0 ? q : 1.0;
 }
 
-static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                 size_t i1, double *values, double *grad)
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const int oB = m->offset[P_BASE], oM = m->offset[P_METAL], oR = m->offset[P_ROUGH];

@@ -19,8 +19,8 @@
 /* Powers below exp(-665) (~1e-289) are flushed to 0 with zero derivatives (see phong.c). */
 #define LOG_TINY (-665.0)
 
-static void lobe_hs(const bf_model *m, int lobe, const double *sc, const bf_geometry *g,
-                    size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_hs(const bf_model *m, int lobe, const double *sc, const bf_geometry *g, size_t i0, size_t cnt,
+                    double *S, double *dS)
 {
     (void)m;
     (void)lobe;
@@ -76,8 +76,8 @@ static bf_status configure(bf_model *m, bf_error *err)
         (rc = bf_model_add_param(m, "s", 0, 0.0, 1e6, 50.0, BF_SCALE_LOG1P, 1, BF_ROLE_EXPONENT, err)) ||
         /* phi_t is pi-periodic (T and -T give the same lobe): start mid-range so a fit
          * is never more than pi/2 away from any thread direction. */
-        (rc = bf_model_add_param_open(m, "phi_t", 0, 0.0, 0, M_PI, 1, 0.5 * M_PI,
-                                      BF_SCALE_LINEAR, 1, BF_ROLE_ORIENTATION, err)))
+        (rc = bf_model_add_param_open(m, "phi_t", 0, 0.0, 0, M_PI, 1, 0.5 * M_PI, BF_SCALE_LINEAR, 1,
+                                      BF_ROLE_ORIENTATION, err)))
         return rc;
     return BF_OK;
 }

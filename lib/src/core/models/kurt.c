@@ -21,7 +21,8 @@ static bf_status configure(bf_model *m, bf_error *err)
     bf_status rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
     for (int k = 1; rc == BF_OK && k <= m->lobes; k++) {
         if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_WEIGHT, err)) ||
-            (rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, m_default[k - 1], BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err)) ||
+            (rc =
+                 bf_model_add_param(m, "m", 0, 1e-3, 1.0, m_default[k - 1], BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err)) ||
             (rc = bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, k, BF_ROLE_F0, err)) ||
             (rc = bf_model_add_param(m, "alpha", 0, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_SHAPE, err)))
             break;
@@ -30,8 +31,8 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars of a lobe, in table order: m, f0, alpha. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)m;
     (void)k;

@@ -76,8 +76,8 @@ static inline double coef_max(const double *c, int nc, double *dmax)
  * L and V, 1 - r = (|u - V|^2 + 1 - |u|^2) / 2 and 1 - |u|^2 = sum (1 - k^2) L^2: this
  * form has no cancellation at the peak (r -> 1), where exponents up to 1e6 would
  * amplify the rounding of d. With cxy = -1, cz = 1 it is exactly phong's R.V. */
-static inline void lobe_common(int nc, const double *s, const bf_geometry *g, size_t i0,
-                               size_t cnt, double *S, double *dS)
+static inline void lobe_common(int nc, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                               double *dS)
 {
     const double n = s[nc];
     double dmax[3];
@@ -102,8 +102,7 @@ static inline void lobe_common(int nc, const double *s, const bf_geometry *g, si
         double lx = g->lx[i], ly = g->ly[i], lz = g->lz[i];
         double vx = g->vx[i], vy = g->vy[i], vz = g->vz[i];
         double dx = kx * lx - vx, dy = ky * ly - vy, dz = kz * lz - vz;
-        double delta = 0.5 * (dx * dx + dy * dy + dz * dz + ex * lx * lx + ey * ly * ly +
-                              ez * lz * lz);
+        double delta = 0.5 * (dx * dx + dy * dy + dz * dz + ex * lx * lx + ey * ly * ly + ez * lz * lz);
         double dn, dr;
         S[j] = power_lobe(delta, n, &dn, &dr);
         if (dS) {
@@ -125,16 +124,16 @@ static inline void lobe_common(int nc, const double *s, const bf_geometry *g, si
     }
 }
 
-static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
-                     size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
+                     double *S, double *dS)
 {
     (void)m;
     (void)lobe;
     lobe_common(2, s, g, i0, cnt, S, dS);
 }
 
-static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
-                       size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
+                       double *S, double *dS)
 {
     (void)m;
     (void)lobe;
@@ -173,8 +172,14 @@ static bf_status configure_common(bf_model *m, int aniso, bf_error *err)
     return BF_OK;
 }
 
-static bf_status configure_iso(bf_model *m, bf_error *err) { return configure_common(m, 0, err); }
-static bf_status configure_aniso(bf_model *m, bf_error *err) { return configure_common(m, 1, err); }
+static bf_status configure_iso(bf_model *m, bf_error *err)
+{
+    return configure_common(m, 0, err);
+}
+static bf_status configure_aniso(bf_model *m, bf_error *err)
+{
+    return configure_common(m, 1, err);
+}
 
 const bf_family bf_family_lafortune = {
     .info = {.name = "lafortune",

@@ -65,8 +65,8 @@ static void chroma_scalars(const bf_model *m, const double *x, int k, int c, dou
     }
 }
 
-void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g,
-                           size_t i0, size_t i1, double *values, double *grad)
+void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
+                           double *values, double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const int K = lobe_count(m);

@@ -17,9 +17,8 @@ enum { D_GGX = 0, D_BECKMANN, D_BLINN, D_GAUSSIAN };
 static const char *const d_values[] = {"ggx", "beckmann", "blinn", "gaussian", NULL};
 
 enum { G_SMITH_GGX = 0, G_IMPLICIT, G_CT, G_SMITH_BECKMANN, G_SMITH_SCHLICK, G_NONE };
-static const char *const g_values[] = {"smith_ggx",      "implicit",      "cook_torrance",
-                                       "smith_beckmann", "smith_schlick", "none",
-                                       NULL};
+static const char *const g_values[] = {"smith_ggx", "implicit", "cook_torrance", "smith_beckmann", "smith_schlick",
+                                       "none",      NULL};
 
 extern const bf_family bf_family_cook_torrance;
 extern const bf_family bf_family_walter;
@@ -45,8 +44,8 @@ static mf_cfg resolve(const bf_model *m)
  * s[1] = f0 or ior unless F=none; for F=conductor s[1] = r, s[2] = g of one channel
  * (the driver calls the lobe per channel). D, G and F are computed in separate passes, each with
  * its switch outside the sample loop so the loops stay branch-free and vectorise. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)k;
     const mf_cfg c = resolve(m);
@@ -190,12 +189,9 @@ static int conserving(mf_cfg c)
     switch (c.g) {
     case G_SMITH_GGX:
     case G_CT:
-    case G_SMITH_SCHLICK:
-        return 1;
-    case G_SMITH_BECKMANN:
-        return c.d == D_BECKMANN || c.d == D_GAUSSIAN;
-    default: /* G_IMPLICIT, G_NONE */
-        return 0;
+    case G_SMITH_SCHLICK: return 1;
+    case G_SMITH_BECKMANN: return c.d == D_BECKMANN || c.d == D_GAUSSIAN;
+    default: /* G_IMPLICIT, G_NONE */ return 0;
     }
 }
 
@@ -220,9 +216,7 @@ static bf_status configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
         case D_GGX:
             rc = bf_model_add_param(m, "alpha", 0, 1e-4, 1.0, r0, BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err);
             break;
-        case D_BLINN:
-            rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, r0, BF_SCALE_LOG1P, k, BF_ROLE_EXPONENT, err);
-            break;
+        case D_BLINN: rc = bf_model_add_param(m, "n", 0, 0.0, 1e6, r0, BF_SCALE_LOG1P, k, BF_ROLE_EXPONENT, err); break;
         default: /* beckmann, gaussian */
             rc = bf_model_add_param(m, "m", 0, 1e-3, 1.0, r0, BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err);
             break;
@@ -233,7 +227,10 @@ static bf_status configure_cfg(bf_model *m, mf_cfg c, bf_error *err)
     return rc;
 }
 
-static bf_status configure(bf_model *m, bf_error *err) { return configure_cfg(m, resolve(m), err); }
+static bf_status configure(bf_model *m, bf_error *err)
+{
+    return configure_cfg(m, resolve(m), err);
+}
 
 static const bf_option_info microfacet_options[] = {
     {"D", d_values}, {"G", g_values}, {"F", bf_fresnel_metal_values}, {NULL, NULL}};

@@ -24,18 +24,22 @@
 #include "family.h"
 #include "principled.h"
 
-
 enum { P_BASE, P_METAL, P_SPEC, P_STINT, P_ROUGH, P_SHEEN, P_SHTINT, P_FLAT, P_CC, P_CCG, P_COUNT };
 
 static bf_status configure(bf_model *m, bf_error *err)
 {
     /* Mitsuba's ranges ("all parameters ... between 0.0 and 1.0") and defaults. */
     static const bf_param_row tab[P_COUNT] = {
-        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},   {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
-        {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},       {"spec_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
-        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS}, {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
-        {"sheen_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},     {"flatness", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE},
-        {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},     {"clearcoat_gloss", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"base_color", 1, 0.0, 0.5, BF_ROLE_DIFFUSE},
+        {"metallic", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"specular", 0, 0.0, 0.5, BF_ROLE_SHAPE},
+        {"spec_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"roughness", 0, 0.0, 0.5, BF_ROLE_PERCEPTUAL_ROUGHNESS},
+        {"sheen", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"sheen_tint", 0, 0.0, 0.0, BF_ROLE_SHAPE},
+        {"flatness", 0, 0.0, 0.0, BF_ROLE_DIFFUSE_SHAPE},
+        {"clearcoat", 0, 0.0, 0.0, BF_ROLE_WEIGHT},
+        {"clearcoat_gloss", 0, 0.0, 0.0, BF_ROLE_SHAPE},
     };
     bf_status rc = bf_model_add_rows(m, tab, P_COUNT, err);
     if (rc != BF_OK)
@@ -44,8 +48,8 @@ static bf_status configure(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                 size_t i1, double *values, double *grad)
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const int oB = m->offset[P_BASE], oM = m->offset[P_METAL], oS = m->offset[P_SPEC];

@@ -29,8 +29,7 @@ static bf_status apply_option(bf_model *m, const char *kv, size_t len, int *seen
     const bf_family *f = m->family;
     const char *eq = memchr(kv, '=', len);
     if (!eq || eq == kv || eq == kv + len - 1)
-        return bf_fail(err, BF_ERR_ARG, "model %s: option '%.*s' is not key=value",
-                       f->info.name, (int)len, kv);
+        return bf_fail(err, BF_ERR_ARG, "model %s: option '%.*s' is not key=value", f->info.name, (int)len, kv);
     size_t klen = (size_t)(eq - kv), vlen = len - klen - 1;
     const char *val = eq + 1;
 
@@ -54,8 +53,8 @@ static bf_status apply_option(bf_model *m, const char *kv, size_t len, int *seen
         char *end;
         long k = strtol(buf, &end, 10);
         if (*end || k < 1 || k > BF_MAX_LOBES)
-            return bf_fail(err, BF_ERR_ARG, "model %s: lobes must be an integer from 1 to %d, got '%s'",
-                           f->info.name, BF_MAX_LOBES, buf);
+            return bf_fail(err, BF_ERR_ARG, "model %s: lobes must be an integer from 1 to %d, got '%s'", f->info.name,
+                           BF_MAX_LOBES, buf);
         if (seen[BF_MAX_OPTIONS]++)
             return bf_fail(err, BF_ERR_ARG, "model %s: option lobes given twice", f->info.name);
         m->lobes = (int)k;
@@ -79,8 +78,8 @@ static bf_status apply_option(bf_model *m, const char *kv, size_t len, int *seen
             strncat(allowed, v ? "|" : "", sizeof allowed - strlen(allowed) - 1);
             strncat(allowed, oi->values[v], sizeof allowed - strlen(allowed) - 1);
         }
-        return bf_fail(err, BF_ERR_ARG, "model %s: option %s has no value '%.*s' (one of %s)",
-                       f->info.name, oi->name, (int)vlen, val, allowed);
+        return bf_fail(err, BF_ERR_ARG, "model %s: option %s has no value '%.*s' (one of %s)", f->info.name, oi->name,
+                       (int)vlen, val, allowed);
     }
     return bf_fail(err, BF_ERR_ARG, "model %s has no option '%.*s'", f->info.name, (int)klen, kv);
 }
@@ -129,11 +128,10 @@ static bf_status mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
             snprintf(name, sizeof name, "%.*s", (int)(len < sizeof name ? len : sizeof name - 1), p);
             int i = bf_model_find_param(m, name);
             if (i < 0 || len >= sizeof name)
-                return bf_fail(err, BF_ERR_ARG, "model %s: mono names '%.*s', which is not one of its parameters",
-                               fam, (int)len, p);
+                return bf_fail(err, BF_ERR_ARG, "model %s: mono names '%.*s', which is not one of its parameters", fam,
+                               (int)len, p);
             if (!m->param[i].colour)
-                return bf_fail(err, BF_ERR_ARG, "model %s: mono names %s, which is not a colour parameter", fam,
-                               name);
+                return bf_fail(err, BF_ERR_ARG, "model %s: mono names %s, which is not a colour parameter", fam, name);
             tie[i] = 1;
             p += len;
             if (*p == '+' && !*++p)
@@ -258,7 +256,7 @@ void bf_model_free(bf_model *m)
 }
 
 bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
-                            int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
+                                  int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {
     if (m->nparam >= BF_MAX_PARAMS)
         return bf_fail(err, BF_ERR_ARG, "model %s: too many parameters", m->family->info.name);
@@ -291,8 +289,8 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, dou
     return BF_OK;
 }
 
-bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def, bf_scale scale,
-                       int lobe, bf_param_role role, bf_error *err)
+bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def,
+                             bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {
     return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, role, err);
 }
@@ -338,15 +336,42 @@ int bf_model_opt(const bf_model *m, const char *key)
     return -1;
 }
 
-const char *bf_model_name(const bf_model *m) { return m->family->info.name; }
-const bf_family_info *bf_model_family(const bf_model *m) { return &m->family->info; }
-const char *bf_model_spec(const bf_model *m) { return m->spec; }
-int bf_model_channels(const bf_model *m) { return m->channels; }
-int bf_model_lobes(const bf_model *m) { return m->lobes; }
-int bf_model_reciprocal(const bf_model *m) { return m->reciprocal; }
-int bf_model_energy_conserving(const bf_model *m) { return m->energy_conserving; }
-int bf_model_nparams(const bf_model *m) { return m->nparam; }
-int bf_model_nvalues(const bf_model *m) { return m->nfree; }
+const char *bf_model_name(const bf_model *m)
+{
+    return m->family->info.name;
+}
+const bf_family_info *bf_model_family(const bf_model *m)
+{
+    return &m->family->info;
+}
+const char *bf_model_spec(const bf_model *m)
+{
+    return m->spec;
+}
+int bf_model_channels(const bf_model *m)
+{
+    return m->channels;
+}
+int bf_model_lobes(const bf_model *m)
+{
+    return m->lobes;
+}
+int bf_model_reciprocal(const bf_model *m)
+{
+    return m->reciprocal;
+}
+int bf_model_energy_conserving(const bf_model *m)
+{
+    return m->energy_conserving;
+}
+int bf_model_nparams(const bf_model *m)
+{
+    return m->nparam;
+}
+int bf_model_nvalues(const bf_model *m)
+{
+    return m->nfree;
+}
 
 const char *bf_model_option(const bf_model *m, const char *key)
 {
@@ -363,8 +388,7 @@ const char *bf_model_option(const bf_model *m, const char *key)
     int no = count_options(m->family);
     for (int o = 0; o < no; o++)
         if (strcmp(m->family->info.options[o].name, key) == 0)
-            return v < count_values(&m->family->info.options[o])
-                       ? m->family->info.options[o].values[v] : NULL;
+            return v < count_values(&m->family->info.options[o]) ? m->family->info.options[o].values[v] : NULL;
     return NULL;
 }
 
@@ -423,9 +447,8 @@ bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err)
             if (!isfinite(v))
                 return bf_fail(err, BF_ERR_RANGE, "parameter %s%s is %g", p->name, where, v);
             if (v < p->lo || (p->lo_open && v == p->lo) || v > p->hi || (p->hi_open && v == p->hi))
-                return bf_fail(err, BF_ERR_RANGE, "parameter %s%s = %.17g is outside %c%.17g, %.17g%c",
-                               p->name, where, v, p->lo_open ? '(' : '[', p->lo, p->hi,
-                               p->hi_open ? ')' : ']');
+                return bf_fail(err, BF_ERR_RANGE, "parameter %s%s = %.17g is outside %c%.17g, %.17g%c", p->name, where,
+                               v, p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']');
         }
     }
     return BF_OK;
@@ -439,8 +462,8 @@ bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err)
  * (no error path here) gives NaN, which every caller treats as a failed step. */
 enum { MONO_STACK = 2048 }; /* doubles: 16 KiB each for the vector and the gradient */
 
-static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
-                      double *values, double *grad)
+static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                      double *grad)
 {
     const bf_model *in = m->inner;
     const size_t C = (size_t)m->channels, P = (size_t)m->nfree, Pi = (size_t)in->nfree;
@@ -481,8 +504,8 @@ static void eval_mono(const bf_model *m, const double *x, const bf_geometry *g, 
         free(gi);
 }
 
-static void eval_stored(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1,
-                        double *values, double *grad)
+static void eval_stored(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                        double *grad)
 {
     if (m->inner)
         eval_mono(m, x, g, i0, i1, values, grad);
@@ -490,8 +513,8 @@ static void eval_stored(const bf_model *m, const double *x, const bf_geometry *g
         m->family->eval(m, x, g, i0, i1, values, grad);
 }
 
-void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g,
-                         size_t i0, size_t i1, double *values, double *grad)
+void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                         double *grad)
 {
     if (i1 > g->n)
         i1 = g->n;
@@ -511,8 +534,7 @@ void bf_model_eval_range(const bf_model *m, const double *x, const bf_geometry *
     }
 }
 
-void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g,
-                   double *values, double *grad)
+void bf_model_eval(const bf_model *m, const double *x, const bf_geometry *g, double *values, double *grad)
 {
     bf_model_eval_range(m, x, g, 0, g->n, values, grad);
 }

@@ -30,8 +30,8 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars in table order: kappa, gamma, then f0 or ior unless fresnel=none. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)k;
     const int kind = m->opt[0]; /* the only option: fresnel */
@@ -50,8 +50,8 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
             double F = bf_fresnel(kind, vh, fp, &dF);
             double w = bf_g_ct(nh, nl, nv, vh) / (M_PI * nl * nv);
             v = D * F * w;
-            dk = p * e * F * w;            /* dD/dkappa = NH^gamma exp(-kappa NH^gamma) */
-            dg = kappa * lnh * dk;         /* dD/dgamma = kappa ln(NH) NH^gamma exp(..) */
+            dk = p * e * F * w;    /* dD/dkappa = NH^gamma exp(-kappa NH^gamma) */
+            dg = kappa * lnh * dk; /* dD/dgamma = kappa ln(NH) NH^gamma exp(..) */
             df = D * dF * w;
         }
         S[j] = v;

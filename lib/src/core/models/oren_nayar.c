@@ -15,8 +15,8 @@
 
 #include <string.h>
 
-static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0,
-                 size_t i1, double *values, double *grad)
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
 {
     const int C = m->channels, P = m->nfree;
     const double *rho_d = x + m->offset[0];

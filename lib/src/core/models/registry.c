@@ -16,7 +16,10 @@ static const bf_family *const families[] = {
 
 enum { NFAMILIES = sizeof families / sizeof families[0] };
 
-int bf_family_count(void) { return NFAMILIES; }
+int bf_family_count(void)
+{
+    return NFAMILIES;
+}
 
 const bf_family_info *bf_family_get(int i)
 {

@@ -17,9 +17,9 @@ bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *
         return bf_model_add_param(m, "ior", 0, 1.0, 3.0, 1.5, BF_SCALE_LINEAR, lobe, BF_ROLE_IOR, err);
     if (kind == BF_FRESNEL_CONDUCTOR) { /* per channel: the metal's colour is in F */
         bf_status rc = bf_model_add_param(m, "r", 1, 1e-3, 0.99, 0.9, BF_SCALE_LINEAR, lobe, BF_ROLE_F0, err);
-        return rc != BF_OK ? rc
-                           : bf_model_add_param(m, "g", 1, 1e-3, 1.0, 0.9, BF_SCALE_LINEAR, lobe,
-                                                BF_ROLE_EDGE_TINT, err);
+        return rc != BF_OK
+                   ? rc
+                   : bf_model_add_param(m, "g", 1, 1e-3, 1.0, 0.9, BF_SCALE_LINEAR, lobe, BF_ROLE_EDGE_TINT, err);
     }
     return BF_OK;
 }

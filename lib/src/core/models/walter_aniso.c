@@ -13,8 +13,7 @@
 
 /* Smith G1 for a direction w with tangent-plane components (wx, wy) and wz > 0, and its
  * derivatives with respect to ax and ay. */
-static inline double g1_aniso(double wx, double wy, double wz, double ax, double ay,
-                              double *dax, double *day)
+static inline double g1_aniso(double wx, double wy, double wz, double ax, double ay, double *dax, double *day)
 {
     double iz2 = 1.0 / (wz * wz);
     double qx = wx * wx * ax * ax * iz2, qy = wy * wy * ay * ay * iz2;
@@ -28,8 +27,8 @@ static inline double g1_aniso(double wx, double wy, double wz, double ax, double
 }
 
 /* Scalars: s[0] = alpha_x, s[1] = alpha_y, s[2] = f0. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0,
-                 size_t cnt, double *S, double *dS)
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
 {
     (void)m;
     (void)k;

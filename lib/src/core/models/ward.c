@@ -13,8 +13,8 @@
  * derivatives (t-weighted) are set to 0 rather than 0 * Inf (H on the horizon has
  * H.X or H.Y nonzero, so t = Inf there). sqrt(NL) sqrt(NV) instead of sqrt(NL NV)
  * so the product cannot underflow for tiny cosines. */
-static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
-                       size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
+                       double *S, double *dS)
 {
     (void)m;
     (void)lobe;
@@ -46,8 +46,8 @@ static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_ge
     }
 }
 
-static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g,
-                     size_t i0, size_t cnt, double *S, double *dS)
+static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
+                     double *S, double *dS)
 {
     (void)m;
     (void)lobe;

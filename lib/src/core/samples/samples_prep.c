@@ -153,8 +153,7 @@ static bf_status select_channels(bf_samples *s, const char *spec, bf_error *err)
         }
         for (int j = 0; j < k; j++)
             if (idx[j] == idx[k]) {
-                rc = bf_fail(err, BF_ERR_ARG, "channel '%s' is selected twice in '%s'",
-                             s->channel_names[idx[k]], spec);
+                rc = bf_fail(err, BF_ERR_ARG, "channel '%s' is selected twice in '%s'", s->channel_names[idx[k]], spec);
                 goto done;
             }
         p = comma ? comma + 1 : p + strlen(p);
@@ -259,8 +258,8 @@ static bf_status to_bands(bf_samples *s, bf_error *err)
             for (int c = 0; c < C; c++)
                 found |= band[c] == b;
             if (!found) {
-                rc = bf_fail(err, BF_ERR_ARG, "cannot make RGB: no channel in %s (wavelengths %g-%g nm)",
-                             band_name[b], wlo, whi);
+                rc = bf_fail(err, BF_ERR_ARG, "cannot make RGB: no channel in %s (wavelengths %g-%g nm)", band_name[b],
+                             wlo, whi);
                 goto done;
             }
         }
@@ -608,7 +607,8 @@ bf_status bf_samples_prep(bf_samples *s, const bf_prep *p, bf_prep_report *repor
         return rc;
     if (p->color != BF_COLOR_NONE && (rc = to_color(s, p->color, p->illuminant, err)) != BF_OK)
         return rc;
-    if (p->to_luminance && (rc = to_luminance(s, p->color == BF_COLOR_NONE ? p->illuminant : BF_ILLUMINANT_D65, err)) != BF_OK)
+    if (p->to_luminance &&
+        (rc = to_luminance(s, p->color == BF_COLOR_NONE ? p->illuminant : BF_ILLUMINANT_D65, err)) != BF_OK)
         return rc;
 
     const size_t C = (size_t)s->channels;

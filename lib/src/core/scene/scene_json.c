@@ -66,8 +66,8 @@ static bf_status check_keys(const ctx *c, const cJSON *obj, const char *at, cons
         for (int k = 0; names[k]; k++)
             known |= strcmp(m->string, names[k]) == 0;
         if (!known)
-            return fail_at(c, member_at(at, m->string, 1), BF_ERR_PARSE, "%sunknown key \"%s\" (expected %s)",
-                           where, m->string, list);
+            return fail_at(c, member_at(at, m->string, 1), BF_ERR_PARSE, "%sunknown key \"%s\" (expected %s)", where,
+                           m->string, list);
     }
     const char *key;
     int found = bf_json_repeated_key(obj, &key);
@@ -146,8 +146,7 @@ static bf_status parse_dirs(const ctx *c, const cJSON *arr, const char *at, cons
         char where[64], field[80];
         snprintf(where, sizeof where, "%s[%d]: ", name, k);
         if (!cJSON_IsObject(e))
-            return fail_at(c, eat, BF_ERR_PARSE, "%s[%d] must be an object like {\"theta\": 30, \"phi\": 0}", name,
-                           k);
+            return fail_at(c, eat, BF_ERR_PARSE, "%s[%d] must be an object like {\"theta\": 30, \"phi\": 0}", name, k);
         bf_status rc = check_keys(c, e, eat, where, keys, "theta, phi, weight");
         if (rc != BF_OK)
             return rc;
@@ -179,8 +178,7 @@ static bf_status parse_dirs(const ctx *c, const cJSON *arr, const char *at, cons
 
 static bf_status parse_root(const ctx *c, const cJSON *root, bf_scene *sc)
 {
-    static const char *const keys[] = {"description", "light", "view", "lights", "views", "radius", "reciprocal",
-                                       NULL};
+    static const char *const keys[] = {"description", "light", "view", "lights", "views", "radius", "reciprocal", NULL};
     const char *at = bf_json_skip_ws(c->text);
     if (!cJSON_IsObject(root))
         return fail_at(c, at, BF_ERR_PARSE, "a scene must be a JSON object");

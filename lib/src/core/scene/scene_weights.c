@@ -26,14 +26,14 @@
 enum { CHUNK = 256 };
 
 typedef struct pair {
-    double lt;          /* light polar angle (rad) */
-    double vx, vy, vz;  /* rotated view direction (unit) */
-    double vt;          /* view polar angle (rad), for the views-only case */
-    double w;           /* product of the weights */
+    double lt;         /* light polar angle (rad) */
+    double vx, vy, vz; /* rotated view direction (unit) */
+    double vt;         /* view polar angle (rad), for the views-only case */
+    double w;          /* product of the weights */
 } pair;
 
 typedef struct prepared {
-    bf_range lr, vr;    /* degrees, as the samples hold their angles */
+    bf_range lr, vr; /* degrees, as the samples hold their angles */
     pair *p;
     int np;
     /* The grid: n1 x n2 x n3 cells of width h1 (polar angle) and h2 (view x and y);
@@ -43,10 +43,10 @@ typedef struct prepared {
     double h1, h2;
     int *start;
     pair *by_cell;
-    int lights, views;  /* which lists the scene has */
-    double inv2r2;      /* 1 / (2 radius^2), radians */
-    double amax2;       /* (3 radius)^2: the kernel's support */
-    double cmax2;       /* the squared chord of that angle, to skip asin beyond it */
+    int lights, views; /* which lists the scene has */
+    double inv2r2;     /* 1 / (2 radius^2), radians */
+    double amax2;      /* (3 radius)^2: the kernel's support */
+    double cmax2;      /* the squared chord of that angle, to skip asin beyond it */
 } prepared;
 
 static const double DEG = M_PI / 180.0;
@@ -179,9 +179,8 @@ static inline double pair_kernel(const prepared *q, const pair *p, const oriente
 static void orient(const prepared *q, size_t m, const oriented *o, double *out)
 {
     for (size_t i = 0; i < m; i++)
-        out[i] = o->tl[i] >= q->lr.lo && o->tl[i] <= q->lr.hi && o->tv[i] >= q->vr.lo && o->tv[i] <= q->vr.hi
-                     ? 1.0
-                     : 0.0;
+        out[i] =
+            o->tl[i] >= q->lr.lo && o->tl[i] <= q->lr.hi && o->tv[i] >= q->vr.lo && o->tv[i] <= q->vr.hi ? 1.0 : 0.0;
     if (q->np == 0)
         return;
     const int both = q->lights && q->views;

@@ -40,9 +40,9 @@ typedef struct nl_state {
     bf_loss loss;
     int threads;
     int npar, nfree;
-    int *freeidx;        /* free index -> problem index */
-    double *xfull;       /* problem vector: constants at their start, the rest from NLopt */
-    double *gfull;       /* gradient over the problem vector */
+    int *freeidx;  /* free index -> problem index */
+    double *xfull; /* problem vector: constants at their start, the rest from NLopt */
+    double *gfull; /* gradient over the problem vector */
     /* bookkeeping */
     int evals, failures;
     double best;
@@ -173,8 +173,7 @@ static int set_tolerances(nlopt_opt opt, const bf_solver_options *o)
     return nlopt_set_ftol_rel(opt, ftol) > 0 && nlopt_set_xtol_rel(opt, xtol) > 0;
 }
 
-bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
-                   bf_error *err)
+bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {
     const double t0 = bf_now_seconds();
     bf_solver_options defaults;
@@ -197,8 +196,8 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
     const bf_method_info *alg = bf_method_find(BF_BACKEND_NLOPT, o->algorithm), *local = NULL;
     snprintf(s->algorithm, sizeof s->algorithm, "%s", alg->name);
     if (nl_of(alg) == NLOPT_G_MLSL_LDS) {
-        local = bf_method_find(BF_BACKEND_NLOPT, o->local_algorithm && *o->local_algorithm ? o->local_algorithm
-                                                                                             : "LD_LBFGS");
+        local = bf_method_find(BF_BACKEND_NLOPT,
+                               o->local_algorithm && *o->local_algorithm ? o->local_algorithm : "LD_LBFGS");
         snprintf(s->algorithm, sizeof s->algorithm, "%s+%s", alg->name, local->name);
     }
     const int constrained = o->use_constraint && p->constraint;
@@ -206,8 +205,7 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
         const int fixed = o->constant && o->constant[k];
         const double lo = p->lo ? p->lo[k] : -INFINITY, hi = p->hi ? p->hi[k] : INFINITY;
         if ((alg->caps & BF_METHOD_GLOBAL) && !fixed && !(isfinite(lo) && isfinite(hi)))
-            return bf_fail(err, BF_ERR_ARG,
-                           "NLopt global method %s needs finite bounds; parameter %d has [%g, %g]",
+            return bf_fail(err, BF_ERR_ARG, "NLopt global method %s needs finite bounds; parameter %d has [%g, %g]",
                            alg->name, k, lo, hi);
         x[k] = x[k] < lo ? lo : x[k] > hi ? hi : x[k];
         if (!isfinite(x[k]))
@@ -217,8 +215,7 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
     nl_state st;
     if (state_init(&st, p, o, x) != 0) {
         state_free(&st);
-        return bf_fail(err, BF_ERR_NOMEM, "NLopt: out of memory for %zu residuals x %d parameters",
-                       p->nres, p->npar);
+        return bf_fail(err, BF_ERR_NOMEM, "NLopt: out of memory for %zu residuals x %d parameters", p->nres, p->npar);
     }
     const int nfree = st.nfree;
     double *z = malloc((size_t)(nfree > 0 ? nfree : 1) * 3 * sizeof *z);
@@ -256,9 +253,8 @@ bf_status bf_solve_nlopt(const bf_problem *p, const bf_solver_options *o, double
         goto done;
     }
     const int maxeval = o->max_iterations > 0 ? o->max_iterations : (alg->caps & BF_METHOD_GLOBAL) ? 20000 : 2000;
-    int setup = nlopt_set_min_objective(opt, nl_objective, &st) > 0 &&
-                nlopt_set_lower_bounds(opt, zlo) > 0 && nlopt_set_upper_bounds(opt, zhi) > 0 &&
-                set_tolerances(opt, o) && nlopt_set_maxeval(opt, maxeval) > 0 &&
+    int setup = nlopt_set_min_objective(opt, nl_objective, &st) > 0 && nlopt_set_lower_bounds(opt, zlo) > 0 &&
+                nlopt_set_upper_bounds(opt, zhi) > 0 && set_tolerances(opt, o) && nlopt_set_maxeval(opt, maxeval) > 0 &&
                 (o->max_seconds <= 0 || nlopt_set_maxtime(opt, o->max_seconds) > 0);
     if (setup && constrained)
         setup = nlopt_add_inequality_constraint(opt, nl_constraint, &st, 1e-12) > 0;

@@ -27,7 +27,10 @@ typedef struct job {
     int failed;
 } job;
 
-static size_t part_size(int npar) { return 1 + (size_t)npar + (size_t)npar * (size_t)npar; }
+static size_t part_size(int npar)
+{
+    return 1 + (size_t)npar + (size_t)npar * (size_t)npar;
+}
 
 static void chunk_sums(void *ctx, size_t c)
 {
@@ -68,8 +71,8 @@ static void chunk_sums(void *ctx, size_t c)
     free(jac);
 }
 
-int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq,
-                      double *jtr, double *jtj)
+int bf_problem_normal(const bf_problem *p, const double *x, const bf_loss *loss, int threads, double *ssq, double *jtr,
+                      double *jtj)
 {
     if (p->normal)
         return p->normal(p->user, x, loss, threads, ssq, jtr, jtj);

@@ -13,7 +13,10 @@
 
 /* Ceres floors rho' at the smallest normal double so that it never reaches zero; we do
  * the same so both back ends weight residuals identically. */
-static double floor_d1(double v) { return v > DBL_MIN ? v : DBL_MIN; }
+static double floor_d1(double v)
+{
+    return v > DBL_MIN ? v : DBL_MIN;
+}
 
 double bf_loss_eval(const bf_loss *l, double s, double *d1)
 {
@@ -64,7 +67,10 @@ double bf_loss_eval(const bf_loss *l, double s, double *d1)
 
 bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
 {
-    static const struct { const char *name; bf_loss_kind kind; } names[] = {
+    static const struct {
+        const char *name;
+        bf_loss_kind kind;
+    } names[] = {
         {"none", BF_LOSS_NONE},       {"huber", BF_LOSS_HUBER},   {"cauchy", BF_LOSS_CAUCHY},
         {"soft_l1", BF_LOSS_SOFT_L1}, {"arctan", BF_LOSS_ARCTAN},
     };
@@ -83,7 +89,8 @@ bf_status bf_loss_parse(const char *text, bf_loss *out, bf_error *err)
     if (found < 0)
         return bf_fail(err, BF_ERR_ARG,
                        "unknown loss \"%s\" (known: none, huber, cauchy, soft_l1, arctan, "
-                       "optionally with :SCALE)", text);
+                       "optionally with :SCALE)",
+                       text);
     double scale = 1.0;
     if (colon) {
         if (names[found].kind == BF_LOSS_NONE)
@@ -142,15 +149,13 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
     if (!p || !p->eval || !x)
         return bf_fail(err, BF_ERR_ARG, "bf_solve: no problem, residual function or start vector");
     if (p->npar < 1)
-        return bf_fail(err, BF_ERR_ARG, "bf_solve: the problem has %d parameters (need at least 1)",
-                       p->npar);
+        return bf_fail(err, BF_ERR_ARG, "bf_solve: the problem has %d parameters (need at least 1)", p->npar);
     if (p->nres < 1)
         return bf_fail(err, BF_ERR_ARG, "bf_solve: the problem has no residuals");
     if (o->threads < 0)
         return bf_fail(err, BF_ERR_ARG, "bf_solve: thread count %d is negative", o->threads);
     if (o->loss.kind != BF_LOSS_NONE && !(o->loss.scale > 0.0 && isfinite(o->loss.scale)))
-        return bf_fail(err, BF_ERR_ARG, "bf_solve: loss scale %g must be finite and > 0",
-                       o->loss.scale);
+        return bf_fail(err, BF_ERR_ARG, "bf_solve: loss scale %g must be finite and > 0", o->loss.scale);
     const int n = p->npar;
     for (int k = 0; k < n; k++) {
         const double lo = p->lo ? p->lo[k] : -INFINITY, hi = p->hi ? p->hi[k] : INFINITY;
@@ -161,8 +166,7 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
         double v = x[k] < lo ? lo : x[k] > hi ? hi : x[k];
         if (!isfinite(v))
             return bf_fail(err, BF_ERR_RANGE,
-                           "bf_solve: start value of parameter %d is %g and its bounds do not make it finite",
-                           k, x[k]);
+                           "bf_solve: start value of parameter %d is %g and its bounds do not make it finite", k, x[k]);
         x[k] = v;
     }
 
@@ -180,15 +184,9 @@ bf_status bf_solve(const bf_problem *p, const bf_solver_options *o, double *x, b
         return BF_OK;
     }
     switch (o->backend) {
-    case BF_BACKEND_CERES:
-        rc = bf_solve_ceres(p, o, x, s, err);
-        break;
-    case BF_BACKEND_NLOPT:
-        rc = bf_solve_nlopt(p, o, x, s, err);
-        break;
-    default:
-        free(start);
-        return bf_fail(err, BF_ERR_ARG, "bf_solve: unknown back end %d", (int)o->backend);
+    case BF_BACKEND_CERES: rc = bf_solve_ceres(p, o, x, s, err); break;
+    case BF_BACKEND_NLOPT: rc = bf_solve_nlopt(p, o, x, s, err); break;
+    default: free(start); return bf_fail(err, BF_ERR_ARG, "bf_solve: unknown back end %d", (int)o->backend);
     }
 
     /* Whatever the back end did, x leaves finite, inside the bounds, and with constant

@@ -84,9 +84,10 @@ bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *
         return rc;
     }
     FILE *fp = f.fp;
-    fprintf(fp, "material,model,status,k,n,error,rmse,rmse_log,rmse_cos,rmse_rel,max_err,loglik,aic,aicc,bic,cv,"
-                "work,rank,rank_bic,rank_aic,rank_aicc,rank_cv,pareto_k,pareto_work,within_tolerance,simplest,"
-                "warnings%s",
+    fprintf(fp,
+            "material,model,status,k,n,error,rmse,rmse_log,rmse_cos,rmse_rel,max_err,loglik,aic,aicc,bic,cv,"
+            "work,rank,rank_bic,rank_aic,rank_aicc,rank_cv,pareto_k,pareto_work,within_tolerance,simplest,"
+            "warnings%s",
             c->timing ? ",seconds" : "");
     for (int q = 0; q < ncols; q++) {
         fputc(',', fp);

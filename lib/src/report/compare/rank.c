@@ -27,7 +27,7 @@ const char *bf_compare_state_name(bf_compare_state s)
 }
 
 bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
-                    const char *const *models, bf_error *err)
+                          const char *const *models, bf_error *err)
 {
     memset(c, 0, sizeof *c);
     /* The ranking's defaults are the options' (bf_compare_run applies a run's own). */
@@ -189,8 +189,11 @@ static void rank_material(bf_compare *c, bf_compare_material *m)
         rank_values(n, val, avail, r);
         for (int j = 0; j < n; j++) {
             bf_compare_fit *f = &m->fits[j];
-            int *dst = a < 0 ? &f->rank : by == BF_RANK_BIC ? &f->rank_bic : by == BF_RANK_AIC ? &f->rank_aic
-                                      : by == BF_RANK_AICC ? &f->rank_aicc : &f->rank_cv;
+            int *dst = a < 0                ? &f->rank
+                       : by == BF_RANK_BIC  ? &f->rank_bic
+                       : by == BF_RANK_AIC  ? &f->rank_aic
+                       : by == BF_RANK_AICC ? &f->rank_aicc
+                                            : &f->rank_cv;
             *dst = r[j];
         }
     }

@@ -108,9 +108,10 @@ static bf_status slices(report *r, int i, const bf_compare_material *m)
         lo = log10(a);
         hi = log10(b);
     }
-    fprintf(fp, "<h3>Slices</h3>\n<p>BRDF f (log axis, the same range for every model: 10<sup>%.2f</sup> to "
-                "10<sup>%.2f</sup> sr<sup>&minus;1</sup>) against the viewing angle in the plane of incidence "
-                "(&minus;90&deg; to 90&deg;, mirror side right, dotted: the mirror direction) at incidence ",
+    fprintf(fp,
+            "<h3>Slices</h3>\n<p>BRDF f (log axis, the same range for every model: 10<sup>%.2f</sup> to "
+            "10<sup>%.2f</sup> sr<sup>&minus;1</sup>) against the viewing angle in the plane of incidence "
+            "(&minus;90&deg; to 90&deg;, mirror side right, dotted: the mirror direction) at incidence ",
             lo, hi);
     for (int k = 0; k < ninc; k++)
         fprintf(fp, "%s%g&deg;", k ? (k + 1 < ninc ? ", " : " and ") : "", inc[k]);
@@ -200,7 +201,8 @@ static bf_status spheres(report *r, int i, const bf_compare_material *m, const b
         const bf_fit_result *res = j < 0 ? NULL : report_fitted(&m->fits[j]);
         if (j < 0 ? !table : !res)
             continue;
-        rc = j < 0 ? bf_render_sphere_merl(table, &sp, buf, r->err) : bf_render_sphere(res->model, res->x, &sp, buf, r->err);
+        rc = j < 0 ? bf_render_sphere_merl(table, &sp, buf, r->err)
+                   : bf_render_sphere(res->model, res->x, &sp, buf, r->err);
         if (rc != BF_OK)
             break;
         bf_tonemap(buf, 3 * npx, BF_TONEMAP_CLAMP, exposure, 0.0);
@@ -385,12 +387,14 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
     if (rc == BF_OK && (rc = bf_render_halfdiff_merl(table, HD_PX, HD_PX, 90.0, rgb, r->err)) == BF_OK) {
         halfdiff_mean(rgb, npx, meas);
         halfdiff_log_range(meas, npx, HD_PERCENTILE, HD_DECADES, &lo, &hi);
-        fprintf(fp, "<p>&theta;<sub>h</sub> (x, on a square-root scale as MERL tables index it) by &theta;<sub>d</sub> "
-                    "(y), &phi;<sub>d</sub> 90&deg;; the mean of the channels. Measurement and models share one log "
-                    "colour scale, 10<sup>%.2f</sup> to 10<sup>%.2f</sup> sr<sup>&minus;1</sup> (%g decades down from "
-                    "the measurement's %g<sup>th</sup> percentile; brighter cells show as the top colour). Differences: log<sub>2</sub>(model / measured), white where equal, "
-                    "red where the model is brighter, blue where darker, saturating at a factor of %g; grey: no "
-                    "measured value.</p>\n<div class=\"row\">\n",
+        fprintf(fp,
+                "<p>&theta;<sub>h</sub> (x, on a square-root scale as MERL tables index it) by &theta;<sub>d</sub> "
+                "(y), &phi;<sub>d</sub> 90&deg;; the mean of the channels. Measurement and models share one log "
+                "colour scale, 10<sup>%.2f</sup> to 10<sup>%.2f</sup> sr<sup>&minus;1</sup> (%g decades down from "
+                "the measurement's %g<sup>th</sup> percentile; brighter cells show as the top colour). Differences: "
+                "log<sub>2</sub>(model / measured), white where equal, "
+                "red where the model is brighter, blue where darker, saturating at a factor of %g; grey: no "
+                "measured value.</p>\n<div class=\"row\">\n",
                 lo, hi, HD_DECADES, HD_PERCENTILE, pow(2.0, HD_SPAN));
         char name[64], title[512];
         snprintf(name, sizeof name, "m%d-hd-measured", i + 1);

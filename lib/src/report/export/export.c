@@ -21,9 +21,15 @@ static const bf_export_target targets[] = {
 };
 enum { NTARGETS = sizeof targets / sizeof targets[0] };
 
-int bf_export_target_count(void) { return NTARGETS; }
+int bf_export_target_count(void)
+{
+    return NTARGETS;
+}
 
-const bf_export_target *bf_export_target_get(int i) { return i >= 0 && i < NTARGETS ? &targets[i] : NULL; }
+const bf_export_target *bf_export_target_get(int i)
+{
+    return i >= 0 && i < NTARGETS ? &targets[i] : NULL;
+}
 
 const bf_export_target *bf_export_target_find(const char *name)
 {
@@ -45,8 +51,9 @@ double bf_export_param(const bf_export_material *e, const char *name, int c)
 
 void bf_export_conversion_note(const bf_export_material *e, FILE *fp)
 {
-    fprintf(fp, "conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, rmse_rel %.6g, "
-                "max_err %.6g (1/sr)",
+    fprintf(fp,
+            "conversion over %zu direction pairs: rmse %.6g, rmse_cos %.6g, rmse_log %.6g, rmse_rel %.6g, "
+            "max_err %.6g (1/sr)",
             e->directions, e->metrics.rmse, e->metrics.rmse_cos, e->metrics.rmse_log, e->metrics.rmse_rel,
             e->metrics.max_err);
 }

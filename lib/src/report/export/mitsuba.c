@@ -17,7 +17,7 @@ static void put_float(FILE *fp, const char *name, double v)
 
 bf_status bf_export_write_mitsuba(const bf_export_material *e, FILE *fp, bf_error *err)
 {
-    static const char *const scalars[] = {"metallic", "specular", "spec_tint", "roughness", "sheen",
+    static const char *const scalars[] = {"metallic",   "specular", "spec_tint", "roughness",      "sheen",
                                           "sheen_tint", "flatness", "clearcoat", "clearcoat_gloss"};
     char b[3][40];
     fprintf(fp, "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n");

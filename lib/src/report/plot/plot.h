@@ -40,15 +40,15 @@ typedef enum plot_marker { PLOT_CIRCLE = 0, PLOT_SQUARE, PLOT_DIAMOND, PLOT_TRIA
 typedef enum plot_dash { PLOT_SOLID = 0, PLOT_DASHED, PLOT_DOTTED } plot_dash;
 
 typedef struct plot_series {
-    char *name;          /* legend entry (markup); NULL: not in the legend */
+    char *name; /* legend entry (markup); NULL: not in the legend */
     plot_style style;
     plot_marker marker;
     plot_dash dash;
-    double rgb[3], alpha; /* alpha 1: opaque */
+    double rgb[3], alpha;           /* alpha 1: opaque */
     double line_width, marker_size; /* in units of the base line width / font size */
     size_t n;
     double *x, *y;
-    char **labels;       /* n point labels (NULL entries: none), or NULL */
+    char **labels;          /* n point labels (NULL entries: none), or NULL */
     unsigned char *colours; /* n RGB byte triples, one per marker (plot_point_colours), or
                                NULL: rgb for every marker */
 } plot_series;
@@ -65,20 +65,20 @@ typedef struct plot_ticks {
 } plot_ticks;
 
 typedef struct plot_axis_layout {
-    double lo, hi;   /* the axis ends, data units */
+    double lo, hi; /* the axis ends, data units */
     int log;
     plot_ticks ticks;
 } plot_axis_layout;
 
 /* Where everything goes, computed before drawing (and what the tests check). */
 typedef struct plot_layout {
-    double width, height, font;  /* font: the base text size */
-    double x0, y0, x1, y1;       /* plot area (top-left x0,y0) */
+    double width, height, font; /* font: the base text size */
+    double x0, y0, x1, y1;      /* plot area (top-left x0,y0) */
     plot_axis_layout axis[2];
-    int nlegend;                 /* series with a name, in order */
+    int nlegend; /* series with a name, in order */
     double legend_x, legend_y, legend_w, legend_h;
-    int legend_inside;           /* 1: in a corner of the plot area (a wide legend) */
-    int colour_bar;              /* 1: a colour bar right of the plot area (and legend) */
+    int legend_inside; /* 1: in a corner of the plot area (a wide legend) */
+    int colour_bar;    /* 1: a colour bar right of the plot area (and legend) */
     double bar_x, bar_w;
     plot_ticks bar_ticks;
 } plot_layout;
@@ -135,7 +135,7 @@ int plot_layout_compute(const plot *p, int width, int height, plot_layout *l);
 
 /* The plot as a file's bytes (malloc'd): BF_OK, or an error. */
 bf_status plot_encode(const plot *p, bf_plot_format fmt, int width, int height, unsigned char **data, size_t *len,
-                bf_error *err);
+                      bf_error *err);
 /* Written to path ("-": standard output) through bf_outfile. */
 bf_status plot_write(const plot *p, const char *path, bf_plot_format fmt, int width, int height, bf_error *err);
 

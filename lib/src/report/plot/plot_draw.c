@@ -49,9 +49,7 @@ static void marker(cairo_t *cr, plot_marker m, double x, double y, double r, dou
         cairo_arc(cr, x, y, 1.6 * r, 0, 2 * M_PI);
         cairo_stroke(cr);
         break;
-    default:
-        cairo_arc(cr, x, y, r, 0, 2 * M_PI);
-        cairo_fill(cr);
+    default: cairo_arc(cr, x, y, r, 0, 2 * M_PI); cairo_fill(cr);
     }
 }
 
@@ -162,8 +160,7 @@ static void span_line(cairo_t *cr, const plot_layout *l, int axis, double v)
 
 /* w x h RGB bytes stretched over a rectangle, each cell a sharp block (no smoothing
  * between cells: a table's cells stay cells). */
-static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double dw,
-                        double dh)
+static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double dw, double dh)
 {
     cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
     if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {

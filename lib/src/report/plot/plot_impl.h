@@ -44,7 +44,7 @@ struct plot {
     int nnotes;
     unsigned char *raster; /* rw x rh RGB bytes over the plot area, or NULL */
     int rw, rh;
-    colour_bar *bar;       /* or NULL */
+    colour_bar *bar; /* or NULL */
 };
 
 /* ---- Text (plot_text.c) ----------------------------------------------------------- */

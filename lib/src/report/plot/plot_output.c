@@ -124,8 +124,10 @@ int bf_plot_format_of(const char *path)
     const char *dot = path ? strrchr(path, '.') : NULL;
     if (!dot || strchr(dot, '/'))
         return 0;
-    return !strcasecmp(dot, ".png") ? BF_PLOT_PNG : !strcasecmp(dot, ".svg") ? BF_PLOT_SVG
-           : !strcasecmp(dot, ".pdf") ? BF_PLOT_PDF : 0;
+    return !strcasecmp(dot, ".png")   ? BF_PLOT_PNG
+           : !strcasecmp(dot, ".svg") ? BF_PLOT_SVG
+           : !strcasecmp(dot, ".pdf") ? BF_PLOT_PDF
+                                      : 0;
 }
 
 bf_status bf_plot_format_parse(const char *name, bf_plot_format *out, bf_error *err)

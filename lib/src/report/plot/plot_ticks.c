@@ -67,7 +67,10 @@ static void fmt_tick(double v, int decimals, int sci, int e, char *out, size_t s
             char mb[32];
             snprintf(mb, sizeof mb, "%.*f", decimals, m);
             minus_sign(mb, sizeof mb);
-            snprintf(out, size, "%s\xc3\x97" "10^{%d}", mb, e);
+            snprintf(out, size,
+                     "%s\xc3\x97"
+                     "10^{%d}",
+                     mb, e);
         }
     } else {
         snprintf(out, size, "%.*f", decimals, fabs(v) < 1e-12 ? 0.0 : v);
@@ -113,7 +116,10 @@ static void label_as(double v, int sci, char *out, size_t size)
         if (!strcmp(mb, "1"))
             snprintf(out, size, "10^{%d}", e);
         else
-            snprintf(out, size, "%s\xc3\x97" "10^{%d}", mb, e);
+            snprintf(out, size,
+                     "%s\xc3\x97"
+                     "10^{%d}",
+                     mb, e);
         return;
     }
     int d = 0;

@@ -47,8 +47,8 @@ plot *plot_scatter(const plot_scatter_spec *sp)
             fx[k] = sp->x[ord[k]];
             fy[k] = sp->y[ord[k]];
         }
-        plot_series *f = plot_add(p, sp->front_name ? sp->front_name : "Pareto front", PLOT_LINE_MARKERS, (size_t)m, fx,
-                                  fy);
+        plot_series *f =
+            plot_add(p, sp->front_name ? sp->front_name : "Pareto front", PLOT_LINE_MARKERS, (size_t)m, fx, fy);
         if (!(fail = !f)) {
             f->rgb[0] = 0.835, f->rgb[1] = 0.369, f->rgb[2] = 0.0;
             f->marker_size = 0.8;

@@ -7,14 +7,14 @@
 #include "plot/plot.h"
 
 typedef struct plot_scatter_spec {
-    const char *title, *x_title, *y_title;   /* markup */
+    const char *title, *x_title, *y_title; /* markup */
     int log_x, log_y, integer_x;
     int n;
-    const double *x, *y;                     /* n points; NaN: not drawn */
-    const int *front;                        /* n flags, or NULL */
-    const char *const *labels;               /* n labels (entries may be NULL), or NULL */
-    const char *points_name, *front_name;    /* legend entries ("Pareto front" if NULL) */
-    int chosen;                              /* a point to ring, -1: none */
+    const double *x, *y;                  /* n points; NaN: not drawn */
+    const int *front;                     /* n flags, or NULL */
+    const char *const *labels;            /* n labels (entries may be NULL), or NULL */
+    const char *points_name, *front_name; /* legend entries ("Pareto front" if NULL) */
+    int chosen;                           /* a point to ring, -1: none */
     const char *chosen_name;
 } plot_scatter_spec;
 

@@ -24,7 +24,7 @@ const int bf_regress_nmetric_names = (int)(sizeof bf_regress_metric_names / size
 
 int bf_regress_metric(const bf_metrics *m, const char *name, double *out)
 {
-    const double v[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel, m->max_err,   m->aic,
+    const double v[] = {m->rmse, m->rmse_cos, m->rmse_log, m->rmse_rel,  m->max_err,  m->aic,
                         m->aicc, m->bic,      m->loglik,   (double)m->n, (double)m->k};
     for (int i = 0; i < bf_regress_nmetric_names; i++)
         if (!strcmp(name, bf_regress_metric_names[i])) {
@@ -120,8 +120,8 @@ typedef struct parser {
     bf_error *err;
 } parser;
 
-#define FAIL(P, PATH, ...)                                                                               \
-    bf_fail((P)->err, BF_ERR_PARSE, "%s:%d: %s", (P)->b->path, bf_json_line_of_path((P)->b->text, PATH), \
+#define FAIL(P, PATH, ...)                                                                                             \
+    bf_fail((P)->err, BF_ERR_PARSE, "%s:%d: %s", (P)->b->path, bf_json_line_of_path((P)->b->text, PATH),               \
             (snprintf(msg, sizeof msg, __VA_ARGS__), msg))
 
 /* No key of object o twice (cJSON keeps both; lookups and rewrites disagree on them). */
@@ -220,8 +220,8 @@ static bf_status check_tolerance(parser *p, const cJSON *t, const char *path, ch
             if (!params)
                 known = is_metric(e->string);
             if (!known)
-                return FAIL(p, epath, "tolerance for unknown %s \"%s\"%s%s", params ? "parameter" : "metric",
-                            e->string, params && nspecs == 1 ? " of " : "", params && nspecs == 1 ? specs[0] : "");
+                return FAIL(p, epath, "tolerance for unknown %s \"%s\"%s%s", params ? "parameter" : "metric", e->string,
+                            params && nspecs == 1 ? " of " : "", params && nspecs == 1 ? specs[0] : "");
             if (check_tol_numbers(p, e, epath) != BF_OK)
                 return p->err->code;
         }
@@ -252,8 +252,10 @@ static bf_status read_values(parser *p, const cJSON *g, const char *path, int me
     for (const cJSON *e = g->child; e; e = e->next) {
         snprintf(sub, sizeof sub, "%s/%s", path, e->string);
         if (metrics && !is_metric(e->string))
-            return FAIL(p, sub, "unknown metric \"%s\" (rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, aicc, bic, loglik, n, k)",
-                        e->string);
+            return FAIL(
+                p, sub,
+                "unknown metric \"%s\" (rmse, rmse_cos, rmse_log, rmse_rel, max_err, aic, aicc, bic, loglik, n, k)",
+                e->string);
         bf_regress_value *v = &(*out)[(*n)++];
         v->line = bf_json_line_of_path(p->b->text, sub);
         if (!(v->name = dup_or_fail(p, e->string)))
@@ -456,8 +458,7 @@ static bf_status parse_doc(parser *p)
             if (!strcmp(b->cases[k].name, b->cases[i].name)) {
                 char path[64];
                 snprintf(path, sizeof path, "cases/%d/name", i);
-                return FAIL(p, path, "case name '%s' is used twice (also line %d)", b->cases[i].name,
-                            b->cases[k].line);
+                return FAIL(p, path, "case name '%s' is used twice (also line %d)", b->cases[i].name, b->cases[k].line);
             }
     }
     const cJSON *tol = cJSON_GetObjectItemCaseSensitive(b->doc, "tolerance");

@@ -68,8 +68,8 @@ static void check_params(checker *ck, const bf_regress_baseline *b, int c, const
             char names[512];
             param_list(m, names, sizeof names);
             ck->out->status = BF_REGRESS_FAIL;
-            ADD(ck, lines, nlines, "  params.%s: not a parameter of %s (its parameters: %s)", v->name,
-                bf_model_spec(m), names);
+            ADD(ck, lines, nlines, "  params.%s: not a parameter of %s (its parameters: %s)", v->name, bf_model_spec(m),
+                names);
             continue;
         }
         const bf_param_info *pi = bf_model_param(m, idx);
@@ -98,7 +98,7 @@ static void check_params(checker *ck, const bf_regress_baseline *b, int c, const
 }
 
 bf_status bf_regress_check(const bf_regress_baseline *b, int c, const bf_fit_result *r, bf_regress_outcome *out,
-                     bf_error *err)
+                           bf_error *err)
 {
     if (bf_sized_check(out, sizeof *out, "bf_regress_outcome", err) != BF_OK)
         return BF_ERR_ARG;

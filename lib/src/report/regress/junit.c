@@ -12,7 +12,10 @@
 #include "brdfit/io.h"
 #include "brdfit/version.h"
 
-static const xmlChar *X(const char *s) { return (const xmlChar *)s; }
+static const xmlChar *X(const char *s)
+{
+    return (const xmlChar *)s;
+}
 
 /* Names, paths and messages from the baseline as XML 1.0 can hold them: control
  * characters and invalid UTF-8, which no escaping makes well-formed, written as a
@@ -121,7 +124,7 @@ static int write_doc(xmlTextWriterPtr w, const bf_regress_baseline *b, const bf_
 }
 
 bf_status bf_regress_write_junit(const bf_regress_baseline *b, const bf_regress_outcome *outs, const char *path,
-                           bf_error *err)
+                                 bf_error *err)
 {
     if (b->ncases > 0 && bf_sized_check(outs, sizeof *outs, "bf_regress_outcome", err) != BF_OK)
         return BF_ERR_ARG;

@@ -22,13 +22,25 @@ typedef struct updater {
     int nomem;
 } updater;
 
-static cJSON *number(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
+static cJSON *number(double v)
+{
+    return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
+}
 
-static double value_of(const cJSON *x) { return cJSON_IsNumber(x) ? x->valuedouble : NAN; }
+static double value_of(const cJSON *x)
+{
+    return cJSON_IsNumber(x) ? x->valuedouble : NAN;
+}
 
-static int same(double a, double b) { return (isnan(a) && isnan(b)) || a == b; }
+static int same(double a, double b)
+{
+    return (isnan(a) && isnan(b)) || a == b;
+}
 
-static const char *text(double v, char *buf) { return isfinite(v) ? bf_format_double(v, buf, 32) : "null"; }
+static const char *text(double v, char *buf)
+{
+    return isfinite(v) ? bf_format_double(v, buf, 32) : "null";
+}
 
 /* old (NULL: absent) against the n new values; one change line per difference. */
 static void note(updater *u, const char *group, const char *name, const cJSON *old, const double *v, int n, int array)
@@ -124,7 +136,7 @@ static void update_metrics(updater *u, cJSON *g, const bf_fit_result *r)
 }
 
 bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *r, char ***changes, int *nchanges,
-                      bf_error *err)
+                            bf_error *err)
 {
     updater u = {changes, nchanges, 0};
     cJSON *cs = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(b->doc, "cases"), c);
@@ -134,8 +146,8 @@ bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *
     cJSON *ok = cJSON_GetObjectItemCaseSensitive(exp, "ok");
     int was = !ok || cJSON_IsTrue(ok);
     if (was != r->ok)
-        u.nomem |= bf_regress_addf(changes, nchanges, "  ok: %s -> %s", was ? "true" : "false",
-                                   r->ok ? "true" : "false") != 0;
+        u.nomem |=
+            bf_regress_addf(changes, nchanges, "  ok: %s -> %s", was ? "true" : "false", r->ok ? "true" : "false") != 0;
     if (ok)
         cJSON_ReplaceItemInObjectCaseSensitive(exp, "ok", cJSON_CreateBool(r->ok));
     else
@@ -156,7 +168,10 @@ bf_status bf_regress_update(bf_regress_baseline *b, int c, const bf_fit_result *
 
 /* ---- printing ------------------------------------------------------------------------ */
 
-static int scalar(const cJSON *x) { return !cJSON_IsArray(x) && !cJSON_IsObject(x); }
+static int scalar(const cJSON *x)
+{
+    return !cJSON_IsArray(x) && !cJSON_IsObject(x);
+}
 
 static int put_string(FILE *f, const char *s)
 {

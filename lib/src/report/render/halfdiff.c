@@ -21,7 +21,10 @@ void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3],
     V[2] = dz * cth + dx * sth;
 }
 
-static double pixel_angle(int i, int n) { return (i + 0.5) / n * (M_PI / 2); }
+static double pixel_angle(int i, int n)
+{
+    return (i + 0.5) / n * (M_PI / 2);
+}
 
 /* Columns are even in sqrt(theta_h), as MERL tables index theta_h: the highlight, a few
  * degrees wide, gets a fair share of the image instead of a few columns. */
@@ -41,8 +44,8 @@ static bf_status check_size(int width, int height, double phi_d, bf_error *err)
     return BF_OK;
 }
 
-bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height,
-                             double phi_d, float *rgb, bf_error *err)
+bf_status bf_render_halfdiff_model(const bf_model *m, const double *x, int width, int height, double phi_d, float *rgb,
+                                   bf_error *err)
 {
     bf_status status = check_size(width, height, phi_d, err);
     if (status != BF_OK)
@@ -87,8 +90,7 @@ done:
     return status;
 }
 
-bf_status bf_render_halfdiff_merl(const bf_samples *s, int width, int height, double phi_d, float *rgb,
-                            bf_error *err)
+bf_status bf_render_halfdiff_merl(const bf_samples *s, int width, int height, double phi_d, float *rgb, bf_error *err)
 {
     bf_status status = check_size(width, height, phi_d, err);
     if (status != BF_OK)

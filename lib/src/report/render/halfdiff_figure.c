@@ -25,15 +25,14 @@ void halfdiff_sequential(double t, unsigned char rgb[3])
 {
     /* viridis at 0, 1/8, ..., 1: dark to light, readable in grey and by most
      * colour-blind readers. */
-    static const unsigned char v[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},
-                                          {44, 113, 142}, {33, 144, 141}, {39, 173, 129},
-                                          {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
+    static const unsigned char v[9][3] = {{68, 1, 84},    {71, 44, 122}, {59, 81, 139},  {44, 113, 142}, {33, 144, 141},
+                                          {39, 173, 129}, {92, 200, 99}, {170, 220, 50}, {253, 231, 37}};
     interpolate(v, 9, isnan(t) ? 0.0 : t, rgb);
 }
 
 void halfdiff_diverging(double t, unsigned char rgb[3])
 {
-    static const unsigned char d[7][3] = {{33, 102, 172}, {103, 169, 207}, {209, 229, 240}, {255, 255, 255},
+    static const unsigned char d[7][3] = {{33, 102, 172},  {103, 169, 207}, {209, 229, 240}, {255, 255, 255},
                                           {253, 219, 199}, {239, 138, 98},  {178, 24, 43}};
     if (isnan(t)) {
         rgb[0] = rgb[1] = rgb[2] = HALFDIFF_NONE;
@@ -58,8 +57,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int halfdiff_log_range(const double *v, size_t n, double percentile, double decades, double *log10_lo,
-                       double *log10_hi)
+int halfdiff_log_range(const double *v, size_t n, double percentile, double decades, double *log10_lo, double *log10_hi)
 {
     double *pos = malloc((n ? n : 1) * sizeof *pos);
     if (!pos)
@@ -90,8 +88,8 @@ void halfdiff_log2_ratio(const double *model, const double *measured, size_t n, 
 static int theta_h_axis(plot *p)
 {
     static const double deg[] = {0, 2, 5, 10, 20, 45, 90};
-    static const char *const label[] = {"0\xc2\xb0", "2\xc2\xb0", "5\xc2\xb0", "10\xc2\xb0", "20\xc2\xb0", "45\xc2\xb0",
-                                        "90\xc2\xb0"};
+    static const char *const label[] = {"0\xc2\xb0",  "2\xc2\xb0",  "5\xc2\xb0", "10\xc2\xb0",
+                                        "20\xc2\xb0", "45\xc2\xb0", "90\xc2\xb0"};
     double at[7];
     for (int i = 0; i < 7; i++)
         at[i] = sqrt(deg[i] / 90.0);
@@ -318,8 +316,8 @@ plot *halfdiff_ratio_points(size_t n, const double *theta_h, const double *theta
     return p;
 }
 
-bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d, double decades,
-                            int width, int height, const char *path, int format, bf_error *err)
+bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d,
+                                  double decades, int width, int height, const char *path, int format, bf_error *err)
 {
     enum { PX = 180 }; /* two columns and rows per MERL cell */
     int fmt = format ? format : bf_plot_format_of(path);

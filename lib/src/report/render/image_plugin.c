@@ -36,16 +36,16 @@
 static pthread_once_t load_once = PTHREAD_ONCE_INIT;
 static bf_image_plugin plugin;
 static int plugin_ok;
-static char load_error[sizeof ((bf_error *)0)->msg];
+static char load_error[sizeof((bf_error *)0)->msg];
 
 /* load_error = the fixed prefix + the reason (cut to fit, like every bf_error). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 1, 2)))
 #endif
-static void set_error(const char *fmt, ...)
+static void
+set_error(const char *fmt, ...)
 {
-    int n = snprintf(load_error, sizeof load_error, "image support (%s) could not be loaded: ",
-                     BRDFIT_PLUGIN_FILE);
+    int n = snprintf(load_error, sizeof load_error, "image support (%s) could not be loaded: ", BRDFIT_PLUGIN_FILE);
     if (n < 0 || (size_t)n >= sizeof load_error)
         return;
     va_list ap;

@@ -79,7 +79,8 @@ static int in_plane(const bf_samples *s, size_t q, const bf_slice_options *o, do
     return k;
 }
 
-bf_status slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d, bf_error *err)
+bf_status slice_data_compute(const bf_model *m, const double *x, const bf_slice_options *o, slice_data *d,
+                             bf_error *err)
 {
     memset(d, 0, sizeof *d);
     bf_status rc = check(o, err);
@@ -172,7 +173,7 @@ done:
 }
 
 bf_status bf_slice_extent(const bf_model *m, const double *x, const bf_slice_options *o, double *log10_lo,
-                    double *log10_hi, bf_error *err)
+                          double *log10_hi, bf_error *err)
 {
     slice_data d;
     bf_status rc = slice_data_compute(m, x, o, &d, err);
@@ -441,7 +442,7 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
 }
 
 bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_options *o, plot **out,
-                     bf_slice_range *range, bf_error *err)
+                           bf_slice_range *range, bf_error *err)
 {
     *out = NULL;
     if (range && bf_sized_check(range, sizeof *range, "bf_slice_range", err) != BF_OK)
@@ -471,7 +472,7 @@ bf_status slice_plot_build(const bf_model *m, const double *x, const bf_slice_op
 }
 
 bf_status bf_render_slice(const bf_model *m, const double *x, const bf_slice_options *o, const char *path, int format,
-                    bf_slice_range *range, bf_error *err)
+                          bf_slice_range *range, bf_error *err)
 {
     if (o && bf_sized_check(o, sizeof *o, "bf_slice_options", err) != BF_OK)
         return BF_ERR_ARG;

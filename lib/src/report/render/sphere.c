@@ -27,7 +27,10 @@ static void dir_vec(bf_dir d, double v[3])
     v[2] = cos(t);
 }
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static void cross(const double a[3], const double b[3], double o[3])
 {
@@ -202,8 +205,7 @@ done:
     return status;
 }
 
-bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb,
-                     bf_error *err)
+bf_status bf_render_sphere(const bf_model *m, const double *x, const bf_sphere_options *o, float *rgb, bf_error *err)
 {
     source src = {bf_model_channels(m), eval_model, m, x, NULL, NULL};
     return render(&src, o, rgb, err);

@@ -16,18 +16,9 @@
 
 /* In order of complexity; the mono variants are added after each coloured model. */
 static const char *const default_specs[] = {
-    "lambert",
-    "oren_nayar",
-    "blinn_phong",
-    "ward_iso",
-    "cook_torrance",
-    "walter",
-    "ashikhmin_shirley_iso",
-    "lafortune",
-    "ward",
-    "walter_aniso",
-    "ashikhmin_shirley",
-    "cook_torrance:lobes=2",
+    "lambert",        "oren_nayar",   "blinn_phong",           "ward_iso",
+    "cook_torrance",  "walter",       "ashikhmin_shirley_iso", "lafortune",
+    "ward",           "walter_aniso", "ashikhmin_shirley",     "cook_torrance:lobes=2",
     "walter:lobes=2",
 };
 static const char *const default_mono_specs[] = {

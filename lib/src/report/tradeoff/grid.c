@@ -30,16 +30,15 @@ bf_status bf_tradeoff_method_check(const char *text, const bf_options *base, bf_
 
 /* ---- Train / test split -------------------------------------------------------- */
 
-bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train,
-                      bf_samples **test, bf_error *err)
+bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_t seed, bf_samples **train, bf_samples **test,
+                            bf_error *err)
 {
     *train = *test = NULL;
     if (!(fraction > 0.0 && fraction < 1.0))
         return bf_fail(err, BF_ERR_ARG, "test fraction must be in (0, 1), got %g", fraction);
     const size_t n = s->n;
     if (n < 2)
-        return bf_fail(err, BF_ERR_ARG, "%zu sample%s: too few to hold any out for testing", n,
-                       n == 1 ? "" : "s");
+        return bf_fail(err, BF_ERR_ARG, "%zu sample%s: too few to hold any out for testing", n, n == 1 ? "" : "s");
     double want = floor((double)n * fraction + 0.5);
     size_t k = want < 1.0 ? 1 : want > (double)(n - 1) ? n - 1 : (size_t)want;
     unsigned char *mask = malloc(n + 1);
@@ -75,8 +74,8 @@ static int cmp_size(const void *a, const void *b)
 }
 
 bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
-                     const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
-                     const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
+                           const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
+                           const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
 {
     memset(t, 0, sizeof *t);
     t->best = t->recommended = -1;
@@ -105,8 +104,7 @@ bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, 
     size_t rows = (size_t)nc * (size_t)nmethods * (size_t)nresiduals * (size_t)nstarts;
     if (rows > BF_TRADEOFF_MAX_ROWS) {
         free(c);
-        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows,
-                       BF_TRADEOFF_MAX_ROWS);
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows, BF_TRADEOFF_MAX_ROWS);
     }
     /* The methods' names, copied into one block the rows point into. */
     size_t names = 0;

@@ -23,9 +23,11 @@ static const char *row_status(const bf_tradeoff_row *r)
     return r->ran ? (r->ok ? "ok" : "failed") : (r->message[0] ? "error" : "not_run");
 }
 
-
 /* A metrics object as in a result file (null for a row that did not run). */
-static cJSON *metrics_json(const bf_metrics *m, int ran) { return ran ? bf_json_metrics(m) : cJSON_CreateNull(); }
+static cJSON *metrics_json(const bf_metrics *m, int ran)
+{
+    return ran ? bf_json_metrics(m) : cJSON_CreateNull();
+}
 
 static cJSON *tradeoff_json(const bf_tradeoff *t)
 {
@@ -108,10 +110,11 @@ bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error
     if (rc != BF_OK)
         return rc;
     FILE *fp = f.fp;
-    fprintf(fp, "samples,all,method,residual,starts,status,work,iterations,error,"
-                "train_rmse,train_rmse_log,train_rmse_cos,train_rmse_rel,train_max_err,"
-                "test_rmse,test_rmse_log,test_rmse_cos,test_rmse_rel,test_max_err,"
-                "on_front,within_tolerance,best,recommended,warnings%s\n",
+    fprintf(fp,
+            "samples,all,method,residual,starts,status,work,iterations,error,"
+            "train_rmse,train_rmse_log,train_rmse_cos,train_rmse_rel,train_max_err,"
+            "test_rmse,test_rmse_log,test_rmse_cos,test_rmse_rel,test_max_err,"
+            "on_front,within_tolerance,best,recommended,warnings%s\n",
             t->timing ? ",seconds" : "");
     for (int i = 0; i < t->nrows; i++) {
         const bf_tradeoff_row *r = &t->rows[i];
@@ -136,7 +139,7 @@ bf_status bf_tradeoff_write_csv(const bf_tradeoff *t, const char *path, bf_error
 }
 
 bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int format, int width, int height,
-                           bf_plot_axes *axes, bf_error *err)
+                                 bf_plot_axes *axes, bf_error *err)
 {
     if (axes && bf_sized_check(axes, sizeof *axes, "bf_plot_axes", err) != BF_OK)
         return BF_ERR_ARG;
@@ -148,7 +151,7 @@ bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int for
     int n = t->nrows > 0 ? t->nrows : 1;
     double *x = malloc(2 * (size_t)n * sizeof *x);
     int *on = malloc((size_t)n * sizeof *on);
-    char (*text)[16] = malloc((size_t)n * sizeof *text);
+    char(*text)[16] = malloc((size_t)n * sizeof *text);
     const char **labels = malloc((size_t)n * sizeof *labels);
     plot *p = NULL;
     bf_status rc = BF_OK;
@@ -177,22 +180,15 @@ bf_status bf_tradeoff_write_plot(const bf_tradeoff *t, const char *path, int for
     snprintf(points, sizeof points, "settings (%d fitted)", ok);
     snprintf(front, sizeof front, "Pareto front (%d)", nfront);
     snprintf(chosen, sizeof chosen, "recommended (#%d)", t->recommended + 1);
-    plot_scatter_spec sp = {title,
-                            t->cost == BF_TRADEOFF_COST_SECONDS ? "fitting time (s)"
-                                                                : "fitting work (sample evaluations)",
-                            ytitle,
-                            1,
-                            log_y,
-                            0,
-                            t->nrows,
-                            x,
-                            y,
-                            on,
-                            labels,
-                            points,
-                            front,
-                            t->recommended,
-                            chosen};
+    plot_scatter_spec sp = {
+        title,    t->cost == BF_TRADEOFF_COST_SECONDS ? "fitting time (s)" : "fitting work (sample evaluations)",
+        ytitle,   1,
+        log_y,    0,
+        t->nrows, x,
+        y,        on,
+        labels,   points,
+        front,    t->recommended,
+        chosen};
     if (!(p = plot_scatter(&sp)) || plot_note(p, "#N: the setting's number in the table") < 0) {
         rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the plot", path);
         goto done;

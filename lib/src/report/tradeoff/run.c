@@ -95,8 +95,8 @@ bf_status bf_tradeoff_run_row(bf_tradeoff *t, int i, bf_samples *train, bf_sampl
             row->nwarnings = best.nwarnings;
         }
         /* Weighted like the training metrics (a scene's weights), so both judge alike. */
-        rc = bf_metrics_compute_weighted(best.model, best.x, test, best.metrics.k, o.solver.threads,
-                                         o.weighted_metrics, &row->test, err);
+        rc = bf_metrics_compute_weighted(best.model, best.x, test, best.metrics.k, o.solver.threads, o.weighted_metrics,
+                                         &row->test, err);
         if (rc != BF_OK)
             row->ran = row->ok = 0;
     }
