@@ -1,6 +1,7 @@
 """Running a library call: a worker thread, progress reports, cancelling and interrupts."""
 from __future__ import annotations
 
+import _thread
 import threading
 import time
 from typing import Any, Callable, Dict, Optional, Protocol, TypeVar
@@ -14,6 +15,9 @@ from ._progress import Progress, _progress_of
 # a cancel event within this).
 _POLL_SECONDS = 0.025
 _FIRST_NAP_SECONDS = 0.0005
+# How long a worker may take to begin when an exception hid whether it was started; one
+# that begins later finds the cancel flag set, or the call abandoned.
+_BEGIN_SECONDS = 0.2
 
 
 class CancelEvent(Protocol):
@@ -64,26 +68,34 @@ class _Run:
 
     def __call__(self, fn: Callable[[], T]) -> T:
         box: Dict[str, Any] = {}
+        ended = threading.Lock()  # held until the worker ends: it wakes the waiting thread
+        ended.acquire()
 
         def work() -> None:  # holds self (the cancel flag, the progress handle) and fn
             box["began"] = True
             try:
-                box["rc"] = fn()
+                if "abandoned" not in box:
+                    box["rc"] = fn()
             except BaseException as e:  # surfaced in the calling thread
                 box["exc"] = e
             finally:
                 box["done"] = True
+                ended.release()
 
         self._pending: Optional[BaseException] = None
         self._poll_event()  # an event set already: the call stops at its first check
         try:
-            threading.Thread(target=work, name="brdfit", daemon=True).start()
-        except BaseException as e:  # in start(): the worker may or may not have begun
+            # The low-level call: one C function, so an exception lands before it (no
+            # worker) or after it (a worker), never inside a Condition's wait as in
+            # threading.Thread.start.
+            _thread.start_new_thread(work, ())
+        except BaseException as e:  # the worker may or may not have begun
             self.cancel[0] = 1
             self._pending = e
-            if not self._wait(box, "began", 1.0):
+            if not self._wait(box, "began", _BEGIN_SECONDS):
+                box["abandoned"] = True  # one that begins later does nothing
                 raise
-        self._wait(box, "done", None)
+        self._wait(box, "done", None, ended)
         if self._pending is not None:
             raise self._pending
         if self.error is not None:
@@ -100,23 +112,29 @@ class _Run:
             self.stopped = True
             self.cancel[0] = 1
 
-    def _wait(self, box: Dict[str, Any], key: str, limit: Optional[float]) -> bool:
+    def _wait(self, box: Dict[str, Any], key: str, limit: Optional[float],
+              ended: Optional["threading.Lock"] = None) -> bool:
         """Waits until the worker puts key in box (at most limit seconds), looking at the
         cancel event in between; an exception meanwhile sets the cancel flag and is kept for
         the caller (the first one), and the wait goes on.
 
-        Plain sleeps on a flag, not threading.Event.wait: an exception a signal handler
-        raises inside a Condition's wait can leave its lock released twice ("release
-        unlocked lock"), and the waiting must survive any number of them. The sleeps grow
-        from 0.5 ms, so a short call returns at once and a long one costs no CPU."""
+        The flag decides, not threading.Event.wait: an exception a signal handler raises
+        inside a Condition's wait can leave its lock released twice ("release unlocked
+        lock"), and the waiting must survive any number of them. In between it blocks on
+        ended, a plain lock the worker releases as it ends (an interrupted acquire leaves
+        it as it was, and the flag covers an acquire whose success an exception hid), so
+        a short call returns at once; without one it sleeps, from 0.5 ms up."""
         end = None if limit is None else time.monotonic() + limit
         nap = _FIRST_NAP_SECONDS
         while key not in box:
             if end is not None and time.monotonic() >= end:
                 return False
             try:
-                time.sleep(nap)
-                nap = min(2 * nap, _POLL_SECONDS)
+                if ended is not None:
+                    ended.acquire(timeout=_POLL_SECONDS)
+                else:
+                    time.sleep(nap)
+                    nap = min(2 * nap, _POLL_SECONDS)
                 self._poll_event()
             except BaseException as e:
                 self.cancel[0] = 1
