@@ -117,7 +117,7 @@ X_LO = np.array([0.0] * 6 + [1e-4, 0.0])
 X_HI = np.array([1.0] * 6 + [1.0, 1.0])
 X_DEFAULT = np.array([0.5] * 6 + [0.12, 0.04])  # microfacet.c: alpha 0.12 k for lobe k
 
-LOG_FLOOR = -1.0 + 1e-12  # objective_impl.h: ln(1 + u) with u floored here
+LOG_FLOOR = -1.0 + 1e-12  # objective_state.h: ln(1 + u) with u floored here
 HORIZON = 1e-15  # a cosine below this is the horizon (geometry.h)
 
 # Ceres settings brdfit uses by default (optim/ceres_solver.cc), given to scipy too.
@@ -327,7 +327,7 @@ def to_model(z):
 Z_LO, Z_HI = to_internal(X_LO), to_internal(X_HI)
 
 
-# ---- The objective (fit/objective.c, objective_impl.h) -----------------------------------
+# ---- The objective (fit/objective.c, objective_state.h) -----------------------------------
 
 
 class LogObjective:

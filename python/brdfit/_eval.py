@@ -2,7 +2,7 @@
 in one call, and the gradient as the library's dense Jacobian or per channel."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Protocol, Tuple, Union
 
 import numpy as np
 
@@ -10,8 +10,24 @@ from ._args import Array, Index, _array, _direction_pairs
 from ._brdfit import ffi, lib
 from ._errors import UsageError, _check
 
-if TYPE_CHECKING:
-    from ._model import Model
+
+
+class Evaluable(Protocol):
+    """What evaluation takes of a brdfit.Model (_model.py, which calls this module: the
+    model is described here rather than imported, so that the two do not import each
+    other)."""
+
+    _m: Any
+    _params: Optional[Array]
+
+    @property
+    def channels(self) -> int: ...
+
+    def _colour(self, i: int) -> bool: ...
+
+    def _find(self, key: Any) -> int: ...
+
+    def _vector(self, params: Optional[Mapping[str, Any]], base: Optional[Array] = None) -> Array: ...
 
 # The per-channel gradient comes from the dense Jacobian a block of samples at a time:
 # at most this many doubles of it at once (32 MiB; one sample's rows at least).
@@ -29,7 +45,7 @@ def _gradient_mode(gradient: Any) -> Optional[str]:
     raise UsageError("gradient: needs True, False or 'channel', got %r" % (gradient,))
 
 
-def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[Array, Optional[int]]:
+def _param_sets(m: Evaluable, params: Optional[Mapping[str, Any]]) -> Tuple[Array, Optional[int]]:
     """The model vectors of params, (K, nvalues), and K, or None for one set (then one
     row): the model's own parameters (a fit's; else the defaults) with params over them.
     A scalar parameter of shape (K,) or a colour one of shape (K, C) or (K, 1) gives K
@@ -67,7 +83,7 @@ def _param_sets(m: "Model", params: Optional[Mapping[str, Any]]) -> Tuple[Array,
     return X, K
 
 
-def _channel_columns(m: "Model") -> Tuple[Index, Index]:
+def _channel_columns(m: Evaluable) -> Tuple[Index, Index]:
     """Indices into a dense Jacobian (n, C, nvalues) that give d value[c] / d parameter:
     rows (C, 1) and columns (C, nparams), a colour parameter's column being channel c's."""
     C, nparams = m.channels, lib.bf_model_nparams(m._m)
@@ -78,7 +94,7 @@ def _channel_columns(m: "Model") -> Tuple[Index, Index]:
     return np.arange(C)[:, None], cols
 
 
-def _eval_channel(m: "Model", x: Array, g: Any, values: Array, out: Array) -> None:
+def _eval_channel(m: Evaluable, x: Array, g: Any, values: Array, out: Array) -> None:
     """values (n, C) and out (n, C, nparams) of one parameter set: the library's analytic
     Jacobian of a block of samples at a time, of which only the per-channel columns stay."""
     n, C = values.shape
@@ -94,7 +110,7 @@ def _eval_channel(m: "Model", x: Array, g: Any, values: Array, out: Array) -> No
         out[i0:i1] = dense[:i1 - i0][:, rows, cols]
 
 
-def evaluate(m: "Model", wi: Any, wo: Any, params: Optional[Mapping[str, Any]], gradient: Any) -> Result:
+def evaluate(m: Evaluable, wi: Any, wo: Any, params: Optional[Mapping[str, Any]], gradient: Any) -> Result:
     mode = _gradient_mode(gradient)
     L, V, lead = _direction_pairs(wi, wo)
     X, K = _param_sets(m, params)

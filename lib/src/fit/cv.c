@@ -13,7 +13,7 @@
 #include "brdfit/fit.h"
 #include "brdfit/prep.h"
 #include "fit_impl.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 #include "run_options.h"
 
 /* The held-out samples' sum of w r^2 and sum of w at the model vector x. */

@@ -4,7 +4,7 @@
 
 #include "brdfit/fit.h"
 #include "fit_impl.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 
 /* Adds one warning of the given kind (printf style; cut at the slot's size; past
  * BF_FIT_MAX_WARNINGS the last slot says that more were left out, kind

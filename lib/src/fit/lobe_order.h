@@ -3,7 +3,7 @@
 #ifndef BF_FIT_LOBE_ORDER_H
 #define BF_FIT_LOBE_ORDER_H
 
-#include "objective_impl.h"
+#include "objective_state.h"
 
 /* Half width at half maximum in theta_h (radians) of lobe k (0-based) of m (a lobe model,
  * not mono-tied: bf_model_untied) at x, at theta_d = 10 degrees in the plane of

@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "brdfit/metrics.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 
 typedef struct bf_metric_sums {
     double ssr, scos, slog, srel, maxe;

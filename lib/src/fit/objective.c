@@ -3,7 +3,7 @@
  *
  * Residual r = i*C + c (sample-major, as bf_model_eval lays out values), so the model's
  * Jacobian rows map directly onto the problem's. For each residual:
- *   res = sqrt(w_i) form(f, m, cos theta_i)                 (forms: objective_impl.h)
+ *   res = sqrt(w_i) form(f, m, cos theta_i)                 (forms: objective_state.h)
  *   d res / d z_j = sqrt(w_i) form'(f) d f / d x_k  dx_k / dz_j,  k the entry of z_j
  * with w_i the product of the sample's own weight (use_weights; negative weights count
  * as 0), its solid-angle weight (solid_angle) and its scene weight (always, when a scene
@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "base/big_alloc.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 #include "base/parallel.h"
 #include "base/sized.h"
 
@@ -57,11 +57,11 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
     size_t chunk = block_samples(o, jac != NULL);
     if (chunk > end - first)
         chunk = end - first;
-    bf_obj_ws *ws = bf_obj_ws_get(o);
+    bf_obj_ws *ws = bf_obj_ws_get(o->ws);
     double *vals = ws ? bf_obj_ws_buf(ws, BF_WS_VALS, chunk * C * sizeof *vals) : NULL;
     double *grad = jac && ws ? bf_obj_ws_buf(ws, BF_WS_GRAD, chunk * C * P * sizeof *grad) : NULL;
     if (!vals || (jac && !grad)) {
-        bf_obj_ws_put(o, ws);
+        bf_obj_ws_put(o->ws, ws);
         return -1;
     }
     bf_geometry_block gb;
@@ -94,7 +94,7 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
             }
         }
     }
-    bf_obj_ws_put(o, ws);
+    bf_obj_ws_put(o->ws, ws);
     return 0;
 }
 
@@ -178,67 +178,11 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
     return bsum - 1.0;
 }
 
-/* ---- Workspaces (objective_impl.h) ------------------------------------------------- */
-
-bf_obj_ws *bf_obj_ws_get(const bf_objective *o)
-{
-    bf_obj_ws_list *l = o->ws;
-    pthread_mutex_lock(&l->lock);
-    bf_obj_ws *w = l->free_list;
-    if (w)
-        l->free_list = w->next_free;
-    else if ((w = calloc(1, sizeof *w))) {
-        w->next_all = l->all;
-        l->all = w;
-    }
-    pthread_mutex_unlock(&l->lock);
-    return w;
-}
-
-void bf_obj_ws_put(const bf_objective *o, bf_obj_ws *w)
-{
-    if (!w)
-        return;
-    bf_obj_ws_list *l = o->ws;
-    pthread_mutex_lock(&l->lock);
-    w->next_free = l->free_list;
-    l->free_list = w;
-    pthread_mutex_unlock(&l->lock);
-}
-
-void *bf_obj_ws_buf(bf_obj_ws *w, int k, size_t bytes)
-{
-    if (bytes == 0)
-        bytes = 1;
-    if (w->cap[k] < bytes) { /* the contents need not survive: no realloc copy */
-        free(w->buf[k]);
-        w->cap[k] = 0;
-        if (!(w->buf[k] = malloc(bytes)))
-            return NULL;
-        w->cap[k] = bytes;
-    }
-    return w->buf[k];
-}
-
-static void ws_list_free(bf_obj_ws_list *l)
-{
-    if (!l)
-        return;
-    for (bf_obj_ws *w = l->all, *nx; w; w = nx) {
-        nx = w->next_all;
-        for (int k = 0; k < BF_WS_NBUF; k++)
-            free(w->buf[k]);
-        free(w);
-    }
-    pthread_mutex_destroy(&l->lock);
-    free(l);
-}
-
 void bf_objective_free(bf_objective *o)
 {
     if (!o)
         return;
-    ws_list_free(o->ws);
+    bf_obj_ws_list_free(o->ws);
     free(o->lo);
     free(o->hi);
     free(o->fixed);
@@ -433,10 +377,7 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
     o->delta = malloc((size_t)o->C * sizeof *o->delta);
     o->colour_off = malloc(np * sizeof *o->colour_off);
     o->colour_step = malloc(np * sizeof *o->colour_step);
-    if ((o->ws = calloc(1, sizeof *o->ws)) && pthread_mutex_init(&o->ws->lock, NULL) != 0) {
-        free(o->ws);
-        o->ws = NULL;
-    }
+    o->ws = bf_obj_ws_list_new();
     if (!o->ws || !o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx || !o->zlo ||
         !o->zhi || !o->delta || !o->colour_off || !o->colour_step) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");

@@ -22,7 +22,7 @@
 
 #include "metrics_impl.h"
 #include "models/lobes.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 #include "base/parallel.h"
 
 enum { NORMAL_CHUNK = BF_METRIC_CHUNK }; /* samples: the metrics' chunks (metrics_impl.h) */
@@ -386,7 +386,7 @@ static void normal_chunk(void *ctx, size_t c)
     double *jtr = out + 1, *jtj = j->want_jtj ? out + 1 + j->P : NULL;
     const size_t C = (size_t)j->o->C;
     metric_buf mbuf = {i0, NULL, NULL, NULL}, *ms = NULL;
-    bf_obj_ws *ws = bf_obj_ws_get(j->o);
+    bf_obj_ws *ws = bf_obj_ws_get(j->o->ws);
     if (!ws) {
         j->failed = 1;
         return;
@@ -394,7 +394,7 @@ static void normal_chunk(void *ctx, size_t c)
     if (j->msum) {
         mbuf.f = bf_obj_ws_buf(ws, BF_WS_MBUF, (i1 - i0) * (2 * C + 1) * sizeof(double));
         if (!mbuf.f) {
-            bf_obj_ws_put(j->o, ws);
+            bf_obj_ws_put(j->o->ws, ws);
             j->failed = 1;
             return;
         }
@@ -409,7 +409,7 @@ static void normal_chunk(void *ctx, size_t c)
         bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
                         j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
                         j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C);
-    bf_obj_ws_put(j->o, ws);
+    bf_obj_ws_put(j->o->ws, ws);
     if (bad)
         j->failed = 1; /* written only as 1, by any thread */
 }
@@ -434,7 +434,7 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
     /* The untied vector: entry k of m is entry map[k] of the model's. */
     double xs[256], *xu = (size_t)P <= 256 ? xs : malloc((size_t)P * sizeof *xu);
     const int PM = o->P;
-    bf_obj_ws *ws = bf_obj_ws_get(o);
+    bf_obj_ws *ws = bf_obj_ws_get(o->ws);
     double *sum = NULL, *ftr = NULL, *ftj = NULL;
     if (ws) {
         j.part = bf_obj_ws_buf(ws, BF_WS_PART, (nchunks * ps + 1) * sizeof(double));
@@ -494,6 +494,6 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
 done:
     if (xu != xs)
         free(xu);
-    bf_obj_ws_put(o, ws);
+    bf_obj_ws_put(o->ws, ws);
     return bad;
 }

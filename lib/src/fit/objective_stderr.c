@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "metrics_impl.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 
 #define NULL_EIGEN 1e-12
 #define NULL_SHARE 1e-6

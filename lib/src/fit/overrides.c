@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "objective_impl.h"
+#include "objective_state.h"
 
 /* Parses "NAME" or "NAME[c]" from text up to '='; *rest points after the '='. */
 static bf_status parse_target(const char *what, const char *text, bf_override *out, const char **rest, bf_error *err)

@@ -11,7 +11,7 @@
  * Internal bounds are the transformed effective bounds. */
 #include <math.h>
 
-#include "objective_impl.h"
+#include "objective_state.h"
 
 double bf_obj_to_z(bf_scale sc, double x)
 {

@@ -1,7 +1,7 @@
-/* Residual form names (the forms themselves are inline in objective_impl.h). */
+/* Residual form names (the forms themselves are inline in objective_state.h). */
 #include <string.h>
 
-#include "objective_impl.h"
+#include "objective_state.h"
 
 static const char *const residual_names[] = {"linear", "cosine", "log", "cbrt", "relative"};
 #define NFORMS ((int)(sizeof residual_names / sizeof residual_names[0]))

@@ -7,7 +7,7 @@
 
 #include "brdfit/fit.h"
 #include "fit_impl.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 
 typedef struct bf_search {
     /* In. */

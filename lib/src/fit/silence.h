@@ -8,7 +8,7 @@
 #define BF_FIT_SILENCE_H
 
 #include "brdfit/solve.h"
-#include "objective_impl.h"
+#include "objective_state.h"
 
 typedef struct bf_silence {
     int nz;                /* internal entries */

@@ -26,7 +26,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "objective_impl.h"
+#include "objective_state.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

@@ -1,4 +1,4 @@
-/* photo_write_gltf (photo_write_impl.h): the gltf model's per-pixel fit as a textured glTF
+/* photo_write_gltf (photo_outputs.h): the gltf model's per-pixel fit as a textured glTF
  * 2.0 material on a quad the shape of the image, so that a viewer shows the photographed
  * sample as it was fitted:
  *  - base_color.png: baseColorTexture, the per-pixel base_color (sRGB-encoded, as glTF
@@ -27,7 +27,7 @@
 #include "brdfit/version.h"
 #include "io/json_out.h"
 #include "io/out_folder.h"
-#include "photo_write_impl.h"
+#include "photo_outputs.h"
 #include "export/gltf_doc.h"
 
 /* The quad: 6 unsigned short indices, then 4 vertices' positions, normals, tangents and

@@ -1,4 +1,4 @@
-/* The shared entries (--share) fitted jointly with the subsample's pixels (photo_fit_impl.h):
+/* The shared entries (--share) fitted jointly with the subsample's pixels (photo_run.h):
  * Levenberg-Marquardt on every unknown at once, each step solved by the Schur complement
  * as bundle adjustment does. Per pixel p, the damped normal equations over its own
  * unknowns (free entries, normal) and its cluster's shared entries are
@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "base/parallel.h"
-#include "photo_fit_impl.h"
+#include "photo_run.h"
 
 #define JOINT_STEPS 30  /* accepted steps at most */
 #define JOINT_STOP 1e-7 /* relative cost decrease that ends it */

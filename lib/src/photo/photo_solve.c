@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "objective_impl.h"
+#include "objective_state.h"
 #include "photo_impl.h"
 
 #define NORMAL_STEP 1e-5 /* radians: the forward differences of the normal */

@@ -14,7 +14,7 @@
 #include "base/rng.h"
 #include "brdfit/fit.h"
 #include "fit_impl.h"
-#include "photo_fit_impl.h"
+#include "photo_run.h"
 
 #define POOL_PIXELS 512 /* a cluster's pixels pooled for its start, at most */
 

@@ -15,7 +15,7 @@
 #include "io/json_out.h"
 #include "io/out_folder.h"
 #include "photo_impl.h"
-#include "photo_write_impl.h"
+#include "photo_outputs.h"
 
 #define MARKER ".brdfit-fit-images"
 #define WHAT "fit-images output"
@@ -25,14 +25,6 @@
 bf_status bf_photo_check_output(const char *dir, bf_error *err)
 {
     return bf_out_folder_check(dir, MARKER, WHAT, err);
-}
-
-bf_status photo_write_image(const bf_out_folder *f, const char *name, int w, int h, int ch, const float *px,
-                            unsigned flags, bf_error *err)
-{
-    char path[4200];
-    bf_status rc = bf_out_folder_path(f, name, path, sizeof path, err);
-    return rc != BF_OK ? rc : bf_image_write(path, BF_IMAGE_BY_NAME, w, h, ch, px, flags, err);
 }
 
 /* Entry e's map (a scalar parameter, or one channel of a colour one). */

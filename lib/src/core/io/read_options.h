@@ -4,6 +4,7 @@
 #ifndef BRDFIT_READ_OPTIONS_H
 #define BRDFIT_READ_OPTIONS_H
 
+#include "brdfit/error.h"
 #include "brdfit/formats.h"
 #include "brdfit/io.h"
 
@@ -48,7 +49,11 @@ bf_status bf_samples_read_cornell_cancellable(const char *path, const bf_cancel_
                                               bf_error *err);
 bf_status bf_samples_read_alta_cancellable(const char *path, const bf_cancel_flag *cancel, bf_samples **out,
                                            bf_error *err);
-/* The error of a read that saw its cancel flag set. */
-bf_status bf_read_cancelled(const char *path, bf_error *err);
+/* The error of a read that saw its cancel flag set (inline: every reader and their
+ * dispatch give it, so it belongs to none of them). */
+static inline bf_status bf_read_cancelled(const char *path, bf_error *err)
+{
+    return bf_fail(err, BF_ERR_CANCELLED, "%s: reading cancelled", path);
+}
 
 #endif

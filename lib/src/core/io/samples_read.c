@@ -87,8 +87,3 @@ bf_status bf_samples_read_with(const char *path, const bf_read_options *opt, bf_
     default: return bf_samples_read_csv_cancellable(path, opt ? &opt->csv : NULL, cancel, out, err);
     }
 }
-
-bf_status bf_read_cancelled(const char *path, bf_error *err)
-{
-    return bf_fail(err, BF_ERR_CANCELLED, "%s: reading cancelled", path);
-}

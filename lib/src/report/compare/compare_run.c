@@ -87,20 +87,6 @@ static void fit_one(void *arg, size_t chunk)
     pthread_mutex_unlock(&r->lock);
 }
 
-bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *err)
-{
-    if (!c || !o)
-        return bf_fail(err, BF_ERR_ARG, "compare: no table or no options");
-    c->metric = o->metric;
-    c->rank_by = o->rank_by;
-    /* Folds only when ranking by the cross-validated error: K more fits per model. */
-    c->folds = options_folds(o);
-    c->timing = o->timing;
-    c->tolerance = o->tolerance;
-    c->residual = bf_residual_name(o->residual);
-    return BF_OK;
-}
-
 bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o, bf_compare_progress progress,
                          void *user, bf_error *err)
 {

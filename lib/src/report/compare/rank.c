@@ -3,6 +3,7 @@
 #include "brdfit/compare.h"
 
 #include "compare/compare_impl.h"
+#include "run_options.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -24,6 +25,22 @@ const char *bf_compare_state_name(bf_compare_state s)
     case BF_CMP_ERROR: return "error";
     }
     return "?";
+}
+
+/* The ranking's options, as a run's options hold them (beside the table they fill: bf_compare_init
+ * applies the defaults, bf_compare_run a run's own). */
+bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *err)
+{
+    if (!c || !o)
+        return bf_fail(err, BF_ERR_ARG, "compare: no table or no options");
+    c->metric = o->metric;
+    c->rank_by = o->rank_by;
+    /* Folds only when ranking by the cross-validated error: K more fits per model. */
+    c->folds = options_folds(o);
+    c->timing = o->timing;
+    c->tolerance = o->tolerance;
+    c->residual = bf_residual_name(o->residual);
+    return BF_OK;
 }
 
 bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,

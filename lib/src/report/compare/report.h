@@ -1,5 +1,6 @@
 /* The HTML report's parts (internal): report_html.c writes the page, its tables and the
- * folder; report_pictures.c the slices, spheres and half/difference images. */
+ * folder; report_pictures.c the slices, spheres and half/difference images;
+ * report_viewer.c the interactive viewer; report_util.c what they share. */
 #ifndef BRDFIT_COMPARE_REPORT_H
 #define BRDFIT_COMPARE_REPORT_H
 

@@ -10,6 +10,17 @@
 #include "brdfit/limits.h"
 #include "brdfit/render.h"
 
+/* bf_sphere_options with the library's defaults (a whole struct of this version). */
+static void sphere_options_defaults(bf_sphere_options *o)
+{
+    static const bf_dir light = {45.0, 0.0};
+    o->resolution = 256;
+    o->lights = &light;
+    o->nlights = 1;
+}
+
+BF_SIZED_INIT(bf_sphere_options, sphere_options_defaults)
+
 #define PLOT_MIN_SIDE 40 /* a figure smaller has no room for its axes */
 
 static const char *const tonemap_names[] = {"clamp", "reinhard", "log"};

@@ -8,17 +8,6 @@
 #include "brdfit/render.h"
 #include "colour.h"
 
-/* bf_sphere_options with the library's defaults (a whole struct of this version). */
-static void sphere_options_defaults(bf_sphere_options *o)
-{
-    static const bf_dir light = {45.0, 0.0};
-    o->resolution = 256;
-    o->lights = &light;
-    o->nlights = 1;
-}
-
-BF_SIZED_INIT(bf_sphere_options, sphere_options_defaults)
-
 static void dir_vec(bf_dir d, double v[3])
 {
     double t = d.theta * (M_PI / 180.0), p = d.phi * (M_PI / 180.0);

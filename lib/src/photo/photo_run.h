@@ -1,7 +1,8 @@
-/* Internal: the state of one bf_photo_fit run, shared by photo_fit.c (bands and pixels)
- * and photo_start.c (start, clusters, shared entries). */
-#ifndef BF_PHOTO_FIT_IMPL_H
-#define BF_PHOTO_FIT_IMPL_H
+/* Internal: the state of one bf_photo_fit run and the steps' functions, shared by
+ * photo_fit.c (bands and pixels), photo_start.c (start, clusters), photo_joint.c (shared
+ * entries) and photo_run.c (their common helpers). */
+#ifndef BF_PHOTO_RUN_H
+#define BF_PHOTO_RUN_H
 
 #include "photo_impl.h"
 

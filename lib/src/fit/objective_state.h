@@ -2,8 +2,8 @@
  * evaluation; parametrisation.c: internal scale; overrides.c: --fix/--bound;
  * solid_angle.c: MERL cell weights; objective_stderr.c: standard errors; residual.c:
  * form names) and by metrics.c (the guarded logarithm). */
-#ifndef BF_OBJECTIVE_IMPL_H
-#define BF_OBJECTIVE_IMPL_H
+#ifndef BF_OBJECTIVE_STATE_H
+#define BF_OBJECTIVE_STATE_H
 
 #include <float.h>
 #include <math.h>
@@ -13,51 +13,8 @@
 #include "brdfit/metrics.h"
 #include "brdfit/objective.h"
 
-/* ---- Workspaces --------------------------------------------------------------------
- * The scratch of the objective's passes, allocated once per objective (on first use,
- * grown when a pass needs more) and kept until bf_objective_free, instead of at every
- * evaluation. A pass takes a workspace for its own sums and every chunk of it takes one
- * while it runs, from the objective's free list under a lock (chunks run on any thread
- * of the pool, several at once): a workspace is used by one thread at a time, and there
- * are never more than the threads that ever worked at once on the objective's passes,
- * plus their callers. Contents are not kept between uses. */
-enum {
-    BF_WS_VALS,
-    BF_WS_GRAD,
-    BF_WS_G,
-    BF_WS_S,
-    BF_WS_JC,
-    BF_WS_COLS,
-    BF_WS_USED, /* a chunk's blocks */
-    BF_WS_TR,
-    BF_WS_TJ,
-    BF_WS_COL,  /* a chunk's lobe sums */
-    BF_WS_MBUF, /* a chunk's metric values */
-    BF_WS_PART,
-    BF_WS_SUM,
-    BF_WS_FTR,
-    BF_WS_FTJ,
-    BF_WS_MSUM, /* a pass's sums */
-    BF_WS_NBUF
-};
-typedef struct bf_obj_ws {
-    struct bf_obj_ws *next_free, *next_all;
-    void *buf[BF_WS_NBUF];
-    size_t cap[BF_WS_NBUF]; /* bytes */
-} bf_obj_ws;
-
-typedef struct bf_obj_ws_list {
-    pthread_mutex_t lock;
-    bf_obj_ws *free_list, *all;
-} bf_obj_ws_list;
-
-struct bf_objective;
-/* A workspace for the calling thread (NULL when out of memory); bf_obj_ws_put returns
- * it. Both take a const objective: the list is the one thing its passes change. */
-bf_obj_ws *bf_obj_ws_get(const struct bf_objective *o);
-void bf_obj_ws_put(const struct bf_objective *o, bf_obj_ws *w);
-/* Buffer k of w with room for `bytes` (contents undefined), NULL when out of memory. */
-void *bf_obj_ws_buf(bf_obj_ws *w, int k, size_t bytes);
+/* The passes' workspaces (objective_ws.c). */
+#include "objective_ws.h"
 
 struct bf_objective {
     const bf_model *model; /* not owned: must outlive the objective */
