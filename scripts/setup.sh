@@ -31,15 +31,16 @@ build=(build-essential cmake pkg-config git
 #  - python3-pytest, python3-hypothesis, python3-matplotlib (the example), python3-venv
 #    and python3-pip (the pip route into a virtual environment): the Python package's
 #    tests (python/tests);
-#  - python3-pandas (CompareResult.to_dataframe) and mypy (the package and its examples
-#    type-check with mypy --strict: python/tests/test_types.py);
+#  - python3-pandas (CompareResult.to_dataframe), mypy and python3-typeshed (cffi's types,
+#    which mypy only recommends): the package and its examples type-check with mypy
+#    --strict (python/tests/test_types.py);
 #  - chromium: the report viewer's test (tests/browser) drives it headless;
 #  - clang-format (14): CI checks that every C and C++ file is formatted as .clang-format
 #    says (scripts/check_format.sh).
 tests=(jq openimageio-tools libxml2-utils poppler-utils sqlite3 man-db groff-base procps
   python3 python3-numpy blender slurmctld slurmd slurm-client munge clang libclang-rt-14-dev
   debhelper lintian python3-pytest python3-hypothesis python3-matplotlib python3-venv python3-pip
-  python3-pandas mypy chromium clang-format)
+  python3-pandas mypy python3-typeshed chromium clang-format)
 
 $SUDO apt-get update -qq || fail "apt-get update failed"
 if ! out=$($SUDO apt-get install -y -qq --no-install-recommends "${build[@]}" "${tests[@]}" 2>&1); then

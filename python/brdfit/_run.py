@@ -17,7 +17,7 @@ _POLL_SECONDS = 0.025
 _FIRST_NAP_SECONDS = 0.0005
 # How long a worker may take to begin when an exception hid whether it was started; one
 # that begins later finds the cancel flag set, or the call abandoned.
-_BEGIN_SECONDS = 0.2
+_BEGIN_SECONDS = 0.25
 
 
 class CancelEvent(Protocol):
