@@ -28,7 +28,7 @@
 #include "io/json_out.h"
 #include "io/out_folder.h"
 #include "photo_outputs.h"
-#include "export/gltf_doc.h"
+#include "io/gltf_doc.h"
 
 /* The quad: 6 unsigned short indices, then 4 vertices' positions, normals, tangents and
  * texture coordinates, each in its own buffer view (every offset a multiple of 4). */

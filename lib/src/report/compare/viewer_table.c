@@ -20,7 +20,7 @@
 #include "brdfit/geometry.h"
 #include "brdfit/merl.h"
 #include "brdfit/render.h"
-#include "export/gltf_doc.h"
+#include "io/gltf_doc.h"
 #include "render/colour.h"
 
 void viewer_node_angles(int i, int j, int k, double *theta_h, double *theta_d, double *phi_d)

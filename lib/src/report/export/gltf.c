@@ -11,7 +11,7 @@
 #include <cjson/cJSON.h>
 
 #include "export_impl.h"
-#include "gltf_doc.h"
+#include "io/gltf_doc.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

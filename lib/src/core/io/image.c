@@ -8,7 +8,7 @@
 
 #include "base/sized.h"
 #include "brdfit/io.h"
-#include "render/image_plugin.h"
+#include "io/image_plugin.h"
 
 #include <math.h>
 #include <stdio.h>

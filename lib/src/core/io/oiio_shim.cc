@@ -3,7 +3,7 @@
 // images don't load OpenImageIO's ~270 shared libraries. Its entry points (image_plugin.h)
 // have C linkage and catch every exception so nothing crosses into C. It uses no brdfit
 // symbol (it is linked with --no-undefined): errors are written into the bf_error here.
-#include "render/image_plugin.h"
+#include "io/image_plugin.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

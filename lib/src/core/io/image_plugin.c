@@ -18,7 +18,7 @@
  * through to an older copy. The outcome, success or failure, is kept for the process. */
 /* dladdr is a GNU extension. */
 #define _GNU_SOURCE
-#include "render/image_plugin.h"
+#include "io/image_plugin.h"
 
 #include <dlfcn.h>
 #include <limits.h>
