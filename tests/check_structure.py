@@ -1,8 +1,8 @@
 """The library's structure, from its sources and its objects (docs/architecture.md):
 
 1. no include runs up the layers: a file of lib/src/LAYER includes headers of its own
-   layer, of the layers below it (core < fit < report, photo; report and photo are
-   siblings, neither includes the other's) and the public ones only;
+   layer, of the layers below it (core < fit < study < report; photo on fit, neither
+   including study's or report's headers nor included by them) and the public ones only;
 2. no circle of files: the files whose objects call each other's functions (a function
    one object leaves undefined and another defines, read with nm) form no loop.
 
@@ -14,8 +14,9 @@ import subprocess
 import sys
 from collections import defaultdict
 
-LAYERS = ["core", "fit", "report", "photo"]
-RANK = {"core": 0, "fit": 1, "report": 2, "photo": 2}  # report and photo: siblings on fit
+LAYERS = ["core", "fit", "study", "report", "photo"]
+BELOW = {"core": set(), "fit": {"core"}, "study": {"core", "fit"}, "report": {"core", "fit", "study"},
+         "photo": {"core", "fit"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
@@ -26,11 +27,11 @@ def layer_of(path, src):
 
 
 def resolve(name, here, src):
-    """The file an include names, searched as the build does: beside the includer, then
-    the private include folders (lib/CMakeLists.txt's BRDFIT_PRIVATE_INCLUDES), then the
-    public headers; None for a generated or system header."""
-    for d in (here, src, os.path.join(src, "core"), os.path.join(src, "fit"), os.path.join(src, "report"),
-              os.path.join(src, "..", "include")):
+    """The file an include names, searched beside the includer, then in every layer's
+    private include folder (the build gives a layer its own and those below it only, so
+    an include up the layers fails to compile; this names it), then the public headers;
+    None for a generated or system header."""
+    for d in [here] + [os.path.join(src, layer) for layer in LAYERS] + [os.path.join(src, "..", "include")]:
         p = os.path.normpath(os.path.join(d, name))
         if os.path.isfile(p):
             return p
@@ -51,7 +52,7 @@ def upward_includes(src):
                     if target is None or mine is None:
                         continue
                     theirs = layer_of(target, src)
-                    if theirs is not None and theirs != mine and RANK[LAYERS[theirs]] >= RANK[LAYERS[mine]]:
+                    if theirs is not None and theirs != mine and LAYERS[theirs] not in BELOW[LAYERS[mine]]:
                         bad.append("%s includes %s: %s is not below %s" % (os.path.relpath(path, src), name,
                                                                            LAYERS[theirs], LAYERS[mine]))
     return bad
@@ -147,7 +148,7 @@ def main():
             print("  " + t)
     if bad or comps:
         sys.exit(1)
-    print("structure: %d objects, no circle; no include up the layers (core < fit < report, photo)" % n)
+    print("structure: %d objects, no circle; no include up the layers (core < fit < study < report; photo on fit)" % n)
 
 
 if __name__ == "__main__":

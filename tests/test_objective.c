@@ -14,7 +14,7 @@
 
 #include "brdfit/metrics.h"
 #include "brdfit/objective.h"
-#include "fit/objective_state.h"
+#include "objective_state.h"
 #include "support.h"
 
 static const bf_residual all_forms[] = {BF_RESIDUAL_LINEAR, BF_RESIDUAL_COSINE, BF_RESIDUAL_LOG, BF_RESIDUAL_CBRT,

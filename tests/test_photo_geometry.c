@@ -15,7 +15,7 @@
 
 #include "brdfit/image.h"
 #include "brdfit/photo.h"
-#include "photo/photo_impl.h"
+#include "photo_impl.h"
 #include "support.h"
 
 /* A stack of 3 images of w x h pixels, written as 8-bit PNG codes, read from text. */

@@ -1,4 +1,4 @@
-/* The report viewer's tables (lib/src/report/compare/viewer_table.c): the grid's nodes,
+/* The report viewer's tables (lib/src/report/html/viewer_table.c): the grid's nodes,
  * a model tabulated at them (the model's own values, none below the horizon), a MERL
  * table's cells interpolated at them, and the stored codes decoded as viewer.js decodes
  * them (zlib inflate, byte planes, running sums, log codes) give the values back within
@@ -17,7 +17,7 @@
 #include "brdfit/geometry.h"
 #include "brdfit/merl.h"
 #include "brdfit/render.h"
-#include "compare/viewer_table.h"
+#include "html/viewer_table.h"
 #include "support.h"
 
 /* The base64 payload of a data URI, decoded. */

@@ -7,6 +7,7 @@
 #include "brdfit/fit.h"
 #include "brdfit/io.h"
 #include "io/json_out.h"
+#include "metrics_json.h"
 #include "models/terms.h"
 
 #include <cjson/cJSON.h>

@@ -1,7 +1,7 @@
 /* The tradeoff's own run options (BF_TASK_TRADEOFF, brdfit tradeoff): how the table's
  * rows take and give them, and the lists a set holds, split, parsed and checked with the
  * command line's messages. In the fit layer because the table is and because the
- * methods are checked against the method registry; the tradeoff itself (report layer,
+ * methods are checked against the method registry; the tradeoff itself (study layer,
  * brdfit/tradeoff.h) reads them through options_tradeoff_get. */
 #ifndef BRDFIT_TRADEOFF_OPTIONS_H
 #define BRDFIT_TRADEOFF_OPTIONS_H

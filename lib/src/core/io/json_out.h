@@ -7,7 +7,6 @@
 #include <cjson/cJSON.h>
 
 #include "brdfit/error.h"
-#include "brdfit/metrics.h"
 #include "brdfit/model.h"
 
 /* v, or null when v is NaN or infinite (JSON has no such numbers). Written with the
@@ -21,8 +20,6 @@ void bf_json_add_string(cJSON *o, const char *key, const char *s);
 void bf_json_add_version(cJSON *o);
 /* {name: value or [per channel]} from a model vector x; null when m or x is NULL. */
 cJSON *bf_json_params(const bf_model *m, const double *x);
-/* {rmse, rmse_cos, rmse_log, rmse_rel, max_err, n, k, aic, bic}, as in a result file. */
-cJSON *bf_json_metrics(const bf_metrics *m);
 /* root's text (formatted, with a final newline: what bf_json_write writes) into *out
  * (malloc'd; bf_free), and root deleted. what names the document in messages. */
 bf_status bf_json_text(cJSON *root, const char *what, char **out, bf_error *err);

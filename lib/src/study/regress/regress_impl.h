@@ -1,4 +1,4 @@
-/* Shared by the regression baseline files (lib/src/report/regress/): growing lists of message
+/* Shared by the regression baseline files (lib/src/study/regress/): growing lists of message
  * lines, metric values by name. */
 #ifndef BRDFIT_REGRESS_IMPL_H
 #define BRDFIT_REGRESS_IMPL_H

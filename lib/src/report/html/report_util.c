@@ -7,7 +7,7 @@
 
 #include "brdfit/image.h"
 #include "brdfit/io.h"
-#include "compare/report.h"
+#include "html/report.h"
 
 /* Text from the data and the command line as HTML: markup escaped, and control
  * characters and invalid UTF-8, which HTML cannot show, as a terminal shows them
@@ -27,7 +27,7 @@ void report_esc(FILE *fp, const char *text)
     free(safe);
 }
 
-bf_status report_image(report *r, const char *name, int w, int h, const float *rgb, const char *alt)
+bf_status report_image(report_page *r, const char *name, int w, int h, const float *rgb, const char *alt)
 {
     char path[4096];
     if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
@@ -40,7 +40,7 @@ bf_status report_image(report *r, const char *name, int w, int h, const float *r
     return BF_OK;
 }
 
-bf_status report_figure(report *r, const char *name, const plot *p, int w, int h, const char *alt)
+bf_status report_figure(report_page *r, const char *name, const plot *p, int w, int h, const char *alt)
 {
     /* SVG stays sharp when zoomed; PNG is what any viewer shows; the PDF is for papers,
      * written only when asked for (format PDF): a PDF of every figure about doubles a

@@ -1,7 +1,7 @@
 /* The report's interactive viewer: per material, a script of data (mN-viewer.js: the
  * measurement and every ranked model tabulated by viewer_table.c, or the measured samples
  * as points) beside the page, and the viewer's code (viewer.js, compiled into the
- * library from lib/src/report/compare/viewer.js), so the page works from disk with no
+ * library from lib/src/report/html/viewer.js), so the page works from disk with no
  * server and nothing fetched (docs/report.md).
  *
  * Decisions:
@@ -17,8 +17,8 @@
 #include <string.h>
 
 #include "brdfit/io.h"
-#include "compare/report.h"
-#include "compare/viewer_table.h"
+#include "html/report.h"
+#include "html/viewer_table.h"
 #include "render/colour.h"
 
 enum { VIEWER_POINTS = 4000 };
@@ -26,7 +26,7 @@ enum { VIEWER_POINTS = 4000 };
 extern const unsigned char report_viewer_js[]; /* viewer.js, NUL-terminated */
 
 /* A file of the report's folder written whole (bf_outfile: checked, synced). */
-static bf_status write_file(report *r, const char *name, const char *head, const char *body, const char *tail)
+static bf_status write_file(report_page *r, const char *name, const char *head, const char *body, const char *tail)
 {
     char path[4200];
     if (snprintf(path, sizeof path, "%s/%s", r->tmp, name) >= (int)sizeof path)
@@ -41,14 +41,14 @@ static bf_status write_file(report *r, const char *name, const char *head, const
     return bf_outfile_commit(&o, r->err);
 }
 
-bf_status report_viewer_code(report *r)
+bf_status report_viewer_code(report_page *r)
 {
     /* The embedded bytes end with a NUL (cmake/embed.cmake): a string as they are. */
     return write_file(r, "viewer.js", "", (const char *)report_viewer_js, "");
 }
 
 /* A table as {"lo", "step", "data"} added to o under "table". */
-static bf_status add_table(report *r, cJSON *o, const double *v)
+static bf_status add_table(report_page *r, cJSON *o, const double *v)
 {
     cJSON *t = viewer_encode(v, 3, VIEWER_NODES, VIEWER_NH, r->err);
     if (!t)
@@ -58,7 +58,7 @@ static bf_status add_table(report *r, cJSON *o, const double *v)
 }
 
 /* Up to VIEWER_POINTS samples: {"n", "angles": 4 columns, "values": 3 channels}. */
-static bf_status add_points(report *r, cJSON *o, const bf_samples *s)
+static bf_status add_points(report_page *r, cJSON *o, const bf_samples *s)
 {
     const size_t stride = (s->n + VIEWER_POINTS - 1) / VIEWER_POINTS, n = (s->n + stride - 1) / stride;
     uint16_t *ang = malloc(4 * n * sizeof *ang);
@@ -100,7 +100,7 @@ static bf_status add_points(report *r, cJSON *o, const bf_samples *s)
 }
 
 /* The measurement: a table, points, or the reason there is neither. */
-static bf_status add_measured(report *r, cJSON *o, int i, const bf_samples *table, const char *why, double *v)
+static bf_status add_measured(report_page *r, cJSON *o, int i, const bf_samples *table, const char *why, double *v)
 {
     const bf_samples *s = r->o->samples ? r->o->samples[i] : NULL;
     cJSON *m = cJSON_AddObjectToObject(o, "measured");
@@ -118,7 +118,7 @@ static bf_status add_measured(report *r, cJSON *o, int i, const bf_samples *tabl
     return rc;
 }
 
-bf_status report_viewer(report *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
+bf_status report_viewer(report_page *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
 {
     const bf_compare *c = r->c;
     double *v = malloc(3 * VIEWER_NODES * sizeof *v);

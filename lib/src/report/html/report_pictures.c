@@ -23,7 +23,7 @@
 #include <string.h>
 
 #include "brdfit/render.h"
-#include "compare/report.h"
+#include "html/report.h"
 #include "render/halfdiff_figure.h"
 #include "render/slices.h"
 
@@ -45,7 +45,7 @@ static int dense(const bf_samples *t)
 }
 
 /* report.h */
-const bf_samples *report_measured_table(const report *r, int i, const char **why)
+const bf_samples *report_measured_table(const report_page *r, int i, const char **why)
 {
     const bf_samples *s = r->o->samples ? r->o->samples[i] : NULL;
     const bf_samples *t = r->o->tables && r->o->tables[i] ? r->o->tables[i] : s;
@@ -74,7 +74,7 @@ static void slice_options(bf_slice_options *so, const double *inc, int ninc, bf_
     so->plane_tol = 2.0;
 }
 
-static bf_status slices(report *r, int i, const bf_compare_material *m)
+static bf_status slices(report_page *r, int i, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -151,7 +151,7 @@ static bf_status slices(report *r, int i, const bf_compare_material *m)
     return BF_OK;
 }
 
-static bf_status spheres(report *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
+static bf_status spheres(report_page *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -225,7 +225,8 @@ static bf_status spheres(report *r, int i, const bf_compare_material *m, const b
 
 /* A half/difference figure written and embedded with its caption (text), and more
  * (HTML, or NULL) on a line under it. */
-static bf_status hd_figure(report *r, plot *p, const char *name, const char *alt, const char *caption, const char *more)
+static bf_status hd_figure(report_page *r, plot *p, const char *name, const char *alt, const char *caption,
+                           const char *more)
 {
     if (!p)
         return bf_fail(r->err, BF_ERR_NOMEM, "report: out of memory");
@@ -265,7 +266,7 @@ static double sample_mean(const bf_samples *s, const bf_geometry *g, size_t p)
  * together, the measurement on the table figures' log scale (from the samples' values),
  * then each ranked model's log2 ratio at the same samples. Every k-th sample only when
  * there are more than HD_POINTS (deterministic, and quick however many there are). */
-static bf_status halfdiff_points(report *r, int i, const bf_compare_material *m, bf_samples *s, const char *why)
+static bf_status halfdiff_points(report_page *r, int i, const bf_compare_material *m, bf_samples *s, const char *why)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -365,7 +366,7 @@ static bf_status halfdiff_points(report *r, int i, const bf_compare_material *m,
     return rc;
 }
 
-static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
+static bf_status halfdiff(report_page *r, int i, const bf_compare_material *m, const bf_samples *table, const char *why)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -429,7 +430,7 @@ static bf_status halfdiff(report *r, int i, const bf_compare_material *m, const 
     return rc;
 }
 
-bf_status report_pictures(report *r, int i, const bf_compare_material *m)
+bf_status report_pictures(report_page *r, int i, const bf_compare_material *m)
 {
     const char *why;
     const bf_samples *table = report_measured_table(r, i, &why);

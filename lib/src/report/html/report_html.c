@@ -31,7 +31,7 @@
 #include "brdfit/render.h"
 #include "brdfit/version.h"
 #include "io/out_folder.h"
-#include "compare/report.h"
+#include "html/report.h"
 #include "plot/scatter.h"
 
 enum { PLOT_W = 520, PLOT_H = 360 };
@@ -50,7 +50,7 @@ static const char *error_name(const bf_compare *c)
     return c->rank_by == BF_RANK_CV ? "cross-validated error" : bf_compare_metric_name(c->metric);
 }
 
-static void model_table(report *r, int i, const bf_compare_material *m)
+static void model_table(report_page *r, int i, const bf_compare_material *m)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -149,7 +149,7 @@ static void model_table(report *r, int i, const bf_compare_material *m)
               fp);
 }
 
-static bf_status scatter(report *r, int i, const bf_compare_material *m, int by_work)
+static bf_status scatter(report_page *r, int i, const bf_compare_material *m, int by_work)
 {
     const bf_compare *c = r->c;
     int n = c->nmodels;
@@ -216,7 +216,7 @@ static bf_status scatter(report *r, int i, const bf_compare_material *m, int by_
     return BF_OK;
 }
 
-static void summary(report *r)
+static void summary(report_page *r)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -257,7 +257,7 @@ static const char css[] = "body{font-family:sans-serif;margin:1.5em;color:#222;m
                           "pre.readout{font-size:80%;min-width:20em;margin:0}p.hdtext{font-size:80%;max-width:560px}";
 
 /* How the report was made, so that it can be made again. */
-static void how_made(report *r)
+static void how_made(report_page *r)
 {
     const bf_report_options *o = r->o;
     FILE *fp = r->fp;
@@ -281,7 +281,7 @@ static void how_made(report *r)
     fputs("</td></tr>\n</table>\n", fp);
 }
 
-static bf_status page(report *r)
+static bf_status page(report_page *r)
 {
     const bf_compare *c = r->c;
     FILE *fp = r->fp;
@@ -361,7 +361,7 @@ bf_status bf_compare_write_report(const bf_compare *c, const bf_report_options *
     if (rc != BF_OK)
         return rc;
 
-    report r = {c, o, f.tmp, NULL, err};
+    report_page r = {c, o, f.tmp, NULL, err};
     bf_outfile index;
     if ((rc = open_in(&f, &index, "index.html", err)) == BF_OK) {
         r.fp = index.fp;

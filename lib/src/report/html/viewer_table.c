@@ -10,7 +10,7 @@
  *    deflate shrinks several times (docs/report.md gives the sizes).
  *  - zlib's deflate: the browser inflates it with its own DecompressionStream, so the page
  *    needs no script of ours for it. */
-#include "compare/viewer_table.h"
+#include "html/viewer_table.h"
 
 #include <math.h>
 #include <stdlib.h>

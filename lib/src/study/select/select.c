@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "io/json_out.h"
+#include "metrics_json.h"
 
 /* In order of complexity; the mono variants are added after each coloured model. */
 static const char *const default_specs[] = {
