@@ -63,6 +63,10 @@ run export_mitsuba "$B" export "$out/fit_cayman_scene.d/fit.json" --to mitsuba -
 run export_blender "$B" export "$out/fit_cayman_scene.d/fit.json" --to blender -o m.py
 run render "$B" render --params "$E/walter_rgb.json" --size 64 -o r.png
 run render_slice "$B" render --params "$E/walter_rgb.json" --slice -o r.svg
+run render_slice_data "$B" render --params "$E/walter_rgb.json" --slice --data "$E/cornell/cayman.brdf" --rgb -o r.svg
+run render_halfdiff "$B" render --params "$E/walter_rgb.json" --half-diff -o r.svg
+run render_halfdiff_png "$B" render --params "$E/walter_rgb.json" --half-diff --size 200x160 -o r.png
+run tradeoff_plot "$B" tradeoff "$E/cornell/cayman.brdf" --rgb -m walter --samples 200,all --plot t.svg --threads 1
 run synth "$S" --params "$E/walter_rgb.json" --pattern stratified --count 500 --noise 0.02 --seed 3 -o s.csv
 printf 'models: lambert walter\noptions: --rgb --starts 2 --screen 8 --seed 3\n%s\n%s --scene %s\n' "$E/cornell/cayman.brdf" \
     "$T/cornell/cayman_head20.brdf" "$E/scenes/turntable.json" >"$out/manifest.txt"

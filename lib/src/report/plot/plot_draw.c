@@ -227,15 +227,21 @@ static void draw_colour_bar(cairo_t *cr, const colour_bar *b, const plot_layout 
     }
 }
 
-void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
-{
-    double font = l->font, tick_font = 0.9 * font, tick = 0.4 * font, lw = fmax(1.0, font / 13.0);
-    cairo_select_font_face(cr, PLOT_FONT_FACE, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
+/* The sizes every phase of plot_draw derives from the layout's font. */
+typedef struct pen {
+    double font, tick_font, tick, lw;
+} pen;
 
-    /* A raster, or a grid at the major ticks; guides, then the series, inside the plot
-     * area. */
+static pen pen_of(const plot_layout *l)
+{
+    return (pen){l->font, 0.9 * l->font, 0.4 * l->font, fmax(1.0, l->font / 13.0)};
+}
+
+/* Inside the plot area (clipped): a raster, or a grid at the major ticks; the guides,
+ * then the series. */
+static void draw_area(cairo_t *cr, const plot *p, const plot_layout *l, pen k)
+{
+    const double lw = k.lw;
     cairo_save(cr);
     cairo_rectangle(cr, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
     cairo_clip(cr);
@@ -264,17 +270,20 @@ void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
     for (int i = 0; i < p->ns; i++)
         draw_series(cr, l, p->s[i], lw);
     cairo_restore(cr);
+}
 
-    /* Frame, ticks and their labels. */
+/* The frame, the ticks and their labels. */
+static void draw_frame(cairo_t *cr, const plot_layout *l, pen k)
+{
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, lw);
+    cairo_set_line_width(cr, k.lw);
     cairo_rectangle(cr, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
     cairo_stroke(cr);
     for (int a = 0; a < 2; a++) {
         const plot_ticks *t = &l->axis[a].ticks;
         for (int i = 0; i < t->n + t->nminor; i++) {
             int major = i < t->n;
-            double v = plot_map(l, a, major ? t->value[i] : t->minor[i - t->n]), len = major ? tick : 0.55 * tick;
+            double v = plot_map(l, a, major ? t->value[i] : t->minor[i - t->n]), len = major ? k.tick : 0.55 * k.tick;
             if (a == PLOT_X) {
                 cairo_move_to(cr, v, l->y1);
                 cairo_line_to(cr, v, l->y1 + len);
@@ -287,12 +296,17 @@ void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
         for (int i = 0; i < t->n; i++) {
             double v = plot_map(l, a, t->value[i]);
             if (a == PLOT_X)
-                plot_text_at(cr, t->label[i], tick_font, v, l->y1 + tick + 0.25 * font, 0.5, 0.0);
+                plot_text_at(cr, t->label[i], k.tick_font, v, l->y1 + k.tick + 0.25 * k.font, 0.5, 0.0);
             else
-                plot_text_at(cr, t->label[i], tick_font, l->x0 - tick - 0.3 * font, v, 1.0, 0.5);
+                plot_text_at(cr, t->label[i], k.tick_font, l->x0 - k.tick - 0.3 * k.font, v, 1.0, 0.5);
         }
     }
-    double pad = 0.6 * font;
+}
+
+/* The axis titles, the plot's title and the notes under the x axis. */
+static void draw_titles(cairo_t *cr, const plot *p, const plot_layout *l, pen k)
+{
+    const double font = k.font, tick_font = k.tick_font, tick = k.tick, pad = 0.6 * font;
     if (p->axis[0].title)
         plot_text_centred(cr, p->axis[0].title, font, 0.5 * (l->x0 + l->x1),
                           l->y1 + tick + 1.3 * tick_font + 0.35 * font, l->width, pad);
@@ -311,44 +325,59 @@ void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
     double ny = l->y1 + tick + 1.3 * tick_font + (p->axis[0].title ? 1.35 * font : 0.0) + 0.3 * font;
     for (int i = 0; i < p->nnotes; i++, ny += 1.3 * tick_font)
         plot_text_at(cr, p->notes[i], tick_font, l->x0, ny, 0.0, 0.0);
+}
 
-    /* Legend: a framed box right of the plot area, or inside it (a wide one, in the emptiest
-     * corner: plot_layout.c) on a translucent white ground. */
-    if (l->nlegend) {
-        if (l->legend_inside) {
-            cairo_set_source_rgba(cr, 1, 1, 1, 0.88);
-            cairo_rectangle(cr, l->legend_x, l->legend_y, l->legend_w, l->legend_h);
-            cairo_fill(cr);
-        }
-        cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
-        cairo_set_line_width(cr, 0.7 * lw);
+/* The legend: a framed box right of the plot area, or inside it (a wide one, in the
+ * emptiest corner: plot_layout.c) on a translucent white ground. */
+static void draw_legend(cairo_t *cr, const plot *p, const plot_layout *l, pen k)
+{
+    const double font = k.font, tick_font = k.tick_font, lw = k.lw;
+    if (l->legend_inside) {
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.88);
         cairo_rectangle(cr, l->legend_x, l->legend_y, l->legend_w, l->legend_h);
-        cairo_stroke(cr);
-        double y = l->legend_y + 0.4 * font + 0.72 * tick_font, sx = l->legend_x + 0.6 * font;
-        for (int i = 0; i < p->ns; i++) {
-            const plot_series *s = p->s[i];
-            if (!s->name)
-                continue;
-            /* On a pixel row's centre: a line between two rows would be smeared over
-             * both and look thicker than its neighbours in a PNG. */
-            double cy = floor(y - 0.33 * tick_font) + 0.5, sw = plot_legend_sample_width(font);
-            cairo_set_source_rgba(cr, s->rgb[0], s->rgb[1], s->rgb[2], s->alpha < 0.6 ? 0.6 : s->alpha);
-            if (s->style & PLOT_LINE) {
-                cairo_set_line_width(cr, 1.6 * lw * s->line_width);
-                set_dash(cr, s->dash, 1.6 * lw * s->line_width);
-                cairo_move_to(cr, sx, cy);
-                cairo_line_to(cr, sx + sw, cy);
-                cairo_stroke(cr);
-                set_dash(cr, PLOT_SOLID, 1.0);
-            }
-            if (s->style & PLOT_MARKERS)
-                marker(cr, s->marker, sx + 0.5 * sw, cy, 0.28 * font * fmax(s->marker_size, 0.8), lw);
-            cairo_set_source_rgb(cr, 0, 0, 0);
-            plot_text_run(cr, s->name, tick_font, sx + sw + 0.5 * font, y, 1);
-            y += 1.45 * tick_font;
-        }
+        cairo_fill(cr);
     }
+    cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+    cairo_set_line_width(cr, 0.7 * lw);
+    cairo_rectangle(cr, l->legend_x, l->legend_y, l->legend_w, l->legend_h);
+    cairo_stroke(cr);
+    double y = l->legend_y + 0.4 * font + 0.72 * tick_font, sx = l->legend_x + 0.6 * font;
+    for (int i = 0; i < p->ns; i++) {
+        const plot_series *s = p->s[i];
+        if (!s->name)
+            continue;
+        /* On a pixel row's centre: a line between two rows would be smeared over
+         * both and look thicker than its neighbours in a PNG. */
+        double cy = floor(y - 0.33 * tick_font) + 0.5, sw = plot_legend_sample_width(font);
+        cairo_set_source_rgba(cr, s->rgb[0], s->rgb[1], s->rgb[2], s->alpha < 0.6 ? 0.6 : s->alpha);
+        if (s->style & PLOT_LINE) {
+            cairo_set_line_width(cr, 1.6 * lw * s->line_width);
+            set_dash(cr, s->dash, 1.6 * lw * s->line_width);
+            cairo_move_to(cr, sx, cy);
+            cairo_line_to(cr, sx + sw, cy);
+            cairo_stroke(cr);
+            set_dash(cr, PLOT_SOLID, 1.0);
+        }
+        if (s->style & PLOT_MARKERS)
+            marker(cr, s->marker, sx + 0.5 * sw, cy, 0.28 * font * fmax(s->marker_size, 0.8), lw);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        plot_text_run(cr, s->name, tick_font, sx + sw + 0.5 * font, y, 1);
+        y += 1.45 * tick_font;
+    }
+}
+
+void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
+{
+    const pen k = pen_of(l);
+    cairo_select_font_face(cr, PLOT_FONT_FACE, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    draw_area(cr, p, l, k);
+    draw_frame(cr, l, k);
+    draw_titles(cr, p, l, k);
+    if (l->nlegend)
+        draw_legend(cr, p, l, k);
     if (l->colour_bar)
-        draw_colour_bar(cr, p->bar, l, lw);
-    draw_labels(cr, p, l, 0.85 * font);
+        draw_colour_bar(cr, p->bar, l, k.lw);
+    draw_labels(cr, p, l, 0.85 * k.font);
 }

@@ -103,14 +103,25 @@ static int theta_h_axis(plot *p)
     return 0;
 }
 
-/* colour(v) for every pixel, rows flipped so that theta_d grows upwards. */
-static unsigned char *raster(const double *v, int w, int h, void (*colour)(double, double, double, unsigned char *),
-                             double a, double b)
+/* A figure's colour scale: the map from a value to a colour (colour(v, a, b, rgb)), and
+ * the bar beside the figure (its title, range, log or not, and table of colours). */
+typedef struct scale {
+    void (*colour)(double v, double a, double b, unsigned char *rgb);
+    double a, b;
+    const char *bar;
+    double lo, hi;
+    int log;
+    unsigned char lut[PLOT_LUT][3];
+} scale;
+
+/* sc's colour of v for every pixel, rows flipped so that theta_d grows upwards. */
+static unsigned char *raster(const double *v, int w, int h, const scale *sc)
 {
     unsigned char *px = malloc((size_t)w * (size_t)h * 3);
     for (int j = 0; px && j < h; j++)
         for (int i = 0; i < w; i++)
-            colour(v[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], a, b, px + 3 * ((size_t)j * (size_t)w + (size_t)i));
+            sc->colour(v[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], sc->a, sc->b,
+                       px + 3 * ((size_t)j * (size_t)w + (size_t)i));
     return px;
 }
 
@@ -137,13 +148,12 @@ void halfdiff_ratio_raster(const double *r, int w, int h, double span, unsigned 
                          rgb + 3 * ((size_t)j * (size_t)w + (size_t)i));
 }
 
-/* The figure around a raster, with its colour bar. */
-static plot *figure(const char *title, unsigned char *px, int w, int h, const char *bar, double lo, double hi, int log,
-                    const unsigned char lut[PLOT_LUT][3])
+/* The figure around a w x h raster px (taken, and freed), with sc's colour bar. */
+static plot *figure(const char *title, unsigned char *px, int w, int h, const scale *sc)
 {
     plot *p = plot_new(title);
     if (!p || !px || theta_h_axis(p) < 0 || plot_raster(p, w, h, px) < 0 ||
-        plot_colour_bar(p, bar, lo, hi, log, lut) < 0) {
+        plot_colour_bar(p, sc->bar, sc->lo, sc->hi, sc->log, sc->lut) < 0) {
         plot_free(p);
         p = NULL;
     }
@@ -154,31 +164,34 @@ static plot *figure(const char *title, unsigned char *px, int w, int h, const ch
 #define VALUE_BAR "BRDF f (sr^{-1})"
 #define RATIO_BAR "log_{2}(model / measured)"
 
-static void value_lut(unsigned char lut[PLOT_LUT][3])
+/* The log scale of values on [log10_lo, log10_hi]. */
+static void value_scale(double log10_lo, double log10_hi, scale *sc)
 {
+    *sc = (scale){value_colour, log10_lo, log10_hi, VALUE_BAR, pow(10.0, log10_lo), pow(10.0, log10_hi), 1, {{0}}};
     for (int k = 0; k < PLOT_LUT; k++)
-        halfdiff_sequential((double)k / (PLOT_LUT - 1), lut[k]);
+        halfdiff_sequential((double)k / (PLOT_LUT - 1), sc->lut[k]);
 }
 
-static void ratio_lut(unsigned char lut[PLOT_LUT][3])
+/* The diverging scale of log2 ratios on +-span. */
+static void ratio_scale(double span, scale *sc)
 {
+    *sc = (scale){ratio_colour, span, 0.0, RATIO_BAR, -span, span, 0, {{0}}};
     for (int k = 0; k < PLOT_LUT; k++)
-        halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, lut[k]);
+        halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, sc->lut[k]);
 }
 
 plot *halfdiff_value_figure(const double *v, int w, int h, const char *title, double log10_lo, double log10_hi)
 {
-    unsigned char lut[PLOT_LUT][3];
-    value_lut(lut);
-    return figure(title, raster(v, w, h, value_colour, log10_lo, log10_hi), w, h, VALUE_BAR, pow(10.0, log10_lo),
-                  pow(10.0, log10_hi), 1, lut);
+    scale sc;
+    value_scale(log10_lo, log10_hi, &sc);
+    return figure(title, raster(v, w, h, &sc), w, h, &sc);
 }
 
 plot *halfdiff_ratio_figure(const double *r, int w, int h, const char *title, double span)
 {
-    unsigned char lut[PLOT_LUT][3];
-    ratio_lut(lut);
-    return figure(title, raster(r, w, h, ratio_colour, span, 0.0), w, h, RATIO_BAR, -span, span, 0, lut);
+    scale sc;
+    ratio_scale(span, &sc);
+    return figure(title, raster(r, w, h, &sc), w, h, &sc);
 }
 
 void halfdiff_angles(const double dir[4], double *theta_h, double *theta_d)
@@ -232,20 +245,26 @@ size_t halfdiff_point_order(size_t n, const double *key, size_t *idx)
     return m;
 }
 
+/* The samples a points figure draws: n of them at half angle th and difference angle td
+ * (degrees), value v, drawn in order of key (NaN: left out). */
+typedef struct samples_on_axes {
+    size_t n;
+    const double *th, *td, *v, *key;
+} samples_on_axes;
+
 /* The points figure: the table figure's axes and colour bar over a one-cell grey raster
- * (no sample there), and one marker per sample, coloured by colour(v[i], a, b), drawn in
- * order of key (NaN: left out). */
-static plot *points(size_t n, const double *th, const double *td, const double *v, const double *key,
-                    void (*colour)(double, double, double, unsigned char *), double a, double b, const char *title,
-                    const char *bar, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3])
+ * (no sample there), and one marker per sample, in sc's colour. */
+static plot *points(const samples_on_axes *in, const char *title, const scale *sc)
 {
+    const size_t n = in->n;
+    const double *th = in->th, *td = in->td, *v = in->v;
     size_t *idx = malloc((n ? n : 1) * sizeof *idx);
     double *xy = malloc(2 * (n ? n : 1) * sizeof *xy);
     unsigned char *rgb = malloc(3 * (n ? n : 1)), *grey = malloc(3);
     plot *p = NULL;
     if (idx && xy && rgb && grey) {
         grey[0] = grey[1] = grey[2] = HALFDIFF_NONE;
-        p = figure(title, grey, 1, 1, bar, lo, hi, log, lut);
+        p = figure(title, grey, 1, 1, sc);
         grey = NULL; /* figure took it */
     }
     if (p) {
@@ -253,13 +272,13 @@ static plot *points(size_t n, const double *th, const double *td, const double *
          * slices have) show whole rather than half hidden under the frame. */
         plot_axis_range(p, PLOT_X, -0.02, 1.02);
         plot_axis_range(p, PLOT_Y, -2.0, 92.0);
-        size_t m = halfdiff_point_order(n, key, idx);
+        size_t m = halfdiff_point_order(n, in->key, idx);
         double *x = xy, *y = xy + m;
         for (size_t k = 0; k < m; k++) {
             size_t i = idx[k];
             x[k] = sqrt(fmin(fmax(th[i], 0.0), 90.0) / 90.0);
             y[k] = fmin(fmax(td[i], 0.0), 90.0);
-            colour(v[i], a, b, rgb + 3 * k);
+            sc->colour(v[i], sc->a, sc->b, rgb + 3 * k);
         }
         plot_series *s = plot_add(p, NULL, PLOT_MARKERS, m, x, y);
         if (s) {
@@ -293,10 +312,9 @@ plot *halfdiff_value_points(size_t n, const double *theta_h, const double *theta
         return NULL;
     for (size_t i = 0; i < n; i++)
         key[i] = placeable(theta_h, theta_d, i) && v[i] > 0.0 && isfinite(v[i]) ? v[i] : NAN;
-    unsigned char lut[PLOT_LUT][3];
-    value_lut(lut);
-    plot *p = points(n, theta_h, theta_d, v, key, value_colour, log10_lo, log10_hi, title, VALUE_BAR,
-                     pow(10.0, log10_lo), pow(10.0, log10_hi), 1, lut);
+    scale sc;
+    value_scale(log10_lo, log10_hi, &sc);
+    plot *p = points(&(samples_on_axes){n, theta_h, theta_d, v, key}, title, &sc);
     free(key);
     return p;
 }
@@ -309,9 +327,9 @@ plot *halfdiff_ratio_points(size_t n, const double *theta_h, const double *theta
         return NULL;
     for (size_t i = 0; i < n; i++)
         key[i] = placeable(theta_h, theta_d, i) && !isnan(r[i]) ? fabs(r[i]) : NAN;
-    unsigned char lut[PLOT_LUT][3];
-    ratio_lut(lut);
-    plot *p = points(n, theta_h, theta_d, r, key, ratio_colour, span, 0.0, title, RATIO_BAR, -span, span, 0, lut);
+    scale sc;
+    ratio_scale(span, &sc);
+    plot *p = points(&(samples_on_axes){n, theta_h, theta_d, r, key}, title, &sc);
     free(key);
     return p;
 }

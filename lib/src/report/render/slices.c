@@ -339,28 +339,28 @@ static int group_name(const bf_slice_options *o, const int *group, int g, char *
     return members;
 }
 
-static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_slice_range *range)
+/* The value range (the options' own, or the data's padded), the axes and a guide at
+ * each incidence's mirror direction; 0, or -1 out of memory. */
+static int axes(const bf_slice_options *o, const slice_data *d, const int *group, plot *p, double *lo, double *hi)
 {
-    char text[256];
-    int nk = o->nincidence, nch = d->nch, group[BF_SLICE_MAX_INCIDENCE];
-    double lo = d->log10_lo, hi = d->log10_hi;
+    *lo = d->log10_lo;
+    *hi = d->log10_hi;
     if (o->log10_lo < o->log10_hi) {
-        lo = o->log10_lo;
-        hi = o->log10_hi;
+        *lo = o->log10_lo;
+        *hi = o->log10_hi;
     } else {
         double a, b;
-        plot_pad(pow(10.0, lo), pow(10.0, hi), 1, 1, &a, &b);
-        lo = log10(a);
-        hi = log10(b);
+        plot_pad(pow(10.0, *lo), pow(10.0, *hi), 1, 1, &a, &b);
+        *lo = log10(a);
+        *hi = log10(b);
     }
     if (plot_axis(p, PLOT_X, "viewing angle \xce\xb8_{o} in the plane of incidence (\xc2\xb0; + mirror side)", 0) < 0 ||
         plot_axis(p, PLOT_Y, "BRDF f (sr^{-1})", 1) < 0)
         return -1;
     plot_axis_range(p, PLOT_X, -90.0, 90.0);
     plot_axis_step(p, PLOT_X, 30.0);
-    plot_axis_range(p, PLOT_Y, pow(10.0, lo), pow(10.0, hi));
-    same_curves(d, nk, group);
-    for (int k = 0; k < nk; k++) {
+    plot_axis_range(p, PLOT_Y, pow(10.0, *lo), pow(10.0, *hi));
+    for (int k = 0; k < o->nincidence; k++) {
         double rgb[3], light[3];
         plot_palette(group[k], rgb);
         for (int q = 0; q < 3; q++)
@@ -368,20 +368,30 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
         if (plot_guide(p, PLOT_X, o->incidence[k], light) < 0) /* the mirror direction */
             return -1;
     }
-    /* Measured samples first, so the curves are drawn over them. */
-    size_t shown = 0;
-    if (d->ns) {
-        unsigned char *pick = malloc(d->ns);
-        double *sx = malloc(2 * d->ns * sizeof *sx);
-        shown = pick && sx ? thin_samples(d, nk, pick) : (size_t)-1;
-        for (int g = 0; g < nk && shown != (size_t)-1; g++)
-            if (group[g] == g && sample_series(p, d, nk, group, g, pick, sx, sx + d->ns) < 0)
-                shown = (size_t)-1;
-        free(pick);
-        free(sx);
-        if (shown == (size_t)-1)
-            return -1;
-    }
+    return 0;
+}
+
+/* The measured samples, one series per group of incidences, thinned; how many are
+ * shown, or (size_t)-1 out of memory. */
+static size_t measured(const slice_data *d, int nk, const int *group, plot *p)
+{
+    unsigned char *pick = malloc(d->ns);
+    double *sx = malloc(2 * d->ns * sizeof *sx);
+    size_t shown = pick && sx ? thin_samples(d, nk, pick) : (size_t)-1;
+    for (int g = 0; g < nk && shown != (size_t)-1; g++)
+        if (group[g] == g && sample_series(p, d, nk, group, g, pick, sx, sx + d->ns) < 0)
+            shown = (size_t)-1;
+    free(pick);
+    free(sx);
+    return shown;
+}
+
+/* The model's curves: one per group of incidences that give the same curve, one line
+ * per channel, named by the group's angles; 0, or -1 out of memory. */
+static int curves(const bf_slice_options *o, const slice_data *d, const int *group, plot *p)
+{
+    const int nk = o->nincidence, nch = d->nch;
+    char text[256];
     double *y = malloc(SLICE_POINTS * sizeof *y);
     if (!y)
         return -1;
@@ -409,11 +419,16 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
         }
     }
     free(y);
-    if (fail)
-        return -1;
-    /* Channels, when they differ by line style. */
+    return fail ? -1 : 0;
+}
+
+/* The legend's entries for the channels (when they differ by line style) and the
+ * measured samples, and the note on the markers; 0, or -1 out of memory. */
+static int legend(const bf_slice_options *o, const slice_data *d, size_t shown, plot *p)
+{
+    char text[256];
     const double black[3] = {0, 0, 0};
-    for (int ch = 0; nch == 3 && ch < 3; ch++) {
+    for (int ch = 0; d->nch == 3 && ch < 3; ch++) {
         snprintf(text, sizeof text, "channel %s", channel_name[ch]);
         if (legend_entry(p, text, d->ns ? PLOT_LINE_MARKERS : PLOT_LINE, black, channel_dash[ch], channel_marker[ch]) <
             0)
@@ -434,6 +449,20 @@ static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_sli
         if (plot_note(p, text) < 0)
             return -1;
     }
+    return 0;
+}
+
+static int build(const bf_slice_options *o, const slice_data *d, plot *p, bf_slice_range *range)
+{
+    int group[BF_SLICE_MAX_INCIDENCE];
+    double lo, hi;
+    same_curves(d, o->nincidence, group);
+    if (axes(o, d, group, p, &lo, &hi) < 0)
+        return -1;
+    /* Measured samples first, so the curves are drawn over them. */
+    size_t shown = d->ns ? measured(d, o->nincidence, group, p) : 0;
+    if (shown == (size_t)-1 || curves(o, d, group, p) < 0 || legend(o, d, shown, p) < 0)
+        return -1;
     range->log10_lo = lo;
     range->log10_hi = hi;
     range->overlaid = d->ns;
