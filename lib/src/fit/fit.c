@@ -94,15 +94,42 @@ static size_t presolve_samples(const bf_fit_options *o, size_t n)
     return n >= BF_FIT_PRESOLVE_MIN ? BF_FIT_PRESOLVE_SAMPLES : 0;
 }
 
+/* What the fit's phases share. */
+typedef struct fit_run {
+    bf_samples *s;
+    const bf_fit_options *o;
+    bf_fit_result *r;
+    bf_objective_options oo; /* o->objective; its own passes use the solver's threads */
+    bf_fit_watch watch;
+    bf_objective *obj; /* all samples' */
+    const bf_problem *full;
+    int P, nz;              /* the model's values, the free (internal) entries */
+    size_t pn;              /* the presolve's samples (0: none) */
+    bf_subsample pre;       /* the presolve's subsample (NULL members: none) */
+    const bf_problem *prob; /* where the starts are solved */
+    double *x0, *z0;        /* the start, in model and internal space */
+    double *lo, *hi;        /* the effective bounds (model space) */
+    double *z, *zbest;      /* scratch, and the best point (nz each) */
+    bf_search sr;
+    bf_solution first; /* the first solve's, for the reason of a failed fit */
+    uint64_t best_seed;
+    int have_best, cancelled;
+    unsigned char *held; /* held_entries' flags (NULL: none) */
+    int nsilent;
+    double *corr;
+} fit_run;
+
 /* The start in model space (x0, clamped into the effective bounds lo..hi, fixed values
  * applied) and internal space (z0): the caller's, or the data-driven one read off
  * `from`. Clamped in model space (fixed entries have lo = hi), so that a failed fit
  * reports exactly this start rather than its round trip through the internal scale. */
-static bf_status start_point(const bf_fit_options *o, const bf_objective *obj, bf_samples *from, double *x0, double *z0,
-                             double *lo, double *hi, bf_error *err)
+static bf_status start_point(const fit_run *f, bf_samples *from, bf_error *err)
 {
+    const bf_fit_options *o = f->o;
+    const bf_objective *obj = f->obj;
     const bf_model *m = obj->model;
     const int P = bf_model_nvalues(m);
+    double *x0 = f->x0, *lo = f->lo, *hi = f->hi;
     bf_status rc;
     if (o->start)
         memcpy(x0, o->start, (size_t)P * sizeof *x0);
@@ -114,7 +141,7 @@ static bf_status start_point(const bf_fit_options *o, const bf_objective *obj, b
     bf_objective_bounds(obj, lo, hi);
     for (int k = 0; k < P; k++)
         x0[k] = x0[k] < lo[k] ? lo[k] : x0[k] > hi[k] ? hi[k] : x0[k];
-    bf_objective_to_internal(obj, x0, z0);
+    bf_objective_to_internal(obj, x0, f->z0);
     return BF_OK;
 }
 
@@ -141,17 +168,19 @@ static void cancelled_result(bf_fit_result *r, const bf_fit_options *o, const bf
     bf_fit_warn(r, BF_WARN_CANCELLED, "the fit was cancelled by the caller: no parameters were fitted");
 }
 
-/* Entries on a bound and entries without effect at the optimum zbest (silence.h), found
- * on objective po: the standard errors leave both out, and k the second. *held gets
- * 2 nz flags (held, then silent; malloc'd), r the inactive entries, *nsilent their
- * count. */
-static bf_status held_entries(const bf_objective *po, const bf_objective *obj, const double *zbest,
-                              const bf_fit_options *o, bf_fit_result *r, unsigned char **held, int *nsilent,
-                              bf_error *err)
+/* Entries on a bound and entries without effect at the optimum f->zbest (silence.h),
+ * found on objective po: the standard errors leave both out, and k the second. f->held
+ * gets 2 nz flags (held, then silent; malloc'd), f->r the inactive entries, f->nsilent
+ * their count. */
+static bf_status held_entries(fit_run *f, const bf_objective *po, bf_error *err)
 {
+    const bf_objective *obj = f->obj;
+    const bf_fit_options *o = f->o;
+    bf_fit_result *r = f->r;
     const int nz = bf_objective_nz(obj);
     bf_silence sil;
-    bf_status rc = bf_silence_find(bf_objective_problem(po), po, zbest, &o->solver.loss, o->solver.threads, &sil, err);
+    bf_status rc =
+        bf_silence_find(bf_objective_problem(po), po, f->zbest, &o->solver.loss, o->solver.threads, &sil, err);
     if (rc != BF_OK)
         return rc;
     unsigned char *h = malloc(2 * (size_t)nz + 1);
@@ -165,8 +194,8 @@ static bf_status held_entries(const bf_objective *po, const bf_objective *obj, c
         r->inactive[obj->kidx[j]] = sil.silent[j];
         r->inactive_gate[obj->kidx[j]] = sil.silent[j] ? sil.gate[j] : -1;
     }
-    *nsilent = sil.nsilent;
-    *held = h;
+    f->nsilent = sil.nsilent;
+    f->held = h;
     bf_silence_free(&sil);
     return BF_OK;
 }
@@ -185,26 +214,26 @@ static void search_figures(bf_fit_result *r, const bf_search *sr)
     }
 }
 
-/* The whole set, from the best presolved point zbest, which becomes the solution's point
- * when it is usable (z: scratch of nz). Unless told otherwise it stops at a relative cost
- * change of 1e-9 rather than 1e-10: with the hundreds of thousands of samples a presolve
- * needs, that leaves the parameters within sqrt(1e-9 n) (0.06 for a MERL table's 3.3 M
- * residuals) of their standard errors of the optimum, and saves a pass over all of them.
- * Entries the hand-over holds (search.h) stay where the presolve left them. */
-static bf_status solve_whole_set(const bf_problem *full, const bf_fit_options *o, bf_search *sr, uint64_t seed,
-                                 double *z, double *zbest, bf_solution *sol, bf_error *err)
+/* The whole set, from the best presolved point f->zbest, which becomes the solution's
+ * point when it is usable (f->z: scratch). Unless told otherwise it stops at a relative
+ * cost change of 1e-9 rather than 1e-10: with the hundreds of thousands of samples a
+ * presolve needs, that leaves the parameters within sqrt(1e-9 n) (0.06 for a MERL table's
+ * 3.3 M residuals) of their standard errors of the optimum, and saves a pass over all of
+ * them. Entries the hand-over holds (search.h) stay where the presolve left them. */
+static bf_status solve_whole_set(fit_run *f, bf_solution *sol, bf_error *err)
 {
-    const int nz = full->npar; /* the free entries */
-    bf_solver_options so = o->solver;
-    bf_fit_watch_solve(sr->watch, &so);
+    const int nz = f->full->npar; /* the free entries */
+    double *z = f->z, *zbest = f->zbest;
+    bf_solver_options so = f->o->solver;
+    bf_fit_watch_solve(f->sr.watch, &so);
     memcpy(z, zbest, (size_t)nz * sizeof *z);
-    so.seed = seed;
+    so.seed = f->best_seed;
     if (!(so.function_tolerance > 0.0))
         so.function_tolerance = 1e-9;
     unsigned char *hold = calloc((size_t)nz + 1, 1);
-    if (hold && bf_fit_search_handover(sr, z, hold) > 0)
+    if (hold && bf_fit_search_handover(&f->sr, z, hold) > 0)
         so.constant = hold;
-    bf_status rc = bf_solve(full, &so, z, sol, err);
+    bf_status rc = bf_solve(f->full, &so, z, sol, err);
     free(hold);
     if (rc != BF_OK)
         return rc;
@@ -243,6 +272,207 @@ bf_status bf_fit(bf_samples *s, const char *spec, const bf_options *o, bf_fit_re
     return bf_fit_with(s, spec, &fo, r, err);
 }
 
+/* The run's model, the result's arrays and the objective of all samples (f->s, f->o and
+ * f->r set, the rest zero). On an error r is cleared (but when the model could not be
+ * made) and the run holds nothing to free. */
+static bf_status fit_open(fit_run *f, const char *spec, bf_error *err)
+{
+    bf_fit_result *r = f->r;
+    const bf_fit_options *o = f->o;
+    bf_status rc = bf_model_new(spec, f->s->channels, &r->model, err);
+    if (rc != BF_OK)
+        return rc;
+    f->P = bf_model_nvalues(r->model);
+    rc = alloc_result(r, f->P, err);
+    if (rc != BF_OK) {
+        bf_fit_result_clear(r);
+        return rc;
+    }
+    f->oo = o->objective; /* its own passes use the solver's threads */
+    if (f->oo.threads < 1)
+        f->oo.threads = o->solver.threads;
+    if ((rc = bf_objective_new(r->model, f->s, &f->oo, &f->obj, err)) != BF_OK) {
+        bf_fit_result_clear(r);
+        return rc;
+    }
+    f->full = bf_objective_problem(f->obj);
+    f->nz = bf_objective_nz(f->obj);
+    bf_fit_watch_init(&f->watch, o, spec);
+    f->prob = f->full;
+    return BF_OK;
+}
+
+/* The points' room, the presolve's subsample, and the start. */
+static bf_status fit_prepare(fit_run *f, bf_error *err)
+{
+    const int P = f->P, nz = f->nz;
+    f->x0 = malloc(((size_t)P + 1) * sizeof *f->x0);
+    f->z0 = malloc(((size_t)nz + 1) * sizeof *f->z0);
+    f->z = malloc(((size_t)nz + 1) * sizeof *f->z);
+    f->zbest = malloc(((size_t)nz + 1) * sizeof *f->zbest);
+    f->lo = malloc(((size_t)P + 1) * sizeof *f->lo), f->hi = malloc(((size_t)P + 1) * sizeof *f->hi);
+    if (!f->x0 || !f->z0 || !f->z || !f->zbest || !f->lo || !f->hi)
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    f->pn = nz > 0 ? presolve_samples(f->o, f->s->n) : 0;
+    if (f->pn > 0) {
+        bf_status rc = bf_fit_subsample_objective(f->s, f->pn, f->o->seed, f->r->model, &f->oo, &f->pre, err);
+        if (rc != BF_OK)
+            return rc;
+        f->prob = bf_objective_problem(f->pre.objective);
+    }
+    /* The start is read off the presolve's subsample where there is one: the starts are
+     * solved there. */
+    return start_point(f, f->pre.samples ? f->pre.samples : f->s, err);
+}
+
+/* The search for the best point on f->prob (search.c); with every parameter fixed, the
+ * start alone. */
+static bf_status fit_search(fit_run *f, bf_error *err)
+{
+    bf_fit_result *r = f->r;
+    bf_status rc;
+    if (f->nz == 0) {
+        /* Every parameter fixed: one point, nothing to search. */
+        bf_solution sol;
+        if ((rc = fixed_only(f->prob, f->z0, &sol, err)) != BF_OK)
+            return rc;
+        f->first = r->solution = sol;
+        r->starts = 1;
+        memcpy(f->zbest, f->z0, (size_t)f->nz * sizeof *f->z);
+        f->have_best = sol.usable && isfinite(sol.final_cost);
+        r->starts_at_best = f->have_best;
+        return BF_OK;
+    }
+    f->sr = (bf_search){.samples = f->pre.samples ? f->pre.samples : f->s,
+                        .options = f->o,
+                        .objective_options = &f->oo,
+                        .objective = f->pre.objective ? f->pre.objective : f->obj,
+                        .prob = f->prob,
+                        .presolved = f->pre.objective != NULL,
+                        .z0 = f->z0,
+                        .z = f->zbest,
+                        .watch = &f->watch};
+    if ((rc = bf_fit_search(&f->sr, err)) != BF_OK)
+        return rc;
+    f->have_best = f->sr.have_best;
+    f->first = f->sr.first;
+    if (f->have_best) {
+        r->solution = f->sr.best;
+        f->best_seed = f->sr.best_seed;
+    }
+    f->cancelled = f->sr.cancelled;
+    search_figures(r, &f->sr);
+    return BF_OK;
+}
+
+/* Presolved: the best point solved on all samples (solve_whole_set). */
+static bf_status fit_whole_set(fit_run *f, bf_error *err)
+{
+    if (!f->pre.objective || !f->have_best || f->cancelled)
+        return BF_OK;
+    bf_fit_result *r = f->r;
+    r->presolve.samples = f->pn;
+    bf_fit_watch_phase(&f->watch, BF_PHASE_DATA, 1, f->s->n);
+    bf_solution sol;
+    bf_status rc = solve_whole_set(f, &sol, err);
+    if (rc != BF_OK)
+        return rc;
+    f->cancelled = sol.stop == BF_STOP_CANCELLED;
+    r->solution = sol;
+    f->have_best = sol.usable && isfinite(sol.final_cost);
+    if (!f->have_best)
+        f->first = sol; /* the reason below is the whole set's */
+    return BF_OK;
+}
+
+/* The result's point: the best one, its lobes in order; with no usable start, the start
+ * and why the first solve failed. Then which values were fixed. */
+static void result_point(fit_run *f)
+{
+    bf_fit_result *r = f->r;
+    const bf_solution *first = &f->first;
+    r->ok = f->have_best;
+    if (f->have_best) {
+        bf_objective_to_model(f->obj, f->zbest, r->x);
+        /* Lobes numbered narrowest first, whichever start found them (lobe_order.h). */
+        bf_fit_order_lobes(f->obj, r->x);
+        bf_objective_to_internal(f->obj, r->x, f->zbest);
+    } else {
+        /* No usable start: report the start and why the first solve failed. */
+        r->solution = *first;
+        r->solution.usable = 0;
+        if (!isfinite(first->final_cost) || !first->termination[0])
+            snprintf(r->solution.termination, sizeof r->solution.termination,
+                     "no start gave a finite cost (values too large for this residual?)%s%.80s",
+                     first->termination[0] ? "; back end: " : "", first->termination);
+        memcpy(r->x, f->x0, (size_t)f->P * sizeof *f->x0);
+    }
+    for (int k = 0; k < f->P; k++)
+        r->fixed[k] = (unsigned char)(bf_objective_fixed(f->obj, k) != 0);
+}
+
+/* The metrics, standard errors, covariance and diagnostics at the result's point. */
+static bf_status result_figures(fit_run *f, bf_error *err)
+{
+    bf_fit_result *r = f->r;
+    const bf_fit_options *o = f->o;
+    const int P = f->P, nz = f->nz;
+    bf_status rc;
+    /* Entries on a bound and entries without effect (silence.h): the standard errors
+     * leave both out, and k the second. */
+    /* On the screening set where there is one: which entries a bound silences is a matter
+     * of the model, which a thousand samples show as well as all of them. */
+    const bf_objective *po = f->sr.screen_objective ? f->sr.screen_objective
+                             : f->pre.objective     ? f->pre.objective
+                                                    : f->obj;
+    if (f->have_best && nz > 0 && (rc = held_entries(f, po, err)) != BF_OK)
+        return rc;
+    f->corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *f->corr);
+    /* Samples a scene weighted are judged over its directions, as it weighs them,
+     * however they reached the fit. */
+    const int weighted = o->weighted_metrics || f->s->scene_weight != NULL;
+    if (!(r->covariance = malloc(((size_t)P * (size_t)P + 1) * sizeof *r->covariance)))
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the covariance");
+    if ((rc = bf_obj_final_held(f->obj, r->x, weighted, nz - f->nsilent, f->held, f->held ? f->held + nz : NULL,
+                                &r->metrics, r->stderr_, f->corr, r->covariance, err)) != BF_OK)
+        return rc;
+    if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
+        r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;
+    r->samples = f->s->n;
+    r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
+    r->seed = o->seed;
+    r->residual = o->objective.residual;
+    bf_fit_diagnose(f->obj, f->s, o, f->corr, r);
+    return BF_OK;
+}
+
+/* The result from what the search found: the cancelled one, or its point and figures. */
+static bf_status fit_result(fit_run *f, bf_error *err)
+{
+    if (f->cancelled) {
+        cancelled_result(f->r, f->o, f->obj, f->x0, f->s->n);
+        return BF_OK;
+    }
+    result_point(f);
+    return result_figures(f, err);
+}
+
+static void fit_close(fit_run *f)
+{
+    bf_fit_search_clear(&f->sr);
+    free(f->held);
+    free(f->corr);
+    free(f->x0);
+    free(f->z0);
+    free(f->z);
+    free(f->zbest);
+    free(f->lo);
+    free(f->hi);
+    bf_objective_free(f->pre.objective);
+    bf_samples_free(f->pre.samples);
+    bf_objective_free(f->obj);
+}
+
 bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *r, bf_error *err)
 {
     double t0 = bf_now_seconds();
@@ -251,170 +481,21 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
         return bf_fail(err, BF_ERR_ARG, "fit: no samples or no options");
     if (s->n == 0)
         return bf_fail(err, BF_ERR_ARG, "fit: no samples");
-    bf_status rc = bf_model_new(spec, s->channels, &r->model, err);
+    fit_run f = {.s = s, .o = o, .r = r};
+    bf_status rc = fit_open(&f, spec, err);
     if (rc != BF_OK)
         return rc;
-    const bf_model *m = r->model;
-    const int P = bf_model_nvalues(m);
-    rc = alloc_result(r, P, err);
-    if (rc != BF_OK) {
-        bf_fit_result_clear(r);
-        return rc;
-    }
-    bf_objective_options oo = o->objective; /* its own passes use the solver's threads */
-    if (oo.threads < 1)
-        oo.threads = o->solver.threads;
-    bf_objective *obj;
-    if ((rc = bf_objective_new(m, s, &oo, &obj, err)) != BF_OK) {
-        bf_fit_result_clear(r);
-        return rc;
-    }
-    const bf_problem *full = bf_objective_problem(obj);
-    const int nz = bf_objective_nz(obj);
-    bf_samples *ps = NULL;
-    bf_objective *pobj = NULL;
-    double *corr = NULL;
-    unsigned char *held = NULL;
-    bf_search sr;
-    memset(&sr, 0, sizeof sr);
-    bf_fit_watch watch;
-    bf_fit_watch_init(&watch, o, spec);
-    int nsilent = 0, cancelled = 0;
-    const bf_problem *prob = full; /* where the starts are solved */
-    double *x0 = malloc(((size_t)P + 1) * sizeof *x0);
-    double *z0 = malloc(((size_t)nz + 1) * sizeof *z0);
-    double *z = malloc(((size_t)nz + 1) * sizeof *z);
-    double *zbest = malloc(((size_t)nz + 1) * sizeof *zbest);
-    double *lo = malloc(((size_t)P + 1) * sizeof *lo), *hi = malloc(((size_t)P + 1) * sizeof *hi);
-    if (!x0 || !z0 || !z || !zbest || !lo || !hi) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
-        goto done;
-    }
-    const size_t pn = nz > 0 ? presolve_samples(o, s->n) : 0;
-    if (pn > 0) {
-        if ((rc = bf_fit_subsample_objective(s, pn, o->seed, m, &oo, &ps, &pobj, err)) != BF_OK)
-            goto done;
-        prob = bf_objective_problem(pobj);
-    }
-
-    /* The start is read off the presolve's subsample where there is one: the starts are
-     * solved there. */
-    if ((rc = start_point(o, obj, ps ? ps : s, x0, z0, lo, hi, err)) != BF_OK)
-        goto done;
-
-    uint64_t best_seed = 0;
-    int have_best = 0;
-    bf_solution sol, first;
-    memset(&first, 0, sizeof first);
-    if (nz == 0) {
-        /* Every parameter fixed: one point, nothing to search. */
-        if ((rc = fixed_only(prob, z0, &sol, err)) != BF_OK)
-            goto done;
-        first = r->solution = sol;
-        r->starts = 1;
-        memcpy(zbest, z0, (size_t)nz * sizeof *z);
-        have_best = sol.usable && isfinite(sol.final_cost);
-        r->starts_at_best = have_best;
-    } else {
-        sr = (bf_search){.samples = ps ? ps : s,
-                         .options = o,
-                         .objective_options = &oo,
-                         .objective = pobj ? pobj : obj,
-                         .prob = prob,
-                         .presolved = pobj != NULL,
-                         .z0 = z0,
-                         .z = zbest,
-                         .watch = &watch};
-        if ((rc = bf_fit_search(&sr, err)) != BF_OK)
-            goto done;
-        have_best = sr.have_best;
-        first = sr.first;
-        if (have_best) {
-            r->solution = sr.best;
-            best_seed = sr.best_seed;
-        }
-        cancelled = sr.cancelled;
-        search_figures(r, &sr);
-    }
-    if (pobj && have_best && !cancelled) {
-        r->presolve.samples = pn;
-        bf_fit_watch_phase(&watch, BF_PHASE_DATA, 1, s->n);
-        if ((rc = solve_whole_set(full, o, &sr, best_seed, z, zbest, &sol, err)) != BF_OK)
-            goto done;
-        cancelled = sol.stop == BF_STOP_CANCELLED;
-        r->solution = sol;
-        have_best = sol.usable && isfinite(sol.final_cost);
-        if (!have_best)
-            first = sol; /* the reason below is the whole set's */
-    }
-    if (cancelled) {
-        cancelled_result(r, o, obj, x0, s->n);
-        goto done;
-    }
-    r->ok = have_best;
-    if (have_best) {
-        bf_objective_to_model(obj, zbest, r->x);
-        /* Lobes numbered narrowest first, whichever start found them (lobe_order.h). */
-        bf_fit_order_lobes(obj, r->x);
-        bf_objective_to_internal(obj, r->x, zbest);
-    } else {
-        /* No usable start: report the start and why the first solve failed. */
-        r->solution = first;
-        r->solution.usable = 0;
-        if (!isfinite(first.final_cost) || !first.termination[0])
-            snprintf(r->solution.termination, sizeof r->solution.termination,
-                     "no start gave a finite cost (values too large for this residual?)%s%.80s",
-                     first.termination[0] ? "; back end: " : "", first.termination);
-        memcpy(r->x, x0, (size_t)P * sizeof *x0);
-    }
-    for (int k = 0; k < P; k++)
-        r->fixed[k] = (unsigned char)(bf_objective_fixed(obj, k) != 0);
-    /* Entries on a bound and entries without effect (silence.h): the standard errors
-     * leave both out, and k the second. */
-    /* On the screening set where there is one: which entries a bound silences is a matter
-     * of the model, which a thousand samples show as well as all of them. */
-    const bf_objective *po = sr.screen_objective ? sr.screen_objective : pobj ? pobj : obj;
-    if (have_best && nz > 0 && (rc = held_entries(po, obj, zbest, o, r, &held, &nsilent, err)) != BF_OK)
-        goto done;
-    corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *corr);
-    /* Samples a scene weighted are judged over its directions, as it weighs them,
-     * however they reached the fit. */
-    const int weighted = o->weighted_metrics || s->scene_weight != NULL;
-    if (!(r->covariance = malloc(((size_t)P * (size_t)P + 1) * sizeof *r->covariance))) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the covariance");
-        goto done;
-    }
-    if ((rc = bf_obj_final_held(obj, r->x, weighted, nz - nsilent, held, held ? held + nz : NULL, &r->metrics,
-                                r->stderr_, corr, r->covariance, err)) != BF_OK)
-        goto done;
-    if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
-        r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;
-    r->samples = s->n;
-    r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
-    r->seed = o->seed;
-    r->residual = o->objective.residual;
-    bf_fit_diagnose(obj, s, o, corr, r);
-
-done:
-    bf_fit_search_clear(&sr);
-    free(held);
-    free(corr);
-    free(x0);
-    free(z0);
-    free(z);
-    free(zbest);
-    free(lo);
-    free(hi);
-    bf_objective_free(pobj);
-    bf_samples_free(ps);
-    bf_objective_free(obj);
+    if ((rc = fit_prepare(&f, err)) == BF_OK && (rc = fit_search(&f, err)) == BF_OK &&
+        (rc = fit_whole_set(&f, err)) == BF_OK)
+        rc = fit_result(&f, err);
+    fit_close(&f);
     if (rc != BF_OK) {
         bf_fit_result_clear(r);
         return rc;
     }
     r->seconds = bf_now_seconds() - t0;
     if (r->solution.stop != BF_STOP_CANCELLED)
-        bf_fit_watch_done(&watch, &r->solution, s->n);
+        bf_fit_watch_done(&f.watch, &r->solution, s->n);
     return BF_OK;
 }
 

@@ -237,14 +237,24 @@ static double fit_two(const double *y, const double *f1, const double *w, size_t
     return e2;
 }
 
+/* What the width scan shares: the model, step 4's samples (their geometry g and values
+ * y, n*C of them), and scratch: xs, xb, xk of the model's length, f1 of n*C values. */
+typedef struct scan {
+    const bf_model *m;
+    const bf_geometry *g;
+    const double *y;
+    double *xs, *xb, *xk, *f1;
+} scan;
+
 /* Steps 3-4 at width h: the lobe shapes f1 with unit weights and no diffuse part, then
  * per channel the least-squares diffuse level and weight scale. Writes widths, weights
  * and diffuse colours into x and returns the residual sum of squares; *over is the
- * largest fitted weight over its upper bound. xs: scratch of the model's length; f1:
- * n*C values. */
-static double fit_at_width(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y, double *xs,
-                           double *f1, double *over)
+ * largest fitted weight over its upper bound. Uses sc->xs and sc->f1. */
+static double fit_at_width(const scan *sc, double *x, double h, double *over)
 {
+    const bf_model *m = sc->m;
+    const bf_geometry *g = sc->g;
+    double *xs = sc->xs, *f1 = sc->f1;
     *over = 0.0;
     const int P = bf_model_nvalues(m), C = bf_model_channels(m), np = bf_model_nparams(m);
     memcpy(xs, x, (size_t)P * sizeof *xs);
@@ -264,7 +274,7 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
     double ssr = 0.0;
     for (int c = 0; c < C; c++) {
         double d, r;
-        ssr += fit_two(y + c, f1 + c, g->lz, g->n, C, &d, &r);
+        ssr += fit_two(sc->y + c, f1 + c, g->lz, g->n, C, &d, &r);
         for (int i = 0; i < np; i++) {
             const bf_param_info *p = bf_model_param(m, i);
             int o = bf_model_param_offset(m, i) + (p->colour ? c : 0);
@@ -281,22 +291,22 @@ static double fit_at_width(const bf_model *m, double *x, double h, const bf_geom
 
 /* Width scan: h times 2^(j/2), j = -6 .. 10 (up to 1.4 rad), the diffuse level and
  * weights fitted at each (fit_at_width); x gets the best. Returns its SSR; *over as
- * fit_at_width's there. xb, xs: scratch of the model's length. */
-static double scan_widths(const bf_model *m, double *x, double h, const bf_geometry *g, const double *y, double *xs,
-                          double *xb, double *f1, double *over)
+ * fit_at_width's there. Uses sc->xb besides fit_at_width's scratch. */
+static double scan_widths(const scan *sc, double *x, double h, double *over)
 {
-    const int P = bf_model_nvalues(m);
+    const int P = bf_model_nvalues(sc->m);
+    double *xb = sc->xb;
     double best = HUGE_VAL, best_h = h;
     for (int j = -6; j <= 10; j++) {
         double hj = h * pow(2.0, j / 2.0);
         if (hj > 1.4)
             break;
         memcpy(xb, x, (size_t)P * sizeof *xb);
-        double ssr = fit_at_width(m, xb, hj, g, y, xs, f1, over);
+        double ssr = fit_at_width(sc, xb, hj, over);
         if (ssr < best)
             best = ssr, best_h = hj;
     }
-    return fit_at_width(m, x, best_h, g, y, xs, f1, over);
+    return fit_at_width(sc, x, best_h, over);
 }
 
 /* What the steps share: the model, the samples, the start being built, and each
@@ -479,15 +489,14 @@ static bf_status shape_samples(const start *st, double *L, double *ev, bf_geomet
 
 /* The width scan (scan_widths). A lobe that needs a weight above its bound with f0 at its
  * default (a metal, or a highlight brighter than f0 = 0.04 allows) gets f0 raised by that
- * factor and another scan, kept while it fits better (4 at most). xs, xb, xk: scratch of
- * the model's length. */
-static void scan_raising_f0(const start *st, double h, const bf_geometry *sg, const double *ev, double *xs, double *xb,
-                            double *xk, double *f1)
+ * factor and another scan, kept while it fits better (4 at most). Uses sc->xk besides the
+ * scan's scratch. */
+static void scan_raising_f0(const start *st, const scan *sc, double h)
 {
     const bf_model *m = st->m;
-    double *x = st->x;
+    double *x = st->x, *xk = sc->xk;
     const size_t P = (size_t)bf_model_nvalues(m);
-    double over, ssr0 = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+    double over, ssr0 = scan_widths(sc, x, h, &over);
     int has_f0 = 0;
     for (int i = 0; i < st->np; i++)
         has_f0 |= bf_model_param(m, i)->role == BF_ROLE_F0;
@@ -501,7 +510,7 @@ static void scan_raising_f0(const start *st, double h, const bf_geometry *sg, co
                     *v = clamp_param(p, *v * over);
                 }
         }
-        double ssr = scan_widths(m, x, h, sg, ev, xs, xb, f1, &over);
+        double ssr = scan_widths(sc, x, h, &over);
         if (!(ssr < ssr0)) {
             memcpy(x, xk, P * sizeof *xk);
             break;
@@ -571,9 +580,10 @@ bf_status bf_fit_initial_guess(const bf_model *m, bf_samples *s, double *x, bf_e
     rc = shape_samples(&st, L, ev, &sg, err);
     if (!sg) /* failed, or no sample to scan */
         goto clamp;
-    if (has_weight)
-        scan_raising_f0(&st, h, sg, ev, xs, xb, xk, f1);
-    else
+    if (has_weight) {
+        const scan sc = {.m = m, .g = sg, .y = ev, .xs = xs, .xb = xb, .xk = xk, .f1 = f1};
+        scan_raising_f0(&st, &sc, h);
+    } else
         set_widths(m, x, h);
 clamp:
     clamp_all(m, x);

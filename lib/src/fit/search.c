@@ -103,34 +103,49 @@ static void add_counts(bf_presolve_info *c, const bf_solution *sol)
     c->seconds += sol->seconds;
 }
 
-/* Solves p from z (in place) with start k's seed, as the next solve of w's phase. *cost:
- * the final cost, NaN when the solve is not usable. Returns an error only for the first
- * start of a search (bad options or a back end that cannot run); a later start the back
- * end fails on is just unusable. */
-static bf_status solve_start(const bf_problem *p, const bf_fit_options *o, bf_fit_watch *w, int k, double *z,
-                             bf_solution *sol, double *cost, uint64_t *seed, bf_presolve_info *counts, int *cancelled,
-                             bf_error *err)
+/* Where a phase's solves run: the problem, its objective, and the counts they add to. */
+typedef struct stage {
+    const bf_problem *p;
+    const bf_objective *obj;
+    bf_presolve_info *counts;
+} stage;
+
+/* One solve's outcome: its solution, its final cost (NaN when the solve is not usable)
+ * and the solver seed it had. */
+typedef struct outcome {
+    bf_solution sol;
+    double cost;
+    uint64_t seed;
+} outcome;
+
+/* Solves at->p from z (in place) with start k's seed, as the next solve of s's phase; a
+ * cancelled solve sets s->cancelled. Returns an error only for the first start of a
+ * search (bad options or a back end that cannot run); a later start the back end fails
+ * on is just unusable. */
+static bf_status solve_start(bf_search *s, const stage *at, int k, double *z, outcome *out, bf_error *err)
 {
+    const bf_problem *p = at->p;
+    const bf_fit_options *o = s->options;
     bf_solver_options so = o->solver;
-    bf_fit_watch_solve(w, &so);
+    bf_fit_watch_solve(s->watch, &so);
     uint64_t sseed = o->seed + (uint64_t)k + 1;
     so.seed = bf_splitmix64(&sseed);
-    *seed = so.seed;
-    *cost = NAN;
+    out->seed = so.seed;
+    out->cost = NAN;
     bf_error e2;
-    bf_status rc = bf_solve(p, &so, z, sol, k == 0 ? err : &e2);
+    bf_status rc = bf_solve(p, &so, z, &out->sol, k == 0 ? err : &e2);
     if (rc != BF_OK)
         return k == 0 ? rc : BF_OK;
-    add_counts(counts, sol);
-    if (sol->stop == BF_STOP_CANCELLED) {
-        *cancelled = 1; /* its point is not an optimum: the search ends here */
+    add_counts(at->counts, &out->sol);
+    if (out->sol.stop == BF_STOP_CANCELLED) {
+        s->cancelled = 1; /* its point is not an optimum: the search ends here */
         return BF_OK;
     }
-    int usable = sol->usable && isfinite(sol->final_cost);
+    int usable = out->sol.usable && isfinite(out->sol.final_cost);
     for (int j = 0; j < p->npar && usable; j++)
         usable = isfinite(z[j]);
     if (usable)
-        *cost = sol->final_cost;
+        out->cost = out->sol.final_cost;
     return BF_OK;
 }
 
@@ -151,6 +166,7 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
 {
     const bf_problem *p = s->prob;
     const int nz = p->npar;
+    const stage at = {p, s->objective, &s->on_prob};
     double *z = malloc(((size_t)nz + 1) * sizeof *z), *costs = malloc(((size_t)starts + 1) * sizeof *costs);
     if (!z || !costs) {
         free(z), free(costs);
@@ -163,16 +179,15 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
             memcpy(z, s->z0, (size_t)nz * sizeof *z);
         else
             random_start(p, s->z0, &draw, z);
-        bf_solution sol;
-        uint64_t seed;
-        if ((rc = solve_start(p, s->options, s->watch, k, z, &sol, &costs[k], &seed, &s->on_prob, &s->cancelled,
-                              err)) != BF_OK ||
-            s->cancelled)
+        outcome out;
+        rc = solve_start(s, &at, k, z, &out, err);
+        costs[k] = out.cost;
+        if (rc != BF_OK || s->cancelled)
             break;
         if (k == 0)
-            s->first = sol;
+            s->first = out.sol;
         s->starts = k + 1;
-        consider(s, z, &sol, costs[k], seed);
+        consider(s, z, &out.sol, costs[k], out.seed);
     }
     for (int k = 0; rc == BF_OK && s->have_best && k < s->starts; k++)
         s->starts_at_best += at_best(costs[k], s->best.final_cost, p);
@@ -183,52 +198,67 @@ static bf_status plain(bf_search *s, int starts, bf_error *err)
 
 /* ---- Revive ------------------------------------------------------------------------- */
 
-/* At *zb (solution *sb of p, cost in sb->final_cost), each model parameter on a bound
- * that silences others is moved inward, half way and then nine tenths of the way to its
- * other bound, the silenced entries left where they are (or just inside a bound they sit
- * on), and solved again; a better optimum replaces *zb and *sb. At most max solves.
- * Returns the solves run. */
-static int revive(const bf_problem *p, const bf_objective *o, const bf_problem *dp, const bf_fit_options *opt,
-                  bf_fit_watch *w, int k0, double *zb, bf_solution *sb, uint64_t *seed, int max, int places,
-                  bf_presolve_info *counts, int *cancelled)
+/* A revive: the stage it solves on, the problem the silenced entries are found on (the
+ * screening set's), the start index of its first solve (its solver seed), at most max
+ * solves, and the places a parameter is moved to (1: half way; 2: then nine tenths). */
+typedef struct revive_plan {
+    const stage *at;
+    const bf_problem *found;
+    int k0, max, places;
+} revive_plan;
+
+/* z: zb with model parameter i's entries on a bound moved inward (place 0: half way; 1:
+ * nine tenths of the way to the other bound), the entries it silences a tenth of their
+ * range inside a bound they sit on. */
+static void moved_inward(const stage *at, const bf_silence *sil, int i, int place, const double *zb, double *z)
 {
+    const bf_problem *p = at->p;
     const int nz = p->npar;
-    const bf_model *m = o->model;
+    memcpy(z, zb, (size_t)nz * sizeof *z);
+    for (int q = 0; q < nz; q++) {
+        const double lo = p->lo[q], span = p->hi[q] - p->lo[q];
+        if (sil->bound[q] && bf_silence_param_of(at->obj->model, at->obj->kidx[q]) == i)
+            z[q] = lo + (place == 0 ? 0.5 : sil->bound[q] < 0 ? 0.9 : 0.1) * span;
+        else if (sil->silent[q] && sil->gate[q] == i && sil->bound[q])
+            z[q] = lo + (sil->bound[q] < 0 ? 0.1 : 0.9) * span;
+    }
+}
+
+/* At *zb (solution *sb of rp->at->p, cost in sb->final_cost), each model parameter on a
+ * bound that silences others is moved inward (moved_inward) and solved again; a better
+ * optimum replaces *zb, *sb and *seed. Returns the solves run. */
+static int revive(bf_search *s, const revive_plan *rp, double *zb, bf_solution *sb, uint64_t *seed)
+{
+    const bf_problem *p = rp->at->p;
+    const bf_fit_options *opt = s->options;
+    const int nz = p->npar;
     bf_silence sil;
     bf_error e2;
     /* Only a bound silences: none reached, nothing to revive (and no pass spent). */
     int bounds = 0;
     for (int j = 0; j < nz; j++)
         bounds += bf_silence_at_bound(p, zb, j) != 0;
-    if (max <= 0 || !bounds || bf_silence_find(dp, o, zb, &opt->solver.loss, opt->solver.threads, &sil, &e2) != BF_OK)
+    if (rp->max <= 0 || !bounds ||
+        bf_silence_find(rp->found, rp->at->obj, zb, &opt->solver.loss, opt->solver.threads, &sil, &e2) != BF_OK)
         return 0;
     int runs = 0;
     double *z = malloc(((size_t)nz + 1) * sizeof *z);
-    const int np = bf_model_nparams(m);
-    for (int i = 0; z && sil.nsilent > 0 && i < np && runs < max && !*cancelled; i++) {
+    const int np = bf_model_nparams(rp->at->obj->model);
+    for (int i = 0; z && sil.nsilent > 0 && i < np && runs < rp->max && !s->cancelled; i++) {
         int gates = 0;
         for (int q = 0; q < nz; q++)
             gates += sil.silent[q] && sil.gate[q] == i;
         if (!gates)
             continue;
-        for (int place = 0; place < places && runs < max; place++) {
-            memcpy(z, zb, (size_t)nz * sizeof *z);
-            for (int q = 0; q < nz; q++) {
-                const double lo = p->lo[q], span = p->hi[q] - p->lo[q];
-                if (sil.bound[q] && bf_silence_param_of(m, o->kidx[q]) == i)
-                    z[q] = lo + (place == 0 ? 0.5 : sil.bound[q] < 0 ? 0.9 : 0.1) * span;
-                else if (sil.silent[q] && sil.gate[q] == i && sil.bound[q])
-                    z[q] = lo + (sil.bound[q] < 0 ? 0.1 : 0.9) * span;
-            }
-            bf_solution sol;
-            double cost;
-            uint64_t sd;
-            if (solve_start(p, opt, w, k0 + runs, z, &sol, &cost, &sd, counts, cancelled, &e2) != BF_OK || *cancelled)
+        for (int place = 0; place < rp->places && runs < rp->max; place++) {
+            moved_inward(rp->at, &sil, i, place, zb, z);
+            outcome out;
+            if (solve_start(s, rp->at, rp->k0 + runs, z, &out, &e2) != BF_OK || s->cancelled)
                 break;
             runs++;
-            if (isfinite(cost) && cost < sb->final_cost * (1.0 - DISTINCT)) {
-                *sb = sol;
-                *seed = sd;
+            if (isfinite(out.cost) && out.cost < sb->final_cost * (1.0 - DISTINCT)) {
+                *sb = out.sol;
+                *seed = out.seed;
                 memcpy(zb, z, (size_t)nz * sizeof *zb);
             }
         }
@@ -291,137 +321,207 @@ static int by_cost(const void *a, const void *b)
 }
 
 bf_status bf_fit_subsample_objective(bf_samples *s, size_t n, uint64_t seed, const bf_model *m,
-                                     const bf_objective_options *oo, bf_samples **ps, bf_objective **pobj,
-                                     bf_error *err)
+                                     const bf_objective_options *oo, bf_subsample *out, bf_error *err)
 {
     unsigned char *keep = bf_big_malloc(s->n + 1);
     if (!keep)
         return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for a subsample of %zu samples", n);
     bf_status rc = bf_samples_subsample_mask(s, n, seed, keep, err);
     if (rc == BF_OK)
-        rc = bf_samples_copy(s, keep, ps, err);
+        rc = bf_samples_copy(s, keep, &out->samples, err);
     free(keep);
     if (rc == BF_OK)
-        rc = bf_objective_new(m, *ps, oo, pobj, err);
+        rc = bf_objective_new(m, out->samples, oo, &out->objective, err);
     return rc;
 }
 
-static bf_status screened(bf_search *s, bf_error *err)
+/* What the screened search's phases share (the steps of this file's first comment). */
+typedef struct screen_run {
+    bf_search *s;
+    stage screen;         /* the screening set: its subsample, or prob itself when small */
+    stage prob;           /* prob */
+    bf_subsample set;     /* the screening subsample (NULL members: the data itself) */
+    size_t nS;            /* the screening set's samples */
+    int N, M;             /* the starts solved there (z0, switches, candidates); the candidates */
+    int nsw, K;           /* the switches among the starts, and the candidates among them */
+    int n;                /* the starts ordered */
+    double *pts;          /* z0, the switches, the M candidates: nz each */
+    scored *cand;         /* the candidates' costs on the screening set */
+    scored *solved;       /* the starts' final costs there (index: the solve) */
+    int *order;           /* the starts in the order solved: indices into pts */
+    unsigned char *taken; /* per candidate: among the cheapest starts */
+    double *zp;           /* the point solved on prob */
+} screen_run;
+
+/* Step 1: the screening set, and the starts and candidates it affords. */
+static bf_status screen_set(screen_run *sc, bf_search *s, bf_error *err)
 {
     const bf_fit_options *o = s->options;
-    const bf_problem *prob = s->prob;
-    const bf_objective *pobj = s->objective;
-    const bf_model *m = pobj->model;
-    const int nz = prob->npar, np = bf_model_nparams(m);
-    bf_samples *ss = NULL;
-    bf_objective *sobj = NULL;
-    const bf_problem *sp = prob;
-    const bf_objective *so = pobj;
-    bf_status rc = BF_OK;
+    memset(sc, 0, sizeof *sc);
+    sc->s = s;
+    sc->prob = (stage){s->prob, s->objective, &s->on_prob};
+    sc->screen = (stage){s->prob, s->objective, &s->screen};
     if (s->samples->n > BF_FIT_SCREEN_SAMPLES) {
         /* Its own stream of the seed: not the presolve's subsample. */
-        if ((rc = bf_fit_subsample_objective(s->samples, BF_FIT_SCREEN_SAMPLES, o->seed ^ 0x5c5c5c5c5c5c5c5cull, m,
-                                             s->objective_options, &ss, &sobj, err)) != BF_OK)
+        bf_status rc = bf_fit_subsample_objective(s->samples, BF_FIT_SCREEN_SAMPLES, o->seed ^ 0x5c5c5c5c5c5c5c5cull,
+                                                  s->objective->model, s->objective_options, &sc->set, err);
+        if (rc != BF_OK)
             return rc;
-        sp = bf_objective_problem(sobj);
-        so = sobj;
+        sc->screen.p = bf_objective_problem(sc->set.objective);
+        sc->screen.obj = sc->set.objective;
     }
-    const size_t nS = ss ? ss->n : s->samples->n;
-    s->screen.samples = nS;                    /* the data itself when small: its solves are the search's */
-    const int N = bf_fit_search_starts(o, nS); /* every start solved: z0, switches, candidates */
-    const int M = o->screen > 4 * N ? o->screen : 4 * N;
-    s->candidates = M;
+    sc->nS = sc->set.samples ? sc->set.samples->n : s->samples->n;
+    s->screen.samples = sc->nS;              /* the data itself when small: its solves are the search's */
+    sc->N = bf_fit_search_starts(o, sc->nS); /* every start solved: z0, switches, candidates */
+    sc->M = o->screen > 4 * sc->N ? o->screen : 4 * sc->N;
+    s->candidates = sc->M;
+    return BF_OK;
+}
+
+static bf_status screen_alloc(screen_run *sc, bf_error *err)
+{
+    const int nz = sc->s->prob->npar, np = bf_model_nparams(sc->s->objective->model), M = sc->M;
     /* Points: z0, the switches (up to np + 1), the M candidates. */
     const int nmax = 1 + np + 1 + M;
-    double *pts = malloc(((size_t)nmax * nz + 1) * sizeof *pts);
-    scored *cand = malloc(((size_t)M + 1) * sizeof *cand);
-    scored *solved = malloc(((size_t)nmax + 1) * sizeof *solved);
-    int *order = malloc(((size_t)nmax + 1) * sizeof *order);
-    unsigned char *taken = calloc((size_t)M + 1, 1);
-    double *zp = malloc(((size_t)nz + 1) * sizeof *zp);
-    if (!pts || !cand || !solved || !order || !taken || !zp) {
-        rc = bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
-        goto done;
-    }
-    memcpy(pts, s->z0, (size_t)nz * sizeof *pts);
-    int nsw = switches(sp, so, s->z0, pts + nz);
-    if (nsw > N - 1) /* as many as the starts allow, the first parameters first */
-        nsw = N - 1;
-    const int K = N - 1 - nsw;
-    double *cz = pts + (size_t)(1 + nsw) * nz; /* the candidates */
+    sc->pts = malloc(((size_t)nmax * nz + 1) * sizeof *sc->pts);
+    sc->cand = malloc(((size_t)M + 1) * sizeof *sc->cand);
+    sc->solved = malloc(((size_t)nmax + 1) * sizeof *sc->solved);
+    sc->order = malloc(((size_t)nmax + 1) * sizeof *sc->order);
+    sc->taken = calloc((size_t)M + 1, 1);
+    sc->zp = malloc(((size_t)nz + 1) * sizeof *sc->zp);
+    if (!sc->pts || !sc->cand || !sc->solved || !sc->order || !sc->taken || !sc->zp)
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    return BF_OK;
+}
+
+/* Hands the screening subsample to the search (the driver's, until bf_fit_search_clear)
+ * and frees the rest. */
+static void screen_free(screen_run *sc)
+{
+    free(sc->pts);
+    free(sc->cand);
+    free(sc->solved);
+    free(sc->order);
+    free(sc->taken);
+    free(sc->zp);
+    sc->s->screen_objective = sc->set.objective;
+    sc->s->screen_samples = sc->set.samples;
+}
+
+/* Step 3's first points: z0, then the switches, as many as the starts allow (the first
+ * parameters first). */
+static void place_switches(screen_run *sc)
+{
+    const bf_search *s = sc->s;
+    const int nz = s->prob->npar;
+    memcpy(sc->pts, s->z0, (size_t)nz * sizeof *sc->pts);
+    sc->nsw = switches(sc->screen.p, sc->screen.obj, s->z0, sc->pts + nz);
+    if (sc->nsw > sc->N - 1)
+        sc->nsw = sc->N - 1;
+    sc->K = sc->N - 1 - sc->nsw;
+}
+
+/* Step 2: the M candidates drawn after the switches and scored on the screening set; a
+ * cancel sets s->cancelled. */
+static void score_candidates(screen_run *sc)
+{
+    bf_search *s = sc->s;
+    const bf_fit_options *o = s->options;
+    const int nz = s->prob->npar;
+    double *cz = sc->pts + (size_t)(1 + sc->nsw) * nz;
     uint64_t draw = o->seed;
-    bf_fit_watch_phase(s->watch, BF_PHASE_CANDIDATES, M, nS);
-    for (int j = 0; j < M; j++) {
+    bf_fit_watch_phase(s->watch, BF_PHASE_CANDIDATES, sc->M, sc->nS);
+    for (int j = 0; j < sc->M; j++) {
         if (o->solver.cancel && *o->solver.cancel) {
             s->cancelled = 1;
-            goto done;
+            return;
         }
-        random_start(sp, s->z0, &draw, cz + (size_t)j * nz);
-        cand[j].cost = cost_at(sp, &o->solver, cz + (size_t)j * nz);
-        cand[j].index = j;
-        if (bf_fit_watch_candidate(s->watch, j, cand[j].cost)) {
+        random_start(sc->screen.p, s->z0, &draw, cz + (size_t)j * nz);
+        sc->cand[j].cost = cost_at(sc->screen.p, &o->solver, cz + (size_t)j * nz);
+        sc->cand[j].index = j;
+        if (bf_fit_watch_candidate(s->watch, j, sc->cand[j].cost)) {
             s->cancelled = 1;
-            goto done;
+            return;
         }
     }
-    qsort(cand, (size_t)M, sizeof *cand, by_cost);
-    /* What is solved, in order: z0, the switches, the cheapest half of K, then the rest
-     * of K from the other candidates in the order they were drawn. */
+}
+
+/* Step 3's order of solves: z0, the switches, the cheapest half of K, then the rest of K
+ * from the other candidates in the order they were drawn. */
+static void order_starts(screen_run *sc)
+{
+    const int M = sc->M, nsw = sc->nsw, K = sc->K;
+    qsort(sc->cand, (size_t)M, sizeof *sc->cand, by_cost);
     int n = 0;
     for (int t = 0; t < 1 + nsw; t++)
-        order[n++] = t;
+        sc->order[n++] = t;
     const int cheap = (K + 1) / 2;
     for (int t = 0; t < cheap && t < M; t++) {
-        taken[cand[t].index] = 1;
-        order[n++] = 1 + nsw + cand[t].index;
+        sc->taken[sc->cand[t].index] = 1;
+        sc->order[n++] = 1 + nsw + sc->cand[t].index;
     }
     for (int j = 0; j < M && n < 1 + nsw + K; j++)
-        if (!taken[j])
-            order[n++] = 1 + nsw + j;
-    bf_fit_watch_phase(s->watch, BF_PHASE_SCREEN, n + SCREEN_REVIVES, nS); /* the starts, then the revives */
+        if (!sc->taken[j])
+            sc->order[n++] = 1 + nsw + j;
+    sc->n = n;
+}
+
+/* Step 3's solves on the screening set (when it is prob, the search's best), then
+ * sorted cheapest first. */
+static bf_status solve_screen_starts(screen_run *sc, bf_error *err)
+{
+    bf_search *s = sc->s;
+    const int nz = s->prob->npar, n = sc->n;
+    bf_fit_watch_phase(s->watch, BF_PHASE_SCREEN, n + SCREEN_REVIVES, sc->nS); /* the starts, then the revives */
     for (int t = 0; t < n; t++) {
-        double *z = pts + (size_t)order[t] * nz;
-        bf_solution sol;
-        uint64_t seed;
-        if ((rc = solve_start(sp, o, s->watch, t, z, &sol, &solved[t].cost, &seed, &s->screen, &s->cancelled, err)) !=
-                BF_OK ||
-            s->cancelled)
-            goto done;
-        solved[t].index = t; /* ties go to the earlier solve, as consider() keeps them */
+        double *z = sc->pts + (size_t)sc->order[t] * nz;
+        outcome out;
+        bf_status rc = solve_start(s, &sc->screen, t, z, &out, err);
+        sc->solved[t].cost = out.cost;
+        if (rc != BF_OK || s->cancelled)
+            return rc;
+        sc->solved[t].index = t; /* ties go to the earlier solve, as consider() keeps them */
         if (t == 0)
-            s->first = sol;
-        if (sp == prob)
-            consider(s, z, &sol, solved[t].cost, seed);
+            s->first = out.sol;
+        if (sc->screen.p == sc->prob.p)
+            consider(s, z, &out.sol, out.cost, out.seed);
     }
     s->starts = n;
-    qsort(solved, (size_t)n, sizeof *solved, by_cost);
+    qsort(sc->solved, (size_t)n, sizeof *sc->solved, by_cost);
     for (int t = 0; t < n; t++)
-        s->starts_at_best += at_best(solved[t].cost, solved[0].cost, sp);
-    if (!isfinite(solved[0].cost))
-        goto done; /* no usable start: the driver reports the first one's reason */
+        s->starts_at_best += at_best(sc->solved[t].cost, sc->solved[0].cost, sc->screen.p);
+    return BF_OK;
+}
 
-    /* Revive the best on the screening set. */
-    {
-        double *zb = pts + (size_t)order[solved[0].index] * nz;
-        bf_solution sb;
-        memset(&sb, 0, sizeof sb);
-        sb.final_cost = solved[0].cost;
-        if (sp == prob)
-            sb = s->best;
-        uint64_t seed = s->best_seed;
-        revive(sp, so, sp, o, s->watch, n, zb, &sb, &seed, SCREEN_REVIVES, 2, &s->screen, &s->cancelled);
-        if (s->cancelled)
-            goto done;
-        solved[0].cost = sb.final_cost;
-        if (sp == prob)
-            consider(s, zb, &sb, sb.final_cost, seed);
-    }
-    if (sp == prob)
-        goto done;
+/* Step 4: the best on the screening set revived there. */
+static void revive_screen_best(screen_run *sc)
+{
+    bf_search *s = sc->s;
+    const int on_prob = sc->screen.p == sc->prob.p;
+    double *zb = sc->pts + (size_t)sc->order[sc->solved[0].index] * s->prob->npar;
+    bf_solution sb;
+    memset(&sb, 0, sizeof sb);
+    sb.final_cost = sc->solved[0].cost;
+    if (on_prob)
+        sb = s->best;
+    uint64_t seed = s->best_seed;
+    const revive_plan rp = {.at = &sc->screen, .found = sc->screen.p, .k0 = sc->n, .max = SCREEN_REVIVES, .places = 2};
+    revive(s, &rp, zb, &sb, &seed);
+    if (s->cancelled)
+        return;
+    sc->solved[0].cost = sb.final_cost;
+    if (on_prob)
+        consider(s, zb, &sb, sb.final_cost, seed);
+}
 
-    /* Promote: the data-driven start and the best PROMOTE distinct screened optima (chosen
-     * first, so that the progress reports count them), then (presolved) the revives. */
-    int promote[PROMOTE], npromote = 0, k = n + SCREEN_REVIVES;
+/* Step 5's choice: up to PROMOTE screened optima besides the data-driven start's, within
+ * PROMOTE_WINDOW of the best and distinct from each other and from it, into promote
+ * (indices into solved). Returns how many. */
+static int choose_promoted(const screen_run *sc, int *promote)
+{
+    const scored *solved = sc->solved;
+    const int *order = sc->order, n = sc->n;
+    int npromote = 0;
     for (int t = 0; t < n && npromote < PROMOTE; t++) {
         if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
             continue;
@@ -434,37 +534,68 @@ static bf_status screened(bf_search *s, bf_error *err)
         if (!dup)
             promote[npromote++] = t;
     }
+    return npromote;
+}
+
+/* Step 5: the data-driven start and the promoted optima (chosen first, so that the
+ * progress reports count them) solved on prob, then (presolved) the best revived there. */
+static bf_status solve_on_prob(screen_run *sc, bf_error *err)
+{
+    bf_search *s = sc->s;
+    const int nz = s->prob->npar;
+    int promote[PROMOTE], k = sc->n + SCREEN_REVIVES;
+    const int npromote = choose_promoted(sc, promote);
     bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
                        1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
     for (int q = -1; q < npromote; q++) {
         if (q >= 0)
-            memcpy(zp, pts + (size_t)order[solved[promote[q]].index] * nz, (size_t)nz * sizeof *zp);
+            memcpy(sc->zp, sc->pts + (size_t)sc->order[sc->solved[promote[q]].index] * nz, (size_t)nz * sizeof *sc->zp);
         else
-            memcpy(zp, s->z0, (size_t)nz * sizeof *zp);
-        bf_solution sol;
-        double cost;
-        uint64_t seed;
-        if ((rc = solve_start(prob, o, s->watch, q < 0 ? 0 : k++, zp, &sol, &cost, &seed, &s->on_prob, &s->cancelled,
-                              err)) != BF_OK ||
-            s->cancelled)
-            goto done;
+            memcpy(sc->zp, s->z0, (size_t)nz * sizeof *sc->zp);
+        outcome out;
+        bf_status rc = solve_start(s, &sc->prob, q < 0 ? 0 : k++, sc->zp, &out, err);
+        if (rc != BF_OK || s->cancelled)
+            return rc;
         if (q < 0)
-            s->first = sol;
-        consider(s, zp, &sol, cost, seed);
+            s->first = out.sol;
+        consider(s, sc->zp, &out.sol, out.cost, out.seed);
     }
-    if (s->have_best && s->presolved)
-        revive(prob, pobj, sp, o, s->watch, k, s->z, &s->best, &s->best_seed, PROB_REVIVES, 1, &s->on_prob,
-               &s->cancelled);
+    if (s->have_best && s->presolved) {
+        const revive_plan rp = {.at = &sc->prob, .found = sc->screen.p, .k0 = k, .max = PROB_REVIVES, .places = 1};
+        revive(s, &rp, s->z, &s->best, &s->best_seed);
+    }
+    return BF_OK;
+}
 
-done:
-    free(pts);
-    free(cand);
-    free(solved);
-    free(order);
-    free(taken);
-    free(zp);
-    s->screen_objective = sobj; /* the driver's, until bf_fit_search_clear */
-    s->screen_samples = ss;
+/* Steps 2 to 5, each ending the search when a solve is cancelled. */
+static bf_status screen_steps(screen_run *sc, bf_error *err)
+{
+    bf_search *s = sc->s;
+    place_switches(sc);
+    score_candidates(sc);
+    if (s->cancelled)
+        return BF_OK;
+    order_starts(sc);
+    bf_status rc = solve_screen_starts(sc, err);
+    if (rc != BF_OK || s->cancelled)
+        return rc;
+    if (!isfinite(sc->solved[0].cost))
+        return BF_OK; /* no usable start: the driver reports the first one's reason */
+    revive_screen_best(sc);
+    if (s->cancelled || sc->screen.p == sc->prob.p)
+        return BF_OK;
+    return solve_on_prob(sc, err);
+}
+
+static bf_status screened(bf_search *s, bf_error *err)
+{
+    screen_run sc;
+    bf_status rc = screen_set(&sc, s, err);
+    if (rc != BF_OK)
+        return rc;
+    if ((rc = screen_alloc(&sc, err)) == BF_OK)
+        rc = screen_steps(&sc, err);
+    screen_free(&sc);
     return rc;
 }
 

@@ -53,11 +53,17 @@ int bf_fit_search_handover(const bf_search *s, double *z, unsigned char *hold);
 /* Frees what the search kept (the screening objective), also after an error. */
 void bf_fit_search_clear(bf_search *s);
 
-/* A seeded stratified subsample of n of s's samples (*ps) and its objective (*pobj) for
- * model m and options oo: the presolve's and the screening set's. */
+/* A subsample of the data and its objective: the presolve's, the screening set's. The
+ * caller frees both, also after an error (either may be NULL). */
+typedef struct bf_subsample {
+    bf_samples *samples;
+    bf_objective *objective;
+} bf_subsample;
+
+/* A seeded stratified subsample of n of s's samples and its objective for model m and
+ * options oo, into *out (zeroed by the caller). */
 bf_status bf_fit_subsample_objective(bf_samples *s, size_t n, uint64_t seed, const bf_model *m,
-                                     const bf_objective_options *oo, bf_samples **ps, bf_objective **pobj,
-                                     bf_error *err);
+                                     const bf_objective_options *oo, bf_subsample *out, bf_error *err);
 
 /* The starts the screened search solves for options o on a screening set of n samples
  * (o->starts, or when it is 0 (automatic) BF_FIT_STARTS to BF_FIT_STARTS_MAX: more for a
