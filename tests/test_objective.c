@@ -490,7 +490,9 @@ static void test_final_pass(void **state)
             assert_non_null(obj);
             bf_metrics a, b;
             bf_error err;
-            assert_int_equal(bf_obj_final(obj, x, weighted, P, &a, se1, NULL, &err), BF_OK);
+            assert_int_equal(bf_obj_final(obj, x, &(bf_final_want){weighted, P, NULL, NULL},
+                                          &(bf_final_out){&a, se1, NULL, NULL}, &err),
+                             BF_OK);
             assert_int_equal(bf_metrics_compute_weighted(m, x, s, P, 1, weighted, &b, &err), BF_OK);
             assert_int_equal(bf_objective_stderr(obj, x, se2, &err), BF_OK);
             assert_memory_equal(se1, se2, (size_t)P * sizeof *se1);

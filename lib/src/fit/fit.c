@@ -433,8 +433,9 @@ static bf_status result_figures(fit_run *f, bf_error *err)
     const int weighted = o->weighted_metrics || f->s->scene_weight != NULL;
     if (!(r->covariance = malloc(((size_t)P * (size_t)P + 1) * sizeof *r->covariance)))
         return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the covariance");
-    if ((rc = bf_obj_final_held(f->obj, r->x, weighted, nz - f->nsilent, f->held, f->held ? f->held + nz : NULL,
-                                &r->metrics, r->stderr_, f->corr, r->covariance, err)) != BF_OK)
+    const bf_final_want want = {weighted, nz - f->nsilent, f->held, f->held ? f->held + nz : NULL};
+    const bf_final_out out = {&r->metrics, r->stderr_, f->corr, r->covariance};
+    if ((rc = bf_obj_final(f->obj, r->x, &want, &out, err)) != BF_OK)
         return rc;
     if (o->solver.loss.kind != BF_LOSS_NONE) /* no Gaussian likelihood was maximised */
         r->metrics.loglik = r->metrics.aic = r->metrics.aicc = r->metrics.bic = NAN;

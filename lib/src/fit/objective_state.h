@@ -177,18 +177,28 @@ int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss 
                           struct bf_metric_sums *metrics);
 
 /* ---- The end of a fit (objective_stderr.c) ---------------------------------------------
- * Standard errors (as bf_objective_stderr), the metrics (as bf_metrics_compute_weighted
- * with k free parameters) and the criteria of the objective's residuals without a loss
- * (bf_metrics_criteria) at x, from one pass; corr (NULL: not wanted; nz x nz over the free
- * entries) the parameters' correlations, NaN where one of the pair is undetermined. */
-bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
-                       double *corr, bf_error *err);
-/* The same with the internal entries flagged in held (nz; NULL: none) left out of the
- * standard errors (NaN: entries on a bound or without effect), and those in held_corr
- * out of the correlations (entries without effect); cov (NULL: not wanted) the P x P
- * covariance of the model's entries, from the standard errors' pass (bf_fit_result's). */
-bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
-                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr, double *cov,
-                            bf_error *err);
+ * What the end of a fit asks of its last pass: the scene's weights in the metrics or
+ * not, the k free parameters the criteria count, and the internal entries left out of
+ * the standard errors (held, nz flags; NULL: none; entries on a bound or without
+ * effect, NaN there) and of the correlations (held_corr: entries without effect). */
+typedef struct bf_final_want {
+    int weighted, k;
+    const unsigned char *held, *held_corr;
+} bf_final_want;
+
+/* Where it goes, each NULL when not wanted: the metrics, the standard errors (P, model
+ * order), corr the correlations (nz x nz over the free entries, NaN where one of the
+ * pair is undetermined), cov the P x P covariance of the model's entries from the
+ * standard errors' pass (bf_fit_result's). */
+typedef struct bf_final_out {
+    bf_metrics *metrics;
+    double *se, *corr, *cov;
+} bf_final_out;
+
+/* Standard errors (as bf_objective_stderr), the metrics (as bf_metrics_compute_weighted
+ * with want->k free parameters) and the criteria of the objective's residuals without a
+ * loss (bf_metrics_criteria) at x, from one pass. out->metrics and out->se are needed. */
+bf_status bf_obj_final(const bf_objective *o, const double *x, const bf_final_want *want, const bf_final_out *out,
+                       bf_error *err);
 
 #endif

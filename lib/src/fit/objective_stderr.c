@@ -74,13 +74,21 @@ static void jacobi(double *a, double *v, int k)
     }
 }
 
-/* se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when corr or cov is
- * not NULL the correlations and covariances of each pair of determined entries (nz x nz;
- * NaN where either is undetermined; corr 1 and cov se^2 on the diagonal), all from the
- * same pseudo-inverse. work: 2 nz^2 + nz doubles; idx: nz ints. */
-static void covariance(const double *jtj, int nz, double s2, const unsigned char *held, double *se, double *corr,
-                       double *cov, double *work, int *idx)
+/* The pseudo-inverse's scratch: 2 nz^2 + nz doubles, nz ints. */
+typedef struct pinv_work {
+    double *work;
+    int *idx;
+} pinv_work;
+
+/* out->se[j] for the nz free entries from J^T J (nz x nz) and s^2, and when out->corr
+ * or out->cov is not NULL the correlations and covariances of each pair of determined
+ * entries (nz x nz; NaN where either is undetermined; corr 1 and cov se^2 on the
+ * diagonal), all from the same pseudo-inverse. out->metrics is not used. */
+static void covariance(const double *jtj, int nz, double s2, const unsigned char *held, const bf_final_out *out,
+                       const pinv_work *w)
 {
+    double *se = out->se, *corr = out->corr, *cov = out->cov, *work = w->work;
+    int *idx = w->idx;
     for (size_t e = 0; corr && e < (size_t)nz * nz; e++)
         corr[e] = NAN;
     for (size_t e = 0; cov && e < (size_t)nz * nz; e++)
@@ -140,14 +148,14 @@ static void covariance(const double *jtj, int nz, double s2, const unsigned char
 }
 
 /* Standard errors from J'J (nz x nz over the free entries, model space) and the sum of
- * squared residuals; cov (NULL: not wanted) the P x P covariance in model order, from
- * the standard errors' pass: 0 in a fixed entry's row and column, NaN where either entry
- * is undetermined. */
-static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, const unsigned char *held,
-                             const unsigned char *held_corr, double *se, double *corr, double *cov, bf_error *err)
+ * squared residuals, into out (model order; out->cov: 0 in a fixed entry's row and
+ * column, NaN where either entry is undetermined). */
+static bf_status stderr_from(const bf_objective *o, const double *jtj, double ssr, const bf_final_want *want,
+                             const bf_final_out *out, bf_error *err)
 {
     const int nz = o->nz;
     size_t nz2 = (size_t)nz * nz;
+    double *corr = out->corr, *cov = out->cov;
     double *sez = malloc((size_t)nz * sizeof *sez);
     double *work = malloc((2 * nz2 + (size_t)nz) * sizeof *work);
     int *idx = malloc((size_t)nz * sizeof *idx);
@@ -167,14 +175,15 @@ static bf_status stderr_from(const bf_objective *o, const double *jtj, double ss
             covz[e] = NAN;
     } else {
         const double s2 = ssr / (double)(n - (size_t)nz);
-        if (corr && held != held_corr) { /* two masks: the correlations from their own pass */
-            covariance(jtj, nz, s2, held_corr, sez, corr, NULL, work, idx);
+        const pinv_work w = {work, idx};
+        if (corr && want->held != want->held_corr) { /* two masks: the correlations from their own pass */
+            covariance(jtj, nz, s2, want->held_corr, &(bf_final_out){NULL, sez, corr, NULL}, &w);
             corr = NULL;
         }
-        covariance(jtj, nz, s2, held, sez, corr, covz, work, idx);
+        covariance(jtj, nz, s2, want->held, &(bf_final_out){NULL, sez, corr, covz}, &w);
     }
     for (int k = 0; k < nz; k++)
-        se[o->kidx[k]] = sez[k];
+        out->se[o->kidx[k]] = sez[k];
     if (cov) {
         const size_t P = (size_t)o->P;
         for (size_t e = 0; e < P * P; e++)
@@ -192,18 +201,18 @@ done:
 }
 
 /* The pass behind both: J'J of the plain residuals (no loss) with respect to the model
- * parameters, their sum of squares, and the metrics' sums when metrics is not NULL. */
-static bf_status final_pass(const bf_objective *o, const double *x, int weighted, const unsigned char *held,
-                            const unsigned char *held_corr, bf_metric_sums *metrics, double *se, double *corr,
-                            double *cov, double *wssr, bf_error *err)
+ * parameters, their sum of squares (*wssr), and the metrics' sums when sums is not NULL;
+ * the standard errors (and what else out wants) from them. */
+static bf_status final_pass(const bf_objective *o, const double *x, const bf_final_want *want, bf_metric_sums *sums,
+                            const bf_final_out *out, double *wssr, bf_error *err)
 {
     bf_status rc = bf_model_check(o->model, x, err);
     if (rc)
         return rc;
     const int nz = o->nz;
     for (int k = 0; k < o->P; k++)
-        se[k] = 0.0;
-    if (nz == 0 && !metrics)
+        out->se[k] = 0.0;
+    if (nz == 0 && !sums)
         return BF_OK;
     *wssr = NAN;
     double *ones = calloc((size_t)nz + 1, sizeof *ones);
@@ -215,13 +224,13 @@ static bf_status final_pass(const bf_objective *o, const double *x, int weighted
     }
     for (int k = 0; k < nz; k++)
         ones[k] = 1.0;
-    if (bf_obj_normal_metrics(o, x, NULL, o->threads, nz, o->kidx, ones, &ssr, NULL, nz ? jtj : NULL, weighted,
-                              metrics)) {
+    if (bf_obj_normal_metrics(o, x, NULL, o->threads, nz, o->kidx, ones, &ssr, NULL, nz ? jtj : NULL, want->weighted,
+                              sums)) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
     }
     if (nz > 0)
-        rc = stderr_from(o, jtj, ssr, held, held_corr, se, corr, cov, err);
+        rc = stderr_from(o, jtj, ssr, want, out, err);
     *wssr = ssr;
 done:
     free(ones);
@@ -232,25 +241,18 @@ done:
 bf_status bf_objective_stderr(const bf_objective *o, const double *x, double *se, bf_error *err)
 {
     double wssr;
-    return final_pass(o, x, 0, NULL, NULL, NULL, se, NULL, NULL, &wssr, err);
+    return final_pass(o, x, &(bf_final_want){0}, NULL, &(bf_final_out){NULL, se, NULL, NULL}, &wssr, err);
 }
 
-bf_status bf_obj_final(const bf_objective *o, const double *x, int weighted, int k, bf_metrics *metrics, double *se,
-                       double *corr, bf_error *err)
-{
-    return bf_obj_final_held(o, x, weighted, k, NULL, NULL, metrics, se, corr, NULL, err);
-}
-
-bf_status bf_obj_final_held(const bf_objective *o, const double *x, int weighted, int k, const unsigned char *held,
-                            const unsigned char *held_corr, bf_metrics *metrics, double *se, double *corr, double *cov,
-                            bf_error *err)
+bf_status bf_obj_final(const bf_objective *o, const double *x, const bf_final_want *want, const bf_final_out *out,
+                       bf_error *err)
 {
     bf_metric_sums sums;
     double wssr = NAN;
-    bf_status rc = final_pass(o, x, weighted, held, held_corr, &sums, se, corr, cov, &wssr, err);
+    bf_status rc = final_pass(o, x, want, &sums, out, &wssr, err);
     if (rc == BF_OK)
-        rc = bf_metric_sums_finish(&sums, k, weighted && o->samples->scene_weight, metrics, err);
+        rc = bf_metric_sums_finish(&sums, want->k, want->weighted && o->samples->scene_weight, out->metrics, err);
     if (rc == BF_OK)
-        bf_metrics_criteria(metrics, o->npos, k, wssr, o->sum_log_w);
+        bf_metrics_criteria(out->metrics, o->npos, want->k, wssr, o->sum_log_w);
     return rc;
 }
