@@ -101,12 +101,13 @@ static void load_image(void *ctx, size_t k)
     bf_image_clear(&img);
 }
 
-bf_status photo_band_load(const bf_stack *s, const int32_t *pixel, size_t npix, int y0, int y1, int threads,
-                          photo_band *b, bf_error *err)
+bf_status photo_band_load(const bf_stack *s, const photo_band_pixels *at, int threads, photo_band *b, bf_error *err)
 {
+    const int32_t *pixel = at->pixel;
+    size_t npix = at->npix;
     memset(b, 0, sizeof *b);
-    b->y0 = y0;
-    b->y1 = y1;
+    b->y0 = at->y0;
+    b->y1 = at->y1;
     b->npix = npix;
     size_t K = (size_t)s->nimages;
     b->pixel = malloc((npix ? npix : 1) * sizeof *b->pixel);

@@ -577,91 +577,122 @@ static void progress_scaled(void *ctx, double done)
     pc->o->progress(pc->o->progress_user, pc->total > 0 ? (pc->base + done) / pc->total : 1.0);
 }
 
+/* The masked pixels of rows [y, y1) and their samples, scaled. */
+static bf_status band_read(const photo_run *run, const unsigned char *mask, int y, int y1, photo_band *band,
+                           bf_error *err)
+{
+    const bf_stack *s = run->s;
+    int32_t *pix = NULL;
+    size_t np = photo_subsample(mask, y, y1, s->width, (size_t)-1 / 2, &pix);
+    if (np == (size_t)-1)
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    photo_band_pixels at = {pix, np, y, y1};
+    bf_status rc = photo_band_load(s, &at, run->threads, band, err);
+    free(pix);
+    if (rc != BF_OK)
+        return rc;
+    size_t nv = band->npix * (size_t)run->K * (size_t)run->C;
+    for (size_t i = 0; i < nv; i++)
+        band->v[i] = (float)(band->v[i] * run->scale);
+    return BF_OK;
+}
+
+/* The chunks' counts and sums into the result, in chunk order. */
+static void add_chunk_sums(const photo_run *run, const chunk_sums *sums, size_t nchunks, bf_photo_result *r)
+{
+    for (size_t c = 0; c < nchunks; c++) {
+        bf_photo_counts *a = &r->counts;
+        const bf_photo_counts *bb = &sums[c].counts;
+        a->pixels += bb->pixels;
+        a->failed += bb->failed;
+        a->samples += bb->samples;
+        a->shadowed += bb->shadowed;
+        a->dark += bb->dark;
+        r->iterations += sums[c].iterations;
+        r->restarted += sums[c].restarted;
+        for (int k = 0; k < run->K; k++) {
+            r->image_rms[k] += sums[c].img[3 * k];
+            r->image_lambert_rms[k] += sums[c].img[3 * k + 1];
+            r->image_samples[k] += (size_t)sums[c].img[3 * k + 2];
+        }
+    }
+}
+
+/* The three passes over a band's chunks, the progress told through pc (the band's part of
+ * the run's). */
+static bf_status band_passes(photo_run *run, bf_photo_result *r, const photo_band *b, size_t chunk, chunk_sums *sums,
+                             progress_ctx *pc, bf_error *err)
+{
+    const bf_photo_options *o = run->o;
+    size_t nchunks = (b->npix + chunk - 1) / chunk;
+    bf_status rc = BF_OK;
+    bf_photo_options oo = *o;
+    if (o->progress) {
+        oo.progress = progress_scaled;
+        oo.progress_user = pc;
+    }
+    run->o = &oo;
+    pixel_job j = {.run = run, .r = r, .b = b, .chunk = chunk, .sums = sums, .caller = pthread_self()};
+    atomic_init(&j.done, 0);
+    if (!band_solution_new(&j.first, b->npix, run->P) || !band_solution_new(&j.final, b->npix, run->P))
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu pixels' solutions", b->npix);
+    if (rc == BF_OK) {
+        bf_parallel_for(nchunks, run->threads, solve_chunk, &j);
+        if (!j.cancelled)
+            bf_parallel_for(nchunks, run->threads, restart_chunk, &j);
+        if (!j.cancelled && !(o->cancel && *o->cancel))
+            bf_parallel_for(nchunks, run->threads, output_chunk, &j);
+    }
+    band_solution_free(&j.first);
+    band_solution_free(&j.final);
+    run->o = o;
+    add_chunk_sums(run, sums, nchunks, r);
+    if (j.cancelled)
+        r->cancelled = 1;
+    return rc;
+}
+
+/* One band's pixels: its counts, its chunks' sums and the passes. */
+static bf_status fit_band(photo_run *run, bf_photo_result *r, const photo_band *b, size_t done_pixels, size_t total,
+                          bf_error *err)
+{
+    for (int k = 0; k < run->K; k++) {
+        r->counts.saturated += b->saturated[k];
+        r->counts.invalid += b->invalid[k];
+    }
+    /* Chunks: at least 16 pixels, at most 1024 chunks a band. */
+    size_t chunk = b->npix / 1024 + 16, nchunks = (b->npix + chunk - 1) / chunk;
+    chunk_sums *sums = calloc(nchunks ? nchunks : 1, sizeof *sums);
+    double *img = calloc((nchunks ? nchunks : 1) * 3 * (size_t)run->K, sizeof *img);
+    if (!sums || !img) {
+        free(sums);
+        free(img);
+        return bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    }
+    for (size_t c = 0; c < nchunks; c++)
+        sums[c].img = img + c * 3 * (size_t)run->K;
+    progress_ctx pc = {run->o, (double)done_pixels, (double)total};
+    bf_status rc = band_passes(run, r, b, chunk, sums, &pc, err);
+    free(sums);
+    free(img);
+    return rc;
+}
+
 static bf_status fit_bands(photo_run *run, const unsigned char *mask, bf_photo_result *r, size_t total,
                            photo_band *first, bf_error *err)
 {
-    const bf_stack *s = run->s;
-    const bf_photo_options *o = run->o;
-    size_t bytes = o->band_bytes ? o->band_bytes : DEFAULT_BAND_BYTES;
+    size_t bytes = run->o->band_bytes ? run->o->band_bytes : DEFAULT_BAND_BYTES;
     size_t done_pixels = 0;
     bf_status rc = BF_OK;
     for (int y = r->y0; y < r->y1 && rc == BF_OK;) {
         int y1 = next_band(run, mask, y, r->y1, bytes);
         photo_band band, *b = &band;
-        if (first && first->y0 == y && first->y1 == y1) {
+        if (first && first->y0 == y && first->y1 == y1)
             b = first; /* the start's band is this band: already read and scaled */
-        } else {
-            int32_t *pix = NULL;
-            size_t np = photo_subsample(mask, y, y1, s->width, (size_t)-1 / 2, &pix);
-            if (np == (size_t)-1)
-                return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-            rc = photo_band_load(s, pix, np, y, y1, run->threads, &band, err);
-            free(pix);
-            if (rc != BF_OK)
-                return rc;
-            size_t nv = band.npix * (size_t)run->K * (size_t)run->C;
-            for (size_t i = 0; i < nv; i++)
-                band.v[i] = (float)(band.v[i] * run->scale);
-        }
-        for (int k = 0; k < run->K; k++) {
-            r->counts.saturated += b->saturated[k];
-            r->counts.invalid += b->invalid[k];
-        }
-        /* Chunks: at least 16 pixels, at most 1024 chunks a band. */
-        size_t chunk = b->npix / 1024 + 16, nchunks = (b->npix + chunk - 1) / chunk;
-        chunk_sums *sums = calloc(nchunks ? nchunks : 1, sizeof *sums);
-        double *img = calloc((nchunks ? nchunks : 1) * 3 * (size_t)run->K, sizeof *img);
-        if (!sums || !img) {
-            free(sums);
-            free(img);
-            if (b != first)
-                photo_band_free(&band);
-            return bf_fail(err, BF_ERR_NOMEM, "out of memory");
-        }
-        for (size_t c = 0; c < nchunks; c++)
-            sums[c].img = img + c * 3 * (size_t)run->K;
+        else if ((rc = band_read(run, mask, y, y1, &band, err)) != BF_OK)
+            return rc;
         size_t band_pixels = b->npix;
-        progress_ctx pc = {o, (double)done_pixels, (double)total};
-        bf_photo_options oo = *o;
-        if (o->progress) {
-            oo.progress = progress_scaled;
-            oo.progress_user = &pc;
-        }
-        const bf_photo_options *keep = run->o;
-        run->o = &oo;
-        pixel_job j = {.run = run, .r = r, .b = b, .chunk = chunk, .sums = sums, .caller = pthread_self()};
-        atomic_init(&j.done, 0);
-        if (!band_solution_new(&j.first, b->npix, run->P) || !band_solution_new(&j.final, b->npix, run->P))
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for %zu pixels' solutions", b->npix);
-        if (rc == BF_OK) {
-            bf_parallel_for(nchunks, run->threads, solve_chunk, &j);
-            if (!j.cancelled)
-                bf_parallel_for(nchunks, run->threads, restart_chunk, &j);
-            if (!j.cancelled && !(o->cancel && *o->cancel))
-                bf_parallel_for(nchunks, run->threads, output_chunk, &j);
-        }
-        band_solution_free(&j.first);
-        band_solution_free(&j.final);
-        run->o = keep;
-        for (size_t c = 0; c < nchunks; c++) {
-            bf_photo_counts *a = &r->counts, *bb = &sums[c].counts;
-            a->pixels += bb->pixels;
-            a->failed += bb->failed;
-            a->samples += bb->samples;
-            a->shadowed += bb->shadowed;
-            a->dark += bb->dark;
-            r->iterations += sums[c].iterations;
-            r->restarted += sums[c].restarted;
-            for (int k = 0; k < run->K; k++) {
-                r->image_rms[k] += sums[c].img[3 * k];
-                r->image_lambert_rms[k] += sums[c].img[3 * k + 1];
-                r->image_samples[k] += (size_t)sums[c].img[3 * k + 2];
-            }
-        }
-        if (j.cancelled)
-            r->cancelled = 1;
-        free(sums);
-        free(img);
+        rc = fit_band(run, r, b, done_pixels, total, err);
         if (b != first)
             photo_band_free(&band);
         done_pixels += band_pixels;
@@ -678,6 +709,152 @@ static int online_threads(void)
     return n > 0 ? (int)n : 1;
 }
 
+/* One bf_photo_fit: the run, the options it reads, the result and what the phases share. */
+typedef struct fit_state {
+    photo_run run;
+    bf_photo_options o; /* a whole struct of this version */
+    bf_photo_result *r;
+    unsigned char *mask; /* width*height; the tile's rows only once the start is made */
+    float *given;        /* BF_NORMALS_FILE: the normals, world frame */
+    photo_band first;    /* the start's pixels, kept when they are the whole image in one band */
+    int32_t *sub;        /* the start's subsample */
+    size_t total;        /* pixels to fit */
+} fit_state;
+
+/* The result's maps, the tile's rows and the relit images kept. */
+static bf_status result_new(fit_state *f, bf_error *err)
+{
+    const bf_stack *s = f->run.s;
+    const bf_photo_options *o = f->run.o;
+    bf_photo_result *r = f->r;
+    size_t WH = (size_t)s->width * (size_t)s->height;
+    r->width = s->width;
+    r->height = s->height;
+    r->channels = s->channels;
+    r->nimages = s->nimages;
+    r->threads = f->run.threads;
+    r->nvalues = f->run.P;
+    r->y0 = o->tile_count > 0 ? (int)((long)s->height * o->tile_index / o->tile_count) : 0;
+    r->y1 = o->tile_count > 0 ? (int)((long)s->height * (o->tile_index + 1) / o->tile_count) : s->height;
+    r->mask = calloc(WH, 1);
+    r->normals = calloc(WH * 3, sizeof *r->normals);
+    r->params = calloc(WH * (size_t)f->run.P, sizeof *r->params);
+    r->error = calloc(WH, sizeof *r->error);
+    r->lambert_normals = calloc(WH * 3, sizeof *r->lambert_normals);
+    r->lambert_albedo = calloc(WH * (size_t)s->channels, sizeof *r->lambert_albedo);
+    r->image_rms = calloc((size_t)s->nimages, sizeof *r->image_rms);
+    r->image_lambert_rms = calloc((size_t)s->nimages, sizeof *r->image_lambert_rms);
+    r->image_samples = calloc((size_t)s->nimages, sizeof *r->image_samples);
+    if (o->clusters > 1)
+        r->cluster = malloc(WH * sizeof *r->cluster);
+    int ok = r->mask && r->normals && r->params && r->error && r->lambert_normals && r->lambert_albedo &&
+             r->image_rms && r->image_lambert_rms && r->image_samples && (o->clusters <= 1 || r->cluster);
+    r->nrelit = o->relit_images < 0 ? 0 : o->relit_images > BF_PHOTO_MAX_RELIT ? BF_PHOTO_MAX_RELIT : o->relit_images;
+    if (r->nrelit > s->nimages)
+        r->nrelit = s->nimages;
+    for (int i = 0; i < r->nrelit && ok; i++) {
+        /* Spread over the stack: the first, the last and evenly between. */
+        r->relit_index[i] = r->nrelit > 1 ? (int)((long)i * (s->nimages - 1) / (r->nrelit - 1)) : 0;
+        r->relit_measured[i] = calloc(WH * (size_t)s->channels, sizeof(float));
+        r->relit_model[i] = calloc(WH * (size_t)s->channels, sizeof(float));
+        ok = r->relit_measured[i] && r->relit_model[i];
+    }
+    if (r->cluster)
+        for (size_t i = 0; i < WH; i++)
+            r->cluster[i] = -1;
+    if (!ok)
+        return bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the %dx%d outputs", s->path, s->width, s->height);
+    return BF_OK;
+}
+
+/* The start's pixels: an evenly spread subsample of the whole image's mask, whatever the
+ * tile, so that every tile starts alike and tiles merge into the whole run. */
+static bf_status start(fit_state *f, bf_error *err)
+{
+    photo_run *run = &f->run;
+    const bf_stack *s = run->s;
+    const bf_photo_options *o = run->o;
+    size_t WH = (size_t)s->width * (size_t)s->height, all = 0;
+    for (size_t i = 0; i < WH; i++)
+        all += f->mask[i] != 0;
+    size_t bytes = o->band_bytes ? o->band_bytes : DEFAULT_BAND_BYTES;
+    int whole = f->r->y0 == 0 && f->r->y1 == s->height && next_band(run, f->mask, 0, s->height, bytes) >= s->height;
+    size_t ns = photo_subsample(f->mask, 0, s->height, s->width, whole ? all : START_PIXELS, &f->sub);
+    bf_status rc;
+    if (ns == (size_t)-1)
+        rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
+    else if (!ns)
+        rc = bf_fail(err, BF_ERR_ARG, "%s: no pixel to fit (the mask is empty)", s->path);
+    else {
+        photo_band_pixels at = {f->sub, ns, 0, s->height};
+        rc = photo_band_load(s, &at, run->threads, &f->first, err);
+    }
+    photo_band pick = {0};
+    if (rc == BF_OK)
+        rc = band_pick(&f->first, (size_t)run->K * (size_t)run->C, START_PIXELS, &pick, err);
+    if (rc == BF_OK)
+        rc = fit_start(run, &pick, f->r, err);
+    photo_band_free(&pick);
+    if (rc == BF_OK && whole) { /* the whole image in one band, read once */
+        size_t nv = f->first.npix * (size_t)run->K * (size_t)run->C;
+        for (size_t i = 0; i < nv; i++)
+            f->first.v[i] = (float)(f->first.v[i] * run->scale);
+    } else
+        photo_band_free(&f->first);
+    return rc;
+}
+
+/* Outside the tile's rows nothing is fitted: the mask cut to them, the pixels counted. */
+static bf_status tile_rows(fit_state *f, bf_error *err)
+{
+    const bf_stack *s = f->run.s;
+    bf_photo_result *r = f->r;
+    size_t W = (size_t)s->width, WH = W * (size_t)s->height;
+    for (size_t i = 0; i < WH; i++) {
+        int y = (int)(i / W);
+        if (y < r->y0 || y >= r->y1)
+            f->mask[i] = 0;
+        else if (!f->mask[i])
+            r->counts.masked++;
+        f->total += f->mask[i] != 0;
+    }
+    if (!f->total)
+        return bf_fail(err, BF_ERR_ARG, "%s: no pixel to fit in rows %d to %d (the tile's band)", s->path, r->y0,
+                       r->y1 - 1);
+    return BF_OK;
+}
+
+/* The relit errors' sums as RMS, per image and over all. */
+static void relit_rms(bf_photo_result *r, int K)
+{
+    double sm = 0.0, sl = 0.0;
+    size_t n = 0;
+    for (int k = 0; k < K; k++) {
+        sm += r->image_rms[k];
+        sl += r->image_lambert_rms[k];
+        n += r->image_samples[k];
+        r->image_rms[k] = r->image_samples[k] ? sqrt(r->image_rms[k] / (double)r->image_samples[k]) : 0.0;
+        r->image_lambert_rms[k] =
+            r->image_samples[k] ? sqrt(r->image_lambert_rms[k] / (double)r->image_samples[k]) : 0.0;
+    }
+    r->relit_rms = n ? sqrt(sm / (double)n) : 0.0;
+    r->lambert_rms = n ? sqrt(sl / (double)n) : 0.0;
+}
+
+static void fit_state_free(fit_state *f)
+{
+    photo_band_free(&f->first);
+    free(f->sub);
+    free(f->mask);
+    free(f->given);
+    bf_model_free(f->run.model);
+    free(f->run.start);
+    free(f->run.centroid);
+    free(f->run.cluster_albedo);
+    free(f->run.lbuf);
+    free(f->run.ebuf);
+}
+
 bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_result **out, bf_error *err)
 {
     *out = NULL;
@@ -690,147 +867,45 @@ bf_status bf_photo_fit(const bf_stack *s, const bf_photo_options *o, bf_photo_re
     if (o->tile_count > s->height)
         return bf_fail(err, BF_ERR_ARG, "%s %d/%d: out of range (the image has %d rows)", photo_option_name(o, "tile"),
                        o->tile_index + 1, o->tile_count, s->height);
+    fit_state f = {0};
     /* The run reads (and copies) a whole struct of this version: an older caller's is
      * shorter, its missing tail the defaults. */
-    bf_photo_options whole;
-    bf_photo_options_init(&whole);
-    memcpy(&whole, o, o->size < sizeof whole ? o->size : sizeof whole);
-    whole.size = sizeof whole;
-    o = &whole;
-    photo_run run = {.s = s, .o = o, .spec = o->model, .K = s->nimages, .C = s->channels};
-    run.threads = o->threads > 0 ? o->threads : online_threads();
-    run.scale = o->scale_given ? o->scale : s->scale;
-    bf_photo_result *r = calloc(1, sizeof *r);
-    unsigned char *mask = NULL;
-    float *given = NULL;
-    photo_band first = {0};
-    int32_t *sub = NULL;
-    bf_status rc = r ? setup(&run, err) : bf_fail(err, BF_ERR_NOMEM, "out of memory");
-    size_t W = (size_t)s->width, H = (size_t)s->height, WH = W * H;
-    if (rc == BF_OK) {
-        r->width = s->width;
-        r->height = s->height;
-        r->channels = s->channels;
-        r->nimages = s->nimages;
-        r->threads = run.threads;
-        r->nvalues = run.P;
-        r->y0 = o->tile_count > 0 ? (int)((long)s->height * o->tile_index / o->tile_count) : 0;
-        r->y1 = o->tile_count > 0 ? (int)((long)s->height * (o->tile_index + 1) / o->tile_count) : s->height;
-        r->mask = calloc(WH, 1);
-        r->normals = calloc(WH * 3, sizeof *r->normals);
-        r->params = calloc(WH * (size_t)run.P, sizeof *r->params);
-        r->error = calloc(WH, sizeof *r->error);
-        r->lambert_normals = calloc(WH * 3, sizeof *r->lambert_normals);
-        r->lambert_albedo = calloc(WH * (size_t)s->channels, sizeof *r->lambert_albedo);
-        r->image_rms = calloc((size_t)s->nimages, sizeof *r->image_rms);
-        r->image_lambert_rms = calloc((size_t)s->nimages, sizeof *r->image_lambert_rms);
-        r->image_samples = calloc((size_t)s->nimages, sizeof *r->image_samples);
-        if (o->clusters > 1)
-            r->cluster = malloc(WH * sizeof *r->cluster);
-        int ok = r->mask && r->normals && r->params && r->error && r->lambert_normals && r->lambert_albedo &&
-                 r->image_rms && r->image_lambert_rms && r->image_samples && (o->clusters <= 1 || r->cluster);
-        r->nrelit = o->relit_images < 0                    ? 0
-                    : o->relit_images > BF_PHOTO_MAX_RELIT ? BF_PHOTO_MAX_RELIT
-                                                           : o->relit_images;
-        if (r->nrelit > s->nimages)
-            r->nrelit = s->nimages;
-        for (int i = 0; i < r->nrelit && ok; i++) {
-            /* Spread over the stack: the first, the last and evenly between. */
-            r->relit_index[i] = r->nrelit > 1 ? (int)((long)i * (s->nimages - 1) / (r->nrelit - 1)) : 0;
-            r->relit_measured[i] = calloc(WH * (size_t)s->channels, sizeof(float));
-            r->relit_model[i] = calloc(WH * (size_t)s->channels, sizeof(float));
-            ok = r->relit_measured[i] && r->relit_model[i];
-        }
-        if (r->cluster)
-            for (size_t i = 0; i < WH; i++)
-                r->cluster[i] = -1;
-        if (!ok)
-            rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory for the %dx%d outputs", s->path, s->width, s->height);
-    }
+    bf_photo_options_init(&f.o);
+    memcpy(&f.o, o, o->size < sizeof f.o ? o->size : sizeof f.o);
+    f.o.size = sizeof f.o;
+    o = &f.o;
+    f.run = (photo_run){.s = s, .o = o, .spec = o->model, .K = s->nimages, .C = s->channels};
+    f.run.threads = o->threads > 0 ? o->threads : online_threads();
+    f.run.scale = o->scale_given ? o->scale : s->scale;
+    f.r = calloc(1, sizeof *f.r);
+    bf_status rc = f.r ? setup(&f.run, err) : bf_fail(err, BF_ERR_NOMEM, "out of memory");
     if (rc == BF_OK)
-        rc = photo_mask_load(s, &mask, err);
-    if (rc == BF_OK && o->normals == BF_NORMALS_FILE && (rc = load_given_normals(&run, &given, err)) == BF_OK)
-        run.given_normals = given;
-    /* The start's pixels: an evenly spread subsample of the whole image's mask, whatever
-     * the tile, so that every tile starts alike and tiles merge into the whole run. */
-    if (rc == BF_OK) {
-        size_t all = 0;
-        for (size_t i = 0; i < WH; i++)
-            all += mask[i] != 0;
-        size_t bytes = o->band_bytes ? o->band_bytes : DEFAULT_BAND_BYTES;
-        int whole = r->y0 == 0 && r->y1 == s->height && next_band(&run, mask, 0, s->height, bytes) >= s->height;
-        size_t ns = photo_subsample(mask, 0, s->height, s->width, whole ? all : START_PIXELS, &sub);
-        if (ns == (size_t)-1)
-            rc = bf_fail(err, BF_ERR_NOMEM, "out of memory");
-        else if (!ns)
-            rc = bf_fail(err, BF_ERR_ARG, "%s: no pixel to fit (the mask is empty)", s->path);
-        else
-            rc = photo_band_load(s, sub, ns, 0, s->height, run.threads, &first, err);
-        photo_band pick = {0};
-        if (rc == BF_OK)
-            rc = band_pick(&first, (size_t)run.K * (size_t)run.C, START_PIXELS, &pick, err);
-        if (rc == BF_OK)
-            rc = fit_start(&run, &pick, r, err);
-        photo_band_free(&pick);
-        if (rc == BF_OK && whole) { /* the whole image in one band, read once */
-            size_t nv = first.npix * (size_t)run.K * (size_t)run.C;
-            for (size_t i = 0; i < nv; i++)
-                first.v[i] = (float)(first.v[i] * run.scale);
-        } else
-            photo_band_free(&first);
-    }
-    size_t total = 0;
-    if (rc == BF_OK) {
-        /* Outside the tile's rows nothing is fitted. */
-        for (size_t i = 0; i < WH; i++) {
-            int y = (int)(i / W);
-            if (y < r->y0 || y >= r->y1)
-                mask[i] = 0;
-            else if (!mask[i])
-                r->counts.masked++;
-            total += mask[i] != 0;
-        }
-        if (!total)
-            rc = bf_fail(err, BF_ERR_ARG, "%s: no pixel to fit in rows %d to %d (the tile's band)", s->path, r->y0,
-                         r->y1 - 1);
-    }
+        rc = result_new(&f, err);
+    if (rc == BF_OK)
+        rc = photo_mask_load(s, &f.mask, err);
+    if (rc == BF_OK && o->normals == BF_NORMALS_FILE && (rc = load_given_normals(&f.run, &f.given, err)) == BF_OK)
+        f.run.given_normals = f.given;
+    if (rc == BF_OK)
+        rc = start(&f, err);
+    if (rc == BF_OK)
+        rc = tile_rows(&f, err);
     if (rc == BF_OK && !(o->cancel && *o->cancel)) {
-        r->scale = run.scale;
-        rc = fit_bands(&run, mask, r, total, first.npix ? &first : NULL, err);
+        f.r->scale = f.run.scale;
+        rc = fit_bands(&f.run, f.mask, f.r, f.total, f.first.npix ? &f.first : NULL, err);
     }
     if (rc == BF_OK && o->cancel && *o->cancel)
-        r->cancelled = 1;
+        f.r->cancelled = 1;
     if (rc == BF_OK) {
-        double sm = 0.0, sl = 0.0;
-        size_t n = 0;
-        for (int k = 0; k < s->nimages; k++) {
-            sm += r->image_rms[k];
-            sl += r->image_lambert_rms[k];
-            n += r->image_samples[k];
-            r->image_rms[k] = r->image_samples[k] ? sqrt(r->image_rms[k] / (double)r->image_samples[k]) : 0.0;
-            r->image_lambert_rms[k] =
-                r->image_samples[k] ? sqrt(r->image_lambert_rms[k] / (double)r->image_samples[k]) : 0.0;
-        }
-        r->relit_rms = n ? sqrt(sm / (double)n) : 0.0;
-        r->lambert_rms = n ? sqrt(sl / (double)n) : 0.0;
-        r->model = run.model;
-        run.model = NULL;
-        r->seconds = bf_now_seconds() - t0;
+        relit_rms(f.r, s->nimages);
+        f.r->model = f.run.model;
+        f.run.model = NULL;
+        f.r->seconds = bf_now_seconds() - t0;
     }
-    photo_band_free(&first);
-    free(sub);
-    free(mask);
-    free(given);
-    bf_model_free(run.model);
-    free(run.start);
-    free(run.centroid);
-    free(run.cluster_albedo);
-    free(run.lbuf);
-    free(run.ebuf);
+    fit_state_free(&f);
     if (rc != BF_OK) {
-        bf_photo_result_free(r);
+        bf_photo_result_free(f.r);
         return rc;
     }
-    *out = r;
+    *out = f.r;
     return BF_OK;
 }

@@ -32,10 +32,14 @@ typedef struct photo_band {
     size_t *saturated, *invalid; /* per image */
 } photo_band;
 
-/* The listed pixels (y*width + x, all in rows [y0, y1)), read from every image on up to
- * `threads` threads. */
-bf_status photo_band_load(const bf_stack *s, const int32_t *pixel, size_t npix, int y0, int y1, int threads,
-                          photo_band *b, bf_error *err);
+/* The pixels a band is read for: y*width + x each, all in rows [y0, y1). */
+typedef struct photo_band_pixels {
+    const int32_t *pixel;
+    size_t npix;
+    int y0, y1;
+} photo_band_pixels;
+/* The listed pixels, read from every image on up to `threads` threads. */
+bf_status photo_band_load(const bf_stack *s, const photo_band_pixels *at, int threads, photo_band *b, bf_error *err);
 void photo_band_free(photo_band *b);
 /* The mask as width*height bytes (1: fitted). */
 bf_status photo_mask_load(const bf_stack *s, unsigned char **mask, bf_error *err);
@@ -93,13 +97,22 @@ void photo_solve_pixel(const photo_problem *pr, const float *v, const photo_ligh
 void photo_predict(const photo_problem *pr, const photo_lights *pl, const double *x, const double n[3],
                    photo_scratch *w, double *pred);
 
-/* The joint problem of shared entries and pixels (photo_joint.c). For one pixel at (x, n):
- * J'J (A, m x m) and J'r (g, m) over its unknowns, ordered its free entries, its normal's
- * two angles (when fitted), then the `ns` shared entries; *cost its cost. Returns the
- * count of the pixel's own unknowns (m minus ns). */
-int photo_joint_sums(const photo_problem *pr, const float *v, const photo_lights *pl, const double *x,
-                     const double n[3], const int *shared, int ns, photo_scratch *w, double *A, double *g,
-                     double *cost);
+/* One pixel's samples, its lights and the point (x, n) where its sums are taken. */
+typedef struct photo_pixel_at {
+    const float *v; /* K*C */
+    const photo_lights *pl;
+    const double *x, *n; /* P entries; unit, world */
+} photo_pixel_at;
+/* Where one pixel's block of the joint normal equations goes. */
+typedef struct photo_joint_block {
+    double *A, *g, *cost;
+} photo_joint_block;
+/* The joint problem of shared entries and pixels (photo_joint.c). For one pixel at
+ * (at->x, at->n): J'J (out->A, m x m) and J'r (out->g, m) over its unknowns, ordered its
+ * free entries, its normal's two angles (when fitted), then the `ns` shared entries;
+ * *out->cost its cost. Returns the count of the pixel's own unknowns (m minus ns). */
+int photo_joint_sums(const photo_problem *pr, const int *shared, int ns, const photo_pixel_at *at, photo_scratch *w,
+                     photo_joint_block *out);
 /* (x, n) moved by d over the pixel's own unknowns (that order), bounds kept, into (xo, no). */
 void photo_pixel_step(const photo_problem *pr, const double *x, const double n[3], const double *d, double *xo,
                       double no[3]);

@@ -34,7 +34,8 @@ typedef struct joint {
     double *tcost;        /* per pixel, at the trial point */
     unsigned char *bad;   /* per pixel: its block not positive definite */
     double *S, *r;        /* per chunk: nclusters * (ns*ns + ns) */
-    const double *ds;     /* nclusters * ns: the shared steps */
+    double *S_sum;        /* nclusters * (ns*ns + ns): the chunks' added */
+    double *ds;           /* nclusters * ns: the shared steps */
     double *trial_shared; /* nclusters * ns */
     int np, ns, m;
     double lambda;
@@ -66,9 +67,10 @@ static void sums_chunk(void *ctx, size_t c)
     photo_lights pl = {bb.l, bb.e, {0}};
     for (size_t p = p0; p < p1; p++) {
         photo_lights_at(s, j->b->pixel[p] % s->width, j->b->pixel[p] / s->width, &pl);
-        photo_joint_sums(&pr, j->b->v + p * (size_t)run->K * (size_t)run->C, &pl, j->x + p * (size_t)run->P,
-                         j->n + 3 * p, run->shared, j->ns, bb.w, j->A + p * (size_t)j->m * (size_t)j->m,
-                         j->g + p * (size_t)j->m, &j->cost[p]);
+        photo_pixel_at at = {j->b->v + p * (size_t)run->K * (size_t)run->C, &pl, j->x + p * (size_t)run->P,
+                             j->n + 3 * p};
+        photo_joint_block blk = {j->A + p * (size_t)j->m * (size_t)j->m, j->g + p * (size_t)j->m, &j->cost[p]};
+        photo_joint_sums(&pr, run->shared, j->ns, &at, bb.w, &blk);
     }
     photo_buffers_free(&bb);
 }
@@ -169,10 +171,97 @@ static double total(const double *c, size_t n)
     return t;
 }
 
+/* The joint's arrays for its n pixels (j->np, j->ns, j->m and j->nchunks set); 0 when out
+ * of memory. */
+static int joint_new(joint *j, size_t n)
+{
+    int ns = j->ns, nc = j->run->nclusters, P = j->run->P;
+    size_t m = (size_t)j->m, np = (size_t)j->np, sz = (size_t)nc * (size_t)(ns * ns + ns);
+    j->tx = malloc(n * (size_t)P * sizeof *j->tx);
+    j->tn = malloc(n * 3 * sizeof *j->tn);
+    j->A = malloc(n * m * m * sizeof *j->A);
+    j->g = malloc(n * m * sizeof *j->g);
+    j->cost = malloc(n * sizeof *j->cost);
+    j->L = malloc(n * (np * np + 1) * sizeof *j->L);
+    j->Y = malloc(n * (np * (size_t)ns + 1) * sizeof *j->Y);
+    j->z = malloc(n * (np + 1) * sizeof *j->z);
+    j->tcost = malloc(n * sizeof *j->tcost);
+    j->bad = calloc(n, 1);
+    j->S = malloc(j->nchunks * sz * sizeof *j->S);
+    j->S_sum = malloc(sz * sizeof *j->S_sum);
+    j->ds = malloc((size_t)nc * (size_t)ns * sizeof *j->ds);
+    j->trial_shared = malloc((size_t)nc * (size_t)ns * sizeof *j->trial_shared);
+    return j->tx && j->tn && j->A && j->g && j->cost && j->L && j->Y && j->z && j->tcost && j->bad && j->S &&
+           j->S_sum && j->ds && j->trial_shared;
+}
+
+static void joint_free(joint *j)
+{
+    free(j->tx);
+    free(j->tn);
+    free(j->A);
+    free(j->g);
+    free(j->cost);
+    free(j->L);
+    free(j->Y);
+    free(j->z);
+    free(j->tcost);
+    free(j->bad);
+    free(j->S);
+    free(j->S_sum);
+    free(j->ds);
+    free(j->trial_shared);
+}
+
+/* Each cluster's shared step for the current lambda (S d_s = -r, the chunks' parts added in
+ * chunk order) and its trial values; 0 when a cluster's S is not positive definite. */
+static int shared_steps(joint *j, const photo_problem *pr)
+{
+    photo_run *run = j->run;
+    int ns = j->ns, nc = run->nclusters, P = run->P;
+    size_t sz = (size_t)nc * (size_t)(ns * ns + ns);
+    double *S = j->S_sum, *ds = j->ds;
+    bf_parallel_for(j->nchunks, run->threads, schur_chunk, j);
+    memset(S, 0, sz * sizeof *S);
+    for (size_t c = 0; c < j->nchunks; c++) /* in chunk order */
+        for (size_t i = 0; i < sz; i++)
+            S[i] += j->S[c * sz + i];
+    int ok = 1;
+    for (int cl = 0; cl < nc && ok; cl++) {
+        double *Sc = S + (size_t)cl * (size_t)(ns * ns + ns), *rc = Sc + ns * ns;
+        photo_damp(Sc, ns, j->lambda);
+        ok = photo_chol(Sc, ns);
+        if (ok) {
+            for (int k = 0; k < ns; k++)
+                ds[cl * ns + k] = -rc[k];
+            photo_chol_solve(Sc, ns, ds + cl * ns);
+        }
+        for (int k = 0; k < ns && ok; k++) {
+            int e = run->shared[k];
+            j->trial_shared[cl * ns + k] =
+                photo_shared_step(pr, e, run->start[(size_t)cl * (size_t)P + (size_t)e], ds[cl * ns + k]);
+        }
+    }
+    return ok;
+}
+
+/* The trial point becomes the current one: the pixels' and the clusters' shared entries. */
+static void accept_trial(joint *j)
+{
+    photo_run *run = j->run;
+    size_t n = j->b->npix;
+    int ns = j->ns, P = run->P;
+    memcpy(j->x, j->tx, n * (size_t)P * sizeof *j->x);
+    memcpy(j->n, j->tn, n * 3 * sizeof *j->n);
+    for (int cl = 0; cl < run->nclusters; cl++)
+        for (int k = 0; k < ns; k++)
+            run->start[(size_t)cl * (size_t)P + (size_t)run->shared[k]] = j->trial_shared[cl * ns + k];
+}
+
 void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, double *x, double *normal)
 {
     size_t n = b->npix;
-    int ns = run->nshared, nc = run->nclusters, P = run->P;
+    int ns = run->nshared, P = run->P;
     if (!n || !ns)
         return;
     joint j = {.run = run, .b = b, .label = label, .x = x, .n = normal, .ns = ns, .lambda = 1e-3};
@@ -181,51 +270,14 @@ void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, d
     j.np += run->o->normals == BF_NORMALS_FIT ? 2 : 0;
     j.m = j.np + ns;
     j.nchunks = (n + JOINT_CHUNK - 1) / JOINT_CHUNK;
-    size_t m = (size_t)j.m, np = (size_t)j.np, sz = (size_t)nc * (size_t)(ns * ns + ns);
-    j.tx = malloc(n * (size_t)P * sizeof *j.tx);
-    j.tn = malloc(n * 3 * sizeof *j.tn);
-    j.A = malloc(n * m * m * sizeof *j.A);
-    j.g = malloc(n * m * sizeof *j.g);
-    j.cost = malloc(n * sizeof *j.cost);
-    j.L = malloc(n * (np * np + 1) * sizeof *j.L);
-    j.Y = malloc(n * (np * (size_t)ns + 1) * sizeof *j.Y);
-    j.z = malloc(n * (np + 1) * sizeof *j.z);
-    j.tcost = malloc(n * sizeof *j.tcost);
-    j.bad = calloc(n, 1);
-    j.S = malloc(j.nchunks * sz * sizeof *j.S);
-    double *S = malloc(sz * sizeof *S), *ds = malloc((size_t)nc * (size_t)ns * sizeof *ds);
-    j.trial_shared = malloc((size_t)nc * (size_t)ns * sizeof *j.trial_shared);
-    j.ds = ds;
     photo_problem pr = photo_run_problem(run, 1);
-    if (j.tx && j.tn && j.A && j.g && j.cost && j.L && j.Y && j.z && j.tcost && j.bad && j.S && S && ds &&
-        j.trial_shared) {
+    if (joint_new(&j, n)) {
         bf_parallel_for(j.nchunks, run->threads, sums_chunk, &j);
         double cost = total(j.cost, n);
         for (int it = 0; it < JOINT_STEPS && !(run->o->cancel && *run->o->cancel); it++) {
             int accepted = 0;
             while (!accepted && j.lambda < 1e10) {
-                bf_parallel_for(j.nchunks, run->threads, schur_chunk, &j);
-                memset(S, 0, sz * sizeof *S);
-                for (size_t c = 0; c < j.nchunks; c++) /* in chunk order */
-                    for (size_t i = 0; i < sz; i++)
-                        S[i] += j.S[c * sz + i];
-                int ok = 1;
-                for (int cl = 0; cl < nc && ok; cl++) {
-                    double *Sc = S + (size_t)cl * (size_t)(ns * ns + ns), *rc = Sc + ns * ns;
-                    photo_damp(Sc, ns, j.lambda);
-                    ok = photo_chol(Sc, ns);
-                    if (ok) {
-                        for (int k = 0; k < ns; k++)
-                            ds[cl * ns + k] = -rc[k];
-                        photo_chol_solve(Sc, ns, ds + cl * ns);
-                    }
-                    for (int k = 0; k < ns && ok; k++) {
-                        int e = run->shared[k];
-                        j.trial_shared[cl * ns + k] =
-                            photo_shared_step(&pr, e, run->start[(size_t)cl * (size_t)P + (size_t)e], ds[cl * ns + k]);
-                    }
-                }
-                if (!ok) {
+                if (!shared_steps(&j, &pr)) {
                     j.lambda *= 10.0;
                     continue;
                 }
@@ -233,11 +285,7 @@ void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, d
                 double trial = total(j.tcost, n);
                 if (trial < cost) {
                     accepted = 1;
-                    memcpy(x, j.tx, n * (size_t)P * sizeof *x);
-                    memcpy(normal, j.tn, n * 3 * sizeof *normal);
-                    for (int cl = 0; cl < nc; cl++)
-                        for (int k = 0; k < ns; k++)
-                            run->start[(size_t)cl * (size_t)P + (size_t)run->shared[k]] = j.trial_shared[cl * ns + k];
+                    accept_trial(&j);
                     j.lambda = fmax(j.lambda / 3.0, 1e-9);
                     double rel = (cost - trial) / fmax(cost, 1e-300);
                     bf_parallel_for(j.nchunks, run->threads, sums_chunk, &j);
@@ -251,18 +299,5 @@ void photo_joint_refine(photo_run *run, const photo_band *b, const int *label, d
                 break;
         }
     }
-    free(j.tx);
-    free(j.tn);
-    free(j.A);
-    free(j.g);
-    free(j.cost);
-    free(j.L);
-    free(j.Y);
-    free(j.z);
-    free(j.tcost);
-    free(j.bad);
-    free(j.S);
-    free(S);
-    free(ds);
-    free(j.trial_shared);
+    joint_free(&j);
 }

@@ -333,38 +333,67 @@ static double step_entry(const photo_problem *pr, int e, double x, double dz)
     return y;
 }
 
-static void lm(const photo_problem *pr, const float *v, const photo_lights *pl, double *x, double n[3],
-               const unknowns *u, photo_scratch *w, photo_pixel_out *out)
+/* One pixel's solve: what every step of lm reads. */
+typedef struct pixel_solve {
+    const photo_problem *pr;
+    const float *v;
+    const photo_lights *pl;
+    const unknowns *u;
+    photo_scratch *w;
+} pixel_solve;
+
+/* The damped step d at x over the unknowns (w->jtj, w->jtr), 0 for the entries held on a
+ * bound; *na counts the others. 0 when none is free or the damped system is not positive
+ * definite. */
+static int active_step(const pixel_solve *ps, const double *x, double lambda, double *d, int *na)
 {
+    const photo_problem *pr = ps->pr;
+    const unknowns *u = ps->u;
+    const photo_scratch *w = ps->w;
+    int nu = u->n;
+    /* Entries on a bound that the gradient pushes outwards stay there this step (an
+     * active set): a step projected back onto the bound would not be a descent. */
+    int act[MAX_UNKNOWNS];
+    *na = 0;
+    for (int j = 0; j < nu; j++) {
+        int e = j < u->nx ? u->idx[j] : -1;
+        int held = e >= 0 && ((x[e] <= pr->lo[e] && w->jtr[j] > 0.0) || (x[e] >= pr->hi[e] && w->jtr[j] < 0.0));
+        if (!held)
+            act[(*na)++] = j;
+    }
+    double A[MAX_UNKNOWNS * MAX_UNKNOWNS], g[MAX_UNKNOWNS], da[MAX_UNKNOWNS];
+    for (int a = 0; a < *na; a++) {
+        g[a] = w->jtr[act[a]];
+        for (int b = 0; b < *na; b++)
+            A[a * *na + b] = w->jtj[act[a] * nu + act[b]];
+    }
+    if (!*na || !photo_damped_solve(A, g, *na, lambda, da))
+        return 0;
+    memset(d, 0, (size_t)nu * sizeof *d);
+    for (int a = 0; a < *na; a++)
+        d[act[a]] = da[a];
+    return 1;
+}
+
+static void lm(const pixel_solve *ps, double *x, double n[3], photo_pixel_out *out)
+{
+    const photo_problem *pr = ps->pr;
+    const float *v = ps->v;
+    const photo_lights *pl = ps->pl;
+    const unknowns *u = ps->u;
+    photo_scratch *w = ps->w;
     int nu = u->n, P = pr->P;
     double cost = sums(pr, v, pl, x, n, u, w), lambda = 1e-3;
     double xt[PHOTO_MAX_PARAMS], nt[3], d[MAX_UNKNOWNS];
     int small = 0;
     for (int it = 0; it < pr->max_iterations && nu > 0; it++) {
         out->iterations++;
-        /* Entries on a bound that the gradient pushes outwards stay there this step (an
-         * active set): a step projected back onto the bound would not be a descent. */
-        int act[MAX_UNKNOWNS], na = 0;
-        for (int j = 0; j < nu; j++) {
-            int e = j < u->nx ? u->idx[j] : -1;
-            int out = e >= 0 && ((x[e] <= pr->lo[e] && w->jtr[j] > 0.0) || (x[e] >= pr->hi[e] && w->jtr[j] < 0.0));
-            if (!out)
-                act[na++] = j;
-        }
-        double A[MAX_UNKNOWNS * MAX_UNKNOWNS], g[MAX_UNKNOWNS], da[MAX_UNKNOWNS];
-        for (int a = 0; a < na; a++) {
-            g[a] = w->jtr[act[a]];
-            for (int b = 0; b < na; b++)
-                A[a * na + b] = w->jtj[act[a] * nu + act[b]];
-        }
-        if (!na || !photo_damped_solve(A, g, na, lambda, da)) {
+        int na;
+        if (!active_step(ps, x, lambda, d, &na)) {
             if (!na || (lambda *= 10.0) > 1e12)
                 break;
             continue;
         }
-        memset(d, 0, (size_t)nu * sizeof *d);
-        for (int a = 0; a < na; a++)
-            d[act[a]] = da[a];
         memcpy(xt, x, (size_t)P * sizeof *xt);
         for (int j = 0; j < u->nx; j++)
             xt[u->idx[j]] = step_entry(pr, u->idx[j], x[u->idx[j]], d[j]);
@@ -403,7 +432,8 @@ void photo_solve_pixel(const photo_problem *pr, const float *v, const photo_ligh
     u.n = u.nx + (pr->fit_normal ? 2 : 0);
     int K = pr->K, C = pr->C;
     memset(w->dark, 0, (size_t)K);
-    lm(pr, v, pl, x, n, &u, w, out);
+    pixel_solve ps = {pr, v, pl, &u, w};
+    lm(&ps, x, n, out);
     /* Dark outliers: samples far below the fitted prediction (a cast shadow, a defect),
      * then one more solve without them. */
     predict(pr, pl, x, n, w, w->pred[0], 0);
@@ -426,7 +456,7 @@ void photo_solve_pixel(const photo_problem *pr, const float *v, const photo_ligh
         }
     }
     if (dark)
-        lm(pr, v, pl, x, n, &u, w, out);
+        lm(&ps, x, n, out);
     fill_geometry(w, pl, n);
     for (int k = 0; k < K; k++) {
         if (isnan(v[k * C]))
@@ -469,14 +499,15 @@ static void joint_unknowns(const photo_problem *pr, const int *shared, int ns, u
     u->n = u->nx + (pr->fit_normal ? 2 : 0);
 }
 
-int photo_joint_sums(const photo_problem *pr, const float *v, const photo_lights *pl, const double *x,
-                     const double n[3], const int *shared, int ns, photo_scratch *w, double *A, double *g, double *cost)
+int photo_joint_sums(const photo_problem *pr, const int *shared, int ns, const photo_pixel_at *at, photo_scratch *w,
+                     photo_joint_block *out)
 {
+    double *A = out->A, *g = out->g;
     unknowns u;
     int np;
     joint_unknowns(pr, shared, ns, &u, &np);
     memset(w->dark, 0, (size_t)pr->K);
-    *cost = sums(pr, v, pl, x, n, &u, w);
+    *out->cost = sums(pr, at->v, at->pl, at->x, at->n, &u, w);
     /* sums orders (free entries, shared entries, normal): reorder to (free, normal, shared). */
     int nu = u.n, nf = np - (pr->fit_normal ? 2 : 0), order[MAX_UNKNOWNS];
     for (int a = 0; a < nf; a++)
