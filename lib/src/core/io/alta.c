@@ -149,12 +149,24 @@ static void half_diff(double th, double ph, double td, double pd, double L[3], d
         V[k] = 2.0 * lh * H[k] - L[k];
 }
 
-/* x clamped into [lo, hi] when within slack of it; 0 (and *msg set) beyond. */
-static int in_range(double *x, double lo, double hi, double slack, const char *what, const char *bounds, char *msg,
-                    size_t size)
+/* A coordinate's domain: [lo, hi], widened by slack for text rounding, and how the
+ * message names it. */
+typedef struct domain {
+    double lo, hi, slack;
+    const char *bounds;
+} domain;
+
+static const domain cos_any = {-1.0, 1.0, COS_SLACK, "[-1, 1]"};
+static const domain cos_upper = {0.0, 1.0, COS_SLACK, "[0, 1]"};
+static const domain theta_any = {0.0, M_PI, ANGLE_SLACK, "[0, pi]"};
+static const domain theta_upper = {0.0, M_PI / 2, ANGLE_SLACK, "[0, pi/2]"};
+
+/* x clamped into d when within its slack; 0 (and *msg set) beyond. */
+static int in_range(double *x, const domain *d, const char *what, char *msg, size_t size)
 {
-    if (*x < lo - slack || *x > hi + slack) {
-        snprintf(msg, size, "%s = %.10g is outside %s", what, *x, bounds);
+    const double lo = d->lo, hi = d->hi;
+    if (*x < lo - d->slack || *x > hi + d->slack) {
+        snprintf(msg, size, "%s = %.10g is outside %s", what, *x, d->bounds);
         return 0;
     }
     *x = *x < lo ? lo : *x > hi ? hi : *x;
@@ -178,13 +190,13 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
     double L[3], V[3];
     switch (p) {
     case P_COS_TH: /* half_to_cartesian(acos x0, 0, 0, 0): L = V = H */
-        if (!in_range(&x[0], -1.0, 1.0, COS_SLACK, "cos theta_h", "[-1, 1]", msg, size))
+        if (!in_range(&x[0], &cos_any, "cos theta_h", msg, size))
             return 0;
         half_diff(acos(x[0]), 0.0, 0.0, 0.0, L, V);
         break;
     case P_COS_TH_TD: /* half_to_cartesian(acos x0, 0, acos x1, 0) */
-        if (!in_range(&x[0], -1.0, 1.0, COS_SLACK, "cos theta_h", "[-1, 1]", msg, size) ||
-            !in_range(&x[1], 0.0, 1.0, COS_SLACK, "cos theta_d", "[0, 1]", msg, size))
+        if (!in_range(&x[0], &cos_any, "cos theta_h", msg, size) ||
+            !in_range(&x[1], &cos_upper, "cos theta_d", msg, size))
             return 0;
         half_diff(acos(x[0]), 0.0, acos(x[1]), 0.0, L, V);
         break;
@@ -193,8 +205,7 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
     case P_RUSIN_TH_PH_TD_PD: {
         const int four = p == P_RUSIN_TH_PH_TD_PD;
         double *th = &x[0], *td = &x[four ? 2 : 1];
-        if (!in_range(th, 0.0, M_PI, ANGLE_SLACK, "theta_h", "[0, pi]", msg, size) ||
-            !in_range(td, 0.0, M_PI / 2, ANGLE_SLACK, "theta_d", "[0, pi/2]", msg, size))
+        if (!in_range(th, &theta_any, "theta_h", msg, size) || !in_range(td, &theta_upper, "theta_d", msg, size))
             return 0;
         double ph = four ? x[1] : 0.0;
         double pd = p == P_RUSIN_TH_TD ? M_PI / 2 : four ? x[3] : x[2];
@@ -208,8 +219,7 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
         memcpy(V, x, sizeof V);
         break;
     case P_ISOTROPIC_TV_TL_DPHI: /* classical_to_cartesian(x0, 0, x1, x2) into [V, L] */
-        if (!in_range(&x[0], 0.0, M_PI, ANGLE_SLACK, "theta_v", "[0, pi]", msg, size) ||
-            !in_range(&x[1], 0.0, M_PI, ANGLE_SLACK, "theta_l", "[0, pi]", msg, size))
+        if (!in_range(&x[0], &theta_any, "theta_v", msg, size) || !in_range(&x[1], &theta_any, "theta_l", msg, size))
             return 0;
         ang[0] = x[1] * to_deg;
         ang[1] = x[2] * to_deg;
@@ -218,8 +228,8 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
         return 1;
     case P_ISOTROPIC_TL_TV_PROJ_DPHI: { /* L = (theta_l, 0), V = (|x12|, atan2(x2, x1)) */
         double tv = hypot(x[1], x[2]);
-        if (!in_range(&x[0], 0.0, M_PI, ANGLE_SLACK, "theta_l", "[0, pi]", msg, size) ||
-            !in_range(&tv, 0.0, M_PI, ANGLE_SLACK, "theta_v (the length of the projected pair)", "[0, pi]", msg, size))
+        if (!in_range(&x[0], &theta_any, "theta_l", msg, size) ||
+            !in_range(&tv, &theta_any, "theta_v (the length of the projected pair)", msg, size))
             return 0;
         ang[0] = x[0] * to_deg;
         ang[1] = 0.0;
@@ -228,8 +238,7 @@ static int directions(param_in p, double *x, double ang[4], char *msg, size_t si
         return 1;
     }
     case P_SPHERICAL_TL_PL_TV_PV:
-        if (!in_range(&x[0], 0.0, M_PI, ANGLE_SLACK, "theta_l", "[0, pi]", msg, size) ||
-            !in_range(&x[2], 0.0, M_PI, ANGLE_SLACK, "theta_v", "[0, pi]", msg, size))
+        if (!in_range(&x[0], &theta_any, "theta_l", msg, size) || !in_range(&x[2], &theta_any, "theta_v", msg, size))
             return 0;
         for (int k = 0; k < 4; k++)
             ang[k] = x[k] * to_deg;
@@ -368,6 +377,202 @@ static bf_status header_complete(const header *h, const char *path, size_t linen
 
 /* ---- Reading ------------------------------------------------------------------- */
 
+/* One read: the file, where it is, the header and the rows read so far. The phases
+ * below fill it in order (read_rows, check_rows, build_samples). */
+typedef struct alta_reader {
+    const char *path;
+    FILE *fp;
+    bf_error *err;
+    size_t lineno;
+    header h;
+    int any_header;
+    rows r;        /* width 0 until the first row */
+    double *x;     /* one row as read */
+    size_t maxnum; /* numbers x holds */
+} alta_reader;
+
+/* At the first row: the header is complete, and the row buffer sized for it. */
+static bf_status start_rows(alta_reader *rd)
+{
+    const header *h = &rd->h;
+    bf_status rc;
+    if ((rc = header_complete(h, rd->path, rd->lineno, rd->err)) != BF_OK)
+        return rc;
+    rd->r.width = 4 + (size_t)h->nout;
+    /* #VS intervals: one or two numbers for the first value (ALTA's reader), or
+     * for every value. */
+    rd->maxnum = (size_t)(h->nin + h->nout + h->vs * h->nout);
+    if (!(rd->x = malloc(rd->maxnum * sizeof *rd->x)))
+        return bf_fail(rd->err, BF_ERR_NOMEM, "%s: out of memory", rd->path);
+    return BF_OK;
+}
+
+/* The row's numbers into rd->x (as many as it holds), their count into *count. */
+static bf_status read_numbers(alta_reader *rd, const char *line, size_t *count)
+{
+    *count = 0;
+    for (const char *p = line;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            break;
+        const char *tok = p;
+        while (*p && !isspace((unsigned char)*p))
+            p++;
+        int tlen = (int)(p - tok);
+        char *end;
+        double v = strtod(tok, &end);
+        if (end != p)
+            return bf_fail(rd->err, BF_ERR_PARSE, "%s:%zu: number %zu: '%.*s' is not a number", rd->path, rd->lineno,
+                           *count + 1, tlen > 40 ? 40 : tlen, tok);
+        if (!isfinite(v))
+            return bf_fail(rd->err, BF_ERR_RANGE, "%s:%zu: number %zu: %.*s is not a finite number", rd->path,
+                           rd->lineno, *count + 1, tlen > 40 ? 40 : tlen, tok);
+        if (*count < rd->maxnum)
+            rd->x[*count] = v;
+        (*count)++;
+    }
+    return BF_OK;
+}
+
+/* #DIM's numbers, with or without the #VS interval. */
+static bf_status check_count(const alta_reader *rd, size_t count)
+{
+    const header *h = &rd->h;
+    const size_t base = (size_t)(h->nin + h->nout);
+    const size_t vs1 = base + (size_t)h->vs, vsn = base + (size_t)(h->vs * h->nout);
+    if (count == base || (h->vs != 0 && (count == vs1 || count == vsn)))
+        return BF_OK;
+    if (h->vs == 0)
+        return bf_fail(rd->err, BF_ERR_PARSE, "%s:%zu: expected %zu numbers (#DIM %d %d), found %zu", rd->path,
+                       rd->lineno, base, h->nin, h->nout, count);
+    return bf_fail(rd->err, BF_ERR_PARSE,
+                   "%s:%zu: expected %zu numbers (#DIM %d %d) and the #VS %d interval (%zu or %zu in all), "
+                   "found %zu",
+                   rd->path, rd->lineno, base, h->nin, h->nout, h->vs, vs1, vsn, count);
+}
+
+/* The row as read (rd->x) as directions and values, appended to rd->r. */
+static bf_status store_row(alta_reader *rd)
+{
+    const header *h = &rd->h;
+    double *row = row_slot(&rd->r);
+    if (!row)
+        return bf_fail_memory(rd->err, rd->path, rd->lineno, 2 * rd->r.cap * rd->r.width * sizeof(double));
+    char msg[160];
+    if (!directions((param_in)h->in, rd->x, row, msg, sizeof msg))
+        return bf_fail(rd->err, BF_ERR_RANGE, "%s:%zu: %s: %s", rd->path, rd->lineno, inputs[h->in].name, msg);
+    memcpy(row + 4, rd->x + h->nin, (size_t)h->nout * sizeof *row);
+    if (h->out == O_INV_STERADIAN_COSINE_FACTOR) {
+        /* ALTA (params.h): "inverse steradian weighted by the cosine factor of the
+         * output direction", V. On or below the horizon there is no cosine to divide
+         * by and no BRDF to recover: the value stays, preprocessing drops the sample. */
+        double c = cos(row[2] / to_deg);
+        if (c > 1e-15) /* as bf_geometry: closer to zero is on the horizon */
+            for (int k = 0; k < h->nout; k++)
+                row[4 + k] /= c;
+    }
+    return BF_OK;
+}
+
+/* One line: a header key, a comment, a blank line or a row. */
+static bf_status read_line(alta_reader *rd, char *line, size_t len)
+{
+    bf_status rc;
+    if (memchr(line, '\0', len))
+        return bf_fail(rd->err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in an ALTA text file", rd->path,
+                       rd->lineno);
+    const char *first = line;
+    while (isspace((unsigned char)*first))
+        first++;
+    if (*first == '#') {
+        rd->any_header = 1;
+        /* After the first row '#' lines are comments, as in ALTA's reader; before it
+         * '#KEY' at the start of a line is a key and '# ' (hash, blank) a comment. */
+        if (!rd->r.width && first == line && line[1] && !isspace((unsigned char)line[1]))
+            return header_line(&rd->h, rd->path, rd->lineno, line + 1, rd->err);
+        return BF_OK;
+    }
+    if (!*first)
+        return BF_OK;
+    if (!rd->r.width && (rc = start_rows(rd)) != BF_OK)
+        return rc;
+    size_t count;
+    if ((rc = read_numbers(rd, line, &count)) != BF_OK || (rc = check_count(rd, count)) != BF_OK)
+        return rc;
+    return store_row(rd);
+}
+
+/* Every line of the file: the header into rd->h, the rows into rd->r. */
+static bf_status read_rows(alta_reader *rd, const bf_cancel_flag *cancel)
+{
+    char *line = NULL;
+    size_t linecap = 0;
+    ssize_t len;
+    bf_status rc = BF_OK;
+    while (rc == BF_OK && (len = getline(&line, &linecap, rd->fp)) >= 0) {
+        rd->lineno++;
+        if (bf_cancel_is_set(cancel))
+            rc = bf_read_cancelled(rd->path, rd->err);
+        else
+            rc = read_line(rd, line, (size_t)len);
+    }
+    free(line);
+    if (rc == BF_OK && ferror(rd->fp))
+        rc = bf_fail(rd->err, BF_ERR_IO, "%s: read error after line %zu", rd->path, rd->lineno);
+    return rc;
+}
+
+/* A header and at least one row. */
+static bf_status check_rows(const alta_reader *rd)
+{
+    bf_status rc;
+    if (!rd->any_header && rd->r.n == 0)
+        return bf_fail(rd->err, BF_ERR_PARSE, "%s: empty file (an ALTA header #DIM, #PARAM_IN, #PARAM_OUT is required)",
+                       rd->path);
+    if (rd->r.n == 0) {
+        if ((rc = header_complete(&rd->h, rd->path, rd->lineno, rd->err)) == BF_OK)
+            rc = bf_fail(rd->err, BF_ERR_PARSE, "%s:%zu: no data rows after the header", rd->path, rd->lineno);
+        return rc;
+    }
+    return BF_OK;
+}
+
+/* The rows as samples (*s, freed by the caller on failure), channels named for colours
+ * and for three plain values. */
+static bf_status build_samples(const alta_reader *rd, bf_samples **s)
+{
+    const header *h = &rd->h;
+    bf_status rc;
+    if ((rc = bf_samples_new(rd->r.n, h->nout, s, rd->err)) != BF_OK)
+        return rc;
+    bf_samples *sm = *s;
+    if (h->out == O_XYZ_COLOR) {
+        static const char *const xyz[3] = {"X", "Y", "Z"};
+        for (int c = 0; c < 3; c++)
+            if ((rc = bf_samples_set_channel_name(sm, c, xyz[c], rd->err)) != BF_OK)
+                return rc;
+    } else if (h->out != O_RGB_COLOR && h->nout == 3) {
+        /* Three values in 1/sr are channels, not necessarily colours. */
+        for (int c = 0; c < 3; c++) {
+            char name[8];
+            snprintf(name, sizeof name, "c%d", c);
+            if ((rc = bf_samples_set_channel_name(sm, c, name, rd->err)) != BF_OK)
+                return rc;
+        }
+    }
+    const size_t C = (size_t)h->nout;
+    for (size_t i = 0; i < rd->r.n; i++) {
+        const double *row = rd->r.v + i * rd->r.width;
+        sm->theta_i[i] = row[0];
+        sm->phi_i[i] = row[1];
+        sm->theta_o[i] = row[2];
+        sm->phi_o[i] = row[3];
+        memcpy(sm->value + i * C, row + 4, C * sizeof *sm->value);
+    }
+    return BF_OK;
+}
+
 bf_status bf_samples_read_alta(const char *path, bf_samples **out, bf_error *err)
 {
     return bf_samples_read_alta_cancellable(path, NULL, out, err);
@@ -380,155 +585,15 @@ bf_status bf_samples_read_alta_cancellable(const char *path, const bf_cancel_fla
     FILE *fp = bf_input_open(path);
     if (!fp)
         return bf_fail(err, BF_ERR_IO, "%s: cannot open: %s", path, bf_input_error(errno));
-    header h = {0, 0, 0, -1, -1, 0, 0, 0};
-    rows r = {NULL, 0, 0, 0};
+    alta_reader rd = {.path = path, .fp = fp, .err = err, .h = {0, 0, 0, -1, -1, 0, 0, 0}};
     bf_samples *s = NULL;
-    double *x = NULL; /* one row as read */
-    char *line = NULL;
-    size_t linecap = 0, lineno = 0, maxnum = 0;
-    int any_header = 0, rc = BF_OK;
-    ssize_t len;
-
-    while ((len = getline(&line, &linecap, fp)) >= 0) {
-        lineno++;
-        if (bf_cancel_is_set(cancel)) {
-            rc = bf_read_cancelled(path, err);
-            goto done;
-        }
-        if (memchr(line, '\0', (size_t)len)) {
-            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: binary data (NUL byte) in an ALTA text file", path, lineno);
-            goto done;
-        }
-        const char *first = line;
-        while (isspace((unsigned char)*first))
-            first++;
-        if (*first == '#') {
-            any_header = 1;
-            /* After the first row '#' lines are comments, as in ALTA's reader; before it
-             * '#KEY' at the start of a line is a key and '# ' (hash, blank) a comment. */
-            if (!r.width && first == line && line[1] && !isspace((unsigned char)line[1]) &&
-                (rc = header_line(&h, path, lineno, line + 1, err)) != BF_OK)
-                goto done;
-            continue;
-        }
-        if (!*first)
-            continue;
-        if (!r.width) { /* the first row: the header is complete */
-            if ((rc = header_complete(&h, path, lineno, err)) != BF_OK)
-                goto done;
-            r.width = 4 + (size_t)h.nout;
-            /* #VS intervals: one or two numbers for the first value (ALTA's reader), or
-             * for every value. */
-            maxnum = (size_t)(h.nin + h.nout + h.vs * h.nout);
-            if (!(x = malloc(maxnum * sizeof *x))) {
-                rc = bf_fail(err, BF_ERR_NOMEM, "%s: out of memory", path);
-                goto done;
-            }
-        }
-        size_t count = 0;
-        for (const char *p = line;;) {
-            while (isspace((unsigned char)*p))
-                p++;
-            if (!*p)
-                break;
-            const char *tok = p;
-            while (*p && !isspace((unsigned char)*p))
-                p++;
-            int tlen = (int)(p - tok);
-            char *end;
-            double v = strtod(tok, &end);
-            if (end != p) {
-                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: number %zu: '%.*s' is not a number", path, lineno, count + 1,
-                             tlen > 40 ? 40 : tlen, tok);
-                goto done;
-            }
-            if (!isfinite(v)) {
-                rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: number %zu: %.*s is not a finite number", path, lineno,
-                             count + 1, tlen > 40 ? 40 : tlen, tok);
-                goto done;
-            }
-            if (count < maxnum)
-                x[count] = v;
-            count++;
-        }
-        const size_t base = (size_t)(h.nin + h.nout);
-        const size_t vs1 = base + (size_t)h.vs, vsn = base + (size_t)(h.vs * h.nout);
-        if (count != base && (h.vs == 0 || (count != vs1 && count != vsn))) {
-            if (h.vs == 0)
-                rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: expected %zu numbers (#DIM %d %d), found %zu", path, lineno,
-                             base, h.nin, h.nout, count);
-            else
-                rc = bf_fail(err, BF_ERR_PARSE,
-                             "%s:%zu: expected %zu numbers (#DIM %d %d) and the #VS %d interval (%zu or %zu in all), "
-                             "found %zu",
-                             path, lineno, base, h.nin, h.nout, h.vs, vs1, vsn, count);
-            goto done;
-        }
-        double *row = row_slot(&r);
-        if (!row) {
-            rc = bf_fail_memory(err, path, lineno, 2 * r.cap * r.width * sizeof(double));
-            goto done;
-        }
-        char msg[160];
-        if (!directions((param_in)h.in, x, row, msg, sizeof msg)) {
-            rc = bf_fail(err, BF_ERR_RANGE, "%s:%zu: %s: %s", path, lineno, inputs[h.in].name, msg);
-            goto done;
-        }
-        memcpy(row + 4, x + h.nin, (size_t)h.nout * sizeof *row);
-        if (h.out == O_INV_STERADIAN_COSINE_FACTOR) {
-            /* ALTA (params.h): "inverse steradian weighted by the cosine factor of the
-             * output direction", V. On or below the horizon there is no cosine to divide
-             * by and no BRDF to recover: the value stays, preprocessing drops the sample. */
-            double c = cos(row[2] / to_deg);
-            if (c > 1e-15) /* as bf_geometry: closer to zero is on the horizon */
-                for (int k = 0; k < h.nout; k++)
-                    row[4 + k] /= c;
-        }
-    }
-    if (ferror(fp)) {
-        rc = bf_fail(err, BF_ERR_IO, "%s: read error after line %zu", path, lineno);
-        goto done;
-    }
-    if (!any_header && r.n == 0) {
-        rc =
-            bf_fail(err, BF_ERR_PARSE, "%s: empty file (an ALTA header #DIM, #PARAM_IN, #PARAM_OUT is required)", path);
-        goto done;
-    }
-    if (r.n == 0) {
-        if ((rc = header_complete(&h, path, lineno, err)) == BF_OK)
-            rc = bf_fail(err, BF_ERR_PARSE, "%s:%zu: no data rows after the header", path, lineno);
-        goto done;
-    }
-    if ((rc = bf_samples_new(r.n, h.nout, &s, err)) != BF_OK) {
-        goto done;
-    }
-    if (h.out == O_XYZ_COLOR) {
-        static const char *const xyz[3] = {"X", "Y", "Z"};
-        for (int c = 0; c < 3; c++)
-            if ((rc = bf_samples_set_channel_name(s, c, xyz[c], err)) != BF_OK)
-                goto done;
-    } else if (h.out != O_RGB_COLOR && h.nout == 3) {
-        /* Three values in 1/sr are channels, not necessarily colours. */
-        for (int c = 0; c < 3; c++) {
-            char name[8];
-            snprintf(name, sizeof name, "c%d", c);
-            if ((rc = bf_samples_set_channel_name(s, c, name, err)) != BF_OK)
-                goto done;
-        }
-    }
-    const size_t C = (size_t)h.nout;
-    for (size_t i = 0; i < r.n; i++) {
-        const double *row = r.v + i * r.width;
-        s->theta_i[i] = row[0];
-        s->phi_i[i] = row[1];
-        s->theta_o[i] = row[2];
-        s->phi_o[i] = row[3];
-        memcpy(s->value + i * C, row + 4, C * sizeof *s->value);
-    }
-done:
-    free(line);
-    free(x);
-    free(r.v);
+    bf_status rc = read_rows(&rd, cancel);
+    if (rc == BF_OK)
+        rc = check_rows(&rd);
+    if (rc == BF_OK)
+        rc = build_samples(&rd, &s);
+    free(rd.x);
+    free(rd.r.v);
     fclose(fp);
     if (rc != BF_OK) {
         bf_samples_free(s);

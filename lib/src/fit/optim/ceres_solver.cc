@@ -301,32 +301,6 @@ private:
     Reason reason_ = kNone;
 };
 
-// One Ceres solve from x with the parameters flagged in `held` constant.
-void run_ceres(NormalCost *cost, int np, const ceres::Solver::Options &opt, const std::vector<double> &lo,
-               const std::vector<double> &hi, const std::vector<char> &held, double *x, ceres::Solver::Summary *sum)
-{
-    ceres::Problem::Options po;
-    po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP; // it lives for every round
-    ceres::Problem problem(po); // owns the manifold
-    problem.AddResidualBlock(cost, nullptr, x);
-    std::vector<int> fixed;
-    for (int k = 0; k < np; k++) {
-        if (held[k]) {
-            fixed.push_back(k);
-            continue; // a held parameter needs no bounds (and Ceres clamps none)
-        }
-        if (std::isfinite(lo[k]))
-            problem.SetParameterLowerBound(x, k, lo[k]);
-        if (std::isfinite(hi[k]))
-            problem.SetParameterUpperBound(x, k, hi[k]);
-    }
-    if (static_cast<int>(fixed.size()) == np)
-        problem.SetParameterBlockConstant(x);
-    else if (!fixed.empty())
-        problem.SetManifold(x, new ceres::SubsetManifold(np, fixed));
-    ceres::Solve(opt, &problem, sum);
-}
-
 // Ceres warns through glog (linear solver failures, thread counts, failed evaluations)
 // even with logging_type SILENT, and before InitGoogleLogging glog writes to stderr.
 // The library prints nothing, so unless the host program has set glog up itself (then
@@ -340,29 +314,53 @@ void silence_glog()
     });
 }
 
-bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
-                bf_error *err)
-{
-    const int np = p->npar;
-    const double inf = std::numeric_limits<double>::infinity();
+// One solve, shared by its phases (check_options, set_bounds, configure_options,
+// start_active_set, the rounds, copy_out_summary): the problem and options, Ceres'
+// settings, the bounds, and the active-set rounds so far (see RoundWatch).
+struct SolveState {
+    SolveState(const bf_problem *problem, const bf_solver_options *options, double *start)
+        : p(problem), o(options), x(start), np(problem->npar)
+    {
+    }
+    const bf_problem *p;
+    const bf_solver_options *o;
+    double *x;
+    const int np;
+    const NamedAlgorithm *alg = &kAlgorithms[0];
+    const NamedSolver *lin = &kLinearSolvers[0];
+    ceres::Solver::Options opt;
+    int max_iterations = 0, threads = 1;
+    std::vector<double> lo, hi;
+    NormalCost *cost = nullptr;
+    std::vector<char> user_held, held;
+    std::vector<std::vector<char>> seen; // the held sets rounds started with: no cycling
+    std::vector<double> best;
+    bool have_result = false;
+    int rounds = 0, iterations = 0;
+    double seconds = 0.0, initial_cost = 0.0, final_cost = 0.0;
+    ceres::Solver::Summary sum;
+    bool last_round = false; // after a cycle: one round that no stall ends (one_round)
+    bool cancelled = false, failed = false;
+};
 
-    // Options first, so a bad name fails before any work (the registry, methods.c).
+// Options first, so a bad name fails before any work (the registry, methods.c).
+bf_status check_options(SolveState &sv, bf_error *err)
+{
+    const bf_solver_options *o = sv.o;
     bf_solver_options chk = *o;
     chk.backend = BF_BACKEND_CERES;
     if (bf_status rc = bf_solver_options_check(&chk, err); rc != BF_OK)
         return rc;
     const bf_method_info *method = bf_method_find(BF_BACKEND_CERES, o->algorithm);
-    const NamedAlgorithm *alg = &kAlgorithms[0];
     for (const NamedAlgorithm &a : kAlgorithms)
         if (std::strcmp(method->name, a.name) == 0)
-            alg = &a;
-    const NamedSolver *lin = &kLinearSolvers[0];
+            sv.alg = &a;
     if (o->linear_solver && *o->linear_solver) {
-        lin = nullptr;
+        sv.lin = nullptr;
         for (const NamedSolver &n : kLinearSolvers)
             if (std::strcmp(o->linear_solver, n.name) == 0)
-                lin = &n;
-        if (!lin || (lin->type == ceres::SPARSE_NORMAL_CHOLESKY && !sparse_available()))
+                sv.lin = &n;
+        if (!sv.lin || (sv.lin->type == ceres::SPARSE_NORMAL_CHOLESKY && !sparse_available()))
             return bf_fail(err, BF_ERR_ARG, "unknown Ceres linear solver '%s' (known: %s)",
                            o->linear_solver, known_linear_solvers().c_str());
     }
@@ -372,31 +370,44 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
     if (o->max_iterations < 0 || o->function_tolerance < 0 || o->gradient_tolerance < 0 ||
         o->parameter_tolerance < 0 || o->max_seconds < 0 || o->threads < 0)
         return bf_fail(err, BF_ERR_ARG, "Ceres solver limits and tolerances must not be negative");
+    return BF_OK;
+}
 
-    // Bounds and a feasible, finite start (Ceres requires lo <= x <= hi).
-    std::vector<double> lo(np, -inf), hi(np, inf);
-    for (int k = 0; k < np; k++) {
+// Bounds and a feasible, finite start (Ceres requires lo <= x <= hi).
+bf_status set_bounds(SolveState &sv, bf_error *err)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    const bf_problem *p = sv.p;
+    sv.lo.assign(sv.np, -inf);
+    sv.hi.assign(sv.np, inf);
+    for (int k = 0; k < sv.np; k++) {
         if (p->lo)
-            lo[k] = p->lo[k];
+            sv.lo[k] = p->lo[k];
         if (p->hi)
-            hi[k] = p->hi[k];
-        if (std::isnan(lo[k]) || std::isnan(hi[k]) || lo[k] > hi[k])
+            sv.hi[k] = p->hi[k];
+        if (std::isnan(sv.lo[k]) || std::isnan(sv.hi[k]) || sv.lo[k] > sv.hi[k])
             return bf_fail(err, BF_ERR_RANGE, "parameter %d has invalid bounds [%g, %g]", k,
-                           lo[k], hi[k]);
-        if (!std::isfinite(x[k]))
+                           sv.lo[k], sv.hi[k]);
+        if (!std::isfinite(sv.x[k]))
             return bf_fail(err, BF_ERR_RANGE, "start value of parameter %d is not finite", k);
     }
+    return BF_OK;
+}
 
-    ceres::Solver::Options opt;
+// Ceres' settings from the options, checked as Ceres would check them.
+bf_status configure_options(SolveState &sv, bf_error *err)
+{
+    const bf_solver_options *o = sv.o;
+    ceres::Solver::Options &opt = sv.opt;
     opt.minimizer_type = ceres::TRUST_REGION;
-    opt.trust_region_strategy_type = alg->type;
-    opt.linear_solver_type = lin->type;
-    const int max_iterations = o->max_iterations > 0 ? o->max_iterations : 100;
+    opt.trust_region_strategy_type = sv.alg->type;
+    opt.linear_solver_type = sv.lin->type;
+    sv.max_iterations = o->max_iterations > 0 ? o->max_iterations : 100;
     opt.function_tolerance = o->function_tolerance > 0 ? o->function_tolerance : 1e-10;
     opt.gradient_tolerance = o->gradient_tolerance > 0 ? o->gradient_tolerance : 1e-12;
     opt.parameter_tolerance = o->parameter_tolerance > 0 ? o->parameter_tolerance : 1e-10;
     opt.num_threads = 1; // the fused pass has the threads (see the top of the file)
-    const int threads = std::max(1, o->threads);
+    sv.threads = std::max(1, o->threads);
     // Silence: no progress table, no glog lines from the minimizer.
     opt.minimizer_progress_to_stdout = false;
     opt.logging_type = ceres::SILENT;
@@ -404,142 +415,236 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
     if (!opt.IsValid(&why)) // checked here: Solve would log it
         return bf_fail(err, BF_ERR_ARG, "invalid Ceres options: %s", why.c_str());
     silence_glog();
+    return BF_OK;
+}
 
-    for (int k = 0; k < np; k++)
-        x[k] = std::min(std::max(x[k], lo[k]), hi[k]);
-
-    // Active-set rounds (see RoundWatch); the iteration and time limits are shared.
-    NormalCost cost(p, o->loss, threads);
-    std::vector<char> user_held(np, 0), held(np, 0);
-    for (int k = 0; k < np; k++)
-        user_held[k] = held[k] = o->constant && o->constant[k];
+// The start clamped into the box, and the first round's held set.
+void start_active_set(SolveState &sv)
+{
+    double *x = sv.x;
+    for (int k = 0; k < sv.np; k++)
+        x[k] = std::min(std::max(x[k], sv.lo[k]), sv.hi[k]);
+    sv.user_held.assign(sv.np, 0);
+    sv.held.assign(sv.np, 0);
+    for (int k = 0; k < sv.np; k++)
+        sv.user_held[k] = sv.held[k] = sv.o->constant && sv.o->constant[k];
     // A start on a bound (a previous solve's answer, as the fit's presolve hands over) is
     // taken as active from the start; the KKT check releases it if that was wrong.
-    for (int k = 0; k < np; k++)
-        if (x[k] == lo[k] || x[k] == hi[k])
-            held[k] = 1;
-    std::vector<std::vector<char>> seen; // the held sets rounds started with: no cycling
-    std::vector<double> best(x, x + np), grad;
-    bool have_result = false;
-    int rounds = 0, iterations = 0;
-    double seconds = 0.0, initial_cost = 0.0, final_cost = 0.0;
-    ceres::Solver::Summary sum;
-    bool last_round = false; // after a cycle: one round that no stall ends (below)
-    bool cancelled = false, failed = false;
-    for (const int max_rounds = 2 * np + 2; rounds < max_rounds;) {
-        opt.max_num_iterations = max_iterations - iterations;
-        opt.max_solver_time_in_seconds = o->max_seconds > 0 ? o->max_seconds - seconds : 1e9;
-        if (have_result && (opt.max_num_iterations <= 0 || opt.max_solver_time_in_seconds <= 0))
-            break;
-        seen.push_back(held);
-        RoundWatch watcher(x, lo, hi, held, o, iterations, !last_round);
-        opt.callbacks.clear();
-        opt.update_state_every_iteration = true;
-        opt.callbacks.push_back(&watcher);
-        sum = ceres::Solver::Summary();
-        run_ceres(&cost, np, opt, lo, hi, held, x, &sum);
-        rounds++;
-        iterations += sum.iterations.empty() ? 0 : static_cast<int>(sum.iterations.size() - 1);
-        seconds += std::max(0.0, sum.total_time_in_seconds);
-        if (rounds == 1)
-            initial_cost = sum.initial_cost;
-        if (watcher.reason() == RoundWatch::kCancel) {
-            // Cancelled: the round's last accepted point, if it is one, else the best so far.
-            cancelled = true;
-            if (std::isfinite(sum.final_cost) && all_finite(x, np) && (!have_result || sum.final_cost <= final_cost)) {
-                best.assign(x, x + np);
-                final_cost = sum.final_cost;
-                have_result = true;
-            }
-            std::copy(best.begin(), best.end(), x);
-            break;
-        }
-        const bool ended = sum.termination_type == ceres::CONVERGENCE ||
-                           sum.termination_type == ceres::NO_CONVERGENCE ||
-                           sum.termination_type == ceres::USER_SUCCESS;
-        if (!ended || !std::isfinite(sum.final_cost) || !all_finite(x, np)) {
-            std::copy(best.begin(), best.end(), x); // never hand out a failed point
-            failed = !have_result;
-            break;
-        }
-        best.assign(x, x + np);
-        final_cost = sum.final_cost;
-        have_result = true;
-        std::vector<char> next(held);
-        const bool slow = sum.termination_type == ceres::USER_SUCCESS && watcher.reason() == RoundWatch::kSlow;
-        if (slow) { // converged, for every purpose below
-            sum.termination_type = ceres::CONVERGENCE;
-            char why[96];
-            snprintf(why, sizeof why, "cost decreased by less than %g (relative) over the last %d steps",
-                     kSlowRelative, kSlowWindow);
-            sum.message = why;
-        }
-        if (sum.termination_type == ceres::USER_SUCCESS) {
-            // Stopped on a stall: hold what sits on its bound.
-            for (int k = 0; k < np; k++)
-                if (x[k] == lo[k] || x[k] == hi[k])
-                    next[k] = 1;
-        } else {
-            // Converged (or out of iterations): the KKT signs, where anything touches a
-            // bound.
-            bool touching = false;
-            for (int k = 0; k < np; k++)
-                touching = touching || (!user_held[k] && (held[k] || x[k] == lo[k] || x[k] == hi[k]));
-            if (!touching || sum.termination_type != ceres::CONVERGENCE)
-                break;
-            if (!cost.gradient(x, grad))
-                break;
-            for (int k = 0; k < np; k++)
-                if (!user_held[k])
-                    next[k] = (x[k] == lo[k] && grad[k] > 0.0) || (x[k] == hi[k] && grad[k] < 0.0);
-            if (next == held)
-                break; // a consistent active set: done
-        }
-        // A set tried already would go round in circles (a parameter that the gradient
-        // lets go and the steps bring back): the rounds end, each round having only
-        // lowered the cost. When a stall ended the round, it ended before converging:
-        // one last round holds what sits on its bounds and runs to convergence (a
-        // parameter that reaches a bound there stays on it, projected).
-        if (last_round || std::find(seen.begin(), seen.end(), next) != seen.end()) {
-            if (last_round || sum.termination_type != ceres::USER_SUCCESS)
-                break;
-            last_round = true;
-        }
-        held.swap(next);
-    }
-    const int evaluations = cost.passes();
+    for (int k = 0; k < sv.np; k++)
+        if (x[k] == sv.lo[k] || x[k] == sv.hi[k])
+            sv.held[k] = 1;
+    sv.best.assign(x, x + sv.np);
+}
 
+// One Ceres solve from x with the parameters flagged in `held` constant.
+void run_ceres(SolveState &sv)
+{
+    const int np = sv.np;
+    double *x = sv.x;
+    ceres::Problem::Options po;
+    po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP; // it lives for every round
+    ceres::Problem problem(po); // owns the manifold
+    problem.AddResidualBlock(sv.cost, nullptr, x);
+    std::vector<int> fixed;
+    for (int k = 0; k < np; k++) {
+        if (sv.held[k]) {
+            fixed.push_back(k);
+            continue; // a held parameter needs no bounds (and Ceres clamps none)
+        }
+        if (std::isfinite(sv.lo[k]))
+            problem.SetParameterLowerBound(x, k, sv.lo[k]);
+        if (std::isfinite(sv.hi[k]))
+            problem.SetParameterUpperBound(x, k, sv.hi[k]);
+    }
+    if (static_cast<int>(fixed.size()) == np)
+        problem.SetParameterBlockConstant(x);
+    else if (!fixed.empty())
+        problem.SetManifold(x, new ceres::SubsetManifold(np, fixed));
+    ceres::Solve(sv.opt, &problem, &sv.sum);
+}
+
+// One round under its watcher, counted into the solve's rounds, iterations and seconds;
+// why the watcher ended it.
+RoundWatch::Reason run_round(SolveState &sv)
+{
+    sv.seen.push_back(sv.held);
+    RoundWatch watcher(sv.x, sv.lo, sv.hi, sv.held, sv.o, sv.iterations, !sv.last_round);
+    sv.opt.callbacks.clear();
+    sv.opt.update_state_every_iteration = true;
+    sv.opt.callbacks.push_back(&watcher);
+    sv.sum = ceres::Solver::Summary();
+    run_ceres(sv);
+    sv.rounds++;
+    sv.iterations += sv.sum.iterations.empty() ? 0 : static_cast<int>(sv.sum.iterations.size() - 1);
+    sv.seconds += std::max(0.0, sv.sum.total_time_in_seconds);
+    if (sv.rounds == 1)
+        sv.initial_cost = sv.sum.initial_cost;
+    return watcher.reason();
+}
+
+// Cancelled: the round's last accepted point, if it is one, else the best so far.
+void keep_cancelled(SolveState &sv)
+{
+    sv.cancelled = true;
+    if (std::isfinite(sv.sum.final_cost) && all_finite(sv.x, sv.np) &&
+        (!sv.have_result || sv.sum.final_cost <= sv.final_cost)) {
+        sv.best.assign(sv.x, sv.x + sv.np);
+        sv.final_cost = sv.sum.final_cost;
+        sv.have_result = true;
+    }
+    std::copy(sv.best.begin(), sv.best.end(), sv.x);
+}
+
+// The round's point as the best so far, unless the round failed: false then, with the
+// best point back in x.
+bool accept_round(SolveState &sv)
+{
+    const ceres::Solver::Summary &sum = sv.sum;
+    const bool ended = sum.termination_type == ceres::CONVERGENCE ||
+                       sum.termination_type == ceres::NO_CONVERGENCE ||
+                       sum.termination_type == ceres::USER_SUCCESS;
+    if (!ended || !std::isfinite(sum.final_cost) || !all_finite(sv.x, sv.np)) {
+        std::copy(sv.best.begin(), sv.best.end(), sv.x); // never hand out a failed point
+        sv.failed = !sv.have_result;
+        return false;
+    }
+    sv.best.assign(sv.x, sv.x + sv.np);
+    sv.final_cost = sum.final_cost;
+    sv.have_result = true;
+    return true;
+}
+
+// The held set for the next round into next (the current one on entry); false when the
+// rounds are done.
+bool next_active_set(SolveState &sv, std::vector<char> &next)
+{
+    const double *x = sv.x;
+    const int np = sv.np;
+    if (sv.sum.termination_type == ceres::USER_SUCCESS) {
+        // Stopped on a stall: hold what sits on its bound.
+        for (int k = 0; k < np; k++)
+            if (x[k] == sv.lo[k] || x[k] == sv.hi[k])
+                next[k] = 1;
+        return true;
+    }
+    // Converged (or out of iterations): the KKT signs, where anything touches a
+    // bound.
+    bool touching = false;
+    for (int k = 0; k < np; k++)
+        touching = touching || (!sv.user_held[k] && (sv.held[k] || x[k] == sv.lo[k] || x[k] == sv.hi[k]));
+    if (!touching || sv.sum.termination_type != ceres::CONVERGENCE)
+        return false;
+    std::vector<double> grad;
+    if (!sv.cost->gradient(x, grad))
+        return false;
+    for (int k = 0; k < np; k++)
+        if (!sv.user_held[k])
+            next[k] = (x[k] == sv.lo[k] && grad[k] > 0.0) || (x[k] == sv.hi[k] && grad[k] < 0.0);
+    return next != sv.held; // the same set: a consistent active set, done
+}
+
+// One active-set round and the held set that follows from it; false when the rounds
+// are over.
+bool one_round(SolveState &sv)
+{
+    const bf_solver_options *o = sv.o;
+    ceres::Solver::Summary &sum = sv.sum;
+    sv.opt.max_num_iterations = sv.max_iterations - sv.iterations;
+    sv.opt.max_solver_time_in_seconds = o->max_seconds > 0 ? o->max_seconds - sv.seconds : 1e9;
+    if (sv.have_result && (sv.opt.max_num_iterations <= 0 || sv.opt.max_solver_time_in_seconds <= 0))
+        return false;
+    const RoundWatch::Reason reason = run_round(sv);
+    if (reason == RoundWatch::kCancel) {
+        keep_cancelled(sv);
+        return false;
+    }
+    if (!accept_round(sv))
+        return false;
+    std::vector<char> next(sv.held);
+    const bool slow = sum.termination_type == ceres::USER_SUCCESS && reason == RoundWatch::kSlow;
+    if (slow) { // converged, for every purpose below
+        sum.termination_type = ceres::CONVERGENCE;
+        char why[96];
+        snprintf(why, sizeof why, "cost decreased by less than %g (relative) over the last %d steps",
+                 kSlowRelative, kSlowWindow);
+        sum.message = why;
+    }
+    if (!next_active_set(sv, next))
+        return false;
+    // A set tried already would go round in circles (a parameter that the gradient
+    // lets go and the steps bring back): the rounds end, each round having only
+    // lowered the cost. When a stall ended the round, it ended before converging:
+    // one last round holds what sits on its bounds and runs to convergence (a
+    // parameter that reaches a bound there stays on it, projected).
+    if (sv.last_round || std::find(sv.seen.begin(), sv.seen.end(), next) != sv.seen.end()) {
+        if (sv.last_round || sum.termination_type != ceres::USER_SUCCESS)
+            return false;
+        sv.last_round = true;
+    }
+    sv.held.swap(next);
+    return true;
+}
+
+// The rounds' outcome into s: costs, counts, the termination text and why it stopped.
+void copy_out_summary(const SolveState &sv, bf_solution *s)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    const ceres::Solver::Summary &sum = sv.sum;
+    const bf_solver_options *o = sv.o;
+    double *x = sv.x;
+    const int np = sv.np;
     // No usable round: the cost is unknown (Ceres says -1), which must not look like
     // the best cost of a multistart.
-    const bool start_cost = rounds > 0 && std::isfinite(sum.initial_cost) && sum.initial_cost >= 0;
-    s->initial_cost = have_result ? initial_cost : start_cost ? sum.initial_cost : inf;
-    s->final_cost = have_result ? final_cost : s->initial_cost;
-    s->iterations = iterations;
-    s->evaluations = evaluations;
-    s->seconds = seconds;
-    copy_line(s->algorithm, sizeof s->algorithm, alg->as_run);
-    std::string type = cancelled ? "CANCELLED"
+    const bool start_cost = sv.rounds > 0 && std::isfinite(sum.initial_cost) && sum.initial_cost >= 0;
+    s->initial_cost = sv.have_result ? sv.initial_cost : start_cost ? sum.initial_cost : inf;
+    s->final_cost = sv.have_result ? sv.final_cost : s->initial_cost;
+    s->iterations = sv.iterations;
+    s->evaluations = sv.cost->passes();
+    s->seconds = sv.seconds;
+    copy_line(s->algorithm, sizeof s->algorithm, sv.alg->as_run);
+    std::string type = sv.cancelled ? "CANCELLED"
                        : sum.termination_type == ceres::USER_SUCCESS
                            ? "NO_CONVERGENCE" // only when the limits ended the rounds
                            : ceres::TerminationTypeToString(sum.termination_type);
-    if (rounds > 1)
-        type += " (" + std::to_string(rounds) + " active-set rounds)";
+    if (sv.rounds > 1)
+        type += " (" + std::to_string(sv.rounds) + " active-set rounds)";
     copy_line(s->termination, sizeof s->termination,
-              cancelled ? type + ": by the caller after " + std::to_string(iterations) + " iterations"
-                        : type + ": " + sum.message);
-    s->usable = have_result && std::isfinite(s->final_cost) && all_finite(x, np);
+              sv.cancelled ? type + ": by the caller after " + std::to_string(sv.iterations) + " iterations"
+                           : type + ": " + sum.message);
+    s->usable = sv.have_result && std::isfinite(s->final_cost) && all_finite(x, np);
     // Why it stopped: the limits show as NO_CONVERGENCE (or a round stopped on a stall
     // when they ended the rounds); which limit, from the counts.
-    if (cancelled)
+    if (sv.cancelled)
         s->stop = BF_STOP_CANCELLED;
-    else if (failed || !s->usable || sum.termination_type == ceres::FAILURE)
+    else if (sv.failed || !s->usable || sum.termination_type == ceres::FAILURE)
         s->stop = BF_STOP_FAILED;
     else if (sum.termination_type == ceres::CONVERGENCE)
         s->stop = BF_STOP_CONVERGED;
     else
-        s->stop = o->max_seconds > 0 && seconds >= o->max_seconds ? BF_STOP_TIME : BF_STOP_ITERATIONS;
+        s->stop = o->max_seconds > 0 && sv.seconds >= o->max_seconds ? BF_STOP_TIME : BF_STOP_ITERATIONS;
     if (!s->usable && !all_finite(x, np))
-        std::copy(best.begin(), best.end(), x);
+        std::copy(sv.best.begin(), sv.best.end(), x);
+}
+
+bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
+                bf_error *err)
+{
+    SolveState sv(p, o, x);
+    bf_status rc = check_options(sv, err);
+    if (rc == BF_OK)
+        rc = set_bounds(sv, err);
+    if (rc == BF_OK)
+        rc = configure_options(sv, err);
+    if (rc != BF_OK)
+        return rc;
+    start_active_set(sv);
+    // Active-set rounds (see RoundWatch); the iteration and time limits are shared.
+    NormalCost cost(p, o->loss, sv.threads);
+    sv.cost = &cost;
+    for (const int max_rounds = 2 * sv.np + 2; sv.rounds < max_rounds;)
+        if (!one_round(sv))
+            break;
+    copy_out_summary(sv, s);
     return BF_OK;
 }
 
