@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang-format >/dev/null || { echo "check_format.sh: clang-format is missing (scripts/setup.sh installs it)" >&2; exit 1; }
-mapfile -t files < <(git ls-files '*.c' '*.h' '*.cpp')
+mapfile -t files < <(git ls-files '*.c' '*.h' '*.cc' '*.cpp')
 if [ "${1:-}" = --fix ]; then
     clang-format -i "${files[@]}"
     exit 0

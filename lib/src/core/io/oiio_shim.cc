@@ -24,7 +24,8 @@ using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
-namespace {
+namespace
+{
 
 // bf_fail's contract, without needing the library's copy.
 __attribute__((format(printf, 3, 4))) bf_status fail(bf_error *err, bf_status code, const char *fmt, ...)
@@ -111,7 +112,8 @@ BF_OIIO_EXPORT bf_status bf_oiio_encode(const char *name, int fmt, int width, in
     return BF_OK;
 }
 
-namespace {
+namespace
+{
 
 // Opens path for reading, or fails with BF_ERR_IO naming it. Images with alpha are read
 // as stored (no premultiplication), as image.h promises: codes, not colours. Each call has
@@ -145,8 +147,8 @@ BF_OIIO_EXPORT bf_status bf_oiio_read(const char *path, bf_image *img, bf_error 
         if (rc != BF_OK)
             return rc;
         const ImageSpec &spec = in->spec();
-        size_t n = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
-                   static_cast<size_t>(spec.nchannels);
+        size_t n =
+            static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(spec.nchannels);
         float *px = alloc_floats(n);
         if (!px)
             return fail(err, BF_ERR_NOMEM, "%s: out of memory for %zu values", path, n);

@@ -44,23 +44,24 @@
 #include "brdfit/solve.h"
 #include "backends.h"
 
-namespace {
+namespace
+{
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // The whole problem as one compressed Ceres cost function (see the top of the file).
 // One instance serves every active-set round of a solve, so the point a round ends at
 // is not evaluated again when the next one starts or when its gradient is checked.
-class NormalCost final : public ceres::CostFunction {
-public:
+class NormalCost final : public ceres::CostFunction
+{
+  public:
     NormalCost(const bf_problem *p, const bf_loss &loss, int threads) : p_(p), loss_(loss), threads_(threads)
     {
         set_num_residuals(p->npar + 1);
         mutable_parameter_block_sizes()->push_back(p->npar);
     }
 
-    bool Evaluate(double const *const *parameters, double *residuals,
-                  double **jacobians) const override
+    bool Evaluate(double const *const *parameters, double *residuals, double **jacobians) const override
     {
         const size_t np = static_cast<size_t>(p_->npar);
         if (!update(parameters[0]))
@@ -86,7 +87,7 @@ public:
 
     int passes() const { return passes_; }
 
-private:
+  private:
     // The fused pass at x unless it is the last point evaluated (Ceres asks again at the
     // same point at every iteration). Every pass computes the Jacobian's sums too: Ceres
     // asks for them at almost every point whose cost it asks for (the line search of a
@@ -141,8 +142,8 @@ private:
         const Eigen::VectorXd &lam = es.eigenvalues();
         const Eigen::MatrixXd &V = es.eigenvectors();
         const Eigen::VectorXd db = d.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(b, np));
-        const double tol = std::max(lam.maxCoeff(), 0.0) * static_cast<double>(np) *
-                           std::numeric_limits<double>::epsilon();
+        const double tol =
+            std::max(lam.maxCoeff(), 0.0) * static_cast<double>(np) * std::numeric_limits<double>::epsilon();
         double zz = 0.0;
         for (Eigen::Index j = 0; j < np; j++) {
             if (!(lam[j] > tol))
@@ -254,8 +255,9 @@ constexpr double kSlowRelative = 1e-8;
 // Watches a round: ends it on a stall at a bound (kBound) or on slow progress (kSlow), and
 // aborts it when the caller cancels (kCancel: the cancel flag, or the progress callback,
 // which sees the solve's iterations counted over every round).
-class RoundWatch final : public ceres::IterationCallback {
-public:
+class RoundWatch final : public ceres::IterationCallback
+{
+  public:
     enum Reason { kNone, kBound, kSlow, kCancel };
     RoundWatch(const double *x, const std::vector<double> &lo, const std::vector<double> &hi,
                const std::vector<char> &held, const bf_solver_options *o, int iterations_before, bool stall = true)
@@ -289,7 +291,7 @@ public:
     }
     Reason reason() const { return reason_; }
 
-private:
+  private:
     const double *x_;
     const std::vector<double> &lo_, &hi_;
     const std::vector<char> &held_;
@@ -361,14 +363,13 @@ bf_status check_options(SolveState &sv, bf_error *err)
             if (std::strcmp(o->linear_solver, n.name) == 0)
                 sv.lin = &n;
         if (!sv.lin || (sv.lin->type == ceres::SPARSE_NORMAL_CHOLESKY && !sparse_available()))
-            return bf_fail(err, BF_ERR_ARG, "unknown Ceres linear solver '%s' (known: %s)",
-                           o->linear_solver, known_linear_solvers().c_str());
+            return bf_fail(err, BF_ERR_ARG, "unknown Ceres linear solver '%s' (known: %s)", o->linear_solver,
+                           known_linear_solvers().c_str());
     }
     if (o->loss.kind != BF_LOSS_NONE && !(o->loss.scale > 0.0 && std::isfinite(o->loss.scale)))
-        return bf_fail(err, BF_ERR_ARG, "loss scale must be positive and finite (got %g)",
-                       o->loss.scale);
-    if (o->max_iterations < 0 || o->function_tolerance < 0 || o->gradient_tolerance < 0 ||
-        o->parameter_tolerance < 0 || o->max_seconds < 0 || o->threads < 0)
+        return bf_fail(err, BF_ERR_ARG, "loss scale must be positive and finite (got %g)", o->loss.scale);
+    if (o->max_iterations < 0 || o->function_tolerance < 0 || o->gradient_tolerance < 0 || o->parameter_tolerance < 0 ||
+        o->max_seconds < 0 || o->threads < 0)
         return bf_fail(err, BF_ERR_ARG, "Ceres solver limits and tolerances must not be negative");
     return BF_OK;
 }
@@ -386,8 +387,7 @@ bf_status set_bounds(SolveState &sv, bf_error *err)
         if (p->hi)
             sv.hi[k] = p->hi[k];
         if (std::isnan(sv.lo[k]) || std::isnan(sv.hi[k]) || sv.lo[k] > sv.hi[k])
-            return bf_fail(err, BF_ERR_RANGE, "parameter %d has invalid bounds [%g, %g]", k,
-                           sv.lo[k], sv.hi[k]);
+            return bf_fail(err, BF_ERR_RANGE, "parameter %d has invalid bounds [%g, %g]", k, sv.lo[k], sv.hi[k]);
         if (!std::isfinite(sv.x[k]))
             return bf_fail(err, BF_ERR_RANGE, "start value of parameter %d is not finite", k);
     }
@@ -443,7 +443,7 @@ void run_ceres(SolveState &sv)
     double *x = sv.x;
     ceres::Problem::Options po;
     po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP; // it lives for every round
-    ceres::Problem problem(po); // owns the manifold
+    ceres::Problem problem(po);                                // owns the manifold
     problem.AddResidualBlock(sv.cost, nullptr, x);
     std::vector<int> fixed;
     for (int k = 0; k < np; k++) {
@@ -500,8 +500,7 @@ void keep_cancelled(SolveState &sv)
 bool accept_round(SolveState &sv)
 {
     const ceres::Solver::Summary &sum = sv.sum;
-    const bool ended = sum.termination_type == ceres::CONVERGENCE ||
-                       sum.termination_type == ceres::NO_CONVERGENCE ||
+    const bool ended = sum.termination_type == ceres::CONVERGENCE || sum.termination_type == ceres::NO_CONVERGENCE ||
                        sum.termination_type == ceres::USER_SUCCESS;
     if (!ended || !std::isfinite(sum.final_cost) || !all_finite(sv.x, sv.np)) {
         std::copy(sv.best.begin(), sv.best.end(), sv.x); // never hand out a failed point
@@ -565,8 +564,8 @@ bool one_round(SolveState &sv)
     if (slow) { // converged, for every purpose below
         sum.termination_type = ceres::CONVERGENCE;
         char why[96];
-        snprintf(why, sizeof why, "cost decreased by less than %g (relative) over the last %d steps",
-                 kSlowRelative, kSlowWindow);
+        snprintf(why, sizeof why, "cost decreased by less than %g (relative) over the last %d steps", kSlowRelative,
+                 kSlowWindow);
         sum.message = why;
     }
     if (!next_active_set(sv, next))
@@ -626,8 +625,7 @@ void copy_out_summary(const SolveState &sv, bf_solution *s)
         std::copy(sv.best.begin(), sv.best.end(), x);
 }
 
-bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
-                bf_error *err)
+bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s, bf_error *err)
 {
     SolveState sv(p, o, x);
     bf_status rc = check_options(sv, err);
@@ -650,8 +648,8 @@ bf_status solve(const bf_problem *p, const bf_solver_options *o, double *x, bf_s
 
 } // namespace
 
-extern "C" bf_status bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x,
-                              bf_solution *s, bf_error *err)
+extern "C" bf_status bf_solve_ceres(const bf_problem *p, const bf_solver_options *o, double *x, bf_solution *s,
+                                    bf_error *err)
 {
     if (!p || !o || !x || !s)
         return bf_fail(err, BF_ERR_ARG, "bf_solve_ceres: problem, options, x and solution are required");
@@ -660,8 +658,8 @@ extern "C" bf_status bf_solve_ceres(const bf_problem *p, const bf_solver_options
     copy_line(s->algorithm, sizeof s->algorithm, "levenberg_marquardt");
     if (!p->eval || p->npar <= 0 || p->nres == 0)
         return bf_fail(err, BF_ERR_ARG,
-                       "Ceres problem needs an eval function, parameters and residuals (npar %d, nres %zu)",
-                       p->npar, p->nres);
+                       "Ceres problem needs an eval function, parameters and residuals (npar %d, nres %zu)", p->npar,
+                       p->nres);
     if (p->nres > static_cast<size_t>(std::numeric_limits<int>::max()))
         return bf_fail(err, BF_ERR_RANGE, "Ceres problem has too many residuals (%zu)", p->nres);
     try {
