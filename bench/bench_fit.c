@@ -55,7 +55,7 @@ static void set_param(const bf_model *m, double *x, const char *name, const doub
     int i = bf_model_find_param(m, name);
     if (i < 0)
         die(name, NULL);
-    int cnt = bf_model_param(m, i)->colour ? bf_model_channels(m) : 1;
+    int cnt = bf_model_param(m, i)->color ? bf_model_channels(m) : 1;
     for (int c = 0; c < cnt; c++)
         x[bf_model_param_offset(m, i) + c] = v[c];
 }

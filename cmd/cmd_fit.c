@@ -94,7 +94,7 @@ static void print_values(FILE *out, const bf_param_info *pi, const double *v, co
                          const unsigned char *fixed, int C)
 {
     char buf[40];
-    int n = pi->colour ? C : 1;
+    int n = pi->color ? C : 1;
     fprintf(out, "    %-16s", pi->name);
     for (int c = 0; c < n; c++) {
         fprintf(out, " %.6g", v[c]);

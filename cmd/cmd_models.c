@@ -21,7 +21,7 @@ static void print_text(const bf_family_info *fi)
            bf_model_nvalues(m1), bf_model_nvalues(m3));
     for (int i = 0; i < bf_model_nparams(m1); i++) {
         const bf_param_info *p = bf_model_param(m1, i);
-        printf("  %-16s %-6s %-20s %c%g, %g%c default %g%s\n", p->name, p->colour ? "colour" : "scalar",
+        printf("  %-16s %-6s %-20s %c%g, %g%c default %g%s\n", p->name, p->color ? "colour" : "scalar",
                bf_param_role_name(p->role), p->lo_open ? '(' : '[', p->lo, p->hi, p->hi_open ? ')' : ']', p->def,
                p->scale == BF_SCALE_LINEAR ? ""
                : p->scale == BF_SCALE_LOG  ? " (log scale)"

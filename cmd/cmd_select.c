@@ -147,7 +147,7 @@ static void table(FILE *out, const bf_select *s)
         if (s->timing)
             snprintf(secs, sizeof secs, " %8.3f", c->seconds);
         fprintf(out, "%-3s %-40s %4d %-6s %5d %-8s %12s %13s %5s %9.4g%s\n", mark, c->spec, c->k,
-                c->anisotropic ? "yes" : "no", c->lobes, c->coloured_specular ? "colour" : "mono", err, crit, rank,
+                c->anisotropic ? "yes" : "no", c->lobes, c->colored_specular ? "colour" : "mono", err, crit, rank,
                 c->work / 1e6, secs);
     }
     free(order);

@@ -173,13 +173,13 @@ static void parse_params(const bf_model *m, const char *text, double *x)
         if (p < 0)
             die(2, "--params: %s has no parameter '%s'", bf_model_name(m), item);
         const bf_param_info *info = bf_model_param(m, p);
-        int off = bf_model_param_offset(m, p), width = info->colour ? bf_model_channels(m) : 1;
+        int off = bf_model_param_offset(m, p), width = info->color ? bf_model_channels(m) : 1;
         double v[C];
         int n = 0;
         char *save2 = NULL;
         for (char *tok = strtok_r(eq + 1, ":", &save2); tok; tok = strtok_r(NULL, ":", &save2)) {
             if (n == C || !parse_double(tok, &v[n]))
-                die(2, "--params: bad value for %s (a number%s)", item, info->colour ? ", or r:g:b" : "");
+                die(2, "--params: bad value for %s (a number%s)", item, info->color ? ", or r:g:b" : "");
             n++;
         }
         if (n != 1 && n != width)
@@ -201,7 +201,7 @@ static int scale_diffuse(const bf_model *m, double *x, double f)
         const bf_param_info *info = bf_model_param(m, p);
         if (info->role != BF_ROLE_DIFFUSE)
             continue;
-        int off = bf_model_param_offset(m, p), width = info->colour ? bf_model_channels(m) : 1;
+        int off = bf_model_param_offset(m, p), width = info->color ? bf_model_channels(m) : 1;
         for (int c = 0; c < width; c++)
             x[off + c] *= f;
         found = 1;
@@ -385,12 +385,12 @@ static void write_truth(const options *o, const bf_model *m, const double *x, in
         int off = bf_model_param_offset(m, p);
         fprintf(f, "%s", p ? ", " : "");
         json_string(f, info->name);
-        fputs(info->colour ? ": [" : ": ", f);
-        for (int c = 0; c < (info->colour ? C : 1); c++) {
+        fputs(info->color ? ": [" : ": ", f);
+        for (int c = 0; c < (info->color ? C : 1); c++) {
             fputs(c ? ", " : "", f);
             json_number(f, x[off + c]);
         }
-        fputs(info->colour ? "]" : "", f);
+        fputs(info->color ? "]" : "", f);
     }
     fprintf(f, "}, \"shape\": \"%s\", \"lights\": %d, \"size\": %d, \"layout\": \"%s\", \"texture\": \"%s\"",
             shape_names[o->shape], nlights, o->size, layout_names[o->layout], texture_names[o->checker]);

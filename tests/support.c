@@ -121,7 +121,7 @@ void ts_random_params(const bf_model *m, ts_rng *r, int how, double *x)
     int C = bf_model_channels(m);
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        int off = bf_model_param_offset(m, i), n = p->colour ? C : 1;
+        int off = bf_model_param_offset(m, i), n = p->color ? C : 1;
         double lo = ts_param_lo(p), hi = ts_param_hi(p);
         for (int c = 0; c < n; c++) {
             double v;
@@ -145,11 +145,11 @@ void ts_random_params(const bf_model *m, ts_rng *r, int how, double *x)
         for (int c = 0; c < C; c++) {
             double sum = 0.0;
             for (int i = 0; i < bf_model_nparams(m); i++)
-                if (bf_model_param(m, i)->colour)
+                if (bf_model_param(m, i)->color)
                     sum += x[bf_model_param_offset(m, i) + c];
             if (sum > 1.0)
                 for (int i = 0; i < bf_model_nparams(m); i++)
-                    if (bf_model_param(m, i)->colour)
+                    if (bf_model_param(m, i)->color)
                         x[bf_model_param_offset(m, i) + c] /= sum;
         }
     }

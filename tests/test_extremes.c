@@ -92,7 +92,7 @@ static void check(const char *spec, int C)
     for (int corner = 0; corner < 2; corner++) { /* every parameter at lo, then at hi */
         for (int i = 0; i < np; i++) {
             const bf_param_info *p = bf_model_param(m, i);
-            for (int c = 0; c < (p->colour ? C : 1); c++)
+            for (int c = 0; c < (p->color ? C : 1); c++)
                 x[bf_model_param_offset(m, i) + c] = corner ? ts_param_hi(p) : ts_param_lo(p);
         }
         check_point(spec, m, x, corner ? "all at upper bounds" : "all at lower bounds");
@@ -102,7 +102,7 @@ static void check(const char *spec, int C)
         for (int side = 0; side < 2; side++) {
             ts_random_params(m, &rng, TS_PARAMS_ANY, x);
             const bf_param_info *p = bf_model_param(m, i);
-            for (int c = 0; c < (p->colour ? C : 1); c++)
+            for (int c = 0; c < (p->color ? C : 1); c++)
                 x[bf_model_param_offset(m, i) + c] = side ? ts_param_hi(p) : ts_param_lo(p);
             check_point(spec, m, x, p->name);
         }

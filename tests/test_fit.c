@@ -157,7 +157,7 @@ static double start_value(const bf_model *m, const double *x, const char *name, 
         fail_msg("no parameter %s", name);
     const bf_param_info *p = bf_model_param(m, i);
     *def = p->def;
-    return x[bf_model_param_offset(m, i) + (p->colour ? c : 0)];
+    return x[bf_model_param_offset(m, i) + (p->color ? c : 0)];
 }
 
 static void test_initial_guess_roles(void **state)

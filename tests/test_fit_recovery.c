@@ -130,7 +130,7 @@ static int disney_on_bound(const bf_fit_result *r)
         const int o = bf_model_param_offset(m, i);
         if (!disney_unidentified(p->name))
             continue;
-        for (int c = 0; c < (p->colour ? bf_model_channels(m) : 1); c++)
+        for (int c = 0; c < (p->color ? bf_model_channels(m) : 1); c++)
             if (r->x[o + c] == p->lo || r->x[o + c] == p->hi)
                 for (int w = 0; w < r->nwarnings; w++)
                     if (strstr(r->warnings[w], p->name) && strstr(r->warnings[w], "bound"))
@@ -231,7 +231,7 @@ static int lafortune_lobes(const bf_model *m, const double *x, lobe_inv *out)
             const double *v = x + bf_model_param_offset(m, i);
             if (p->lobe != l)
                 continue;
-            if (p->colour)
+            if (p->color)
                 for (int k = 0; k < NCH; k++)
                     li->v[li->nv++] = v[k];
             else if (!strncmp(p->name, "cz", 2))
@@ -277,7 +277,7 @@ static void assert_recovered(const truth_case *t, const bf_fit_result *r, double
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         int o = bf_model_param_offset(m, i);
-        for (int c = 0; c < (p->colour ? NCH : 1); c++) {
+        for (int c = 0; c < (p->color ? NCH : 1); c++) {
             if (!strcmp(t->spec, "disney") && disney_unidentified(p->name)) {
                 /* Honest about it: the fit itself says the data do not determine it. */
                 double se = r->stderr_[o + c];
@@ -413,7 +413,7 @@ static void test_recover_noisy(void **state)
             int off = bf_model_param_offset(m, p);
             if ((disney && disney_unidentified(pi->name)) || (lafortune && pi->name[0] == 'c'))
                 continue; /* not identifiable: the ratios are checked below */
-            for (int c = 0; c < (pi->colour ? NCH : 1); c++) {
+            for (int c = 0; c < (pi->color ? NCH : 1); c++) {
                 int k = off + c;
                 if (r.fixed[k])
                     continue; /* the case's --fix: held at the truth */

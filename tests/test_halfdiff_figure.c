@@ -61,7 +61,7 @@ static void test_self_difference_is_centre(void **state)
     assert_non_null(p);
     plot_layout l;
     assert_int_equal(plot_layout_compute(p, 340, 280, &l), 0);
-    assert_int_equal(l.colour_bar, 1);
+    assert_int_equal(l.color_bar, 1);
     assert_true(l.bar_ticks.n >= 3);
     assert_true(l.bar_ticks.value[0] >= -2.0 && l.bar_ticks.value[l.bar_ticks.n - 1] <= 2.0);
     /* theta_h ticks in degrees on the sqrt axis: 45 degrees sits at sqrt(1/2). */
@@ -176,7 +176,7 @@ static void test_points(void **state)
     assert_int_equal(plot_nseries(p), 1);
     const plot_series *s = plot_series_at(p, 0);
     assert_int_equal(s->n, 4);
-    assert_non_null(s->colours);
+    assert_non_null(s->colors);
     /* Ascending values: 1e-9 (below the scale: its bottom colour), 0.01, 0.1, 1. */
     const double want_x[4] = {sqrt(20.0 / 90.0), sqrt(10.0 / 90.0), sqrt(80.0 / 90.0), 0.0};
     const double want_y[4] = {5.0, 30.0, 90.0, 0.0}, want_t[4] = {0.0, 0.5, 0.75, 1.0};
@@ -185,11 +185,11 @@ static void test_points(void **state)
         ts_assert_near(s->y[i], want_y[i], 1e-12, 1e-12, "point y");
         unsigned char c[3];
         halfdiff_sequential(want_t[i], c);
-        assert_memory_equal(s->colours + 3 * i, c, 3);
+        assert_memory_equal(s->colors + 3 * i, c, 3);
     }
     plot_layout l;
     assert_int_equal(plot_layout_compute(p, 340, 280, &l), 0);
-    assert_int_equal(l.colour_bar, 1);
+    assert_int_equal(l.color_bar, 1);
     /* The axes cover 0..90 with a margin, so points on an edge show whole. */
     assert_true(l.axis[PLOT_Y].lo < 0.0 && l.axis[PLOT_Y].hi > 90.0);
     assert_true(l.axis[PLOT_X].lo < 0.0 && l.axis[PLOT_X].hi > 1.0);
@@ -208,12 +208,12 @@ static void test_points(void **state)
     assert_int_equal(s->n, 4);
     ts_assert_near(s->y[0], 90.0, 0, 1e-12, "exact match first"); /* |r| 0 */
     ts_assert_near(s->y[3], 30.0, 0, 1e-12, "worst misfit last"); /* |r| 3 */
-    assert_int_equal(s->colours[0], 255);
-    assert_int_equal(s->colours[1], 255);
-    assert_int_equal(s->colours[2], 255);
+    assert_int_equal(s->colors[0], 255);
+    assert_int_equal(s->colors[1], 255);
+    assert_int_equal(s->colors[2], 255);
     unsigned char c[3];
     halfdiff_diverging(-1.0, c); /* saturated blue: the model far too dark */
-    assert_memory_equal(s->colours + 9, c, 3);
+    assert_memory_equal(s->colors + 9, c, 3);
     plot_free(p);
 
     p = halfdiff_value_points(0, th, td, v, "none", -4.0, 0.0);

@@ -8,6 +8,7 @@
 
 #include <cmocka.h>
 
+#include "brdfit/select.h"
 #include "support.h"
 
 static void expect_error(const char *spec, int C, const char *fragment)
@@ -61,13 +62,13 @@ static void test_canonical_spec(void **state)
     bf_model_free(m);
 }
 
-/* Free parameters = colour_count * C + scalar_count, for C = 1, 3 and 31. */
+/* Free parameters = color_count * C + scalar_count, for C = 1, 3 and 31. */
 static void test_free_parameter_counts(void **state)
 {
     (void)state;
     static const struct {
         const char *spec;
-        int colour, scalar;
+        int color, scalar;
     } cases[] = {
         {"lambert", 1, 0},
         {"walter", 2, 2},
@@ -83,7 +84,7 @@ static void test_free_parameter_counts(void **state)
         int counts[3] = {1, 3, 31};
         for (int k = 0; k < 3; k++) {
             bf_model *m = ts_model(cases[i].spec, counts[k]);
-            int expect = cases[i].colour * counts[k] + cases[i].scalar;
+            int expect = cases[i].color * counts[k] + cases[i].scalar;
             if (bf_model_nvalues(m) != expect)
                 fail_msg("%s C=%d: %d free parameters, expected %d", cases[i].spec, counts[k], bf_model_nvalues(m),
                          expect);
@@ -185,6 +186,30 @@ static void test_registry_names(void **state)
 }
 
 /* Evaluating a range writes only that range, and matches the whole-set evaluation. */
+/* The fields renamed to one spelling keep their old names, deprecated, as the same
+ * storage: programs written against them still build and read the same values. */
+static void test_old_spellings(void **state)
+{
+    (void)state;
+    bf_model *m = NULL;
+    assert_int_equal(bf_model_new("walter", 3, &m, NULL), BF_OK);
+    bf_select_candidate c;
+    memset(&c, 0, sizeof c);
+    c.colored_specular = 1;
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#endif
+    for (int i = 0; i < bf_model_nparams(m); i++)
+        assert_int_equal(bf_model_param(m, i)->colour, bf_model_param(m, i)->color);
+    assert_int_equal(bf_model_param(m, bf_model_find_param(m, "rho_d"))->colour, 1);
+    assert_int_equal(c.coloured_specular, 1);
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+    bf_model_free(m);
+}
+
 static void test_eval_range(void **state)
 {
     (void)state;
@@ -227,6 +252,7 @@ int main(void)
         cmocka_unit_test(test_defaults_in_bounds),
         cmocka_unit_test(test_registry_names),
         cmocka_unit_test(test_eval_range),
+        cmocka_unit_test(test_old_spellings),
     };
     return cmocka_run_group_tests_name("model_api", tests, NULL, NULL);
 }

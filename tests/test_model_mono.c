@@ -37,9 +37,9 @@ static void test_table_and_spec(void **state)
     assert_int_equal(bf_model_nvalues(m), 6);
     int i = bf_model_find_param(m, "rho_s");
     assert_true(i >= 0);
-    assert_int_equal(bf_model_param(m, i)->colour, 0);
+    assert_int_equal(bf_model_param(m, i)->color, 0);
     assert_int_equal(bf_model_param(m, i)->mono, 1);
-    assert_int_equal(bf_model_param(m, bf_model_find_param(m, "rho_d"))->colour, 1);
+    assert_int_equal(bf_model_param(m, bf_model_find_param(m, "rho_d"))->color, 1);
     /* rho_s is walter's "specular" set, so the canonical spec says so, and reads back. */
     assert_string_equal(bf_model_option(m, "mono"), "specular");
     assert_non_null(strstr(bf_model_spec(m), "mono=specular"));
@@ -107,8 +107,8 @@ static void check_against_untied(const char *untied_spec, const char *mono_spec,
     for (int i = 0; i < np; i++) {
         const bf_param_info *p = bf_model_param(mm, i);
         for (int c = 0; c < C; c++)
-            if (bf_model_param(mu, i)->colour || c == 0)
-                xu[bf_model_param_offset(mu, i) + c] = xm[bf_model_param_offset(mm, i) + (p->colour ? c : 0)];
+            if (bf_model_param(mu, i)->color || c == 0)
+                xu[bf_model_param_offset(mu, i) + c] = xm[bf_model_param_offset(mm, i) + (p->color ? c : 0)];
     }
     size_t nv = (size_t)NDIRS * (size_t)C;
     double *vm = malloc(nv * sizeof *vm), *vu = malloc(nv * sizeof *vu);

@@ -254,7 +254,7 @@ static void check_jacobian(const jac_case *jc, bf_residual form, uint64_t seed)
     for (int k = 0; k < P; k++)
         nfixed += bf_objective_fixed(obj, k);
     if (jc->fix)
-        want_fixed = ov[0].channel >= 0 ? 1 : bf_model_param(m, bf_model_find_param(m, ov[0].name))->colour ? C : 1;
+        want_fixed = ov[0].channel >= 0 ? 1 : bf_model_param(m, bf_model_find_param(m, ov[0].name))->color ? C : 1;
     assert_int_equal(nfixed, want_fixed);
     assert_int_equal(p->npar, P - nfixed);
     ts_random_params(m, &r, TS_PARAMS_MODERATE, x);

@@ -28,9 +28,9 @@ static int check_spec(const char *spec)
         if (p->role == BF_ROLE_WEIGHT && p->lobe >= 1)
             weights[p->lobe]++;
         /* A diffuse colour is a colour outside the lobes; widths are scalars. */
-        if (p->role == BF_ROLE_DIFFUSE && (!p->colour || p->lobe != 0))
+        if (p->role == BF_ROLE_DIFFUSE && (!p->color || p->lobe != 0))
             fail_msg("%s: %s is diffuse but not a colour outside the lobes", spec, p->name);
-        if ((p->role == BF_ROLE_ROUGHNESS || p->role == BF_ROLE_EXPONENT) && p->colour)
+        if ((p->role == BF_ROLE_ROUGHNESS || p->role == BF_ROLE_EXPONENT) && p->color)
             fail_msg("%s: width %s is a colour", spec, p->name);
     }
     if (diffuse != 1)
@@ -113,9 +113,9 @@ static void test_mono_specular_by_role(void **state)
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         if (p->role == BF_ROLE_DIFFUSE)
-            assert_true(p->colour && !p->mono);
+            assert_true(p->color && !p->mono);
         if (p->role == BF_ROLE_WEIGHT)
-            assert_true(!p->colour && p->mono);
+            assert_true(!p->color && p->mono);
     }
     bf_model_free(m);
 }

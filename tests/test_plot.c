@@ -270,7 +270,7 @@ static void test_legend_lines_equal(void **state)
 
 /* A raster with a colour bar: the bar's ticks span its range, its title is in the SVG,
  * and the plot area is left of the bar. */
-static void test_raster_colour_bar(void **state)
+static void test_raster_color_bar(void **state)
 {
     (void)state;
     plot *p = plot_new("raster");
@@ -286,10 +286,10 @@ static void test_raster_colour_bar(void **state)
     const double tv[3] = {0.0, 1.0, 3.0};
     const char *tl[3] = {"0\xc2\xb0", "1\xc2\xb0", "9\xc2\xb0"};
     assert_int_equal(plot_axis_ticks(p, PLOT_X, 3, tv, tl), 0);
-    assert_int_equal(plot_colour_bar(p, "log_{2} ratio", -2.0, 2.0, 0, lut), 0);
+    assert_int_equal(plot_color_bar(p, "log_{2} ratio", -2.0, 2.0, 0, lut), 0);
     plot_layout l;
     assert_int_equal(plot_layout_compute(p, 400, 300, &l), 0);
-    assert_int_equal(l.colour_bar, 1);
+    assert_int_equal(l.color_bar, 1);
     assert_true(l.bar_x > l.x1 && l.bar_x + l.bar_w < 400);
     assert_true(has_label(&l.bar_ticks, "\xe2\x88\x92"
                                         "2") &&
@@ -332,7 +332,7 @@ int main(void)
         cmocka_unit_test(test_layout_and_scatter),
         cmocka_unit_test(test_formats),
         cmocka_unit_test(test_legend_lines_equal),
-        cmocka_unit_test(test_raster_colour_bar),
+        cmocka_unit_test(test_raster_color_bar),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

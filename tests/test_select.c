@@ -56,8 +56,8 @@ static void test_choose_order(void **state)
     assert_int_equal(s.c[3].k, 3);
     assert_int_equal(s.c[2].anisotropic, 1);
     assert_int_equal(s.c[4].lobes, 2);
-    assert_int_equal(s.c[0].coloured_specular, 1);
-    assert_int_equal(s.c[1].coloured_specular, 0);
+    assert_int_equal(s.c[0].colored_specular, 1);
+    assert_int_equal(s.c[1].colored_specular, 0);
 
     /* Lambert far off; the others within 5% of the best (walter, 0.100). */
     set_error(&s, 0, BF_CMP_OK, 0.100);
@@ -252,7 +252,7 @@ static void test_isotropic_ggx_selects_isotropic_mono(void **state)
     bf_samples_free(data);
 }
 
-static void test_coloured_highlight_needs_colour(void **state)
+static void test_colored_highlight_needs_color(void **state)
 {
     (void)state;
     const double x[] = {0.1, 0.1, 0.1, 0.2, 0.5, 0.9, 0.12, 0.05};
@@ -260,7 +260,7 @@ static void test_coloured_highlight_needs_colour(void **state)
     bf_select s;
     const bf_select_candidate *c = select_on(data, NSINGLE, single_lobe_candidates, &s, 0);
     assert_string_equal(c->spec, "walter");
-    assert_true(c->coloured_specular);
+    assert_true(c->colored_specular);
     assert_false(s.c[1].within); /* the white highlight cannot follow it */
     bf_select_clear(&s);
     bf_samples_free(data);
@@ -351,7 +351,7 @@ int main(void)
         cmocka_unit_test(test_tie_breaks),
         cmocka_unit_test(test_lambert_data_selects_lambert),
         cmocka_unit_test(test_isotropic_ggx_selects_isotropic_mono),
-        cmocka_unit_test(test_coloured_highlight_needs_colour),
+        cmocka_unit_test(test_colored_highlight_needs_color),
         cmocka_unit_test(test_two_lobe_data_selects_two_lobes),
         cmocka_unit_test(test_scene_changes_the_choice),
         cmocka_unit_test(test_json),

@@ -52,7 +52,7 @@ static void test_table(void **state)
     const char *names[] = {"rho_d", "rho_s", "nu", "nv"};
     for (int i = 0; i < 4; i++)
         assert_string_equal(bf_model_param(m, i)->name, names[i]);
-    assert_true(bf_model_param(m, 1)->colour && bf_model_param(m, 1)->hi == 1.0);
+    assert_true(bf_model_param(m, 1)->color && bf_model_param(m, 1)->hi == 1.0);
     assert_true(bf_model_param(m, 2)->lo == 1.0 && bf_model_param(m, 2)->hi == 1e6);
     bf_model_free(m);
     bf_model_new("ashikhmin_shirley_iso", 1, &m, NULL);

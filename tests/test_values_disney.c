@@ -356,7 +356,7 @@ static void test_table(void **state)
     for (int i = 0; i < 11; i++) {
         const bf_param_info *pi_ = bf_model_param(m, i);
         assert_true(pi_->lo == 0.0 && pi_->hi == 1.0);
-        assert_int_equal(pi_->colour, i == 0);
+        assert_int_equal(pi_->color, i == 0);
     }
     /* Below the horizon: 0. */
     double x[13];

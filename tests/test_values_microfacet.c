@@ -28,7 +28,7 @@ static void set(const bf_model *m, double *x, const char *name, double v)
     int i = bf_model_find_param(m, name);
     if (i < 0)
         fail_msg("%s has no parameter %s", bf_model_spec(m), name);
-    int n = bf_model_param(m, i)->colour ? bf_model_channels(m) : 1;
+    int n = bf_model_param(m, i)->color ? bf_model_channels(m) : 1;
     for (int c = 0; c < n; c++)
         x[bf_model_param_offset(m, i) + c] = v;
 }
@@ -36,7 +36,7 @@ static void set(const bf_model *m, double *x, const char *name, double v)
 static void set_c(const bf_model *m, double *x, const char *name, int c, double v)
 {
     int i = bf_model_find_param(m, name);
-    if (i < 0 || !bf_model_param(m, i)->colour)
+    if (i < 0 || !bf_model_param(m, i)->color)
         fail_msg("%s has no colour parameter %s", bf_model_spec(m), name);
     x[bf_model_param_offset(m, i) + c] = v;
 }
@@ -102,7 +102,7 @@ static void test_parameter_tables(void **state)
         m = ts_model(b[i].spec, 1);
         const bf_param_info *p = bf_model_param(m, bf_model_find_param(m, b[i].name));
         assert_non_null(p);
-        if (p->lo != b[i].lo || p->hi != b[i].hi || p->scale != b[i].scale || p->colour || p->lo_open || p->hi_open)
+        if (p->lo != b[i].lo || p->hi != b[i].hi || p->scale != b[i].scale || p->color || p->lo_open || p->hi_open)
             fail_msg("%s %s: [%g, %g] scale %d", b[i].spec, b[i].name, p->lo, p->hi, p->scale);
         bf_model_free(m);
     }
@@ -433,7 +433,7 @@ static void compare_specs(const char *s1, const char *s2)
             const bf_param_info *p = bf_model_param(a, i), *q = bf_model_param(b, i);
             assert_string_equal(p->name, q->name);
             assert_true(p->lo == q->lo && p->hi == q->hi && p->def == q->def && p->scale == q->scale &&
-                        p->colour == q->colour);
+                        p->color == q->color);
         }
         assert_int_equal(bf_model_energy_conserving(a), bf_model_energy_conserving(b));
         ts_rng rng = {0xC0FFEEULL + (uint64_t)C};
@@ -508,7 +508,7 @@ static void check_grazing(const char *spec)
             if (t < 2) {
                 for (int i = 0; i < np; i++) {
                     const bf_param_info *p = bf_model_param(m, i);
-                    for (int c = 0; c < (p->colour ? C : 1); c++)
+                    for (int c = 0; c < (p->color ? C : 1); c++)
                         x[bf_model_param_offset(m, i) + c] = t ? p->hi : p->lo;
                 }
             } else {

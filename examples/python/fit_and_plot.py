@@ -56,9 +56,9 @@ for ax, ti in zip(axes[0], incidences):
     wi = [np.sin(np.radians(ti)), 0.0, np.cos(np.radians(ti))]
     wo = np.stack([-np.sin(t), np.zeros_like(t), np.cos(t)], axis=1)
     fitted = result.model.eval(wi, wo)
-    for c, (colour, band) in enumerate(channels):
-        ax.semilogy(signed[order], measured[:, c], ".", color=colour, ms=4)
-        ax.semilogy(np.degrees(t), fitted[:, c], "-", color=colour, lw=1, label=band)
+    for c, (color, band) in enumerate(channels):
+        ax.semilogy(signed[order], measured[:, c], ".", color=color, ms=4)
+        ax.semilogy(np.degrees(t), fitted[:, c], "-", color=color, lw=1, label=band)
     drawn += measured.shape[0]
     hidden += int(np.sum(measured <= 0))
     ax.set_title("theta_i = %d deg" % ti)

@@ -28,7 +28,7 @@ void bf_free(void *p);
 typedef struct bf_geometry bf_geometry;
 typedef struct bf_model bf_model;
 typedef enum bf_scale { BF_SCALE_LINEAR, BF_SCALE_LOG, BF_SCALE_LOG1P, ... } bf_scale;
-typedef struct bf_param_info { const char *name; int colour; double lo, hi, def; ...; } bf_param_info;
+typedef struct bf_param_info { const char *name; int color; double lo, hi, def; ...; } bf_param_info;
 char *bf_models_json(void);
 bf_status bf_model_list_split(const char *list, char ***specs, int *n, bf_error *err);
 bf_status bf_model_new(const char *spec, int channels, bf_model **out, bf_error *err);

@@ -23,7 +23,7 @@ class Evaluable(Protocol):
     @property
     def channels(self) -> int: ...
 
-    def _colour(self, i: int) -> bool: ...
+    def _color(self, i: int) -> bool: ...
 
     def _find(self, key: Any) -> int: ...
 
@@ -60,19 +60,19 @@ def _param_sets(m: Evaluable, params: Optional[Mapping[str, Any]]) -> Tuple[Arra
     sets: Dict[str, int] = {}
     for key, value in params.items():
         i = m._find(key)
-        colour = m._colour(i)
-        shapes: List[Tuple[Optional[int], ...]] = [(), (C,), (None, C), (None, 1)] if colour else [(), (None,)]
+        color = m._color(i)
+        shapes: List[Tuple[Optional[int], ...]] = [(), (C,), (None, C), (None, 1)] if color else [(), (None,)]
         arr = _array("params[%r]" % key, value, list(dict.fromkeys(shapes)), any_name="K")
-        if arr.ndim == (2 if colour else 1):
+        if arr.ndim == (2 if color else 1):
             sets[key] = arr.shape[0]
-        given.append((lib.bf_model_param_offset(m._m, i), colour, arr))
+        given.append((lib.bf_model_param_offset(m._m, i), color, arr))
     if len(set(sets.values())) > 1:
         raise UsageError("params: %s give different numbers of parameter sets (%s)" % (
             ", ".join(sets), ", ".join("%s %d" % kv for kv in sets.items())))
     K = next(iter(sets.values())) if sets else None
     X = np.tile(x0, (1 if K is None else K, 1))
-    for o, colour, arr in given:
-        if colour:
+    for o, color, arr in given:
+        if color:
             X[:, o:o + C] = arr  # (), (C,), (K, C) and (K, 1) broadcast over the sets and channels
         else:
             X[:, o] = arr
@@ -90,7 +90,7 @@ def _channel_columns(m: Evaluable) -> Tuple[Index, Index]:
     cols = np.empty((C, nparams), dtype=np.intp)
     for j in range(nparams):
         o = lib.bf_model_param_offset(m._m, j)
-        cols[:, j] = o + np.arange(C) if m._colour(j) else o
+        cols[:, j] = o + np.arange(C) if m._color(j) else o
     return np.arange(C)[:, None], cols
 
 

@@ -122,8 +122,8 @@ class Model:
         return [ffi.string(lib.bf_model_entry_name(self._m, k, buf, 128)).decode()
                 for k in range(lib.bf_model_nvalues(self._m))]
 
-    def _colour(self, i: int) -> bool:
-        return bool(lib.bf_model_param(self._m, i).colour)
+    def _color(self, i: int) -> bool:
+        return bool(lib.bf_model_param(self._m, i).color)
 
     def _find(self, key: Any) -> int:
         """The index of parameter key; a UsageError naming the model's parameters if none."""
@@ -178,7 +178,7 @@ class Model:
         for i in range(lib.bf_model_nparams(self._m)):
             o = lib.bf_model_param_offset(self._m, i)
             name = ffi.string(lib.bf_model_param(self._m, i).name).decode()
-            out[name] = [float(v) for v in x[o:o + C]] if self._colour(i) else float(x[o])
+            out[name] = [float(v) for v in x[o:o + C]] if self._color(i) else float(x[o])
         return out
 
     def _vector(self, params: Optional[Mapping[str, Any]], base: Optional[Array] = None) -> Array:
@@ -197,7 +197,7 @@ class Model:
         for key, value in params.items():
             i = self._find(key)
             o = lib.bf_model_param_offset(self._m, i)
-            n = C if self._colour(i) else 1
+            n = C if self._color(i) else 1
             v = _array("params[%r]" % key, value, [(), (n,)]).reshape(-1)
             x[o:o + n] = v if v.size == n else np.repeat(v, n)
         err = ffi.new("bf_error *")

@@ -67,7 +67,7 @@ class FitImagesResult:
             info = lib.bf_model_param(m, i)
             o = lib.bf_model_param_offset(m, i)
             name = ffi.string(info.name).decode()
-            self.params[name] = self.values[:, :, o:o + C] if info.colour else self.values[:, :, o]
+            self.params[name] = self.values[:, :, o:o + C] if info.color else self.values[:, :, o]
         names = self.model.value_names
         nshared = int(r.nshared)
         shared = _copy(r.shared, np.float64, (int(r.nclusters), nshared)) if nshared else None

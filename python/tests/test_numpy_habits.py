@@ -86,7 +86,7 @@ def test_parameter_sets_equal_separate_calls(walter):
     np.testing.assert_array_equal(v1, v[:, 3])
 
 
-def test_colour_sets_and_one_value_per_set(walter):
+def test_color_sets_and_one_value_per_set(walter):
     wi, wo = _dirs(4, 5)
     # (K, 1): one value for every channel of each set; a colour's (C,) stays one set.
     v = walter.eval(wi, wo, {"rho_s": [[0.2], [0.4]]})

@@ -1,5 +1,5 @@
 /* Colorimetry of spectral data: a reflectance spectrum to CIE XYZ (CIE 1931 2 degree
- * observer, a chosen illuminant) and on to linear sRGB or ACEScg. docs/colour.md.
+ * observer, a chosen illuminant) and on to linear sRGB or ACEScg. docs/color.md.
  * Status codes and ownership follow brdfit/error.h.
  */
 #ifndef BRDFIT_COLOR_H

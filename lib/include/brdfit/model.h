@@ -44,8 +44,11 @@ typedef enum bf_param_role {
 BF_API const char *bf_param_role_name(bf_param_role role);
 
 typedef struct bf_param_info {
-    const char *name;     /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
-    int colour;           /* 1: one value per channel; 0: one scalar */
+    const char *name; /* "rho_s", or "rho_s_2" for lobe 2 when lobes > 1 */
+    union {
+        int color;                             /* 1: one value per channel; 0: one scalar */
+        int colour BF_DEPRECATED("use color"); /* the same, as spelled before 0.1 */
+    };
     double lo, hi;        /* bounds */
     int lo_open, hi_open; /* 1 where the bound itself is excluded, e.g. brady a in (0, 3] */
     double def;           /* default value */
@@ -118,7 +121,7 @@ BF_API int bf_model_find_param(const bf_model *m, const char *name); /* -1 if ab
  * spelling --fix and --bound take). Returns buf. */
 BF_API const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size);
 
-/* Length P of the model vector: colour_count * C + scalar_count, fixed entries included
+/* Length P of the model vector: color_count * C + scalar_count, fixed entries included
  * (the free parameters of a fit are fewer when some are fixed: bf_fit_result). */
 BF_API int bf_model_nvalues(const bf_model *m);
 BF_API void bf_model_defaults(const bf_model *m, double *x);

@@ -32,10 +32,13 @@ extern "C" {
 typedef struct bf_select_candidate {
     char spec[160]; /* as given */
     /* From the configured model (bf_select_describe). */
-    int k;                 /* free parameters for the data's channel count */
-    int anisotropic;       /* the family is anisotropic */
-    int lobes;             /* specular lobes (1 for models without the option) */
-    int coloured_specular; /* a colour parameter besides the diffuse colour, C > 1 */
+    int k;           /* free parameters for the data's channel count */
+    int anisotropic; /* the family is anisotropic */
+    int lobes;       /* specular lobes (1 for models without the option) */
+    union {
+        int colored_specular; /* a colour parameter besides the diffuse colour, C > 1 */
+        int coloured_specular BF_DEPRECATED("use colored_specular"); /* as spelled before 0.1 */
+    };
     /* The fit (bf_select_run). */
     bf_compare_state state;
     bf_fit_result *result; /* when state is OK or FAILED, else NULL (owned by the selection) */

@@ -138,7 +138,7 @@ static void check_inactive(const bf_fit_result *r, const double *lo, const doubl
         char names[BF_FIT_WARNING_LEN] = "";
         int count = 0;
         for (int i = 0; i < np; i++) {
-            const int off = bf_model_param_offset(m, i), n = bf_model_param(m, i)->colour ? C : 1;
+            const int off = bf_model_param_offset(m, i), n = bf_model_param(m, i)->color ? C : 1;
             int in = 0;
             for (int k = off; k < off + n; k++)
                 in += !r->fixed[k] && r->inactive[k] && r->inactive_gate[k] == g;
@@ -163,7 +163,7 @@ static void check_inactive(const bf_fit_result *r, const double *lo, const doubl
             continue;
         }
         const bf_param_info *gp = bf_model_param(m, g);
-        const int off = bf_model_param_offset(m, g), n = gp->colour ? C : 1;
+        const int off = bf_model_param_offset(m, g), n = gp->color ? C : 1;
         char where[96] = "";
         int lower = 0, upper = 0;
         for (int k = off; k < off + n; k++) {
@@ -211,7 +211,7 @@ static void check_entries(const bf_objective *o, bf_fit_result *r)
     char name[64];
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        const int off = bf_model_param_offset(m, i), n = p->colour ? C : 1;
+        const int off = bf_model_param_offset(m, i), n = p->color ? C : 1;
         int count[ENTRY_KINDS] = {0}, first[ENTRY_KINDS];
         char chans[ENTRY_KINDS][64];
         for (int kind = 0; kind < ENTRY_KINDS; kind++)
@@ -322,11 +322,11 @@ static void check_correlations(const bf_objective *o, const double *corr, bf_fit
                             "hardly tell them apart",
                             bf_model_param(m, pa)->name, count[at], worst[at]);
             } else {
-                const int colours = bf_model_param(m, pa)->colour + bf_model_param(m, pb)->colour;
+                const int colors = bf_model_param(m, pa)->color + bf_model_param(m, pb)->color;
                 bf_fit_warn(r, BF_WARN_CORRELATED,
                             "%s and %s are correlated in %d %s (r up to %.4f): the data hardly tell them apart",
                             bf_model_param(m, pa)->name, bf_model_param(m, pb)->name, count[at],
-                            colours == 1 ? "channels" : "pairs of channels", worst[at]);
+                            colors == 1 ? "channels" : "pairs of channels", worst[at]);
             }
         }
     free(count);

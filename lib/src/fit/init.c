@@ -61,7 +61,7 @@ typedef enum width_kind { W_NONE = 0, W_ROUGH, W_EXPONENT, W_ABC_B, W_BETA, W_DI
  * alpha is an exponent on NL NV, declared a shape: no width. */
 static width_kind width_of(const bf_param_info *p)
 {
-    if (p->colour)
+    if (p->color)
         return W_NONE;
     switch (p->role) {
     case BF_ROLE_ROUGHNESS: return W_ROUGH;
@@ -174,24 +174,24 @@ static void set_widths(const bf_model *m, double *x, double h)
  * ends at 0 on pink felt (rmse_log 0.0060 against 0.0022); at its default, glTF's
  * specular_color ends at 0 when a walter fit of the Cornell cayman paint is converted
  * (rmse_log 0.0050 against 0.00084), for 5 % better on one measured material. */
-static int is_coloured(const bf_param_info *p)
+static int is_colored(const bf_param_info *p)
 {
-    return p->colour || p->mono;
+    return p->color || p->mono;
 }
 static int is_weight(const bf_param_info *p)
 {
-    return is_coloured(p) && p->lobe >= 1 && p->role == BF_ROLE_WEIGHT;
+    return is_colored(p) && p->lobe >= 1 && p->role == BF_ROLE_WEIGHT;
 }
 static int is_diffuse(const bf_param_info *p)
 {
-    return is_coloured(p) && p->lobe == 0;
+    return is_colored(p) && p->lobe == 0;
 }
 
 /* Channel c's value v of parameter p into its entry: a mono entry takes the mean. */
 static void put_channel(const bf_model *m, int i, double *x, int c, double v)
 {
     const bf_param_info *p = bf_model_param(m, i);
-    double *e = x + bf_model_param_offset(m, i) + (p->colour ? c : 0);
+    double *e = x + bf_model_param_offset(m, i) + (p->color ? c : 0);
     if (p->mono)
         *e = (c ? *e : 0.0) + v / bf_model_channels(m);
     else
@@ -262,7 +262,7 @@ static double fit_at_width(const scan *sc, double *x, double h, double *over)
     for (int i = 0; i < np; i++) {
         const bf_param_info *p = bf_model_param(m, i);
         double *v = xs + bf_model_param_offset(m, i);
-        for (int c = 0; c < (p->colour ? C : 1); c++) {
+        for (int c = 0; c < (p->color ? C : 1); c++) {
             if (is_weight(p))
                 v[c] = clamp_param(p, ldexp(1.0, 1 - p->lobe));
             else if (is_diffuse(p))
@@ -277,7 +277,7 @@ static double fit_at_width(const scan *sc, double *x, double h, double *over)
         ssr += fit_two(sc->y + c, f1 + c, g->lz, g->n, C, &d, &r);
         for (int i = 0; i < np; i++) {
             const bf_param_info *p = bf_model_param(m, i);
-            int o = bf_model_param_offset(m, i) + (p->colour ? c : 0);
+            int o = bf_model_param_offset(m, i) + (p->color ? c : 0);
             if (is_weight(p)) {
                 put_channel(m, i, x, c, clamp_param(p, r > 0.0 ? r * xs[o] : 1e-3));
                 if (r * xs[o] / p->hi > *over)
@@ -505,7 +505,7 @@ static void scan_raising_f0(const start *st, const scan *sc, double h)
         for (int i = 0; i < st->np; i++) {
             const bf_param_info *p = bf_model_param(m, i);
             if (p->role == BF_ROLE_F0) /* every channel of a colour one (a conductor's r) */
-                for (int c = 0; c < (p->colour ? st->C : 1); c++) {
+                for (int c = 0; c < (p->color ? st->C : 1); c++) {
                     double *v = x + bf_model_param_offset(m, i) + c;
                     *v = clamp_param(p, *v * over);
                 }
@@ -525,7 +525,7 @@ static void clamp_all(const bf_model *m, double *x)
     const int C = bf_model_channels(m);
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        for (int c = 0; c < (p->colour ? C : 1); c++) {
+        for (int c = 0; c < (p->color ? C : 1); c++) {
             double *v = x + bf_model_param_offset(m, i) + c;
             *v = clamp_param(p, *v);
         }

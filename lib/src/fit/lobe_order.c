@@ -54,7 +54,7 @@ static int lobe_entries(const bf_model *m, int k, int *e, int max)
         if (p->lobe != k)
             continue;
         const int off = bf_model_param_offset(m, i);
-        for (int c = 0; c < (p->colour ? C : 1) && n < max; c++)
+        for (int c = 0; c < (p->color ? C : 1) && n < max; c++)
             e[n++] = off + c;
     }
     return n;

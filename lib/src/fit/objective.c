@@ -157,8 +157,8 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
     double bsum = -INFINITY;
     for (int c = 0; c < o->C; c++) {
         double sum = 0.0;
-        for (int q = 0; q < o->ncolour; q++)
-            sum += x[o->colour_off[q] + c * o->colour_step[q]];
+        for (int q = 0; q < o->ncolor; q++)
+            sum += x[o->color_off[q] + c * o->color_step[q]];
         if (sum > bsum) {
             bsum = sum;
             best = c;
@@ -167,8 +167,8 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
     if (grad) {
         for (int j = 0; j < o->nz; j++)
             grad[j] = 0.0;
-        for (int q = 0; q < o->ncolour; q++) {
-            int k = o->colour_off[q] + best * o->colour_step[q];
+        for (int q = 0; q < o->ncolor; q++) {
+            int k = o->color_off[q] + best * o->color_step[q];
             if (o->zpos[k] >= 0)
                 grad[o->zpos[k]] = bf_obj_dxdz(o->scale[k], x[k]);
         }
@@ -195,8 +195,8 @@ void bf_objective_free(bf_objective *o)
     free(o->sw);
     free(o->delta);
     free(o->meas_t);
-    free(o->colour_off);
-    free(o->colour_step);
+    free(o->color_off);
+    free(o->color_step);
     free(o);
 }
 
@@ -375,11 +375,11 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
     o->zlo = malloc(P1 * sizeof *o->zlo);
     o->zhi = malloc(P1 * sizeof *o->zhi);
     o->delta = malloc((size_t)o->C * sizeof *o->delta);
-    o->colour_off = malloc(np * sizeof *o->colour_off);
-    o->colour_step = malloc(np * sizeof *o->colour_step);
+    o->color_off = malloc(np * sizeof *o->color_off);
+    o->color_step = malloc(np * sizeof *o->color_step);
     o->ws = bf_obj_ws_list_new();
     if (!o->ws || !o->lo || !o->hi || !o->fixed || !o->fixval || !o->scale || !o->zpos || !o->kidx || !o->zlo ||
-        !o->zhi || !o->delta || !o->colour_off || !o->colour_step) {
+        !o->zhi || !o->delta || !o->color_off || !o->color_step) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for the objective");
         goto fail;
     }
@@ -399,9 +399,9 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
     }
 
     for (int i = 0; i < bf_model_nparams(m); i++)
-        if (bf_model_param(m, i)->colour || bf_model_param(m, i)->mono) {
-            o->colour_step[o->ncolour] = bf_model_param(m, i)->colour;
-            o->colour_off[o->ncolour++] = bf_model_param_offset(m, i);
+        if (bf_model_param(m, i)->color || bf_model_param(m, i)->mono) {
+            o->color_step[o->ncolor] = bf_model_param(m, i)->color;
+            o->color_off[o->ncolor++] = bf_model_param_offset(m, i);
         }
 
     bf_problem_init(&o->problem);
@@ -412,7 +412,7 @@ bf_status bf_objective_new(const bf_model *m, bf_samples *s, const bf_objective_
     o->problem.eval = problem_eval;
     o->problem.normal = problem_normal;
     o->problem.user = o;
-    o->problem.constraint = o->ncolour > 0 ? problem_constraint : NULL;
+    o->problem.constraint = o->ncolor > 0 ? problem_constraint : NULL;
     *out = o;
     return BF_OK;
 fail:

@@ -46,9 +46,9 @@ struct bf_objective {
     double wsum;      /* sum of w over them (npos unweighted) */
 
     /* Energy constraint: colour parameters summed per channel; channel c's entry is
-     * colour_off + c * colour_step (step 0 for a mono parameter: one value for all). */
-    int ncolour;
-    int *colour_off, *colour_step;
+     * color_off + c * color_step (step 0 for a mono parameter: one value for all). */
+    int ncolor;
+    int *color_off, *color_step;
 
     bf_obj_ws_list *ws; /* the passes' workspaces (see above) */
 

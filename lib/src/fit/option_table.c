@@ -438,7 +438,7 @@ const option_row option_rows[] = {
          "spectral data to linear sRGB (CIE 1931 2 deg, D65; --color srgb)", NULL, NULL, NULL, 0, 0, NULL),
      .set = set_spectral_flag, .get = get_spectral_flag},
     {ROW("color", "preprocessing", DATA_TASKS, BF_OPTION_CHOICE, "srgb|acescg|xyz",
-         "spectral data to this colour space (docs/colour.md)", NULL, "srgb|acescg|xyz", NULL, 0, 0, NULL),
+         "spectral data to this colour space (docs/color.md)", NULL, "srgb|acescg|xyz", NULL, 0, 0, NULL),
      .set = set_color, .get = get_color},
     {ROW("illuminant", "preprocessing", DATA_TASKS, BF_OPTION_CHOICE, "d65|e|a|d50",
          "illuminant of --color/--rgb, or of --luminance on spectra (default d65)", NULL, "d65|e|a|d50", "d65", 0, 0,

@@ -165,7 +165,7 @@ bf_status bf_overrides_check(const bf_model *m, int channels, const bf_override 
             return bf_fail(err, BF_ERR_ARG, "%s %s: model %s has no parameter '%s'", what, tgt, bf_model_name(m),
                            ov->name);
         const bf_param_info *p = bf_model_param(m, i);
-        if (ov->channel >= 0 && !p->colour)
+        if (ov->channel >= 0 && !p->color)
             return bf_fail(err, BF_ERR_ARG, "%s %s: %s is one scalar for every channel, it takes no channel index",
                            what, tgt, ov->name);
         if (channels > 0 && ov->channel >= channels)
@@ -198,7 +198,7 @@ bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int no
     int np = bf_model_nparams(m);
     for (int i = 0; i < np; i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        int off = bf_model_param_offset(m, i), cnt = p->colour ? o->C : 1;
+        int off = bf_model_param_offset(m, i), cnt = p->color ? o->C : 1;
         for (int c = 0; c < cnt; c++) {
             o->lo[off + c] = closed_lo(p);
             o->hi[off + c] = closed_hi(p);
@@ -214,7 +214,7 @@ bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ovs, int no
         double lo, hi;
         override_interval(ov, p, &lo, &hi, NULL); /* checked above */
         int c0 = ov->channel >= 0 ? ov->channel : 0;
-        int c1 = ov->channel >= 0 ? ov->channel + 1 : (p->colour ? o->C : 1);
+        int c1 = ov->channel >= 0 ? ov->channel + 1 : (p->color ? o->C : 1);
         for (int c = c0; c < c1; c++) {
             int k = off + c;
             o->fixed[k] = (unsigned char)ov->fix;

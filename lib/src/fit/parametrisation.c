@@ -47,7 +47,7 @@ void bf_obj_setup_scale(bf_objective *o)
     o->nz = 0;
     for (int i = 0; i < np; i++) {
         const bf_param_info *p = bf_model_param(m, i);
-        int off = bf_model_param_offset(m, i), cnt = p->colour ? o->C : 1;
+        int off = bf_model_param_offset(m, i), cnt = p->color ? o->C : 1;
         for (int c = 0; c < cnt; c++) {
             int k = off + c;
             bf_scale sc = p->scale;

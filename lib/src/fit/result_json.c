@@ -52,7 +52,7 @@ static cJSON *flagged_names(const bf_fit_result *r, const unsigned char *flags)
     for (int i = 0; a && flags && i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         const unsigned char *f = flags + bf_model_param_offset(m, i);
-        int nc = p->colour ? C : 1, nf = 0;
+        int nc = p->color ? C : 1, nf = 0;
         for (int c = 0; c < nc; c++)
             nf += f[c] != 0;
         if (nf == nc) {
@@ -81,12 +81,12 @@ static cJSON *conductor_json(const bf_model *m, const double *x)
         const bf_param_info *g = bf_model_param(m, i), *r = bf_model_param(m, i - 1);
         if (g->role != BF_ROLE_EDGE_TINT || (!o && !(o = cJSON_CreateObject())))
             continue;
-        const int K = g->colour ? C : 1; /* mono ties r and g to one value */
+        const int K = g->color ? C : 1; /* mono ties r and g to one value */
         cJSON *na = cJSON_CreateArray(), *ka = cJSON_CreateArray();
         for (int c = 0; c < K; c++) {
             double n, k;
-            bf_conductor_nk(x[bf_model_param_offset(m, i - 1) + (r->colour ? c : 0)],
-                            x[bf_model_param_offset(m, i) + c], &n, &k, NULL);
+            bf_conductor_nk(x[bf_model_param_offset(m, i - 1) + (r->color ? c : 0)], x[bf_model_param_offset(m, i) + c],
+                            &n, &k, NULL);
             cJSON_AddItemToArray(na, cJSON_CreateNumber(n));
             cJSON_AddItemToArray(ka, cJSON_CreateNumber(k));
         }

@@ -28,7 +28,7 @@ int bf_silence_param_of(const bf_model *m, int k)
 {
     const int C = bf_model_channels(m);
     for (int i = 0; i < bf_model_nparams(m); i++) {
-        const int off = bf_model_param_offset(m, i), n = bf_model_param(m, i)->colour ? C : 1;
+        const int off = bf_model_param_offset(m, i), n = bf_model_param(m, i)->color ? C : 1;
         if (k >= off && k < off + n)
             return i;
     }

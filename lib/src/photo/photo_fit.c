@@ -67,7 +67,7 @@ static bf_status setup(photo_run *run, bf_error *err)
     int np = bf_model_nparams(run->model);
     for (int i = 0; i < np; i++) {
         const bf_param_info *pi = bf_model_param(run->model, i);
-        int off = bf_model_param_offset(run->model, i), cnt = pi->colour ? run->C : 1;
+        int off = bf_model_param_offset(run->model, i), cnt = pi->color ? run->C : 1;
         for (int c = 0; c < cnt; c++) {
             int e = off + c;
             double lo = pi->lo, hi = pi->hi, hair = 1e-6 * (hi - lo);
@@ -94,7 +94,7 @@ static bf_status setup(photo_run *run, bf_error *err)
                 break;
             }
             const bf_param_info *pi = bf_model_param(run->model, i);
-            int off = bf_model_param_offset(run->model, i), cnt = pi->colour ? run->C : 1;
+            int off = bf_model_param_offset(run->model, i), cnt = pi->color ? run->C : 1;
             for (int c = 0; c < cnt; c++)
                 if (run->pixel_free[off + c]) {
                     run->pixel_free[off + c] = 0;

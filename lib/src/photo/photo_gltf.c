@@ -166,7 +166,7 @@ static bf_status find_param(const bf_photo_result *r, const char *name, param_at
                        name);
     const bf_param_info *pi = bf_model_param(r->model, i);
     at->off = bf_model_param_offset(r->model, i);
-    at->ncol = pi->colour ? r->channels : 1;
+    at->ncol = pi->color ? r->channels : 1;
     at->def = pi->def;
     return BF_OK;
 }

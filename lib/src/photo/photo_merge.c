@@ -266,7 +266,7 @@ static bf_status copy_param_maps(merge *m, const tile *ti, bf_error *err)
     int np = bf_model_nparams(r->model);
     for (int q = 0; q < np; q++) {
         const bf_param_info *pi = bf_model_param(r->model, q);
-        int off = bf_model_param_offset(r->model, q), ch = pi->colour ? C : 1;
+        int off = bf_model_param_offset(r->model, q), ch = pi->color ? C : 1;
         char name[96];
         snprintf(name, sizeof name, "%s.exr", pi->name);
         if ((rc = copy_rows(ti, name, W, H, ch, buf, err)) != BF_OK)

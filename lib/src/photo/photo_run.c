@@ -28,13 +28,13 @@ void photo_pixel_start(const photo_run *run, int cluster, const double *albedo, 
         const bf_param_info *pi = bf_model_param(run->model, i);
         if (pi->role != BF_ROLE_DIFFUSE)
             continue;
-        int off = bf_model_param_offset(run->model, i), cnt = pi->colour ? run->C : 1;
+        int off = bf_model_param_offset(run->model, i), cnt = pi->color ? run->C : 1;
         for (int c = 0; c < cnt; c++) {
             int e = off + c;
             if (!run->pixel_free[e])
                 continue;
-            double mean = run->cluster_albedo[(size_t)cluster * (size_t)run->C + (size_t)(pi->colour ? c : 0)];
-            double ratio = mean > 0.0 ? albedo[pi->colour ? c : 0] / mean : 1.0;
+            double mean = run->cluster_albedo[(size_t)cluster * (size_t)run->C + (size_t)(pi->color ? c : 0)];
+            double ratio = mean > 0.0 ? albedo[pi->color ? c : 0] / mean : 1.0;
             double v = x[e] * (isfinite(ratio) ? ratio : 1.0);
             x[e] = fmin(fmax(v, run->lo[e]), run->hi[e]);
         }

@@ -31,7 +31,7 @@ bf_status bf_photo_check_output(const char *dir, bf_error *err)
 static bf_status write_param(const bf_out_folder *f, const bf_photo_result *r, int i, float *buf, bf_error *err)
 {
     const bf_param_info *pi = bf_model_param(r->model, i);
-    int off = bf_model_param_offset(r->model, i), ch = pi->colour ? r->channels : 1;
+    int off = bf_model_param_offset(r->model, i), ch = pi->color ? r->channels : 1;
     size_t n = (size_t)r->width * (size_t)r->height;
     for (size_t p = 0; p < n; p++)
         for (int c = 0; c < ch; c++)
@@ -54,7 +54,7 @@ static int albedo_image(const bf_photo_result *r, float *buf)
         int off = bf_model_param_offset(r->model, i);
         for (size_t p = 0; p < n; p++)
             for (int c = 0; c < 3; c++) {
-                int cc = pi->colour ? (C == 3 ? c : 0) : 0;
+                int cc = pi->color ? (C == 3 ? c : 0) : 0;
                 buf[3 * p + (size_t)c] = r->mask[p] ? r->params[p * (size_t)r->nvalues + (size_t)(off + cc)] : 0.0f;
             }
         return 1;

@@ -43,7 +43,7 @@ cJSON *bf_json_params(const bf_model *m, const double *x)
     for (int i = 0; i < bf_model_nparams(m); i++) {
         const bf_param_info *p = bf_model_param(m, i);
         const double *v = x + bf_model_param_offset(m, i);
-        if (p->colour) {
+        if (p->color) {
             cJSON *a = cJSON_CreateArray();
             for (int c = 0; c < C; c++)
                 cJSON_AddItemToArray(a, bf_json_number(v[c]));

@@ -131,7 +131,7 @@ static bf_status fill_params(const char *path, const char *text, const cJSON *pa
         if (!v)
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: missing parameter \"%s\" of model %s", path,
                            line_of_key(text, "params"), pi->name, bf_model_spec(m));
-        if (pi->colour && cJSON_IsArray(v)) {
+        if (pi->color && cJSON_IsArray(v)) {
             if (cJSON_GetArraySize(v) != C)
                 return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s has %d values for %d channels", path,
                                line_of_key(text, pi->name), pi->name, cJSON_GetArraySize(v), C);
@@ -142,7 +142,7 @@ static bf_status fill_params(const char *path, const char *text, const cJSON *pa
                 if ((rc = read_value(path, text, e, pi->name, dst + c++, err)) != BF_OK)
                     return rc;
             }
-        } else if (pi->colour && C > 1) {
+        } else if (pi->color && C > 1) {
             return bf_fail(err, BF_ERR_PARSE, "%s:%zu: colour parameter %s needs an array of %d values", path,
                            line_of_key(text, pi->name), pi->name, C);
         } else if ((rc = read_value(path, text, v, pi->name, dst, err)) != BF_OK) {

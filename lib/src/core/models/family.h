@@ -67,17 +67,17 @@ struct bf_family {
 
 /* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when
  * m->lobes > 1. */
-bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def,
-                             bf_scale scale, int lobe, bf_param_role role, bf_error *err);
+bf_status bf_model_add_param(bf_model *m, const char *name, int color, double lo, double hi, double def, bf_scale scale,
+                             int lobe, bf_param_role role, bf_error *err);
 /* Same, with open bounds. */
-bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+bf_status bf_model_add_param_open(bf_model *m, const char *name, int color, double lo, int lo_open, double hi,
                                   int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* A table of parameters the way the artist-facing families declare them: outside the
  * lobes, linear, in [lo, 1]; `colour` 1 for a colour. */
 typedef struct bf_param_row {
     const char *name;
-    int colour;
+    int color;
     double lo, def;
     bf_param_role role;
 } bf_param_row;

@@ -61,7 +61,7 @@ static void chroma_scalars(const bf_model *m, const double *x, int k, int c, dou
     int first = m->lobe_first[k];
     for (int q = 0; q < m->lobe_nscalar[k]; q++) {
         int p = first + 1 + q;
-        s[q] = x[m->offset[p] + (m->param[p].colour ? c : 0)];
+        s[q] = x[m->offset[p] + (m->param[p].color ? c : 0)];
     }
 }
 
@@ -87,7 +87,7 @@ void bf_eval_diffuse_lobes(const bf_model *m, const double *x, const bf_geometry
         any_chroma |= chroma[k];
         for (int q = 0; q < nscalar[k]; q++) {
             entry[k][q] = m->offset[first + 1 + q];
-            per_channel[k][q] = m->param[first + 1 + q].colour;
+            per_channel[k][q] = m->param[first + 1 + q].color;
         }
     }
     const int diffuse = m->offset[0];

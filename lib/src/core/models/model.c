@@ -110,17 +110,17 @@ static void make_canonical_spec(bf_model *m)
 static bf_status mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
 {
     const char *fam = m->family->info.name;
-    int first = -1, ncolour = 0;
+    int first = -1, ncolor = 0;
     for (int i = 0; i < m->nparam; i++)
-        if (m->param[i].colour) {
-            ncolour++;
+        if (m->param[i].color) {
+            ncolor++;
             if (first < 0)
                 first = i;
         }
     int all = !strcmp(m->mono, "all"), spec = !strcmp(m->mono, "specular");
     if (all || spec) {
         for (int i = 0; i < m->nparam; i++)
-            tie[i] = m->param[i].colour && (all || m->param[i].role != BF_ROLE_DIFFUSE);
+            tie[i] = m->param[i].color && (all || m->param[i].role != BF_ROLE_DIFFUSE);
     } else {
         for (const char *p = m->mono; *p;) {
             size_t len = strcspn(p, "+");
@@ -130,7 +130,7 @@ static bf_status mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
             if (i < 0 || len >= sizeof name)
                 return bf_fail(err, BF_ERR_ARG, "model %s: mono names '%.*s', which is not one of its parameters", fam,
                                (int)len, p);
-            if (!m->param[i].colour)
+            if (!m->param[i].color)
                 return bf_fail(err, BF_ERR_ARG, "model %s: mono names %s, which is not a colour parameter", fam, name);
             tie[i] = 1;
             p += len;
@@ -141,13 +141,13 @@ static bf_status mono_resolve(bf_model *m, unsigned char *tie, bf_error *err)
     int ntie = 0, is_spec = 1;
     for (int i = 0; i < m->nparam; i++) {
         ntie += tie[i];
-        if (m->param[i].colour && tie[i] != (m->param[i].role != BF_ROLE_DIFFUSE))
+        if (m->param[i].color && tie[i] != (m->param[i].role != BF_ROLE_DIFFUSE))
             is_spec = 0;
     }
     if (ntie == 0)
         return bf_fail(err, BF_ERR_ARG, "model %s: mono=%s ties nothing (its only colour parameter is %s)", fam,
                        m->mono, first >= 0 ? m->param[first].name : "none");
-    if (ntie == ncolour)
+    if (ntie == ncolor)
         snprintf(m->mono, sizeof m->mono, "all");
     else if (is_spec)
         snprintf(m->mono, sizeof m->mono, "specular");
@@ -183,11 +183,11 @@ static bf_status mono_apply(bf_model *m, bf_error *err)
     m->nfree = 0;
     for (int i = 0; i < m->nparam; i++) {
         if (tie[i]) {
-            m->param[i].colour = 0;
+            m->param[i].color = 0;
             m->param[i].mono = 1;
         }
         m->offset[i] = m->nfree;
-        m->nfree += m->param[i].colour ? C : 1;
+        m->nfree += m->param[i].color ? C : 1;
     }
     if (!in)
         return BF_OK;
@@ -196,8 +196,8 @@ static bf_status mono_apply(bf_model *m, bf_error *err)
         return bf_fail(err, BF_ERR_NOMEM, "out of memory");
     }
     for (int i = 0; i < in->nparam; i++)
-        for (int c = 0; c < (in->param[i].colour ? C : 1); c++)
-            m->xmap[in->offset[i] + c] = m->offset[i] + (m->param[i].colour ? c : 0);
+        for (int c = 0; c < (in->param[i].color ? C : 1); c++)
+            m->xmap[in->offset[i] + c] = m->offset[i] + (m->param[i].color ? c : 0);
     m->inner = in;
     return BF_OK;
 }
@@ -255,7 +255,7 @@ void bf_model_free(bf_model *m)
     free(m);
 }
 
-bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, double lo, int lo_open, double hi,
+bf_status bf_model_add_param_open(bf_model *m, const char *name, int color, double lo, int lo_open, double hi,
                                   int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {
     if (m->nparam >= BF_MAX_PARAMS)
@@ -267,7 +267,7 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, dou
         snprintf(m->names[i], BF_NAME_LEN, "%s", name);
     bf_param_info *p = &m->param[i];
     p->name = m->names[i];
-    p->colour = colour;
+    p->color = color;
     p->lo = lo;
     p->hi = hi;
     p->lo_open = lo_open;
@@ -277,29 +277,29 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int colour, dou
     p->lobe = lobe;
     p->role = role;
     m->offset[i] = m->nfree;
-    m->nfree += colour ? m->channels : 1;
+    m->nfree += color ? m->channels : 1;
     if (lobe > 0 && lobe <= BF_MAX_LOBES) {
-        if (m->lobe_first[lobe] == 0 && colour)
+        if (m->lobe_first[lobe] == 0 && color)
             m->lobe_first[lobe] = i;
         else {
             m->lobe_nscalar[lobe]++;
-            m->lobe_chroma[lobe] |= colour;
+            m->lobe_chroma[lobe] |= color;
         }
     }
     return BF_OK;
 }
 
-bf_status bf_model_add_param(bf_model *m, const char *name, int colour, double lo, double hi, double def,
-                             bf_scale scale, int lobe, bf_param_role role, bf_error *err)
+bf_status bf_model_add_param(bf_model *m, const char *name, int color, double lo, double hi, double def, bf_scale scale,
+                             int lobe, bf_param_role role, bf_error *err)
 {
-    return bf_model_add_param_open(m, name, colour, lo, 0, hi, 0, def, scale, lobe, role, err);
+    return bf_model_add_param_open(m, name, color, lo, 0, hi, 0, def, scale, lobe, role, err);
 }
 
 bf_status bf_model_add_rows(bf_model *m, const bf_param_row *rows, int n, bf_error *err)
 {
     for (int k = 0; k < n; k++) {
-        bf_status rc = bf_model_add_param(m, rows[k].name, rows[k].colour, rows[k].lo, 1.0, rows[k].def,
-                                          BF_SCALE_LINEAR, 0, rows[k].role, err);
+        bf_status rc = bf_model_add_param(m, rows[k].name, rows[k].color, rows[k].lo, 1.0, rows[k].def, BF_SCALE_LINEAR,
+                                          0, rows[k].role, err);
         if (rc != BF_OK)
             return rc;
     }
@@ -415,7 +415,7 @@ const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size
     for (int i = m->nparam - 1; i >= 0; i--) {
         if (k < m->offset[i])
             continue;
-        if (m->param[i].colour && m->channels > 1)
+        if (m->param[i].color && m->channels > 1)
             snprintf(buf, size, "%s[%d]", m->param[i].name, k - m->offset[i]);
         else
             snprintf(buf, size, "%s", m->param[i].name);
@@ -428,7 +428,7 @@ const char *bf_model_entry_name(const bf_model *m, int k, char *buf, size_t size
 void bf_model_defaults(const bf_model *m, double *x)
 {
     for (int i = 0; i < m->nparam; i++) {
-        int n = m->param[i].colour ? m->channels : 1;
+        int n = m->param[i].color ? m->channels : 1;
         for (int c = 0; c < n; c++)
             x[m->offset[i] + c] = m->param[i].def;
     }
@@ -438,11 +438,11 @@ bf_status bf_model_check(const bf_model *m, const double *x, bf_error *err)
 {
     for (int i = 0; i < m->nparam; i++) {
         const bf_param_info *p = &m->param[i];
-        int n = p->colour ? m->channels : 1;
+        int n = p->color ? m->channels : 1;
         for (int c = 0; c < n; c++) {
             double v = x[m->offset[i] + c];
             char where[48] = "";
-            if (p->colour && m->channels > 1)
+            if (p->color && m->channels > 1)
                 snprintf(where, sizeof where, "[%d]", c);
             if (!isfinite(v))
                 return bf_fail(err, BF_ERR_RANGE, "parameter %s%s is %g", p->name, where, v);

@@ -15,7 +15,7 @@ static cJSON *param_json(const bf_param_info *p)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "name", p->name);
-    cJSON_AddStringToObject(o, "kind", p->colour ? "colour" : "scalar");
+    cJSON_AddStringToObject(o, "kind", p->color ? "colour" : "scalar");
     cJSON_AddNumberToObject(o, "lower", p->lo);
     cJSON_AddNumberToObject(o, "upper", p->hi);
     cJSON_AddBoolToObject(o, "lower_open", p->lo_open);

@@ -10,7 +10,7 @@ double bf_export_param(const bf_export_material *e, const char *name, int c)
     int i = bf_model_find_param(e->model, name);
     const bf_param_info *p = bf_model_param(e->model, i);
     int off = bf_model_param_offset(e->model, i);
-    return p->colour && bf_model_channels(e->model) > 1 ? e->x[off + c] : e->x[off];
+    return p->color && bf_model_channels(e->model) > 1 ? e->x[off + c] : e->x[off];
 }
 
 void bf_export_conversion_note(const bf_export_material *e, FILE *fp)

@@ -19,7 +19,7 @@
 #include "brdfit/io.h"
 #include "html/report.h"
 #include "html/viewer_table.h"
-#include "render/colour.h"
+#include "render/color.h"
 
 enum { VIEWER_POINTS = 4000 };
 

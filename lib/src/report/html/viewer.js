@@ -18,7 +18,7 @@
   const SLICE_DECADES = 6;  /* the slice's log axis spans at most this below its top */
   const POINT_TOL = 2.5;    /* samples this close (degrees) to the slice's incidence ... */
   const PLANE_TOL = 2;      /* ... and to the plane of incidence are drawn on it */
-  const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf',
+  const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf',
                    '#bcbd22', '#7f7f7f'];
 
   const materials = [];
@@ -125,7 +125,7 @@
     void main() { uv = pos; gl_Position = vec4(pos, 0.0, 1.0); }`;
   const FRAG = `#version 300 es
     precision highp float; precision highp int;
-    in vec2 uv; out vec4 colour;
+    in vec2 uv; out vec4 color;
     uniform highp sampler2D table; uniform ivec3 grid; uniform vec3 light; uniform float exposure;
     const float HALF_PI = 1.5707963267948966;
     vec4 node(int i, int j, int k) { return texelFetch(table, ivec2(i, j + grid.y * k), 0); }
@@ -133,12 +133,12 @@
     void main() {
       vec2 s = vec2(uv.x, uv.y);
       float r2 = dot(s, s);
-      if (r2 >= 1.0) { colour = vec4(0.0, 0.0, 0.0, 1.0); return; }
+      if (r2 >= 1.0) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }
       vec3 n = vec3(s, sqrt(1.0 - r2)), V = vec3(0.0, 0.0, 1.0), L = light;
       float nl = dot(n, L);
-      if (nl <= 0.0 || n.z <= 0.0) { colour = vec4(0.0, 0.0, 0.0, 1.0); return; }
+      if (nl <= 0.0 || n.z <= 0.0) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }
       vec3 h = L + V;
-      if (length(h) < 1e-12) { colour = vec4(0.0, 0.0, 0.0, 1.0); return; }
+      if (length(h) < 1e-12) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }
       h = normalize(h);
       float cth = clamp(dot(n, h), -1.0, 1.0), cd = clamp(dot(L, h), -1.0, 1.0);
       vec3 np = n - cth * h, lp = L - cd * h;
@@ -160,7 +160,7 @@
       }
       vec3 f = ws > 1e-6 ? acc / ws : vec3(0.0);
       vec3 e = clamp(f * nl * exposure, 0.0, 1.0);
-      colour = vec4(srgb(e.r), srgb(e.g), srgb(e.b), 1.0);
+      color = vec4(srgb(e.r), srgb(e.g), srgb(e.b), 1.0);
     }`;
 
   function initGL() {
@@ -335,7 +335,7 @@
     ctx.save();
     ctx.beginPath(); ctx.rect(L, T, W, H); ctx.clip();
     for (const cv of curves) {
-      ctx.strokeStyle = cv.s.colour;
+      ctx.strokeStyle = cv.s.color;
       ctx.lineWidth = cv.s.kind === 'measured' ? 2.5 : 1.5;
       ctx.beginPath();
       let pen = false;
@@ -479,10 +479,10 @@
       const vals = [];
       for (let x = 0; x < HD; x += 2) for (let y = 0; y < HD; y += 2) vals.push(at(base, ...hdAngles(x, y)));
       const [lo, hi] = logRange(vals);
-      const valueColour = (v) => Number.isNaN(v) ? NONE : v <= 0 ? VIRIDIS[0] : ramp(VIRIDIS, (Math.log10(v) - lo) / (hi - lo));
+      const valueColor = (v) => Number.isNaN(v) ? NONE : v <= 0 ? VIRIDIS[0] : ramp(VIRIDIS, (Math.log10(v) - lo) / (hi - lo));
       hdClear(left);
       hdClear(right);
-      left.putImageData(hdImage(m, (th, td) => valueColour(at(base, th, td))), HD_OX, HD_OY);
+      left.putImageData(hdImage(m, (th, td) => valueColor(at(base, th, td))), HD_OX, HD_OY);
       hdFrame(left, VIRIDIS, `1e${lo.toFixed(1)}`, `1e${hi.toFixed(1)}`, 'f (1/sr)');
       if (model) {
         right.putImageData(hdImage(m, (th, td) => {
@@ -545,7 +545,7 @@
       box.checked = true;
       box.addEventListener('change', () => { s.on = box.checked; s.figure.style.display = s.on ? '' : 'none'; drawSlice(m); });
       s.toggle = box;
-      const label = el('label', {style: `color:${s.colour}`}, box, ' ' + s.name + ' ');
+      const label = el('label', {style: `color:${s.color}`}, box, ' ' + s.name + ' ');
       toggles.append(label);
       const fig = el('figure', s.kind === 'model' ? {id: `${m.id}-view-${s.index}`} : {});
       if (s.values) {
@@ -616,7 +616,7 @@
     const count = data.grid.nh * data.grid.nd * data.grid.np;
     materials.push(m);
     const meas = data.measured || {};
-    const ms = {kind: 'measured', name: 'measured', colour: '#000', on: true, rank: 0, why: meas.why || ''};
+    const ms = {kind: 'measured', name: 'measured', color: '#000', on: true, rank: 0, why: meas.why || ''};
     if (meas.table) ms.values = await valuesOf(meas.table, count, data.grid.nh);
     if (meas.points) {
       const n = meas.points.n;
@@ -628,7 +628,7 @@
     let c = 0;
     for (const e of data.models)
       m.sources.push({kind: 'model', name: e.name, index: e.index, rank: e.rank, k: e.k, on: true,
-                      colour: COLOURS[c++ % COLOURS.length], values: await valuesOf(e.table, count, data.grid.nh)});
+                      color: COLORS[c++ % COLORS.length], values: await valuesOf(e.table, count, data.grid.nh)});
     m.exposure = autoExposure(m);
     build(m);
     drawSpheres(m);

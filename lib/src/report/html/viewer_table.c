@@ -21,7 +21,7 @@
 #include "brdfit/merl.h"
 #include "brdfit/render.h"
 #include "io/gltf_doc.h"
-#include "render/colour.h"
+#include "render/color.h"
 
 void viewer_node_angles(int i, int j, int k, double *theta_h, double *theta_d, double *phi_d)
 {

@@ -40,7 +40,7 @@ static void series_free(plot_series *s)
         for (size_t i = 0; i < s->n; i++)
             free(s->labels[i]);
     free(s->labels);
-    free(s->colours);
+    free(s->colors);
     free(s->name);
     free(s->x);
     free(s);
@@ -123,9 +123,9 @@ int plot_raster(plot *p, int width, int height, const unsigned char *rgb)
     return 0;
 }
 
-int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3])
+int plot_color_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3])
 {
-    colour_bar *b = p->bar ? p->bar : calloc(1, sizeof *b);
+    color_bar *b = p->bar ? p->bar : calloc(1, sizeof *b);
     if (!b)
         return -1;
     p->bar = b;
@@ -172,14 +172,14 @@ int plot_point_labels(plot_series *s, const char *const *labels)
     return 0;
 }
 
-int plot_point_colours(plot_series *s, const unsigned char *rgb)
+int plot_point_colors(plot_series *s, const unsigned char *rgb)
 {
     unsigned char *c = malloc(3 * (s->n ? s->n : 1));
     if (!c)
         return -1;
     memcpy(c, rgb, 3 * s->n);
-    free(s->colours);
-    s->colours = c;
+    free(s->colors);
+    s->colors = c;
     return 0;
 }
 

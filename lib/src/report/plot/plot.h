@@ -48,8 +48,8 @@ typedef struct plot_series {
     double line_width, marker_size; /* in units of the base line width / font size */
     size_t n;
     double *x, *y;
-    char **labels;          /* n point labels (NULL entries: none), or NULL */
-    unsigned char *colours; /* n RGB byte triples, one per marker (plot_point_colours), or
+    char **labels;         /* n point labels (NULL entries: none), or NULL */
+    unsigned char *colors; /* n RGB byte triples, one per marker (plot_point_colors), or
                                NULL: rgb for every marker */
 } plot_series;
 
@@ -78,7 +78,7 @@ typedef struct plot_layout {
     int nlegend; /* series with a name, in order */
     double legend_x, legend_y, legend_w, legend_h;
     int legend_inside; /* 1: in a corner of the plot area (a wide legend) */
-    int colour_bar;    /* 1: a colour bar right of the plot area (and legend) */
+    int color_bar;     /* 1: a colour bar right of the plot area (and legend) */
     double bar_x, bar_w;
     plot_ticks bar_ticks;
 } plot_layout;
@@ -102,7 +102,7 @@ int plot_axis_ticks(plot *p, int axis, int n, const double *values, const char *
 int plot_raster(plot *p, int width, int height, const unsigned char *rgb);
 /* A colour bar right of the plot area: lut[0] at lo up to lut[PLOT_LUT-1] at hi, on a
  * linear or log scale, ticked and titled (markup). 0, or -1 when out of memory. */
-int plot_colour_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3]);
+int plot_color_bar(plot *p, const char *title, double lo, double hi, int log, const unsigned char lut[PLOT_LUT][3]);
 /* A series (x, y copied); NULL when out of memory. Colour, dash, marker and sizes are
  * set on the returned series; defaults: black, solid, circle, opaque, size 1. */
 plot_series *plot_add(plot *p, const char *name, plot_style style, size_t n, const double *x, const double *y);
@@ -111,7 +111,7 @@ int plot_point_labels(plot_series *s, const char *const *labels);
 /* A colour per marker (3 * n RGB bytes, copied), in place of rgb: values shown as
  * coloured points against a colour bar. Markers are drawn in the series' order, the
  * last on top. 0, or -1 when out of memory. */
-int plot_point_colours(plot_series *s, const unsigned char *rgb);
+int plot_point_colors(plot_series *s, const unsigned char *rgb);
 /* A faint guide line across the plot area at value v of the axis. */
 int plot_guide(plot *p, int axis, double v, const double rgb[3]);
 /* A line of text under the plot area (markup). */

@@ -80,8 +80,8 @@ static void draw_series(cairo_t *cr, const plot_layout *l, const plot_series *s,
     if (s->style & PLOT_MARKERS)
         for (size_t i = 0; i < s->n; i++)
             if (plot_drawable(l, s->x[i], s->y[i])) {
-                if (s->colours) {
-                    const unsigned char *c = s->colours + 3 * i;
+                if (s->colors) {
+                    const unsigned char *c = s->colors + 3 * i;
                     cairo_set_source_rgba(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, s->alpha);
                 }
                 marker(cr, s->marker, plot_map(l, PLOT_X, s->x[i]), plot_map(l, PLOT_Y, s->y[i]),
@@ -188,7 +188,7 @@ static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, dou
     cairo_surface_destroy(img);
 }
 
-static double bar_map(const colour_bar *b, const plot_layout *l, double v)
+static double bar_map(const color_bar *b, const plot_layout *l, double v)
 {
     double t = b->log ? (log10(v) - log10(b->lo)) / (log10(b->hi) - log10(b->lo)) : (v - b->lo) / (b->hi - b->lo);
     return l->y1 - t * (l->y1 - l->y0);
@@ -196,7 +196,7 @@ static double bar_map(const colour_bar *b, const plot_layout *l, double v)
 
 /* The colour bar: the table's colours bottom (lo) to top (hi), framed, ticked on the
  * right, titled beside its labels. */
-static void draw_colour_bar(cairo_t *cr, const colour_bar *b, const plot_layout *l, double lw)
+static void draw_color_bar(cairo_t *cr, const color_bar *b, const plot_layout *l, double lw)
 {
     double font = l->font, tick_font = 0.9 * font, tick = 0.4 * font, x = l->bar_x, w = l->bar_w;
     unsigned char strip[PLOT_LUT * 3];
@@ -377,7 +377,7 @@ void plot_draw(cairo_t *cr, const plot *p, const plot_layout *l)
     draw_titles(cr, p, l, k);
     if (l->nlegend)
         draw_legend(cr, p, l, k);
-    if (l->colour_bar)
-        draw_colour_bar(cr, p->bar, l, k.lw);
+    if (l->color_bar)
+        draw_color_bar(cr, p->bar, l, k.lw);
     draw_labels(cr, p, l, 0.85 * k.font);
 }

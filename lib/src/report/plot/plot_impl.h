@@ -21,12 +21,12 @@ typedef struct axis_spec {
 } axis_spec;
 
 /* A colour bar right of the plot area: what the colours of a raster mean. */
-typedef struct colour_bar {
+typedef struct color_bar {
     char *title;
     double lo, hi;
     int log;
     unsigned char lut[PLOT_LUT][3];
-} colour_bar;
+} color_bar;
 
 typedef struct guide {
     int axis;
@@ -44,7 +44,7 @@ struct plot {
     int nnotes;
     unsigned char *raster; /* rw x rh RGB bytes over the plot area, or NULL */
     int rw, rh;
-    colour_bar *bar; /* or NULL */
+    color_bar *bar; /* or NULL */
 };
 
 /* ---- Text (plot_text.c) ----------------------------------------------------------- */

@@ -117,7 +117,7 @@ void plot_layout_with(const plot *p, cairo_t *cr, int width, int height, plot_la
     double right = (l->nlegend && !l->legend_inside ? l->legend_w + 1.2 * font : 0.0) + 1.5 * font;
     if (p->bar) {
         /* The bar, its tick labels and its title (turned, reading upwards). */
-        l->colour_bar = 1;
+        l->color_bar = 1;
         plot_make_ticks(p->bar->lo, p->bar->hi, p->bar->log, 5, 0, 0.0, &l->bar_ticks);
         l->bar_w = 0.9 * font;
         right += l->bar_w + tick + 0.3 * font + max_label_width(cr, &l->bar_ticks, tick_font) +

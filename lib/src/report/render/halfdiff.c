@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "brdfit/render.h"
-#include "colour.h"
+#include "color.h"
 
 void bf_halfdiff_dirs(double theta_h, double theta_d, double phi_d, double L[3], double V[3])
 {

@@ -106,7 +106,7 @@ static int theta_h_axis(plot *p)
 /* A figure's colour scale: the map from a value to a colour (colour(v, a, b, rgb)), and
  * the bar beside the figure (its title, range, log or not, and table of colours). */
 typedef struct scale {
-    void (*colour)(double v, double a, double b, unsigned char *rgb);
+    void (*color)(double v, double a, double b, unsigned char *rgb);
     double a, b;
     const char *bar;
     double lo, hi;
@@ -120,12 +120,12 @@ static unsigned char *raster(const double *v, int w, int h, const scale *sc)
     unsigned char *px = malloc((size_t)w * (size_t)h * 3);
     for (int j = 0; px && j < h; j++)
         for (int i = 0; i < w; i++)
-            sc->colour(v[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], sc->a, sc->b,
-                       px + 3 * ((size_t)j * (size_t)w + (size_t)i));
+            sc->color(v[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], sc->a, sc->b,
+                      px + 3 * ((size_t)j * (size_t)w + (size_t)i));
     return px;
 }
 
-static void value_colour(double v, double lo, double hi, unsigned char *rgb)
+static void value_color(double v, double lo, double hi, unsigned char *rgb)
 {
     if (!(v > 0.0)) { /* no value (or 0: nothing to put on a log scale) */
         rgb[0] = rgb[1] = rgb[2] = HALFDIFF_NONE;
@@ -134,7 +134,7 @@ static void value_colour(double v, double lo, double hi, unsigned char *rgb)
     halfdiff_sequential((log10(v) - lo) / (hi - lo), rgb);
 }
 
-static void ratio_colour(double r, double span, double unused, unsigned char *rgb)
+static void ratio_color(double r, double span, double unused, unsigned char *rgb)
 {
     (void)unused;
     halfdiff_diverging(isnan(r) ? NAN : r / span, rgb);
@@ -144,8 +144,8 @@ void halfdiff_ratio_raster(const double *r, int w, int h, double span, unsigned 
 {
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++)
-            ratio_colour(r[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], span, 0.0,
-                         rgb + 3 * ((size_t)j * (size_t)w + (size_t)i));
+            ratio_color(r[(size_t)(h - 1 - j) * (size_t)w + (size_t)i], span, 0.0,
+                        rgb + 3 * ((size_t)j * (size_t)w + (size_t)i));
 }
 
 /* The figure around a w x h raster px (taken, and freed), with sc's colour bar. */
@@ -153,7 +153,7 @@ static plot *figure(const char *title, unsigned char *px, int w, int h, const sc
 {
     plot *p = plot_new(title);
     if (!p || !px || theta_h_axis(p) < 0 || plot_raster(p, w, h, px) < 0 ||
-        plot_colour_bar(p, sc->bar, sc->lo, sc->hi, sc->log, sc->lut) < 0) {
+        plot_color_bar(p, sc->bar, sc->lo, sc->hi, sc->log, sc->lut) < 0) {
         plot_free(p);
         p = NULL;
     }
@@ -167,7 +167,7 @@ static plot *figure(const char *title, unsigned char *px, int w, int h, const sc
 /* The log scale of values on [log10_lo, log10_hi]. */
 static void value_scale(double log10_lo, double log10_hi, scale *sc)
 {
-    *sc = (scale){value_colour, log10_lo, log10_hi, VALUE_BAR, pow(10.0, log10_lo), pow(10.0, log10_hi), 1, {{0}}};
+    *sc = (scale){value_color, log10_lo, log10_hi, VALUE_BAR, pow(10.0, log10_lo), pow(10.0, log10_hi), 1, {{0}}};
     for (int k = 0; k < PLOT_LUT; k++)
         halfdiff_sequential((double)k / (PLOT_LUT - 1), sc->lut[k]);
 }
@@ -175,7 +175,7 @@ static void value_scale(double log10_lo, double log10_hi, scale *sc)
 /* The diverging scale of log2 ratios on +-span. */
 static void ratio_scale(double span, scale *sc)
 {
-    *sc = (scale){ratio_colour, span, 0.0, RATIO_BAR, -span, span, 0, {{0}}};
+    *sc = (scale){ratio_color, span, 0.0, RATIO_BAR, -span, span, 0, {{0}}};
     for (int k = 0; k < PLOT_LUT; k++)
         halfdiff_diverging(2.0 * k / (PLOT_LUT - 1) - 1.0, sc->lut[k]);
 }
@@ -278,7 +278,7 @@ static plot *points(const samples_on_axes *in, const char *title, const scale *s
             size_t i = idx[k];
             x[k] = sqrt(fmin(fmax(th[i], 0.0), 90.0) / 90.0);
             y[k] = fmin(fmax(td[i], 0.0), 90.0);
-            sc->colour(v[i], sc->a, sc->b, rgb + 3 * k);
+            sc->color(v[i], sc->a, sc->b, rgb + 3 * k);
         }
         plot_series *s = plot_add(p, NULL, PLOT_MARKERS, m, x, y);
         if (s) {
@@ -286,7 +286,7 @@ static plot *points(const samples_on_axes *in, const char *title, const scale *s
              * so that a few thousand still show as points rather than a blot. */
             s->marker_size = m > 400 ? fmax(0.4, sqrt(400.0 / (double)m)) : 1.0;
         }
-        if (!s || plot_point_colours(s, rgb) < 0) {
+        if (!s || plot_point_colors(s, rgb) < 0) {
             plot_free(p);
             p = NULL;
         }

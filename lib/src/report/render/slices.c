@@ -7,7 +7,7 @@
 
 #include "base/sized.h"
 #include "brdfit/render.h"
-#include "colour.h"
+#include "color.h"
 #include "plot/plot.h"
 #include "render/slices.h"
 

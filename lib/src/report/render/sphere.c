@@ -6,7 +6,7 @@
 
 #include "base/sized.h"
 #include "brdfit/render.h"
-#include "colour.h"
+#include "color.h"
 
 static void dir_vec(bf_dir d, double v[3])
 {

@@ -73,10 +73,10 @@ static void check_params(checker *ck, const bf_regress_baseline *b, int c, const
             continue;
         }
         const bf_param_info *pi = bf_model_param(m, idx);
-        int n = pi->colour ? C : 1;
+        int n = pi->color ? C : 1;
         if (v->n != n) {
             ck->out->status = BF_REGRESS_FAIL;
-            if (pi->colour)
+            if (pi->color)
                 ADD(ck, lines, nlines, "  params.%s: expected holds %d value%s, the fit has %d (one per channel)",
                     v->name, v->n, v->n == 1 ? "" : "s", n);
             else

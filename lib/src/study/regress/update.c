@@ -118,7 +118,7 @@ static void update_params(updater *u, cJSON *g, const bf_fit_result *r)
         const bf_param_info *pi = bf_model_param(m, i);
         if (pinned && !cJSON_GetObjectItemCaseSensitive(g, pi->name))
             continue;
-        set(u, g, "params", pi->name, r->x + bf_model_param_offset(m, i), pi->colour ? C : 1, pi->colour);
+        set(u, g, "params", pi->name, r->x + bf_model_param_offset(m, i), pi->color ? C : 1, pi->color);
     }
 }
 

@@ -58,12 +58,12 @@ int bf_select_default_candidates(int channels, const char ***specs)
 
 /* A colour parameter besides the first (the diffuse colour) makes the highlight
  * coloured; with one channel there is no colour to speak of. */
-static int coloured_specular(const bf_model *m)
+static int colored_specular(const bf_model *m)
 {
-    int colours = 0;
+    int colors = 0;
     for (int i = 0; i < bf_model_nparams(m); i++)
-        colours += bf_model_param(m, i)->colour;
-    return bf_model_channels(m) > 1 && colours > 1;
+        colors += bf_model_param(m, i)->color;
+    return bf_model_channels(m) > 1 && colors > 1;
 }
 
 bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, const bf_options *o,
@@ -99,7 +99,7 @@ bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int chan
         c->k = bf_model_nvalues(m);
         c->anisotropic = bf_model_family(m)->anisotropic;
         c->lobes = bf_model_lobes(m);
-        c->coloured_specular = coloured_specular(m);
+        c->colored_specular = colored_specular(m);
         c->error = c->criterion = c->cv_error = NAN;
         bf_model_free(m);
     }
@@ -219,8 +219,8 @@ static int prefer(const bf_select *s, int a, int b)
         return x->anisotropic - y->anisotropic;
     if (x->lobes != y->lobes)
         return x->lobes - y->lobes;
-    if (x->coloured_specular != y->coloured_specular)
-        return x->coloured_specular - y->coloured_specular;
+    if (x->colored_specular != y->colored_specular)
+        return x->colored_specular - y->colored_specular;
     /* Unfitted candidates (NaN error) after fitted ones. */
     int nx = isnan(x->error), ny = isnan(y->error);
     if (nx != ny)
@@ -318,7 +318,7 @@ static cJSON *select_json(const bf_select *s, const char *data)
         cJSON_AddNumberToObject(o, "k", c->k);
         cJSON_AddBoolToObject(o, "anisotropic", c->anisotropic);
         cJSON_AddNumberToObject(o, "lobes", c->lobes);
-        cJSON_AddBoolToObject(o, "coloured_specular", c->coloured_specular);
+        cJSON_AddBoolToObject(o, "coloured_specular", c->colored_specular);
         bf_json_add_string(o, "status", bf_compare_state_name(c->state));
         bf_json_add_string(o, "message", c->state == BF_CMP_ERROR ? c->message : NULL);
         bf_json_add_number(o, "error", c->error);

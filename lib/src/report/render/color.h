@@ -1,6 +1,6 @@
 /* Shared by the render files: a model's C channels as one RGB pixel. */
-#ifndef BRDFIT_RENDER_COLOUR_H
-#define BRDFIT_RENDER_COLOUR_H
+#ifndef BRDFIT_RENDER_COLOR_H
+#define BRDFIT_RENDER_COLOR_H
 
 /* C = 1: grey; C = 3: as is; otherwise the mean of the channels, as grey. */
 static inline void bf_channels_to_rgb(const double *v, int C, double rgb[3])
