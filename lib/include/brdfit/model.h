@@ -55,7 +55,7 @@ typedef struct bf_param_info {
     bf_scale scale;
     int lobe; /* 0 for parameters outside the lobes, k >= 1 for lobe k */
     int mono; /* 1: a colour parameter that the spec option mono ties across
-                           channels: one value for every channel (colour is then 0) */
+                           channels: one value for every channel (color is then 0) */
     bf_param_role role;
 } bf_param_info;
 

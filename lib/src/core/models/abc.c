@@ -30,6 +30,7 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars in table order: b, c, then f0 or ior unless fresnel=none. */
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
                  double *dS)
 {

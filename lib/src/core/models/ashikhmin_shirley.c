@@ -14,6 +14,7 @@
 /* Parameter table order (both variants): rho_d, rho_s, then nu, nv (or n). */
 enum { P_RHO_D, P_RHO_S, P_NU, P_NV };
 
+/* The family's eval (family.h's arguments) for both variants, iso saying which. */
 static void eval_common(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
                         double *grad, int iso)
 {

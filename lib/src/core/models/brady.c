@@ -27,6 +27,7 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 /* Scalars in table order: f0, a, beta. */
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
                  double *dS)
 {

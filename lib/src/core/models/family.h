@@ -37,7 +37,7 @@ struct bf_model {
 
     char spec[160];
 
-    /* The spec option mono (see model.h): the parameters it names have colour 0 and mono
+    /* The spec option mono (see model.h): the parameters it names have color 0 and mono
      * 1 here, and the family's evaluator runs on `inner`, the same model without the tie,
      * through a vector expanded by xmap (inner entry -> entry here). NULL/0 otherwise. */
     char mono[64];
@@ -49,7 +49,9 @@ struct bf_model {
  * NULL, dS[s * BF_BLOCK + j] = dS / d(scalar s of the lobe), scalars in table order.
  * `s` holds the lobe's scalar values (for a lobe_chroma lobe: one channel's values of
  * its colour parameters). Invalid samples (below the horizon) may be left
- * with any finite or non-finite value: the driver overwrites them with 0. */
+ * with any finite or non-finite value: the driver overwrites them with 0.
+ * Eight flat arguments on purpose: the fused pass calls it for every block of every
+ * lobe, and a struct to fill per call would only move the same values through memory. */
 typedef void (*bf_lobe_fn)(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                            double *S, double *dS);
 
@@ -66,7 +68,8 @@ struct bf_family {
 };
 
 /* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when
- * m->lobes > 1. */
+ * m->lobes > 1. Positional on purpose: a family's configure reads as its parameter table,
+ * one call a row and one argument a column (bf_model_add_rows takes whole tables). */
 bf_status bf_model_add_param(bf_model *m, const char *name, int color, double lo, double hi, double def, bf_scale scale,
                              int lobe, bf_param_role role, bf_error *err);
 /* Same, with open bounds. */
@@ -74,7 +77,7 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int color, doub
                                   int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err);
 
 /* A table of parameters the way the artist-facing families declare them: outside the
- * lobes, linear, in [lo, 1]; `colour` 1 for a colour. */
+ * lobes, linear, in [lo, 1]; `color` 1 for a colour. */
 typedef struct bf_param_row {
     const char *name;
     int color;

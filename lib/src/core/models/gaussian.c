@@ -11,6 +11,7 @@
 
 #include <math.h>
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_gaussian(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                           double *S, double *dS)
 {

@@ -19,6 +19,7 @@
 /* Powers below exp(-665) (~1e-289) are flushed to 0 with zero derivatives (see phong.c). */
 #define LOG_TINY (-665.0)
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_hs(const bf_model *m, int lobe, const double *sc, const bf_geometry *g, size_t i0, size_t cnt,
                     double *S, double *dS)
 {

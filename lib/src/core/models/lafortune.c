@@ -124,6 +124,7 @@ static inline void lobe_common(int nc, const double *s, const bf_geometry *g, si
     }
 }
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                      double *S, double *dS)
 {
@@ -132,6 +133,7 @@ static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geom
     lobe_common(2, s, g, i0, cnt, S, dS);
 }
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                        double *S, double *dS)
 {

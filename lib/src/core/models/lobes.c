@@ -42,6 +42,7 @@ const bf_model *bf_model_untied(const bf_model *m, const int **map)
     return m->inner ? m->inner : m;
 }
 
+/* A bf_lobe_fn's arguments with the model vector: the fused pass's per-block call. */
 void bf_model_lobe_shape(const bf_model *m, const double *x, int k, const bf_geometry *g, size_t i0, size_t cnt,
                          double *S, double *dS)
 {

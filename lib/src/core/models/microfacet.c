@@ -40,42 +40,44 @@ static mf_cfg resolve(const bf_model *m)
     return (mf_cfg){m->opt[0], m->opt[1], m->opt[2]};
 }
 
-/* One specular lobe over a block. Scalars: s[0] = the D's roughness (n for blinn),
- * s[1] = f0 or ior unless F=none; for F=conductor s[1] = r, s[2] = g of one channel
- * (the driver calls the lobe per channel). D, G and F are computed in separate passes, each with
- * its switch outside the sample loop so the loops stay branch-free and vectorise. */
-static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
-                 double *dS)
-{
-    (void)k;
-    const mf_cfg c = resolve(m);
-    const double r = s[0];
-    const double p = c.f != BF_FRESNEL_NONE ? s[1] : 0.0;
-    const double *lx = g->lx + i0, *ly = g->ly + i0, *lz = g->lz + i0;
-    const double *vx = g->vx + i0, *vy = g->vy + i0, *vz = g->vz + i0;
-    const double *hz = g->hz + i0, *s2 = g->sin2h + i0, *vh = g->vh + i0;
+/* A block's D, G and F and their derivatives (dF2: a conductor's second Fresnel
+ * scalar), each from its own pass with its switch outside the sample loop, so that
+ * the loops stay branch-free and vectorise. */
+typedef struct mf_terms {
     double D[BF_BLOCK], dD[BF_BLOCK], G[BF_BLOCK], dG[BF_BLOCK], F[BF_BLOCK], dF[BF_BLOCK], dF2[BF_BLOCK];
+} mf_terms;
 
+/* D and dD/d(roughness r) over samples [i0, i0 + cnt). */
+static inline void d_pass(mf_cfg c, const bf_geometry *g, size_t i0, size_t cnt, double r, mf_terms *t)
+{
+    const double *hz = g->hz + i0, *s2 = g->sin2h + i0;
     switch (c.d) {
     case D_GGX:
         for (size_t j = 0; j < cnt; j++)
-            D[j] = bf_d_ggx(hz[j], s2[j], r, &dD[j]);
+            t->D[j] = bf_d_ggx(hz[j], s2[j], r, &t->dD[j]);
         break;
     case D_BECKMANN:
         for (size_t j = 0; j < cnt; j++)
-            D[j] = bf_d_beckmann(hz[j], s2[j], r, &dD[j]);
+            t->D[j] = bf_d_beckmann(hz[j], s2[j], r, &t->dD[j]);
         break;
     case D_BLINN:
         for (size_t j = 0; j < cnt; j++)
-            D[j] = bf_d_blinn(hz[j], s2[j], r, &dD[j]);
+            t->D[j] = bf_d_blinn(hz[j], s2[j], r, &t->dD[j]);
         break;
     default: /* D_GAUSSIAN */
         for (size_t j = 0; j < cnt; j++)
-            D[j] = bf_d_gaussian(hz[j], s2[j], r, &dD[j]);
+            t->D[j] = bf_d_gaussian(hz[j], s2[j], r, &t->dD[j]);
         break;
     }
+}
 
-    /* Roughness seen by the Smith forms and its derivative with respect to s[0]. For
+/* G and dG/d(the D's roughness r). */
+static inline void g_pass(mf_cfg c, const bf_geometry *g, size_t i0, size_t cnt, double r, mf_terms *t)
+{
+    const double *lx = g->lx + i0, *ly = g->ly + i0, *lz = g->lz + i0;
+    const double *vx = g->vx + i0, *vy = g->vy + i0, *vz = g->vz + i0;
+    const double *hz = g->hz + i0, *vh = g->vh + i0;
+    /* Roughness seen by the Smith forms and its derivative with respect to r. For
      * blinn, m = sqrt(2/(n+2)) so dm/dn = -1/(m (n+2)^2) = -m^3/4. */
     double gm = r, dgm = 1.0;
     if (c.d == D_BLINN) {
@@ -89,8 +91,8 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
             double tv = (vx[j] * vx[j] + vy[j] * vy[j]) / (vz[j] * vz[j]);
             double dl, dv;
             double gl = bf_g1_ggx(tl, gm, &dl), gv = bf_g1_ggx(tv, gm, &dv);
-            G[j] = gl * gv;
-            dG[j] = (dl * gv + gl * dv) * dgm;
+            t->G[j] = gl * gv;
+            t->dG[j] = (dl * gv + gl * dv) * dgm;
         }
         break;
     case G_SMITH_BECKMANN:
@@ -99,67 +101,87 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
             double sv = sqrt(vx[j] * vx[j] + vy[j] * vy[j]);
             double dl, dv;
             double gl = bf_g1_beckmann(lz[j], sl, gm, &dl), gv = bf_g1_beckmann(vz[j], sv, gm, &dv);
-            G[j] = gl * gv;
-            dG[j] = (dl * gv + gl * dv) * dgm;
+            t->G[j] = gl * gv;
+            t->dG[j] = (dl * gv + gl * dv) * dgm;
         }
         break;
     case G_SMITH_SCHLICK:
         for (size_t j = 0; j < cnt; j++) {
             double dl, dv;
             double gl = bf_g1_schlick(lz[j], gm, &dl), gv = bf_g1_schlick(vz[j], gm, &dv);
-            G[j] = gl * gv;
-            dG[j] = (dl * gv + gl * dv) * dgm;
+            t->G[j] = gl * gv;
+            t->dG[j] = (dl * gv + gl * dv) * dgm;
         }
         break;
     case G_CT:
         for (size_t j = 0; j < cnt; j++) {
-            G[j] = bf_g_ct(hz[j], lz[j], vz[j], vh[j]);
-            dG[j] = 0.0;
+            t->G[j] = bf_g_ct(hz[j], lz[j], vz[j], vh[j]);
+            t->dG[j] = 0.0;
         }
         break;
     default: /* G_IMPLICIT (its NL NV cancels the denominator below) and G_NONE */
         for (size_t j = 0; j < cnt; j++) {
-            G[j] = 1.0;
-            dG[j] = 0.0;
+            t->G[j] = 1.0;
+            t->dG[j] = 0.0;
         }
         break;
     }
+}
 
+/* F and its derivatives with respect to the Fresnel scalars s[1] (and s[2]). */
+static inline void f_pass(mf_cfg c, const bf_geometry *g, size_t i0, size_t cnt, const double *s, mf_terms *t)
+{
+    const double *vh = g->vh + i0;
+    const double p = c.f != BF_FRESNEL_NONE ? s[1] : 0.0;
     switch (c.f) {
     case BF_FRESNEL_SCHLICK:
         for (size_t j = 0; j < cnt; j++)
-            F[j] = bf_schlick(vh[j], p, &dF[j]);
+            t->F[j] = bf_schlick(vh[j], p, &t->dF[j]);
         break;
     case BF_FRESNEL_DIELECTRIC:
         for (size_t j = 0; j < cnt; j++)
-            F[j] = bf_dielectric(vh[j], p, &dF[j]);
+            t->F[j] = bf_dielectric(vh[j], p, &t->dF[j]);
         break;
     case BF_FRESNEL_CONDUCTOR:
         for (size_t j = 0; j < cnt; j++)
-            F[j] = bf_conductor(vh[j], p, s[2], &dF[j], &dF2[j]);
+            t->F[j] = bf_conductor(vh[j], p, s[2], &t->dF[j], &t->dF2[j]);
         break;
     default:
         for (size_t j = 0; j < cnt; j++) {
-            F[j] = 1.0;
-            dF[j] = 0.0;
+            t->F[j] = 1.0;
+            t->dF[j] = 0.0;
         }
         break;
     }
+}
 
+/* One specular lobe over a block (a bf_lobe_fn). Scalars: s[0] = the D's roughness (n
+ * for blinn), s[1] = f0 or ior unless F=none; for F=conductor s[1] = r, s[2] = g of one
+ * channel (the driver calls the lobe per channel). */
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
+{
+    (void)k;
+    const mf_cfg c = resolve(m);
+    const double *lz = g->lz + i0, *vz = g->vz + i0;
+    mf_terms t;
+    d_pass(c, g, i0, cnt, s[0], &t);
+    g_pass(c, g, i0, cnt, s[0], &t);
+    f_pass(c, g, i0, cnt, s, &t);
     /* Samples below the horizon get 0 (the driver zeroes them too, but this keeps the
      * NaN/Inf of 1/(NL NV) and tan^2 out of the outputs). */
     const int implicit = c.g == G_IMPLICIT;
     for (size_t j = 0; j < cnt; j++) {
         int valid = lz[j] > 0.0 && vz[j] > 0.0;
         double inv = implicit ? 0.25 : 0.25 / (lz[j] * vz[j]);
-        double GFi = G[j] * F[j] * inv;
-        S[j] = valid ? D[j] * GFi : 0.0;
+        double GFi = t.G[j] * t.F[j] * inv;
+        S[j] = valid ? t.D[j] * GFi : 0.0;
         if (dS) {
-            dS[j] = valid ? (dD[j] * G[j] + D[j] * dG[j]) * F[j] * inv : 0.0;
+            dS[j] = valid ? (t.dD[j] * t.G[j] + t.D[j] * t.dG[j]) * t.F[j] * inv : 0.0;
             if (c.f != BF_FRESNEL_NONE)
-                dS[BF_BLOCK + j] = valid ? D[j] * G[j] * dF[j] * inv : 0.0;
+                dS[BF_BLOCK + j] = valid ? t.D[j] * t.G[j] * t.dF[j] * inv : 0.0;
             if (c.f == BF_FRESNEL_CONDUCTOR)
-                dS[2 * BF_BLOCK + j] = valid ? D[j] * G[j] * dF2[j] * inv : 0.0;
+                dS[2 * BF_BLOCK + j] = valid ? t.D[j] * t.G[j] * t.dF2[j] * inv : 0.0;
         }
     }
 }

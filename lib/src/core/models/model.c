@@ -255,6 +255,7 @@ void bf_model_free(bf_model *m)
     free(m);
 }
 
+/* Positional: one call per row of a family's parameter table (family.h). */
 bf_status bf_model_add_param_open(bf_model *m, const char *name, int color, double lo, int lo_open, double hi,
                                   int hi_open, double def, bf_scale scale, int lobe, bf_param_role role, bf_error *err)
 {

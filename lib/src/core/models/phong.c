@@ -28,6 +28,7 @@
 /* Phong: R.V = 1 - |R - V|^2 / 2 for unit R, V, with R = (-Lx, -Ly, Lz); written this
  * way 1 - R.V keeps full relative precision near the mirror direction, where huge
  * exponents need it. The power is exp(n log(R.V)) so it underflows to 0, never 0 * Inf. */
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_phong(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                        double *S, double *dS)
 {
@@ -66,6 +67,7 @@ static double blinn_norm(double n, double *dlog)
     return (n + 2.0) * (n + 4.0) / (8.0 * M_PI * den);
 }
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_blinn(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                        double *S, double *dS)
 {

@@ -27,6 +27,7 @@ static inline double g1_aniso(double wx, double wy, double wz, double ax, double
 }
 
 /* Scalars: s[0] = alpha_x, s[1] = alpha_y, s[2] = f0. */
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
                  double *dS)
 {

@@ -13,6 +13,7 @@
  * derivatives (t-weighted) are set to 0 rather than 0 * Inf (H on the horizon has
  * H.X or H.Y nonzero, so t = Inf there). sqrt(NL) sqrt(NV) instead of sqrt(NL NV)
  * so the product cannot underflow for tiny cosines. */
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                        double *S, double *dS)
 {
@@ -46,6 +47,7 @@ static void lobe_aniso(const bf_model *m, int lobe, const double *s, const bf_ge
     }
 }
 
+/* A bf_lobe_fn (family.h: why eight arguments). */
 static void lobe_iso(const bf_model *m, int lobe, const double *s, const bf_geometry *g, size_t i0, size_t cnt,
                      double *S, double *dS)
 {
