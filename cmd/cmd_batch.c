@@ -174,7 +174,7 @@ static void run_material(batch_run *r, batch_fitter *f, const int *items, int n)
     char why[512], why2[512];
     int held;
     memset(r->sent, 0, sizeof r->sent);
-    if (batch_fitter_run(f, items, n, got_row, r, &held, why, sizeof why) == 0 || interrupt_flag)
+    if (batch_fitter_run(f, items, n, &(batch_sink){got_row, r}, &held, why, sizeof why) == 0 || interrupt_flag)
         return;
     int left = 0;
     for (int k = 0; k < n; k++)
@@ -183,7 +183,8 @@ static void run_material(batch_run *r, batch_fitter *f, const int *items, int n)
             left == 1 ? "its unfinished fit runs again" : "its unfinished fits run again, one at a time");
     for (int k = 0; k < n && !interrupt_flag; k++) {
         const int model = items[k] % nm;
-        if (r->sent[model] || batch_fitter_run(f, &items[k], 1, got_row, r, &held, why2, sizeof why2) == 0 ||
+        if (r->sent[model] ||
+            batch_fitter_run(f, &items[k], 1, &(batch_sink){got_row, r}, &held, why2, sizeof why2) == 0 ||
             interrupt_flag)
             continue;
         fprintf(stderr,

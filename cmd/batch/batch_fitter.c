@@ -228,8 +228,8 @@ static void await(batch_fitter *f)
     }
 }
 
-int batch_fitter_run(batch_fitter *f, const int *items, int n, void (*got)(void *gctx, batch_row *row), void *gctx,
-                     int *held, char *why, size_t whylen)
+int batch_fitter_run(batch_fitter *f, const int *items, int n, const batch_sink *sink, int *held, char *why,
+                     size_t whylen)
 {
     *held = -1;
     if (n < 1 || n > MAX_ITEMS) {
@@ -271,7 +271,7 @@ int batch_fitter_run(batch_fitter *f, const int *items, int n, void (*got)(void 
             r = -1;
         free(buf);
         if (r == 1) {
-            got(gctx, &row);
+            sink->got(sink->user, &row);
             batch_row_clear(&row);
         }
     }

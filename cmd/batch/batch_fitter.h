@@ -39,15 +39,21 @@ typedef struct batch_fitter {
 /* A fitter for fit(ctx, ...); no process is started until the first call. */
 void batch_fitter_init(batch_fitter *f, batch_fit_fn fit, void *ctx);
 
+/* Where the rows of a call go: got(user, row) as each arrives (got may take the row's
+ * texts, setting them to NULL). */
+typedef struct batch_sink {
+    void (*got)(void *user, batch_row *row);
+    void *user;
+} batch_sink;
+
 /* items[0..n-1] (one material's) fitted by the child, started first when there is none;
  * its process name is "brdfit:ITEM" (the first item, then "+" when there are more). Each
- * row goes to got(gctx, row) as it arrives (got may take the row's texts, setting them to
- * NULL); *held: the material the child holds. 0 when the child finished the call (every
+ * row goes to the sink as it arrives; *held: the material the child holds. 0 when the child finished the call (every
  * item has a row, or was not run after an interrupt); -1 when it died or could not be
  * started, with why in why[0..n-1] (e.g. "killed by signal 9 (Killed)") and *held -1: the
- * rows received before still went to got, and the next call starts a fresh child. */
-int batch_fitter_run(batch_fitter *f, const int *items, int n, void (*got)(void *gctx, batch_row *row), void *gctx,
-                     int *held, char *why, size_t whylen);
+ * rows received before still went to the sink, and the next call starts a fresh child. */
+int batch_fitter_run(batch_fitter *f, const int *items, int n, const batch_sink *sink, int *held, char *why,
+                     size_t whylen);
 
 /* Ends the child (it exits when its socket closes) and waits for it. */
 void batch_fitter_clear(batch_fitter *f);

@@ -71,7 +71,7 @@ static int work_item(void *ctx, int item, batch_row *row, int *held, char *why, 
     worker *w = ctx;
     memset(row, 0, sizeof *row);
     w->row = row, w->got = 0;
-    if (batch_fitter_run(&w->child, &item, 1, keep_row, w, held, why, n) < 0)
+    if (batch_fitter_run(&w->child, &item, 1, &(batch_sink){keep_row, w}, held, why, n) < 0)
         return -1;
     if (w->got != 1) { /* cannot happen: no SIGINT reaches the fitting process here */
         batch_row_clear(row);

@@ -97,6 +97,8 @@ static float png_code(float v, int codes)
     return !(v > 0.0f) ? 0.0f : v >= 1.0f ? 1.0f : v;
 }
 
+/* Positional, as bf_image_write_rgb_as: the file, its format, the pixels' shape and data,
+ * and the flags. */
 bf_status bf_image_write(const char *path, int format, int width, int height, int channels, const float *pixels,
                          unsigned flags, bf_error *err)
 {

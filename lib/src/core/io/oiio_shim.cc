@@ -58,6 +58,7 @@ BF_OIIO_EXPORT int bf_oiio_abi(void)
     return BF_IMAGE_PLUGIN_ABI;
 }
 
+// Flat C arguments: the entry point is found by name (dlsym) across the module boundary.
 BF_OIIO_EXPORT bf_status bf_oiio_encode(const char *name, int fmt, int width, int height, int channels, int type,
                                         int srgb, const void *pixels, unsigned char **data, size_t *size, bf_error *err)
 {

@@ -158,10 +158,16 @@ static void span_line(cairo_t *cr, const plot_layout *l, int axis, double v)
     }
 }
 
+/* A rectangle on the page: its top left corner and its size. */
+typedef struct plot_rect {
+    double x, y, w, h;
+} plot_rect;
+
 /* w x h RGB bytes stretched over a rectangle, each cell a sharp block (no smoothing
  * between cells: a table's cells stay cells). */
-static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, double x, double y, double dw, double dh)
+static void draw_raster(cairo_t *cr, const unsigned char *rgb, int w, int h, plot_rect at)
 {
+    const double x = at.x, y = at.y, dw = at.w, dh = at.h;
     cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
     if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
         cairo_surface_destroy(img);
@@ -202,7 +208,7 @@ static void draw_color_bar(cairo_t *cr, const color_bar *b, const plot_layout *l
     unsigned char strip[PLOT_LUT * 3];
     for (int k = 0; k < PLOT_LUT; k++)
         memcpy(strip + 3 * k, b->lut[PLOT_LUT - 1 - k], 3);
-    draw_raster(cr, strip, 1, PLOT_LUT, x, l->y0, w, l->y1 - l->y0);
+    draw_raster(cr, strip, 1, PLOT_LUT, (plot_rect){x, l->y0, w, l->y1 - l->y0});
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, lw);
     cairo_rectangle(cr, x, l->y0, w, l->y1 - l->y0);
@@ -246,7 +252,7 @@ static void draw_area(cairo_t *cr, const plot *p, const plot_layout *l, pen k)
     cairo_rectangle(cr, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
     cairo_clip(cr);
     if (p->raster)
-        draw_raster(cr, p->raster, p->rw, p->rh, l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0);
+        draw_raster(cr, p->raster, p->rw, p->rh, (plot_rect){l->x0, l->y0, l->x1 - l->x0, l->y1 - l->y0});
     cairo_set_line_width(cr, 0.6 * lw);
     cairo_set_source_rgb(cr, 0.89, 0.89, 0.89);
     for (int a = 0; a < 2 && !p->raster; a++)

@@ -334,6 +334,8 @@ plot *halfdiff_ratio_points(size_t n, const double *theta_h, const double *theta
     return p;
 }
 
+/* Positional, as bf_render_halfdiff_model and _merl: the source, the angle and scale,
+ * the figure's size and its file (bf_halfdiff_options carries the command's defaults). */
 bf_status bf_render_halfdiff_plot(const bf_model *m, const double *x, const bf_samples *merl, double phi_d,
                                   double decades, int width, int height, const char *path, int format, bf_error *err)
 {

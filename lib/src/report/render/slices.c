@@ -296,11 +296,13 @@ static int legend_entry(plot *p, const char *name, plot_style style, const doubl
     return 0;
 }
 
-/* The measured samples of incidence group g (as shown[] picks them), one series per
- * channel, translucent under the curves. Returns how many samples, or -1. */
+/* The measured samples of incidence group g (group[k] for each of the nk incidences; as
+ * shown[] picks them), one series per channel, translucent under the curves; xy holds
+ * 2 d->ns doubles. Returns how many samples, or -1. */
 static long sample_series(plot *p, const slice_data *d, int nk, const int *group, int g, const unsigned char *shown,
-                          double *sx, double *sy)
+                          double *xy)
 {
+    double *sx = xy, *sy = xy + d->ns;
     long count = 0;
     double rgb[3];
     plot_palette(g, rgb);
@@ -379,7 +381,7 @@ static size_t measured(const slice_data *d, int nk, const int *group, plot *p)
     double *sx = malloc(2 * d->ns * sizeof *sx);
     size_t shown = pick && sx ? thin_samples(d, nk, pick) : (size_t)-1;
     for (int g = 0; g < nk && shown != (size_t)-1; g++)
-        if (group[g] == g && sample_series(p, d, nk, group, g, pick, sx, sx + d->ns) < 0)
+        if (group[g] == g && sample_series(p, d, nk, group, g, pick, sx) < 0)
             shown = (size_t)-1;
     free(pick);
     free(sx);

@@ -90,11 +90,16 @@ static void eval_merl(const source *src, const bf_geometry *g, double *f)
 /* Rows of the image rendered at once: memory stays O(size x BAND) whatever the size. */
 enum { BAND = 64 };
 
-/* Pixels of rows j0 .. j1-1 inside the disc and their local frames (t, b, n) as rows;
- * returns how many. */
-static size_t band_frames(int N, int j0, int j1, const double *u, const double *up, const double *w, size_t *index,
-                          double *frame)
+/* The camera's basis: w towards the viewer, u and up across the image. */
+typedef struct camera {
+    double w[3], u[3], up[3];
+} camera;
+
+/* Pixels of rows j0 .. j1-1 of the N x N image inside the disc and their local frames
+ * (t, b, n) as rows; returns how many. */
+static size_t band_frames(int N, int j0, int j1, const camera *cam, size_t *index, double *frame)
 {
+    const double *u = cam->u, *up = cam->up, *w = cam->w;
     size_t n = 0;
     for (int j = j0; j < j1; j++)
         for (int i = 0; i < N; i++) {
@@ -133,7 +138,8 @@ static bf_status render(const source *src, const bf_sphere_options *o, float *rg
     const size_t npx = (size_t)N * (size_t)N, nb = (size_t)N * (size_t)(N < BAND ? N : BAND);
     memset(rgb, 0, npx * 3 * sizeof *rgb);
 
-    double w[3], u[3], up[3];
+    camera cam;
+    double *w = cam.w, *u = cam.u, *up = cam.up;
     dir_vec(o->view, w);
     double t = o->view.theta * (M_PI / 180.0), p = o->view.phi * (M_PI / 180.0);
     u[0] = cos(t) * cos(p); /* d w / d theta */
@@ -154,7 +160,7 @@ static bf_status render(const source *src, const bf_sphere_options *o, float *rg
     }
     for (int j0 = 0; j0 < N && status == BF_OK; j0 += BAND) {
         const int j1 = j0 + BAND < N ? j0 + BAND : N;
-        const size_t n = band_frames(N, j0, j1, u, up, w, index, frame);
+        const size_t n = band_frames(N, j0, j1, &cam, index, frame);
         memset(acc, 0, nb * 3 * sizeof *acc);
         for (int l = 0; l < o->nlights && n > 0; l++) {
             double Lw[3];
