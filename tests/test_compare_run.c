@@ -109,7 +109,8 @@ static void run(const fixture *f, bf_compare *c, const char *const *specs, int f
     bf_error err;
     assert_int_equal(bf_compare_init(c, NMAT, data_names, NMOD, specs, &err), BF_OK);
     c->folds = folds;
-    assert_int_equal(compare_run_with(c, f->samples, fo, jobs, count_calls, k, cancel, &err), BF_OK);
+    const compare_hooks h = {count_calls, k, cancel};
+    assert_int_equal(compare_run_with(c, f->samples, fo, jobs, &h, &err), BF_OK);
     assert_int_equal(k->wrong, 0);
 }
 
@@ -160,7 +161,7 @@ static void test_jobs_give_identical_results(void **state)
     assert_int_equal(one.materials[1].simplest, three.materials[1].simplest);
     /* A table runs once. */
     bf_error err;
-    assert_int_equal(compare_run_with(&one, f->samples, &f->fo, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&one, f->samples, &f->fo, 1, NULL, &err), BF_ERR_ARG);
     bf_compare_clear(&one);
     bf_compare_clear(&three);
 }
@@ -224,9 +225,9 @@ static void test_bad_arguments(void **state)
     bf_error err;
     assert_int_equal(bf_compare_init(&c, NMAT, data_names, NMOD, model_specs, &err), BF_OK);
     bf_samples *none[NMAT] = {f->samples[0], NULL};
-    assert_int_equal(compare_run_with(&c, none, &f->fo, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&c, none, &f->fo, 1, NULL, &err), BF_ERR_ARG);
     assert_non_null(strstr(err.msg, "walter.csv"));
-    assert_int_equal(compare_run_with(&c, f->samples, NULL, 1, NULL, NULL, NULL, &err), BF_ERR_ARG);
+    assert_int_equal(compare_run_with(&c, f->samples, NULL, 1, NULL, &err), BF_ERR_ARG);
     assert_int_equal(bf_compare_count(&c, BF_CMP_NOT_RUN), NFITS);
     bf_compare_clear(&c);
 }

@@ -200,7 +200,7 @@ static const bf_select_candidate *select_on(bf_samples *data, int n, const char 
         BF_OK);
     bf_fit_options o = fit_options();
     o.weighted_metrics = weighted;
-    assert_int_equal(select_run_with(s, data, &o, 1, NULL, NULL, NULL, &err), BF_OK);
+    assert_int_equal(select_run_with(s, data, &o, 1, NULL, &err), BF_OK);
     assert_true(s->chosen >= 0);
     return &s->c[s->chosen];
 }

@@ -22,7 +22,14 @@
 #include "synth.h"
 #include "tradeoff/tradeoff_impl.h"
 
-static const char *const methods2[] = {"ceres", "LD_LBFGS"};
+static const char *const methods2[] = {"ceres", "LD_LBFGS"}, *const methods1[] = {"ceres"};
+
+/* g set up by its init with four arrays as its lists (their lengths from the arrays); &g. */
+#define NELEM(a) (int)(sizeof(a) / sizeof *(a))
+#define GRID(g, c, m, r, s)                                                                                            \
+    (bf_tradeoff_grid_init(&(g)), (g).ncounts = NELEM(c), (g).counts = (c), (g).nmethods = NELEM(m),                   \
+     (g).methods = (m), (g).nresiduals = NELEM(r), (g).residuals = (r), (g).nstarts = NELEM(s), (g).starts = (s),      \
+     &(g))
 
 /* n samples of a one-channel walter model at random directions; theta_i is made unique
  * per sample (a tiny index offset) so that a split can be traced back. */
@@ -56,11 +63,12 @@ static void test_grid_size_and_order(void **state)
 {
     (void)state;
     bf_tradeoff t;
+    bf_tradeoff_grid g;
     bf_error err;
     const size_t counts[] = {4000, 500, 0, 2000, 500, 99999};
     const bf_residual res[] = {BF_RESIDUAL_LOG, BF_RESIDUAL_LINEAR};
     const int starts[] = {1, 4, 2};
-    assert_int_equal(bf_tradeoff_init(&t, "d.csv", "walter", 3000, 6, counts, 2, methods2, 2, res, 3, starts, &err),
+    assert_int_equal(bf_tradeoff_init(&t, "d.csv", "walter", 3000, GRID(g, counts, methods2, res, starts), &err),
                      BF_OK);
     /* 500, 2000, all (4000, 0 and 99999 are all one "all") x 2 x 2 x 3 */
     assert_int_equal(t.nrows, 3 * 2 * 2 * 3);
@@ -80,21 +88,31 @@ static void test_grid_size_and_order(void **state)
 
     /* Every count beyond the training size: one row, "all". */
     const size_t big[] = {5000, 8000};
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 2, big, 1, methods2, 1, res, 1, starts, &err), BF_OK);
+    const bf_residual log1[] = {BF_RESIDUAL_LOG};
+    const int one[] = {1};
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, GRID(g, big, methods1, log1, one), &err), BF_OK);
     assert_int_equal(t.nrows, 1);
     assert_int_equal(t.rows[0].all, 1);
     assert_int_equal(t.rows[0].samples, 1000);
     bf_tradeoff_clear(&t);
 
     /* Empty lists and negative starts are refused; 0 is brdfit fit's automatic count. */
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 0, big, 1, methods2, 1, res, 1, starts, &err),
-                     BF_ERR_ARG);
+    (void)GRID(g, big, methods1, log1, one);
+    g.ncounts = 0;
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, &g, &err), BF_ERR_ARG);
+    const size_t big1[] = {5000};
     const int negative[] = {-1}, automatic[] = {0};
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 1, big, 1, methods2, 1, res, 1, negative, &err),
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, GRID(g, big1, methods1, log1, negative), &err),
                      BF_ERR_ARG);
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 1, big, 1, methods2, 1, res, 1, automatic, &err), BF_OK);
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, GRID(g, big1, methods1, log1, automatic), &err), BF_OK);
     assert_int_equal(t.rows[0].starts, 0);
     bf_tradeoff_clear(&t);
+
+    /* A grid whose size was never set is refused, naming it. */
+    (void)GRID(g, big1, methods1, log1, one);
+    g.size = 0;
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, &g, &err), BF_ERR_ARG);
+    assert_non_null(strstr(err.msg, "bf_tradeoff_grid"));
 }
 
 static void test_split_disjoint(void **state)
@@ -159,11 +177,12 @@ static void test_rank_front_and_recommendation(void **state)
 {
     (void)state;
     bf_tradeoff t;
+    bf_tradeoff_grid g;
     bf_error err;
     const size_t counts[] = {100, 200, 300, 400, 500, 0};
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1};
-    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, 6, counts, 1, methods2, 1, res, 1, starts, &err), BF_OK);
+    assert_int_equal(bf_tradeoff_init(&t, "d", "walter", 1000, GRID(g, counts, methods1, res, starts), &err), BF_OK);
     assert_int_equal(t.nrows, 6);
     t.tolerance = 0.05;
     set_row(&t.rows[0], 0.10, 0.200, 1.0); /* fastest, poor: front */
@@ -221,10 +240,11 @@ static void test_same_seed_same_errors(void **state)
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1, 2};
     bf_tradeoff t[2];
+    bf_tradeoff_grid g;
     bf_options *fo = ts_options(BF_TASK_FIT, "--residual log --threads 1 --starts 1");
     for (int k = 0; k < 2; k++) {
         assert_int_equal(
-            bf_tradeoff_init(&t[k], "synthetic", "walter", train->n, 2, counts, 2, methods2, 1, res, 2, starts, &err),
+            bf_tradeoff_init(&t[k], "synthetic", "walter", train->n, GRID(g, counts, methods2, res, starts), &err),
             BF_OK);
         t[k].seed = 11;
         t[k].repeats = 2;
@@ -294,13 +314,13 @@ static void test_json_and_csv(void **state)
 {
     (void)state;
     bf_tradeoff t;
+    bf_tradeoff_grid g;
     bf_error err;
     const size_t counts[] = {100, 0};
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1};
     const char *const methods[] = {"ceres", "odd,\"name\""};
-    assert_int_equal(bf_tradeoff_init(&t, "d.csv", "walter", 1000, 2, counts, 2, methods, 1, res, 1, starts, &err),
-                     BF_OK);
+    assert_int_equal(bf_tradeoff_init(&t, "d.csv", "walter", 1000, GRID(g, counts, methods, res, starts), &err), BF_OK);
     set_row(&t.rows[0], 0.1, 0.2, 1.0);
     set_row(&t.rows[1], 0.2, 0.1, 1.0);
     set_row(&t.rows[2], 0.3, 0.1, 1.0);
@@ -585,8 +605,10 @@ static void test_run_is_the_parts(void **state)
     const bf_residual res[] = {BF_RESIDUAL_LOG};
     const int starts[] = {1};
     bf_tradeoff *p = NULL;
+    bf_tradeoff_grid g;
     assert_int_equal(
-        bf_tradeoff_new("synth.csv", "lambert", train->n, 3, counts, 2, methods2, 1, res, 1, starts, &p, &err), BF_OK);
+        bf_tradeoff_new_grid("synth.csv", "lambert", train->n, GRID(g, counts, methods2, res, starts), &p, &err),
+        BF_OK);
     p->seed = 3;
     p->tolerance = 0.1;
     for (int i = 0; i < p->nrows; i++)
@@ -601,6 +623,25 @@ static void test_run_is_the_parts(void **state)
         assert_true(p->rows[i].work == t->rows[i].work);
         assert_int_equal(p->rows[i].on_front, t->rows[i].on_front);
     }
+    /* The deprecated positional form makes the same grid, for programs written against it. */
+    bf_tradeoff *q = NULL;
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#endif
+    assert_int_equal(
+        bf_tradeoff_new("synth.csv", "lambert", train->n, 3, counts, 2, methods2, 1, res, 1, starts, &q, &err), BF_OK);
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+    assert_int_equal(q->nrows, p->nrows);
+    for (int i = 0; i < q->nrows; i++) {
+        assert_int_equal(q->rows[i].samples, p->rows[i].samples);
+        assert_string_equal(q->rows[i].method, p->rows[i].method);
+        assert_int_equal(q->rows[i].residual, p->rows[i].residual);
+        assert_int_equal(q->rows[i].starts, p->rows[i].starts);
+    }
+    bf_tradeoff_free(q);
 
     /* The JSON in memory is the file's text. */
     char *text = NULL;

@@ -11,7 +11,7 @@
  *
  * bf_tradeoff_run makes the whole measurement from a set of options (BF_TASK_TRADEOFF,
  * brdfit/options.h: the lists, the test fraction, the cost, the tolerance ...), as
- * `brdfit tradeoff` does. Or the caller builds the grid (bf_tradeoff_new), runs each row
+ * `brdfit tradeoff` does. Or the caller builds the grid (bf_tradeoff_new_grid), runs each row
  * (bf_tradeoff_run_row, in any order, one at a time, since rows are timed) and ranks
  * (bf_tradeoff_rank). The writers read the filled table.
  * Status codes and ownership follow brdfit/error.h.
@@ -49,7 +49,7 @@ BF_API bf_status bf_tradeoff_split(const bf_samples *s, double fraction, uint64_
 
 /* Frozen (docs/api.md): an array element of bf_tradeoff. */
 typedef struct bf_tradeoff_row {
-    /* The setting (bf_tradeoff_new). */
+    /* The setting (bf_tradeoff_new_grid). */
     size_t samples;     /* training samples fitted (the whole training set when all) */
     int all;            /* 1: the whole training set, no subsampling */
     const char *method; /* as given (a copy the table owns) */
@@ -90,7 +90,7 @@ typedef struct bf_tradeoff {
     int nrows;
     bf_tradeoff_row *rows; /* owned */
     int best, recommended; /* row indices from bf_tradeoff_rank; -1: none ok */
-    /* From the options of bf_tradeoff_run (bf_tradeoff_new: 0 and NULL). */
+    /* From the options of bf_tradeoff_run (bf_tradeoff_new_grid: 0 and NULL). */
     int plot_width, plot_height; /* plot_size, for bf_tradeoff_write_plot */
     char *fit_options;           /* owned: the data and base fit options as set, as brdfit fit's
                                     options (bf_tradeoff_fit_command), or NULL */
@@ -100,15 +100,39 @@ typedef struct bf_tradeoff {
 /* The most settings a grid may hold (the product of the list lengths). */
 #define BF_TRADEOFF_MAX_ROWS 100000
 
-/* The grid: the full product of the lists, sample counts outermost. counts are training
- * sample counts, 0 meaning all; counts >= train_n become "all", and the counts are
- * sorted ascending and deduplicated, so rows run in ascending sample count. Then
- * methods (copied), residuals, starts, in the order given. Every list must be non-empty.
- * Made by the library (read through the pointer: docs/api.md); freed with
- * bf_tradeoff_free. */
-BF_API bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
-                                 int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
-                                 int nstarts, const int *starts, bf_tradeoff **out, bf_error *err);
+/* The grid's lists, each a count and an array the caller keeps: training sample counts
+ * (0 meaning all), methods as the command line names them, residual forms and multistart
+ * counts (0: automatic). Set up by bf_tradeoff_grid_init (its size: docs/api.md; every
+ * list empty). */
+typedef struct bf_tradeoff_grid {
+    size_t size; /* sizeof, set by bf_tradeoff_grid_init */
+    int ncounts;
+    const size_t *counts;
+    int nmethods;
+    const char *const *methods;
+    int nresiduals;
+    const bf_residual *residuals;
+    int nstarts;
+    const int *starts;
+} bf_tradeoff_grid;
+BF_API void bf_tradeoff_grid_init_size(bf_tradeoff_grid *g, size_t size);
+static inline void bf_tradeoff_grid_init(bf_tradeoff_grid *g)
+{
+    bf_tradeoff_grid_init_size(g, sizeof *g);
+}
+
+/* The table of a grid: the full product of its lists, sample counts outermost. Counts
+ * >= train_n become "all", and the counts are sorted ascending and deduplicated, so rows
+ * run in ascending sample count. Then methods (copied), residuals, starts, in the order
+ * given. Every list must be non-empty. Made by the library (read through the pointer:
+ * docs/api.md); freed with bf_tradeoff_free. */
+BF_API bf_status bf_tradeoff_new_grid(const char *data, const char *model, size_t train_n, const bf_tradeoff_grid *grid,
+                                      bf_tradeoff **out, bf_error *err);
+/* bf_tradeoff_new_grid with the lists as arguments, for programs written against it. */
+BF_API BF_DEPRECATED("use bf_tradeoff_new_grid") bf_status
+    bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
+                    int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals, int nstarts,
+                    const int *starts, bf_tradeoff **out, bf_error *err);
 BF_API void bf_tradeoff_free(bf_tradeoff *t);
 
 /* Runs row i: subsamples train (seeded stratified, bf_prep with t->seed) unless the row is
@@ -129,7 +153,7 @@ typedef void (*bf_tradeoff_progress)(void *user, const bf_tradeoff *t, int i);
  * the lists too, BF_ERR_ARG with the command line's messages); data (prepared already:
  * bf_samples_load or bf_samples_prepare) split by the options' test_fraction and seed
  * (bf_tradeoff_split; a set too small to split is BF_ERR_ARG, its message led by name);
- * the grid made from the lists (bf_tradeoff_new; the methods default to the base
+ * the grid made from the lists (bf_tradeoff_new_grid; the methods default to the base
  * setting's method or ceres,LD_LBFGS, the residuals and start counts to the base's);
  * every row run in that order, one at a time (bf_tradeoff_run_row with o as the base: a
  * row that cannot run is marked and the others go on), progress (may be NULL) called
@@ -155,7 +179,7 @@ BF_API const char *bf_tradeoff_cost_name(bf_tradeoff_cost c); /* "work", "second
 /* Row i's setting as a `brdfit fit` command line, into *out (freed with bf_free):
  * "brdfit fit DATA OPTIONS -m MODEL SETTING", OPTIONS the data and base fit options of
  * bf_tradeoff_run as they were set, in order (shell-quoted where needed; none for a
- * table of bf_tradeoff_new), SETTING the row's: --subsample N (unless all), --backend
+ * table of bf_tradeoff_new_grid), SETTING the row's: --subsample N (unless all), --backend
  * (and --algorithm unless Ceres's default), --residual and --starts (unless automatic).
  * The recommendation is row t->recommended. */
 BF_API bf_status bf_tradeoff_fit_command(const bf_tradeoff *t, int i, char **out, bf_error *err);

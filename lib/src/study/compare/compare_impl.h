@@ -18,9 +18,8 @@ bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int chan
                          bf_error *err);
 void bf_select_clear(bf_select *s);
 
-bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
-                           const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
-                           const bf_residual *residuals, int nstarts, const int *starts, bf_error *err);
+bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n,
+                           const bf_tradeoff_grid *g, bf_error *err);
 void bf_tradeoff_clear(bf_tradeoff *t);
 
 #endif

@@ -31,9 +31,8 @@ typedef struct run {
     bf_compare *c;
     bf_samples *const *samples;
     bf_fit_options fo; /* the caller's, with the solver threads of one job */
-    bf_compare_progress progress;
-    void *user;
-    const bf_cancel_flag *finish, *cancel;
+    compare_hooks h;
+    const bf_cancel_flag *cancel;
     pthread_mutex_t lock;
     int done, total;
 } run;
@@ -44,7 +43,7 @@ static void fit_one(void *arg, size_t chunk)
     run *r = arg;
     /* Read by every fitting thread while a signal handler may set them (the handler should
      * store atomically too: see cmd/cmd_compare.c). */
-    if (bf_cancel_is_set(r->finish) || bf_cancel_is_set(r->cancel))
+    if (bf_cancel_is_set(r->h.finish) || bf_cancel_is_set(r->cancel))
         return;
     bf_compare *c = r->c;
     const int idx = (int)chunk, i = idx / c->nmodels, j = idx % c->nmodels;
@@ -82,8 +81,8 @@ static void fit_one(void *arg, size_t chunk)
         snprintf(f->message, sizeof f->message, "%s", err.msg);
     }
     r->done++;
-    if (r->progress)
-        r->progress(r->user, c, i, j, r->done, r->total);
+    if (r->h.progress)
+        r->h.progress(r->h.user, c, i, j, r->done, r->total);
     pthread_mutex_unlock(&r->lock);
 }
 
@@ -98,11 +97,12 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_opt
     bf_fit_options fo;
     options_fit_get(o, &fo);
     fo.report_materials = 1;
-    return compare_run_with(c, samples, &fo, o->jobs, progress, user, o->finish, err);
+    const compare_hooks h = {progress, user, o->finish};
+    return compare_run_with(c, samples, &fo, o->jobs, &h, err);
 }
 
 bf_status compare_run_with(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo, int jobs,
-                           bf_compare_progress progress, void *user, const bf_cancel_flag *finish, bf_error *err)
+                           const compare_hooks *h, bf_error *err)
 {
     bf_error local;
     if (!err)
@@ -125,9 +125,7 @@ bf_status compare_run_with(bf_compare *c, bf_samples *const *samples, const bf_f
     run r = {.c = c,
              .samples = samples,
              .fo = *fo,
-             .progress = progress,
-             .user = user,
-             .finish = finish,
+             .h = h ? *h : (compare_hooks){0},
              .cancel = fo->solver.cancel,
              .total = c->nmaterials * c->nmodels};
     if (!(c->results = calloc((size_t)r.total, sizeof *c->results)))

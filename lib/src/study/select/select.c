@@ -148,8 +148,7 @@ void bf_select_free(bf_select *s)
  * a zeroed slot), then the caller's progress. Calls never overlap. */
 typedef struct select_run {
     bf_select *s;
-    bf_select_progress progress;
-    void *user;
+    select_hooks h;
 } select_run;
 
 static void candidate_done(void *user, const bf_compare *c, int material, int j, int done, int total)
@@ -169,8 +168,8 @@ static void candidate_done(void *user, const bf_compare *c, int material, int j,
         cand->k = cand->result->metrics.k; /* fixed parameters (--fix) do not count */
         cand->cv_error = f->cv_error;
     }
-    if (r->progress)
-        r->progress(r->user, r->s, j, done);
+    if (r->h.progress)
+        r->h.progress(r->h.user, r->s, j, done);
 }
 
 bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_select_progress progress, void *user,
@@ -183,11 +182,12 @@ bf_status bf_select_run(bf_select *s, bf_samples *data, const bf_options *o, bf_
         return rc;
     bf_fit_options fo;
     options_fit_get(o, &fo);
-    return select_run_with(s, data, &fo, o->jobs, progress, user, o->finish, err);
+    const select_hooks h = {progress, user, o->finish};
+    return select_run_with(s, data, &fo, o->jobs, &h, err);
 }
 
-bf_status select_run_with(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs,
-                          bf_select_progress progress, void *user, const bf_cancel_flag *finish, bf_error *err)
+bf_status select_run_with(bf_select *s, bf_samples *data, const bf_fit_options *o, int jobs, const select_hooks *h,
+                          bf_error *err)
 {
     const char **specs = malloc((size_t)s->n * sizeof *specs);
     if (!specs)
@@ -201,8 +201,9 @@ bf_status select_run_with(bf_select *s, bf_samples *data, const bf_fit_options *
     if (rc != BF_OK)
         return rc;
     c.folds = s->rank_by == BF_RANK_CV ? s->folds : 0;
-    select_run r = {s, progress, user};
-    rc = compare_run_with(&c, &data, o, jobs, candidate_done, &r, finish, err);
+    select_run r = {s, h ? *h : (select_hooks){0}};
+    const compare_hooks ch = {candidate_done, &r, r.h.finish};
+    rc = compare_run_with(&c, &data, o, jobs, &ch, err);
     bf_compare_clear(&c);
     if (rc == BF_OK)
         bf_select_choose(s);

@@ -15,6 +15,7 @@
 
 #include "brdfit/prep.h"
 #include "base/rng.h"
+#include "base/sized.h"
 #include "compare/compare_impl.h"
 #include "run_options.h"
 #include "tradeoff/tradeoff_impl.h"
@@ -73,9 +74,58 @@ static int cmp_size(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n, int ncounts,
-                           const size_t *counts, int nmethods, const char *const *methods, int nresiduals,
-                           const bf_residual *residuals, int nstarts, const int *starts, bf_error *err)
+BF_SIZED_INIT_ZERO(bf_tradeoff_grid)
+
+/* The grid's usage errors, before anything is allocated. */
+static bf_status grid_check(const bf_tradeoff_grid *g, size_t train_n, bf_error *err)
+{
+    if (bf_sized_check(g, sizeof *g, "bf_tradeoff_grid", err) != BF_OK)
+        return BF_ERR_ARG;
+    if (g->ncounts < 1 || g->nmethods < 1 || g->nresiduals < 1 || g->nstarts < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: every list (samples, methods, residuals, starts) needs an entry");
+    if (train_n < 1)
+        return bf_fail(err, BF_ERR_ARG, "tradeoff: no training sample");
+    for (int s = 0; s < g->nstarts; s++)
+        if (g->starts[s] < 0)
+            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 0 (0: automatic), got %d",
+                           g->starts[s]);
+    return BF_OK;
+}
+
+/* The grid's sample counts, sorted and unique, counts >= the training size (and 0) as
+ * train_n, "all": into *out (malloc'd), their number into *n. */
+static bf_status grid_counts(const bf_tradeoff_grid *g, size_t train_n, size_t **out, int *n, bf_error *err)
+{
+    size_t *c = malloc((size_t)g->ncounts * sizeof *c);
+    if (!c)
+        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
+    for (int k = 0; k < g->ncounts; k++)
+        c[k] = g->counts[k] == 0 || g->counts[k] >= train_n ? train_n : g->counts[k];
+    qsort(c, (size_t)g->ncounts, sizeof *c, cmp_size);
+    int nc = 0;
+    for (int k = 0; k < g->ncounts; k++)
+        if (nc == 0 || c[k] != c[nc - 1])
+            c[nc++] = c[k];
+    *out = c;
+    *n = nc;
+    return BF_OK;
+}
+
+/* The methods' names, copied into one block (names) the rows point into; at[m]: where
+ * method m starts in it. */
+static void copy_names(const bf_tradeoff_grid *g, char *names, size_t *at)
+{
+    size_t k = 0;
+    for (int m = 0; m < g->nmethods; m++) {
+        const char *text = g->methods[m] ? g->methods[m] : "";
+        at[m] = k;
+        memcpy(names + k, text, strlen(text) + 1);
+        k += strlen(text) + 1;
+    }
+}
+
+bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, size_t train_n,
+                           const bf_tradeoff_grid *g, bf_error *err)
 {
     memset(t, 0, sizeof *t);
     t->best = t->recommended = -1;
@@ -83,63 +133,43 @@ bf_status bf_tradeoff_init(bf_tradeoff *t, const char *data, const char *model, 
     t->tolerance = 0.05;
     t->metric = BF_CMP_RMSE_LOG;
     t->train_n = train_n;
-    if (ncounts < 1 || nmethods < 1 || nresiduals < 1 || nstarts < 1)
-        return bf_fail(err, BF_ERR_ARG, "tradeoff: every list (samples, methods, residuals, starts) needs an entry");
-    if (train_n < 1)
-        return bf_fail(err, BF_ERR_ARG, "tradeoff: no training sample");
-    for (int s = 0; s < nstarts; s++)
-        if (starts[s] < 0)
-            return bf_fail(err, BF_ERR_ARG, "tradeoff: a start count must be >= 0 (0: automatic), got %d", starts[s]);
-    /* Counts >= the training size (and 0) are "all", kept as train_n; sorted, unique. */
-    size_t *c = malloc((size_t)ncounts * sizeof *c);
-    if (!c)
-        return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
-    for (int k = 0; k < ncounts; k++)
-        c[k] = counts[k] == 0 || counts[k] >= train_n ? train_n : counts[k];
-    qsort(c, (size_t)ncounts, sizeof *c, cmp_size);
+    size_t *c = NULL;
     int nc = 0;
-    for (int k = 0; k < ncounts; k++)
-        if (nc == 0 || c[k] != c[nc - 1])
-            c[nc++] = c[k];
-    size_t rows = (size_t)nc * (size_t)nmethods * (size_t)nresiduals * (size_t)nstarts;
+    bf_status rc = grid_check(g, train_n, err);
+    if (rc != BF_OK || (rc = grid_counts(g, train_n, &c, &nc, err)) != BF_OK)
+        return rc;
+    size_t rows = (size_t)nc * (size_t)g->nmethods * (size_t)g->nresiduals * (size_t)g->nstarts;
     if (rows > BF_TRADEOFF_MAX_ROWS) {
         free(c);
         return bf_fail(err, BF_ERR_ARG, "tradeoff: %zu settings is too many (at most %d)", rows, BF_TRADEOFF_MAX_ROWS);
     }
-    /* The methods' names, copied into one block the rows point into. */
     size_t names = 0;
-    for (int m = 0; m < nmethods; m++)
-        names += strlen(methods[m] ? methods[m] : "") + 1;
+    for (int m = 0; m < g->nmethods; m++)
+        names += strlen(g->methods[m] ? g->methods[m] : "") + 1;
     t->data = strdup(data ? data : "");
     t->model = strdup(model ? model : "");
     t->rows = calloc(rows, sizeof *t->rows);
     t->names = malloc(names);
-    size_t *at = malloc((size_t)nmethods * sizeof *at);
+    size_t *at = malloc((size_t)g->nmethods * sizeof *at);
     if (!t->data || !t->model || !t->rows || !t->names || !at) {
         free(c);
         free(at);
         bf_tradeoff_clear(t);
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
     }
-    names = 0;
-    for (int m = 0; m < nmethods; m++) {
-        const char *text = methods[m] ? methods[m] : "";
-        at[m] = names;
-        memcpy(t->names + names, text, strlen(text) + 1);
-        names += strlen(text) + 1;
-    }
+    copy_names(g, t->names, at);
     t->nrows = (int)rows;
     int i = 0;
     for (int a = 0; a < nc; a++)
-        for (int m = 0; m < nmethods; m++)
-            for (int r = 0; r < nresiduals; r++)
-                for (int s = 0; s < nstarts; s++) {
+        for (int m = 0; m < g->nmethods; m++)
+            for (int r = 0; r < g->nresiduals; r++)
+                for (int s = 0; s < g->nstarts; s++) {
                     bf_tradeoff_row *row = &t->rows[i++];
                     row->samples = c[a];
                     row->all = c[a] == train_n;
                     row->method = t->names + at[m];
-                    row->residual = residuals[r];
-                    row->starts = starts[s];
+                    row->residual = g->residuals[r];
+                    row->starts = g->starts[s];
                     row->error = NAN;
                 }
     free(c);
@@ -160,22 +190,38 @@ void bf_tradeoff_clear(bf_tradeoff *t)
     t->best = t->recommended = -1;
 }
 
-bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
-                          int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
-                          int nstarts, const int *starts, bf_tradeoff **out, bf_error *err)
+bf_status bf_tradeoff_new_grid(const char *data, const char *model, size_t train_n, const bf_tradeoff_grid *grid,
+                               bf_tradeoff **out, bf_error *err)
 {
     bf_tradeoff *t = malloc(sizeof *t);
     *out = NULL;
     if (!t)
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
-    bf_status rc = bf_tradeoff_init(t, data, model, train_n, ncounts, counts, nmethods, methods, nresiduals, residuals,
-                                    nstarts, starts, err);
+    bf_status rc = bf_tradeoff_init(t, data, model, train_n, grid, err);
     if (rc != BF_OK) {
         free(t);
         return rc;
     }
     *out = t;
     return BF_OK;
+}
+
+/* Positional, deprecated (docs/api.md: a function is replaced, not changed in place). */
+bf_status bf_tradeoff_new(const char *data, const char *model, size_t train_n, int ncounts, const size_t *counts,
+                          int nmethods, const char *const *methods, int nresiduals, const bf_residual *residuals,
+                          int nstarts, const int *starts, bf_tradeoff **out, bf_error *err)
+{
+    bf_tradeoff_grid g;
+    bf_tradeoff_grid_init(&g);
+    g.ncounts = ncounts;
+    g.counts = counts;
+    g.nmethods = nmethods;
+    g.methods = methods;
+    g.nresiduals = nresiduals;
+    g.residuals = residuals;
+    g.nstarts = nstarts;
+    g.starts = starts;
+    return bf_tradeoff_new_grid(data, model, train_n, &g, out, err);
 }
 
 void bf_tradeoff_free(bf_tradeoff *t)

@@ -147,20 +147,38 @@ bf_status bf_tradeoff_fit_command(const bf_tradeoff *t, int i, char **out, bf_er
 
 /* ---- The measurement ----------------------------------------------------------------- */
 
-/* The table for the split data, with the options' values: BF_OK, or the error. */
-static bf_status make_table(const bf_samples *data, const char *name, const char *model, const bf_options *o,
-                            const options_tradeoff *l, const bf_samples *train, const bf_samples *test,
-                            bf_tradeoff **out, bf_error *err)
+/* What bf_tradeoff_run holds between its phases. */
+typedef struct measure {
+    const bf_samples *data;
+    const char *name, *model;
+    const bf_options *o;
+    options_tradeoff l; /* the lists, until the table holds copies */
+    bf_samples *train, *test;
+    bf_tradeoff *t;
+} measure;
+
+/* The table for the split data, with the options' values, into m->t: BF_OK, or the error. */
+static bf_status make_table(measure *m, bf_error *err)
 {
+    const options_tradeoff *l = &m->l;
+    bf_tradeoff_grid g;
+    bf_tradeoff_grid_init(&g);
+    g.ncounts = l->n[TRADEOFF_SAMPLES];
+    g.counts = l->counts;
+    g.nmethods = l->n[TRADEOFF_METHODS];
+    g.methods = l->items[TRADEOFF_METHODS];
+    g.nresiduals = l->n[TRADEOFF_RESIDUALS];
+    g.residuals = l->residuals;
+    g.nstarts = l->n[TRADEOFF_STARTS];
+    g.starts = l->starts;
     bf_tradeoff *t = NULL;
-    bf_status rc = bf_tradeoff_new(name, model, train->n, l->n[TRADEOFF_SAMPLES], l->counts, l->n[TRADEOFF_METHODS],
-                                   l->items[TRADEOFF_METHODS], l->n[TRADEOFF_RESIDUALS], l->residuals,
-                                   l->n[TRADEOFF_STARTS], l->starts, &t, err);
+    bf_status rc = bf_tradeoff_new_grid(m->name, m->model, m->train->n, &g, &t, err);
     if (rc != BF_OK)
         return rc;
-    t->total = data->n;
-    t->test_n = test->n;
-    t->channels = data->channels;
+    const bf_options *o = m->o;
+    t->total = m->data->n;
+    t->test_n = m->test->n;
+    t->channels = m->data->channels;
     t->test_fraction = l->test_fraction;
     t->seed = o->seed;
     t->repeats = l->repeats;
@@ -174,10 +192,28 @@ static bf_status make_table(const bf_samples *data, const char *name, const char
         bf_tradeoff_free(t);
         return bf_fail(err, BF_ERR_NOMEM, "tradeoff: out of memory");
     }
-    *out = t;
+    m->t = t;
     return BF_OK;
 }
 
+/* Every row in order, until the cancel or finish flag: BF_OK, or running out of memory. */
+static bf_status run_rows(measure *m, bf_tradeoff_progress progress, void *user, bf_error *err)
+{
+    bf_tradeoff *t = m->t;
+    bf_error e;
+    for (int i = 0; i < t->nrows; i++) {
+        if (flagged(m->o->cancel) || flagged(m->o->finish))
+            break;
+        /* A row that cannot run says so in its message; running out of memory stops all. */
+        if (bf_tradeoff_run_row(t, i, m->train, m->test, m->o, &e) == BF_ERR_NOMEM)
+            return bf_fail(err, BF_ERR_NOMEM, "%s", e.msg);
+        if (progress)
+            progress(user, t, i);
+    }
+    return BF_OK;
+}
+
+/* Positional as bf_compare_run and bf_select_run are: the settings are in o, the rest is data and the callback. */
 bf_status bf_tradeoff_run(const bf_samples *data, const char *name, const char *model, const bf_options *o,
                           bf_tradeoff_progress progress, void *user, bf_tradeoff **out, bf_error *err)
 {
@@ -188,41 +224,30 @@ bf_status bf_tradeoff_run(const bf_samples *data, const char *name, const char *
     if (!data || !model || !o)
         return bf_fail(err, BF_ERR_ARG, "tradeoff: needs data, a model and options");
     /* Bad usage first, before any work. */
-    options_tradeoff l;
+    measure m = {.data = data, .name = name, .model = model, .o = o};
     bf_status rc = bf_options_check_models(o, &model, 1, err);
     if (rc == BF_OK)
         rc = bf_options_check(o, err);
     if (rc == BF_OK)
-        rc = options_tradeoff_get(o, &l, err);
+        rc = options_tradeoff_get(o, &m.l, err);
     if (rc != BF_OK)
         return rc;
-    bf_samples *train = NULL, *test = NULL;
     bf_error e;
-    if ((rc = bf_tradeoff_split(data, l.test_fraction, o->seed, &train, &test, &e)) != BF_OK) {
-        options_tradeoff_clear(&l);
+    if ((rc = bf_tradeoff_split(data, m.l.test_fraction, o->seed, &m.train, &m.test, &e)) != BF_OK) {
+        options_tradeoff_clear(&m.l);
         return name ? bf_fail(err, rc, "%s: %s", name, e.msg) : bf_fail(err, rc, "%s", e.msg);
     }
-    bf_tradeoff *t = NULL;
-    rc = make_table(data, name, model, o, &l, train, test, &t, err);
-    options_tradeoff_clear(&l); /* the table holds copies of the methods */
-    for (int i = 0; rc == BF_OK && i < t->nrows; i++) {
-        if (flagged(o->cancel) || flagged(o->finish))
-            break;
-        /* A row that cannot run says so in its message; running out of memory stops all. */
-        if (bf_tradeoff_run_row(t, i, train, test, o, &e) == BF_ERR_NOMEM) {
-            rc = bf_fail(err, BF_ERR_NOMEM, "%s", e.msg);
-            break;
-        }
-        if (progress)
-            progress(user, t, i);
-    }
-    bf_samples_free(train);
-    bf_samples_free(test);
+    rc = make_table(&m, err);
+    options_tradeoff_clear(&m.l); /* the table holds copies of the methods */
+    if (rc == BF_OK)
+        rc = run_rows(&m, progress, user, err);
+    bf_samples_free(m.train);
+    bf_samples_free(m.test);
     if (rc != BF_OK) {
-        bf_tradeoff_free(t);
+        bf_tradeoff_free(m.t);
         return rc;
     }
-    bf_tradeoff_rank(t);
-    *out = t;
+    bf_tradeoff_rank(m.t);
+    *out = m.t;
     return BF_OK;
 }
