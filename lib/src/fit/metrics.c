@@ -34,9 +34,11 @@ typedef struct job {
     partial *part;
 } job;
 
-void bf_metric_chunk(bf_metric_sums *p, const double *f, const double *mv, const double *dl, const double *cs,
-                     const double *w, size_t cnt, int C)
+void bf_metric_chunk(bf_metric_sums *p, const bf_metric_vals *v)
 {
+    const double *f = v->f, *mv = v->mv, *dl = v->dl, *cs = v->cs, *w = v->w;
+    const size_t cnt = v->cnt;
+    const int C = v->C;
     /* Summed on this thread's stack and stored once: neighbouring chunks' sums share
      * cache lines. */
     bf_metric_sums sums = *p;
@@ -78,7 +80,8 @@ static void chunk_sums(void *ctx, size_t c)
         for (size_t q = 0; q < cnt; q++)
             cs[ib - i0 + q] = bf_geometry_valid(gv, q) ? gv->lz[q] : 0.0;
     }
-    bf_metric_chunk(&p->s, f, j->value + i0 * (size_t)C, NULL, cs, j->weight ? j->weight + i0 : NULL, i1 - i0, C);
+    bf_metric_chunk(&p->s, &(bf_metric_vals){f, j->value + i0 * (size_t)C, NULL, cs, j->weight ? j->weight + i0 : NULL,
+                                             i1 - i0, C});
     free(f);
 }
 
@@ -88,6 +91,7 @@ bf_status bf_metrics_compute(const bf_model *m, const double *x, bf_samples *s, 
     return bf_metrics_compute_weighted(m, x, s, k, threads, 0, out, err);
 }
 
+/* 8 parameters: public API, each argument a separate choice of the caller. */
 bf_status bf_metrics_compute_weighted(const bf_model *m, const double *x, bf_samples *s, int k, int threads,
                                       int weighted, bf_metrics *out, bf_error *err)
 {

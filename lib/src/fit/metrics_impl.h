@@ -46,11 +46,19 @@ static inline void bf_metric_add(bf_metric_sums *p, double fv, double mv, double
  * objective's final pass beside the standard errors), so both give the same bits. */
 #define BF_METRIC_CHUNK 4096
 
-/* One chunk of cnt samples: f and mv (cnt * C values, sample-major), cs the samples'
- * cos theta_i (0 below the horizon: not counted), w their weights (NULL: all 1), dl
- * (NULL: computed here) the log differences as bf_metric_add_dl takes them. */
-void bf_metric_chunk(bf_metric_sums *p, const double *f, const double *mv, const double *dl, const double *cs,
-                     const double *w, size_t cnt, int C);
+/* One chunk's values: cnt samples of C channels; f and mv the model's and the measured
+ * (cnt * C values, sample-major), dl (NULL: computed from them) the log differences as
+ * bf_metric_add_dl takes them, cs the samples' cos theta_i (0 below the horizon: not
+ * counted), w their weights (NULL: all 1). */
+typedef struct bf_metric_vals {
+    const double *f, *mv, *dl;
+    const double *cs, *w;
+    size_t cnt;
+    int C;
+} bf_metric_vals;
+
+/* p += the sums of one chunk's values. */
+void bf_metric_chunk(bf_metric_sums *p, const bf_metric_vals *v);
 
 /* t += p (chunks added in a fixed order). */
 void bf_metric_sums_add(bf_metric_sums *t, const bf_metric_sums *p);

@@ -45,9 +45,11 @@ static inline double residual_of(const bf_objective *o, size_t i, size_t c, doub
     return bf_obj_form_t(o->residual, f, mm, cs, o->delta[c], t, drdf);
 }
 
-int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res, double *jac, int ncols,
-                  const int *cols, const double *colscale)
+int bf_obj_eval_x(const bf_objective *o, const double *x, const bf_obj_cols *cols, size_t r0, size_t r1, double *res,
+                  double *jac)
 {
+    const int ncols = cols->n, *idx = cols->idx;
+    const double *colscale = cols->scale;
     const size_t C = (size_t)o->C, P = (size_t)o->P, nres = o->n * C;
     if (r1 > nres)
         r1 = nres;
@@ -89,7 +91,7 @@ int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, 
                 if (jr) {
                     const double *gr = grad + li * P, s = w * d;
                     for (int j = 0; j < ncols; j++)
-                        jr[j] = s * gr[cols[j]] * colscale[j];
+                        jr[j] = s * gr[idx[j]] * colscale[j];
                 }
             }
         }
@@ -121,7 +123,7 @@ static int problem_eval(void *ctx, const double *z, size_t r0, size_t r1, double
     double stack[256], *x, *colscale;
     if (with_model_vector(o, z, &x, &colscale, stack, 256))
         return -1;
-    int bad = bf_obj_eval_x(o, x, r0, r1, res, jac, o->nz, o->kidx, colscale); /* solve.h: 0 or -1 */
+    int bad = bf_obj_eval_x(o, x, &(bf_obj_cols){o->nz, o->kidx, colscale}, r0, r1, res, jac); /* solve.h: 0 or -1 */
     if (x != stack)
         free(x);
     return bad;
@@ -135,7 +137,8 @@ static int problem_normal(void *ctx, const double *z, const bf_loss *loss, int t
     double stack[256], *x, *colscale;
     if (with_model_vector(o, z, &x, &colscale, stack, 256))
         return -1;
-    int bad = bf_obj_normal_x(o, x, loss, threads, o->nz, o->kidx, colscale, ssq, jtr, jtj); /* solve.h: 0 or -1 */
+    const bf_obj_pass req = {loss, threads, {o->nz, o->kidx, colscale}, 0};
+    int bad = bf_obj_normal_x(o, x, &req, &(bf_obj_pass_out){ssq, jtr, jtj, NULL}); /* solve.h: 0 or -1 */
     if (x != stack)
         free(x);
     return bad;

@@ -52,7 +52,7 @@ static size_t normal_part(int P)
  * differences) and cosines, and sums the metrics from them in bf_metric_chunk's order,
  * so that they equal bf_metrics_compute's to the bit. */
 typedef struct metric_buf {
-    size_t i0;      /* the chunk's first sample */
+    size_t i0, C;   /* the chunk's first sample; channels */
     double *f, *dl; /* per value of the chunk; dl only for the log form */
     double *cs;     /* per sample: cos theta_i, 0 below the horizon */
 } metric_buf;
@@ -60,33 +60,39 @@ typedef struct metric_buf {
 /* One value kept (the final pass only). raw is the residual form's value: for the log
  * form it is the metrics' log difference itself (the objective's measurement term is
  * bf_obj_log1p(m c) too), which saves two logarithms. */
-static inline __attribute__((always_inline)) void metric_value(const normal_job *j, bf_residual form, metric_buf *mb,
-                                                               size_t i, size_t ch, double f, double cs, double raw)
+static inline __attribute__((always_inline)) void metric_value(metric_buf *mb, bf_residual form, size_t i, size_t ch,
+                                                               double f, double cs, double raw)
 {
-    const size_t r = (i - mb->i0) * (size_t)j->o->C + ch;
+    const size_t r = (i - mb->i0) * mb->C + ch;
     mb->f[r] = f;
     if (form == BF_RESIDUAL_LOG)
         mb->dl[r] = raw;
     mb->cs[i - mb->i0] = cs;
 }
 
-/* The residual of measurement value[r] for model value f at cosine cs, and the scale
- * of its Jacobian row (w dr/df dg/dr), for one residual form: the form is a constant in
- * each call of the switches below, so the compiler drops its switch from the loops. */
-static inline __attribute__((always_inline)) double residual_at(const normal_job *j, bf_residual form, size_t r,
-                                                                size_t ch, double f, double w, double cs, double *s,
-                                                                double *raw)
+/* One residual: its loss-weighted value g, the scale s of its Jacobian row (w dr/df
+ * dg/dr) and the form's own value raw (before the weight and the loss). */
+typedef struct resid {
+    double g, s, raw;
+} resid;
+
+/* The residual of measurement value[r] for model value f at cosine cs, for one residual
+ * form: the form is a constant in each call of the switches below, so the compiler drops
+ * its switch from the loops. */
+static inline __attribute__((always_inline)) resid residual_at(const normal_job *j, bf_residual form, size_t r,
+                                                               size_t ch, double f, double w, double cs)
 {
     const bf_objective *o = j->o;
     const double mm = o->samples->value[r];
     const double t = o->meas_t ? o->meas_t[r] : bf_obj_form_meas(form, mm, cs);
     double d, dg = 1.0;
-    *raw = bf_obj_form_t(form, f, mm, cs, o->delta[ch], t, &d);
-    double g = w * *raw;
+    resid out;
+    out.raw = bf_obj_form_t(form, f, mm, cs, o->delta[ch], t, &d);
+    out.g = w * out.raw;
     if (j->loss && j->loss->kind != BF_LOSS_NONE)
-        g = bf_loss_residual(j->loss, g, &dg);
-    *s = w * d * dg;
-    return g;
+        out.g = bf_loss_residual(j->loss, out.g, &dg);
+    out.s = w * d * dg;
+    return out;
 }
 
 /* sum a[k] b[k] in four interleaved partial sums (a fixed order: the same bits every
@@ -106,32 +112,53 @@ static double dot(const double *restrict a, const double *restrict b, size_t n)
     return (s0 + s1) + (s2 + s3);
 }
 
+/* One chunk of the pass: its samples i0 .. i1-1, the workspace it holds while it runs,
+ * its sums (*ssq; jtr and jtj over the model vector, jtj's lower triangle, jtj NULL when
+ * not wanted) and its metric values (NULL when not wanted). */
+typedef struct chunk_ctx {
+    const normal_job *j;
+    bf_obj_ws *ws;
+    size_t i0, i1;
+    double *ssq, *jtr, *jtj;
+    metric_buf *ms;
+} chunk_ctx;
+
+/* One block of a chunk's samples: cnt of them from ib, and their geometry. */
+typedef struct block_at {
+    const bf_geometry *gv;
+    size_t ib, cnt;
+} block_at;
+
 /* ---- Lobe models ------------------------------------------------------------------- */
 
 /* Per chunk: per channel, the sums over the local entries u of a residual of that
  * channel (u = 0 rho_d[c], 1 .. K rho_s_k[c], then every lobe's scalars in order), and
- * one block's Jacobian columns over those entries. */
+ * one block's Jacobian columns over those entries, and the block's lobe shapes S_k and
+ * their derivatives dS_k (per scalar of the lobe). */
 typedef struct lobe_sums {
     int L;       /* local entries */
     double *tr;  /* C * L */
     double *tj;  /* C * L * L, lower triangle */
     double *col; /* (L + 2) * BF_LOBE_BLOCK: the columns, then g and s of the block */
+    const double (*S)[BF_LOBE_BLOCK];
+    const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK];
 } lobe_sums;
 
 /* One block of one channel: the residuals (form a constant in each call of the switch
  * in lobe_channels, so the compiler drops its switch from the loop), then the block's
  * Jacobian columns, then each of the sums as one dot product over the block. */
-static inline __attribute__((always_inline)) double lobe_block(const normal_job *j, bf_residual form, size_t ch,
-                                                               const bf_geometry *gv, size_t ib, size_t cnt,
-                                                               const double (*S)[BF_LOBE_BLOCK],
-                                                               const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
-                                                               lobe_sums *ls, metric_buf *ms)
+static inline __attribute__((always_inline)) double lobe_block(const chunk_ctx *cc, bf_residual form, size_t ch,
+                                                               const block_at *bk, const lobe_sums *ls)
 {
+    const normal_job *j = cc->j;
     const bf_objective *o = j->o;
     const bf_lobe_layout *lay = &j->lay;
-    const size_t C = (size_t)o->C;
+    const size_t C = (size_t)o->C, ib = bk->ib, cnt = bk->cnt;
     const int K = lay->lobes, L = ls->L;
-    const double *restrict sw = o->sw, *restrict lz = gv->lz, *restrict vz = gv->vz;
+    const double(*S)[BF_LOBE_BLOCK] = ls->S;
+    const double(*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK] = ls->dS;
+    metric_buf *ms = cc->ms;
+    const double *restrict sw = o->sw, *restrict lz = bk->gv->lz, *restrict vz = bk->gv->vz;
     double *restrict col = ls->col, *restrict g = col + (size_t)L * BF_LOBE_BLOCK, *restrict sc = g + BF_LOBE_BLOCK;
     double wk[BF_MAX_LOBES];
     for (int k = 0; k < K; k++)
@@ -146,11 +173,12 @@ static inline __attribute__((always_inline)) double lobe_block(const normal_job 
         double f = fd;
         for (int k = 0; k < K; k++)
             f += wk[k] * S[k][q];
-        double raw;
-        g[q] = residual_at(j, form, i * C + ch, ch, f, sw ? sw[i] : 1.0, lz[q], &sc[q], &raw);
+        const resid rr = residual_at(j, form, i * C + ch, ch, f, sw ? sw[i] : 1.0, lz[q]);
+        g[q] = rr.g;
+        sc[q] = rr.s;
         ssq += g[q] * g[q];
         if (ms)
-            metric_value(j, form, ms, i, ch, f, lz[q], raw);
+            metric_value(ms, form, i, ch, f, lz[q], rr.raw);
     }
     if (!j->want_jac)
         return ssq;
@@ -180,15 +208,14 @@ static inline __attribute__((always_inline)) double lobe_block(const normal_job 
     return ssq;
 }
 
-static double lobe_channels(const normal_job *j, const bf_geometry *gv, size_t ib, size_t cnt,
-                            const double (*S)[BF_LOBE_BLOCK], const double (*dS)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK],
-                            lobe_sums *ls, metric_buf *ms)
+static double lobe_channels(const chunk_ctx *cc, const block_at *bk, const lobe_sums *ls)
 {
     double ssq = 0.0;
-    for (size_t ch = 0; ch < (size_t)j->o->C; ch++)
-        switch (j->o->residual) {
-        case BF_RESIDUAL_LOG: ssq += lobe_block(j, BF_RESIDUAL_LOG, ch, gv, ib, cnt, S, dS, ls, ms); break;
-        default: ssq += lobe_block(j, j->o->residual, ch, gv, ib, cnt, S, dS, ls, ms); break;
+    const bf_objective *o = cc->j->o;
+    for (size_t ch = 0; ch < (size_t)o->C; ch++)
+        switch (o->residual) {
+        case BF_RESIDUAL_LOG: ssq += lobe_block(cc, BF_RESIDUAL_LOG, ch, bk, ls); break;
+        default: ssq += lobe_block(cc, o->residual, ch, bk, ls); break;
         }
     return ssq;
 }
@@ -209,35 +236,39 @@ static int lobe_entry(const bf_lobe_layout *lay, int u, int ch)
     return -1; /* not reached */
 }
 
-/* A chunk's sums: *ssq, jtr and jtj (P entries, lower triangle). 0, or -1 when out of
- * memory. */
-static int lobe_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i1, double *ssq_out, double *jtr,
-                      double *jtj, metric_buf *ms)
+/* A chunk's sums. 0, or -1 when out of memory. */
+static int lobe_chunk(const chunk_ctx *cc)
 {
+    const normal_job *j = cc->j;
     const bf_objective *o = j->o;
     const bf_lobe_layout *lay = &j->lay;
     const int K = lay->lobes, C = o->C, P = j->P;
+    const size_t i0 = cc->i0, i1 = cc->i1;
+    double *jtr = cc->jtr, *jtj = cc->jtj;
     int L = 1 + K;
     for (int k = 0; k < K; k++)
         L += lay->nscalar[k];
     const size_t ntr = (size_t)C * (size_t)L, ntj = ntr * (size_t)L;
-    lobe_sums ls = {L, bf_obj_ws_buf(ws, BF_WS_TR, ntr * sizeof(double)),
-                    j->want_jtj ? bf_obj_ws_buf(ws, BF_WS_TJ, ntj * sizeof(double)) : NULL,
-                    bf_obj_ws_buf(ws, BF_WS_COL, ((size_t)L + 2) * BF_LOBE_BLOCK * sizeof(double))};
+    double S[BF_MAX_LOBES][BF_LOBE_BLOCK], dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK];
+    lobe_sums ls = {L,
+                    bf_obj_ws_buf(cc->ws, BF_WS_TR, ntr * sizeof(double)),
+                    j->want_jtj ? bf_obj_ws_buf(cc->ws, BF_WS_TJ, ntj * sizeof(double)) : NULL,
+                    bf_obj_ws_buf(cc->ws, BF_WS_COL, ((size_t)L + 2) * BF_LOBE_BLOCK * sizeof(double)),
+                    (const double(*)[BF_LOBE_BLOCK])S,
+                    (const double(*)[BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK]) dS};
     if (!ls.tr || !ls.col || (j->want_jtj && !ls.tj))
         return -1;
     memset(ls.tr, 0, ntr * sizeof(double));
     if (ls.tj)
         memset(ls.tj, 0, ntj * sizeof(double));
-    double S[BF_MAX_LOBES][BF_LOBE_BLOCK], dS[BF_MAX_LOBES][BF_MAX_LOBE_SCALARS * BF_LOBE_BLOCK];
     double ssq = 0.0;
     bf_geometry_block gb;
     for (size_t ib = i0; ib < i1; ib += BF_LOBE_BLOCK) {
         const size_t cnt = i1 - ib < BF_LOBE_BLOCK ? i1 - ib : BF_LOBE_BLOCK;
-        const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
+        const block_at bk = {bf_geometry_view(o->geom, ib, cnt, &gb), ib, cnt};
         for (int k = 0; k < K; k++)
-            bf_model_lobe_shape(j->m, j->x, k, gv, 0, cnt, S[k], j->want_jac ? dS[k] : NULL);
-        ssq += lobe_channels(j, gv, ib, cnt, S, dS, &ls, ms);
+            bf_model_lobe_shape(j->m, j->x, k, bk.gv, 0, cnt, S[k], j->want_jac ? dS[k] : NULL);
+        ssq += lobe_channels(cc, &bk, &ls);
     }
     if (j->want_jac) { /* local entries to model entries (lower triangle of the chunk's sums) */
         for (int ch = 0; ch < C; ch++)
@@ -251,7 +282,7 @@ static int lobe_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i1, 
                 }
             }
     }
-    *ssq_out = ssq;
+    *cc->ssq = ssq;
     return 0;
 }
 
@@ -268,12 +299,14 @@ typedef struct block_scratch {
     uint64_t *used;      /* P */
 } block_scratch;
 
-static inline __attribute__((always_inline)) double block_residuals(const normal_job *j, bf_residual form,
-                                                                    const bf_geometry *gv, size_t ib, size_t cnt,
-                                                                    block_scratch *b, metric_buf *ms)
+static inline __attribute__((always_inline)) double block_residuals(const chunk_ctx *cc, bf_residual form,
+                                                                    const block_at *bk, block_scratch *b)
 {
+    const normal_job *j = cc->j;
     const bf_objective *o = j->o;
-    const size_t C = (size_t)o->C;
+    const bf_geometry *gv = bk->gv;
+    const size_t C = (size_t)o->C, ib = bk->ib, cnt = bk->cnt;
+    metric_buf *ms = cc->ms;
     double ssq = 0.0;
     for (size_t q = 0; q < cnt; q++) {
         const size_t i = ib + q;
@@ -285,12 +318,12 @@ static inline __attribute__((always_inline)) double block_residuals(const normal
         const double w = o->sw ? o->sw[i] : 1.0, cs = gv->lz[q];
         for (size_t ch = 0; ch < C; ch++) {
             const size_t li = q * C + ch;
-            double raw;
-            const double g = residual_at(j, form, i * C + ch, ch, b->vals[li], w, cs, &b->s[li], &raw);
-            ssq += g * g;
-            b->g[li] = g;
+            const resid rr = residual_at(j, form, i * C + ch, ch, b->vals[li], w, cs);
+            b->s[li] = rr.s;
+            ssq += rr.g * rr.g;
+            b->g[li] = rr.g;
             if (ms)
-                metric_value(j, form, ms, i, ch, b->vals[li], cs, raw);
+                metric_value(ms, form, i, ch, b->vals[li], cs, rr.raw);
         }
     }
     return ssq;
@@ -343,11 +376,12 @@ static void block_normal(const normal_job *j, size_t cnt, block_scratch *b, doub
     }
 }
 
-static int generic_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i1, double *ssq_out, double *jtr,
-                         double *jtj, metric_buf *ms)
+static int generic_chunk(const chunk_ctx *cc)
 {
+    const normal_job *j = cc->j;
     const bf_objective *o = j->o;
-    const size_t C = (size_t)o->C, P = (size_t)j->P;
+    const size_t C = (size_t)o->C, P = (size_t)j->P, i0 = cc->i0, i1 = cc->i1;
+    bf_obj_ws *ws = cc->ws;
     size_t blk = BLOCK_DOUBLES / (C * (j->want_jac ? P + 1 : 1));
     blk = blk < 1 ? 1 : blk > BF_GEOMETRY_BLOCK ? BF_GEOMETRY_BLOCK : blk;
     block_scratch b = {bf_obj_ws_buf(ws, BF_WS_VALS, blk * C * sizeof(double)),
@@ -363,137 +397,181 @@ static int generic_chunk(const normal_job *j, bf_obj_ws *ws, size_t i0, size_t i
     bf_geometry_block gb;
     for (size_t ib = i0; ib < i1; ib += blk) {
         const size_t cnt = i1 - ib < blk ? i1 - ib : blk;
-        const bf_geometry *gv = bf_geometry_view(o->geom, ib, cnt, &gb);
-        bf_model_eval_range(j->m, j->x, gv, 0, cnt, b.vals, b.grad);
+        const block_at bk = {bf_geometry_view(o->geom, ib, cnt, &gb), ib, cnt};
+        bf_model_eval_range(j->m, j->x, bk.gv, 0, cnt, b.vals, b.grad);
         switch (o->residual) {
-        case BF_RESIDUAL_LOG: ssq += block_residuals(j, BF_RESIDUAL_LOG, gv, ib, cnt, &b, ms); break;
-        default: ssq += block_residuals(j, o->residual, gv, ib, cnt, &b, ms); break;
+        case BF_RESIDUAL_LOG: ssq += block_residuals(cc, BF_RESIDUAL_LOG, &bk, &b); break;
+        default: ssq += block_residuals(cc, o->residual, &bk, &b); break;
         }
         if (j->want_jac)
-            block_normal(j, cnt, &b, jtr, jtj);
+            block_normal(j, cnt, &b, cc->jtr, cc->jtj);
     }
-    *ssq_out = ssq;
+    *cc->ssq = ssq;
     return 0;
 }
 
 /* ---- The pass ---------------------------------------------------------------------- */
 
+/* The chunk's metric buffer from its workspace. 0, or -1 when out of memory. */
+static int chunk_metric_buf(bf_obj_ws *ws, size_t i0, size_t i1, size_t C, metric_buf *mb)
+{
+    *mb = (metric_buf){i0, C, NULL, NULL, NULL};
+    mb->f = bf_obj_ws_buf(ws, BF_WS_MBUF, (i1 - i0) * (2 * C + 1) * sizeof(double));
+    if (!mb->f)
+        return -1;
+    mb->dl = mb->f + (i1 - i0) * C;
+    mb->cs = mb->dl + (i1 - i0) * C;
+    memset(mb->cs, 0, (i1 - i0) * sizeof *mb->cs);
+    return 0;
+}
+
 static void normal_chunk(void *ctx, size_t c)
 {
     normal_job *j = ctx;
     const size_t n = j->o->n, i0 = c * NORMAL_CHUNK, i1 = i0 + NORMAL_CHUNK < n ? i0 + NORMAL_CHUNK : n;
-    double *out = j->part + c * normal_part(j->P);
-    double *jtr = out + 1, *jtj = j->want_jtj ? out + 1 + j->P : NULL;
     const size_t C = (size_t)j->o->C;
-    metric_buf mbuf = {i0, NULL, NULL, NULL}, *ms = NULL;
-    bf_obj_ws *ws = bf_obj_ws_get(j->o->ws);
-    if (!ws) {
+    double *out = j->part + c * normal_part(j->P);
+    metric_buf mbuf;
+    chunk_ctx cc = {j, bf_obj_ws_get(j->o->ws), i0, i1, out, out + 1, j->want_jtj ? out + 1 + j->P : NULL, NULL};
+    if (!cc.ws) {
         j->failed = 1;
         return;
     }
     if (j->msum) {
-        mbuf.f = bf_obj_ws_buf(ws, BF_WS_MBUF, (i1 - i0) * (2 * C + 1) * sizeof(double));
-        if (!mbuf.f) {
-            bf_obj_ws_put(j->o->ws, ws);
+        if (chunk_metric_buf(cc.ws, i0, i1, C, &mbuf)) {
+            bf_obj_ws_put(j->o->ws, cc.ws);
             j->failed = 1;
             return;
         }
-        mbuf.dl = mbuf.f + (i1 - i0) * C;
-        mbuf.cs = mbuf.dl + (i1 - i0) * C;
-        memset(mbuf.cs, 0, (i1 - i0) * sizeof *mbuf.cs);
-        ms = &mbuf;
+        cc.ms = &mbuf;
     }
-    int bad =
-        j->lobe_path ? lobe_chunk(j, ws, i0, i1, out, jtr, jtj, ms) : generic_chunk(j, ws, i0, i1, out, jtr, jtj, ms);
-    if (!bad && ms)
-        bf_metric_chunk(&j->msum[c], mbuf.f, j->o->samples->value + i0 * C,
-                        j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
-                        j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C);
-    bf_obj_ws_put(j->o->ws, ws);
+    int bad = j->lobe_path ? lobe_chunk(&cc) : generic_chunk(&cc);
+    if (!bad && cc.ms)
+        bf_metric_chunk(&j->msum[c], &(bf_metric_vals){mbuf.f, j->o->samples->value + i0 * C,
+                                                       j->o->residual == BF_RESIDUAL_LOG ? mbuf.dl : NULL, mbuf.cs,
+                                                       j->mweight ? j->mweight + i0 : NULL, i1 - i0, (int)C});
+    bf_obj_ws_put(j->o->ws, cc.ws);
     if (bad)
         j->failed = 1; /* written only as 1, by any thread */
 }
 
-int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                    const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj)
+/* One pass's state: the job its chunks share, the untied vector, and the pass's own
+ * sums. */
+typedef struct normal_pass {
+    normal_job j;
+    const int *map;     /* entry k of j.m is entry map[k] of the model's; NULL: the same */
+    int PM;             /* the model's vector length */
+    size_t nchunks, ps; /* chunks, and the doubles of each one's part */
+    bf_obj_ws *ws;
+    double *sum;         /* the chunks' parts added */
+    double *ftr, *ftj;   /* J'g and J'J over the model's entries (PM, PM x PM) */
+    double xs[256], *xu; /* the untied vector: xs when it fits */
+} normal_pass;
+
+/* The untied model and vector, and the pass's buffers, zeroed (the chunks add into their
+ * parts). 0, or -1 when out of memory. */
+static int pass_setup(normal_pass *p, const bf_objective *o, const double *x, const bf_obj_pass *req,
+                      const bf_obj_pass_out *out)
 {
-    return bf_obj_normal_metrics(o, x, loss, threads, ncols, cols, colscale, ssq, jtr, jtj, 0, NULL);
+    const bf_model *m = bf_model_untied(o->model, &p->map);
+    const int P = bf_model_nvalues(m);
+    p->nchunks = (o->n + NORMAL_CHUNK - 1) / NORMAL_CHUNK;
+    p->ps = normal_part(P);
+    p->j = (normal_job){.o = o,
+                        .m = m,
+                        .P = P,
+                        .loss = req->loss,
+                        .want_jac = out->jtr != NULL || out->jtj != NULL,
+                        .want_jtj = out->jtj != NULL};
+    normal_job *j = &p->j;
+    j->lobe_path = bf_model_lobe_layout(m, &j->lay);
+    p->xu = (size_t)P <= 256 ? p->xs : malloc((size_t)P * sizeof *p->xu);
+    p->PM = o->P;
+    const size_t PM = (size_t)p->PM, nchunks = p->nchunks, ps = p->ps;
+    p->ws = bf_obj_ws_get(o->ws);
+    p->sum = p->ftr = p->ftj = NULL;
+    if (p->ws) {
+        j->part = bf_obj_ws_buf(p->ws, BF_WS_PART, (nchunks * ps + 1) * sizeof(double));
+        p->sum = bf_obj_ws_buf(p->ws, BF_WS_SUM, ps * sizeof *p->sum);
+        j->msum = out->metrics ? bf_obj_ws_buf(p->ws, BF_WS_MSUM, (nchunks + 1) * sizeof *j->msum) : NULL;
+        p->ftr = j->want_jac ? bf_obj_ws_buf(p->ws, BF_WS_FTR, PM * sizeof *p->ftr) : NULL;
+        p->ftj = out->jtj ? bf_obj_ws_buf(p->ws, BF_WS_FTJ, PM * PM * sizeof *p->ftj) : NULL;
+    }
+    j->mweight = req->weighted ? o->samples->scene_weight : NULL;
+    if (!p->ws || !p->xu || !j->part || !p->sum || (out->metrics && !j->msum) || (j->want_jac && !p->ftr) ||
+        (out->jtj && !p->ftj))
+        return -1;
+    memset(j->part, 0, (nchunks * ps + 1) * sizeof(double));
+    memset(p->sum, 0, ps * sizeof *p->sum);
+    if (j->msum)
+        memset(j->msum, 0, (nchunks + 1) * sizeof *j->msum);
+    if (p->ftr)
+        memset(p->ftr, 0, PM * sizeof *p->ftr);
+    if (p->ftj)
+        memset(p->ftj, 0, PM * PM * sizeof *p->ftj);
+    for (int k = 0; k < P; k++)
+        p->xu[k] = x[p->map ? p->map[k] : k];
+    j->x = p->xu;
+    return 0;
 }
 
-int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj, int weighted,
-                          bf_metric_sums *metrics)
+/* The chunks' sums added in chunk order (the result independent of the threads). */
+static void pass_sum(const normal_pass *p, const bf_obj_pass_out *out)
 {
-    const int *map;
-    const bf_model *m = bf_model_untied(o->model, &map);
-    const int P = bf_model_nvalues(m);
-    const size_t nchunks = (o->n + NORMAL_CHUNK - 1) / NORMAL_CHUNK, ps = normal_part(P);
-    normal_job j = {
-        .o = o, .m = m, .P = P, .loss = loss, .want_jac = jtr != NULL || jtj != NULL, .want_jtj = jtj != NULL};
-    j.lobe_path = bf_model_lobe_layout(m, &j.lay);
-    /* The untied vector: entry k of m is entry map[k] of the model's. */
-    double xs[256], *xu = (size_t)P <= 256 ? xs : malloc((size_t)P * sizeof *xu);
-    const int PM = o->P;
-    bf_obj_ws *ws = bf_obj_ws_get(o->ws);
-    double *sum = NULL, *ftr = NULL, *ftj = NULL;
-    if (ws) {
-        j.part = bf_obj_ws_buf(ws, BF_WS_PART, (nchunks * ps + 1) * sizeof(double));
-        sum = bf_obj_ws_buf(ws, BF_WS_SUM, ps * sizeof *sum);
-        j.msum = metrics ? bf_obj_ws_buf(ws, BF_WS_MSUM, (nchunks + 1) * sizeof *j.msum) : NULL;
-        ftr = j.want_jac ? bf_obj_ws_buf(ws, BF_WS_FTR, (size_t)PM * sizeof *ftr) : NULL;
-        ftj = jtj ? bf_obj_ws_buf(ws, BF_WS_FTJ, (size_t)PM * (size_t)PM * sizeof *ftj) : NULL;
+    for (size_t c = 0; c < p->nchunks; c++) {
+        const double *part = p->j.part + c * p->ps;
+        for (size_t e = 0; e < (p->j.want_jac ? p->ps : 1); e++)
+            p->sum[e] += part[e];
     }
-    j.mweight = weighted ? o->samples->scene_weight : NULL;
-    int bad = -1;
-    if (!ws || !xu || !j.part || !sum || (metrics && !j.msum) || (j.want_jac && !ftr) || (jtj && !ftj))
-        goto done;
-    /* Zeroed as the pass's calloc did: the chunks add into their parts. */
-    memset(j.part, 0, (nchunks * ps + 1) * sizeof(double));
-    memset(sum, 0, ps * sizeof *sum);
-    if (j.msum)
-        memset(j.msum, 0, (nchunks + 1) * sizeof *j.msum);
-    if (ftr)
-        memset(ftr, 0, (size_t)PM * sizeof *ftr);
-    if (ftj)
-        memset(ftj, 0, (size_t)PM * (size_t)PM * sizeof *ftj);
-    for (int k = 0; k < P; k++)
-        xu[k] = x[map ? map[k] : k];
-    j.x = xu;
-    bf_parallel_for(nchunks, threads, normal_chunk, &j);
-    if (j.failed)
-        goto done;
-    for (size_t c = 0; c < nchunks; c++) {
-        const double *part = j.part + c * ps;
-        for (size_t e = 0; e < (j.want_jac ? ps : 1); e++)
-            sum[e] += part[e];
+    *out->ssq = p->sum[0];
+    if (out->metrics) {
+        memset(out->metrics, 0, sizeof *out->metrics);
+        for (size_t c = 0; c < p->nchunks; c++)
+            bf_metric_sums_add(out->metrics, &p->j.msum[c]);
     }
-    *ssq = sum[0];
-    if (metrics) {
-        memset(metrics, 0, sizeof *metrics);
-        for (size_t c = 0; c < nchunks; c++)
-            bf_metric_sums_add(metrics, &j.msum[c]);
-    }
-    /* Untied entries folded onto the model's, then the requested columns taken. */
-    for (int a = 0; j.want_jac && a < P; a++) {
+}
+
+/* Untied entries folded onto the model's, then the requested columns taken. */
+static void pass_columns(const normal_pass *p, const bf_obj_cols *cols, const bf_obj_pass_out *out)
+{
+    const int P = p->j.P, *map = p->map;
+    const size_t PM = (size_t)p->PM;
+    const double *sum = p->sum;
+    double *ftr = p->ftr, *ftj = p->ftj, *jtr = out->jtr, *jtj = out->jtj;
+    for (int a = 0; p->j.want_jac && a < P; a++) {
         const int ka = map ? map[a] : a;
         ftr[ka] += sum[1 + a];
         for (int b = 0; jtj && b <= a; b++) {
             const int kb = map ? map[b] : b;
             const double v = sum[1 + P + (size_t)a * (size_t)P + (size_t)b];
-            ftj[(size_t)ka * (size_t)PM + (size_t)kb] += v;
+            ftj[(size_t)ka * PM + (size_t)kb] += v;
             if (a != b) /* the untied sums are symmetric: the upper half too */
-                ftj[(size_t)kb * (size_t)PM + (size_t)ka] += v;
+                ftj[(size_t)kb * PM + (size_t)ka] += v;
         }
     }
-    for (int a = 0; jtr && a < ncols; a++)
-        jtr[a] = ftr[cols[a]] * colscale[a];
-    for (int a = 0; jtj && a < ncols; a++)
-        for (int b = 0; b < ncols; b++)
-            jtj[a * ncols + b] = ftj[(size_t)cols[a] * (size_t)PM + (size_t)cols[b]] * colscale[a] * colscale[b];
-    bad = 0;
-done:
-    if (xu != xs)
-        free(xu);
-    bf_obj_ws_put(o->ws, ws);
+    const int n = cols->n, *idx = cols->idx;
+    const double *scale = cols->scale;
+    for (int a = 0; jtr && a < n; a++)
+        jtr[a] = ftr[idx[a]] * scale[a];
+    for (int a = 0; jtj && a < n; a++)
+        for (int b = 0; b < n; b++)
+            jtj[a * n + b] = ftj[(size_t)idx[a] * PM + (size_t)idx[b]] * scale[a] * scale[b];
+}
+
+int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_obj_pass *req, const bf_obj_pass_out *out)
+{
+    normal_pass p;
+    int bad = pass_setup(&p, o, x, req, out);
+    if (!bad) {
+        bf_parallel_for(p.nchunks, req->threads, normal_chunk, &p.j);
+        bad = p.j.failed ? -1 : 0;
+    }
+    if (!bad) {
+        pass_sum(&p, out);
+        pass_columns(&p, &req->cols, out);
+    }
+    if (p.xu != p.xs)
+        free(p.xu);
+    bf_obj_ws_put(o->ws, p.ws);
     return bad;
 }

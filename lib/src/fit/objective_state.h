@@ -155,26 +155,43 @@ bf_status bf_obj_apply_overrides(bf_objective *o, const bf_override *ov, int nov
 bf_status bf_obj_solid_angle_weights(bf_samples *s, const bf_geometry *g, double *w, bf_error *err);
 
 /* ---- Evaluation (objective.c) --------------------------------------------------------
- * Residuals r0..r1-1 at the model vector x, and when jac is not NULL their Jacobian
- * with respect to ncols columns: jac[(r - r0) * ncols + j] = dres/dx[cols[j]] * colscale[j].
- * Used for the internal Jacobian (free entries, chain rule dx/dz) and for standard
- * errors (free entries, model space). Returns 0, or -1 when out of memory. */
-int bf_obj_eval_x(const bf_objective *o, const double *x, size_t r0, size_t r1, double *res, double *jac, int ncols,
-                  const int *cols, const double *colscale);
+ * The columns of a Jacobian the passes below differentiate by: column j is model-vector
+ * entry idx[j] times scale[j] (for the internal Jacobian, the free entries and the chain
+ * rule dx/dz; for standard errors, the free entries in model space). */
+typedef struct bf_obj_cols {
+    int n;
+    const int *idx;
+    const double *scale;
+} bf_obj_cols;
 
-/* The fused pass of bf_problem.normal (solve.h) at the model vector x over the same
- * columns as bf_obj_eval_x: *ssq = sum g^2 of the loss-weighted residuals, jtr = J'g
- * and jtj = J'J (ncols x ncols, full; either NULL when not wanted), on `threads`
- * threads with a result independent of their count. Returns 0, or -1 when out of
- * memory. */
-int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                    const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj);
-/* The same, and when metrics is not NULL the metrics' sums (metrics_impl.h) of the
- * model's values in the same pass, with the samples' scene weights when weighted. */
+/* Residuals r0..r1-1 at the model vector x, and when jac is not NULL their Jacobian
+ * over cols: jac[(r - r0) * cols->n + j] = dres/dx[cols->idx[j]] * cols->scale[j].
+ * Returns 0, or -1 when out of memory. */
+int bf_obj_eval_x(const bf_objective *o, const double *x, const bf_obj_cols *cols, size_t r0, size_t r1, double *res,
+                  double *jac);
+
+/* What a fused pass of bf_problem.normal (solve.h) is asked: the loss (NULL: none), the
+ * threads (the result does not depend on their count), the columns (as bf_obj_eval_x's),
+ * and for the metrics whether they carry the samples' scene weights. */
+typedef struct bf_obj_pass {
+    const bf_loss *loss;
+    int threads;
+    bf_obj_cols cols;
+    int weighted;
+} bf_obj_pass;
+
+/* Where it goes: *ssq = sum g^2 of the loss-weighted residuals; jtr = J'g (cols.n) and
+ * jtj = J'J (cols.n x cols.n, full), and the metrics' sums (metrics_impl.h) of the
+ * model's values, each NULL when not wanted. */
 struct bf_metric_sums;
-int bf_obj_normal_metrics(const bf_objective *o, const double *x, const bf_loss *loss, int threads, int ncols,
-                          const int *cols, const double *colscale, double *ssq, double *jtr, double *jtj, int weighted,
-                          struct bf_metric_sums *metrics);
+typedef struct bf_obj_pass_out {
+    double *ssq, *jtr, *jtj;
+    struct bf_metric_sums *metrics;
+} bf_obj_pass_out;
+
+/* The fused pass at the model vector x, nothing of size n x cols.n stored. Returns 0, or
+ * -1 when out of memory. */
+int bf_obj_normal_x(const bf_objective *o, const double *x, const bf_obj_pass *req, const bf_obj_pass_out *out);
 
 /* ---- The end of a fit (objective_stderr.c) ---------------------------------------------
  * What the end of a fit asks of its last pass: the scene's weights in the metrics or

@@ -224,8 +224,8 @@ static bf_status final_pass(const bf_objective *o, const double *x, const bf_fin
     }
     for (int k = 0; k < nz; k++)
         ones[k] = 1.0;
-    if (bf_obj_normal_metrics(o, x, NULL, o->threads, nz, o->kidx, ones, &ssr, NULL, nz ? jtj : NULL, want->weighted,
-                              sums)) {
+    const bf_obj_pass req = {NULL, o->threads, {nz, o->kidx, ones}, want->weighted};
+    if (bf_obj_normal_x(o, x, &req, &(bf_obj_pass_out){&ssr, NULL, nz ? jtj : NULL, sums})) {
         rc = bf_fail(err, BF_ERR_NOMEM, "out of memory for standard errors");
         goto done;
     }
