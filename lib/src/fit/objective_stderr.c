@@ -13,7 +13,7 @@
  * eigenvalue counts as null below 1e-12 of the largest (the scaled matrix has unit
  * diagonal, so this is a condition number of 1e12, the limit of double precision for a
  * normal matrix). A parameter the residuals do not depend on at all (zero column) is NaN
- * too. An entry the caller holds for the errors (bf_obj_final_held: on a bound, or
+ * too. An entry the caller holds for the errors (bf_final_want.held: on a bound, or
  * silent) is left out of J^T J, as a solver with that bound active leaves it, and gets
  * NaN: the others' errors are then those of the parameters the data can move. The
  * correlations come from J^T J without the entries held for them (silent ones): two

@@ -7,9 +7,9 @@
  *   ends, or with 2-3 channels), which CIE 015:2018 (7.2.2) lists among the accepted
  *   methods and which, unlike Sprague's, needs no even spacing; and held constant past
  *   its ends (the CIE 015 / ASTM E308 advice for truncated data: repeat the end values).
- *   Linear interpolation was tried first: it moved the chromaticity of saturated
- *   ColorChecker patches by up to 8e-4 from BabelColor's published values, the cubic by
- *   at most 6e-5, their rounding.
+ *   Linear interpolation would move the chromaticity of saturated ColorChecker
+ *   patches by up to 8e-4 from BabelColor's published values; the cubic stays within
+ *   6e-5, their rounding.
  * - The white that RGB is adapted from is the one the same weights give a flat spectrum,
  *   not a rounded chromaticity, so a flat spectrum lands on (1, 1, 1) to rounding for
  *   every illuminant: a grey paint is grey whatever it was integrated under.

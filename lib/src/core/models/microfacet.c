@@ -155,9 +155,9 @@ static inline void f_pass(mf_cfg c, const bf_geometry *g, size_t i0, size_t cnt,
     }
 }
 
-/* One specular lobe over a block (a bf_lobe_fn). Scalars: s[0] = the D's roughness (n
- * for blinn), s[1] = f0 or ior unless F=none; for F=conductor s[1] = r, s[2] = g of one
- * channel (the driver calls the lobe per channel). */
+/* One specular lobe over a block (a bf_lobe_fn: family.h says why eight arguments).
+ * Scalars: s[0] = the D's roughness (n for blinn), s[1] = f0 or ior unless F=none; for
+ * F=conductor s[1] = r, s[2] = g of one channel (the driver calls the lobe per channel). */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
                  double *dS)
 {

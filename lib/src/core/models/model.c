@@ -290,6 +290,7 @@ bf_status bf_model_add_param_open(bf_model *m, const char *name, int color, doub
     return BF_OK;
 }
 
+/* Positional, as bf_model_add_param_open. */
 bf_status bf_model_add_param(bf_model *m, const char *name, int color, double lo, double hi, double def, bf_scale scale,
                              int lobe, bf_param_role role, bf_error *err)
 {
