@@ -2,15 +2,12 @@
  * re-runs the fits a baseline lists and compares them with its expected values.
  *
  * Decisions:
- *  - Each case's "options" are brdfit fit's data and fit options, taken by the same
- *    tables as brdfit fit; --threads defaults to 1 (not every core) so results are
- *    identical across machines. -m and -o have no place there: the case's "model" names
- *    the model and the baseline is the output.
+ *  - What a case's "options" may hold, and how they are read, is the library's
+ *    (bf_regress_case_options: brdfit fit's data and fit options, --threads 1 unless
+ *    set, --scene and "data" relative to the baseline's folder).
  *  - Everything that can be checked before fitting is: every case's options, model and
  *    data file. A bad baseline stops with exit 2 and one line naming the file and line,
  *    before any fit runs and without writing the JUnit file.
- *  - "data" and the value of --scene are relative to the baseline's folder, so a
- *    baseline runs from any working directory.
  *  - A case that cannot run (unreadable data, a fit error) is an error, not a failure:
  *    JUnit <error>, exit 1, and --update writes nothing.
  *  - Exit: 0 every case passed (or --update wrote the baseline); 1 a case failed or could
@@ -31,7 +28,6 @@
 #include "cli.h"
 #include "commands.h"
 #include "data_options.h"
-#include "fit_options.h"
 
 static const char cmd[] = "brdfit regress";
 
@@ -81,108 +77,28 @@ const cli_command cli_regress = {
     sizeof groups / sizeof groups[0],
 };
 
-/* The options a case may hold: brdfit fit's data and fit options. */
-static const cli_group *const case_groups[] = {
-    &fit_options_accuracy, &fit_options_fitting,        &fit_options_optimizer,
-    &data_options_reading, &data_options_preprocessing,
-};
-static const cli_command case_options = {"brdfit", "fit", "",          "",
-                                         NULL,     NULL,  case_groups, sizeof case_groups / sizeof case_groups[0]};
-
-/* One case's parsed options. The argv holds the baseline's strings, except --scene
- * values, resolved against the baseline's folder (owned). */
+/* One case's run options (bf_regress_case_options: the library's rules for what a case
+ * holds) and the scene file they name, or "". */
 typedef struct case_run {
     bf_options *o;
-    char scene[4096]; /* the scene file as resolved, or "" */
-    char **argv;
-    char **owned;
-    int argc, nowned;
+    char scene[4096];
 } case_run;
 
 static void case_run_free(case_run *r)
 {
-    for (int k = 0; k < r->nowned; k++)
-        free(r->owned[k]);
-    free(r->owned);
-    free(r->argv);
     bf_options_free(r->o);
 }
 
-/* Parses case c's options; 0, or 2 after a one-line error naming the baseline's line. */
+/* Case c's options; 0, or 2 after a one-line error naming the baseline's line. */
 static int prepare(const bf_regress_baseline *b, int c, case_run *r)
 {
-    const bf_regress_case *cs = &b->cases[c];
     memset(r, 0, sizeof *r);
-    if (!(r->o = cmd_options_new(BF_TASK_FIT, cmd)))
+    bf_error e;
+    if (bf_regress_case_options(b, c, &r->o, &e) != BF_OK) {
+        fprintf(stderr, "%s: %s\n", cmd, e.msg);
         return 2;
-    bf_options_set(r->o, "threads", "1", NULL); /* a baseline's default */
-    r->argc = cs->noptions;
-    r->argv = calloc((size_t)cs->noptions + 1, sizeof *r->argv);
-    r->owned = calloc((size_t)cs->noptions + 1, sizeof *r->owned);
-    if (!r->argv || !r->owned) {
-        fprintf(stderr, "%s: out of memory\n", cmd);
-        return 2;
-    }
-    for (int k = 0; k < cs->noptions; k++) {
-        r->argv[k] = cs->options[k];
-        if (k > 0 && !strcmp(cs->options[k - 1], "--scene")) {
-            if (!(r->argv[k] = r->owned[r->nowned++] = bf_regress_resolve(b, cs->options[k]))) {
-                fprintf(stderr, "%s: out of memory\n", cmd);
-                return 2;
-            }
-        }
-    }
-    void *const targets[] = {&r->o, &r->o, &r->o, &r->o, &r->o}; /* case_groups' targets */
-    _Static_assert(CLI_COUNT(targets) == CLI_COUNT(case_groups), "a target for each group");
-    for (int i = 0; i < r->argc; i++) {
-        /* The parsers' messages then read "brdfit regress: FILE:LINE: case 'x': --opt: ...". */
-        char prefix[1024];
-        snprintf(prefix, sizeof prefix, "%s: %s:%d: case '%s'", cmd, b->path, cs->option_lines[i], cs->name);
-        /* The grammar of the command line: --name value or --name=value. */
-        const char *a = r->argv[i], *eq = strchr(a, '='), *v = NULL;
-        const size_t len = eq ? (size_t)(eq - a) : strlen(a);
-        const cli_option *o = !strncmp(a, "--", 2) && len < 64 ? cli_find(&case_options, a, len) : NULL;
-        if (!o || o->short_name == 'h' || o->short_name == 'q' || o->short_name == 'v') {
-            if (!strcmp(a, "-m") || !strncmp(a, "--model", 7) || !strcmp(a, "-o") || !strncmp(a, "--output", 8))
-                fprintf(stderr, "%s: option '%s' has no place in a baseline (the case's \"model\" names the model)\n",
-                        prefix, a);
-            else
-                fprintf(stderr, "%s: unknown option '%s' (brdfit fit's data and fit options only)\n", prefix, a);
-            return 2;
-        }
-        if (!o->arg && eq) {
-            fprintf(stderr, "%s: %s takes no value\n", prefix, o->name);
-            return 2;
-        }
-        if (o->arg && !eq) {
-            if (i + 1 >= r->argc) {
-                fprintf(stderr, "%s: %s needs a value\n", prefix, o->name);
-                return 2;
-            }
-            v = r->argv[++i];
-        } else if (eq) {
-            v = eq + 1;
-        }
-        int d = 0; /* o is in one group: taken into its struct */
-        for (int g = 0; !d && g < CLI_COUNT(case_groups); g++)
-            d = cli_group_take(case_groups[g], targets[g], o->name, v, prefix);
-        if (d <= 0)
-            return 2;
     }
     data_options_scene(r->o, r->scene, sizeof r->scene);
-    if (access(cs->data_path, R_OK) != 0) {
-        fprintf(stderr, "%s: %s:%d: case '%s': data file '%s': %s\n", cmd, b->path, cs->data_line, cs->name,
-                cs->data_path, strerror(errno));
-        return 2;
-    }
-    /* A bad scene file is a bad baseline too, found before any fit runs. */
-    bf_scene *sc = NULL;
-    bf_error e;
-    if (*r->scene && bf_scene_read(r->scene, &sc, &e) != BF_OK) {
-        fprintf(stderr, "%s: %s:%d: case '%s': --scene: %s\n", cmd, b->path, cs->data_line, cs->name, e.msg);
-        return 2;
-    }
-    bf_scene_free(sc);
     return 0;
 }
 

@@ -83,6 +83,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int c = 0; c < MAX_CASES; c++)
         bf_regress_outcome_init(&outs[c]);
     for (int c = 0; c < n; c++) {
+        /* The case's options as a runner reads them: taken, or refused with one line
+         * naming the baseline. Not with a scene: it would be read from wherever the
+         * input points (a device, a pipe). */
+        int scene = 0;
+        for (int k = 0; k < b->cases[c].noptions; k++)
+            scene |= strstr(b->cases[c].options[k], "scene") != NULL;
+        if (!scene) {
+            bf_options *o = NULL;
+            fuzz_check_result(bf_regress_case_options(b, c, &o, &err), &err, o);
+            bf_options_free(o);
+        }
         /* One channel for even cases, three for odd ones. */
         if (!(made[c] = make_result(&b->cases[c], c % 2 ? 3 : 1, &r[c])))
             fuzz_fail("case %d: model '%s' passed the loader but does not build", c, b->cases[c].model);

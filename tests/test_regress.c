@@ -494,6 +494,91 @@ static void test_update(void **state)
     rmdir(dir);
 }
 
+/* A case's run options, as the library reads them for every runner of baselines:
+ * threads 1 unless set, both spellings of a value, --scene relative to the baseline's
+ * folder, and each refusal naming the file and line. */
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static bf_status case_options(const char *dir, const char *data, const char *options, bf_options **o, bf_error *err)
+{
+    char path[512], text[1024];
+    snprintf(path, sizeof path, "%s/base.json", dir);
+    snprintf(text, sizeof text,
+             "{\"brdfit_baseline\": 1, \"cases\": [\n"
+             "{\"name\": \"c\", \"data\": \"%s\", \"model\": \"lambert\",\n"
+             "\"options\": [%s]}]}\n",
+             data, options);
+    bf_regress_baseline *b = NULL;
+    bf_error perr;
+    if (bf_regress_parse(text, path, &b, &perr) != BF_OK)
+        fail_msg("%s", perr.msg);
+    bf_status rc = bf_regress_case_options(b, 0, o, err);
+    bf_regress_baseline_free(b);
+    return rc;
+}
+
+static void option_is(const bf_options *o, const char *name, const char *want)
+{
+    char v[4096];
+    assert_int_equal(bf_options_get(o, name, v, sizeof v, NULL), BF_OK);
+    assert_string_equal(v, want);
+}
+
+static void test_case_options(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/test_regress_XXXXXX", path[600];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/d.csv", dir);
+    write_file(path, "theta_i,phi_i,theta_o,phi_o,value\n");
+    snprintf(path, sizeof path, "%s/s.json", dir);
+    write_file(path, "{\"lights\": [{\"theta\": 40, \"phi\": 45}], \"views\": [{\"theta\": 60, \"phi\": 0}]}\n");
+    bf_options *o = NULL;
+    bf_error err;
+
+    assert_int_equal(case_options(dir, "d.csv", "\"--max-theta=80\", \"--scene\", \"s.json\"", &o, &err), BF_OK);
+    option_is(o, "threads", "1");
+    option_is(o, "max_theta", "80");
+    option_is(o, "scene", path);
+    bf_options_free(o);
+    assert_int_equal(case_options(dir, "d.csv", "\"--threads\", \"2\", \"--rgb\"", &o, &err), BF_OK);
+    option_is(o, "threads", "2");
+    option_is(o, "rgb", "true");
+    bf_options_free(o);
+
+    static const struct {
+        const char *options, *data, *message;
+    } bad[] = {
+        {"\"--frobnicate\"", "d.csv", "base.json:3: case 'c': unknown option '--frobnicate' (brdfit fit's data"},
+        {"\"-m\", \"walter\"", "d.csv", "base.json:3: case 'c': option '-m' has no place in a baseline"},
+        {"\"--rank\", \"bic\"", "d.csv", "base.json:3: case 'c': unknown option '--rank'"},
+        {"\"--rgb=1\"", "d.csv", "base.json:3: case 'c': --rgb takes no value"},
+        {"\"--seed\"", "d.csv", "base.json:3: case 'c': --seed needs a value"},
+        {"\"--seed\", \"x\"", "d.csv", "base.json:3: case 'c': --seed needs an integer"},
+        {"\"--scene\", \"none.json\"", "d.csv", "base.json:2: case 'c': --scene: "},
+        {"\"--rgb\"", "missing.csv", "base.json:2: case 'c': data file '"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        o = (bf_options *)&err; /* refused: set back to NULL */
+        assert_int_not_equal(case_options(dir, bad[k].data, bad[k].options, &o, &err), BF_OK);
+        assert_null(o);
+        const char *at = strstr(err.msg, "base.json:");
+        if (!at || strncmp(at, bad[k].message, strlen(bad[k].message)) != 0)
+            fail_msg("case %zu: '%s', wanted '%s...'", k, err.msg, bad[k].message);
+    }
+    snprintf(path, sizeof path, "%s/d.csv", dir);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/s.json", dir);
+    unlink(path);
+    rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -501,6 +586,7 @@ int main(void)
         cmocka_unit_test(test_tolerance),     cmocka_unit_test(test_diff_lines),
         cmocka_unit_test(test_junit),         cmocka_unit_test(test_update),
         cmocka_unit_test(test_repeated_keys), cmocka_unit_test(test_control_characters),
+        cmocka_unit_test(test_case_options),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -25,6 +25,7 @@
 
 #include "brdfit/error.h"
 #include "brdfit/fit.h"
+#include "brdfit/options.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -88,6 +89,17 @@ BF_API void bf_regress_baseline_free(bf_regress_baseline *b);
 
 /* path resolved against the baseline's folder (absolute paths unchanged); malloc'd. */
 BF_API char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
+
+/* Case c's run options, the rules every runner of baselines shares: brdfit fit's data
+ * and fit options (the library's groups accuracy, fitting, optimizer, reading and
+ * preprocessing), written as the command line writes them ("--max-theta 80" or
+ * "--max-theta=80"); threads 1 unless the case sets it, so that results are the same on
+ * every machine; --scene relative to the baseline's folder, as the data; the case's data
+ * file readable and its scene file valid, so that a bad baseline is found before any
+ * fit. -m and -o have no place there (the case's "model" names the model). Errors name
+ * the baseline's file and line ("b.json:12: case 'felt': unknown option '--x' (...)");
+ * *out (bf_options_free) is NULL then. */
+BF_API bf_status bf_regress_case_options(const bf_regress_baseline *b, int c, bf_options **out, bf_error *err);
 
 /* Line of a value in the file: JSON path segments separated by '/', array elements by
  * index, e.g. "cases/0/options/3"; the line of the deepest segment found (1 if none). */
