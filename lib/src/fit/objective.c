@@ -112,7 +112,7 @@ static int with_model_vector(const bf_objective *o, const double *z, double **x,
     *colscale = *x + o->P;
     bf_objective_to_model(o, z, *x);
     for (int j = 0; j < o->nz; j++)
-        (*colscale)[j] = bf_obj_dxdz(o->scale[o->kidx[j]], (*x)[o->kidx[j]]);
+        (*colscale)[j] = bf_scale_dxdz(o->scale[o->kidx[j]], (*x)[o->kidx[j]]);
     return 0;
 }
 
@@ -173,7 +173,7 @@ static double problem_constraint(void *ctx, const double *z, double *grad)
         for (int q = 0; q < o->ncolor; q++) {
             int k = o->color_off[q] + best * o->color_step[q];
             if (o->zpos[k] >= 0)
-                grad[o->zpos[k]] = bf_obj_dxdz(o->scale[k], x[k]);
+                grad[o->zpos[k]] = bf_scale_dxdz(o->scale[k], x[k]);
         }
     }
     if (x != xs)

@@ -14,6 +14,7 @@
 #include "brdfit/objective.h"
 
 /* The passes' workspaces (objective_ws.c). */
+#include "models/scale.h"
 #include "objective_ws.h"
 
 struct bf_objective {
@@ -139,10 +140,6 @@ static inline double bf_obj_form_t(bf_residual form, double f, double mm, double
 /* Chooses the scale of each entry from the model's hint and the effective bounds, and
  * fills zpos, kidx, zlo, zhi and nz. */
 void bf_obj_setup_scale(bf_objective *o);
-/* One entry: model value <-> internal value, and dx/dz at x. */
-double bf_obj_to_z(bf_scale sc, double x);
-double bf_obj_to_x(bf_scale sc, double z);
-double bf_obj_dxdz(bf_scale sc, double x);
 
 /* ---- Overrides (overrides.c) ---------------------------------------------------------
  * Fills lo, hi, fixed, fixval from the model's bounds and the overrides, in order (a

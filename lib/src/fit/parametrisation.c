@@ -13,33 +13,6 @@
 
 #include "objective_state.h"
 
-double bf_obj_to_z(bf_scale sc, double x)
-{
-    switch (sc) {
-    case BF_SCALE_LOG: return log(x);
-    case BF_SCALE_LOG1P: return log1p(x);
-    default: return x;
-    }
-}
-
-double bf_obj_to_x(bf_scale sc, double z)
-{
-    switch (sc) {
-    case BF_SCALE_LOG: return exp(z);
-    case BF_SCALE_LOG1P: return expm1(z);
-    default: return z;
-    }
-}
-
-double bf_obj_dxdz(bf_scale sc, double x)
-{
-    switch (sc) {
-    case BF_SCALE_LOG: return x;         /* d e^z / dz = e^z = x */
-    case BF_SCALE_LOG1P: return 1.0 + x; /* d (e^z - 1) / dz = e^z = 1 + x */
-    default: return 1.0;
-    }
-}
-
 void bf_obj_setup_scale(bf_objective *o)
 {
     const bf_model *m = o->model;
@@ -63,8 +36,8 @@ void bf_obj_setup_scale(bf_objective *o)
             int j = o->nz++;
             o->zpos[k] = j;
             o->kidx[j] = k;
-            o->zlo[j] = bf_obj_to_z(sc, o->lo[k]);
-            o->zhi[j] = bf_obj_to_z(sc, o->hi[k]);
+            o->zlo[j] = bf_scale_to_z(sc, o->lo[k]);
+            o->zhi[j] = bf_scale_to_z(sc, o->hi[k]);
         }
     }
 }
@@ -79,7 +52,7 @@ void bf_objective_to_internal(const bf_objective *o, const double *x, double *z)
     for (int j = 0; j < o->nz; j++) {
         int k = o->kidx[j];
         double v = isnan(x[k]) ? o->lo[k] : clamp(x[k], o->lo[k], o->hi[k]);
-        z[j] = bf_obj_to_z(o->scale[k], v);
+        z[j] = bf_scale_to_z(o->scale[k], v);
     }
 }
 
@@ -91,6 +64,6 @@ void bf_objective_to_model(const bf_objective *o, const double *z, double *x)
             continue;
         }
         /* exp(ln hi) may round just past hi: clamp, so x always passes bf_model_check. */
-        x[k] = clamp(bf_obj_to_x(o->scale[k], z[o->zpos[k]]), o->lo[k], o->hi[k]);
+        x[k] = clamp(bf_scale_to_x(o->scale[k], z[o->zpos[k]]), o->lo[k], o->hi[k]);
     }
 }

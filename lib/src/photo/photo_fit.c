@@ -21,7 +21,7 @@
 #include "base/parallel.h"
 #include "brdfit/clock.h"
 #include "brdfit/image.h"
-#include "objective_state.h"
+#include "models/scale.h"
 #include "photo_run.h"
 
 #define START_PIXELS 2048  /* the subsample of the start */

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "objective_state.h"
+#include "models/scale.h"
 #include "photo_impl.h"
 
 #define NORMAL_STEP 1e-5 /* radians: the forward differences of the normal */
@@ -230,7 +230,7 @@ static double sums(const photo_problem *pr, const float *v, const photo_lights *
     memset(w->jtr, 0, (size_t)nu * sizeof *w->jtr);
     double dxdz[PHOTO_MAX_PARAMS], row[MAX_UNKNOWNS], cost = 0.0;
     for (int j = 0; j < u->nx; j++)
-        dxdz[j] = bf_obj_dxdz(pr->scale[u->idx[j]], x[u->idx[j]]);
+        dxdz[j] = bf_scale_dxdz(pr->scale[u->idx[j]], x[u->idx[j]]);
     for (int k = 0; k < pr->K; k++) {
         if (!used(v, w, k, C))
             continue;
@@ -325,7 +325,7 @@ int photo_damped_solve(const double *A, const double *g, int n, double lambda, d
 static double step_entry(const photo_problem *pr, int e, double x, double dz)
 {
     bf_scale sc = pr->scale[e];
-    double y = bf_obj_to_x(sc, bf_obj_to_z(sc, x) + dz);
+    double y = bf_scale_to_x(sc, bf_scale_to_z(sc, x) + dz);
     if (!(y >= pr->lo[e]))
         y = pr->lo[e];
     if (!(y <= pr->hi[e]))
