@@ -20,6 +20,7 @@
 #ifndef BRDFIT_ERROR_H
 #define BRDFIT_ERROR_H
 
+#include <signal.h>
 #include <stdarg.h>
 #include <stddef.h>
 
@@ -39,6 +40,12 @@ typedef enum bf_status {
     BF_ERR_CANCELLED /* stopped by the caller's cancel flag (bf_options_set_cancel) before it
                         was done: nothing was made (bf_samples_load) */
 } bf_status;
+
+/* A flag a signal handler or another thread sets non-zero to stop work: the one type of
+ * every cancel flag the library reads (it never writes one). Read with an atomic load
+ * where the compiler has one: a handler sets it with an atomic store there, or a plain
+ * one. */
+typedef volatile sig_atomic_t bf_cancel_flag;
 
 /* Messages quote what hostile files hold, and are printed on terminals: bf_fail makes
  * every message one line of at most BF_ERROR_MAX_CHARS characters, with runs of more

@@ -134,7 +134,7 @@ BF_API void bf_options_keep_origin(bf_options *o, int keep);
  * option starts is 1. */
 BF_API bf_status bf_options_set_start(bf_options *o, const double *x, int n, bf_error *err);
 
-/* The flags are bf_cancel_flag (brdfit/solve.h). cancel: read at every iteration of every
+/* The flags are bf_cancel_flag (brdfit/error.h). cancel: read at every iteration of every
  * solve and before every fit: once set, running solves stop at their next iteration (the
  * fit ends cancelled) and no new fit starts; a load stops too (bf_samples_load:
  * BF_ERR_CANCELLED). finish: read before each fit of a comparison or selection: once

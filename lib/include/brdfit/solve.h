@@ -6,7 +6,6 @@
 #define BRDFIT_SOLVE_H
 
 #include <math.h>
-#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -145,12 +144,6 @@ BF_API size_t bf_method_list(bf_backend backend, unsigned need, unsigned avoid, 
  * with its number and the cost there; a non-zero return cancels the solve (and the fit
  * it belongs to). Called from the solving thread. */
 typedef int (*bf_progress_fn)(void *user, int iteration, double cost);
-
-/* A flag a signal handler or another thread sets non-zero to stop work: the one type of
- * every cancel flag the library reads (it never writes one). Read with an atomic load
- * where the compiler has one: a handler sets it with an atomic store there, or a plain
- * one. */
-typedef volatile sig_atomic_t bf_cancel_flag;
 
 /* Set up with bf_solver_options_init (its size: docs/api.md), then change what differs. */
 typedef struct bf_solver_options {

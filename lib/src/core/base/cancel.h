@@ -1,9 +1,9 @@
-/* Internal: reading a caller's cancel flag (bf_cancel_flag, brdfit/solve.h), which a
+/* Internal: reading a caller's cancel flag (bf_cancel_flag, brdfit/error.h), which a
  * signal handler or another thread may set while the library works. */
 #ifndef BRDFIT_CANCEL_H
 #define BRDFIT_CANCEL_H
 
-#include "brdfit/solve.h"
+#include "brdfit/error.h"
 
 /* 1 when flag (NULL: none) is set: an atomic load where the compiler has one, else the
  * volatile read. */

@@ -1,5 +1,5 @@
-/* Internal: what the export writers share (gltf.c, blender.c, mitsuba.c; export.c has the
- * targets and the conversion). The material is always in the target's native model with
+/* Internal: what the export writers share (gltf.c, blender.c, mitsuba.c; targets.c has the
+ * targets and the write; the conversion is lib/src/study/export/convert.c). The material is always in the target's native model with
  * 1 or 3 channels; each writer maps it to the renderer's file. */
 #ifndef BF_EXPORT_IMPL_H
 #define BF_EXPORT_IMPL_H
