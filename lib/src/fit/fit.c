@@ -427,7 +427,8 @@ static bf_status result_figures(fit_run *f, bf_error *err)
                                                     : f->obj;
     if (f->have_best && nz > 0 && (rc = held_entries(f, po, err)) != BF_OK)
         return rc;
-    f->corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *f->corr);
+    if (!(f->corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *f->corr)))
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the correlations");
     /* Samples a scene weighted are judged over its directions, as it weighs them,
      * however they reached the fit. */
     const int weighted = o->weighted_metrics || f->s->scene_weight != NULL;

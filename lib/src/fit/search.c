@@ -329,8 +329,10 @@ bf_status bf_fit_subsample_objective(bf_samples *s, size_t n, uint64_t seed, con
     if (rc == BF_OK)
         rc = bf_samples_copy(s, keep, &out->samples, err);
     free(keep);
-    if (rc == BF_OK)
-        rc = bf_objective_new(m, out->samples, oo, &out->objective, err);
+    if (rc == BF_OK && (rc = bf_objective_new(m, out->samples, oo, &out->objective, err)) != BF_OK) {
+        bf_samples_free(out->samples); /* nothing half made is left to the caller */
+        out->samples = NULL;
+    }
     return rc;
 }
 

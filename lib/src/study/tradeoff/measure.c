@@ -14,6 +14,7 @@
  *    were set, so that `brdfit fit` reads and fits the data as the tradeoff did. */
 #include "brdfit/tradeoff.h"
 
+#include "base/cancel.h"
 #include "run_options.h"
 #include "tradeoff/tradeoff_impl.h"
 
@@ -23,15 +24,6 @@
 #include <string.h>
 
 /* A flag a signal handler or another thread may set (as compare_run.c reads it). */
-static int flagged(const bf_cancel_flag *flag)
-{
-#if defined(__GNUC__)
-    return flag && __atomic_load_n(flag, __ATOMIC_RELAXED);
-#else
-    return flag && *flag;
-#endif
-}
-
 /* ---- Command lines ------------------------------------------------------------------- */
 
 /* A growing text; failed is set (and the text kept as it was) when out of memory. */
@@ -202,7 +194,7 @@ static bf_status run_rows(measure *m, bf_tradeoff_progress progress, void *user,
     bf_tradeoff *t = m->t;
     bf_error e;
     for (int i = 0; i < t->nrows; i++) {
-        if (flagged(m->o->cancel) || flagged(m->o->finish))
+        if (bf_cancel_is_set(m->o->cancel) || bf_cancel_is_set(m->o->finish))
             break;
         /* A row that cannot run says so in its message; running out of memory stops all. */
         if (bf_tradeoff_run_row(t, i, m->train, m->test, m->o, &e) == BF_ERR_NOMEM)
