@@ -24,6 +24,7 @@
 #include "base/big_alloc.h"
 #include "base/cancel.h"
 #include "io/read_options.h"
+#include "io/read_text.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -503,24 +504,15 @@ static bf_status read_line(alta_reader *rd, char *line, size_t len)
     return store_row(rd);
 }
 
+static bf_status each_line(void *user, char *line, size_t len)
+{
+    return read_line(user, line, len);
+}
+
 /* Every line of the file: the header into rd->h, the rows into rd->r. */
 static bf_status read_rows(alta_reader *rd, const bf_cancel_flag *cancel)
 {
-    char *line = NULL;
-    size_t linecap = 0;
-    ssize_t len;
-    bf_status rc = BF_OK;
-    while (rc == BF_OK && (len = getline(&line, &linecap, rd->fp)) >= 0) {
-        rd->lineno++;
-        if (bf_cancel_is_set(cancel))
-            rc = bf_read_cancelled(rd->path, rd->err);
-        else
-            rc = read_line(rd, line, (size_t)len);
-    }
-    free(line);
-    if (rc == BF_OK && ferror(rd->fp))
-        rc = bf_fail(rd->err, BF_ERR_IO, "%s: read error after line %zu", rd->path, rd->lineno);
-    return rc;
+    return bf_read_lines(rd->fp, rd->path, cancel, &rd->lineno, each_line, rd, rd->err);
 }
 
 /* A header and at least one row. */

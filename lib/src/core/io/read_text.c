@@ -2,6 +2,9 @@
 #include "brdfit/io.h"
 #include "read_text.h"
 
+#include "base/cancel.h"
+#include "io/read_options.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,4 +52,24 @@ bf_status bf_read_text(const char *path, char **text, size_t *len, bf_error *err
     *len = n;
     *text = buf;
     return BF_OK;
+}
+
+bf_status bf_read_lines(FILE *fp, const char *path, const bf_cancel_flag *cancel, size_t *lineno, bf_line_fn each,
+                        void *user, bf_error *err)
+{
+    char *line = NULL;
+    size_t linecap = 0;
+    ssize_t len;
+    bf_status rc = BF_OK;
+    while (rc == BF_OK && (len = getline(&line, &linecap, fp)) >= 0) {
+        ++*lineno;
+        if (bf_cancel_is_set(cancel))
+            rc = bf_read_cancelled(path, err);
+        else
+            rc = each(user, line, (size_t)len);
+    }
+    free(line);
+    if (rc == BF_OK && ferror(fp))
+        rc = bf_fail(err, BF_ERR_IO, "%s: read error after line %zu", path, *lineno);
+    return rc;
 }
