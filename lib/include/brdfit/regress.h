@@ -91,8 +91,7 @@ BF_API void bf_regress_baseline_free(bf_regress_baseline *b);
 BF_API char *bf_regress_resolve(const bf_regress_baseline *b, const char *path);
 
 /* Case c's run options, the rules every runner of baselines shares: brdfit fit's data
- * and fit options (the library's groups accuracy, fitting, optimizer, reading and
- * preprocessing), written as the command line writes them ("--max-theta 80" or
+ * and fit options (those BF_TASK_FIT takes), written as the command line writes them ("--max-theta 80" or
  * "--max-theta=80"); threads 1 unless the case sets it, so that results are the same on
  * every machine; --scene relative to the baseline's folder, as the data; the case's data
  * file readable and its scene file valid, so that a bad baseline is found before any

@@ -9,26 +9,18 @@
 
 #include "brdfit/options.h"
 #include "brdfit/scene.h"
+#include "run_options.h"
 
-/* The library groups a case takes options from: brdfit fit's data and fit options. */
-static const char *const case_groups[] = {"accuracy", "fitting", "optimizer", "reading", "preprocessing"};
-
-/* The option of those groups that the command line writes as the first len bytes of a
- * ("--max-theta"); NULL when there is none. */
-static const bf_option *case_option(const char *a, size_t len)
+/* The option brdfit fit takes (the run options of BF_TASK_FIT: its data and fit options)
+ * that the command line writes as the first len bytes of a ("--max-theta"); NULL when
+ * there is none. */
+static const bf_option *case_option(const bf_options *o, const char *a, size_t len)
 {
+    char spelled[96];
     for (int i = 0; i < bf_option_count(); i++) {
         const bf_option *opt = bf_option_get(i);
-        int in_group = 0;
-        for (size_t g = 0; g < sizeof case_groups / sizeof case_groups[0]; g++)
-            in_group |= !strcmp(opt->group, case_groups[g]);
-        size_t n = strlen(opt->name);
-        if (!in_group || len != n + 2 || strncmp(a, "--", 2) != 0)
-            continue;
-        int same = 1;
-        for (size_t k = 0; k < n && same; k++)
-            same = a[k + 2] == (opt->name[k] == '_' ? '-' : opt->name[k]);
-        if (same)
+        if ((opt->tasks & BF_TASK_FIT) && strlen(option_spelled(o, opt->name, spelled, sizeof spelled)) == len &&
+            !strncmp(spelled, a, len))
             return opt;
     }
     return NULL;
@@ -41,7 +33,7 @@ static bf_status take(const bf_regress_baseline *b, const bf_regress_case *cs, i
     const int line = cs->option_lines[*i];
     const char *a = cs->options[*i], *eq = strchr(a, '='), *v = NULL;
     const size_t len = eq ? (size_t)(eq - a) : strlen(a);
-    const bf_option *opt = !strncmp(a, "--", 2) && len < 64 ? case_option(a, len) : NULL;
+    const bf_option *opt = !strncmp(a, "--", 2) && len < 64 ? case_option(o, a, len) : NULL;
     char name[64];
     if (!opt) {
         if (!strcmp(a, "-m") || !strncmp(a, "--model", 7) || !strcmp(a, "-o") || !strncmp(a, "--output", 8))
