@@ -3,7 +3,12 @@
 # for the ten models of the speed benchmarks, found by exhaustive search, and the gap and
 # cost of brdfit's default fit against it (docs/fitting.md).
 #
-#   bench/best_known.sh [BUILD_DIR] [OUT.json]      (default: build, bench/best_known.json)
+#   bench/best_known.sh [--models LIST] [BUILD_DIR] [OUT.json]
+#                                        (default: build, bench/best_known.json)
+#
+# With --models only those models are searched, and their cases replace theirs in OUT.json
+# (the others are kept, and new models join its list): for a new family, or a family whose
+# bounds changed, without the whole search again.
 #
 # For each material the ten models are fitted (brdfit compare, log residual, seed 0) by:
 #   starts256  --starts 256 --screen 0: the data-driven start and 255 random ones, each
@@ -20,6 +25,11 @@
 # without its subsample: --starts 1 --screen 0). Takes about 40 minutes on two cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+only=""
+if [ "${1:-}" = --models ]; then
+  only=$2
+  shift 2
+fi
 build=${1:-build}
 out=${2:-bench/best_known.json}
 brdfit=$build/cmd/brdfit
@@ -31,6 +41,9 @@ command -v jq >/dev/null || { echo "$0: jq is missing: install the Debian packag
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 models=lambert,oren_nayar,blinn_phong,ward_iso,cook_torrance,walter,ashikhmin_shirley_iso,lafortune,walter:lobes=2,disney
+models=$models,sgd,student_t,low_smooth,he
+all=$models
+[ -z "$only" ] || models=$only
 "$synth" --params examples/walter_rgb.json --pattern merl --noise 0.02 -o "$tmp/merl.binary"
 
 # name|data|options (the options split on spaces)
@@ -90,10 +103,22 @@ for m in "${materials[@]}"; do
 done
 
 {
-  jq -n --arg models "$models" --arg version "$("$brdfit" --version)" \
-    '{comment: "Best-known rmse_log of each bundled measurement and model (the lowest of exhaustive searches). Regenerate: bench/best_known.sh [BUILD_DIR] [OUT.json]; tests/cli_optimum.sh holds brdfit'"'"'s default within 0.5% of it.",
+  jq -n --arg models "$all" --arg version "$("$brdfit" --version)" \
+    '{comment: "Best-known rmse_log of each bundled measurement and model (the lowest of exhaustive searches). Regenerate: bench/best_known.sh [--models LIST] [BUILD_DIR] [OUT.json]; tests/cli_optimum.sh holds brdfit'"'"'s default within 0.5% of it.",
       brdfit_version: $version, models: ($models | split(",")), cases: []}'
 } >"$tmp/head.json"
-printf '%s\n' "${entries[@]}" | jq -s --slurpfile h "$tmp/head.json" '$h[0] + {cases: .}' >"$tmp/out.json"
+printf '%s\n' "${entries[@]}" >"$tmp/new.jsonl"
+if [ -n "$only" ]; then
+  # Keep the other models' cases; this run's replace theirs; cases in the list's order.
+  [ -f "$out" ] || { echo "$0: --models needs an existing $out" >&2; exit 1; }
+  jq -s --slurpfile old "$out" --arg only "$only" '($only | split(",")) as $o
+      | [$old[0].cases[] | select(.model as $m | $o | index($m) | not)] + . ' "$tmp/new.jsonl" >"$tmp/cases.json"
+else
+  jq -s . "$tmp/new.jsonl" >"$tmp/cases.json"
+fi
+mats=$(printf '%s\n' "${materials[@]}" | cut -d'|' -f1 | paste -sd,)
+jq --slurpfile h "$tmp/head.json" --arg mats "$mats" '($mats | split(",")) as $mo | $h[0].models as $ms
+    | $h[0] + {cases: sort_by([(.material as $x | $mo | index($x)), (.model as $x | $ms | index($x))])}' \
+  "$tmp/cases.json" >"$tmp/out.json"
 mv "$tmp/out.json" "$out"
 echo "wrote $out"
