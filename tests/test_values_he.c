@@ -205,13 +205,15 @@ static void test_published_chrome(void **state)
     he_par p = {{0.0042, 0.00343, 0.00455}, {0.0841, 0.0596, 0.0286}, 37.6, 0.205, 8.95};
     double x[9];
     to_x(&p, x);
-    double dirs[][4] = {{10.0, 0.0, 12.0, 180.0}, {30.0, 40.0, 28.0, 221.0}, {55.0, 0.0, 50.0, 175.0},
-                        {75.0, 90.0, 80.0, 265.0}, {5.0, 0.0, 40.0, 120.0}};
+    double dirs[][4] = {{10.0, 0.0, 12.0, 180.0},
+                        {30.0, 40.0, 28.0, 221.0},
+                        {55.0, 0.0, 50.0, 175.0},
+                        {75.0, 90.0, 80.0, 265.0},
+                        {5.0, 0.0, 40.0, 120.0}};
     for (int k = 0; k < 5; k++)
         for (int c = 0; c < 3; c++) {
             double want = he_ref(&p, c, dirs[k][0], dirs[k][1], dirs[k][2], dirs[k][3], NULL);
-            ts_assert_rel(ts_eval1(m, x, dirs[k][0], dirs[k][1], dirs[k][2], dirs[k][3], c), want, 1e-12,
-                          "he chrome");
+            ts_assert_rel(ts_eval1(m, x, dirs[k][0], dirs[k][1], dirs[k][2], dirs[k][3], c), want, 1e-12, "he chrome");
         }
     bf_model_free(m);
 }
@@ -230,9 +232,8 @@ static void test_limits(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),      cmocka_unit_test(test_normal_series),
-        cmocka_unit_test(test_normal_rough), cmocka_unit_test(test_random),
-        cmocka_unit_test(test_truncation), cmocka_unit_test(test_published_chrome),
+        cmocka_unit_test(test_table),  cmocka_unit_test(test_normal_series), cmocka_unit_test(test_normal_rough),
+        cmocka_unit_test(test_random), cmocka_unit_test(test_truncation),    cmocka_unit_test(test_published_chrome),
         cmocka_unit_test(test_limits),
     };
     return cmocka_run_group_tests_name("values_he", tests, NULL, NULL);
