@@ -11,7 +11,7 @@
  *
  *   model                     not identifiable                  checked instead
  *   lambert .. walter_aniso,  -                                 every parameter, 1e-6
- *   kurt, nishino, abc,
+ *   he, kurt, nishino, abc,
  *   brady, gaussian,
  *   heidrich_seidel,
  *   microfacet (+ variants),
@@ -82,6 +82,8 @@ static const truth_case cases[] = {
     {"phong", {0.3, 0.4, 0.5, 0.5, 0.55, 0.6, 40}, 1},
     {"blinn_phong", {0.3, 0.4, 0.5, 0.5, 0.55, 0.6, 80}, 1},
     {"cook_torrance", {0.4, 0.35, 0.3, 0.7, 0.6, 0.5, 0.25, 0.2}, 1},
+    /* He: tau 20 um, sigma 0.3 um (g ~ 8 near normal, the series), eta 2. */
+    {"he", {0.3, 0.2, 0.1, 0.8, 0.6, 0.4, 20, 0.3, 2.0}, 1},
     {"ward", {0.5, 0.4, 0.3, 0.2, 0.25, 0.3, 0.1, 0.25}, 1},
     {"ward_iso", {0.5, 0.4, 0.3, 0.2, 0.25, 0.3, 0.18}, 1},
     {"lafortune", {0.3, 0.3, 0.35, 0.5, 0.45, 0.4, -0.9, 0.7, 30}, 1},

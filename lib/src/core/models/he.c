@@ -1,0 +1,257 @@
+/* He, Torrance, Sillion & Greenberg 1991 (physical optics), the directional-diffuse lobe
+ * as the BRDF benchmark (bbm) evaluates Ngan et al.'s 2005 fits (NganHe: Westin's
+ * exponent in the series, the erratum's exponential in the shadowing, Cook-Torrance's
+ * real-index Fresnel):
+ *
+ *   f_c = rho_d/pi + rho_s F(eta, V.H) S(L) S(V) G D_c / (pi NL NV)
+ *   G   = (|L+V|^2 / (NL + NV))^2
+ *   S(w) = (1 - erfc(u)/2) / (Lambda + 1), Lambda = (exp(-u^2)/(sqrt(pi) u) - erfc(u))/2,
+ *          u = tau / (2 sigma tan(theta_w))
+ *   sigma0 = sigma / sqrt(1 + x^2), x exp(x^2/2) = (K(L) + K(V)) / sqrt(8 pi),
+ *          K(w) = tan(theta_w) erfc(u)                        (Newton, then implicit d/d.)
+ *   g_c = (2 pi sigma0 (NL + NV) / lambda_c)^2,  b_c = pi^2 tau^2 |L_xy + V_xy|^2 / lambda_c^2
+ *   D_c = pi^2 tau^2 / (4 lambda_c^2) ((1 - w) A_c + w R_c),  w = clamp(g_min - 18, 0, 1)
+ *   A_c = sum_{m>=1} e^-g g^m / (m! m) exp(-b/m),  R_c = exp(-b/g) / g (Beckmann's rough limit)
+ *
+ * lambda = 0.645, 0.526, 0.444 micrometres for three channels (bbm's RGB), 0.526 for every
+ * channel otherwise; tau and sigma in micrometres; g_min is the longest wavelength's g.
+ * The series is summed to an absolute error below 2e-20 (A <= 1; see he_series).
+ * Not energy conserving: rho_s is a free scale (Ngan's fits reach 1e4) and G grows at
+ * grazing angles. Reciprocal: every factor is symmetric in L and V. */
+#include "family.h"
+#include "terms.h"
+
+#include <math.h>
+
+#define HE_EPS 1e-20          /* absolute error of each truncation of the series */
+#define HE_LN_INV_EPS 46.0517 /* ln(1 / HE_EPS), rounded down (skips fewer terms) */
+#define HE_MAX_TERMS 1000     /* never reached: g <= 41 needs about 110 terms */
+#define HE_BLEND_LO 18.0      /* bbm's threshold: the rough limit from g_min = 18 ... */
+#define HE_U_FLAT 27.0        /* erfc(u) and exp(-u^2) underflow beyond: S = 1, K = 0 */
+#define HE_SQRT_PI 1.77245385090551602730
+
+/* 1 / lambda^2 of channel c, lambda in micrometres. */
+static double inv_lambda2(int C, int c)
+{
+    static const double rgb[3] = {0.645, 0.526, 0.444};
+    double l = C == 3 ? rgb[c] : 0.526;
+    return 1.0 / (l * l);
+}
+
+static bf_status configure(bf_model *m, bf_error *err)
+{
+    m->energy_conserving = 0; /* free scale rho_s, G ~ 1/cos^2 at grazing */
+    bf_status rc;
+    if ((rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err)) ||
+        (rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1e5, 0.5, BF_SCALE_LOG1P, 1, BF_ROLE_WEIGHT, err)) ||
+        (rc = bf_model_add_param(m, "tau", 0, 1.0, 200.0, 28.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "sigma", 0, 1e-3, 20.0, 0.5, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "eta", 0, 1.0, 20.0, 1.5, BF_SCALE_LINEAR, 1, BF_ROLE_IOR, err)))
+        return rc;
+    return BF_OK;
+}
+
+/* Sums over m >= 1 of T_m = P_m e^(-b/m) / m, P_m = e^-g g^m / m! (Poisson): s[0] = sum T_m,
+ * s[1] = sum m T_m, s[2] = sum T_m / m. Terms with e^(-b/m) <= HE_EPS are skipped (together
+ * at most HE_EPS, as sum P_m <= 1), and the sum stops once the Poisson tail
+ * sum_{k>m} P_k <= P_{m+1} / (1 - g/(m+2)) is at most HE_EPS: each sum is then within
+ * 2 HE_EPS of the infinite series. Needs g > 0 and e^-g normal (g < 700). */
+static void he_series(double g, double b, double s[3])
+{
+    const double m_lo = 1.0 + floor(b / HE_LN_INV_EPS);
+    double P = exp(-g);
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    for (int m = 1; m <= HE_MAX_TERMS; m++) {
+        P *= g / m;
+        if (m >= m_lo) {
+            double t = P * exp(-b / m);
+            s1 += t;
+            t /= m;
+            s0 += t;
+            s2 += t / m;
+        }
+        if (m + 2.0 > g && P * g / (m + 1.0) <= HE_EPS * (1.0 - g / (m + 2.0)))
+            break;
+    }
+    s[0] = s0, s[1] = s1, s[2] = s2;
+}
+
+/* S(u) (header) and u dS/du; 1 and 0 where erfc(u) and exp(-u^2) underflow. */
+static double he_shadow(double u, double *u_dS)
+{
+    if (u > HE_U_FLAT) {
+        *u_dS = 0.0;
+        return 1.0;
+    }
+    double ec = erfc(u), ex = exp(-u * u);
+    double num = 1.0 - 0.5 * ec;
+    double lp1 = 0.5 * (ex / (HE_SQRT_PI * u) - ec) + 1.0;
+    /* dnum/du = e^-u^2 / sqrt(pi); dLambda/du = -e^-u^2 / (2 sqrt(pi) u^2). */
+    double dnum = ex / HE_SQRT_PI, dl = -ex / (2.0 * HE_SQRT_PI * u * u);
+    *u_dS = u * (dnum * lp1 - num * dl) / (lp1 * lp1);
+    return num / lp1;
+}
+
+/* The root x >= 0 of x exp(x^2/2) = f0, by Newton from bbm's start (f0, or sqrt(2 ln f0)
+ * above 1): the function is convex, so from the second step on the iterates fall
+ * monotonically to the root. *dx = dx/df0. */
+static double he_newton(double f0, double *dx)
+{
+    double x = f0 <= 1.0 ? f0 : sqrt(2.0 * log(f0));
+    double e = exp(0.5 * x * x);
+    for (int it = 0; it < 60; it++) {
+        double d = (x * e - f0) / ((1.0 + x * x) * e);
+        x -= d;
+        e = exp(0.5 * x * x);
+        if (!(fabs(d) > 1e-16 * x))
+            break;
+    }
+    *dx = 1.0 / ((1.0 + x * x) * e);
+    return x;
+}
+
+/* What every channel of one sample shares, with derivatives: Q = F S G / (pi NL NV) and
+ * its derivatives in tau, sigma (through S) and eta (through F); sigma0 and its
+ * derivatives; the geometry of g and b. */
+typedef struct he_sample {
+    double Q, dQ_tau, dQ_sig, dQ_eta;
+    double s0, ds0_tau, ds0_sig;
+    double G0, B0; /* g_c = G0 / lambda_c^2, b_c = B0 / lambda_c^2 */
+} he_sample;
+
+typedef struct he_model {
+    int C, P, od, os, ot, osg, oe;
+    const double *rd, *rs;
+    double tau, sig, eta, lmin; /* lmin: the smallest 1/lambda^2 */
+} he_model;
+
+/* K(w) of the header and u, with dK/dtau (dK/dsigma = -(tau/sigma) dK/dtau: K depends
+ * on tau/sigma only). */
+static double he_k(const he_model *d, double t, double *u, double *dK_tau)
+{
+    *u = t > 0.0 ? d->tau / (2.0 * d->sig * t) : INFINITY;
+    if (*u > HE_U_FLAT) {
+        *dK_tau = 0.0;
+        return 0.0;
+    }
+    *dK_tau = -exp(-*u * *u) / (HE_SQRT_PI * d->sig);
+    return t * erfc(*u);
+}
+
+static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_sample *t)
+{
+    const double lz = g->lz[i], vz = g->vz[i];
+    const double ti = sqrt(g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]) / lz;
+    const double to = sqrt(g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]) / vz;
+    double ui, uo, dKi, dKo;
+    const double Ki = he_k(d, ti, &ui, &dKi), Ko = he_k(d, to, &uo, &dKo);
+    const double r8pi = 1.0 / sqrt(8.0 * M_PI);
+    double dx;
+    const double x = he_newton((Ki + Ko) * r8pi, &dx);
+    const double q = 1.0 / sqrt(1.0 + x * x);
+    t->s0 = d->sig * q;
+    /* Implicit: dsigma0 = sigma dq/dx dx/df0 df0, f0 a function of tau/sigma. */
+    const double ds0_tau_f = -d->sig * x * q * q * q * dx * (dKi + dKo) * r8pi;
+    t->ds0_tau = ds0_tau_f;
+    t->ds0_sig = q - (d->tau / d->sig) * ds0_tau_f;
+
+    double uSi, uSo;
+    const double Si = he_shadow(ui, &uSi), So = he_shadow(uo, &uSo);
+    /* u is proportional to tau / sigma: tau dS/dtau = -sigma dS/dsigma = uS_i' S_o + S_i uS_o'. */
+    const double tdS = uSi * So + Si * uSo;
+    double dF;
+    const double F = bf_dielectric(g->vh[i], d->eta, &dF);
+    const double sx = g->lx[i] + g->vx[i], sy = g->ly[i] + g->vy[i], sz = lz + vz;
+    const double v2 = sx * sx + sy * sy + sz * sz;
+    const double G = (v2 / sz) * (v2 / sz);
+    const double Q0 = G / (M_PI * lz * vz);
+    t->Q = F * Si * So * Q0;
+    t->dQ_tau = F * tdS * Q0 / d->tau;
+    t->dQ_sig = -F * tdS * Q0 / d->sig;
+    t->dQ_eta = dF * Si * So * Q0;
+    t->G0 = 4.0 * M_PI * M_PI * t->s0 * t->s0 * sz * sz;
+    t->B0 = M_PI * M_PI * d->tau * d->tau * (sx * sx + sy * sy);
+}
+
+/* D_c / N_c = (1 - w) A + w R and its derivatives in g and b (dw/dg_min apart):
+ * out = {value, d/dg, d/db, R - A}. */
+static void he_dhat(double gc, double bc, double w, double out[4])
+{
+    double A = 0.0, Ag = 0.0, Ab = 0.0, R = 0.0, Rg = 0.0, Rb = 0.0;
+    if (w < 1.0) {
+        double s[3];
+        he_series(gc, bc, s);
+        A = s[0], Ag = s[1] / gc - s[0], Ab = -s[2];
+    }
+    if (w > 0.0) {
+        double qb = bc / gc;
+        R = exp(-qb) / gc;
+        Rg = R * (qb - 1.0) / gc, Rb = -R / gc;
+    }
+    out[0] = (1.0 - w) * A + w * R;
+    out[1] = (1.0 - w) * Ag + w * Rg;
+    out[2] = (1.0 - w) * Ab + w * Rb;
+    out[3] = R - A;
+}
+
+/* Channel c's value, and its gradient row when row is not NULL. */
+static void channel(const he_model *d, const he_sample *t, int c, double *out, double *row)
+{
+    const double il2 = inv_lambda2(d->C, c);
+    const double gc = t->G0 * il2, bc = t->B0 * il2, gmin = t->G0 * d->lmin;
+    const double N = 0.25 * M_PI * M_PI * d->tau * d->tau * il2;
+    const double wr = gmin - HE_BLEND_LO, w = wr <= 0.0 ? 0.0 : wr >= 1.0 ? 1.0 : wr;
+    double h[4] = {0.0, 0.0, 0.0, 0.0};
+    if (gc > 0.0)
+        he_dhat(gc, bc, w, h);
+    const double D = N * h[0];
+    out[c] = d->rd[c] / M_PI + d->rs[c] * t->Q * D;
+    if (!row)
+        return;
+    /* dD/dsigma0 through g_c and, inside the blend, through w(g_min). */
+    const double dw = (wr > 0.0 && wr < 1.0) ? 2.0 * gmin / t->s0 : 0.0;
+    const double dD_s0 = N * (h[1] * 2.0 * gc / t->s0 + h[3] * dw);
+    const double dD_tau = 2.0 * D / d->tau + N * h[2] * 2.0 * bc / d->tau + dD_s0 * t->ds0_tau;
+    const double dD_sig = dD_s0 * t->ds0_sig;
+    const double rs = d->rs[c];
+    for (int k = 0; k < d->P; k++)
+        row[k] = 0.0;
+    row[d->od + c] = 1.0 / M_PI;
+    row[d->os + c] = t->Q * D;
+    row[d->ot] = rs * (t->dQ_tau * D + t->Q * dD_tau);
+    row[d->osg] = rs * (t->dQ_sig * D + t->Q * dD_sig);
+    row[d->oe] = rs * t->dQ_eta * D;
+}
+
+static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
+                 double *grad)
+{
+    he_model d;
+    d.C = m->channels, d.P = m->nfree;
+    d.od = m->offset[0], d.os = m->offset[1], d.ot = m->offset[2], d.osg = m->offset[3], d.oe = m->offset[4];
+    d.rd = x + d.od, d.rs = x + d.os;
+    d.tau = x[d.ot], d.sig = x[d.osg], d.eta = x[d.oe];
+    d.lmin = inv_lambda2(d.C, 0); /* channel 0 has the longest wavelength */
+    const int C = d.C, P = d.P;
+    for (size_t i = i0; i < i1; i++) {
+        double *out = values + (i - i0) * (size_t)C;
+        double *rows = grad ? grad + (i - i0) * (size_t)C * (size_t)P : NULL;
+        if (bf_eval_skip_invalid(g, i, C, P, out, rows))
+            continue;
+        he_sample t;
+        sample_terms(&d, g, i, &t);
+        for (int c = 0; c < C; c++)
+            channel(&d, &t, c, out, rows ? rows + (size_t)c * (size_t)P : NULL);
+    }
+}
+
+const bf_family bf_family_he = {
+    .info = {.name = "he",
+             .summary = "He-Torrance-Sillion-Greenberg physical optics (Ngan's fits, Westin's form)",
+             .reference = "He et al. 1991; Ngan et al. 2005 as evaluated by bbm",
+             .options = NULL,
+             .lobes = 0,
+             .anisotropic = 0},
+    .configure = configure,
+    .eval = eval,
+};
