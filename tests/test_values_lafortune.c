@@ -269,11 +269,36 @@ static void test_random(void **state)
     random_case("lafortune_aniso:lobes=2", 1, 2, 0x4444ULL);
 }
 
+/* One published fit: Ngan et al. 2005 as published in bsdfbenchmark/bbm
+ * fits/ngan_lafortune.fit (blue-acrylic: albedo [0.0238, 0.0164, 0.01], Cxy = -0.577,
+ * Cz = 0.577, sharpness 4060), which lafortune takes unchanged (rho_s = albedo). cmax^n
+ * underflows here (0.577^4060), so the formula is written (n+2)/(2 pi) max(0, d/cmax)^n.
+ * The digits are from tests/published/ref_nganlafortune.py, an independent implementation. */
+static void test_ngan_published(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("lafortune", 3);
+    const double x[10] = {0.0145, 0.0332, 0.064, 0.0238, 0.0164, 0.01, -0.577, 0.577, 4060.0};
+    const double want[3] = {14.991773666784496, 10.337853352268834, 6.317497115671574};
+    double L[3], V[3];
+    ts_dirs_deg(30.0, 10.0, 30.2, 190.1, L, V);
+    double d = (-0.577 * (L[0] * V[0] + L[1] * V[1]) + 0.577 * L[2] * V[2]) / 0.577;
+    double lobe = 4062.0 / (2.0 * M_PI) * pow(fmax(0.0, d), 4060.0);
+    for (int c = 0; c < 3; c++) {
+        double v = ts_eval1(m, x, 30.0, 10.0, 30.2, 190.1, c);
+        assert_close(v, want[c], 1e-11, "Ngan Lafortune blue-acrylic");
+        assert_close(v, x[c] / M_PI + x[3 + c] * lobe, 1e-11, "Ngan Lafortune formula");
+    }
+    bf_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_tables), cmocka_unit_test(test_equals_phong),  cmocka_unit_test(test_normalisation),
-        cmocka_unit_test(test_hand),   cmocka_unit_test(test_aniso_reduces), cmocka_unit_test(test_random),
+        cmocka_unit_test(test_tables),         cmocka_unit_test(test_equals_phong),
+        cmocka_unit_test(test_normalisation),  cmocka_unit_test(test_hand),
+        cmocka_unit_test(test_aniso_reduces),  cmocka_unit_test(test_random),
+        cmocka_unit_test(test_ngan_published),
     };
     return cmocka_run_group_tests_name("values_lafortune", tests, NULL, NULL);
 }

@@ -62,6 +62,8 @@ typedef struct bf_param_info {
 typedef struct bf_option_info {
     const char *name;          /* "fresnel" */
     const char *const *values; /* NULL-terminated; values[0] is the default */
+    int quiet_default;         /* 1: the canonical spec names the option only away from values[0],
+                                  so specs stored before the option existed keep their bytes */
 } bf_option_info;
 
 /* What `brdfit models` shows about a family, independent of its configuration. */

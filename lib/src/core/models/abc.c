@@ -16,7 +16,7 @@
  * have A up to about 6e3. */
 #define ABC_RHO_S_MAX 1e5
 
-static const bf_option_info options[] = {{"fresnel", bf_fresnel_values}, {NULL, NULL}};
+static const bf_option_info options[] = {{"fresnel", bf_fresnel_values, 0}, {NULL, NULL, 0}};
 
 static bf_status configure(bf_model *m, bf_error *err)
 {

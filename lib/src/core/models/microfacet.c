@@ -255,8 +255,8 @@ static bf_status configure(bf_model *m, bf_error *err)
 }
 
 static const bf_option_info microfacet_options[] = {
-    {"D", d_values}, {"G", g_values}, {"F", bf_fresnel_metal_values}, {NULL, NULL}};
-static const bf_option_info preset_options[] = {{"fresnel", bf_fresnel_metal_values}, {NULL, NULL}};
+    {"D", d_values, 0}, {"G", g_values, 0}, {"F", bf_fresnel_metal_values, 0}, {NULL, NULL, 0}};
+static const bf_option_info preset_options[] = {{"fresnel", bf_fresnel_metal_values, 0}, {NULL, NULL, 0}};
 
 const bf_family bf_family_cook_torrance = {
     .info = {.name = "cook_torrance",

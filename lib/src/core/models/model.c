@@ -91,13 +91,15 @@ static void make_canonical_spec(bf_model *m)
     snprintf(m->spec, cap, "%s", f->info.name);
     int no = count_options(f);
     for (int o = 0; o < no; o++) {
+        if (f->info.options[o].quiet_default && m->opt[o] == 0)
+            continue;
         len = strlen(m->spec);
-        snprintf(m->spec + len, cap - len, "%c%s=%s", o ? ',' : ':', f->info.options[o].name,
+        snprintf(m->spec + len, cap - len, "%c%s=%s", strchr(m->spec, ':') ? ',' : ':', f->info.options[o].name,
                  f->info.options[o].values[m->opt[o]]);
     }
     if (f->info.lobes) {
         len = strlen(m->spec);
-        snprintf(m->spec + len, cap - len, "%clobes=%d", no ? ',' : ':', m->lobes);
+        snprintf(m->spec + len, cap - len, "%clobes=%d", strchr(m->spec, ':') ? ',' : ':', m->lobes);
     }
     if (m->mono[0]) {
         len = strlen(m->spec);
