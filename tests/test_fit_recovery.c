@@ -12,7 +12,7 @@
  *   model                     not identifiable                  checked instead
  *   lambert .. walter_aniso,  -                                 every parameter, 1e-6
  *   he, kurt, nishino, abc,
- *   brady, gaussian,
+ *   low_smooth, brady, gaussian,
  *   heidrich_seidel,
  *   microfacet (+ variants),
  *   cook_torrance:lobes=2
@@ -95,6 +95,8 @@ static const truth_case cases[] = {
     {"kurt", {0.5, 0.3, 0.15, 0.6, 0.7, 0.8, 0.3, 0.1, 0.3}, 1},
     {"nishino", {0.5, 0.3, 0.15, 2, 2.5, 3, 3, 20, 0.1}, 1},
     {"abc", {0.5, 0.3, 0.15, 5, 6, 7, 200, 0.8, 0.1}, 1},
+    {"low_smooth", {0.5, 0.3, 0.15, 5, 6, 7, 30, 0.8, 0.1}, 1},
+    {"low_smooth:fresnel=dielectric", {0.5, 0.3, 0.15, 5, 6, 7, 30, 0.8, 1.8}, 1},
     {"brady", {0.5, 0.3, 0.15, 2, 2.5, 3, 0.1, 1.5, 0.3}, 1},
     {"disney", {0.6, 0.4, 0.3, 0.3, 0.4, 0.6, 0.4, 0.2, 0.3, 0.3, 0.4, 0.2, 0.7}, 1},
     {"gltf", {0.6, 0.4, 0.3, 0.3, 0.45, 0.8, 1.2, 1.0, 0.8, 1.5}, 8},

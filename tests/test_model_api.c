@@ -107,7 +107,7 @@ static void test_param_table(void **state)
     }
     assert_int_equal(bf_model_find_param(m, "f0"), -1);
     assert_true(bf_model_param(m, 2)->lo == 1e-4 && bf_model_param(m, 2)->hi == 1.0);
-    assert_true(bf_model_param(m, 3)->lo == 1.0 && bf_model_param(m, 3)->hi == 3.0);
+    assert_true(bf_model_param(m, 3)->lo == 1.0 && bf_model_param(m, 3)->hi == 100.0);
     assert_null(bf_model_param(m, 4));
     bf_model_free(m);
 

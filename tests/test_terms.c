@@ -47,6 +47,28 @@ static void test_dielectric_ior_one(void **state)
     bf_model_free(m);
 }
 
+/* Up to the bound BF_IOR_MAX = 100 (the effective index of a metal fitted with a
+ * dielectric Fresnel; Löw et al.'s published fits reach 99.9996): F against Snell's law
+ * and dF/dior against central differences, from grazing to normal incidence, all finite. */
+static void test_dielectric_high_ior(void **state)
+{
+    (void)state;
+    assert_true(BF_IOR_MAX == 100.0);
+    ts_assert_rel(bf_dielectric(1.0, 100.0, NULL), (99.0 / 101.0) * (99.0 / 101.0), 1e-14, "F0 at ior 100");
+    const double cs[] = {1e-9, 1e-3, 0.05, 0.3, 0.7, 1.0};
+    const double ns[] = {3.0, 6.59476, 10.08556, 38.0, 99.99961, 100.0};
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            double c = cs[i], n = ns[j], dF;
+            double F = bf_dielectric(c, n, &dF);
+            assert_true(isfinite(F) && isfinite(dF) && F > 0.0 && F <= 1.0); /* dF < 0 near grazing */
+            ts_assert_rel(F, fresnel_snell(c, n), 1e-12, "dielectric vs Snell, high ior");
+            double h = 1e-3 * n; /* F is near 1 at grazing: a wide step keeps rounding out */
+            double fd = (bf_dielectric(c, n + h, NULL) - bf_dielectric(c, n - h, NULL)) / (2.0 * h);
+            ts_assert_near(dF, fd, 1e-5, 1e-13, "dF/dior, high ior");
+        }
+}
+
 /* Conductor Fresnel for a complex index by the real-arithmetic form (Born & Wolf; as in
  * Lazanyi & Szirmay-Kalos 2005), independent of the complex-number code under test. */
 static double conductor_ref(double c, double n, double k)
@@ -105,6 +127,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dielectric_values),
         cmocka_unit_test(test_dielectric_ior_one),
+        cmocka_unit_test(test_dielectric_high_ior),
         cmocka_unit_test(test_conductor),
     };
     return cmocka_run_group_tests_name("terms", tests, NULL, NULL);

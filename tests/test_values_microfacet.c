@@ -90,7 +90,7 @@ static void test_parameter_tables(void **state)
         {"microfacet:D=beckmann", "m", 1e-3, 1.0, BF_SCALE_LOG},
         {"microfacet:D=ggx", "alpha", 1e-4, 1.0, BF_SCALE_LOG},
         {"microfacet:D=gaussian", "m", 1e-3, 1.0, BF_SCALE_LOG},
-        {"microfacet:F=dielectric", "ior", 1.0, 3.0, BF_SCALE_LINEAR},
+        {"microfacet:F=dielectric", "ior", 1.0, 100.0, BF_SCALE_LOG},
         {"microfacet", "f0", 0.0, 1.0, BF_SCALE_LINEAR},
         {"cook_torrance", "m", 1e-3, 1.0, BF_SCALE_LOG},
         {"walter", "alpha", 1e-4, 1.0, BF_SCALE_LOG},

@@ -233,7 +233,7 @@ static void test_tables(void **state)
     p = bf_model_param(m, 3);
     assert_true(p->lo == 1e-3 && p->hi == 1e4);
     p = bf_model_param(m, 4);
-    assert_true(p->lo == 1.0 && p->hi == 3.0);
+    assert_true(p->lo == 1.0 && p->hi == 100.0 && p->scale == BF_SCALE_LOG);
     bf_model_free(m);
     m = ts_model("abc", 1);
     assert_string_equal(bf_model_spec(m), "abc:fresnel=schlick");

@@ -101,7 +101,7 @@ static inline int bf_eval_skip_invalid(const bf_geometry *g, size_t i, int C, in
 }
 
 /* The parameter of the chosen Fresnel term (BF_FRESNEL_* in terms.h): f0 [0, 1] for
- * schlick, ior [1, 3] for dielectric, none for none, colour r [1e-3, 0.99] and g
+ * schlick, ior [1, 100] (log scale) for dielectric, none for none, colour r [1e-3, 0.99] and g
  * [1e-3, 1] for conductor. */
 bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *err);
 

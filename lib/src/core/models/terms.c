@@ -13,8 +13,8 @@ bf_status bf_model_add_fresnel_param(bf_model *m, int kind, int lobe, bf_error *
 {
     if (kind == BF_FRESNEL_SCHLICK)
         return bf_model_add_param(m, "f0", 0, 0.0, 1.0, 0.04, BF_SCALE_LINEAR, lobe, BF_ROLE_F0, err);
-    if (kind == BF_FRESNEL_DIELECTRIC)
-        return bf_model_add_param(m, "ior", 0, 1.0, 3.0, 1.5, BF_SCALE_LINEAR, lobe, BF_ROLE_IOR, err);
+    if (kind == BF_FRESNEL_DIELECTRIC) /* BF_IOR_MAX (terms.h) says why 100 */
+        return bf_model_add_param(m, "ior", 0, 1.0, BF_IOR_MAX, 1.5, BF_SCALE_LOG, lobe, BF_ROLE_IOR, err);
     if (kind == BF_FRESNEL_CONDUCTOR) { /* per channel: the metal's colour is in F */
         bf_status rc = bf_model_add_param(m, "r", 1, 1e-3, 0.99, 0.9, BF_SCALE_LINEAR, lobe, BF_ROLE_F0, err);
         return rc != BF_OK

@@ -51,6 +51,16 @@ static inline double bf_schlick(double u, double f0, double *dF)
     return f0 + (1.0 - f0) * m5;
 }
 
+/* Upper bound of a dielectric Fresnel's index of refraction. Measured materials fitted
+ * with a dielectric Fresnel, metals above all, need effective indices far above those of
+ * real dielectrics: a normal reflectance F0 = ((n-1)/(n+1))^2 of 0.9 (aluminium) is
+ * n = 38, and 100 is F0 = 0.961 (silver's visible F0 is about 0.95-0.97). Löw et al.
+ * 2012's published MERL fits reach 10.1 (Cook-Torrance, Ashikhmin-Shirley, smooth model)
+ * and 99.9996 (their microfacet model, apparently at their own bound of 100). The
+ * Fresnel below and its derivative stay accurate to the bound (tests/test_terms.c);
+ * the log scale gives 1.5 and 50 the same relative step. */
+#define BF_IOR_MAX 100.0
+
 /* Dielectric Fresnel (Cook & Torrance 1982) for c = V.H and index ior >= 1;
  * *dF = dF/dior. */
 static inline double bf_dielectric(double c, double ior, double *dF)
