@@ -255,12 +255,62 @@ static void test_published(void **state)
     bf_model_free(m);
 }
 
+/* fresnel=dielectric (Löw et al. 2012's variant): Snell's-law Fresnel of ior at L.H in
+ * place of Schlick's, rho_s weighing the lobe. lambert: rho_d/pi + rho_s lobe F_d; at
+ * normal incidence F_d = ((n-1)/(n+1))^2. coupled: the diffuse keeps its (1 - rho_s). */
+static double fresnel_snell(double ci, double n)
+{
+    double st = sqrt(1.0 - ci * ci) / n, ct = sqrt(1.0 - st * st);
+    double rs = (ci - n * ct) / (ci + n * ct), rp = (ct - n * ci) / (ct + n * ci);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+static void test_dielectric(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("ashikhmin_shirley_iso:diffuse=lambert,fresnel=dielectric", 1);
+    bf_model *mc = ts_model("ashikhmin_shirley_iso:fresnel=dielectric", 1);
+    assert_string_equal(bf_model_spec(m), "ashikhmin_shirley_iso:diffuse=lambert,fresnel=dielectric");
+    assert_int_equal(bf_model_nparams(m), 4);
+    assert_string_equal(bf_model_param(m, 3)->name, "ior");
+    assert_string_equal(bf_model_param(mc, 3)->name, "ior");
+    assert_true(bf_model_param(m, 3)->hi == 100.0);
+    /* Published fit: Löw et al. 2012, E1, aluminium (red), as published in bsdfbenchmark/bbm
+     * fits/low_ashikhminshirley_E1.fit: kd 0.0974, albedo 0.02902, sharpness 292101.373392,
+     * fresnelReflectance (an index of refraction) 9.79957. */
+    double x[4] = {0.0974, 0.02902, 292101.373392, 9.79957};
+    double r = 8.79957 / 10.79957;
+    ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), 0.0974 / M_PI + 0.02902 * 292102.373392 / (8.0 * M_PI) * r * r,
+                  1e-13, "A-S dielectric normal");
+    ts_rng rng = {0x5DEECE66DULL};
+    for (int k = 0; k < 100; k++) {
+        double y[4] = {ts_uniform(&rng), ts_uniform(&rng), pow(1e3, ts_uniform(&rng)), 1.0 + 20.0 * ts_uniform(&rng)};
+        double ti = 88.0 * ts_uniform(&rng), pi_ = 360.0 * ts_uniform(&rng);
+        double w = 60.0 / sqrt(y[2]);
+        double to = fabs(fmin(88.0, ti + w * (ts_uniform(&rng) - 0.5))),
+               po = pi_ + 180.0 + w * (ts_uniform(&rng) - 0.5);
+        double a = ti * DEG, b = pi_ * DEG, c = to * DEG, d = po * DEG;
+        double L[3] = {sin(a) * cos(b), sin(a) * sin(b), cos(a)}, V[3] = {sin(c) * cos(d), sin(c) * sin(d), cos(c)};
+        double H[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+        double len = sqrt(H[0] * H[0] + H[1] * H[1] + H[2] * H[2]);
+        double lh = (L[0] * H[0] + L[1] * H[1] + L[2] * H[2]) / len;
+        double lobe = y[1] * (y[2] + 1.0) / (8.0 * M_PI) * pow(H[2] / len, y[2]) / (lh * fmax(L[2], V[2])) *
+                      fresnel_snell(lh, y[3]);
+        ts_assert_rel(ts_eval1(m, y, ti, pi_, to, po, 0), y[0] / M_PI + lobe, 1e-11, "A-S dielectric lambert");
+        double p5l = pow(1.0 - 0.5 * L[2], 5.0), p5v = pow(1.0 - 0.5 * V[2], 5.0);
+        double diff = 28.0 * y[0] / (23.0 * M_PI) * (1.0 - y[1]) * (1.0 - p5l) * (1.0 - p5v);
+        ts_assert_rel(ts_eval1(mc, y, ti, pi_, to, po, 0), diff + lobe, 1e-11, "A-S dielectric coupled");
+    }
+    bf_model_free(m);
+    bf_model_free(mc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table),     cmocka_unit_test(test_normal),    cmocka_unit_test(test_mirror),
         cmocka_unit_test(test_near_peak), cmocka_unit_test(test_underflow), cmocka_unit_test(test_random),
-        cmocka_unit_test(test_lambert),   cmocka_unit_test(test_published),
+        cmocka_unit_test(test_lambert),   cmocka_unit_test(test_published), cmocka_unit_test(test_dielectric),
     };
     return cmocka_run_group_tests_name("values_ashikhmin_shirley", tests, NULL, NULL);
 }

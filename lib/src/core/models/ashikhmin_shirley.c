@@ -9,7 +9,10 @@
  *   f = rho_d/pi + rho_s sqrt((nu+1)(nv+1))/(8 pi) NH^e / (VH max(NL, NV)) F_s(VH; f0),
  * rho_s a weight, f0 Schlick's reflectance at normal incidence. Energy conserving in both
  * forms: the lobe without F is AS's half-vector density p(H) / (4 VH) times
- * NL / max(NL, NV) <= 1, so its albedo is at most rho_s. */
+ * NL / max(NL, NV) <= 1, so its albedo is at most rho_s.
+ * fresnel=dielectric (Löw et al. 2012's fits, as bbm's LowAshikhminShirley) puts the
+ * dielectric F_d(VH; ior) in place of Schlick's, rho_s then weighing the lobe in both
+ * forms (coupled: rho_s F_d <= rho_s <= F_s(VH; rho_s), so still conserving). */
 #include "family.h"
 #include "terms.h"
 
@@ -23,7 +26,9 @@ enum { P_RHO_D, P_RHO_S, P_NU, P_NV };
 enum { DIFFUSE_COUPLED = 0, DIFFUSE_LAMBERT };
 static const char *const diffuse_values[] = {"coupled", "lambert", NULL};
 /* Quiet default: specs written before the option keep their bytes. */
-static const bf_option_info options[] = {{"diffuse", diffuse_values, 1}, {NULL, NULL, 0}};
+static const char *const fresnel_values[] = {"schlick", "dielectric", NULL}; /* BF_FRESNEL_* order */
+static const bf_option_info options[] = {
+    {"diffuse", diffuse_values, 1}, {"fresnel", fresnel_values, 1}, {NULL, NULL, 0}};
 
 /* The lobe's exponents and normalisation knorm, with d log(knorm)/d nu, d nv. */
 typedef struct as_shape {
@@ -70,14 +75,14 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
                         double *grad, int iso)
 {
     const int C = m->channels, P = m->nfree;
-    const int lambert = m->opt[0] == DIFFUSE_LAMBERT;
+    const int lambert = m->opt[0] == DIFFUSE_LAMBERT, diel = m->opt[1] == BF_FRESNEL_DIELECTRIC;
     const double *rho_d = x + m->offset[P_RHO_D];
     const double *rho_s = x + m->offset[P_RHO_S];
     const int o_d = m->offset[P_RHO_D], o_s = m->offset[P_RHO_S];
     const int o_nu = m->offset[P_NU], o_nv = iso ? -1 : m->offset[P_NV];
-    /* diffuse=lambert: f0 follows the exponents. */
-    const int o_f0 = lambert ? m->offset[iso ? P_NV : P_NV + 1] : -1;
-    const double f0 = lambert ? x[o_f0] : 0.0;
+    /* diffuse=lambert: f0 follows the exponents; fresnel=dielectric: ior does. */
+    const int o_f0 = lambert || diel ? m->offset[iso ? P_NV : P_NV + 1] : -1;
+    const double f0 = o_f0 >= 0 ? x[o_f0] : 0.0;
     const as_shape k = shape_of(x[o_nu], iso ? x[o_nu] : x[o_nv], iso);
     const double kd = lambert ? 1.0 / M_PI : 28.0 / (23.0 * M_PI);
 
@@ -106,19 +111,20 @@ static void eval_common(const bf_model *m, const double *x, const bf_geometry *g
             double rs = rho_s[c], rd = rho_d[c];
             /* coupled: rho_s is Schlick's F0 and attenuates the diffuse; lambert: rho_s
              * weighs the lobe, f0 is Schlick's F0, the diffuse is plain. */
-            double F = lambert ? f0 + (1.0 - f0) * m5 : rs + (1.0 - rs) * m5;
-            double w = lambert ? rs : 1.0, att = lambert ? 1.0 : 1.0 - rs;
+            double dFd = 0.0;
+            double F = diel ? bf_dielectric(g->vh[i], f0, &dFd) : lambert ? f0 + (1.0 - f0) * m5 : rs + (1.0 - rs) * m5;
+            double w = lambert || diel ? rs : 1.0, att = lambert ? 1.0 : 1.0 - rs;
             double spec = w * spec0 * F;
             values[(i - i0) * (size_t)C + (size_t)c] = spec + rd * att * diff0;
             if (row0) {
                 double *row = row0 + (size_t)c * (size_t)P;
                 row[o_d + c] = att * diff0;
-                row[o_s + c] = lambert ? spec0 * F : spec0 * (1.0 - m5) - rd * diff0;
+                row[o_s + c] = lambert ? spec0 * F : (diel ? spec0 * F : spec0 * (1.0 - m5)) - rd * diff0;
                 row[o_nu] = spec * dl_nu;
                 if (!iso)
                     row[o_nv] = spec * dl_nv;
-                if (lambert)
-                    row[o_f0] += rs * spec0 * (1.0 - m5);
+                if (o_f0 >= 0)
+                    row[o_f0] += rs * spec0 * (diel ? dFd : 1.0 - m5);
             }
         }
     }
@@ -136,9 +142,12 @@ static void eval_iso(const bf_model *m, const double *x, const bf_geometry *g, s
     eval_common(m, x, g, i0, i1, values, grad, 1);
 }
 
-/* diffuse=lambert: Schlick's F0 as a parameter of its own, outside the colours. */
+/* diffuse=lambert: Schlick's F0 as a parameter of its own, outside the colours;
+ * fresnel=dielectric: the index of refraction instead (either diffuse form). */
 static bf_status add_f0(bf_model *m, bf_error *err)
 {
+    if (m->opt[1] == BF_FRESNEL_DIELECTRIC)
+        return bf_model_add_fresnel_param(m, BF_FRESNEL_DIELECTRIC, 0, err);
     return m->opt[0] == DIFFUSE_LAMBERT ? bf_model_add_fresnel_param(m, BF_FRESNEL_SCHLICK, 0, err) : BF_OK;
 }
 
