@@ -19,7 +19,7 @@
  * have A up to about 2.3e3 (abc's bound, for the same reason). */
 #define LOW_SMOOTH_RHO_S_MAX 1e5
 
-static const bf_option_info options[] = {{"fresnel", bf_fresnel_values}, {NULL, NULL}};
+static const bf_option_info options[] = {{"fresnel", bf_fresnel_values, 0}, {NULL, NULL, 0}};
 
 /* b is the falloff of S in |Dp|^2, about 8 (1 - NH) near the normal, so the start's
  * ABC-style b (BF_ROLE_FALLOFF) is about 8 times too large: one step of the log scale. */
