@@ -1,0 +1,284 @@
+/* Student-t distribution of slopes (STD; Ribardiere, Bringier, Meneveaux & Simonot 2017):
+ *   f = rho_d/pi + rho_s D G F / (4 NL NV)
+ *   D = 1 / (pi alpha^2 NH^4 (1 + tan^2(theta_h) / ((gamma - 1) alpha^2))^gamma)
+ *   G = G1(L) G1(V), G1 = 1 / (1 + Lambda(z)), z = 1 / (alpha tan(theta))
+ *   Lambda(z) = A(z) - S(z), with a = gamma - 1,
+ *     A(z) = sqrt(a) Gamma(a + 1/2) / (sqrt(pi) Gamma(a) (2a - 1) z) (1 + z^2/a)^(1/2 - a)
+ *     S(z) = I_x(a, 1/2) / 2, x = a / (a + z^2)  (regularised incomplete beta)
+ * gamma = 2 is GGX with Smith-GGX exactly; gamma -> infinity tends to Beckmann with its
+ * exact Smith term. Lambda is the exact Smith integral of the STD slopes (not the paper's
+ * fitted approximation of its hypergeometric part): so that gamma = 2 is Walter's GGX to
+ * rounding and the gradient is that of the function the fit evaluates. Energy
+ * conserving: D is normalised, F <= 1 and G1 is the exact Smith masking of D, which
+ * satisfies the projected-area constraint. Needs gamma > 3/2 (finite mean slope). */
+#include "family.h"
+#include "terms.h"
+
+#include <math.h>
+
+/* A value and its derivative with respect to gamma. */
+typedef struct dual {
+    double v, d;
+} dual;
+
+/* Digamma for x > 0: the recurrence up to x >= 6, then the asymptotic series. */
+static double digamma(double x)
+{
+    double r = 0.0;
+    while (x < 6.0) {
+        r -= 1.0 / x;
+        x += 1.0;
+    }
+    double f = 1.0 / (x * x);
+    double t = f * (-1.0 / 12 + f * (1.0 / 120 + f * (-1.0 / 252 + f * (1.0 / 240 + f * (-1.0 / 132)))));
+    return r + log(x) - 0.5 / x + t;
+}
+
+/* T = 1 + d1/(1 + d2/(1 + ...)), the continued fraction of the incomplete beta
+ * I_x(p, q) = x^p (1-x)^q / (p B(p, q) T) (DLMF 8.17.22): d_2m = m (q - m) x / ((p + 2m - 1)
+ * (p + 2m)), d_2m+1 = -(p + m)(p + q + m) x / ((p + 2m)(p + 2m + 1)). With its derivative
+ * in p (dp = 1) or q (dq = 1). By the forward (Wallis) recurrence rather than Lentz's:
+ * no division on the chain from one term to the next, which made Lentz's the cost of a
+ * fit. Converges in O(sqrt(p)) terms for x < (p + 1)/(p + q + 2), as the caller ensures. */
+static dual beta_cf(double p, double q, double dp, double dq, double x)
+{
+    const double eps = 2e-16;
+    dual A0 = {1.0, 0.0}, A1 = {1.0, 0.0}, B0 = {0.0, 0.0}, B1 = {1.0, 0.0}, R = {1.0, 0.0};
+    for (int n = 1; n < 400000; n++) {
+        int m = n / 2;
+        double num, dnum, den, dden;
+        if (n % 2) {
+            double u = p + m, v = p + q + m, s = p + 2 * m, t = s + 1.0;
+            num = -u * v * x;
+            dnum = -(dp * v + u * (dp + dq)) * x;
+            den = s * t;
+            dden = dp * (s + t);
+        } else {
+            double s = p + 2 * m, t = s - 1.0;
+            num = m * (q - m) * x;
+            dnum = m * dq * x;
+            den = s * t;
+            dden = dp * (s + t);
+        }
+        double r = 1.0 / den, dv = num * r, dd = (dnum - dv * dden) * r;
+        dual A = {A1.v + dv * A0.v, A1.d + dd * A0.v + dv * A0.d};
+        dual B = {B1.v + dv * B0.v, B1.d + dd * B0.v + dv * B0.d};
+        A0 = A1, A1 = A, B0 = B1, B1 = B;
+        double rb = 1.0 / B.v;
+        dual Rn = {A.v * rb, (A.d - A.v * rb * B.d) * rb};
+        int done = fabs(Rn.v - R.v) <= eps * fabs(Rn.v) && fabs(Rn.d - R.d) <= eps * (fabs(Rn.d) + fabs(Rn.v));
+        R = Rn;
+        if (done)
+            break;
+        if (fabs(B.v) > 1e100) { /* keep the convergents finite: only their ratio counts */
+            double k = 1e-100;
+            A0.v *= k, A0.d *= k, A1.v *= k, A1.d *= k, B0.v *= k, B0.d *= k, B1.v *= k, B1.d *= k;
+        }
+    }
+    return R;
+}
+
+/* beta_cf's value alone, for evaluations without a gradient (half the work). */
+static double beta_cf_value(double p, double q, double x)
+{
+    const double eps = 2e-16;
+    double A0 = 1.0, A1 = 1.0, B0 = 0.0, B1 = 1.0, R = 1.0;
+    for (int n = 1; n < 400000; n++) {
+        int m = n / 2;
+        double d = n % 2 ? -(p + m) * (p + q + m) * x / ((p + 2 * m) * (p + 2 * m + 1.0))
+                         : m * (q - m) * x / ((p + 2 * m - 1.0) * (p + 2 * m));
+        double A = A1 + d * A0, B = B1 + d * B0;
+        A0 = A1, A1 = A, B0 = B1, B1 = B;
+        double Rn = A / B;
+        int done = fabs(Rn - R) <= eps * fabs(Rn);
+        R = Rn;
+        if (done)
+            break;
+        if (fabs(B) > 1e100) {
+            A0 *= 1e-100, A1 *= 1e-100, B0 *= 1e-100, B1 *= 1e-100;
+        }
+    }
+    return R;
+}
+
+/* Constants of one gamma, shared by every sample of a block. */
+typedef struct std_const {
+    double a;          /* gamma - 1 */
+    double ib;         /* 1 / B(a, 1/2) */
+    double pa;         /* psi(a + 1/2) - psi(a) */
+    double isa;        /* 1 / sqrt(a) */
+    double ka, dlogka; /* A(z) z (1 + z^2/a)^(a - 1/2) and its log-derivative in gamma */
+} std_const;
+
+/* log(Gamma(a + 1/2) / Gamma(a)) and psi(a + 1/2) - psi(a) - 1/(2a): from lgamma and
+ * digamma, or for a >= 30 from their asymptotic series (Stirling's with the Bernoulli
+ * polynomials at 1/2), which keep the digits the differences would cancel (at gamma = 1e6
+ * the difference of digammas lost half of them, and dLambda/dgamma with them). */
+static void gamma_ratio(double a, double *lr, double *pd)
+{
+    if (a < 30.0) {
+        *lr = lgamma(a + 0.5) - lgamma(a);
+        *pd = digamma(a + 0.5) - digamma(a) - 0.5 / a;
+        return;
+    }
+    double f = 1.0 / a, f2 = f * f;
+    *lr = 0.5 * log(a) + f * (-1.0 / 8 + f2 * (1.0 / 192 + f2 * (-1.0 / 640 + f2 * (17.0 / 14336 - f2 * 31.0 / 18432))));
+    *pd = f2 * (1.0 / 8 + f2 * (-1.0 / 64 + f2 * (1.0 / 128 + f2 * (-17.0 / 2048 + f2 * 31.0 / 2048))));
+}
+
+static std_const std_constants(double gamma)
+{
+    std_const c;
+    c.a = gamma - 1.0;
+    double lr, pd;
+    gamma_ratio(c.a, &lr, &pd);
+    c.ib = exp(lr) / sqrt(M_PI); /* Gamma(1/2) = sqrt(pi) */
+    c.pa = pd + 0.5 / c.a;
+    c.isa = 1.0 / sqrt(c.a);
+    c.ka = sqrt(c.a) * c.ib / (2.0 * c.a - 1.0);
+    c.dlogka = pd - 1.0 / (c.a * (2.0 * c.a - 1.0)); /* 1/(2a) + psi(a+1/2) - psi(a) - 2/(2a-1) */
+    return c;
+}
+
+/* Smith Lambda of the STD slopes at z = 1 / (alpha tan(theta)) (header comment), with
+ * *dz = dLambda/dz and *dg = dLambda/dgamma (dz NULL: the value alone). With w = z^2/a: x = 1/(1 + w), 1 - x =
+ * w/(1 + w), and every power of x and 1 - x is E = (1 + w)^-(a + 1/2) times powers of
+ * (1 + w) and sqrt(w): one exp and one log1p a call. */
+static double std_lambda(const std_const *c, double z, double *dz, double *dg)
+{
+    const double a = c->a;
+    double w = z * z / a, l1w = log1p(w);
+    double E = exp(-(a + 0.5) * l1w);
+    if (E == 0.0) { /* Lambda < A underflows: G1 = 1 */
+        if (dz)
+            *dz = *dg = 0.0;
+        return 0.0;
+    }
+    double sw = z * c->isa;
+    double A = c->ka / z * E * (1.0 + w);
+    double dlogA = c->dlogka - l1w + (a - 0.5) * w / (a * (1.0 + w));
+    double front = E * sw * c->ib; /* x^a (1 - x)^(1/2) / B(a, 1/2) */
+    if (!dz) { /* the value alone */
+        double I = w > 1.5 / (a + 1.0) ? front / (a * beta_cf_value(a, 0.5, 1.0 / (1.0 + w)))
+                                       : 1.0 - 2.0 * front / beta_cf_value(0.5, a, w / (1.0 + w));
+        return A - 0.5 * I;
+    }
+    double I, dI;
+    if (w > 1.5 / (a + 1.0)) { /* x < (a + 1)/(a + 2.5): I's own fraction converges */
+        dual T = beta_cf(a, 0.5, 1.0, 0.0, 1.0 / (1.0 + w));
+        I = front / (a * T.v);
+        dI = I * (c->pa - l1w - 1.0 / a - T.d / T.v);
+    } else { /* I_x(a, 1/2) = 1 - I_(1-x)(1/2, a) */
+        dual T = beta_cf(0.5, a, 0.0, 1.0, w / (1.0 + w));
+        double r = 2.0 * front / T.v;
+        I = 1.0 - r;
+        dI = -r * (c->pa - l1w - T.d / T.v);
+    }
+    /* dS/dgamma = (dI/da + dI/dx dx/dgamma) / 2, where dI/dx dx/dgamma = E ib sqrt(w) / a. */
+    double S = 0.5 * I;
+    double dS = 0.5 * (dI + E * c->ib * sw / a);
+    *dz = -A / z; /* d/dz (1/z) int_z^inf (q - z) P(q) dq = -(Lambda + tail) / z = -A / z */
+    *dg = A * dlogA - dS;
+    return A - S;
+}
+
+/* G1 of a direction at cos = cz, sin^2 = s2, and (da not NULL) its derivatives in alpha
+ * and gamma. */
+static double std_g1(const std_const *c, double alpha, double cz, double s2, double *da, double *dg)
+{
+    if (s2 <= 0.0 || cz * 1e-150 >= alpha * sqrt(s2)) { /* normal incidence: z = inf */
+        if (da)
+            *da = *dg = 0.0;
+        return 1.0;
+    }
+    double z = cz / (alpha * sqrt(s2));
+    double lz, lg;
+    double L = std_lambda(c, z, da ? &lz : NULL, &lg);
+    double G = 1.0 / (1.0 + L);
+    if (da) {
+        *da = G * G * lz * z / alpha; /* dz/dalpha = -z/alpha */
+        *dg = -G * G * lg;
+    }
+    return G;
+}
+
+/* D and its derivatives in alpha and gamma; nh, sin2h as in terms.h. */
+static double std_d(double nh, double sin2h, double alpha, double gamma, double *da, double *dg)
+{
+    double c2 = nh * nh, a2 = alpha * alpha, gm1 = gamma - 1.0;
+    double u = sin2h / (c2 * gm1 * a2);
+    double l1u = log1p(u);
+    double D = exp(-gamma * l1u) / (M_PI * a2 * c2 * c2);
+    double r = gamma * u / (1.0 + u);
+    *da = D * (2.0 * r - 2.0) / alpha;
+    *dg = D * (r / gm1 - l1u);
+    return D;
+}
+
+/* One lobe over a block (a bf_lobe_fn: family.h says why eight arguments). Scalars:
+ * s[0] = alpha, s[1] = gamma, s[2] = f0 or ior unless fresnel=none. */
+static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
+                 double *dS)
+{
+    (void)k;
+    const int fk = m->opt[0];
+    const double alpha = s[0], gamma = s[1], fp = fk != BF_FRESNEL_NONE ? s[2] : 0.0;
+    const std_const c = std_constants(gamma);
+    const double *lx = g->lx + i0, *ly = g->ly + i0, *lz = g->lz + i0;
+    const double *vx = g->vx + i0, *vy = g->vy + i0, *vz = g->vz + i0;
+    const double *hz = g->hz + i0, *s2h = g->sin2h + i0, *vh = g->vh + i0;
+    for (size_t j = 0; j < cnt; j++) {
+        if (!(lz[j] > 0.0 && vz[j] > 0.0)) {
+            S[j] = 0.0;
+            if (dS)
+                for (int p = 0; p < 3; p++)
+                    dS[p * BF_BLOCK + j] = 0.0;
+            continue;
+        }
+        double Dda, Ddg, lda = 0.0, ldg = 0.0, vda = 0.0, vdg = 0.0, dF;
+        double D = std_d(hz[j], s2h[j], alpha, gamma, &Dda, &Ddg);
+        double gl = std_g1(&c, alpha, lz[j], lx[j] * lx[j] + ly[j] * ly[j], dS ? &lda : NULL, &ldg);
+        double gv = std_g1(&c, alpha, vz[j], vx[j] * vx[j] + vy[j] * vy[j], dS ? &vda : NULL, &vdg);
+        double F = bf_fresnel(fk, vh[j], fp, &dF);
+        double inv = 0.25 / (lz[j] * vz[j]);
+        double G = gl * gv;
+        S[j] = D * G * F * inv;
+        if (dS) {
+            dS[j] = (Dda * G + D * (lda * gv + gl * vda)) * F * inv;
+            dS[BF_BLOCK + j] = (Ddg * G + D * (ldg * gv + gl * vdg)) * F * inv;
+            if (fk != BF_FRESNEL_NONE)
+                dS[2 * BF_BLOCK + j] = D * G * dF * inv;
+        }
+    }
+}
+
+static bf_status configure(bf_model *m, bf_error *err)
+{
+    m->energy_conserving = 1; /* header comment */
+    const int fk = m->opt[0];
+    bf_status rc = bf_model_add_param(m, "rho_d", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, 0, BF_ROLE_DIFFUSE, err);
+    for (int k = 1; rc == BF_OK && k <= m->lobes; k++) {
+        /* alpha as walter's; gamma from just above 3/2, where the mean slope and with it
+         * Lambda diverge, to where STD is Beckmann to 1e-6; 2 is GGX. */
+        if ((rc = bf_model_add_param(m, "rho_s", 1, 0.0, 1.0, 0.5, BF_SCALE_LINEAR, k, BF_ROLE_WEIGHT, err)) ||
+            (rc = bf_model_add_param(m, "alpha", 0, 1e-4, 1.0, 0.12 * k, BF_SCALE_LOG, k, BF_ROLE_ROUGHNESS, err)) ||
+            (rc = bf_model_add_param(m, "gamma", 0, 1.51, 1e6, 2.0, BF_SCALE_LOG, k, BF_ROLE_SHAPE, err)))
+            break;
+        rc = bf_model_add_fresnel_param(m, fk, k, err);
+    }
+    return rc;
+}
+
+static const bf_option_info options[] = {{"fresnel", bf_fresnel_values}, {NULL, NULL}};
+
+const bf_family bf_family_student_t = {
+    .info = {.name = "student_t",
+             .summary = "Student-t slope distribution (GGX to Beckmann by gamma), exact Smith masking, Fresnel",
+             .reference = "Ribardiere et al. 2017",
+             .options = options,
+             .lobes = 1,
+             .anisotropic = 0},
+    .configure = configure,
+    .eval = bf_eval_diffuse_lobes,
+    .lobe = lobe,
+};
