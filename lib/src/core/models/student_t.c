@@ -34,36 +34,61 @@ static double digamma(double x)
     return r + log(x) - 0.5 / x + t;
 }
 
+/* 1 + d_2m+1 of beta_cf's fraction, with x = 1 - y. Near x = 1 (a large p, z^2 ~ 1.5) the
+ * literal sum cancels to O(1/p): it is then expanded in y, where every term is positive
+ * for q < 1 (the only case there). *d = its derivative (dp, dq as in beta_cf). */
+static double one_plus_odd(double p, double q, double dp, double dq, double x, double y, int m, double *d)
+{
+    double u = p + m, v = p + q + m, s = p + 2 * m, t = s + 1.0;
+    double r = 1.0 / (s * t), dden = dp * (s + t);
+    double N, dN;
+    if (x <= 0.5) {
+        N = s * t - x * u * v;
+        dN = dden - x * (dp * v + u * (dp + dq));
+    } else {
+        N = m * (2.0 * p + 3.0 * m + 2.0 - q) + p * (1.0 - q) + y * u * v;
+        dN = dp * (2.0 * m + 1.0 - q + y * (u + v)) + dq * (-m - p + y * u);
+    }
+    double f = N * r;
+    *d = (dN - f * dden) * r;
+    return f;
+}
+
+/* d_2m of beta_cf's fraction (m >= 1) with its derivative. */
+static double even_term(double p, double q, double dp, double dq, double x, int m, double *d)
+{
+    double s = p + 2 * m, t = s - 1.0;
+    double r = 1.0 / (s * t), f = m * (q - m) * x * r;
+    *d = (m * dq * x - f * dp * (s + t)) * r;
+    return f;
+}
+
 /* T = 1 + d1/(1 + d2/(1 + ...)), the continued fraction of the incomplete beta
  * I_x(p, q) = x^p (1-x)^q / (p B(p, q) T) (DLMF 8.17.22): d_2m = m (q - m) x / ((p + 2m - 1)
- * (p + 2m)), d_2m+1 = -(p + m)(p + q + m) x / ((p + 2m)(p + 2m + 1)). With its derivative
- * in p (dp = 1) or q (dq = 1). By the forward (Wallis) recurrence rather than Lentz's:
- * no division on the chain from one term to the next, which made Lentz's the cost of a
- * fit. Converges in O(sqrt(p)) terms for x < (p + 1)/(p + q + 2), as the caller ensures. */
-static dual beta_cf(double p, double q, double dp, double dq, double x)
+ * (p + 2m)), d_2m+1 = -(p + m)(p + q + m) x / ((p + 2m)(p + 2m + 1)); y = 1 - x. With its
+ * derivative in p (dp = 1) or q (dq = 1). Its odd convergents A/B by their own three-term
+ * recurrence, A_2m+1 = (1 + d_2m+1 + d_2m) A_2m-1 - d_2m d_2m-1 A_2m-3, so that 1 + d_2m+1
+ * is formed accurately (one_plus_odd), and with no division on the chain from one term to
+ * the next (Lentz's made it the cost of a fit). Converges in O(sqrt(p)) terms for
+ * x < (p + 1)/(p + q + 2), as the caller ensures. */
+static dual beta_cf(double p, double q, double dp, double dq, double x, double y)
 {
     const double eps = 2e-16;
-    dual A0 = {1.0, 0.0}, A1 = {1.0, 0.0}, B0 = {0.0, 0.0}, B1 = {1.0, 0.0}, R = {1.0, 0.0};
-    for (int n = 1; n < 400000; n++) {
-        int m = n / 2;
-        double num, dnum, den, dden;
-        if (n % 2) {
-            double u = p + m, v = p + q + m, s = p + 2 * m, t = s + 1.0;
-            num = -u * v * x;
-            dnum = -(dp * v + u * (dp + dq)) * x;
-            den = s * t;
-            dden = dp * (s + t);
-        } else {
-            double s = p + 2 * m, t = s - 1.0;
-            num = m * (q - m) * x;
-            dnum = m * dq * x;
-            den = s * t;
-            dden = dp * (s + t);
-        }
-        double r = 1.0 / den, dv = num * r, dd = (dnum - dv * dden) * r;
-        dual A = {A1.v + dv * A0.v, A1.d + dd * A0.v + dv * A0.d};
-        dual B = {B1.v + dv * B0.v, B1.d + dd * B0.v + dv * B0.d};
+    double e0d;
+    double e0 = one_plus_odd(p, q, dp, dq, x, y, 0, &e0d);
+    double dodd = e0 - 1.0, doddd = e0d; /* d_2m-1 */
+    dual A0 = {1.0, 0.0}, A1 = {e0, e0d}, B0 = {0.0, 0.0}, B1 = {1.0, 0.0};
+    dual R = A1;
+    for (int m = 1; m < 200000; m++) {
+        double dev_d, op_d;
+        double dev = even_term(p, q, dp, dq, x, m, &dev_d);
+        double op = one_plus_odd(p, q, dp, dq, x, y, m, &op_d);
+        double e = op + dev, ed = op_d + dev_d;
+        double f = -dev * dodd, fd = -(dev_d * dodd + dev * doddd);
+        dual A = {e * A1.v + f * A0.v, ed * A1.v + e * A1.d + fd * A0.v + f * A0.d};
+        dual B = {e * B1.v + f * B0.v, ed * B1.v + e * B1.d + fd * B0.v + f * B0.d};
         A0 = A1, A1 = A, B0 = B1, B1 = B;
+        dodd = op - 1.0, doddd = op_d;
         double rb = 1.0 / B.v;
         dual Rn = {A.v * rb, (A.d - A.v * rb * B.d) * rb};
         int done = fabs(Rn.v - R.v) <= eps * fabs(Rn.v) && fabs(Rn.d - R.d) <= eps * (fabs(Rn.d) + fabs(Rn.v));
@@ -73,29 +98,6 @@ static dual beta_cf(double p, double q, double dp, double dq, double x)
         if (fabs(B.v) > 1e100) { /* keep the convergents finite: only their ratio counts */
             double k = 1e-100;
             A0.v *= k, A0.d *= k, A1.v *= k, A1.d *= k, B0.v *= k, B0.d *= k, B1.v *= k, B1.d *= k;
-        }
-    }
-    return R;
-}
-
-/* beta_cf's value alone, for evaluations without a gradient (half the work). */
-static double beta_cf_value(double p, double q, double x)
-{
-    const double eps = 2e-16;
-    double A0 = 1.0, A1 = 1.0, B0 = 0.0, B1 = 1.0, R = 1.0;
-    for (int n = 1; n < 400000; n++) {
-        int m = n / 2;
-        double d = n % 2 ? -(p + m) * (p + q + m) * x / ((p + 2 * m) * (p + 2 * m + 1.0))
-                         : m * (q - m) * x / ((p + 2 * m - 1.0) * (p + 2 * m));
-        double A = A1 + d * A0, B = B1 + d * B0;
-        A0 = A1, A1 = A, B0 = B1, B1 = B;
-        double Rn = A / B;
-        int done = fabs(Rn - R) <= eps * fabs(Rn);
-        R = Rn;
-        if (done)
-            break;
-        if (fabs(B) > 1e100) {
-            A0 *= 1e-100, A1 *= 1e-100, B0 *= 1e-100, B1 *= 1e-100;
         }
     }
     return R;
@@ -158,18 +160,19 @@ static double std_lambda(const std_const *c, double z, double *dz, double *dg)
     double A = c->ka / z * E * (1.0 + w);
     double dlogA = c->dlogka - l1w + (a - 0.5) * w / (a * (1.0 + w));
     double front = E * sw * c->ib; /* x^a (1 - x)^(1/2) / B(a, 1/2) */
+    double x = 1.0 / (1.0 + w), y = w / (1.0 + w);
     if (!dz) { /* the value alone */
-        double I = w > 1.5 / (a + 1.0) ? front / (a * beta_cf_value(a, 0.5, 1.0 / (1.0 + w)))
-                                       : 1.0 - 2.0 * front / beta_cf_value(0.5, a, w / (1.0 + w));
+        double I = w > 1.5 / (a + 1.0) ? front / (a * beta_cf(a, 0.5, 0.0, 0.0, x, y).v)
+                                       : 1.0 - 2.0 * front / beta_cf(0.5, a, 0.0, 0.0, y, x).v;
         return A - 0.5 * I;
     }
     double I, dI;
     if (w > 1.5 / (a + 1.0)) { /* x < (a + 1)/(a + 2.5): I's own fraction converges */
-        dual T = beta_cf(a, 0.5, 1.0, 0.0, 1.0 / (1.0 + w));
+        dual T = beta_cf(a, 0.5, 1.0, 0.0, x, y);
         I = front / (a * T.v);
         dI = I * (c->pa - l1w - 1.0 / a - T.d / T.v);
     } else { /* I_x(a, 1/2) = 1 - I_(1-x)(1/2, a) */
-        dual T = beta_cf(0.5, a, 0.0, 1.0, w / (1.0 + w));
+        dual T = beta_cf(0.5, a, 0.0, 1.0, y, x);
         double r = 2.0 * front / T.v;
         I = 1.0 - r;
         dI = -r * (c->pa - l1w - T.d / T.v);
