@@ -34,61 +34,69 @@ static double digamma(double x)
     return r + log(x) - 0.5 / x + t;
 }
 
-/* 1 + d_2m+1 of beta_cf's fraction, with x = 1 - y. Near x = 1 (a large p, z^2 ~ 1.5) the
- * literal sum cancels to O(1/p): it is then expanded in y, where every term is positive
- * for q < 1 (the only case there). *d = its derivative (dp, dq as in beta_cf). */
-static double one_plus_odd(double p, double q, double dp, double dq, double x, double y, int m, double *d)
+/* The fraction of the incomplete beta I_x(p, q) = x^p (1-x)^q / (p B(p, q) T) (DLMF
+ * 8.17.22): T = 1 + d1/(1 + d2/(1 + ...)), d_2m = m (q - m) x / ((p + 2m - 1)(p + 2m)),
+ * d_2m+1 = -(p + m)(p + q + m) x / ((p + 2m)(p + 2m + 1)). Its coefficients do not depend
+ * on x: d_2m = ce x, d_2m+1 = -co x, and 1 + d_2m+1 = ko + co (1 - x), the form without
+ * cancellation near x = 1 (1 - x co cancels to O(1/p) there, at large p and z^2 ~ 1.5,
+ * which cost 4 digits at gamma = 4e5). Each with its derivative in p (dp = 1) or q
+ * (dq = 1). */
+enum { CF_TABLE = 24 }; /* coefficients kept per gamma: the usual number of terms */
+typedef struct cf_coef {
+    double ce, dce, co, dco, ko, dko;
+} cf_coef;
+
+static cf_coef cf_coefficients(double p, double q, double dp, double dq, int m)
 {
-    double u = p + m, v = p + q + m, s = p + 2 * m, t = s + 1.0;
-    double r = 1.0 / (s * t), dden = dp * (s + t);
-    double N, dN;
-    if (x <= 0.5) {
-        N = s * t - x * u * v;
-        dN = dden - x * (dp * v + u * (dp + dq));
-    } else {
-        N = m * (2.0 * p + 3.0 * m + 2.0 - q) + p * (1.0 - q) + y * u * v;
-        dN = dp * (2.0 * m + 1.0 - q + y * (u + v)) + dq * (-m - p + y * u);
-    }
-    double f = N * r;
-    *d = (dN - f * dden) * r;
-    return f;
+    cf_coef k;
+    double s = p + 2 * m, t = s + 1.0, r = 1.0 / (s * t), dden = dp * (s + t);
+    double u = p + m, v = p + q + m, n = m * (2.0 * p + 3.0 * m + 2.0 - q) + p * (1.0 - q);
+    k.co = u * v * r;
+    k.dco = ((dp * v + u * (dp + dq)) - k.co * dden) * r;
+    k.ko = n * r;
+    k.dko = ((dp * (2.0 * m + 1.0 - q) - dq * (m + p)) - k.ko * dden) * r;
+    double te = s - 1.0, re = m > 0 ? 1.0 / (s * te) : 0.0;
+    k.ce = m * (q - m) * re;
+    k.dce = (m * dq - k.ce * dp * (s + te)) * re;
+    return k;
 }
 
-/* d_2m of beta_cf's fraction (m >= 1) with its derivative. */
-static double even_term(double p, double q, double dp, double dq, double x, int m, double *d)
+/* One side of the incomplete beta for one gamma: its parameters and first coefficients. */
+typedef struct cf_side {
+    double p, q, dp, dq;
+    cf_coef k[CF_TABLE];
+} cf_side;
+
+static void cf_side_init(cf_side *c, double p, double q, double dp, double dq)
 {
-    double s = p + 2 * m, t = s - 1.0;
-    double r = 1.0 / (s * t), f = m * (q - m) * x * r;
-    *d = (m * dq * x - f * dp * (s + t)) * r;
-    return f;
+    c->p = p, c->q = q, c->dp = dp, c->dq = dq;
+    for (int m = 0; m < CF_TABLE; m++)
+        c->k[m] = cf_coefficients(p, q, dp, dq, m);
 }
 
-/* T = 1 + d1/(1 + d2/(1 + ...)), the continued fraction of the incomplete beta
- * I_x(p, q) = x^p (1-x)^q / (p B(p, q) T) (DLMF 8.17.22): d_2m = m (q - m) x / ((p + 2m - 1)
- * (p + 2m)), d_2m+1 = -(p + m)(p + q + m) x / ((p + 2m)(p + 2m + 1)); y = 1 - x. With its
- * derivative in p (dp = 1) or q (dq = 1). Its odd convergents A/B by their own three-term
- * recurrence, A_2m+1 = (1 + d_2m+1 + d_2m) A_2m-1 - d_2m d_2m-1 A_2m-3, so that 1 + d_2m+1
- * is formed accurately (one_plus_odd), and with no division on the chain from one term to
- * the next (Lentz's made it the cost of a fit). Converges in O(sqrt(p)) terms for
- * x < (p + 1)/(p + q + 2), as the caller ensures. */
-static dual beta_cf(double p, double q, double dp, double dq, double x, double y)
+/* T and dT by its odd convergents, through their own three-term recurrence
+ * A_2m+1 = (1 + d_2m+1 + d_2m) A_2m-1 - d_2m d_2m-1 A_2m-3 (1 + d_2m+1 formed as above), with
+ * no division on the chain from one term to the next (Lentz's made it the cost of a fit).
+ * Converges in O(sqrt(p)) terms for x < (p + 1)/(p + q + 2), as the caller ensures. */
+static dual beta_cf(const cf_side *c, double x, double y)
 {
     const double eps = 2e-16;
-    double e0d;
-    double e0 = one_plus_odd(p, q, dp, dq, x, y, 0, &e0d);
-    double dodd = e0 - 1.0, doddd = e0d; /* d_2m-1 */
+    const int near1 = x > 0.5;
+    cf_coef k = c->k[0];
+    double e0 = near1 ? k.ko + y * k.co : 1.0 - x * k.co, e0d = near1 ? k.dko + y * k.dco : -x * k.dco;
+    double dodd = -x * k.co, doddd = -x * k.dco; /* d_2m-1 */
     dual A0 = {1.0, 0.0}, A1 = {e0, e0d}, B0 = {0.0, 0.0}, B1 = {1.0, 0.0};
     dual R = A1;
     for (int m = 1; m < 200000; m++) {
-        double dev_d, op_d;
-        double dev = even_term(p, q, dp, dq, x, m, &dev_d);
-        double op = one_plus_odd(p, q, dp, dq, x, y, m, &op_d);
+        k = m < CF_TABLE ? c->k[m] : cf_coefficients(c->p, c->q, c->dp, c->dq, m);
+        double op = near1 ? k.ko + y * k.co : 1.0 - x * k.co, op_d = near1 ? k.dko + y * k.dco : -x * k.dco;
+        double dev = k.ce * x, dev_d = k.dce * x;
         double e = op + dev, ed = op_d + dev_d;
         double f = -dev * dodd, fd = -(dev_d * dodd + dev * doddd);
         dual A = {e * A1.v + f * A0.v, ed * A1.v + e * A1.d + fd * A0.v + f * A0.d};
         dual B = {e * B1.v + f * B0.v, ed * B1.v + e * B1.d + fd * B0.v + f * B0.d};
         A0 = A1, A1 = A, B0 = B1, B1 = B;
-        dodd = op - 1.0, doddd = op_d;
+        dodd = -x * k.co, doddd = -x * k.dco;
         double rb = 1.0 / B.v;
         dual Rn = {A.v * rb, (A.d - A.v * rb * B.d) * rb};
         int done = fabs(Rn.v - R.v) <= eps * fabs(Rn.v) && fabs(Rn.d - R.d) <= eps * (fabs(Rn.d) + fabs(Rn.v));
@@ -96,8 +104,8 @@ static dual beta_cf(double p, double q, double dp, double dq, double x, double y
         if (done)
             break;
         if (fabs(B.v) > 1e100) { /* keep the convergents finite: only their ratio counts */
-            double k = 1e-100;
-            A0.v *= k, A0.d *= k, A1.v *= k, A1.d *= k, B0.v *= k, B0.d *= k, B1.v *= k, B1.d *= k;
+            double s = 1e-100;
+            A0.v *= s, A0.d *= s, A1.v *= s, A1.d *= s, B0.v *= s, B0.d *= s, B1.v *= s, B1.d *= s;
         }
     }
     return R;
@@ -105,11 +113,12 @@ static dual beta_cf(double p, double q, double dp, double dq, double x, double y
 
 /* Constants of one gamma, shared by every sample of a block. */
 typedef struct std_const {
-    double a;          /* gamma - 1 */
-    double ib;         /* 1 / B(a, 1/2) */
-    double pa;         /* psi(a + 1/2) - psi(a) */
-    double isa;        /* 1 / sqrt(a) */
-    double ka, dlogka; /* A(z) z (1 + z^2/a)^(a - 1/2) and its log-derivative in gamma */
+    double a;             /* gamma - 1 */
+    double ib;            /* 1 / B(a, 1/2) */
+    double pa;            /* psi(a + 1/2) - psi(a) */
+    double isa;           /* 1 / sqrt(a) */
+    double ka, dlogka;    /* A(z) z (1 + z^2/a)^(a - 1/2) and its log-derivative in gamma */
+    cf_side direct, flip; /* I_x(a, 1/2) and I_(1-x)(1/2, a), derivatives in a */
 } std_const;
 
 /* log(Gamma(a + 1/2) / Gamma(a)) and psi(a + 1/2) - psi(a) - 1/(2a): from lgamma and
@@ -140,6 +149,8 @@ static std_const std_constants(double gamma)
     c.isa = 1.0 / sqrt(c.a);
     c.ka = sqrt(c.a) * c.ib / (2.0 * c.a - 1.0);
     c.dlogka = pd - 1.0 / (c.a * (2.0 * c.a - 1.0)); /* 1/(2a) + psi(a+1/2) - psi(a) - 2/(2a-1) */
+    cf_side_init(&c.direct, c.a, 0.5, 1.0, 0.0);
+    cf_side_init(&c.flip, 0.5, c.a, 0.0, 1.0);
     return c;
 }
 
@@ -163,17 +174,17 @@ static double std_lambda(const std_const *c, double z, double *dz, double *dg)
     double front = E * sw * c->ib; /* x^a (1 - x)^(1/2) / B(a, 1/2) */
     double x = 1.0 / (1.0 + w), y = w / (1.0 + w);
     if (!dz) { /* the value alone */
-        double I = w > 1.5 / (a + 1.0) ? front / (a * beta_cf(a, 0.5, 0.0, 0.0, x, y).v)
-                                       : 1.0 - 2.0 * front / beta_cf(0.5, a, 0.0, 0.0, y, x).v;
+        double I = w > 1.5 / (a + 1.0) ? front / (a * beta_cf(&c->direct, x, y).v)
+                                       : 1.0 - 2.0 * front / beta_cf(&c->flip, y, x).v;
         return A - 0.5 * I;
     }
     double I, dI;
     if (w > 1.5 / (a + 1.0)) { /* x < (a + 1)/(a + 2.5): I's own fraction converges */
-        dual T = beta_cf(a, 0.5, 1.0, 0.0, x, y);
+        dual T = beta_cf(&c->direct, x, y);
         I = front / (a * T.v);
         dI = I * (c->pa - l1w - 1.0 / a - T.d / T.v);
     } else { /* I_x(a, 1/2) = 1 - I_(1-x)(1/2, a) */
-        dual T = beta_cf(0.5, a, 0.0, 1.0, y, x);
+        dual T = beta_cf(&c->flip, y, x);
         double r = 2.0 * front / T.v;
         I = 1.0 - r;
         dI = -r * (c->pa - l1w - T.d / T.v);
