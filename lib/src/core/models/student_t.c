@@ -162,15 +162,15 @@ static std_const std_constants(double gamma)
 }
 
 /* Smith Lambda of the STD slopes at z = 1 / (alpha tan(theta)) (header comment), with
- * *dz = dLambda/dz and *dg = dLambda/dgamma (dz NULL: the value alone). With w = z^2/a: x = 1/(1 + w), 1 - x =
- * w/(1 + w), and every power of x and 1 - x is E = (1 + w)^-(a + 1/2) times powers of
- * (1 + w) and sqrt(w): one exp and one log a call. */
+ * *dz = dLambda/dz and *dg = dLambda/dgamma (dz NULL: the value alone). With w = z^2/a,
+ * x = 1/(1 + w) and 1 - x = w/(1 + w), so every power of x and 1 - x is E = (1 + w)^-(a +
+ * 1/2) times powers of (1 + w) and sqrt(w): one exp and one log a call. */
 static double std_lambda(const std_const *c, double z, double *dz, double *dg)
 {
     const double a = c->a;
     double w = z * z / a, l1w = log_1p(w);
     double E = exp(-(a + 0.5) * l1w);
-    if (E == 0.0) { /* Lambda < A underflows: G1 = 1 */
+    if (E == 0.0) { /* A underflows, and Lambda <= A with it: G1 = 1 */
         if (dz)
             *dz = *dg = 0.0;
         return 0.0;
