@@ -282,12 +282,52 @@ static void test_white_furnace(void **state)
         }
 }
 
+/* Large gamma through z^2 ~ 1.5, where the incomplete beta changes sides and its fraction
+ * needs ~sqrt(gamma) terms whose convergents shrink below the smallest double (they once
+ * underflowed to an infinite fraction and a NaN gradient at gamma = 1e6, z = 1.32): values
+ * against the plain formula, gradients finite, on a fine sweep of theta_i. */
+static void test_large_gamma_transition(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("student_t", 1);
+    enum { N = 4000 };
+    double ti[N], pi_[N], to[N], po[N];
+    const double alpha = 0.15, gam[] = {3e3, 3e5, 1e6};
+    for (int i = 0; i < N; i++) { /* z = 1 / (alpha tan(theta_i)) from 1.0 to 1.6 */
+        ti[i] = atan(1.0 / (alpha * (1.0 + 0.6 * i / (N - 1)))) / DEG;
+        pi_[i] = 0.0, to[i] = 10.0, po[i] = 180.0;
+    }
+    bf_geometry *g = ts_geometry_deg(N, ti, pi_, to, po);
+    static double val[N], grad[N * 5]; /* 190 kB: off the stack */
+    for (int k = 0; k < 3; k++) {
+        params p = {0.1, 0.9, alpha, gam[k], 0.04};
+        double x[5];
+        set_x(m, x, &p);
+        bf_model_eval(m, x, g, val, grad);
+        for (int i = 0; i < N; i++) {
+            for (int j = 0; j < 5; j++)
+                if (!isfinite(grad[i * 5 + j]))
+                    fail_msg("gamma %g, theta_i %.9g: gradient %d is %g", gam[k], ti[i], j, grad[i * 5 + j]);
+            if (i % 250 == 0)
+                ts_assert_rel(val[i], ref_f(&p, ti[i], pi_[i], to[i], po[i]), 1e-10, "student_t at large gamma");
+        }
+    }
+    bf_geometry_free(g);
+    bf_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),         cmocka_unit_test(test_normal),        cmocka_unit_test(test_random),
-        cmocka_unit_test(test_lambda_gamma3), cmocka_unit_test(test_ggx),           cmocka_unit_test(test_beckmann),
-        cmocka_unit_test(test_normalised),    cmocka_unit_test(test_white_furnace),
+        cmocka_unit_test(test_table),
+        cmocka_unit_test(test_normal),
+        cmocka_unit_test(test_random),
+        cmocka_unit_test(test_lambda_gamma3),
+        cmocka_unit_test(test_ggx),
+        cmocka_unit_test(test_beckmann),
+        cmocka_unit_test(test_normalised),
+        cmocka_unit_test(test_white_furnace),
+        cmocka_unit_test(test_large_gamma_transition),
     };
     return cmocka_run_group_tests_name("values_student_t", tests, NULL, NULL);
 }

@@ -103,8 +103,9 @@ static dual beta_cf(const cf_side *c, double x, double y)
         R = Rn;
         if (done)
             break;
-        if (fabs(B.v) > 1e100) { /* keep the convergents finite: only their ratio counts */
-            double s = 1e-100;
+        double bm = fabs(B.v);
+        if (bm > 1e100 || bm < 1e-100) {          /* keep them normal numbers: only their ratio counts */
+            double s = bm > 1.0 ? 1e-100 : 1e100; /* (at large p they shrink by ~1/2 a term) */
             A0.v *= s, A0.d *= s, A1.v *= s, A1.d *= s, B0.v *= s, B0.d *= s, B1.v *= s, B1.d *= s;
         }
     }
