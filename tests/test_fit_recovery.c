@@ -11,8 +11,8 @@
  *
  *   model                     not identifiable                  checked instead
  *   lambert .. walter_aniso,  -                                 every parameter, 1e-6
- *   he, kurt, nishino, abc,
- *   low_smooth, brady, gaussian,
+ *   student_t, he, kurt, nishino,
+ *   abc, low_smooth, brady, gaussian,
  *   heidrich_seidel,
  *   microfacet (+ variants),
  *   cook_torrance:lobes=2
@@ -92,6 +92,7 @@ static const truth_case cases[] = {
     {"ashikhmin_shirley_iso", {0.4, 0.3, 0.2, 0.2, 0.3, 0.4, 80}, 1},
     {"walter", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
     {"walter_aniso", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.1, 0.3, 0.1}, 1},
+    {"student_t", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 4.0, 0.1}, 1},
     {"kurt", {0.5, 0.3, 0.15, 0.6, 0.7, 0.8, 0.3, 0.1, 0.3}, 1},
     {"nishino", {0.5, 0.3, 0.15, 2, 2.5, 3, 3, 20, 0.1}, 1},
     {"abc", {0.5, 0.3, 0.15, 5, 6, 7, 200, 0.8, 0.1}, 1},
