@@ -42,6 +42,7 @@ static const char *const kind_names[BF_WARN_KINDS] = {
     [BF_WARN_CANCELLED] = "cancelled",
     [BF_WARN_NO_CRITERIA] = "criteria_undefined",
     [BF_WARN_TRUNCATED] = "truncated",
+    [BF_WARN_REFERENCE_BETTER] = "reference_better",
 };
 
 const char *bf_warning_kind_name(bf_warning_kind k)
