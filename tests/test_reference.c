@@ -104,9 +104,10 @@ static void test_bad_files(void **state)
     expect_bad("{\"source\": \"x\",\n\"materials\": []}", BF_ERR_PARSE, "bad.json:2: \"materials\" must be an object");
     expect_bad("{\"source\": \"x\", \"materials\": {}}", BF_ERR_PARSE, "\"materials\" must be an object");
     expect_bad("{\"source\": 3, \"materials\": {}}", BF_ERR_PARSE, "\"source\" must be a non-empty string");
-    expect_bad("{\"source\": \"x\",\n \"materials\": {\n  \"a\": {\"model\": \"lambert\", \"params\": {\"rho_d\": 0.4}},\n"
-               "  \"b\": {\"model\": \"lambert\",\n   \"params\": {\"rho_d\": \"x\"}}}}",
-               BF_ERR_PARSE, "bad.json:5: materials/b: parameter rho_d: expected a number");
+    expect_bad(
+        "{\"source\": \"x\",\n \"materials\": {\n  \"a\": {\"model\": \"lambert\", \"params\": {\"rho_d\": 0.4}},\n"
+        "  \"b\": {\"model\": \"lambert\",\n   \"params\": {\"rho_d\": \"x\"}}}}",
+        BF_ERR_PARSE, "bad.json:5: materials/b: parameter rho_d: expected a number");
     expect_bad("{\"source\": \"x\", \"materials\": {\"a\": {\"model\": \"nosuch\", \"params\": {}}}}", BF_ERR_ARG,
                "materials/a:");
     expect_bad("{\"source\": \"x\", \"materials\": {\"a\": {\"model\": \"lambert\", \"params\": {\"rho_d\": 1e999}}}}",
@@ -308,9 +309,9 @@ static void test_compare_warns(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_set_read),          cmocka_unit_test(test_parameter_file),
-        cmocka_unit_test(test_bad_files),         cmocka_unit_test(test_directory_order),
-        cmocka_unit_test(test_matching),          cmocka_unit_test(test_own_fit_as_reference),
+        cmocka_unit_test(test_set_read),      cmocka_unit_test(test_parameter_file),
+        cmocka_unit_test(test_bad_files),     cmocka_unit_test(test_directory_order),
+        cmocka_unit_test(test_matching),      cmocka_unit_test(test_own_fit_as_reference),
         cmocka_unit_test(test_compare_warns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
