@@ -58,8 +58,10 @@ bf_status bf_warning_kind_parse(const char *name, bf_warning_kind *out, bf_error
             *out = (bf_warning_kind)k;
             return BF_OK;
         }
+        /* Blanks alone between the names: with reference_better the list would pass a
+         * message's BF_ERROR_MAX_CHARS with commas too. */
         size_t len = strlen(list);
-        snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kind_names[k]);
+        snprintf(list + len, sizeof list - len, "%s%s", k ? " " : "", kind_names[k]);
     }
     return bf_fail(err, BF_ERR_ARG, "unknown warning kind '%s' (%s)", name ? name : "", list);
 }

@@ -74,10 +74,15 @@ static int matches(const bf_compare *c, int i, int j, bf_compare_reference *out)
     return n;
 }
 
-/* Slot (i, j)'s n references (at q), judged beside brdfit's fit on samples s. */
-static bf_status judge(bf_compare *c, int i, int j, bf_samples *s, const bf_fit_options *fo, bf_compare_reference *q,
-                       int n, bf_error *err)
+/* Slot (i, j)'s references appended to c->reference, judged beside brdfit's fit on
+ * samples s (room for them was made). */
+static bf_status judge(bf_compare *c, int i, int j, bf_samples *s, const bf_fit_options *fo, bf_error *err)
 {
+    bf_compare_reference *q = c->reference + c->nreference;
+    const int n = matches(c, i, j, q);
+    c->nreference += n;
+    if (n == 0)
+        return BF_OK;
     bf_fit_result *r = c->results[(size_t)i * (size_t)c->nmodels + (size_t)j];
     double own = NAN;
     bf_metrics own_metrics;
@@ -127,10 +132,7 @@ bf_status compare_check_references(bf_compare *c, bf_samples *const *samples, co
         return bf_fail(err, BF_ERR_NOMEM, "compare: out of memory for %d references", n);
     for (int i = 0; i < c->nmaterials; i++)
         for (int j = 0; j < c->nmodels; j++) {
-            bf_compare_reference *q = c->reference + c->nreference;
-            const int m = matches(c, i, j, q);
-            c->nreference += m;
-            bf_status rc = m ? judge(c, i, j, samples[i], fo, q, m, err) : BF_OK;
+            bf_status rc = judge(c, i, j, samples[i], fo, err);
             if (rc != BF_OK)
                 return rc;
         }
