@@ -114,6 +114,7 @@ static const cli_option own[] = {
     CLI_LIB("--error"),
     CLI_LIB("--tolerance"),
     CLI_LIB("--jobs"),
+    CLI_LIB("--reference"),
     {"--json", 0, "FILE", "everything, machine-readable (stable keys; - for standard output)", "file",
      CLI_STRING_AT(compare_args, json_path)},
     {"--csv", 0, "FILE", "one row per material x model (- for standard output)", "file",

@@ -54,6 +54,29 @@ static void print_material(FILE *out, const bf_compare *c, const bf_compare_mate
     }
 }
 
+/* The published fits beside material i's (compare.h, bf_compare_reference). */
+static void print_references(FILE *out, const bf_compare *c, int i)
+{
+    for (int k = 0; k < c->nreference; k++) {
+        const bf_compare_reference *q = &c->reference[k];
+        const bf_reference *r = q->reference;
+        if (q->material != i)
+            continue;
+        fprintf(out, "  reference %s: %s%s%s: ", c->models[q->model], r->source, r->table ? ", " : "",
+                r->table ? r->table : "");
+        if (q->message[0]) {
+            fprintf(out, "not evaluated (%s)\n", q->message);
+            continue;
+        }
+        fprintf(out, "objective %.6g (brdfit %.6g%s), %s %.6g", q->cost, q->brdfit_cost,
+                q->brdfit_worse ? ", worse" : "", bf_compare_metric_name(c->metric),
+                bf_compare_metric_value(&q->metrics, c->metric));
+        if (r->outside[0])
+            fprintf(out, "; outside the bounds: %s", r->outside);
+        fputc('\n', out);
+    }
+}
+
 static void print_summary(FILE *out, const bf_compare *c)
 {
     fprintf(out, "summary over %d materials\n", c->nmaterials);
@@ -68,8 +91,10 @@ static void print_summary(FILE *out, const bf_compare *c)
 
 void compare_print_tables(FILE *out, const bf_compare *c)
 {
-    for (int i = 0; i < c->nmaterials; i++)
+    for (int i = 0; i < c->nmaterials; i++) {
         print_material(out, c, &c->materials[i]);
+        print_references(out, c, i);
+    }
     if (c->nmaterials > 1)
         print_summary(out, c);
     fflush(out);

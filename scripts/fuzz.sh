@@ -7,12 +7,12 @@
 # report; the input that caused it is left in build-fuzz/findings/TARGET/.
 #
 #   scripts/fuzz.sh [TARGET|all] [SECONDS]     (default: all, 10 seconds each)
-#   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest
+#   targets: csv csv_map merl merl_file cornell alta rgl mbsdf params reference scene regress manifest
 #            stack diligent
 #   FUZZ_RUNS=N runs each target for N executions instead of SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(csv csv_map merl merl_file cornell alta rgl mbsdf params scene regress manifest stack diligent)
+all=(csv csv_map merl merl_file cornell alta rgl mbsdf params reference scene regress manifest stack diligent)
 target=${1:-all}
 seconds=${2:-10}
 if [ "$target" = all ]; then
@@ -41,6 +41,7 @@ seed_files() {
     cornell) echo tests/data/cornell/cayman_head20.brdf ;;
     alta) echo tests/data/alta/pink-felt-1d.alta ;;
     params) echo examples/walter_rgb.json tests/data/lambert_rgb.json ;;
+    reference) echo examples/walter_rgb.json tests/data/lambert_rgb.json ;;
     scene) echo examples/scenes/*.json ;;
     regress) echo examples/regress/baseline.json ;;
     esac

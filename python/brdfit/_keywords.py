@@ -110,6 +110,7 @@ class CompareKeywords(TypedDict, total=False):
     error: Optional[Literal["rmse", "rmse_log", "rmse_cos", "rmse_rel"]]
     tolerance: Optional[float]
     jobs: Optional[int]
+    reference: Optional[Union[str, Sequence[str], Mapping[str, Any]]]
 
 
 class SelectKeywords(TypedDict, total=False):

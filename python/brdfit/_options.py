@@ -64,8 +64,8 @@ def _value_texts(d: Any, name: str, v: Any) -> List[Optional[str]]:
     """A keyword's value as the texts the library takes (Python types to text only: the
     library checks and refuses)."""
     if int(d.type) == lib.BF_OPTION_LIST:
-        if isinstance(v, str):
-            return [v]
+        if isinstance(v, (str, os.PathLike)):
+            return [_one_text(v)]
         if isinstance(v, Mapping):
             out: List[Optional[str]] = []
             for k, x in v.items():
@@ -76,9 +76,9 @@ def _value_texts(d: Any, name: str, v: Any) -> List[Optional[str]]:
                 else:
                     out.append("%s=%s" % (k, _one_text(x)))
             return out
-        if isinstance(v, (list, tuple)) and all(isinstance(t, str) for t in v):
-            return list(v)
-        raise UsageError("%s: needs a dict (name -> value) or a list of 'NAME=...' strings, got %r" % (name, v))
+        if isinstance(v, (list, tuple)) and all(isinstance(t, (str, os.PathLike)) for t in v):
+            return [_one_text(t) for t in v]
+        raise UsageError("%s: needs a dict (name -> value) or a list of strings, got %r" % (name, v))
     if isinstance(v, (list, tuple)):
         return [",".join(_one_text(x) for x in v)]
     return [_one_text(v)]

@@ -125,3 +125,22 @@ def test_export_bad_target(walter_result_files, tmp_path):
     assert isinstance(e.value, brdfit.Error)
     assert "povray" in str(e.value)
     assert not (tmp_path / "x.pov").exists()
+
+
+def test_compare_references_equal_the_command_lines(tmp_path):
+    """reference= is compare's --reference (the library's option): brdfit's own result,
+    named for the material, is judged as the fit judges itself, in the command's JSON."""
+    fast = ["--rgb", "--threads", "1", "--starts", "2", "--screen", "8"]
+    fitted = tmp_path / "refs" / "cayman.json"
+    fitted.parent.mkdir()
+    cli("fit", CAYMAN, "-m", "walter", *fast, "-q", "-o", fitted)
+    _, want = _cli_compare(tmp_path, [CAYMAN], ["walter", "lambert"], *fast, "--reference", fitted.parent)
+    for ref in (fitted.parent, [fitted], str(fitted)):
+        got = brdfit.compare([CAYMAN], "walter,lambert", rgb=True, threads=1, starts=2, screen=8, reference=ref)
+        refs = got.json["materials"][0]["fits"][0]["references"]
+        assert refs == want["materials"][0]["fits"][0]["references"]
+        assert len(refs) == 1 and refs[0]["brdfit_worse"] is False and refs[0]["cost"] == refs[0]["brdfit_cost"]
+        assert refs[0]["rmse_log"] == got.json["materials"][0]["fits"][0]["rmse_log"]
+        assert got.json["materials"][0]["fits"][1]["references"] == []
+    with pytest.raises(brdfit.Error, match="nosuch.json: cannot open"):
+        brdfit.compare([CAYMAN], "walter", rgb=True, threads=1, reference=tmp_path / "nosuch.json")

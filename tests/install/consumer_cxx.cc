@@ -26,6 +26,7 @@
 #include <brdfit/options.h>
 #include <brdfit/photo.h>
 #include <brdfit/prep.h>
+#include <brdfit/reference.h>
 #include <brdfit/regress.h>
 #include <brdfit/render.h>
 #include <brdfit/samples.h>
@@ -395,6 +396,27 @@ bool check_prep(std::string &value)
     return ok;
 }
 
+bool check_reference(std::string &value)
+{
+    bf_reference_set *s = nullptr;
+    bf_error err;
+    char material[64];
+    if (bf_reference_set_new(&s, &err) != BF_OK ||
+        bf_reference_parse(s, "{\"model\": \"lambert\", \"params\": {\"rho_d\": 1.2}}", "refs/red.json", &err) !=
+            BF_OK) {
+        value = err.msg;
+        bf_reference_set_free(s);
+        return false;
+    }
+    const bf_reference *r = &s->refs[0];
+    value = std::string(r->material) + "'s lambert, outside: " + r->outside;
+    const bool ok =
+        same(r->material, "red") && same(r->outside, "rho_d") &&
+        bf_reference_matches(r, bf_reference_material("data/red.binary", material, sizeof material), "lambert");
+    bf_reference_set_free(s);
+    return ok;
+}
+
 bool check_regress(std::string &value)
 {
     int found = -1;
@@ -552,6 +574,7 @@ const check checks[] = {
     {"options.h", check_options},
     {"photo.h", check_photo},
     {"prep.h", check_prep},
+    {"reference.h", check_reference},
     {"regress.h", check_regress},
     {"render.h", check_render},
     {"samples.h", check_samples},

@@ -25,6 +25,7 @@
 #include "brdfit/fit.h"
 #include "brdfit/metrics.h"
 #include "brdfit/options.h"
+#include "brdfit/reference.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -109,6 +110,24 @@ typedef struct bf_compare_summary {
     int chosen; /* materials where it is the simplest within tolerance */
 } bf_compare_summary;
 
+/* brdfit's objective is worse than a reference's when it exceeds it by more than this,
+ * relative (an optimizer miss: BF_WARN_REFERENCE_BETTER). */
+#define BF_COMPARE_REFERENCE_RTOL 1e-9
+
+/* A published fit beside one of brdfit's (brdfit/reference.h): the reference's model
+ * spec and material are the fit's. Frozen (docs/api.md): an array element of
+ * bf_compare. */
+typedef struct bf_compare_reference {
+    int material, model;           /* the fit's slot */
+    const bf_reference *reference; /* in bf_compare.references */
+    double cost;                   /* the fit's objective at the reference's values (bf_reference_evaluate) */
+    double brdfit_cost;            /* the same at brdfit's solution */
+    bf_metrics metrics;            /* at the reference's values, as the fit's are computed */
+    int brdfit_worse;              /* brdfit_cost > cost * (1 + BF_COMPARE_REFERENCE_RTOL) (a fit that
+                                      succeeded only) */
+    char message[512];             /* why it could not be evaluated ("": it was; cost NaN then) */
+} bf_compare_reference;
+
 typedef struct bf_compare {
     int nmaterials, nmodels;
     char **models;                  /* nmodels specs as the user gave them (owned) */
@@ -127,6 +146,13 @@ typedef struct bf_compare {
                                        NULL): the fits bf_compare_run made (NULL before);
                                        a program filling a comparison itself allocates
                                        them the same way (freed by bf_compare_free) */
+    /* Added at the end (docs/api.md). */
+    bf_reference_set *references;    /* the options' --reference files, read by
+                                        bf_compare_set_options (owned; NULL: none) */
+    bf_compare_reference *reference; /* nreference (owned), from bf_compare_run: every
+                                        (fit, matching reference), in slot order, then the
+                                        references' order */
+    int nreference;
 } bf_compare;
 
 /* A comparison of nmodels models (specs as given) across nmaterials materials (data
@@ -145,7 +171,8 @@ typedef void (*bf_compare_progress)(void *user, const bf_compare *c, int materia
 
 /* c's ranking from the options o (brdfit/options.h, BF_TASK_COMPARE): the error metric,
  * what to rank by, the folds (only when ranking by cv), the tolerance, the timing and
- * the objective's name; bf_compare_run does this itself. */
+ * the objective's name; and its reference files, read (bf_reference_read; a bad one is
+ * its error, and c keeps no references). bf_compare_run does this itself. */
 BF_API bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *err);
 
 /* Fits every model (c->models) to every material (samples[i] for c->materials[i]) with
@@ -165,7 +192,11 @@ BF_API bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_e
  * progress and cancel. Each sample set's geometry is computed before the threads start.
  * Returns BF_OK when the fits were run (whatever their outcome, interrupted or not);
  * BF_ERR_ARG (bad arguments, or c already run) or BF_ERR_NOMEM before any fit. Call
- * bf_compare_rank after. */
+ * bf_compare_rank after.
+ * References (the options' reference files): once the fits have run, every fit that ran
+ * is set beside each reference of its material (bf_reference_material of its data name)
+ * and model spec, in c->reference; a fit that succeeded with a higher objective than a
+ * reference's gets a BF_WARN_REFERENCE_BETTER warning. */
 BF_API bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_options *o,
                                 bf_compare_progress progress, void *user, bf_error *err);
 

@@ -40,20 +40,23 @@ extern "C" {
  * be reworded. Each kind has a stable snake_case name (bf_warning_kind_name) for files
  * that store kinds; a name never changes meaning, new kinds are added at the end. */
 typedef enum bf_warning_kind {
-    BF_WARN_OTHER = 0,    /* "other": none of these (or a warning read back without a kind) */
-    BF_WARN_AT_BOUND,     /* "at_bound": a free parameter on a bound of its range */
-    BF_WARN_UNDETERMINED, /* "undetermined": no standard error, or a huge one */
-    BF_WARN_CORRELATED,   /* "correlated": parameters correlated beyond 0.999 */
-    BF_WARN_INACTIVE,     /* "inactive": parameters without effect (not counted in k) */
-    BF_WARN_ALBEDO,       /* "albedo_above_one": the fitted BRDF reflects more than it receives */
-    BF_WARN_NARROW_LOBE,  /* "narrow_lobe": a lobe narrower than the data's sampling */
-    BF_WARN_ONE_START,    /* "one_start": the best optimum reached from 1 of several starts */
-    BF_WARN_SOLVER_LIMIT, /* "solver_limit": the solve stopped on its iteration or time limit */
-    BF_WARN_FAILED,       /* "failed": the fit failed (r->ok 0) */
-    BF_WARN_CANCELLED,    /* "cancelled": the fit was cancelled by its caller */
-    BF_WARN_NO_CRITERIA,  /* "criteria_undefined": AIC, AICc, BIC undefined under a robust loss */
-    BF_WARN_TRUNCATED,    /* "truncated": the list was cut at BF_FIT_MAX_WARNINGS */
-    BF_WARN_KINDS         /* the count, not a kind */
+    BF_WARN_OTHER = 0,        /* "other": none of these (or a warning read back without a kind) */
+    BF_WARN_AT_BOUND,         /* "at_bound": a free parameter on a bound of its range */
+    BF_WARN_UNDETERMINED,     /* "undetermined": no standard error, or a huge one */
+    BF_WARN_CORRELATED,       /* "correlated": parameters correlated beyond 0.999 */
+    BF_WARN_INACTIVE,         /* "inactive": parameters without effect (not counted in k) */
+    BF_WARN_ALBEDO,           /* "albedo_above_one": the fitted BRDF reflects more than it receives */
+    BF_WARN_NARROW_LOBE,      /* "narrow_lobe": a lobe narrower than the data's sampling */
+    BF_WARN_ONE_START,        /* "one_start": the best optimum reached from 1 of several starts */
+    BF_WARN_SOLVER_LIMIT,     /* "solver_limit": the solve stopped on its iteration or time limit */
+    BF_WARN_FAILED,           /* "failed": the fit failed (r->ok 0) */
+    BF_WARN_CANCELLED,        /* "cancelled": the fit was cancelled by its caller */
+    BF_WARN_NO_CRITERIA,      /* "criteria_undefined": AIC, AICc, BIC undefined under a robust loss */
+    BF_WARN_TRUNCATED,        /* "truncated": the list was cut at BF_FIT_MAX_WARNINGS */
+    BF_WARN_REFERENCE_BETTER, /* "reference_better": a published fit of the same model has a
+                                 lower objective on this data (brdfit compare --reference):
+                                 the search missed a better optimum */
+    BF_WARN_KINDS             /* the count, not a kind */
 } bf_warning_kind;
 
 /* The kind's stable name ("at_bound"; "unknown" for a value out of range). */

@@ -42,6 +42,7 @@ static const char *const kind_names[BF_WARN_KINDS] = {
     [BF_WARN_CANCELLED] = "cancelled",
     [BF_WARN_NO_CRITERIA] = "criteria_undefined",
     [BF_WARN_TRUNCATED] = "truncated",
+    [BF_WARN_REFERENCE_BETTER] = "reference_better",
 };
 
 const char *bf_warning_kind_name(bf_warning_kind k)
@@ -57,8 +58,10 @@ bf_status bf_warning_kind_parse(const char *name, bf_warning_kind *out, bf_error
             *out = (bf_warning_kind)k;
             return BF_OK;
         }
+        /* Blanks alone between the names: with reference_better the list would pass a
+         * message's BF_ERROR_MAX_CHARS with commas too. */
         size_t len = strlen(list);
-        snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kind_names[k]);
+        snprintf(list + len, sizeof list - len, "%s%s", k ? " " : "", kind_names[k]);
     }
     return bf_fail(err, BF_ERR_ARG, "unknown warning kind '%s' (%s)", name ? name : "", list);
 }

@@ -96,4 +96,11 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
 bf_status bf_fit_cv_with(bf_samples *s, const char *spec, const bf_fit_options *o, int folds, uint64_t seed,
                          bf_cv_result *out, bf_error *err);
 
+/* The model vector x of m (configured for s's channels) judged as bf_fit_with(s, spec,
+ * o) judges its solution (evaluate.c): *cost the objective it minimises, 1/2 sum
+ * rho(r^2) (its solution's final_cost), and *metrics those its result reports, k the
+ * free entries. x may lie outside the bounds: it is evaluated as it is. */
+bf_status bf_fit_evaluate_with(bf_samples *s, const bf_model *m, const double *x, const bf_fit_options *o, double *cost,
+                               bf_metrics *metrics, bf_error *err);
+
 #endif

@@ -239,6 +239,29 @@ static void get_loss(const bf_options *o, const option_row *r, char *buf, size_t
     snprintf(buf, size, "%s", t ? t : "none");
 }
 
+/* reference FILE|DIR: one more, kept in the set's log (option_list_value) and read by the
+ * comparison; a path may hold commas, so the option repeats rather than splits. */
+static bf_status set_reference(bf_options *o, const option_row *r, const char *v, bf_error *err)
+{
+    char name[64];
+    if (!v || !*v)
+        return bf_fail(err, BF_ERR_ARG, "%s needs a file or a folder", SPELL(o, r, name));
+    return BF_OK;
+}
+
+static void get_references(const bf_options *o, const option_row *r, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    const char *v;
+    for (int k = 0; (v = option_list_value(o, r->d.name, k)) != NULL; k++) {
+        int n = snprintf(buf + used, size - used, "%s%s", k ? "," : "", v);
+        if (n < 0 || (size_t)n >= size - used)
+            return;
+        used += (size_t)n;
+    }
+}
+
 /* fix NAME=VALUE or bound NAME=LO:HI: one more override. */
 static bf_status set_override(bf_options *o, const option_row *r, const char *v, bf_error *err)
 {
@@ -569,6 +592,11 @@ const option_row option_rows[] = {
     {ROW("jobs", "comparing", BF_TASK_COMPARE, BF_OPTION_INT, "N",
          "fits run at once (default 1); each gets --threads / N threads", NULL, NULL, "1", 1, 1024, NULL),
      .at = AT(jobs)},
+    {ROW("reference", "comparing", BF_TASK_COMPARE, BF_OPTION_LIST, "FILE|DIR",
+         "published fits to show beside brdfit's where the material and\nmodel match: a reference set, a parameter "
+         "file, or a folder\nof them (*.json); repeatable",
+         "file", NULL, NULL, 0, 0, NULL),
+     .set = set_reference, .get = get_references},
     /* Selecting. */
     {ROW("tolerance", "selecting", BF_TASK_SELECT, BF_OPTION_NUMBER, "T",
          "relative: candidates with error <= best * (1 + T) + A qualify\n(default 0.05); the one with the fewest "

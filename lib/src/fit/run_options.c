@@ -99,6 +99,14 @@ const char *option_text(const bf_options *o, const char *name)
     return NULL;
 }
 
+const char *option_list_value(const bf_options *o, const char *name, int k)
+{
+    for (int i = 0; i < o->nlog; i++)
+        if (!strcmp(option_rows[o->log[i].row].d.name, name) && k-- == 0)
+            return o->log[i].value;
+    return NULL;
+}
+
 /* ---- Making and copying ------------------------------------------------------------- */
 
 static const char *task_name(unsigned t)

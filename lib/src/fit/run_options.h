@@ -91,6 +91,9 @@ int option_row_index(const option_row *r);
 const char *option_spelled(const bf_options *o, const char *name, char *buf, size_t size);
 /* v kept (copied) as row r's text in o. */
 bf_status option_keep_text(bf_options *o, const option_row *r, const char *v, bf_error *err);
+/* Value k (from 0) set for the rows called name, in the order set (NULL past the last):
+ * a repeatable option's values. */
+const char *option_list_value(const bf_options *o, const char *name, int k);
 /* The text of a TEXT row of o by name (NULL when not set). */
 const char *option_text(const bf_options *o, const char *name);
 

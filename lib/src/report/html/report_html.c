@@ -149,6 +149,58 @@ static void model_table(report_page *r, int i, const bf_compare_material *m)
               fp);
 }
 
+/* The published fits beside material i's (brdfit compare --reference): who, the
+ * objective the fit minimised at their values and at brdfit's, the error metrics, and
+ * what to note (outside the bounds, brdfit worse). Nothing when none matched. */
+static void reference_table(report_page *r, int i)
+{
+    const bf_compare *c = r->c;
+    FILE *fp = r->fp;
+    int n = 0;
+    for (int k = 0; k < c->nreference; k++)
+        n += c->reference[k].material == i;
+    if (!n)
+        return;
+    fprintf(fp,
+            "<table class=\"references\">\n<tr><th>model</th><th>published fit</th><th>objective</th>"
+            "<th>brdfit's objective</th><th>%s</th><th>RMSE</th><th>log RMSE</th><th>note</th></tr>\n",
+            bf_compare_metric_name(c->metric));
+    for (int k = 0; k < c->nreference; k++) {
+        const bf_compare_reference *q = &c->reference[k];
+        const bf_reference *ref = q->reference;
+        if (q->material != i)
+            continue;
+        fprintf(fp, "<tr%s><td class=\"spec\">", q->brdfit_worse ? " class=\"worse\"" : "");
+        report_esc(fp, c->models[q->model]);
+        fputs("</td><td>", fp);
+        report_esc(fp, ref->source);
+        if (ref->table) {
+            fputs(", ", fp);
+            report_esc(fp, ref->table);
+        }
+        fputs("</td>", fp);
+        num(fp, q->cost);
+        num(fp, q->brdfit_cost);
+        const int ok = !q->message[0];
+        num(fp, ok ? bf_compare_metric_value(&q->metrics, c->metric) : NAN);
+        num(fp, ok ? q->metrics.rmse : NAN);
+        num(fp, ok ? q->metrics.rmse_log : NAN);
+        fputs("<td class=\"warn\">", fp);
+        if (!ok)
+            report_esc(fp, q->message);
+        if (q->brdfit_worse)
+            fputs("brdfit's objective is higher: its search missed a better optimum", fp);
+        if (ref->outside[0]) {
+            fputs(q->brdfit_worse ? "<br>outside brdfit's bounds: " : "outside brdfit's bounds: ", fp);
+            report_esc(fp, ref->outside);
+        }
+        fputs("</td></tr>\n", fp);
+    }
+    fputs("</table>\n<p>Published fits of these models to this material, judged as brdfit judges its own: the "
+          "objective its fit minimises (residual, weights and loss as fitted) and the same error metrics.</p>\n",
+          fp);
+}
+
 static bf_status scatter(report_page *r, int i, const bf_compare_material *m, int by_work)
 {
     const bf_compare *c = r->c;
@@ -246,7 +298,7 @@ static const char css[] = "body{font-family:sans-serif;margin:1.5em;color:#222;m
                           "td.params{text-align:left;font-family:monospace;font-size:80%;white-space:nowrap}"
                           "td.warn{text-align:left;font-size:80%;color:#a40;max-width:24em}"
                           "td.warn summary{cursor:pointer;white-space:nowrap}"
-                          "tr.chosen td{background:#e6f4e6;font-weight:bold}"
+                          "tr.chosen td{background:#e6f4e6;font-weight:bold}tr.worse td{background:#fbe9e7}"
                           "td.unsure{color:#a40}"
                           ".row{display:flex;flex-wrap:wrap;gap:.8em}figure{margin:0}"
                           "figcaption{font-size:80%;max-width:520px;font-family:monospace}a.pdf{font-size:75%}"
@@ -304,6 +356,7 @@ static bf_status page(report_page *r)
         report_esc(fp, m->data);
         fprintf(fp, "</h2>\n<p>%zu samples, %d channel%s.</p>\n", m->samples, m->channels, m->channels == 1 ? "" : "s");
         model_table(r, i, m);
+        reference_table(r, i);
         fputs("<div class=\"row\">\n", fp);
         bf_status rc;
         if ((rc = scatter(r, i, m, 0)) != BF_OK || (rc = scatter(r, i, m, 1)) != BF_OK)

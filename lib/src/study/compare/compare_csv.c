@@ -70,6 +70,43 @@ static double param_value(const bf_fit_result *r, const char *name)
     return NAN;
 }
 
+/* Slot (i, j)'s references, each column a field of "; "-joined values in the references'
+ * order: who published them ("source (table)"), their objective and rmse_log (empty
+ * where not evaluated), 1 where outside the bounds, 1 where brdfit did worse. */
+static void put_references(FILE *fp, const bf_compare *c, int i, int j)
+{
+    enum { COLS = 5, ITEM = 160 };
+    int n = 0;
+    for (int k = 0; k < c->nreference; k++)
+        n += c->reference[k].material == i && c->reference[k].model == j;
+    char *items = n ? calloc((size_t)n * COLS, ITEM) : NULL;
+    if (!items) {
+        fputs(",,,,,", fp);
+        return;
+    }
+    int q = 0;
+    for (int k = 0; k < c->nreference; k++) {
+        const bf_compare_reference *x = &c->reference[k];
+        if (x->material != i || x->model != j)
+            continue;
+        char *row[COLS];
+        for (int col = 0; col < COLS; col++)
+            row[col] = items + ((size_t)col * (size_t)n + (size_t)q) * ITEM;
+        snprintf(row[0], ITEM, "%s%s%s%s", x->reference->source, x->reference->table ? " (" : "",
+                 x->reference->table ? x->reference->table : "", x->reference->table ? ")" : "");
+        if (isfinite(x->cost))
+            bf_format_double(x->cost, row[1], ITEM);
+        if (!x->message[0] && isfinite(x->metrics.rmse_log))
+            bf_format_double(x->metrics.rmse_log, row[2], ITEM);
+        snprintf(row[3], ITEM, "%d", x->reference->outside[0] != '\0');
+        snprintf(row[4], ITEM, "%d", x->brdfit_worse);
+        q++;
+    }
+    for (int col = 0; col < COLS; col++)
+        bf_csv_put_list(fp, items + (size_t)col * (size_t)n * ITEM, ITEM, n);
+    free(items);
+}
+
 bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *err)
 {
     const char *name = path ? path : "-";
@@ -89,6 +126,8 @@ bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *
             "work,rank,rank_bic,rank_aic,rank_aicc,rank_cv,pareto_k,pareto_work,within_tolerance,simplest,"
             "warnings%s",
             c->timing ? ",seconds" : "");
+    if (c->references) /* only then: the table is otherwise as it was */
+        fputs(",references,reference_cost,reference_rmse_log,reference_outside_bounds,brdfit_worse", fp);
     for (int q = 0; q < ncols; q++) {
         fputc(',', fp);
         bf_csv_put_text(fp, cols[q]);
@@ -127,6 +166,8 @@ bf_status bf_compare_write_csv(const bf_compare *c, const char *path, bf_error *
                 fputc(',', fp);
             if (c->timing)
                 bf_csv_put_number(fp, ran ? x->seconds : NAN);
+            if (c->references)
+                put_references(fp, c, i, j);
             for (int k = 0; k < ncols; k++)
                 bf_csv_put_number(fp, param_value(r, cols[k]));
             fputc('\n', fp);

@@ -13,6 +13,9 @@
 bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
                           const char *const *models, bf_error *err);
 void bf_compare_clear(bf_compare *c);
+/* c->references: every reference file of o, in order (compare_reference.c; the old set
+ * freed first; NULL when o names none). On an error c holds none. */
+bf_status compare_read_references(bf_compare *c, const bf_options *o, bf_error *err);
 
 bf_status bf_select_init(bf_select *s, int n, const char *const *specs, int channels, const bf_options *o,
                          bf_error *err);

@@ -7,7 +7,9 @@
 
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "io/json_out.h"
 
@@ -16,7 +18,50 @@ static void add_rank(cJSON *o, const char *key, int r)
     cJSON_AddItemToObject(o, key, r > 0 ? cJSON_CreateNumber(r) : cJSON_CreateNull());
 }
 
-static cJSON *fit_json(const bf_compare *c, int j, const bf_compare_fit *f)
+/* The entries outside the bounds, as a list of names (", "-separated in the reference). */
+static cJSON *outside_json(const char *outside)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (const char *p = outside; *p;) {
+        const char *e = strstr(p, ", ");
+        const size_t n = e ? (size_t)(e - p) : strlen(p);
+        char name[BF_REFERENCE_OUTSIDE_LEN];
+        snprintf(name, sizeof name, "%.*s", (int)n, p);
+        cJSON_AddItemToArray(a, cJSON_CreateString(name));
+        p += n + (e ? 2 : 0);
+    }
+    return a;
+}
+
+/* A published fit beside brdfit's (compare.h, bf_compare_reference). */
+static cJSON *reference_json(const bf_compare *c, const bf_compare_reference *q)
+{
+    const bf_reference *r = q->reference;
+    const int ok = !q->message[0];
+    cJSON *o = cJSON_CreateObject();
+    bf_json_add_string(o, "source", r->source);
+    bf_json_add_string(o, "table", r->table);
+    bf_json_add_string(o, "file", r->file);
+    cJSON_AddNumberToObject(o, "line", r->line);
+    bf_json_add_string(o, "material", r->material);
+    bf_json_add_string(o, "spec", bf_model_spec(r->model));
+    bf_json_add_number(o, "cost", q->cost);
+    bf_json_add_number(o, "brdfit_cost", q->brdfit_cost);
+    bf_json_add_number(o, "error", ok ? bf_compare_metric_value(&q->metrics, c->metric) : NAN);
+    bf_json_add_number(o, "rmse", ok ? q->metrics.rmse : NAN);
+    bf_json_add_number(o, "rmse_log", ok ? q->metrics.rmse_log : NAN);
+    bf_json_add_number(o, "rmse_cos", ok ? q->metrics.rmse_cos : NAN);
+    bf_json_add_number(o, "rmse_rel", ok ? q->metrics.rmse_rel : NAN);
+    bf_json_add_number(o, "max_err", ok ? q->metrics.max_err : NAN);
+    cJSON_AddBoolToObject(o, "outside_bounds", r->outside[0] != '\0');
+    cJSON_AddItemToObject(o, "outside", outside_json(r->outside));
+    cJSON_AddBoolToObject(o, "brdfit_worse", q->brdfit_worse);
+    bf_json_add_string(o, "message", ok ? NULL : q->message);
+    cJSON_AddItemToObject(o, "params", bf_json_params(r->model, r->x));
+    return o;
+}
+
+static cJSON *fit_json(const bf_compare *c, int i, int j, const bf_compare_fit *f)
 {
     cJSON *o = cJSON_CreateObject();
     const int ran = f->state == BF_CMP_OK || f->state == BF_CMP_FAILED;
@@ -55,6 +100,10 @@ static cJSON *fit_json(const bf_compare *c, int j, const bf_compare_fit *f)
     cJSON *w = cJSON_AddArrayToObject(o, "warnings");
     for (int k = 0; r && k < r->nwarnings; k++)
         cJSON_AddItemToArray(w, cJSON_CreateString(r->warnings[k]));
+    cJSON *refs = cJSON_AddArrayToObject(o, "references");
+    for (int k = 0; k < c->nreference; k++)
+        if (c->reference[k].material == i && c->reference[k].model == j)
+            cJSON_AddItemToArray(refs, reference_json(c, &c->reference[k]));
     return o;
 }
 
@@ -86,7 +135,7 @@ static cJSON *compare_json(const bf_compare *c)
         bf_json_add_string(mo, "simplest", m->simplest >= 0 ? c->models[m->simplest] : NULL);
         cJSON *fits = cJSON_AddArrayToObject(mo, "fits");
         for (int j = 0; j < c->nmodels; j++)
-            cJSON_AddItemToArray(fits, fit_json(c, j, &m->fits[j]));
+            cJSON_AddItemToArray(fits, fit_json(c, i, j, &m->fits[j]));
         cJSON_AddItemToArray(mats, mo);
     }
     cJSON *sum = cJSON_AddArrayToObject(root, "summary");

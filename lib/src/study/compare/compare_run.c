@@ -98,7 +98,10 @@ bf_status bf_compare_run(bf_compare *c, bf_samples *const *samples, const bf_opt
     options_fit_get(o, &fo);
     fo.report_materials = 1;
     const compare_hooks h = {progress, user, o->finish};
-    return compare_run_with(c, samples, &fo, o->jobs, &h, err);
+    rc = compare_run_with(c, samples, &fo, o->jobs, &h, err);
+    if (rc == BF_OK) /* the published fits beside the fits that ran (compare_reference.c) */
+        rc = compare_check_references(c, samples, &fo, err);
+    return rc;
 }
 
 bf_status compare_run_with(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo, int jobs,

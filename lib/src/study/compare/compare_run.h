@@ -17,4 +17,9 @@ typedef struct compare_hooks {
 bf_status compare_run_with(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo, int jobs,
                            const compare_hooks *h, bf_error *err);
 
+/* c->reference once the fits have run (compare_reference.c): each fit that ran beside
+ * every reference of its material and model, judged with fo as the fit judged itself;
+ * the fits brdfit did worse than a reference warned (BF_WARN_REFERENCE_BETTER). */
+bf_status compare_check_references(bf_compare *c, bf_samples *const *samples, const bf_fit_options *fo, bf_error *err);
+
 #endif

@@ -40,7 +40,7 @@ bf_status bf_compare_set_options(bf_compare *c, const bf_options *o, bf_error *e
     c->timing = o->timing;
     c->tolerance = o->tolerance;
     c->residual = bf_residual_name(o->residual);
-    return BF_OK;
+    return compare_read_references(c, o, err);
 }
 
 bf_status bf_compare_init(bf_compare *c, int nmaterials, const char *const *data, int nmodels,
@@ -96,6 +96,8 @@ void bf_compare_clear(bf_compare *c)
     free(c->models);
     free(c->materials);
     free(c->summary);
+    bf_reference_set_free(c->references);
+    free(c->reference);
     memset(c, 0, sizeof *c);
 }
 
