@@ -33,10 +33,10 @@ static bf_status configure(bf_model *m, bf_error *err)
         (rc = bf_model_add_param(m, "p", 1, 0.0, 3.0, 0.45, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)) ||
         (rc = bf_model_add_param(m, "f0", 1, 0.0, 10.0, 1.0, BF_SCALE_LINEAR, 1, BF_ROLE_F0, err)) ||
         (rc = bf_model_add_param(m, "f1", 1, -2.0, 10.0, 0.0, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "lambda", 1, 0.0, 1e8, 3.0, BF_SCALE_LOG1P, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "c", 1, 1e-10, 1e120, 5e-7, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "k", 1, 1.0, 1e4, 25.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "theta0", 1, -M_PI / 2, M_PI / 2, 0.225, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)))
+        (rc = bf_model_add_param(m, "lambda", 1, 0.0, 1e8, 1.0, BF_SCALE_LOG1P, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "c", 1, 1e-10, 1e120, 1e-3, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "k", 1, 1.0, 1e4, 20.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "theta0", 1, -M_PI / 2, M_PI / 2, 0.2, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)))
         return rc;
     return BF_OK;
 }
