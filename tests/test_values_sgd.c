@@ -12,17 +12,17 @@
 
 #include "support.h"
 
-enum { NP = 10 }; /* rho_d, rho_s, alpha, p, f0, f1, lambda, c, k, theta0 */
+enum { NP = 10 }; /* rho_d, rho_s, alpha, p, f0, f1, lambda, s, k, theta0 */
 
 /* One channel's parameters in table order. */
 typedef struct sgd_x {
-    double rd, rs, alpha, p, f0, f1, lambda, c, k, theta0;
+    double rd, rs, alpha, p, f0, f1, lambda, s, k, theta0;
 } sgd_x;
 
 /* The model vector for C channels, every channel the same. */
 static void fill(const sgd_x *s, int C, double *x)
 {
-    const double v[NP] = {s->rd, s->rs, s->alpha, s->p, s->f0, s->f1, s->lambda, s->c, s->k, s->theta0};
+    const double v[NP] = {s->rd, s->rs, s->alpha, s->p, s->f0, s->f1, s->lambda, s->s, s->k, s->theta0};
     for (int i = 0; i < NP; i++)
         for (int c = 0; c < C; c++)
             x[i * C + c] = v[i];
@@ -33,7 +33,7 @@ static double g1_ref(const sgd_x *s, double th)
 {
     if (th <= s->theta0)
         return 1.0;
-    double w = s->c * pow(th - s->theta0, s->k);
+    double w = pow((th - s->theta0) / s->s, s->k);
     return 1.0 + s->lambda * (1.0 - exp(w < 50.0 ? w : 50.0));
 }
 
@@ -61,14 +61,15 @@ static void test_table(void **state)
 {
     (void)state;
     bf_model *m = ts_model("sgd", 3);
-    const char *names[NP] = {"rho_d", "rho_s", "alpha", "p", "f0", "f1", "lambda", "c", "k", "theta0"};
+    const char *names[NP] = {"rho_d", "rho_s", "alpha", "p", "f0", "f1", "lambda", "s", "k", "theta0"};
     assert_int_equal(bf_model_nparams(m), NP);
     assert_int_equal(bf_model_nvalues(m), 3 * NP);
     for (int i = 0; i < NP; i++) {
         assert_string_equal(bf_model_param(m, i)->name, names[i]);
         assert_int_equal(bf_model_param(m, i)->color, 1);
     }
-    assert_true(bf_model_param(m, 7)->lo == 1e-10 && bf_model_param(m, 7)->hi == 1e120);
+    assert_true(bf_model_param(m, 7)->lo == 0.3 && bf_model_param(m, 7)->hi == M_PI);
+    assert_true(bf_model_param(m, 8)->lo == 2.0 && bf_model_param(m, 8)->hi == 1e3);
     assert_int_equal(bf_model_energy_conserving(m), 0);
     assert_int_equal(bf_model_reciprocal(m), 1);
     bf_model_free(m);
@@ -82,12 +83,12 @@ static void test_normal_incidence(void **state)
     bf_model *m = ts_model("sgd", 1);
     double x[NP];
     /* alpha = 1, p = 2: D = e^-1 / pi; F = 0.9 - 0.4 = 0.5; theta0 > 0: G = 1. */
-    sgd_x s = {0.2, 3.0, 1.0, 2.0, 0.9, 0.4, 5.0, 1e-3, 3.0, 0.3};
+    sgd_x s = {0.2, 3.0, 1.0, 2.0, 0.9, 0.4, 5.0, 1.0, 3.0, 0.3};
     fill(&s, 1, x);
     double want = 0.2 / M_PI + 3.0 * 0.5 * exp(-1.0) / (M_PI * M_PI);
     ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-14, "sgd normal, G = 1");
-    /* theta0 = -0.5, k = 2, c = 4 ln 2: w = c 0.25 = ln 2, e^w = 2, G1 = 1 - lambda = 0.75. */
-    s.theta0 = -0.5, s.k = 2.0, s.c = 4.0 * log(2.0), s.lambda = 0.25;
+    /* theta0 = -0.5, k = 2, s = 0.5 / sqrt(ln 2): w = ln 2, e^w = 2, G1 = 1 - lambda = 0.75. */
+    s.theta0 = -0.5, s.k = 2.0, s.s = 0.5 / sqrt(log(2.0)), s.lambda = 0.25;
     fill(&s, 1, x);
     want = 0.2 / M_PI + 3.0 * 0.5 * exp(-1.0) * 0.5625 / (M_PI * M_PI);
     ts_assert_rel(ts_eval1(m, x, 0.0, 0.0, 0.0, 0.0, 0), want, 1e-13, "sgd normal, G1 = 0.75");
@@ -109,8 +110,8 @@ static void test_random(void **state)
                    2.0 * ts_uniform(&r),
                    2.0 * ts_uniform(&r) - 0.5,
                    20.0 * ts_uniform(&r),
-                   1e-8 * pow(1e9, ts_uniform(&r)),
-                   pow(100.0, ts_uniform(&r)),
+                   0.3 * pow(M_PI / 0.3, ts_uniform(&r)),
+                   2.0 * pow(100.0, ts_uniform(&r)),
                    1.8 * ts_uniform(&r) - 0.6};
         fill(&s, 1, x);
         double ti, pi_, to, po;
@@ -121,21 +122,21 @@ static void test_random(void **state)
     bf_model_free(m);
 }
 
-/* Below theta0 the shadowing is 1 whatever lambda, c and k; below the horizon f = 0; a huge
- * c holds exp(w) at exp(50) (finite). */
+/* Below theta0 the shadowing is 1 whatever lambda, s and k; below the horizon f = 0; the
+ * narrowest, steepest shadowing holds exp(w) at exp(50) (finite). */
 static void test_limits(void **state)
 {
     (void)state;
     bf_model *m = ts_model("sgd", 1);
     double x[NP], x0[NP];
-    sgd_x s = {0.3, 2.0, 0.05, 0.5, 0.1, 0.05, 7.0, 3.0, 4.0, 1.2};
+    sgd_x s = {0.3, 2.0, 0.05, 0.5, 0.1, 0.05, 7.0, 0.76, 4.0, 1.2};
     fill(&s, 1, x);
     s.lambda = 0.0;
     fill(&s, 1, x0);
     ts_assert_rel(ts_eval1(m, x, 40.0, 0.0, 50.0, 170.0, 0), ts_eval1(m, x0, 40.0, 0.0, 50.0, 170.0, 0), 1e-15,
                   "sgd below theta0");
     assert_true(ts_eval1(m, x, 95.0, 0.0, 30.0, 180.0, 0) == 0.0);
-    s.lambda = 2.0, s.c = 1e100, s.theta0 = 0.0;
+    s.lambda = 2.0, s.s = 0.3, s.k = 1e3, s.theta0 = 0.0; /* w = (pi / 0.9)^1000 */
     fill(&s, 1, x);
     double g = 1.0 + 2.0 * (1.0 - exp(50.0));
     /* The mirror direction at 60 degrees: a = alpha, VH = 1/2, NL NV = 1/4. */
@@ -147,9 +148,9 @@ static void test_limits(void **state)
 
 /* Two of the published fits: Bagher et al. 2012 as published in bsdfbenchmark/bbm
  * fits/bagher_sgd.fit, mapped as docs/models.md says (rho_d = the Lambertian albedo,
- * rho_s = albedo K, f0 and f1 = eta's rows, the rest as named). Expected values from an
- * independent implementation of bbm's Bagher model (numpy, written from the paper and
- * bbm's definitions, not from this library). */
+ * rho_s = albedo K, f0 and f1 = eta's rows, s = c^(-1/k), the rest as named). Expected
+ * values from an independent implementation of bbm's Bagher model (numpy, written from
+ * the paper and bbm's definitions, with its c, not from this library). */
 typedef struct published {
     const char *name;
     double kd[3], albedo[3], alpha[3], p[3], f0[3], f1[3], K[3], lambda[3], c[3], k[3], theta0[3];
@@ -206,8 +207,9 @@ static void test_published(void **state)
         const published *q = &pub[n];
         double x[3 * NP];
         for (int c = 0; c < 3; c++) {
-            const double v[NP] = {q->kd[c], q->albedo[c] * q->K[c], q->alpha[c], q->p[c], q->f0[c],
-                                  q->f1[c], q->lambda[c],           q->c[c],     q->k[c], q->theta0[c]};
+            const double v[NP] = {
+                q->kd[c],     q->albedo[c] * q->K[c],       q->alpha[c], q->p[c],     q->f0[c], q->f1[c],
+                q->lambda[c], exp(-log(q->c[c]) / q->k[c]), q->k[c],     q->theta0[c]};
             for (int i = 0; i < NP; i++)
                 x[i * 3 + c] = v[i];
         }

@@ -3,8 +3,11 @@
 bbm evaluates  kd/pi + albedo * K * F * P22 / (pi cos^4 theta_h) * G1(L) G1(V) / (pi NL NV),
 brdfit's sgd   rho_d/pi + rho_s * F * exp(-a) / (pi a^p NH^4) * G1(L) G1(V) / (pi NL NV),
 so every parameter maps one to one except the two scales albedo and K, which multiply
-the same lobe and are one parameter in brdfit: rho_s = albedo * K (per channel).
+the same lobe and are one parameter in brdfit: rho_s = albedo * K (per channel), and the
+shadowing's scale: bbm's w = c (theta - theta0)^k is brdfit's ((theta - theta0) / s)^k,
+so s = c^(-1/k) per channel (the angle past theta0 where w = 1).
 """
+import math
 
 
 def _rgb(v):
@@ -27,7 +30,7 @@ def to_brdfit(kd, p):
         "f0": _rgb(eta[0]),
         "f1": _rgb(eta[1]),
         "lambda": _rgb(p["Lambda"]),
-        "c": _rgb(p["c"]),
+        "s": [math.exp(-math.log(c) / k) for c, k in zip(_rgb(p["c"]), _rgb(p["k"]))],
         "k": _rgb(p["k"]),
         "theta0": _rgb(p["theta0"]),
     }

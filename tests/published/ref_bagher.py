@@ -36,8 +36,10 @@ def evaluate(kd, p, L, V):
         d = theta - th0
         over = d > 0
         dd = np.where(over, d, 1.0)
+        # 1 - e^w as -expm1(w): w reaches 1e-12 where Lambda is 1e7 (ss440), and 1 - exp(w)
+        # would lose all but 4 digits of the product.
         with np.errstate(over="ignore"):  # the branch np.where discards (theta <= theta0)
-            g = 1.0 + lam * (1.0 - np.exp(c * dd**k))
+            g = 1.0 - lam * np.expm1(c * dd**k)
         return np.where(over, g, 1.0)
 
     G = G1(L) * G1(V)

@@ -4,7 +4,10 @@
  *   D  = exp(-a) / (pi a^p NH^4),  a = alpha + tan^2(theta_h) / alpha   (the SGD)
  *   F  = f0 - f1 VH + (1 - f0) (1 - VH)^5                               (their Fresnel fit)
  *   G  = G1(theta_i) G1(theta_o),
- *   G1(t) = 1 + lambda (1 - exp(w)), w = c (t - theta0)^k, for t > theta0; 1 otherwise.
+ *   G1(t) = 1 + lambda (1 - exp(w)), w = ((t - theta0) / s)^k, for t > theta0; 1 otherwise.
+ * The paper writes w = c (t - theta0)^k; the width s = c^(-1/k) (radians, where w = 1) is
+ * what the data pin down: c spans 1e-8 .. 1e109 over the published fits and moves with k
+ * (log c = -k log s), so a search in c is ill conditioned, while s spans 0.37 .. 2.4.
  * Every lobe parameter is a colour, as the paper fits them (the driver calls the lobe once
  * per channel). The paper's normalisation K of D scales the lobe exactly as the weight
  * does, so the two are one parameter (rho_s = albedo K in bbm's names): two would make a
@@ -18,8 +21,8 @@
 
 #include <math.h>
 
-/* exp(w) is held at exp(SGD_W_MAX) beyond it, so that G stays finite at every bound (c up to
- * 1e120, k up to 1e4); the published fits reach w = 16.9 in the upper hemisphere. */
+/* exp(w) is held at exp(SGD_W_MAX) beyond it, so that G stays finite at every bound
+ * ((pi / 0.3)^1000); the published fits reach w = 16.9 in the upper hemisphere. */
 #define SGD_W_MAX 50.0
 
 static bf_status configure(bf_model *m, bf_error *err)
@@ -34,22 +37,22 @@ static bf_status configure(bf_model *m, bf_error *err)
         (rc = bf_model_add_param(m, "f0", 1, 0.0, 10.0, 1.0, BF_SCALE_LINEAR, 1, BF_ROLE_F0, err)) ||
         (rc = bf_model_add_param(m, "f1", 1, -2.0, 10.0, 0.0, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)) ||
         (rc = bf_model_add_param(m, "lambda", 1, 0.0, 1e8, 1.0, BF_SCALE_LOG1P, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "c", 1, 1e-10, 1e120, 1e-3, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
-        (rc = bf_model_add_param(m, "k", 1, 1.0, 1e4, 20.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "s", 1, 0.3, M_PI, 1.5, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
+        (rc = bf_model_add_param(m, "k", 1, 2.0, 1e3, 8.0, BF_SCALE_LOG, 1, BF_ROLE_SHAPE, err)) ||
         (rc = bf_model_add_param(m, "theta0", 1, -M_PI / 2, M_PI / 2, 0.2, BF_SCALE_LINEAR, 1, BF_ROLE_SHAPE, err)))
         return rc;
     return BF_OK;
 }
 
-/* G1 at polar angle th for q = (lambda, c, k, theta0), log c in logc; d = dG1/dq. */
-static inline double g1(double th, const double *q, double logc, double d[4])
+/* G1 at polar angle th for q = (lambda, s, k, theta0), log s in logs; d = dG1/dq. */
+static inline double g1(double th, const double *q, double logs, double d[4])
 {
     double x = th - q[3];
     d[0] = d[1] = d[2] = d[3] = 0.0;
     if (!(x > 0.0))
         return 1.0;
-    double lx = log(x);
-    double lw = logc + q[2] * lx; /* log w: c x^k neither overflows nor underflows early */
+    double lr = log(x) - logs;
+    double lw = q[2] * lr; /* log w: (x / s)^k neither overflows nor underflows early */
     if (lw > log(SGD_W_MAX)) {
         d[0] = -expm1(SGD_W_MAX);
         return 1.0 + q[0] * d[0];
@@ -57,21 +60,21 @@ static inline double g1(double th, const double *q, double logc, double d[4])
     double w = exp(lw), e = exp(w);
     double le = -q[0] * e * w; /* dG1 / d(log w) */
     d[0] = -expm1(w);          /* 1 - e^w, exact for small w */
-    d[1] = le / q[1];
-    d[2] = le * lx;
+    d[1] = -le * q[2] / q[1];
+    d[2] = le * lr;
     d[3] = -le * q[2] / x;
     return 1.0 + q[0] * d[0];
 }
 
 /* One lobe over a block for one channel (a bf_lobe_fn: family.h says why eight arguments).
- * Scalars s = alpha, p, f0, f1, lambda, c, k, theta0 of that channel. */
+ * Scalars s = alpha, p, f0, f1, lambda, s, k, theta0 of that channel. */
 static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g, size_t i0, size_t cnt, double *S,
                  double *dS)
 {
     (void)m;
     (void)k;
     const double alpha = s[0], p = s[1], f0 = s[2], f1 = s[3];
-    const double *q = s + 4, logc = log(s[5]);
+    const double *q = s + 4, logs = log(s[5]);
     for (size_t j = 0; j < cnt; j++) {
         size_t i = i0 + j;
         double nl = g->lz[i], nv = g->vz[i], nh = g->hz[i], vh = g->vh[i];
@@ -92,7 +95,7 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         double ti = atan2(sqrt(g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]), nl);
         double to = atan2(sqrt(g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]), nv);
         double di[4], dv[4];
-        double Gi = g1(ti, q, logc, di), Gv = g1(to, q, logc, dv);
+        double Gi = g1(ti, q, logs, di), Gv = g1(to, q, logs, dv);
         double G = Gi * Gv;
         double inv = 1.0 / (M_PI * nl * nv);
         S[j] = F * D * G * inv;
