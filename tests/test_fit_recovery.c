@@ -13,7 +13,7 @@
  *   lambert .. walter_aniso,  -                                 every parameter, 1e-6
  *   kurt, nishino, abc,
  *   brady, gaussian,
- *   heidrich_seidel,
+ *   heidrich_seidel, sgd,
  *   microfacet (+ variants),
  *   cook_torrance:lobes=2
  *   lafortune(_aniso)         cxy, cz (cx, cy, cz): the lobe    the ratios cxy/cz (cx/cz,
@@ -34,7 +34,8 @@
  * Starts: one (the data-driven start) for every model but lafortune:lobes=2 with
  * Ceres' Levenberg-Marquardt, which from that start settles in a local minimum (lobe 1
  * collapses to n = 0, rmse 0.057); 8 seeded starts find the optimum for 6 of 8 seeds,
- * so it runs 16. LD_LBFGS and the relative residual both reach it from the one start. */
+ * so it runs 16. LD_LBFGS and the relative residual both reach it from the one start.
+ * Iterations: Ceres' default 100 for every model but sgd (500: see its case). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -66,7 +67,12 @@ typedef struct truth_case {
  * stops with the values right to 1e-7 but gltf's parameters up to 1.5% off). Ceres
  * recovers them to 1e-6 from the multistart; NLopt is held to the values and the noisy
  * fits to their standard errors, as Disney is. */
-#define WEAK(t) (!strcmp((t)->spec, "gltf") || strstr((t)->spec, "_principled") != NULL || !strcmp((t)->spec, "sgd"))
+#define WEAK(t) (!strcmp((t)->spec, "gltf") || strstr((t)->spec, "_principled") != NULL)
+
+/* sgd's weight rho_s and Fresnel f0, f1 are told apart only by the grazing Fresnel rise
+ * too (rho_s F = rho_s f0 (1 - m5) - rho_s f1 VH + rho_s m5, m5 = (1 - VH)^5): standard
+ * errors up to 15% at 2% noise, so its noisy fit is held to them, as Disney's is; its
+ * noiseless fits recover every parameter. */
 
 /* --fix NAME=VALUE at the truth for a family with a direction the data cannot see
  * (gltf: F0 is ior's times specular_color's, so ior is fixed as a user would), or NULL. */
@@ -100,10 +106,17 @@ static const truth_case cases[] = {
     {"mitsuba_principled", {0.6, 0.4, 0.3, 0.3, 0.6, 0.3, 0.4, 0.3, 0.4, 0.3, 0.4, 0.5}, 1},
     {"gaussian", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 0.25}, 1},
     {"heidrich_seidel", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 30, 0.7}, 1},
-    /* Shadowing strong enough at grazing (G1 down to about 0.4) to tell lambda from c. */
+    /* Shadowing that bends G1 from 1 near normal to about 0.25 at grazing, over the whole
+     * range of angles (k near 3), where the data see each of its four parameters; the
+     * published fits' steep k (median 24) acts in the last few degrees only, where
+     * lambda, s, k and theta0 make nearly one exponential in t and correlate to 0.9999.
+     * Ceres needs 297 iterations from the data-driven start: the three channels are
+     * independent fits sharing one trust region, and rho_s, f0 and f1 are told apart
+     * only by the grazing Fresnel rise (rho_s F = rho_s f0 (1 - m5) - rho_s f1 VH +
+     * rho_s m5), a long narrow valley. */
     {"sgd",
-     {0.3, 0.2,  0.1, 2,   3,   4,   0.03,   0.04, 0.05,   0.4, 0.5, 0.6,  0.9,  0.8,  0.7,
-      0.1, 0.15, 0.2, 1.1, 1.2, 0.9, 1.2e-3, 9e-4, 1.1e-3, 21,  19,  20.5, 0.22, 0.18, 0.21},
+     {0.3, 0.2,  0.1, 2,    3,   4,   0.03, 0.04, 0.05, 0.4, 0.5, 0.6, 0.9, 0.8,  0.7,
+      0.1, 0.15, 0.2, 0.25, 0.3, 0.2, 1.3,  1.25, 1.35, 3,   3.5, 2.8, 0.1, 0.15, 0.05},
      1},
     {"microfacet", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
     {"walter:fresnel=dielectric", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 1.6}, 1},
@@ -338,6 +351,8 @@ static void test_recover_noiseless_ceres(void **state)
         bf_override ov;
         base_options(&o, t, &ov);
         o.starts = t->starts;
+        if (!strcmp(t->spec, "sgd"))
+            o.solver.max_iterations = 500;
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
         if (!(r.metrics.rmse < 1e-9 * max_abs_value(s)))
@@ -411,7 +426,7 @@ static void test_recover_noisy(void **state)
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
         const bf_model *m = r.model;
-        int disney = !strcmp(t->spec, "disney"), weak = disney || WEAK(t),
+        int disney = !strcmp(t->spec, "disney"), weak = disney || WEAK(t) || !strcmp(t->spec, "sgd"),
             lafortune = !strncmp(t->spec, "lafortune", 9);
         for (int p = 0; p < bf_model_nparams(m); p++) {
             const bf_param_info *pi = bf_model_param(m, p);
