@@ -57,9 +57,9 @@ static inline double g1(double th, const double *q, double logs, double d[4])
         d[0] = -expm1(SGD_W_MAX);
         return 1.0 + q[0] * d[0];
     }
-    double w = exp(lw), e = exp(w);
-    double le = -q[0] * e * w; /* dG1 / d(log w) */
-    d[0] = -expm1(w);          /* 1 - e^w, exact for small w */
+    double w = exp(lw), em1 = expm1(w);  /* e^w - 1, exact for small w */
+    double le = -q[0] * (1.0 + em1) * w; /* dG1 / d(log w) */
+    d[0] = -em1;
     d[1] = -le * q[2] / q[1];
     d[2] = le * lr;
     d[3] = -le * q[2] / x;
@@ -75,6 +75,9 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
     (void)k;
     const double alpha = s[0], p = s[1], f0 = s[2], f1 = s[3];
     const double *q = s + 4, logs = log(s[5]);
+    /* Above 1 (nothing spared) for theta0 <= 0; the margin keeps angles a rounding above
+     * theta0 on the atan2 path, where G1 - 1 is of order (1e-15 / s)^k anyway. */
+    const double cos0 = q[3] > 0.0 ? cos(q[3]) * (1.0 + 1e-15) : 2.0;
     for (size_t j = 0; j < cnt; j++) {
         size_t i = i0 + j;
         double nl = g->lz[i], nv = g->vz[i], nh = g->hz[i], vh = g->vh[i];
@@ -92,8 +95,10 @@ static void lobe(const bf_model *m, int k, const double *s, const bf_geometry *g
         mu = mu < 0.0 ? 0.0 : mu;
         double m5 = mu * mu * mu * mu * mu;
         double F = f0 - f1 * vh + (1.0 - f0) * m5;
-        double ti = atan2(sqrt(g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]), nl);
-        double to = atan2(sqrt(g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]), nv);
+        /* A polar angle at or below theta0 (its cosine at or above cos theta0) has G1 = 1:
+         * the atan2 is spared there. */
+        double ti = nl >= cos0 ? 0.0 : atan2(sqrt(g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]), nl);
+        double to = nv >= cos0 ? 0.0 : atan2(sqrt(g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]), nv);
         double di[4], dv[4];
         double Gi = g1(ti, q, logs, di), Gv = g1(to, q, logs, dv);
         double G = Gi * Gv;
