@@ -1,12 +1,14 @@
 /* Extremes: no NaN or Inf in values or gradients at theta = 0, 89.9, 89.999 and exactly
  * 90 degrees, with every parameter at its bounds (roughness at its lower bound,
- * exponents of 1e6, f0 at 0 and 1) and at random interior points, for every model. */
+ * exponents of 1e6, f0 at 0 and 1) and at random interior points, for every model;
+ * values are also non-negative except for the families may_be_negative names. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -54,15 +56,24 @@ static bf_geometry *extreme_geometry(void)
     return ts_geometry_deg(NDIR, ti, pi_, to, po);
 }
 
+/* Families whose published form goes below zero, so only finiteness is checked: sgd's
+ * fitted Fresnel (f1 > f0) and shadowing (lambda (1 - exp w) < -1) do, in 38 of Bagher et
+ * al.'s 100 MERL fits (6 of them with a negative BRDF), and those fits must stay exact. */
+static int may_be_negative(const char *spec)
+{
+    return !strncmp(spec, "sgd", 3);
+}
+
 static void check_geometry(const char *spec, const bf_model *m, const double *x, const char *what,
                            const bf_geometry *geo)
 {
+    const int signed_ok = may_be_negative(spec);
     const int C = bf_model_channels(m), P = bf_model_nvalues(m);
     size_t nv = geo->n * (size_t)C;
     double *v = malloc(nv * sizeof *v), *g = malloc(nv * (size_t)P * sizeof *g);
     bf_model_eval(m, x, geo, v, g);
     for (size_t i = 0; i < nv; i++) {
-        if (!isfinite(v[i]) || v[i] < 0.0)
+        if (!isfinite(v[i]) || (v[i] < 0.0 && !signed_ok))
             fail_msg("%s C=%d (%s): value %g at sample %zu", spec, C, what, v[i], i / (size_t)C);
         for (int k = 0; k < P; k++)
             if (!isfinite(g[i * (size_t)P + (size_t)k]))

@@ -29,12 +29,13 @@
  *   gltf                      ior: F0 is ior's times            ior fixed at the truth,
  *                             specular_color's                  8 starts; weakly determined
  *   blender_principled,       - (weakly determined, see WEAK)   every parameter, 1e-6
- *   mitsuba_principled
+ *   mitsuba_principled, sgd
  *
  * Starts: one (the data-driven start) for every model but lafortune:lobes=2 with
  * Ceres' Levenberg-Marquardt, which from that start settles in a local minimum (lobe 1
  * collapses to n = 0, rmse 0.057); 8 seeded starts find the optimum for 6 of 8 seeds,
- * so it runs 16. LD_LBFGS and the relative residual both reach it from the one start. */
+ * so it runs 16. LD_LBFGS and the relative residual both reach it from the one start.
+ * Iterations: Ceres' default 100 for every model but sgd (500: see its case). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -66,7 +67,11 @@ typedef struct truth_case {
  * stops with the values right to 1e-7 but gltf's parameters up to 1.5% off). Ceres
  * recovers them to 1e-6 from the multistart; NLopt is held to the values and the noisy
  * fits to their standard errors, as Disney is. */
-#define WEAK(t) (!strcmp((t)->spec, "gltf") || strstr((t)->spec, "_principled") != NULL)
+/* sgd's weight rho_s and Fresnel f0, f1 are told apart only by the grazing Fresnel rise
+ * too (rho_s F = rho_s f0 (1 - m5) - rho_s f1 VH + rho_s m5, m5 = (1 - VH)^5): standard
+ * errors up to 15% at 2% noise, and LD_LBFGS stops with f1 1.2e-5 off. Ceres recovers
+ * every parameter to 1e-6 (with 500 iterations); NLopt and the noisy fit as above. */
+#define WEAK(t) (!strcmp((t)->spec, "gltf") || strstr((t)->spec, "_principled") != NULL || !strcmp((t)->spec, "sgd"))
 
 /* --fix NAME=VALUE at the truth for a family with a direction the data cannot see
  * (gltf: F0 is ior's times specular_color's, so ior is fixed as a user would), or NULL. */
@@ -105,6 +110,18 @@ static const truth_case cases[] = {
     {"mitsuba_principled", {0.6, 0.4, 0.3, 0.3, 0.6, 0.3, 0.4, 0.3, 0.4, 0.3, 0.4, 0.5}, 1},
     {"gaussian", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 0.25}, 1},
     {"heidrich_seidel", {0.5, 0.3, 0.15, 0.6, 0.5, 0.4, 30, 0.7}, 1},
+    /* Shadowing that bends G1 from 1 near normal to about 0.25 at grazing, over the whole
+     * range of angles (k near 3), where the data see each of its four parameters; the
+     * published fits' steep k (median 24) acts in the last few degrees only, where
+     * lambda, s, k and theta0 make nearly one exponential in t and correlate to 0.9999.
+     * Ceres needs 297 iterations from the data-driven start: the three channels are
+     * independent fits sharing one trust region, and rho_s, f0 and f1 are told apart
+     * only by the grazing Fresnel rise (rho_s F = rho_s f0 (1 - m5) - rho_s f1 VH +
+     * rho_s m5), a long narrow valley. */
+    {"sgd",
+     {0.3, 0.2,  0.1, 2,    3,   4,   0.03, 0.04, 0.05, 0.4, 0.5, 0.6, 0.9, 0.8,  0.7,
+      0.1, 0.15, 0.2, 0.25, 0.3, 0.2, 1.3,  1.25, 1.35, 3,   3.5, 2.8, 0.1, 0.15, 0.05},
+     1},
     {"microfacet", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
     {"walter:fresnel=dielectric", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 1.6}, 1},
     {"microfacet:D=beckmann,G=smith_ggx", {0.5, 0.3, 0.15, 0.9, 0.85, 0.8, 0.2, 0.1}, 1},
@@ -338,6 +355,8 @@ static void test_recover_noiseless_ceres(void **state)
         bf_override ov;
         base_options(&o, t, &ov);
         o.starts = t->starts;
+        if (!strcmp(t->spec, "sgd"))
+            o.solver.max_iterations = 500;
         bf_fit_result r;
         fit_ok(s, t->spec, &o, &r);
         if (!(r.metrics.rmse < 1e-9 * max_abs_value(s)))
