@@ -22,12 +22,16 @@
 #include "terms.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #define HE_EPS 1e-20          /* absolute error of each truncation of the series */
-#define HE_LN_INV_EPS 46.0517 /* ln(1 / HE_EPS), rounded down (skips fewer terms) */
-#define HE_MAX_TERMS 1000     /* never reached: g <= 41 needs about 110 terms */
+#define HE_LN_INV_EPS 46.0518 /* ln(1 / HE_EPS) = 46.05170..., rounded up: e^-46.0518 < HE_EPS */
+#define HE_MAX_TERMS 160      /* never reached: for g <= 41 the last term has m <= 120 */
+#define HE_LN_START 16        /* P_m0 from the recurrence up to here, in closed form above */
 #define HE_BLEND_LO 18.0      /* bbm's threshold: the rough limit from g_min = 18 ... */
 #define HE_U_FLAT 27.0        /* erfc(u) and exp(-u^2) underflow beyond: S = 1, K = 0 */
+#define HE_EXP_ZERO 745.2     /* exp(-q) is 0 in doubles beyond: skips glibc's slow underflow path */
 #define HE_SQRT_PI 1.77245385090551602730
 
 /* 1 / lambda^2 of channel c, lambda in micrometres. */
@@ -51,45 +55,104 @@ static bf_status configure(bf_model *m, bf_error *err)
     return BF_OK;
 }
 
-/* Sums over m >= 1 of T_m = P_m e^(-b/m) / m, P_m = e^-g g^m / m! (Poisson): s[0] = sum T_m,
- * s[1] = sum m T_m, s[2] = sum T_m / m. Terms with e^(-b/m) <= HE_EPS are skipped (together
- * at most HE_EPS, as sum P_m <= 1), and the sum stops once the Poisson tail
- * sum_{k>m} P_k <= P_{m+1} / (1 - g/(m+2)) is at most HE_EPS: each sum is then within
- * 2 HE_EPS of the infinite series. Needs g > 0 and e^-g normal (g < 700). */
-static void he_series(double g, double b, double s[3])
+/* 1/m for m = 1 .. HE_MAX_TERMS (he_inv[m - 1]), folded by the compiler: the series
+ * multiplies where it would divide. */
+#define HE_I4(m) 1.0 / (m + 1), 1.0 / (m + 2), 1.0 / (m + 3), 1.0 / (m + 4)
+#define HE_I16(m) HE_I4(m), HE_I4(m + 4), HE_I4(m + 8), HE_I4(m + 12)
+#define HE_I32(m) HE_I16(m), HE_I16(m + 16)
+static const double he_inv[HE_MAX_TERMS] = {HE_I32(0), HE_I32(32), HE_I32(64), HE_I32(96), HE_I32(128)};
+
+/* e^x for -46.06 < x <= 0 (where he_series needs it) to about 2 ulp, inline so that a
+ * loop of them vectorises: x = k ln2 + r, |r| <= ln2/2, e^r by its Taylor series to r^13
+ * (remainder below 5e-18 relative), 2^k written into the exponent bits. */
+static inline double he_exp(double x)
 {
-    const double m_lo = 1.0 + floor(b / HE_LN_INV_EPS);
-    double P = exp(-g);
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-    for (int m = 1; m <= HE_MAX_TERMS; m++) {
-        P *= g / m;
-        if (m >= m_lo) {
-            double t = P * exp(-b / m);
-            s1 += t;
-            t /= m;
-            s0 += t;
-            s2 += t / m;
-        }
-        if (m + 2.0 > g && P * g / (m + 1.0) <= HE_EPS * (1.0 - g / (m + 2.0)))
-            break;
-    }
-    s[0] = s0, s[1] = s1, s[2] = s2;
+    const double shift = 0x1.8p52; /* adding it rounds to an integer held in the low bits */
+    const double kd = x * 0x1.71547652b82fep0 + shift;
+    const double k = kd - shift;
+    const double r = (x - k * 0x1.62e42feep-1) - k * 0x1.a39ef35793c76p-33; /* ln2, hi + lo */
+    double p = 1.0 / 6227020800.0;                                          /* 1/13! */
+    static const double c[13] = {1.0 / 479001600.0,
+                                 1.0 / 39916800.0,
+                                 1.0 / 3628800.0,
+                                 1.0 / 362880.0,
+                                 1.0 / 40320.0,
+                                 1.0 / 5040.0,
+                                 1.0 / 720.0,
+                                 1.0 / 120.0,
+                                 1.0 / 24.0,
+                                 1.0 / 6.0,
+                                 0.5,
+                                 1.0,
+                                 1.0};
+    for (int j = 0; j < 13; j++)
+        p = p * r + c[j];
+    uint64_t kb, sb;
+    memcpy(&kb, &kd, sizeof kb);
+    sb = (kb + 1023u) << 52; /* the low bits of kd are k (two's complement) */
+    double scale;
+    memcpy(&scale, &sb, sizeof scale);
+    return p * scale;
 }
 
-/* S(u) (header) and u dS/du; 1 and 0 where erfc(u) and exp(-u^2) underflow. */
-static double he_shadow(double u, double *u_dS)
+/* Sums over m >= 1 of T_m = P_m e^(-b/m) / m, P_m = e^-g g^m / m! (Poisson): s[0] = sum T_m,
+ * s[1] = sum m T_m, s[2] = sum T_m / m. The terms below m_lo = 1 + floor(b / ln(1/HE_EPS)),
+ * where e^(-b/m) < HE_EPS, are skipped (together below HE_EPS, as sum P_m <= 1), and the sum
+ * stops once the Poisson tail sum_{k>m} P_k <= P_{m+1} / (1 - g/(m+2)) is at most HE_EPS:
+ * each sum is then within 2 HE_EPS of the infinite series. Skipping is what makes the
+ * series cheap: P_m_lo comes in closed form rather than from m_lo steps of the recurrence,
+ * and when the tail from m_lo is already below HE_EPS (far from the highlight, where
+ * b is large) no term is summed at all. Needs 0 < g <= 41 (the blend's range). */
+static void he_series(double g, double b, double s[3])
 {
-    if (u > HE_U_FLAT) {
-        *u_dS = 0.0;
-        return 1.0;
+    s[0] = s[1] = s[2] = 0.0;
+    const double m_lo = 1.0 + floor(b / HE_LN_INV_EPS);
+    double P;
+    if (m_lo > g + 1.0) {
+        /* ln P_m <= -g + m (1 + ln(g/m)), from m! >= (m/e)^m; the tail from m_lo is at
+         * most P_m_lo / (1 - g/(m_lo + 1)). */
+        double lt = -g + m_lo * (1.0 + log(g / m_lo)) - log1p(-g / (m_lo + 1.0));
+        if (lt <= -HE_LN_INV_EPS)
+            return;
     }
-    double ec = erfc(u), ex = exp(-u * u);
-    double num = 1.0 - 0.5 * ec;
-    double lp1 = 0.5 * (ex / (HE_SQRT_PI * u) - ec) + 1.0;
-    /* dnum/du = e^-u^2 / sqrt(pi); dLambda/du = -e^-u^2 / (2 sqrt(pi) u^2). */
-    double dnum = ex / HE_SQRT_PI, dl = -ex / (2.0 * HE_SQRT_PI * u * u);
-    *u_dS = u * (dnum * lp1 - num * dl) / (lp1 * lp1);
-    return num / lp1;
+    if (m_lo >= HE_MAX_TERMS) /* never: for g <= 41 the test above returns from m_lo = 117 */
+        return;
+    const int m0 = (int)m_lo;
+    if (m0 > HE_LN_START) {
+        P = exp(-g + m0 * log(g)) / tgamma(m0 + 1.0);
+    } else {
+        P = exp(-g);
+        for (int m = 1; m <= m0; m++)
+            P *= g * he_inv[m - 1];
+    }
+    /* The Poisson weights and where the tail stops first, then every term in one loop
+     * without a call, a division or a carried dependence (it vectorises), then the sums. */
+    double Pm[HE_MAX_TERMS], h[HE_MAX_TERMS];
+    const double *inv = he_inv + (m0 - 1); /* inv[k] = 1 / (m0 + k) */
+    int n = 0;
+    while (n < HE_MAX_TERMS - m0) {
+        Pm[n++] = P;
+        /* P_{m+1} / (1 - g/(m+2)) <= HE_EPS at m = m0 + n - 1, multiplied out. */
+        const double m = m0 + n - 1.0;
+        if (m + 2.0 > g && P * g * (m + 2.0) <= HE_EPS * (m + 1.0) * (m + 2.0 - g))
+            break;
+        P *= g * inv[n];
+    }
+    for (int k = 0; k < n; k++)
+        h[k] = Pm[k] * he_exp(-b * inv[k]);
+    /* Even and odd k in two lanes: shorter chains of additions, and it vectorises. */
+    if (n & 1)
+        h[n++] = 0.0; /* within h and he_inv: n <= HE_MAX_TERMS - m0 here */
+    double a0[2] = {0.0, 0.0}, a1[2] = {0.0, 0.0}, a2[2] = {0.0, 0.0};
+    for (int k = 0; k < n; k += 2)
+        for (int j = 0; j < 2; j++) {
+            double t = h[k + j];
+            a1[j] += t;
+            t *= inv[k + j];
+            a0[j] += t;
+            a2[j] += t * inv[k + j];
+        }
+    s[0] = a0[0] + a0[1], s[1] = a1[0] + a1[1], s[2] = a2[0] + a2[1];
 }
 
 /* The root x >= 0 of x exp(x^2/2) = f0, by Newton from bbm's start (f0, or sqrt(2 ln f0)
@@ -97,6 +160,10 @@ static double he_shadow(double u, double *u_dS)
  * monotonically to the root. *dx = dx/df0. */
 static double he_newton(double f0, double *dx)
 {
+    if (f0 == 0.0) { /* both directions unshadowed: the usual case for smooth surfaces */
+        *dx = 1.0;
+        return 0.0;
+    }
     double x = f0 <= 1.0 ? f0 : sqrt(2.0 * log(f0));
     double e = exp(0.5 * x * x);
     for (int it = 0; it < 60; it++) {
@@ -117,6 +184,7 @@ typedef struct he_sample {
     double Q, dQ_tau, dQ_sig, dQ_eta;
     double s0, ds0_tau, ds0_sig;
     double G0, B0; /* g_c = G0 / lambda_c^2, b_c = B0 / lambda_c^2 */
+    double qb, eR; /* b_c / g_c = B0 / G0 in every channel, and exp(-qb) where the rough limit is used */
 } he_sample;
 
 typedef struct he_model {
@@ -125,17 +193,25 @@ typedef struct he_model {
     double tau, sig, eta, lmin; /* lmin: the smallest 1/lambda^2 */
 } he_model;
 
-/* K(w) of the header and u, with dK/dtau (dK/dsigma = -(tau/sigma) dK/dtau: K depends
- * on tau/sigma only). */
-static double he_k(const he_model *d, double t, double *u, double *dK_tau)
+/* One direction's S (header) with u dS/du, and K with dK/dtau (dK/dsigma = -(tau/sigma)
+ * dK/dtau: K depends on tau/sigma only), from one erfc(u) and one exp(-u^2); S = 1 and
+ * K = 0 where both underflow (and at normal incidence, u infinite). */
+static void he_direction(const he_model *d, double t, double out[4])
 {
-    *u = t > 0.0 ? d->tau / (2.0 * d->sig * t) : INFINITY;
-    if (*u > HE_U_FLAT) {
-        *dK_tau = 0.0;
-        return 0.0;
+    const double u = t > 0.0 ? d->tau / (2.0 * d->sig * t) : INFINITY;
+    if (u > HE_U_FLAT) {
+        out[0] = 1.0, out[1] = 0.0, out[2] = 0.0, out[3] = 0.0;
+        return;
     }
-    *dK_tau = -exp(-*u * *u) / (HE_SQRT_PI * d->sig);
-    return t * erfc(*u);
+    const double ec = erfc(u), ex = exp(-u * u);
+    const double num = 1.0 - 0.5 * ec;
+    const double lp1 = 0.5 * (ex / (HE_SQRT_PI * u) - ec) + 1.0;
+    /* dnum/du = e^-u^2 / sqrt(pi); dLambda/du = -e^-u^2 / (2 sqrt(pi) u^2). */
+    const double dnum = ex / HE_SQRT_PI, dl = -ex / (2.0 * HE_SQRT_PI * u * u);
+    out[0] = num / lp1;
+    out[1] = u * (dnum * lp1 - num * dl) / (lp1 * lp1);
+    out[2] = t * ec;
+    out[3] = -ex / (HE_SQRT_PI * d->sig);
 }
 
 static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_sample *t)
@@ -143,8 +219,11 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
     const double lz = g->lz[i], vz = g->vz[i];
     const double ti = sqrt(g->lx[i] * g->lx[i] + g->ly[i] * g->ly[i]) / lz;
     const double to = sqrt(g->vx[i] * g->vx[i] + g->vy[i] * g->vy[i]) / vz;
-    double ui, uo, dKi, dKo;
-    const double Ki = he_k(d, ti, &ui, &dKi), Ko = he_k(d, to, &uo, &dKo);
+    double di[4], dO[4]; /* S, u dS/du, K, dK/dtau */
+    he_direction(d, ti, di);
+    he_direction(d, to, dO);
+    const double Si = di[0], uSi = di[1], Ki = di[2], dKi = di[3];
+    const double So = dO[0], uSo = dO[1], Ko = dO[2], dKo = dO[3];
     const double r8pi = 1.0 / sqrt(8.0 * M_PI);
     double dx;
     const double x = he_newton((Ki + Ko) * r8pi, &dx);
@@ -155,8 +234,6 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
     t->ds0_tau = ds0_tau_f;
     t->ds0_sig = q - (d->tau / d->sig) * ds0_tau_f;
 
-    double uSi, uSo;
-    const double Si = he_shadow(ui, &uSi), So = he_shadow(uo, &uSo);
     /* u is proportional to tau / sigma: tau dS/dtau = -sigma dS/dsigma = uS_i' S_o + S_i uS_o'. */
     const double tdS = uSi * So + Si * uSo;
     double dF;
@@ -171,11 +248,13 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
     t->dQ_eta = dF * Si * So * Q0;
     t->G0 = 4.0 * M_PI * M_PI * t->s0 * t->s0 * sz * sz;
     t->B0 = M_PI * M_PI * d->tau * d->tau * (sx * sx + sy * sy);
+    t->qb = t->G0 > 0.0 ? t->B0 / t->G0 : 0.0;
+    t->eR = t->G0 * d->lmin > HE_BLEND_LO && t->qb < HE_EXP_ZERO ? exp(-t->qb) : 0.0;
 }
 
 /* D_c / N_c = (1 - w) A + w R and its derivatives in g and b (dw/dg_min apart):
  * out = {value, d/dg, d/db, R - A}. */
-static void he_dhat(double gc, double bc, double w, double out[4])
+static void he_dhat(const he_sample *t, double gc, double bc, double w, double out[4])
 {
     double A = 0.0, Ag = 0.0, Ab = 0.0, R = 0.0, Rg = 0.0, Rb = 0.0;
     if (w < 1.0) {
@@ -184,8 +263,8 @@ static void he_dhat(double gc, double bc, double w, double out[4])
         A = s[0], Ag = s[1] / gc - s[0], Ab = -s[2];
     }
     if (w > 0.0) {
-        double qb = bc / gc;
-        R = exp(-qb) / gc;
+        const double qb = t->qb;
+        R = t->eR / gc;
         Rg = R * (qb - 1.0) / gc, Rb = -R / gc;
     }
     out[0] = (1.0 - w) * A + w * R;
@@ -203,7 +282,7 @@ static void channel(const he_model *d, const he_sample *t, int c, double *out, d
     const double wr = gmin - HE_BLEND_LO, w = wr <= 0.0 ? 0.0 : wr >= 1.0 ? 1.0 : wr;
     double h[4] = {0.0, 0.0, 0.0, 0.0};
     if (gc > 0.0)
-        he_dhat(gc, bc, w, h);
+        he_dhat(t, gc, bc, w, h);
     const double D = N * h[0];
     out[c] = d->rd[c] / M_PI + d->rs[c] * t->Q * D;
     if (!row)
