@@ -22,8 +22,6 @@
 #include "terms.h"
 
 #include <math.h>
-#include <stdint.h>
-#include <string.h>
 
 #define HE_EPS 1e-20          /* absolute error of each truncation of the series */
 #define HE_LN_INV_EPS 46.0518 /* ln(1 / HE_EPS) = 46.05170..., rounded up: e^-46.0518 < HE_EPS */
@@ -32,6 +30,7 @@
 #define HE_BLEND_LO 18.0      /* bbm's threshold: the rough limit from g_min = 18 ... */
 #define HE_U_FLAT 27.0        /* erfc(u) and exp(-u^2) underflow beyond: S = 1, K = 0 */
 #define HE_EXP_ZERO 745.2     /* exp(-q) is 0 in doubles beyond: skips glibc's slow underflow path */
+#define HE_F_SERIES 1e-3      /* sigma0's equation by its series below, by Newton above */
 #define HE_SQRT_PI 1.77245385090551602730
 
 /* 1 / lambda^2 of channel c, lambda in micrometres. */
@@ -62,39 +61,6 @@ static bf_status configure(bf_model *m, bf_error *err)
 #define HE_I32(m) HE_I16(m), HE_I16(m + 16)
 static const double he_inv[HE_MAX_TERMS] = {HE_I32(0), HE_I32(32), HE_I32(64), HE_I32(96), HE_I32(128)};
 
-/* e^x for -46.06 < x <= 0 (where he_series needs it) to about 2 ulp, inline so that a
- * loop of them vectorises: x = k ln2 + r, |r| <= ln2/2, e^r by its Taylor series to r^13
- * (remainder below 5e-18 relative), 2^k written into the exponent bits. */
-static inline double he_exp(double x)
-{
-    const double shift = 0x1.8p52; /* adding it rounds to an integer held in the low bits */
-    const double kd = x * 0x1.71547652b82fep0 + shift;
-    const double k = kd - shift;
-    const double r = (x - k * 0x1.62e42feep-1) - k * 0x1.a39ef35793c76p-33; /* ln2, hi + lo */
-    double p = 1.0 / 6227020800.0;                                          /* 1/13! */
-    static const double c[13] = {1.0 / 479001600.0,
-                                 1.0 / 39916800.0,
-                                 1.0 / 3628800.0,
-                                 1.0 / 362880.0,
-                                 1.0 / 40320.0,
-                                 1.0 / 5040.0,
-                                 1.0 / 720.0,
-                                 1.0 / 120.0,
-                                 1.0 / 24.0,
-                                 1.0 / 6.0,
-                                 0.5,
-                                 1.0,
-                                 1.0};
-    for (int j = 0; j < 13; j++)
-        p = p * r + c[j];
-    uint64_t kb, sb;
-    memcpy(&kb, &kd, sizeof kb);
-    sb = (kb + 1023u) << 52; /* the low bits of kd are k (two's complement) */
-    double scale;
-    memcpy(&scale, &sb, sizeof scale);
-    return p * scale;
-}
-
 /* Sums over m >= 1 of T_m = P_m e^(-b/m) / m, P_m = e^-g g^m / m! (Poisson): s[0] = sum T_m,
  * s[1] = sum m T_m, s[2] = sum T_m / m. The terms below m_lo = 1 + floor(b / ln(1/HE_EPS)),
  * where e^(-b/m) < HE_EPS, are skipped (together below HE_EPS, as sum P_m <= 1), and the sum
@@ -108,6 +74,8 @@ static void he_series(double g, double b, double s[3])
     s[0] = s[1] = s[2] = 0.0;
     const double m_lo = 1.0 + floor(b / HE_LN_INV_EPS);
     double P;
+    if (m_lo > 7.4 * g + 47.0) /* then ln(g/m_lo) < -2 and the test below holds: no logs */
+        return;
     if (m_lo > g + 1.0) {
         /* ln P_m <= -g + m (1 + ln(g/m)), from m! >= (m/e)^m; the tail from m_lo is at
          * most P_m_lo / (1 - g/(m_lo + 1)). */
@@ -125,8 +93,8 @@ static void he_series(double g, double b, double s[3])
         for (int m = 1; m <= m0; m++)
             P *= g * he_inv[m - 1];
     }
-    /* The Poisson weights and where the tail stops first, then every term in one loop
-     * without a call, a division or a carried dependence (it vectorises), then the sums. */
+    /* The Poisson weights and where the tail stops first, then the terms, then the sums:
+     * loops without a division or a long chain of dependent operations. */
     double Pm[HE_MAX_TERMS], h[HE_MAX_TERMS];
     const double *inv = he_inv + (m0 - 1); /* inv[k] = 1 / (m0 + k) */
     int n = 0;
@@ -139,7 +107,7 @@ static void he_series(double g, double b, double s[3])
         P *= g * inv[n];
     }
     for (int k = 0; k < n; k++)
-        h[k] = Pm[k] * he_exp(-b * inv[k]);
+        h[k] = Pm[k] * exp(-b * inv[k]);
     /* Even and odd k in two lanes: shorter chains of additions, and it vectorises. */
     if (n & 1)
         h[n++] = 0.0; /* within h and he_inv: n <= HE_MAX_TERMS - m0 here */
@@ -155,14 +123,19 @@ static void he_series(double g, double b, double s[3])
     s[0] = a0[0] + a0[1], s[1] = a1[0] + a1[1], s[2] = a2[0] + a2[1];
 }
 
-/* The root x >= 0 of x exp(x^2/2) = f0, by Newton from bbm's start (f0, or sqrt(2 ln f0)
- * above 1): the function is convex, so from the second step on the iterates fall
- * monotonically to the root. *dx = dx/df0. */
+/* The root x >= 0 of x exp(x^2/2) = f0 and *dx = dx/df0 = 1 / ((1 + x^2) exp(x^2/2)).
+ * Below HE_F_SERIES by its Lagrange inversion x = f - f^3/2 + 5 f^5/8 - 49 f^7/48 (the
+ * next term is 1.9 f^9, below 2e-18 relative) and exp(x^2/2) by Taylor to y^3 (y = x^2/2
+ * < 6e-7); above by Newton from bbm's start (f0, or sqrt(2 ln f0) above 1): the function
+ * is convex, so from the second step on the iterates fall monotonically to the root. */
 static double he_newton(double f0, double *dx)
 {
-    if (f0 == 0.0) { /* both directions unshadowed: the usual case for smooth surfaces */
-        *dx = 1.0;
-        return 0.0;
+    if (f0 < HE_F_SERIES) { /* also f0 = 0: both directions unshadowed, the usual case */
+        const double f2 = f0 * f0;
+        const double x = f0 * (1.0 - f2 * (0.5 - f2 * (0.625 - f2 * (49.0 / 48.0))));
+        const double y = 0.5 * x * x;
+        *dx = 1.0 / ((1.0 + x * x) * (1.0 + y * (1.0 + 0.5 * y * (1.0 + y / 3.0))));
+        return x;
     }
     double x = f0 <= 1.0 ? f0 : sqrt(2.0 * log(f0));
     double e = exp(0.5 * x * x);
@@ -256,16 +229,16 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
  * out = {value, d/dg, d/db, R - A}. */
 static void he_dhat(const he_sample *t, double gc, double bc, double w, double out[4])
 {
+    const double ig = 1.0 / gc;
     double A = 0.0, Ag = 0.0, Ab = 0.0, R = 0.0, Rg = 0.0, Rb = 0.0;
     if (w < 1.0) {
         double s[3];
         he_series(gc, bc, s);
-        A = s[0], Ag = s[1] / gc - s[0], Ab = -s[2];
+        A = s[0], Ag = s[1] * ig - s[0], Ab = -s[2];
     }
     if (w > 0.0) {
-        const double qb = t->qb;
-        R = t->eR / gc;
-        Rg = R * (qb - 1.0) / gc, Rb = -R / gc;
+        R = t->eR * ig;
+        Rg = R * (t->qb - 1.0) * ig, Rb = -R * ig;
     }
     out[0] = (1.0 - w) * A + w * R;
     out[1] = (1.0 - w) * Ag + w * Rg;
@@ -288,9 +261,10 @@ static void channel(const he_model *d, const he_sample *t, int c, double *out, d
     if (!row)
         return;
     /* dD/dsigma0 through g_c and, inside the blend, through w(g_min). */
-    const double dw = (wr > 0.0 && wr < 1.0) ? 2.0 * gmin / t->s0 : 0.0;
-    const double dD_s0 = N * (h[1] * 2.0 * gc / t->s0 + h[3] * dw);
-    const double dD_tau = 2.0 * D / d->tau + N * h[2] * 2.0 * bc / d->tau + dD_s0 * t->ds0_tau;
+    const double is0 = 1.0 / t->s0, itau = 1.0 / d->tau;
+    const double dw = (wr > 0.0 && wr < 1.0) ? 2.0 * gmin * is0 : 0.0;
+    const double dD_s0 = N * (h[1] * 2.0 * gc * is0 + h[3] * dw);
+    const double dD_tau = 2.0 * (D + N * h[2] * bc) * itau + dD_s0 * t->ds0_tau;
     const double dD_sig = dD_s0 * t->ds0_sig;
     const double rs = d->rs[c];
     for (int k = 0; k < d->P; k++)
