@@ -28,9 +28,13 @@
 #define HE_MAX_TERMS 160      /* never reached: for g <= 41 the last term has m <= 120 */
 #define HE_LN_START 16        /* P_m0 from the recurrence up to here, in closed form above */
 #define HE_BLEND_LO 18.0      /* bbm's threshold: the rough limit from g_min = 18 ... */
-#define HE_U_FLAT 27.0        /* erfc(u) and exp(-u^2) underflow beyond: S = 1, K = 0 */
-#define HE_EXP_ZERO 745.2     /* exp(-q) is 0 in doubles beyond: skips glibc's slow underflow path */
-#define HE_F_SERIES 1e-3      /* sigma0's equation by its series below, by Newton above */
+/* Beyond u = 6.5: S = 1, K = 0, no erfc and no exp. There erfc(u) < 4e-20 and
+ * exp(-u^2) < 5e-19, so S rounds to 1; K = tan(theta) erfc(u) < 8e-16 (tan(theta) =
+ * tau / (2 sigma u) < 2e4 within the bounds) moves sigma0 by under 1e-16 relative; the
+ * derivatives dropped are below 2e-18 of those kept. */
+#define HE_U_FLAT 6.5
+#define HE_EXP_ZERO 745.2 /* exp(-q) is 0 in doubles beyond: skips glibc's slow underflow path */
+#define HE_F_SERIES 1e-3  /* sigma0's equation by its series below, by Newton above */
 #define HE_SQRT_PI 1.77245385090551602730
 
 /* 1 / lambda^2 of channel c, lambda in micrometres. */
@@ -168,7 +172,7 @@ typedef struct he_model {
 
 /* One direction's S (header) with u dS/du, and K with dK/dtau (dK/dsigma = -(tau/sigma)
  * dK/dtau: K depends on tau/sigma only), from one erfc(u) and one exp(-u^2); S = 1 and
- * K = 0 where both underflow (and at normal incidence, u infinite). */
+ * K = 0 beyond HE_U_FLAT (and at normal incidence, u infinite). */
 static void he_direction(const he_model *d, double t, double out[4])
 {
     const double u = t > 0.0 ? d->tau / (2.0 * d->sig * t) : INFINITY;
