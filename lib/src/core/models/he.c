@@ -8,7 +8,7 @@
  *   S(w) = (1 - erfc(u)/2) / (Lambda + 1), Lambda = (exp(-u^2)/(sqrt(pi) u) - erfc(u))/2,
  *          u = tau / (2 sigma tan(theta_w))
  *   sigma0 = sigma / sqrt(1 + x^2), x exp(x^2/2) = (K(L) + K(V)) / sqrt(8 pi),
- *          K(w) = tan(theta_w) erfc(u)                        (Newton, then implicit d/d.)
+ *          K(w) = tan(theta_w) erfc(u)                        (Halley, then implicit d/d.)
  *   g_c = (2 pi sigma0 (NL + NV) / lambda_c)^2,  b_c = pi^2 tau^2 |L_xy + V_xy|^2 / lambda_c^2
  *   D_c = pi^2 tau^2 / (4 lambda_c^2) ((1 - w) A_c + w R_c),  w = clamp(g_min - 18, 0, 1)
  *   A_c = sum_{m>=1} e^-g g^m / (m! m) exp(-b/m),  R_c = exp(-b/g) / g (Beckmann's rough limit)
@@ -34,7 +34,7 @@
  * derivatives dropped are below 2e-18 of those kept. */
 #define HE_U_FLAT 6.5
 #define HE_EXP_ZERO 745.2 /* exp(-q) is 0 in doubles beyond: skips glibc's slow underflow path */
-#define HE_F_SERIES 1e-3  /* sigma0's equation by its series below, by Newton above */
+#define HE_F_SERIES 1e-3  /* sigma0's equation by its series below, by Halley above */
 #define HE_SQRT_PI 1.77245385090551602730
 
 /* 1 / lambda^2 of channel c, lambda in micrometres. */
@@ -130,9 +130,11 @@ static void he_series(double g, double b, double s[3])
 /* The root x >= 0 of x exp(x^2/2) = f0 and *dx = dx/df0 = 1 / ((1 + x^2) exp(x^2/2)).
  * Below HE_F_SERIES by its Lagrange inversion x = f - f^3/2 + 5 f^5/8 - 49 f^7/48 (the
  * next term is 1.9 f^9, below 2e-18 relative) and exp(x^2/2) by Taylor to y^3 (y = x^2/2
- * < 6e-7); above by Newton from bbm's start (f0, or sqrt(2 ln f0) above 1): the function
- * is convex, so from the second step on the iterates fall monotonically to the root. */
-static double he_newton(double f0, double *dx)
+ * < 6e-7). Above by Halley's method from f0 (at most 1 and above the root) or, above 1,
+ * from x^2 = L - ln(1 + L), L = 2 ln f0 (x^2 = L - ln x^2 at the root): 2 to 5 steps. The
+ * convergence is cubic, so a step below 1e-11 x leaves an error far below rounding; a
+ * test at rounding level (1e-16 x) could cycle where rounding makes the steps 2e-16 x. */
+static double he_sigma0_root(double f0, double *dx)
 {
     if (f0 < HE_F_SERIES) { /* also f0 = 0: both directions unshadowed, the usual case */
         const double f2 = f0 * f0;
@@ -141,13 +143,16 @@ static double he_newton(double f0, double *dx)
         *dx = 1.0 / ((1.0 + x * x) * (1.0 + y * (1.0 + 0.5 * y * (1.0 + y / 3.0))));
         return x;
     }
-    double x = f0 <= 1.0 ? f0 : sqrt(2.0 * log(f0));
+    const double L = f0 <= 1.0 ? 0.0 : 2.0 * log(f0);
+    double x = f0 <= 1.0 ? f0 : sqrt(L - log1p(L));
     double e = exp(0.5 * x * x);
-    for (int it = 0; it < 60; it++) {
-        double d = (x * e - f0) / ((1.0 + x * x) * e);
+    for (int it = 0; it < 20; it++) {
+        /* f = x e - f0, f' = (1 + x^2) e, f'' = x (x^2 + 3) e; step 2 f f' / (2 f'^2 - f f''). */
+        const double f = x * e - f0, d1 = (1.0 + x * x) * e, d2 = x * (x * x + 3.0) * e;
+        const double d = 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
         x -= d;
         e = exp(0.5 * x * x);
-        if (!(fabs(d) > 1e-16 * x))
+        if (!(fabs(d) > 1e-11 * x))
             break;
     }
     *dx = 1.0 / ((1.0 + x * x) * e);
@@ -167,7 +172,8 @@ typedef struct he_sample {
 typedef struct he_model {
     int C, P, od, os, ot, osg, oe;
     const double *rd, *rs;
-    double tau, sig, eta, lmin; /* lmin: the smallest 1/lambda^2 */
+    double tau, sig, eta, lmin;    /* lmin: the smallest 1/lambda^2 */
+    double itau, isig, u0, il2[3]; /* 1/tau, 1/sigma, u tan(theta), 1/lambda_c^2 */
 } he_model;
 
 /* One direction's S (header) with u dS/du, and K with dK/dtau (dK/dsigma = -(tau/sigma)
@@ -175,7 +181,7 @@ typedef struct he_model {
  * K = 0 beyond HE_U_FLAT (and at normal incidence, u infinite). */
 static void he_direction(const he_model *d, double t, double out[4])
 {
-    const double u = t > 0.0 ? d->tau / (2.0 * d->sig * t) : INFINITY;
+    const double u = t > 0.0 ? d->u0 / t : INFINITY;
     if (u > HE_U_FLAT) {
         out[0] = 1.0, out[1] = 0.0, out[2] = 0.0, out[3] = 0.0;
         return;
@@ -188,7 +194,7 @@ static void he_direction(const he_model *d, double t, double out[4])
     out[0] = num / lp1;
     out[1] = u * (dnum * lp1 - num * dl) / (lp1 * lp1);
     out[2] = t * ec;
-    out[3] = -ex / (HE_SQRT_PI * d->sig);
+    out[3] = -ex * d->isig / HE_SQRT_PI;
 }
 
 static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_sample *t)
@@ -203,13 +209,13 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
     const double So = dO[0], uSo = dO[1], Ko = dO[2], dKo = dO[3];
     const double r8pi = 1.0 / sqrt(8.0 * M_PI);
     double dx;
-    const double x = he_newton((Ki + Ko) * r8pi, &dx);
+    const double x = he_sigma0_root((Ki + Ko) * r8pi, &dx);
     const double q = 1.0 / sqrt(1.0 + x * x);
     t->s0 = d->sig * q;
     /* Implicit: dsigma0 = sigma dq/dx dx/df0 df0, f0 a function of tau/sigma. */
     const double ds0_tau_f = -d->sig * x * q * q * q * dx * (dKi + dKo) * r8pi;
     t->ds0_tau = ds0_tau_f;
-    t->ds0_sig = q - (d->tau / d->sig) * ds0_tau_f;
+    t->ds0_sig = q - d->tau * d->isig * ds0_tau_f;
 
     /* u is proportional to tau / sigma: tau dS/dtau = -sigma dS/dsigma = uS_i' S_o + S_i uS_o'. */
     const double tdS = uSi * So + Si * uSo;
@@ -220,8 +226,8 @@ static void sample_terms(const he_model *d, const bf_geometry *g, size_t i, he_s
     const double G = (v2 / sz) * (v2 / sz);
     const double Q0 = G / (M_PI * lz * vz);
     t->Q = F * Si * So * Q0;
-    t->dQ_tau = F * tdS * Q0 / d->tau;
-    t->dQ_sig = -F * tdS * Q0 / d->sig;
+    t->dQ_tau = F * tdS * Q0 * d->itau;
+    t->dQ_sig = -F * tdS * Q0 * d->isig;
     t->dQ_eta = dF * Si * So * Q0;
     t->G0 = 4.0 * M_PI * M_PI * t->s0 * t->s0 * sz * sz;
     t->B0 = M_PI * M_PI * d->tau * d->tau * (sx * sx + sy * sy);
@@ -253,7 +259,7 @@ static void he_dhat(const he_sample *t, double gc, double bc, double w, double o
 /* Channel c's value, and its gradient row when row is not NULL. */
 static void channel(const he_model *d, const he_sample *t, int c, double *out, double *row)
 {
-    const double il2 = inv_lambda2(d->C, c);
+    const double il2 = d->il2[d->C == 3 ? c : 0];
     const double gc = t->G0 * il2, bc = t->B0 * il2, gmin = t->G0 * d->lmin;
     const double N = 0.25 * M_PI * M_PI * d->tau * d->tau * il2;
     const double wr = gmin - HE_BLEND_LO, w = wr <= 0.0 ? 0.0 : wr >= 1.0 ? 1.0 : wr;
@@ -265,7 +271,7 @@ static void channel(const he_model *d, const he_sample *t, int c, double *out, d
     if (!row)
         return;
     /* dD/dsigma0 through g_c and, inside the blend, through w(g_min). */
-    const double is0 = 1.0 / t->s0, itau = 1.0 / d->tau;
+    const double is0 = 1.0 / t->s0, itau = d->itau;
     const double dw = (wr > 0.0 && wr < 1.0) ? 2.0 * gmin * is0 : 0.0;
     const double dD_s0 = N * (h[1] * 2.0 * gc * is0 + h[3] * dw);
     const double dD_tau = 2.0 * (D + N * h[2] * bc) * itau + dD_s0 * t->ds0_tau;
@@ -289,6 +295,9 @@ static void eval(const bf_model *m, const double *x, const bf_geometry *g, size_
     d.rd = x + d.od, d.rs = x + d.os;
     d.tau = x[d.ot], d.sig = x[d.osg], d.eta = x[d.oe];
     d.lmin = inv_lambda2(d.C, 0); /* channel 0 has the longest wavelength */
+    d.itau = 1.0 / d.tau, d.isig = 1.0 / d.sig, d.u0 = d.tau / (2.0 * d.sig);
+    for (int c = 0; c < 3; c++)
+        d.il2[c] = inv_lambda2(d.C, c);
     const int C = d.C, P = d.P;
     for (size_t i = i0; i < i1; i++) {
         double *out = values + (i - i0) * (size_t)C;
