@@ -194,6 +194,50 @@ static void test_truncation(void **state)
     bf_model_free(m);
 }
 
+/* f0 = (K(L) + K(V)) / sqrt(8 pi) of the header, for the coverage check below. */
+static double f0_of(double tau, double sigma, double th_deg)
+{
+    double t = tan(th_deg * DEG);
+    return 2.0 * t * erfc(tau / (2.0 * sigma * t)) / sqrt(8.0 * M_PI);
+}
+
+/* Each way he takes to its numbers against the reference: sigma0's series (f0 < 1e-3),
+ * Halley from f0 (f0 <= 1) and from the start above 1 (grazing, rough); and the series
+ * started at m = 1, from the recurrence (m_lo <= 16), in closed form (m_lo > 16), and not
+ * summed at all (the tail from m_lo below 1e-20), off the mirror with g_red = 17.9. */
+static void test_paths(void **state)
+{
+    (void)state;
+    bf_model *m = ts_model("he", 3);
+    int seen[3] = {0, 0, 0};
+    const double sig[] = {0.05, 0.5, 2.0, 8.0}, th[] = {60.0, 75.0, 85.0, 89.0};
+    for (int a = 0; a < 4; a++)
+        for (int k = 0; k < 4; k++) {
+            he_par p = {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 10.0, sig[a], 1.5};
+            double x[9], bound;
+            to_x(&p, x);
+            double f0 = f0_of(p.tau, p.sigma, th[k]);
+            seen[f0 < 1e-3 ? 0 : f0 <= 1.0 ? 1 : 2]++;
+            for (int c = 0; c < 3; c++) {
+                double want = he_ref(&p, c, th[k], 0.0, th[k], 183.0, &bound);
+                ts_assert_near(ts_eval1(m, x, th[k], 0.0, th[k], 183.0, c), want, 1e-12, bound, "he sigma0 paths");
+            }
+        }
+    assert_true(seen[0] > 0 && seen[1] > 0 && seen[2] > 0);
+    const double off[] = {0.0, 3.0, 10.0, 20.0, 45.0};
+    for (int k = 0; k < 5; k++) {
+        double sigma = sqrt(17.9) * 0.645 / (2.0 * M_PI * 2.0 * cos(20.0 * DEG));
+        he_par p = {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 30.0, sigma, 1.5};
+        double x[9], bound;
+        to_x(&p, x);
+        for (int c = 0; c < 3; c++) {
+            double want = he_ref(&p, c, 20.0, 10.0, 20.0 + off[k], 190.0, &bound);
+            ts_assert_near(ts_eval1(m, x, 20.0, 10.0, 20.0 + off[k], 190.0, c), want, 1e-12, bound, "he series paths");
+        }
+    }
+    bf_model_free(m);
+}
+
 /* Ngan et al. 2005's fit of MERL chrome, as published in bsdfbenchmark/bbm
  * fits/ngan_he.fit (rho_d = [0.0042, 0.00343, 0.00455], albedo = [0.0841, 0.0596, 0.0286],
  * autocorrelation 37.6, roughness 0.205, eta 8.95), near its highlight, where the blend
@@ -232,8 +276,13 @@ static void test_limits(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table),  cmocka_unit_test(test_normal_series), cmocka_unit_test(test_normal_rough),
-        cmocka_unit_test(test_random), cmocka_unit_test(test_truncation),    cmocka_unit_test(test_published_chrome),
+        cmocka_unit_test(test_table),
+        cmocka_unit_test(test_normal_series),
+        cmocka_unit_test(test_normal_rough),
+        cmocka_unit_test(test_random),
+        cmocka_unit_test(test_truncation),
+        cmocka_unit_test(test_paths),
+        cmocka_unit_test(test_published_chrome),
         cmocka_unit_test(test_limits),
     };
     return cmocka_run_group_tests_name("values_he", tests, NULL, NULL);
