@@ -54,6 +54,10 @@
 #define PROB_REVIVES 4     /* and on prob, when it is another (one place a parameter: half way) */
 #define DISTINCT 1e-6      /* a revived optimum replaces the best when lower by this (relative) */
 #define SNAP 1e-4          /* hand-over: entries this close to a bound (of their range) go onto it */
+#define CONFIRM 2          /* automatic starts: the best must be reached from this many starts ... */
+#define EXTEND_ROUNDS 2    /* ... or this many rounds of added starts have run */
+#define SPLITS 4           /* lobe-split starts at most (multi-lobe models, the first added round) */
+#define PROMOTE_MORE 2     /* promoted optima added when the screened best was not confirmed */
 
 int bf_fit_search_starts(const bf_fit_options *o, size_t n)
 {
@@ -352,6 +356,10 @@ typedef struct screen_run {
     int *order;           /* the starts in the order solved: indices into pts */
     unsigned char *taken; /* per candidate: among the cheapest starts */
     double *zp;           /* the point solved on prob */
+    int R;                /* the random starts an added round solves (extend) */
+    int npts, cap;        /* the points in pts; its room (points) */
+    int extended;         /* rounds of added starts run */
+    uint64_t draw;        /* the candidates' random stream, where step 2 left it */
 } screen_run;
 
 /* Step 1: the screening set, and the starts and candidates it affords. */
@@ -383,7 +391,9 @@ static bf_status screen_alloc(screen_run *sc, bf_error *err)
 {
     const int nz = sc->s->prob->npar, np = bf_model_nparams(sc->s->objective->model), M = sc->M;
     /* Points: z0, the switches (up to np + 1), the M candidates. */
-    const int nmax = 1 + np + 1 + M;
+    sc->R = (sc->N + 1) / 2;
+    const int nmax = 1 + np + 1 + M + EXTEND_ROUNDS * (sc->R + SPLITS);
+    sc->cap = nmax;
     sc->pts = malloc(((size_t)nmax * nz + 1) * sizeof *sc->pts);
     sc->cand = malloc(((size_t)M + 1) * sizeof *sc->cand);
     sc->solved = malloc(((size_t)nmax + 1) * sizeof *sc->solved);
@@ -420,6 +430,7 @@ static void place_switches(screen_run *sc)
     if (sc->nsw > sc->N - 1)
         sc->nsw = sc->N - 1;
     sc->K = sc->N - 1 - sc->nsw;
+    sc->npts = 1 + sc->nsw + sc->M;
 }
 
 /* Step 2: the M candidates drawn after the switches and scored on the screening set; a
@@ -445,6 +456,7 @@ static void score_candidates(screen_run *sc)
             return;
         }
     }
+    sc->draw = draw;
 }
 
 /* Step 3's order of solves: z0, the switches, the cheapest half of K, then the rest of K
@@ -467,14 +479,13 @@ static void order_starts(screen_run *sc)
     sc->n = n;
 }
 
-/* Step 3's solves on the screening set (when it is prob, the search's best), then
- * sorted cheapest first. */
-static bf_status solve_screen_starts(screen_run *sc, bf_error *err)
+/* Solves starts t0 to t1 - 1 of order on the screening set (when it is prob, the
+ * search's best), then sorts all of them cheapest first and counts those at the best. */
+static bf_status solve_screen_range(screen_run *sc, int t0, int t1, bf_error *err)
 {
     bf_search *s = sc->s;
-    const int nz = s->prob->npar, n = sc->n;
-    bf_fit_watch_phase(s->watch, BF_PHASE_SCREEN, n + SCREEN_REVIVES, sc->nS); /* the starts, then the revives */
-    for (int t = 0; t < n; t++) {
+    const int nz = s->prob->npar;
+    for (int t = t0; t < t1; t++) {
         double *z = sc->pts + (size_t)sc->order[t] * nz;
         outcome out;
         bf_status rc = solve_start(s, &sc->screen, t, z, &out, err);
@@ -487,10 +498,154 @@ static bf_status solve_screen_starts(screen_run *sc, bf_error *err)
         if (sc->screen.p == sc->prob.p)
             consider(s, z, &out.sol, out.cost, out.seed);
     }
-    s->starts = n;
-    qsort(sc->solved, (size_t)n, sizeof *sc->solved, by_cost);
-    for (int t = 0; t < n; t++)
+    s->starts = sc->n = t1;
+    qsort(sc->solved, (size_t)t1, sizeof *sc->solved, by_cost);
+    s->starts_at_best = 0;
+    for (int t = 0; t < t1; t++)
         s->starts_at_best += at_best(sc->solved[t].cost, sc->solved[0].cost, sc->screen.p);
+    return BF_OK;
+}
+
+/* Step 3's solves on the screening set. */
+static bf_status solve_screen_starts(screen_run *sc, bf_error *err)
+{
+    bf_fit_watch_phase(sc->s->watch, BF_PHASE_SCREEN, sc->n + SCREEN_REVIVES,
+                       sc->nS); /* the starts, then the revives */
+    return solve_screen_range(sc, 0, sc->n, err);
+}
+
+/* A model vector's entries of lobe k (1-based) in parameter order, and their roles:
+ * their count. Every lobe lists its parameters in the same order (lobe_order.c). */
+static int lobe_entries(const bf_model *m, int k, int *e, bf_param_role *role, int max)
+{
+    const int C = bf_model_channels(m);
+    int n = 0;
+    for (int i = 0; i < bf_model_nparams(m); i++) {
+        const bf_param_info *p = bf_model_param(m, i);
+        if (p->lobe != k)
+            continue;
+        const int off = bf_model_param_offset(m, i);
+        for (int c = 0; c < (p->color ? C : 1) && n < max; c++)
+            e[n] = off + c, role[n++] = p->role;
+    }
+    return n;
+}
+
+/* x with lobe a split in two: its weight halved, lobe b the same lobe f times as wide
+ * (f > 1) or as narrow (f < 1), in the width's own terms per role. */
+static void split_lobe(const bf_model *m, int a, int b, double f, double *x)
+{
+    enum { MAXE = 64 };
+    int ea[MAXE], eb[MAXE];
+    bf_param_role ra[MAXE], rb[MAXE];
+    const int na = lobe_entries(m, a, ea, ra, MAXE), nb = lobe_entries(m, b, eb, rb, MAXE);
+    for (int j = 0; j < na && j < nb; j++) {
+        double v = x[ea[j]];
+        switch (ra[j]) {
+        case BF_ROLE_WEIGHT: x[ea[j]] = v = 0.5 * v; break;
+        case BF_ROLE_ROUGHNESS:
+        case BF_ROLE_SLOPE_SPREAD: v *= f; break;
+        case BF_ROLE_PERCEPTUAL_ROUGHNESS: v *= sqrt(f); break;
+        case BF_ROLE_EXPONENT:
+        case BF_ROLE_FALLOFF: v /= f * f; break; /* a cosine power goes as 2 / alpha^2 */
+        default: break;
+        }
+        x[eb[j]] = v;
+    }
+}
+
+/* The lobe splits of a multi-lobe model at the screened best, into pts from npts: lobe a
+ * halved and copied into lobe b three times as wide, then as narrow, for each ordered
+ * pair (at most SPLITS; the one-lobe fit that a second lobe should refine is among
+ * them when the best has one lobe dead). Returns how many. */
+static int place_splits(screen_run *sc)
+{
+    const bf_objective *obj = sc->screen.obj;
+    const bf_model *m = obj->model;
+    const int L = bf_model_lobes(m), nz = sc->s->prob->npar;
+    if (L < 2)
+        return 0;
+    const double *zb = sc->pts + (size_t)sc->order[sc->solved[0].index] * nz;
+    double *x = malloc(((size_t)bf_model_nvalues(m) + 1) * sizeof *x);
+    if (!x)
+        return 0;
+    int n = 0;
+    for (int a = 1; a <= L && n < SPLITS; a++)
+        for (int b = 1; b <= L && n < SPLITS; b++)
+            for (int w = 0; w < 2 && a != b && n < SPLITS; w++) {
+                bf_objective_to_model(obj, zb, x);
+                split_lobe(m, a, b, w == 0 ? 3.0 : 1.0 / 3.0, x);
+                bf_objective_to_internal(obj, x, sc->pts + (size_t)sc->npts * nz);
+                sc->order[sc->n + n++] = sc->npts++;
+            }
+    free(x);
+    return n;
+}
+
+/* An added round's random starts: 4 R candidates drawn on from where step 2 left the
+ * stream, scored on the screening set, half of R the cheapest, the rest in the order
+ * drawn; into pts from npts. Returns how many (0 when out of memory or cancelled). */
+static int place_more_candidates(screen_run *sc, int t)
+{
+    bf_search *s = sc->s;
+    const bf_fit_options *o = s->options;
+    const int nz = s->prob->npar, R = sc->R, M = 4 * R;
+    double *cz = malloc(((size_t)M * nz + 1) * sizeof *cz);
+    scored *cand = malloc(((size_t)M + 1) * sizeof *cand);
+    unsigned char *taken = calloc((size_t)M + 1, 1);
+    int n = 0;
+    for (int j = 0; cz && cand && taken && j < M; j++) {
+        if (o->solver.cancel && *o->solver.cancel) {
+            s->cancelled = 1;
+            break;
+        }
+        random_start(sc->screen.p, s->z0, &sc->draw, cz + (size_t)j * nz);
+        cand[j].cost = cost_at(sc->screen.p, &o->solver, cz + (size_t)j * nz);
+        cand[j].index = j;
+        n = j + 1;
+    }
+    if (n == M) {
+        s->candidates += M;
+        qsort(cand, (size_t)M, sizeof *cand, by_cost);
+        int k = 0;
+        for (; k < (R + 1) / 2; k++)
+            taken[cand[k].index] = 1;
+        for (int j = 0; j < k; j++)
+            memcpy(sc->pts + (size_t)(sc->npts + j) * nz, cz + (size_t)cand[j].index * nz, (size_t)nz * sizeof *cz);
+        for (int j = 0; j < M && k < R; j++)
+            if (!taken[j])
+                memcpy(sc->pts + (size_t)(sc->npts + k++) * nz, cz + (size_t)j * nz, (size_t)nz * sizeof *cz);
+        for (int j = 0; j < k; j++)
+            sc->order[t + j] = sc->npts + j;
+        sc->npts += k;
+        n = k;
+    } else
+        n = 0;
+    free(cz), free(cand), free(taken);
+    return n;
+}
+
+/* Step 3b (automatic starts only): while the best on the screening set was reached from
+ * fewer than CONFIRM starts, rounds of added starts (the lobe splits of a multi-lobe
+ * model first, then R random ones) until it is, or EXTEND_ROUNDS have run. A confirmed
+ * search, the common case, adds nothing. */
+static bf_status extend_screen(screen_run *sc, bf_error *err)
+{
+    bf_search *s = sc->s;
+    if (s->options->starts > 0)
+        return BF_OK;
+    while (sc->extended < EXTEND_ROUNDS && s->starts_at_best < CONFIRM && isfinite(sc->solved[0].cost)) {
+        const int t0 = sc->n;
+        int added = sc->extended == 0 ? place_splits(sc) : 0;
+        added += place_more_candidates(sc, t0 + added);
+        if (s->cancelled || added == 0)
+            return BF_OK;
+        sc->extended++;
+        bf_fit_watch_phase(s->watch, BF_PHASE_SCREEN, added, sc->nS);
+        bf_status rc = solve_screen_range(sc, t0, t0 + added, err);
+        if (rc != BF_OK || s->cancelled)
+            return rc;
+    }
     return BF_OK;
 }
 
@@ -522,8 +677,9 @@ static int choose_promoted(const screen_run *sc, int *promote)
 {
     const scored *solved = sc->solved;
     const int *order = sc->order, n = sc->n;
+    const int most = PROMOTE + (sc->extended ? PROMOTE_MORE : 0); /* an unsure search promotes more */
     int npromote = 0;
-    for (int t = 0; t < n && npromote < PROMOTE; t++) {
+    for (int t = 0; t < n && npromote < most; t++) {
         if (!isfinite(solved[t].cost) || order[solved[t].index] == 0)
             continue;
         if (solved[t].cost > solved[0].cost * (1.0 + PROMOTE_WINDOW))
@@ -544,7 +700,7 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
 {
     bf_search *s = sc->s;
     const int nz = s->prob->npar;
-    int promote[PROMOTE], k = sc->n + SCREEN_REVIVES;
+    int promote[PROMOTE + PROMOTE_MORE], k = sc->n + SCREEN_REVIVES;
     const int npromote = choose_promoted(sc, promote);
     bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
                        1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
@@ -578,6 +734,8 @@ static bf_status screen_steps(screen_run *sc, bf_error *err)
         return BF_OK;
     order_starts(sc);
     bf_status rc = solve_screen_starts(sc, err);
+    if (rc == BF_OK && !s->cancelled)
+        rc = extend_screen(sc, err);
     if (rc != BF_OK || s->cancelled)
         return rc;
     if (!isfinite(sc->solved[0].cost))
