@@ -57,6 +57,9 @@
 #define CONFIRM 2          /* automatic starts: the best must be reached from this many starts ... */
 #define EXTEND_ROUNDS 2    /* ... or this many rounds of added starts have run */
 #define SPLITS 4           /* lobe-split starts at most (multi-lobe models, the first added round) */
+#define SPLIT_WIDTH 2.0    /* a split lobe is this many times as wide (or as narrow) */
+#define FLIPS 6            /* bound-flip starts at most (the first added round) */
+#define PROB_FLIPS 6       /* and on prob, when the screened best was not confirmed */
 #define PROMOTE_MORE 2     /* promoted optima added when the screened best was not confirmed */
 
 int bf_fit_search_starts(const bf_fit_options *o, size_t n)
@@ -392,7 +395,7 @@ static bf_status screen_alloc(screen_run *sc, bf_error *err)
     const int nz = sc->s->prob->npar, np = bf_model_nparams(sc->s->objective->model), M = sc->M;
     /* Points: z0, the switches (up to np + 1), the M candidates. */
     sc->R = (sc->N + 1) / 2;
-    const int nmax = 1 + np + 1 + M + EXTEND_ROUNDS * (sc->R + SPLITS);
+    const int nmax = 1 + np + 1 + M + EXTEND_ROUNDS * sc->R + SPLITS + FLIPS;
     sc->cap = nmax;
     sc->pts = malloc(((size_t)nmax * nz + 1) * sizeof *sc->pts);
     sc->cand = malloc(((size_t)M + 1) * sizeof *sc->cand);
@@ -531,7 +534,8 @@ static int lobe_entries(const bf_model *m, int k, int *e, bf_param_role *role, i
     return n;
 }
 
-/* x with lobe a split in two: its weight halved, lobe b the same lobe f times as wide
+/* x with lobes a and b merged into lobe a (their weights summed, a's shape: the one-lobe
+ * fit) and split in two again: the weight halved, lobe b the same lobe f times as wide
  * (f > 1) or as narrow (f < 1), in the width's own terms per role. */
 static void split_lobe(const bf_model *m, int a, int b, double f, double *x)
 {
@@ -542,7 +546,7 @@ static void split_lobe(const bf_model *m, int a, int b, double f, double *x)
     for (int j = 0; j < na && j < nb; j++) {
         double v = x[ea[j]];
         switch (ra[j]) {
-        case BF_ROLE_WEIGHT: x[ea[j]] = v = 0.5 * v; break;
+        case BF_ROLE_WEIGHT: x[ea[j]] = v = 0.5 * (v + x[eb[j]]); break;
         case BF_ROLE_ROUGHNESS:
         case BF_ROLE_SLOPE_SPREAD: v *= f; break;
         case BF_ROLE_PERCEPTUAL_ROUGHNESS: v *= sqrt(f); break;
@@ -574,11 +578,48 @@ static int place_splits(screen_run *sc)
         for (int b = 1; b <= L && n < SPLITS; b++)
             for (int w = 0; w < 2 && a != b && n < SPLITS; w++) {
                 bf_objective_to_model(obj, zb, x);
-                split_lobe(m, a, b, w == 0 ? 3.0 : 1.0 / 3.0, x);
+                split_lobe(m, a, b, w == 0 ? SPLIT_WIDTH : 1.0 / SPLIT_WIDTH, x);
                 bf_objective_to_internal(obj, x, sc->pts + (size_t)sc->npts * nz);
                 sc->order[sc->n + n++] = sc->npts++;
             }
     free(x);
+    return n;
+}
+
+/* z: zb (on at->p) with model parameter i moved to its other bound, nine tenths of the
+ * way, when i is not a weight (revive and the switches turn those on) and its free
+ * entries all sit on a bound (Disney's clearcoat_gloss at 1 where 0 is better on the
+ * data). Returns 0 (z untouched) when i does not qualify. */
+static int flipped(const stage *at, const double *zb, int i, double *z)
+{
+    const bf_problem *p = at->p;
+    const bf_model *m = at->obj->model;
+    const int nz = p->npar;
+    if (bf_model_param(m, i)->role == BF_ROLE_WEIGHT)
+        return 0;
+    int entries = 0, on = 0;
+    for (int q = 0; q < nz; q++)
+        if (bf_silence_param_of(m, at->obj->kidx[q]) == i)
+            entries++, on += bf_silence_at_bound(p, zb, q) != 0;
+    if (entries == 0 || on < entries)
+        return 0;
+    memcpy(z, zb, (size_t)nz * sizeof *z);
+    for (int q = 0; q < nz; q++)
+        if (bf_silence_param_of(m, at->obj->kidx[q]) == i)
+            z[q] = p->lo[q] + (bf_silence_at_bound(p, zb, q) < 0 ? 0.9 : 0.1) * (p->hi[q] - p->lo[q]);
+    return 1;
+}
+
+/* The bound flips (flipped) at the screened best, into pts from npts, at most FLIPS.
+ * Returns how many. */
+static int place_flips(screen_run *sc, int t)
+{
+    const int nz = sc->s->prob->npar, np = bf_model_nparams(sc->screen.obj->model);
+    const double *zb = sc->pts + (size_t)sc->order[sc->solved[0].index] * nz;
+    int n = 0;
+    for (int i = 0; i < np && n < FLIPS; i++)
+        if (flipped(&sc->screen, zb, i, sc->pts + (size_t)sc->npts * nz))
+            sc->order[t + n++] = sc->npts++;
     return n;
 }
 
@@ -637,6 +678,8 @@ static bf_status extend_screen(screen_run *sc, bf_error *err)
     while (sc->extended < EXTEND_ROUNDS && s->starts_at_best < CONFIRM && isfinite(sc->solved[0].cost)) {
         const int t0 = sc->n;
         int added = sc->extended == 0 ? place_splits(sc) : 0;
+        if (sc->extended == 0)
+            added += place_flips(sc, t0 + added);
         added += place_more_candidates(sc, t0 + added);
         if (s->cancelled || added == 0)
             return BF_OK;
@@ -694,6 +737,49 @@ static int choose_promoted(const screen_run *sc, int *promote)
     return npromote;
 }
 
+/* Solves start k (from sc->zp) on prob, keeping a better optimum. */
+static bf_status solve_on_prob_from_zp(screen_run *sc, int k, bf_error *err)
+{
+    outcome out;
+    bf_status rc = solve_start(sc->s, &sc->prob, k, sc->zp, &out, err);
+    if (rc == BF_OK && !sc->s->cancelled)
+        consider(sc->s, sc->zp, &out.sol, out.cost, out.seed);
+    return rc;
+}
+
+/* Step 5b, for a search whose screened best was not confirmed: structured starts at the
+ * best on prob, solved there: its bound flips (at most PROB_FLIPS), then its lobe splits
+ * (SPLITS at most). The screening set may not show the data's basin at all: Disney's
+ * clearcoat_gloss at 0 on a chrome, two Walter lobes with Fresnel at either bound on a
+ * Cook-Torrance paint, found from no screened start but from a flip or split on prob. */
+static bf_status structured_on_prob(screen_run *sc, int k, bf_error *err)
+{
+    bf_search *s = sc->s;
+    const bf_objective *obj = sc->prob.obj;
+    const int nz = s->prob->npar, np = bf_model_nparams(obj->model), L = bf_model_lobes(obj->model);
+    double *zb = malloc(((size_t)nz + 1) * sizeof *zb);
+    double *x = malloc(((size_t)bf_model_nvalues(obj->model) + 1) * sizeof *x);
+    bf_status rc = zb && x ? BF_OK : bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    if (rc == BF_OK)
+        memcpy(zb, s->z, (size_t)nz * sizeof *zb);
+    for (int i = 0, n = 0; rc == BF_OK && i < np && n < PROB_FLIPS && !s->cancelled; i++)
+        if (flipped(&sc->prob, zb, i, sc->zp))
+            rc = solve_on_prob_from_zp(sc, k++, err), n++;
+    for (int t = 0; rc == BF_OK && L > 1 && t < SPLITS && !s->cancelled; t++) {
+        /* Lobe pairs (a, b) in order, each wider then narrower: t = 2 (pair) + w. */
+        const int pair = t / 2, a = 1 + pair / (L - 1), b0 = 1 + pair % (L - 1), b = b0 >= a ? b0 + 1 : b0;
+        if (a > L)
+            break;
+        bf_objective_to_model(obj, zb, x);
+        split_lobe(obj->model, a, b, t % 2 == 0 ? SPLIT_WIDTH : 1.0 / SPLIT_WIDTH, x);
+        bf_objective_to_internal(obj, x, sc->zp);
+        rc = solve_on_prob_from_zp(sc, k++, err);
+    }
+    free(x);
+    free(zb);
+    return rc;
+}
+
 /* Step 5: the data-driven start and the promoted optima (chosen first, so that the
  * progress reports count them) solved on prob, then (presolved) the best revived there. */
 static bf_status solve_on_prob(screen_run *sc, bf_error *err)
@@ -719,9 +805,9 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
     }
     if (s->have_best && s->presolved) {
         const revive_plan rp = {.at = &sc->prob, .found = sc->screen.p, .k0 = k, .max = PROB_REVIVES, .places = 1};
-        revive(s, &rp, s->z, &s->best, &s->best_seed);
+        k += revive(s, &rp, s->z, &s->best, &s->best_seed);
     }
-    return BF_OK;
+    return sc->extended && s->have_best && !s->cancelled ? structured_on_prob(sc, k, err) : BF_OK;
 }
 
 /* Steps 2 to 5, each ending the search when a solve is cancelled. */
