@@ -787,6 +787,7 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
     bf_search *s = sc->s;
     const int nz = s->prob->npar;
     int promote[PROMOTE + PROMOTE_MORE], k = sc->n + SCREEN_REVIVES;
+    double cost[1 + PROMOTE + PROMOTE_MORE];
     const int npromote = choose_promoted(sc, promote);
     bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
                        1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
@@ -801,13 +802,19 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
             return rc;
         if (q < 0)
             s->first = out.sol;
+        cost[q + 1] = out.cost;
         consider(s, sc->zp, &out.sol, out.cost, out.seed);
     }
+    /* The optima solved here agree when two of them reached the best (or one was solved). */
+    int agree = 0;
+    for (int q = 0; s->have_best && q < 1 + npromote; q++)
+        agree += at_best(cost[q], s->best.final_cost, sc->prob.p);
     if (s->have_best && s->presolved) {
         const revive_plan rp = {.at = &sc->prob, .found = sc->screen.p, .k0 = k, .max = PROB_REVIVES, .places = 1};
         k += revive(s, &rp, s->z, &s->best, &s->best_seed);
     }
-    return sc->extended && s->have_best && !s->cancelled ? structured_on_prob(sc, k, err) : BF_OK;
+    const int unsure = sc->extended || agree < (npromote > 0 ? CONFIRM : 1);
+    return unsure && s->have_best && !s->cancelled ? structured_on_prob(sc, k, err) : BF_OK;
 }
 
 /* Steps 2 to 5, each ending the search when a solve is cancelled. */
