@@ -17,6 +17,13 @@
  *     0, where no gradient turns them on); half of K from the cheapest candidates, half
  *     from the others in the order they were drawn (the cheapest alone crowd into one
  *     basin: measured, docs/fitting.md).
+ *  3b. Confirm (automatic starts only): while the best of them was reached from fewer
+ *     than CONFIRM starts (within BF_FIT_AT_BEST), a round of added starts, at most
+ *     EXTEND_ROUNDS: in the first, structured starts at the best (a multi-lobe model's
+ *     lobes merged and split again, SPLIT_WIDTH times as wide or as narrow;
+ *     each non-weight parameter on a bound moved to the other, "flips"), then R = N / 2
+ *     (rounded up) random starts from 4 R new candidates (the same stream, drawn on). A search whose
+ *     best is confirmed, the common case, adds nothing and is unchanged to the byte.
  *  4. Revive: at the best of them, each parameter on a bound that silences others
  *     (silence.h) is moved inward (half way, then nine tenths of the way to its other
  *     bound), the silenced entries left where they are or a tenth of their range inside
@@ -29,8 +36,14 @@
  *     is found there). The screening set ranks
  *     close optima only roughly; one more than 10% worse there has not been better on the
  *     data in any bundled case, and solving it costs a pass over the presolve for nothing.
- * starts counts the starts of 3 (or of plain multistart), starts_at_best those whose
- * final cost is within BF_FIT_AT_BEST (relative) of the best of them.
+ *     A search that added starts (3b) promotes PROMOTE_MORE more.
+ *  5b. When the search is unsure (3b added starts, or of two or more optima solved on
+ *     prob fewer than CONFIRM reached the best there) or the model has several lobes: the
+ *     structured starts of 3b at the best on prob, solved there (PROB_FLIPS flips at
+ *     most, then SPLITS splits): the screening set may not show the data's basin at all.
+ * starts counts the starts of 3 and 3b (or of plain multistart), candidates those of 2
+ * and 3b, starts_at_best those whose final cost is within BF_FIT_AT_BEST (relative) of
+ * the best of them.
  *
  * Start k's solve gets the seed bf_splitmix64(seed + k + 1)'s first output (stochastic
  * back-end methods); the random draws come from splitmix64 seeded with the fit's seed,
@@ -737,12 +750,14 @@ static int choose_promoted(const screen_run *sc, int *promote)
     return npromote;
 }
 
-/* Solves start k (from sc->zp) on prob, keeping a better optimum. */
+/* Solves start k (from sc->zp) on prob, keeping an optimum lower by DISTINCT: the same
+ * optimum lower by rounding alone (often with its degenerate entries elsewhere) would
+ * only change what the whole-data solve starts from. */
 static bf_status solve_on_prob_from_zp(screen_run *sc, int k, bf_error *err)
 {
     outcome out;
     bf_status rc = solve_start(sc->s, &sc->prob, k, sc->zp, &out, err);
-    if (rc == BF_OK && !sc->s->cancelled)
+    if (rc == BF_OK && !sc->s->cancelled && out.cost < sc->s->best.final_cost * (1.0 - DISTINCT))
         consider(sc->s, sc->zp, &out.sol, out.cost, out.seed);
     return rc;
 }
@@ -752,7 +767,7 @@ static bf_status solve_on_prob_from_zp(screen_run *sc, int k, bf_error *err)
  * (SPLITS at most). The screening set may not show the data's basin at all: Disney's
  * clearcoat_gloss at 0 on a chrome, two Walter lobes with Fresnel at either bound on a
  * Cook-Torrance paint, found from no screened start but from a flip or split on prob. */
-static bf_status structured_on_prob(screen_run *sc, int k, bf_error *err)
+static bf_status structured_on_prob(screen_run *sc, int k, int flips, bf_error *err)
 {
     bf_search *s = sc->s;
     const bf_objective *obj = sc->prob.obj;
@@ -762,7 +777,7 @@ static bf_status structured_on_prob(screen_run *sc, int k, bf_error *err)
     bf_status rc = zb && x ? BF_OK : bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
     if (rc == BF_OK)
         memcpy(zb, s->z, (size_t)nz * sizeof *zb);
-    for (int i = 0, n = 0; rc == BF_OK && i < np && n < PROB_FLIPS && !s->cancelled; i++)
+    for (int i = 0, n = 0; rc == BF_OK && flips && i < np && n < PROB_FLIPS && !s->cancelled; i++)
         if (flipped(&sc->prob, zb, i, sc->zp))
             rc = solve_on_prob_from_zp(sc, k++, err), n++;
     for (int t = 0; rc == BF_OK && L > 1 && t < SPLITS && !s->cancelled; t++) {
@@ -813,12 +828,16 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
         const revive_plan rp = {.at = &sc->prob, .found = sc->screen.p, .k0 = k, .max = PROB_REVIVES, .places = 1};
         k += revive(s, &rp, s->z, &s->best, &s->best_seed);
     }
-    /* A multi-lobe model always: its lobes may share the light wrongly in a basin that
-     * every screened start confirms (two Walter lobes split by colour on a Cook-Torrance
-     * paint, 2.6% above the split lobes' optimum); from a near optimum the splits cost
-     * little, and the whole-data solve often less after them. */
-    const int unsure = sc->extended || agree < (npromote > 0 ? CONFIRM : 1) || bf_model_lobes(sc->prob.obj->model) > 1;
-    return unsure && s->have_best && !s->cancelled ? structured_on_prob(sc, k, err) : BF_OK;
+    /* Unsure: the flips and the splits. A multi-lobe model tries the splits even when
+     * sure, unless prob is the presolve's subsample (there they cost twice the rest of a
+     * MERL table's fit): its lobes may share the light wrongly in a basin that every
+     * screened start confirms (two Walter lobes split by colour on a Cook-Torrance
+     * paint, 2.6% above the split lobes' optimum). */
+    const int unsure = sc->extended || agree < (npromote > 0 ? CONFIRM : 1);
+    const int lobes = bf_model_lobes(sc->prob.obj->model) > 1 && !s->presolved;
+    if (!s->have_best || s->cancelled || !(unsure || lobes))
+        return BF_OK;
+    return structured_on_prob(sc, k, unsure, err);
 }
 
 /* Steps 2 to 5, each ending the search when a solve is cancelled. */
