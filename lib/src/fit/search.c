@@ -70,6 +70,7 @@
 #define CONFIRM 2          /* automatic starts: the best must be reached from this many starts ... */
 #define EXTEND_ROUNDS 2    /* ... or this many rounds of added starts have run */
 #define SPLITS 4           /* lobe-split starts at most (multi-lobe models, the first added round) */
+#define SURE_SPLITS 2      /* ... and on prob for a multi-lobe model whose best was confirmed */
 #define SPLIT_WIDTH 2.0    /* a split lobe is this many times as wide (or as narrow) */
 #define FLIPS 6            /* bound-flip starts at most (the first added round) */
 #define PROB_FLIPS 6       /* and on prob, when the screened best was not confirmed */
@@ -767,7 +768,7 @@ static bf_status solve_on_prob_from_zp(screen_run *sc, int k, bf_error *err)
  * (SPLITS at most). The screening set may not show the data's basin at all: Disney's
  * clearcoat_gloss at 0 on a chrome, two Walter lobes with Fresnel at either bound on a
  * Cook-Torrance paint, found from no screened start but from a flip or split on prob. */
-static bf_status structured_on_prob(screen_run *sc, int k, int flips, bf_error *err)
+static bf_status structured_on_prob(screen_run *sc, int k, int flips, int splits, bf_error *err)
 {
     bf_search *s = sc->s;
     const bf_objective *obj = sc->prob.obj;
@@ -780,7 +781,7 @@ static bf_status structured_on_prob(screen_run *sc, int k, int flips, bf_error *
     for (int i = 0, n = 0; rc == BF_OK && flips && i < np && n < PROB_FLIPS && !s->cancelled; i++)
         if (flipped(&sc->prob, zb, i, sc->zp))
             rc = solve_on_prob_from_zp(sc, k++, err), n++;
-    for (int t = 0; rc == BF_OK && L > 1 && t < SPLITS && !s->cancelled; t++) {
+    for (int t = 0; rc == BF_OK && L > 1 && t < splits && !s->cancelled; t++) {
         /* Lobe pairs (a, b) in order, each wider then narrower: t = 2 (pair) + w. */
         const int pair = t / 2, a = 1 + pair / (L - 1), b0 = 1 + pair % (L - 1), b = b0 >= a ? b0 + 1 : b0;
         if (a > L)
@@ -802,7 +803,6 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
     bf_search *s = sc->s;
     const int nz = s->prob->npar;
     int promote[PROMOTE + PROMOTE_MORE], k = sc->n + SCREEN_REVIVES;
-    double cost[1 + PROMOTE + PROMOTE_MORE];
     const int npromote = choose_promoted(sc, promote);
     bf_fit_watch_phase(s->watch, s->presolved ? BF_PHASE_PRESOLVE : BF_PHASE_DATA,
                        1 + npromote + (s->presolved ? PROB_REVIVES : 0), s->samples->n);
@@ -817,27 +817,24 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
             return rc;
         if (q < 0)
             s->first = out.sol;
-        cost[q + 1] = out.cost;
         consider(s, sc->zp, &out.sol, out.cost, out.seed);
     }
-    /* The optima solved here agree when two of them reached the best (or one was solved). */
-    int agree = 0;
-    for (int q = 0; s->have_best && q < 1 + npromote; q++)
-        agree += at_best(cost[q], s->best.final_cost, sc->prob.p);
     if (s->have_best && s->presolved) {
         const revive_plan rp = {.at = &sc->prob, .found = sc->screen.p, .k0 = k, .max = PROB_REVIVES, .places = 1};
         k += revive(s, &rp, s->z, &s->best, &s->best_seed);
     }
-    /* Unsure: the flips and the splits. A multi-lobe model tries the splits even when
-     * sure, unless prob is the presolve's subsample (there they cost twice the rest of a
-     * MERL table's fit): its lobes may share the light wrongly in a basin that every
-     * screened start confirms (two Walter lobes split by colour on a Cook-Torrance
-     * paint, 2.6% above the split lobes' optimum). */
-    const int unsure = sc->extended || agree < (npromote > 0 ? CONFIRM : 1);
+    /* Unsure (3b added starts): the flips and SPLITS splits. A multi-lobe model tries
+     * SURE_SPLITS splits even when sure, unless prob is the presolve's subsample (there
+     * they cost twice the rest of a MERL table's fit): its lobes may share the light
+     * wrongly in a basin that every screened start confirms (two Walter lobes split by
+     * colour on a Cook-Torrance paint, 2.6% above the split lobes' optimum). (Unsure
+     * when the optima solved here disagree as well cost Disney 1.4 times the time on
+     * the Cornell car paint for no optimum found.) */
+    const int unsure = sc->extended;
     const int lobes = bf_model_lobes(sc->prob.obj->model) > 1 && !s->presolved;
     if (!s->have_best || s->cancelled || !(unsure || lobes))
         return BF_OK;
-    return structured_on_prob(sc, k, unsure, err);
+    return structured_on_prob(sc, k, unsure, unsure ? SPLITS : SURE_SPLITS, err);
 }
 
 /* Steps 2 to 5, each ending the search when a solve is cancelled. */
