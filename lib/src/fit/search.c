@@ -824,13 +824,14 @@ static bf_status solve_on_prob(screen_run *sc, bf_error *err)
         k += revive(s, &rp, s->z, &s->best, &s->best_seed);
     }
     /* Unsure (3b added starts): the flips and SPLITS splits. A multi-lobe model tries
-     * SURE_SPLITS splits even when sure, unless prob is the presolve's subsample (there
-     * they cost twice the rest of a MERL table's fit): its lobes may share the light
-     * wrongly in a basin that every screened start confirms (two Walter lobes split by
-     * colour on a Cook-Torrance paint, 2.6% above the split lobes' optimum). (Unsure
-     * when the optima solved here disagree as well cost Disney 1.4 times the time on
-     * the Cornell car paint for no optimum found.) */
-    const int unsure = sc->extended;
+     * SURE_SPLITS splits even when sure: its lobes may share the light wrongly in a basin
+     * that every screened start confirms (two Walter lobes split by colour on a
+     * Cook-Torrance paint, 2.6% above the split lobes' optimum). Neither on the
+     * presolve's subsample: there they cost 2 to 3.5 times the rest of the fit (the MDL
+     * car paint's two Walter lobes, two MERL tables) and found no better optimum in the
+     * cases measured. (Unsure also when the optima solved here disagree cost Disney 1.4
+     * times the time on cayman for no better optimum.) */
+    const int unsure = sc->extended && !s->presolved;
     const int lobes = bf_model_lobes(sc->prob.obj->model) > 1 && !s->presolved;
     if (!s->have_best || s->cancelled || !(unsure || lobes))
         return BF_OK;
