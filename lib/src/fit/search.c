@@ -37,10 +37,10 @@
  *     close optima only roughly; one more than 10% worse there has not been better on the
  *     data in any bundled case, and solving it costs a pass over the presolve for nothing.
  *     A search that added starts (3b) promotes PROMOTE_MORE more.
- *  5b. When the search is unsure (3b added starts, or of two or more optima solved on
- *     prob fewer than CONFIRM reached the best there) or the model has several lobes: the
- *     structured starts of 3b at the best on prob, solved there (PROB_FLIPS flips at
- *     most, then SPLITS splits): the screening set may not show the data's basin at all.
+ *  5b. When prob is the data (no presolve): structured starts at the best on prob,
+ *     solved there, the screening set may not show the data's basin at all: when 3b
+ *     added starts, the flips (PROB_FLIPS at most) and SPLITS splits; otherwise, for a
+ *     multi-lobe model, SURE_SPLITS splits.
  * starts counts the starts of 3 and 3b (or of plain multistart), candidates those of 2
  * and 3b, starts_at_best those whose final cost is within BF_FIT_AT_BEST (relative) of
  * the best of them.
@@ -763,11 +763,11 @@ static bf_status solve_on_prob_from_zp(screen_run *sc, int k, bf_error *err)
     return rc;
 }
 
-/* Step 5b, for a search whose screened best was not confirmed: structured starts at the
- * best on prob, solved there: its bound flips (at most PROB_FLIPS), then its lobe splits
- * (SPLITS at most). The screening set may not show the data's basin at all: Disney's
- * clearcoat_gloss at 0 on a chrome, two Walter lobes with Fresnel at either bound on a
- * Cook-Torrance paint, found from no screened start but from a flip or split on prob. */
+/* Step 5b: structured starts at the best on prob, solved there: its bound flips when
+ * flips (at most PROB_FLIPS), then splits of its lobes. The screening set may not show
+ * the data's basin at all: Disney's clearcoat_gloss at 0 on a chrome, two Walter lobes
+ * with Fresnel at either bound on a Cook-Torrance paint, found from no screened start
+ * but from a flip or split on prob. */
 static bf_status structured_on_prob(screen_run *sc, int k, int flips, int splits, bf_error *err)
 {
     bf_search *s = sc->s;
