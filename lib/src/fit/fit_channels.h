@@ -1,0 +1,44 @@
+/* Internal: a fit whose channels are independent problems, run as one fit per channel
+ * (docs/fitting.md, "Independent channels"). A family declares that channel c's value
+ * depends on channel c's colour entries and the scalars alone (bf_family's
+ * channels_independent); with no free scalar the C channels then share nothing, and C
+ * fits of P/C parameters each find what one of P would, at a fraction of the cost (the
+ * search's work grows faster than linearly in the parameters, and one trust region for
+ * all channels moves as slowly as the slowest). fit.c merges the channels' results and
+ * computes the metrics, standard errors and warnings once, over all channels, as any
+ * fit does. */
+#ifndef BF_FIT_CHANNELS_H
+#define BF_FIT_CHANNELS_H
+
+#include "fit_impl.h"
+#include "objective_state.h"
+
+/* 1 when a fit of objective obj runs channel by channel: its family declares independent
+ * channels, it has more than one channel, and every scalar entry is fixed. */
+int bf_fit_channels_separable(const bf_objective *obj);
+
+/* Fits each channel c of s alone into ch[c] (C results, each set up with
+ * bf_fit_result_init): spec and o as given, but for the channel's start (o->start's
+ * entries of channel c and the scalars) and overrides (those of every channel, and
+ * those of channel c renamed to the channel's only one). Every channel's fit has o's
+ * seed: channel c's result is that of a fit of channel c's data alone. Stops after a
+ * cancelled channel (*done: the channels fitted). On an error the results hold nothing. */
+bf_status bf_fit_channels_run(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *ch, int *done,
+                              bf_error *err);
+
+/* Model entry k1 of a channel's model (1 channel) -> the entry of channel c in the
+ * model of C channels (same spec). */
+int bf_fit_channels_entry(const bf_model *m, const bf_model *m1, int c, int k1);
+
+/* Writes the channels' results into r (its model and arrays made, C channels): the
+ * values, inactive entries and their gates; the solution (costs, iterations,
+ * evaluations and seconds summed; the worst stop; usable when every channel's is); the
+ * search's counts summed (the presolve's and screen's sample counts are one channel's);
+ * ok when every channel's is. */
+void bf_fit_channels_merge(const bf_fit_result *ch, int C, bf_fit_result *r);
+
+/* The channels' own search warnings (failed, solver limit, one start) into r, each
+ * prefixed with its channel's name: what the merged figures cannot say. */
+void bf_fit_channels_warn(const bf_fit_result *ch, const bf_samples *s, bf_fit_result *r);
+
+#endif
