@@ -140,16 +140,22 @@ bf_status bf_fit_channels_run(bf_samples *s, const char *spec, const bf_fit_opti
     return rc;
 }
 
-/* The search's figures of the channels, summed (a presolve's or screen's samples are
- * one channel's: every channel's set has as many). */
+/* The search's figures of the channels: the starts and candidates are the option's, as
+ * each channel ran them; the starts at the best the least sure channel's; the screen's
+ * and presolve's work summed (their samples are one channel's: every channel's set has
+ * as many). */
 static void merge_counts(const bf_fit_result *ch, int C, bf_fit_result *r)
 {
     r->presolve.samples = ch[0].presolve.samples;
     r->screen.samples = ch[0].screen.samples;
+    r->starts_at_best = ch[0].starts_at_best;
     for (int c = 0; c < C; c++) {
-        r->starts += ch[c].starts;
-        r->starts_at_best += ch[c].starts_at_best;
-        r->candidates += ch[c].candidates;
+        if (ch[c].starts > r->starts)
+            r->starts = ch[c].starts;
+        if (ch[c].starts_at_best < r->starts_at_best)
+            r->starts_at_best = ch[c].starts_at_best;
+        if (ch[c].candidates > r->candidates)
+            r->candidates = ch[c].candidates;
         r->presolve.iterations += ch[c].presolve.iterations;
         r->presolve.evaluations += ch[c].presolve.evaluations;
         r->presolve.seconds += ch[c].presolve.seconds;

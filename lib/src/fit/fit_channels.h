@@ -33,8 +33,8 @@ int bf_fit_channels_entry(const bf_model *m, const bf_model *m1, int c, int k1);
 /* Writes the channels' results into r (its model and arrays made, C channels): the
  * values, inactive entries and their gates; the solution (costs, iterations,
  * evaluations and seconds summed; the worst stop; usable when every channel's is); the
- * search's counts summed (the presolve's and screen's sample counts are one channel's);
- * ok when every channel's is. */
+ * starts and candidates each channel ran (the option's), the least sure channel's starts
+ * at the best, the screen's and presolve's work summed; ok when every channel's is. */
 void bf_fit_channels_merge(const bf_fit_result *ch, int C, bf_fit_result *r);
 
 /* The channels' own search warnings (failed, solver limit, one start) into r, each
