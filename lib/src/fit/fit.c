@@ -466,6 +466,36 @@ static bf_status fit_result(fit_run *f, bf_error *err)
     return result_figures(f, err);
 }
 
+/* Each channel of f->s fitted alone into f->ch[c] (fit_channels.h), one after another;
+ * stops after a cancelled one (*done: the channels fitted). */
+static bf_status fit_channels_each(fit_run *f, const char *spec, int *done, bf_error *err)
+{
+    const bf_fit_options *o = f->o;
+    bf_fit_options oc = *o;
+    bf_model *m1 = NULL;
+    bf_override *ov = malloc(((size_t)o->objective.noverrides + 1) * sizeof *ov);
+    double *start = malloc(((size_t)f->P + 1) * sizeof *start);
+    bf_status rc = ov && start ? bf_model_new(spec, 1, &m1, err) : bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    oc.objective.overrides = ov;
+    oc.start = o->start ? start : NULL;
+    *done = 0;
+    for (int c = 0; rc == BF_OK && c < f->s->channels; c++) {
+        bf_samples *sc = NULL;
+        if ((rc = bf_fit_channels_options(o, f->r->model, m1, c, &oc)) == BF_OK &&
+            (rc = bf_fit_channels_samples(f->s, c, &sc, err)) == BF_OK)
+            rc = bf_fit_with(sc, spec, &oc, &f->ch[c], err);
+        bf_samples_free(sc);
+        if (rc == BF_OK)
+            *done = c + 1;
+        if (rc == BF_OK && f->ch[c].solution.stop == BF_STOP_CANCELLED)
+            break;
+    }
+    bf_model_free(m1);
+    free(ov);
+    free(start);
+    return rc;
+}
+
 /* Channel by channel (fit_channels.h): each channel fitted alone, their results merged
  * into f->r, and the held entries of the merged point (on a bound: read off it; without
  * effect: the channels' inactive entries) for result_figures, which computes the
@@ -488,7 +518,7 @@ static bf_status fit_separately(fit_run *f, const char *spec, bf_error *err)
     for (int c = 0; c < C; c++)
         bf_fit_result_init(&f->ch[c]);
     int done = 0;
-    bf_status rc = bf_fit_channels_run(f->s, spec, f->o, f->ch, &done, err);
+    bf_status rc = fit_channels_each(f, spec, &done, err);
     if (rc != BF_OK)
         return rc;
     if (done < C || f->ch[C - 1].solution.stop == BF_STOP_CANCELLED) {

@@ -91,53 +91,19 @@ static int channel_overrides(const bf_fit_options *o, int c, bf_override *ov)
     return n;
 }
 
-/* The fit of channel c (options oc: a copy of o's, its overrides and start room made). */
-static bf_status fit_channel(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_options *oc, int c,
-                             bf_fit_result *r, bf_error *err)
+bf_status bf_fit_channels_options(const bf_fit_options *o, const bf_model *m, const bf_model *m1, int c,
+                                  bf_fit_options *oc)
 {
-    bf_model *m = NULL, *m1 = NULL;
-    bf_samples *sc = NULL;
-    bf_status rc = bf_model_new(spec, s->channels, &m, err);
-    if (rc == BF_OK)
-        rc = bf_model_new(spec, 1, &m1, err);
-    if (rc == BF_OK)
-        rc = channel_samples(s, c, &sc, err);
-    if (rc == BF_OK) {
-        oc->objective.noverrides = channel_overrides(o, c, (bf_override *)oc->objective.overrides);
-        if (o->start)
-            for (int k1 = 0; k1 < bf_model_nvalues(m1); k1++)
-                ((double *)oc->start)[k1] = o->start[bf_fit_channels_entry(m, m1, c, k1)];
-        rc = bf_fit_with(sc, spec, oc, r, err);
-    }
-    bf_samples_free(sc);
-    bf_model_free(m1);
-    bf_model_free(m);
-    return rc;
+    oc->objective.noverrides = channel_overrides(o, c, (bf_override *)oc->objective.overrides);
+    if (o->start)
+        for (int k1 = 0; k1 < bf_model_nvalues(m1); k1++)
+            ((double *)oc->start)[k1] = o->start[bf_fit_channels_entry(m, m1, c, k1)];
+    return BF_OK;
 }
 
-bf_status bf_fit_channels_run(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *ch, int *done,
-                              bf_error *err)
+bf_status bf_fit_channels_samples(const bf_samples *s, int c, bf_samples **out, bf_error *err)
 {
-    const int C = s->channels;
-    bf_fit_options oc = *o;
-    bf_override *ov = malloc(((size_t)o->objective.noverrides + 1) * sizeof *ov);
-    double *start = malloc(((size_t)BF_MAX_PARAMS + 1) * sizeof *start);
-    bf_status rc = ov && start ? BF_OK : bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
-    oc.objective.overrides = ov;
-    oc.start = o->start ? start : NULL;
-    *done = 0;
-    for (int c = 0; rc == BF_OK && c < C; c++) {
-        if ((rc = fit_channel(s, spec, o, &oc, c, &ch[c], err)) == BF_OK)
-            *done = c + 1;
-        if (rc == BF_OK && ch[c].solution.stop == BF_STOP_CANCELLED)
-            break;
-    }
-    free(ov);
-    free(start);
-    if (rc != BF_OK)
-        for (int c = 0; c < C; c++)
-            bf_fit_result_clear(&ch[c]);
-    return rc;
+    return channel_samples(s, c, out, err);
 }
 
 /* The search's figures of the channels: the starts and candidates are the option's, as

@@ -17,14 +17,18 @@
  * channels, it has more than one channel, and every scalar entry is fixed. */
 int bf_fit_channels_separable(const bf_objective *obj);
 
-/* Fits each channel c of s alone into ch[c] (C results, each set up with
- * bf_fit_result_init): spec and o as given, but for the channel's start (o->start's
- * entries of channel c and the scalars) and overrides (those of every channel, and
- * those of channel c renamed to the channel's only one). Every channel's fit has o's
- * seed: channel c's result is that of a fit of channel c's data alone. Stops after a
- * cancelled channel (*done: the channels fitted). On an error the results hold nothing. */
-bf_status bf_fit_channels_run(bf_samples *s, const char *spec, const bf_fit_options *o, bf_fit_result *ch, int *done,
-                              bf_error *err);
+/* Channel c of s as a sample set of its own (*out, freed with bf_samples_free): the
+ * same directions (or MERL cells), weights and scene weights, channel c's values, name
+ * and wavelength. */
+bf_status bf_fit_channels_samples(const bf_samples *s, int c, bf_samples **out, bf_error *err);
+
+/* Channel c's fit options in oc (a copy of o, its overrides pointing at room for o's and
+ * its start, when o has one, at room for m1's values): the overrides of every channel and
+ * channel c's renamed to the channel's only one, and o->start's entries of channel c and
+ * the scalars. m: o's model (C channels), m1: the same spec for one channel. The seed
+ * stays o's: channel c's fit is that of channel c's data alone. */
+bf_status bf_fit_channels_options(const bf_fit_options *o, const bf_model *m, const bf_model *m1, int c,
+                                  bf_fit_options *oc);
 
 /* Model entry k1 of a channel's model (1 channel) -> the entry of channel c in the
  * model of C channels (same spec). */

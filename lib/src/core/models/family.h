@@ -67,9 +67,11 @@ struct bf_family {
     bf_lobe_fn lobe; /* only for bf_eval_diffuse_lobes */
     /* 1: channel c's value and gradient depend on channel c's colour entries and the
      * scalars alone, never on another channel's entries (no luminance tint, no shared
-     * normalisation). With every scalar fixed (or none, as in lambert and sgd) a fit of C
-     * channels is then C independent fits, and the driver runs it so (docs/fitting.md,
-     * "Independent channels"). 0 (the default): the channels are one problem. */
+     * normalisation). With every scalar fixed (or none, as in sgd) a fit of C channels is
+     * then C independent fits, and the driver runs it so (docs/fitting.md, "Independent
+     * channels"). 0 (the default): the channels are one problem. lambert qualifies but
+     * leaves it 0: its linear fit gains nothing, and C searches would cost C times the
+     * starts and change its stored results. */
     int channels_independent;
 };
 

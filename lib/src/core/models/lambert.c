@@ -16,5 +16,4 @@ const bf_family bf_family_lambert = {
              .anisotropic = 0},
     .configure = configure,
     .eval = bf_eval_diffuse_lobes, /* diffuse only: no lobe shapes */
-    .channels_independent = 1,     /* every parameter a colour: channel c sees only its own */
 };
