@@ -502,6 +502,12 @@ void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options 
                     "the best optimum was reached from 1 of %d starts: a better one may have been missed "
                     "(--accuracy best searches harder)",
                     r->starts);
+    bf_fit_diagnose_model(o, s, opt, corr, r);
+}
+
+void bf_fit_diagnose_model(const bf_objective *o, bf_samples *s, const bf_fit_options *opt, const double *corr,
+                           bf_fit_result *r)
+{
     if (opt->solver.loss.kind != BF_LOSS_NONE)
         bf_fit_warn(r, BF_WARN_NO_CRITERIA,
                     "AIC, AICc and BIC are undefined: a robust loss minimises no Gaussian likelihood");

@@ -15,5 +15,10 @@ void bf_fit_warn(bf_fit_result *r, bf_warning_kind kind, const char *fmt, ...) _
  * the free entries' correlations (bf_obj_final; NULL: none). */
 void bf_fit_diagnose(const bf_objective *o, bf_samples *s, const bf_fit_options *opt, const double *corr,
                      bf_fit_result *r);
+/* The same without the search's warnings (failed, solver limit, one start): what the
+ * fit's point and figures say, for a fit run channel by channel (fit_channels.h) whose
+ * channels say those themselves. */
+void bf_fit_diagnose_model(const bf_objective *o, bf_samples *s, const bf_fit_options *opt, const double *corr,
+                           bf_fit_result *r);
 
 #endif

@@ -18,6 +18,7 @@
 #include "run_options.h"
 
 #include "diagnostics.h"
+#include "fit_channels.h"
 #include "lobe_order.h"
 #include "progress.h"
 #include "search.h"
@@ -117,6 +118,7 @@ typedef struct fit_run {
     unsigned char *held; /* held_entries' flags (NULL: none) */
     int nsilent;
     double *corr;
+    bf_fit_result *ch; /* run channel by channel (fit_channels.h): each channel's fit; else NULL */
 } fit_run;
 
 /* The start in model space (x0, clamped into the effective bounds lo..hi, fixed values
@@ -425,7 +427,7 @@ static bf_status result_figures(fit_run *f, bf_error *err)
     const bf_objective *po = f->sr.screen_objective ? f->sr.screen_objective
                              : f->pre.objective     ? f->pre.objective
                                                     : f->obj;
-    if (f->have_best && nz > 0 && (rc = held_entries(f, po, err)) != BF_OK)
+    if (f->have_best && nz > 0 && !f->ch && (rc = held_entries(f, po, err)) != BF_OK)
         return rc;
     if (!(f->corr = malloc(((size_t)nz * (size_t)nz + 1) * sizeof *f->corr)))
         return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory for the correlations");
@@ -444,7 +446,12 @@ static bf_status result_figures(fit_run *f, bf_error *err)
     r->threads = o->solver.threads > 1 ? o->solver.threads : 1;
     r->seed = o->seed;
     r->residual = o->objective.residual;
-    bf_fit_diagnose(f->obj, f->s, o, f->corr, r);
+    if (f->ch) { /* the channels' own search warnings, then what the merged point shows */
+        bf_fit_channels_warn(f->ch, f->s, r);
+        bf_fit_diagnose_model(f->obj, f->s, o, f->corr, r);
+    } else {
+        bf_fit_diagnose(f->obj, f->s, o, f->corr, r);
+    }
     return BF_OK;
 }
 
@@ -459,8 +466,85 @@ static bf_status fit_result(fit_run *f, bf_error *err)
     return result_figures(f, err);
 }
 
+/* Each channel of f->s fitted alone into f->ch[c] (fit_channels.h), one after another;
+ * stops after a cancelled one (*done: the channels fitted). */
+static bf_status fit_channels_each(fit_run *f, const char *spec, int *done, bf_error *err)
+{
+    const bf_fit_options *o = f->o;
+    bf_fit_options oc = *o;
+    bf_model *m1 = NULL;
+    bf_override *ov = malloc(((size_t)o->objective.noverrides + 1) * sizeof *ov);
+    double *start = malloc(((size_t)f->P + 1) * sizeof *start);
+    bf_status rc = ov && start ? bf_model_new(spec, 1, &m1, err) : bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    oc.objective.overrides = ov;
+    oc.start = o->start ? start : NULL;
+    *done = 0;
+    for (int c = 0; rc == BF_OK && c < f->s->channels; c++) {
+        bf_samples *sc = NULL;
+        if ((rc = bf_fit_channels_options(o, f->r->model, m1, c, &oc)) == BF_OK &&
+            (rc = bf_fit_channels_samples(f->s, c, &sc, err)) == BF_OK)
+            rc = bf_fit_with(sc, spec, &oc, &f->ch[c], err);
+        bf_samples_free(sc);
+        if (rc == BF_OK)
+            *done = c + 1;
+        if (rc == BF_OK && f->ch[c].solution.stop == BF_STOP_CANCELLED)
+            break;
+    }
+    bf_model_free(m1);
+    free(ov);
+    free(start);
+    return rc;
+}
+
+/* Channel by channel (fit_channels.h): each channel fitted alone, their results merged
+ * into f->r, and the held entries of the merged point (on a bound: read off it; without
+ * effect: the channels' inactive entries) for result_figures, which computes the
+ * metrics, standard errors and warnings over all channels as for any fit. A cancelled
+ * channel cancels the fit (f->x0: the start, as a cancelled fit reports). */
+static bf_status fit_separately(fit_run *f, const char *spec, bf_error *err)
+{
+    const int C = f->s->channels, P = f->P, nz = f->nz;
+    bf_fit_result *r = f->r;
+    f->ch = calloc((size_t)C, sizeof *f->ch);
+    f->x0 = malloc(((size_t)P + 1) * sizeof *f->x0);
+    f->z0 = malloc(((size_t)nz + 1) * sizeof *f->z0);
+    f->zbest = malloc(((size_t)nz + 1) * sizeof *f->zbest);
+    f->lo = malloc(((size_t)P + 1) * sizeof *f->lo), f->hi = malloc(((size_t)P + 1) * sizeof *f->hi);
+    f->held = malloc(2 * (size_t)nz + 1);
+    if (!f->ch || !f->x0 || !f->z0 || !f->zbest || !f->lo || !f->hi || !f->held) {
+        free(f->ch), f->ch = NULL;
+        return bf_fail(err, BF_ERR_NOMEM, "fit: out of memory");
+    }
+    for (int c = 0; c < C; c++)
+        bf_fit_result_init(&f->ch[c]);
+    int done = 0;
+    bf_status rc = fit_channels_each(f, spec, &done, err);
+    if (rc != BF_OK)
+        return rc;
+    if (done < C || f->ch[C - 1].solution.stop == BF_STOP_CANCELLED) {
+        f->cancelled = 1;
+        return start_point(f, f->s, err);
+    }
+    bf_fit_channels_merge(f->ch, C, r);
+    f->have_best = r->ok;
+    for (int k = 0; k < P; k++)
+        r->fixed[k] = (unsigned char)(bf_objective_fixed(f->obj, k) != 0);
+    bf_objective_to_internal(f->obj, r->x, f->zbest);
+    f->nsilent = 0;
+    for (int j = 0; j < nz; j++) {
+        const unsigned char silent = r->inactive[f->obj->kidx[j]];
+        f->held[j] = bf_silence_at_bound(f->full, f->zbest, j) != 0 || silent;
+        f->held[nz + j] = silent;
+        f->nsilent += silent;
+    }
+    return BF_OK;
+}
+
 static void fit_close(fit_run *f)
 {
+    for (int c = 0; f->ch && c < f->s->channels; c++)
+        bf_fit_result_clear(&f->ch[c]);
+    free(f->ch);
     bf_fit_search_clear(&f->sr);
     free(f->held);
     free(f->corr);
@@ -487,9 +571,13 @@ bf_status bf_fit_with(bf_samples *s, const char *spec, const bf_fit_options *o, 
     bf_status rc = fit_open(&f, spec, err);
     if (rc != BF_OK)
         return rc;
-    if ((rc = fit_prepare(&f, err)) == BF_OK && (rc = fit_search(&f, err)) == BF_OK &&
-        (rc = fit_whole_set(&f, err)) == BF_OK)
+    if (bf_fit_channels_separable(f.obj)) {
+        if ((rc = fit_separately(&f, spec, err)) == BF_OK)
+            rc = f.cancelled ? (cancelled_result(r, o, f.obj, f.x0, s->n), BF_OK) : result_figures(&f, err);
+    } else if ((rc = fit_prepare(&f, err)) == BF_OK && (rc = fit_search(&f, err)) == BF_OK &&
+               (rc = fit_whole_set(&f, err)) == BF_OK) {
         rc = fit_result(&f, err);
+    }
     fit_close(&f);
     if (rc != BF_OK) {
         bf_fit_result_clear(r);

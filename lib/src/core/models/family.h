@@ -65,6 +65,14 @@ struct bf_family {
     void (*eval)(const bf_model *m, const double *x, const bf_geometry *g, size_t i0, size_t i1, double *values,
                  double *grad);
     bf_lobe_fn lobe; /* only for bf_eval_diffuse_lobes */
+    /* 1: channel c's value and gradient depend on channel c's colour entries and the
+     * scalars alone, never on another channel's entries (no luminance tint, no shared
+     * normalisation). With every scalar fixed (or none, as in sgd) a fit of C channels is
+     * then C independent fits, and the driver runs it so (docs/fitting.md, "Independent
+     * channels"). 0 (the default): the channels are one problem. lambert qualifies but
+     * leaves it 0: its linear fit gains nothing, and C searches would cost C times the
+     * starts and change its stored results. */
+    int channels_independent;
 };
 
 /* Appends a parameter with its role (model.h); name gets "_k" appended for lobe k when

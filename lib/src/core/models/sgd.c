@@ -126,4 +126,5 @@ const bf_family bf_family_sgd = {
     .configure = configure,
     .eval = bf_eval_diffuse_lobes,
     .lobe = lobe,
+    .channels_independent = 1, /* every parameter a colour: channel c sees only its own */
 };
