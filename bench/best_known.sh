@@ -41,7 +41,7 @@ command -v jq >/dev/null || { echo "$0: jq is missing: install the Debian packag
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 models=lambert,oren_nayar,blinn_phong,ward_iso,cook_torrance,walter,ashikhmin_shirley_iso,lafortune,walter:lobes=2,disney
-models=$models,sgd,student_t,low_smooth,he
+models=$models,student_t,low_smooth,he
 all=$models
 [ -z "$only" ] || models=$only
 "$synth" --params examples/walter_rgb.json --pattern merl --noise 0.02 -o "$tmp/merl.binary"
