@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # brdfit's default fit is at the optimum: for every bundled real measurement (and the
-# synthetic MERL table) and each of the ten models of bench/best_known.json, brdfit
+# synthetic MERL table) and each model of bench/best_known.json, brdfit
 # compare with default options ends within 0.5% of the best-known rmse_log that
 # bench/best_known.sh found by exhaustive search (docs/fitting.md). A default that lands
 # in a worse basin fails here, naming the case and both numbers; a default that beats the
