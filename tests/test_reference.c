@@ -119,6 +119,10 @@ static void test_bad_files(void **state)
                BF_ERR_PARSE, "material \"a\" given twice");
     expect_bad("{\"model\": \"lambert\", \"params\": {\"rho_d\": [0.1, 0.2]}, \"channels\": 3}", BF_ERR_PARSE,
                "2 values for 3 channels");
+    /* A material named with bytes that are not text is escaped in the message (found by
+     * fuzz_reference). */
+    expect_bad("{\"source\": \"x\", \"materials\": {\"gold-\xff\x02\": {\"mhdel\": \"lambert\"}}}", BF_ERR_PARSE,
+               "materials/gold-\\xff\\x02: ");
 }
 
 /* A folder: its *.json files in byte order of their names, other files left out. */

@@ -160,7 +160,9 @@ static bf_status add_fit(bf_reference_set *s, const ref_file *f, const cJSON *ro
     return BF_OK;
 }
 
-/* err's "PATH:LINE: problem" becomes "PATH:LINE: materials/NAME: problem". */
+/* err's "PATH:LINE: problem" becomes "PATH:LINE: materials/NAME: problem". Through
+ * bf_fail, so that NAME (any bytes a JSON key may hold) is escaped and the whole kept to
+ * the message's length like every other message. */
 static void name_entry(bf_error *err, const char *path, const char *material)
 {
     const size_t n = strlen(path);
@@ -169,9 +171,7 @@ static void name_entry(bf_error *err, const char *path, const char *material)
     const char *rest = strstr(err->msg + n + 1, ": ");
     if (!rest)
         return;
-    char buf[sizeof err->msg];
-    snprintf(buf, sizeof buf, "%.*s: materials/%s: %s", (int)(rest - err->msg), err->msg, material, rest + 2);
-    memcpy(err->msg, buf, sizeof buf);
+    bf_fail(err, err->code, "%.*s: materials/%s: %s", (int)(rest - err->msg), err->msg, material, rest + 2);
 }
 
 /* The optional text member key of a set: a string or absent. */
